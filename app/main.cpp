@@ -1,0 +1,70 @@
+// cablelab: the command-line entry point. Subcommands register themselves (see command.h).
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <map>
+
+#include "app/command.h"
+#include "engine/error.h"
+
+namespace cablelab::app {
+
+static std::vector<Command>& registry() {
+  static std::vector<Command> all;
+  return all;
+}
+
+bool registerCommand(std::string name, std::string description, CommandSetup setup) {
+  registry().push_back({std::move(name), std::move(description), std::move(setup)});
+  return true;
+}
+
+const std::vector<Command>& commands() {
+  auto& all = registry();
+  std::sort(all.begin(), all.end(), [](const Command& a, const Command& b) { return a.name < b.name; });
+  return all;
+}
+
+void printJson(const std::string& json) {
+  std::fwrite(json.data(), 1, json.size(), stdout);
+  std::fputc('\n', stdout);
+  std::fflush(stdout);
+}
+
+}  // namespace cablelab::app
+
+int main(int argc, char** argv) {
+  using namespace cablelab;
+  CLI::App cli{"cablelab: cable-driven soft robots on Box2D"};
+  cli.require_subcommand(1);
+  std::map<CLI::App*, std::function<int()>> runners;
+  for (const auto& command : app::commands()) {
+    CLI::App* sub = cli.add_subcommand(command.name, command.description);
+    runners[sub] = command.setup(*sub);
+  }
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return cli.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return cli.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::string what = e.what();
+    std::cerr << "cablelab: " << (what.empty() ? "bad command line" : what) << " (see --help)\n";
+    return 2;
+  }
+  try {
+    for (auto& [sub, run] : runners)
+      if (sub->parsed()) return run();
+  } catch (const InputError& e) {
+    std::cerr << e.what() << "\n";
+    return 2;
+  } catch (const SimulationError& e) {
+    std::cerr << "simulation stopped: " << e.what() << "\n";
+    return 3;
+  } catch (const std::exception& e) {
+    std::cerr << "cablelab: " << e.what() << "\n";
+    return 1;
+  }
+  return 2;
+}

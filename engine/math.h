@@ -1,0 +1,26 @@
+// Small 2D helpers on Eigen vectors. Double precision throughout the engine.
+#pragma once
+
+#include <Eigen/Core>
+#include <cmath>
+
+namespace cablelab {
+
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+
+/// z-component of the 3D cross product (a.x, a.y, 0) x (b.x, b.y, 0).
+inline double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+/// a rotated by +90 degrees: the velocity of a point at offset a on a body spinning at 1 rad/s.
+inline Vec2 perp(const Vec2& a) { return {-a.y(), a.x()}; }
+
+/// a rotated by angle (radians).
+inline Vec2 rotate(const Vec2& a, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  return {c * a.x() - s * a.y(), s * a.x() + c * a.y()};
+}
+
+inline bool isFinite(const Vec2& a) { return std::isfinite(a.x()) && std::isfinite(a.y()); }
+
+}  // namespace cablelab
