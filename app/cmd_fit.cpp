@@ -149,7 +149,8 @@ int runGenerate(const FitOptions& o) {
 
 int runFit(const FitOptions& o) {
   if (o.data.empty())
-    throw InputError("DATA", "DATA", "required: cablelab fit DATA.csv --pulleys ...");
+    throw InputError("fit", "DATA",
+                     "required: cablelab fit DATA.csv --pulleys ... (or --generate OUT.csv)");
   for (const auto& [value, flag] : {std::pair{o.k, "--k"}, std::pair{o.preload, "--preload"}})
     if (!value.empty()) throw InputError(flag, "generate", "only with --generate");
   const MembraneGeometry g = parsePulleys(o.pulleys);
