@@ -164,9 +164,10 @@ MembraneFitResult fitMembrane(const MembraneGeometry& g, const std::vector<Membr
   const Eigen::Matrix2d info = J.transpose() * J;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(info);
   if (!(eigen.eigenvalues()[0] > 1e-14 * eigen.eigenvalues()[1]))
-    throw InputError(options.source, "fy",
-                     "k and preload are not determined by these data (singular fit: is the band "
-                     "slack at every point?)");
+    throw InputError(
+        options.source, "fy",
+        "k and preload are not determined by these data (singular fit: a slack band everywhere, "
+        "or values too large?)");
   if (!(x[0] > 0.0) || !std::isfinite(x[1]))
     throw InputError(options.source, "fy",
                      "best fit has stiffness k = " + std::to_string(x[0]) +
@@ -179,6 +180,11 @@ MembraneFitResult fitMembrane(const MembraneGeometry& g, const std::vector<Membr
   result.sigmaFy = sigmaFy;
   result.sigmaAngleDeg = sigmaAngle;
   result.chi2PerDof = f.squaredNorm() / std::max(1, 2 * n - 2);
+  // Extreme inputs (|fy| near 1e300) can overflow the sums; never hand back a NaN.
+  for (double v : {result.kStderr, result.preloadStderr, result.rmsFy, result.rmsAngleDeg,
+                   result.covariance(0, 1), result.chi2PerDof, sigmaFy, sigmaAngle})
+    if (!std::isfinite(v))
+      throw InputError(options.source, "fy", "the fit overflowed: values too large to fit");
   return result;
 }
 
