@@ -20,8 +20,10 @@
 //  * Consecutive coincident wrap points (a zero-length segment, < 1e-12 m) are merged: the
 //    segment is left out of J and J-dot-v, never divided by, and a warning says so.
 //  At creation every pulley that the straight segment cuts joins (as if it had just crossed).
-//  Joins and leaves only happen where the new point lies on the current path (up to one step
-//  of motion), so length and J stay continuous (theorem 1).
+//  Joins and leaves only happen where the new point lies on the current path, up to one step of
+//  motion, so length and J stay continuous (theorem 1) up to that: a pulley detected d metres
+//  past the segment adds a length jump of order d^2 / segment length, and a taut cable then
+//  does work T times that jump. It is second order in the step (tests bound it).
 #pragma once
 
 #include <span>
@@ -67,6 +69,17 @@ struct CableKinematics {
   std::vector<BodyJacobian> jacobian;   ///< one entry per moving body touched, sorted by body
   int zeroLengthSegments = 0;           ///< segments left out of J (coincident points)
 };
+
+/// One 2x2 block of d^2 length / (d x_a d x_b), x = a body's translation.
+struct StiffnessBlock {
+  int a, b;
+  Eigen::Matrix2d k;
+};
+
+/// The translational Hessian of the length of a path (world points already set): tension times
+/// this is the cable's geometric stiffness, which a stiff membrane on a light body needs
+/// implicitly. Rotations are left out. Blocks of world-fixed points are skipped.
+std::vector<StiffnessBlock> lengthHessianTranslation(std::span<const WrapPoint> path);
 
 /// World position of a point fixed on a body.
 Vec2 worldPoint(std::span<const BodyState> bodies, int body, const Vec2& local);

@@ -79,4 +79,23 @@ CableKinematics cableKinematics(std::span<WrapPoint> path, std::span<const BodyS
   return k;
 }
 
+std::vector<StiffnessBlock> lengthHessianTranslation(std::span<const WrapPoint> path) {
+  std::vector<StiffnessBlock> blocks;
+  for (size_t i = 0; i + 1 < path.size(); ++i) {
+    const int a = path[i].body, b = path[i + 1].body;
+    const Vec2 d = path[i + 1].world - path[i].world;
+    const double len = d.norm();
+    if (a == b || len < kZeroLength) continue;
+    const Vec2 u = d / len;
+    const Eigen::Matrix2d k = (Eigen::Matrix2d::Identity() - u * u.transpose()) / len;
+    if (a >= 0) blocks.push_back({a, a, k});
+    if (b >= 0) blocks.push_back({b, b, k});
+    if (a >= 0 && b >= 0) {
+      blocks.push_back({a, b, -k});
+      blocks.push_back({b, a, -k});
+    }
+  }
+  return blocks;
+}
+
 }  // namespace cablelab

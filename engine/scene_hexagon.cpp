@@ -10,6 +10,7 @@ SceneDef makeHexagonScene(const SceneParams& p) {
   s.name = "hexagon";
   s.description = "a cable wrapping a spinning hexagonal pulley; wrap points come and go";
   s.view = {Vec2(0, -0.3), 3.5};
+  s.substeps = 2;  // keeps the symplectic energy oscillation near 1% at 60 Hz
 
   BodyDef hex;
   hex.name = "hexagon";

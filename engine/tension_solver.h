@@ -1,40 +1,25 @@
-// Joint tension solve for all cables of a world at once (a small LCP, dense, Eigen).
+// The complementarity problem behind the cable tensions (a small dense LCP, Eigen).
 //
-// Each cable i is a row with Jacobian J_i (d length / d q). With tension impulses P >= 0 over a
-// step the velocities become v = v* - M^-1 J^T P, and each taut row asks
-//     rigid:   J_i v = r_i                       (r_i: stabilised target length rate)
-//     elastic: J_i v = r_i + compliance_i P_i    (implicit spring-damper, a soft constraint)
-// so that w = (A + E) P - b >= 0, P >= 0, P . w = 0 with A = J M^-1 J^T, E = diag(compliance),
-// b_i = J_i v* - r_i. Solved exactly by an active-set (principal pivoting) method; a slack cable
-// (P_i = 0) only lets the length shrink or stay.
+// All cables of a world are solved together: with tension impulses P >= 0 over a step the
+// velocities become v = v* - W P (W = M'^-1 J^T), and each taut cable asks
+//     rigid:   J_i v = r_i                       (r_i: target length rate)
+//     elastic: J_i v = r_i + compliance_i P_i    (implicit spring-damper: a soft constraint)
+// so that w = K P - b >= 0, P >= 0, P . w = 0 with K = J W + diag(compliance), b = J v* - r.
+// A slack cable (P_i = 0) may only shorten. World::solveCableForces() assembles K and b.
 #pragma once
 
 #include <Eigen/Core>
-#include <span>
-#include <vector>
-
-#include "engine/cable.h"
 
 namespace cablelab {
 
-struct TensionRow {
-  const std::vector<BodyJacobian>* jacobian = nullptr;  ///< d length / d(x, y, theta)
-  double targetRate = 0;   ///< r_i (m/s)
-  double compliance = 0;   ///< E_ii (m/s per N s); 0 for rigid cables
+struct LcpSolution {
+  Eigen::VectorXd x;   ///< the impulses P (N s), >= 0
+  int iterations = 0;  ///< active-set changes
+  double residual = 0; ///< max_i |min(x_i K_ii, w_i)| (m/s)
 };
 
-struct TensionSolution {
-  Eigen::VectorXd impulse;  ///< P (N s), >= 0, one per row
-  int iterations = 0;       ///< active-set changes
-  double residual = 0;      ///< max_i |min(P_i, w_i)| scaled by the row's effective mass
-};
-
-/// `velocity[b]` holds body b's predicted (x, y, theta) velocity v*; bodies give inverse masses.
-TensionSolution solveTensions(std::span<const TensionRow> rows, std::span<const BodyState> bodies,
-                              std::span<const Vec3> velocity);
-
-/// Generalized velocity change -M^-1 J^T P of one row, added into `dv` (per body x, y, theta).
-void applyTensionImpulse(const TensionRow& row, double impulse, std::span<const BodyState> bodies,
-                         std::span<Vec3> dv);
+/// Solves w = K x - b >= 0, x >= 0, x . w = 0 exactly for a symmetric positive (semi)definite K
+/// by principal pivoting on the active set (converges in a few changes for these sizes).
+LcpSolution solveLcp(const Eigen::MatrixXd& K, const Eigen::VectorXd& b);
 
 }  // namespace cablelab

@@ -22,6 +22,7 @@ constexpr double kBaumgarte = 0.2;  // share of a rigid cable's length error fix
 // float (about 1e-7 m resolution at 1 m): correcting below that only amplifies rounding, by
 // beta / h^2 in the tension.
 constexpr double kLengthSlop = 1e-5;
+constexpr int kNewtonIterations = 3;  // on the end-of-step lengths; geometry is nearly linear
 
 b2Vec2 toB2(const Vec2& v) { return b2Vec2(static_cast<float>(v.x()), static_cast<float>(v.y())); }
 Vec2 fromB2(const b2Vec2& v) { return Vec2(v.x, v.y); }
@@ -138,6 +139,11 @@ World::World(SceneDef scene, const std::string& source) : scene_(std::move(scene
     b2_->joints.push_back(joint);
   }
 
+  jointNeighbours_.assign(scene_.bodies.size(), {});
+  for (const JointDef& jd : scene_.joints) {
+    const int a = findBody(jd.bodyA), b = findBody(jd.bodyB);
+    if (a >= 0 && b >= 0) jointNeighbours_[a].push_back(b), jointNeighbours_[b].push_back(a);
+  }
   for (int i = 0; i < static_cast<int>(scene_.cables.size()); ++i) cables_.emplace_back(scene_, i, source);
   readBodies();
   for (size_t i = 0; i < cables_.size(); ++i) {
@@ -303,86 +309,231 @@ void World::applyServos() {
   }
 }
 
-void World::solveCableForces(double h) {
-  std::vector<TensionRow> rows;
-  std::vector<int> cableOfRow;
-  for (size_t i = 0; i < cables_.size(); ++i) {
-    const Cable& c = cables_[i];
-    const CableKinematics& k = c.kinematics();
-    cables_[i].setTension(0);
-    if (k.jacobian.empty()) continue;  // both ends immovable: nothing to push on
-    TensionRow row;
-    row.jacobian = &k.jacobian;
-    const double phi = c.stretch();
-    if (!c.elastic()) {
-      // Acceleration-level condition J a + Jdot v = 0 at velocity level, plus Baumgarte on the
-      // length error beyond the slop.
-      const double error = std::copysign(std::max(0.0, std::abs(phi) - kLengthSlop), phi);
-      row.targetRate = -kBaumgarte * error / h - h * k.jdotV;
-    } else {
-      // Implicit spring-damper: T = k (phi + h J v) + b J v with v the end-of-step velocity and
-      // the same J-dot-v correction, T >= 0. Stable for any k and mass at any h.
-      const double stiff = c.def().stiffness, damp = c.def().damping;
-      const double gamma = stiff / (stiff * h + damp);
-      row.targetRate = -gamma * phi - h * k.jdotV;
-      row.compliance = 1.0 / (h * (stiff * h + damp));
+// Generalized coordinates of the bodies the cables move: 3 per moving body.
+struct World::DofMap {
+  std::vector<int> ofBody;  // body -> first dof, -1 if the body does not move
+  std::vector<int> body;    // dof / 3 -> body
+  int size() const { return 3 * static_cast<int>(body.size()); }
+  int add(int b) {
+    if (ofBody[b] < 0) {
+      ofBody[b] = size();
+      body.push_back(b);
     }
-    rows.push_back(row);
-    cableOfRow.push_back(static_cast<int>(i));
+    return ofBody[b];
   }
-  if (rows.empty()) return;
+};
 
-  std::vector<Vec3> predicted(bodies_.size());
-  for (size_t b = 0; b < bodies_.size(); ++b) {
-    const BodyState& s = bodies_[b];
-    const Vec3 inv(s.invMass, s.invMass, s.invInertia);
-    Vec3 v(s.velocity.x(), s.velocity.y(), s.angularVelocity);
-    if (s.invMass > 0) v += h * (Vec3(scene_.gravity.x(), scene_.gravity.y(), 0) + inv.cwiseProduct(forces_[b]));
-    predicted[b] = v;
+namespace {
+
+}  // namespace
+
+Eigen::VectorXd World::inverseMassOf(const DofMap& dofs) const {
+  Eigen::VectorXd inv(dofs.size());
+  for (size_t k = 0; k < dofs.body.size(); ++k) {
+    const BodyState& s = bodies_[dofs.body[k]];
+    inv.segment<3>(3 * k) = Vec3(s.invMass, s.invMass, s.invInertia);
   }
-  const TensionSolution sol = solveTensions(rows, bodies_, predicted);
-  stats_.solverIterations += sol.iterations;
-  stats_.residual = std::max(stats_.residual, sol.residual);
-  for (size_t r = 0; r < rows.size(); ++r) {
-    const double tension = sol.impulse[r] / h;
-    cables_[cableOfRow[r]].setTension(tension);
-    for (const auto& e : *rows[r].jacobian) forces_[e.body] -= tension * e.d;
-  }
+  return inv;
 }
 
-// Nonlinear projection of over-long rigid cables back to their rest length (one Newton step on
-// all violated cables together, mass-weighted like Box2D's position solver).
-void World::projectRigidCables() {
-  std::vector<int> violated;
-  std::vector<CableKinematics> kin;
+// Velocity-level Jacobian of the Box2D joints among `dofs` (rows: constrained relative motions;
+// limits and motors are left to Box2D). Revolute: the anchor points move together (2 rows);
+// prismatic: no motion across the axis and no relative turn (2 rows); weld: all three.
+Eigen::MatrixXd World::jointJacobian(const DofMap& dofs) const {
+  std::vector<Eigen::RowVectorXd> rows;
+  const int n = dofs.size();
+  for (size_t j = 0; j < scene_.joints.size(); ++j) {
+    const int a = findBody(scene_.joints[j].bodyA), b = findBody(scene_.joints[j].bodyB);
+    const int da = a >= 0 ? dofs.ofBody[a] : -1, db = b >= 0 ? dofs.ofBody[b] : -1;
+    if (da < 0 && db < 0) continue;
+    const b2Joint* joint = b2_->joints[j];
+    const Vec2 anchorB = fromB2(joint->GetAnchorB());
+    const Vec2 rA = a >= 0 ? Vec2(anchorB - bodies_[a].position) : Vec2::Zero();
+    const Vec2 rB = b >= 0 ? Vec2(anchorB - bodies_[b].position) : Vec2::Zero();
+    // A row on the relative velocity of the anchor point along direction t.
+    auto pointRow = [&](const Vec2& t) {
+      Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(n);
+      if (db >= 0) row.segment<3>(db) << t.x(), t.y(), t.dot(perp(rB));
+      if (da >= 0) row.segment<3>(da) -= Eigen::RowVector3d(t.x(), t.y(), t.dot(perp(rA)));
+      return row;
+    };
+    auto angleRow = [&] {
+      Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(n);
+      if (db >= 0) row[db + 2] = 1;
+      if (da >= 0) row[da + 2] -= 1;
+      return row;
+    };
+    switch (scene_.joints[j].kind) {
+      case JointDef::Kind::Revolute:
+        rows.push_back(pointRow(Vec2(1, 0)));
+        rows.push_back(pointRow(Vec2(0, 1)));
+        break;
+      case JointDef::Kind::Prismatic: {
+        auto* pj = static_cast<const b2PrismaticJoint*>(joint);
+        const double angleA = a >= 0 ? bodies_[a].angle : 0.0;
+        rows.push_back(pointRow(perp(rotate(fromB2(pj->GetLocalAxisA()), angleA))));
+        rows.push_back(angleRow());
+        break;
+      }
+      case JointDef::Kind::Weld:
+        rows.push_back(pointRow(Vec2(1, 0)));
+        rows.push_back(pointRow(Vec2(0, 1)));
+        rows.push_back(angleRow());
+        break;
+    }
+  }
+  Eigen::MatrixXd C(rows.size(), n);
+  for (size_t r = 0; r < rows.size(); ++r) C.row(r) = rows[r];
+  return C;
+}
+
+void World::solveCableForces(double h) {
+  // 1. One row per cable that can pull on something that moves.
+  std::vector<int> rows;
+  DofMap dofs{std::vector<int>(bodies_.size(), -1), {}};
   for (size_t i = 0; i < cables_.size(); ++i) {
-    Cable& c = cables_[i];
-    if (c.elastic()) continue;
-    c.refresh(bodies_);
-    if (c.stretch() > kLengthSlop && !c.kinematics().jacobian.empty()) violated.push_back(static_cast<int>(i));
+    bool moves = false;
+    for (const auto& e : cables_[i].kinematics().jacobian) {
+      const BodyState& b = bodies_[e.body];
+      if (b.invMass > 0 || b.invInertia > 0) {
+        dofs.add(e.body);
+        moves = true;
+      }
+    }
+    if (moves) rows.push_back(static_cast<int>(i));
+    else cables_[i].setTension(0);
   }
-  if (violated.empty()) return;
-  const int n = static_cast<int>(violated.size());
-  std::vector<TensionRow> rows(n);
-  Eigen::MatrixXd K(n, n);
-  Eigen::VectorXd phi(n);
-  std::vector<Vec3> zero(bodies_.size(), Vec3::Zero());
-  for (int r = 0; r < n; ++r) {
-    rows[r].jacobian = &cables_[violated[r]].kinematics().jacobian;
-    phi[r] = cables_[violated[r]].stretch() - 0.5 * kLengthSlop;
+  if (rows.empty()) return;
+  // Bodies jointed to those the cables pull on move with them: add them (breadth first).
+  for (size_t k = 0; k < dofs.body.size(); ++k)
+    for (int other : jointNeighbours_[dofs.body[k]])
+      if (bodies_[other].invMass > 0 || bodies_[other].invInertia > 0) dofs.add(other);
+  const int m = static_cast<int>(rows.size()), n = dofs.size();
+
+  // 2. J at the start of the step and the predicted velocity v* (gravity and loads, no cables).
+  Eigen::MatrixXd J0 = Eigen::MatrixXd::Zero(m, n);
+  Eigen::VectorXd vStar(n);
+  const Eigen::VectorXd invM = inverseMassOf(dofs);
+  for (size_t k = 0; k < dofs.body.size(); ++k) {
+    const BodyState& s = bodies_[dofs.body[k]];
+    Vec3 v(s.velocity.x(), s.velocity.y(), s.angularVelocity);
+    v += h * (invM.segment<3>(3 * k).cwiseProduct(forces_[dofs.body[k]]));
+    if (s.invMass > 0) v.head<2>() += h * scene_.gravity;
+    vStar.segment<3>(3 * k) = v;
   }
-  // Reuse the tension solver with zero velocity: it solves K x = -phi... with sign handled here.
-  for (int r = 0; r < n; ++r) rows[r].targetRate = -phi[r];
-  const TensionSolution sol = solveTensions(rows, bodies_, zero);
-  std::vector<Vec3> dq(bodies_.size(), Vec3::Zero());
-  for (int r = 0; r < n; ++r) applyTensionImpulse(rows[r], sol.impulse[r], bodies_, dq);
-  for (size_t b = 0; b < bodies_.size(); ++b) {
-    if (dq[b].isZero()) continue;
-    const BodyState& s = bodies_[b];
-    b2_->bodies[b]->SetTransform(toB2(s.position + dq[b].head<2>()), static_cast<float>(s.angle + dq[b].z()));
+  for (int r = 0; r < m; ++r)
+    for (const auto& e : cables_[rows[r]].kinematics().jacobian)
+      if (dofs.ofBody[e.body] >= 0) J0.block<1, 3>(r, dofs.ofBody[e.body]) = e.d.transpose();
+  const Eigen::VectorXd vFree = vStar;  // what Box2D would reach without cables and joints
+
+  // 3. W = M'^-1 J^T projected onto what the joints allow: how tension impulses change
+  // velocities. Box2D's joints act after our forces, so the cables must already see them (a
+  // pulley on a pivoted body turns, it does not translate). M' adds the geometric stiffness
+  // h^2 T d^2(length)/dx^2 of taut cables where it matters (a light body on a tight band turns
+  // the force direction faster than one step resolves).
+  Eigen::MatrixXd stiffness = Eigen::MatrixXd::Zero(n, n);
+  bool stiff = false;
+  for (int r = 0; r < m; ++r) {
+    const Cable& c = cables_[rows[r]];
+    const double tension = std::max(c.tension(), c.elastic() ? c.def().stiffness * std::max(0.0, c.stretch()) : 0.0);
+    if (tension <= 0) continue;
+    for (const StiffnessBlock& blk : lengthHessianTranslation(c.path())) {
+      const int ia = dofs.ofBody[blk.a], ib = dofs.ofBody[blk.b];
+      if (ia < 0 || ib < 0) continue;
+      stiffness.block<2, 2>(ia, ib) += h * h * tension * blk.k;
+      if (blk.a == blk.b) stiff |= h * h * tension * blk.k.trace() * invM[ia] > 0.05;
+    }
   }
-  readBodies();
-  for (int i : violated) cables_[i].refresh(bodies_);
+  const Eigen::MatrixXd C = jointJacobian(dofs);
+  Eigen::MatrixXd W;
+  if (!stiff && C.rows() == 0) {
+    W = invM.asDiagonal() * J0.transpose();
+  } else {
+    Eigen::MatrixXd Mprime = stiff ? stiffness : Eigen::MatrixXd::Zero(n, n);
+    for (int d = 0; d < n; ++d)
+      if (invM[d] == 0) Mprime.row(d).setZero(), Mprime.col(d).setZero();
+    for (int d = 0; d < n; ++d) Mprime(d, d) += invM[d] > 0 ? 1.0 / invM[d] : 1.0;
+    const Eigen::LDLT<Eigen::MatrixXd> mass(Mprime);
+    const Eigen::MatrixXd mask = invM.cwiseSign().asDiagonal();
+    W = mass.solve(mask * J0.transpose());
+    // Backward Euler on the turning force direction: (M + h^2 T G) v1 = M v* - J^T P, so the
+    // stiffness also resists the motion v* already carries into the band.
+    if (stiff) {
+      const Eigen::VectorXd momentum = invM.cwiseInverse().cwiseProduct(mask * vStar).unaryExpr([](double x) { return std::isfinite(x) ? x : 0.0; });
+      vStar = mass.solve(momentum);
+    }
+    if (C.rows() > 0) {
+      // Schur complement of the joint rows: W <- W - M'^-1 C^T (C M'^-1 C^T)^-1 C W, and v* made
+      // joint-consistent the same way.
+      const Eigen::MatrixXd MinvCt = mass.solve(mask * C.transpose());
+      Eigen::MatrixXd S = C * MinvCt;
+      S.diagonal().array() += 1e-10 * (1 + S.diagonal().array());
+      const Eigen::LDLT<Eigen::MatrixXd> schur(S);
+      W -= MinvCt * schur.solve(C * W);
+      vStar -= MinvCt * schur.solve(C * vStar);
+    }
+  }
+
+  // 4. Position-level targets. Rigid: length at the end of the step = now (the error below the
+  // slop is float rounding: fixing it would amplify it by 1/h^2), a slack cable may come taut,
+  // an over-long one is shortened by a share of the excess. Elastic: T = k phi1 + b (phi1 - phi0)/h.
+  Eigen::VectorXd target(m), compliance = Eigen::VectorXd::Zero(m), damped = Eigen::VectorXd::Zero(m);
+  for (int r = 0; r < m; ++r) {
+    const Cable& c = cables_[rows[r]];
+    const double phi = c.stretch();
+    if (!c.elastic()) {
+      target[r] = phi < -kLengthSlop ? 0.0 : phi > kLengthSlop ? phi - kBaumgarte * (phi - kLengthSlop) : phi;
+    } else {
+      const double stiffK = c.def().stiffness, damp = c.def().damping;
+      compliance[r] = 1.0 / (h * (stiffK * h + damp));
+      damped[r] = damp * phi / (stiffK * h + damp);
+    }
+  }
+
+  // 5. Newton on the end-of-step lengths phi1(P) (Box2D integrates q1 = q0 + h v1), each
+  // linearisation an LCP over all cables: tension >= 0, slack cables only shorten.
+  Eigen::VectorXd P = Eigen::VectorXd::Zero(m), phi1(m);
+  Eigen::MatrixXd J1 = Eigen::MatrixXd::Zero(m, n);
+  std::vector<BodyState> predicted = bodies_;
+  std::vector<WrapPoint> path;
+  for (int iteration = 0; iteration < kNewtonIterations; ++iteration) {
+    const Eigen::VectorXd v1 = vStar - W * P;
+    for (size_t k = 0; k < dofs.body.size(); ++k) {
+      const BodyState& s = bodies_[dofs.body[k]];
+      BodyState& p = predicted[dofs.body[k]];
+      p.velocity = v1.segment<2>(3 * k);
+      p.angularVelocity = v1[3 * k + 2];
+      p.position = s.position + h * p.velocity;
+      p.angle = s.angle + h * p.angularVelocity;
+    }
+    J1.setZero();
+    for (int r = 0; r < m; ++r) {
+      const Cable& c = cables_[rows[r]];
+      path = c.path();
+      const CableKinematics k = cableKinematics(path, predicted);
+      phi1[r] = c.stretch() + k.length - c.length();
+      for (const auto& e : k.jacobian)
+        if (dofs.ofBody[e.body] >= 0) J1.block<1, 3>(r, dofs.ofBody[e.body]) = e.d.transpose();
+    }
+    const Eigen::MatrixXd JW = J1 * W;
+    Eigen::MatrixXd K = JW;
+    K.diagonal() += compliance;
+    Eigen::VectorXd b = JW * P;
+    for (int r = 0; r < m; ++r)
+      b[r] += (cables_[rows[r]].elastic() ? phi1[r] - damped[r] : phi1[r] - target[r]) / h;
+    const LcpSolution sol = solveLcp(K, b);
+    P = sol.x;
+    stats_.solverIterations += sol.iterations;
+    if (iteration + 1 == kNewtonIterations) stats_.residual = std::max(stats_.residual, sol.residual);
+  }
+  for (int r = 0; r < m; ++r) cables_[rows[r]].setTension(P[r] / h);
+
+  // 6. Box2D integrates v += h M^-1 F: the force that gives the end-of-step velocity we solved
+  // for (cable pull, geometric stiffness and joint reactions together).
+  const Eigen::VectorXd dv = vStar - W * P - vFree;
+  for (size_t k = 0; k < dofs.body.size(); ++k)
+    for (int c = 0; c < 3; ++c)
+      if (invM[3 * k + c] > 0) forces_[dofs.body[k]][c] += dv[3 * k + c] / (h * invM[3 * k + c]);
 }
 
 void World::checkFinite() const {
@@ -420,12 +571,12 @@ void World::step(double dt, int substeps) {
     }
     b2_->world.Step(static_cast<float>(h), kVelocityIterations, kPositionIterations);
     readBodies();
-    const auto c1 = Clock::now();
-    projectRigidCables();
-    cableSeconds += std::chrono::duration<double>(Clock::now() - c1).count();
     time_ += h;
   }
   pendingForces_.assign(bodies_.size(), Vec3::Zero());
+  // Lengths reported (and energy) belong to the end-of-step state; the wrap points are
+  // re-selected at the start of the next step.
+  for (Cable& c : cables_) c.refresh(bodies_);
   ++steps_;
   for (const Cable& c : cables_) stats_.wrapPoints += c.wraps();
   stats_.cableMicros = cableSeconds * 1e6;

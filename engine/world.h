@@ -1,18 +1,25 @@
 // World: Box2D's rigid bodies, joints and contacts, plus cablelab's cables and membranes.
 //
 // Coupling (why it is done this way): Box2D 2.4 has no custom-joint API, so cables act through
-// forces applied before each Box2D sub-step. The tensions of all cables are solved together as
-// one small linear complementarity problem (tension >= 0, cable not lengthening when taut) at
-// velocity level, with the J-dot-v term and Baumgarte stabilisation; elastic cables enter the
-// same problem as soft constraints (implicit spring-damper), which keeps stiff membranes stable
-// at large steps. After the sub-step a nonlinear position projection removes the residual
-// length error of rigid cables. Box2D then keeps contacts, friction and joints. See step().
+// forces applied before each Box2D sub-step. Knowing that Box2D then integrates
+// v1 = v0 + h M^-1 F and q1 = q0 + h v1, the force is chosen so that the cable lengths at the END
+// of the sub-step are right (a SHAKE-like position-level condition, solved by Newton on the
+// end-of-step geometry): this keeps rigid cables at length without drift or a projection pass,
+// conserves energy far better than a velocity-level condition, and contains the J-dot-v term
+// implicitly. All cables are solved together, one small LCP per Newton iteration (tension >= 0,
+// slack allowed). Elastic cables (membranes) enter the same problem as soft constraints
+// (implicit spring-damper), and light bodies on tight bands also get the cable's geometric
+// stiffness implicitly, which keeps k = 1e4 N/m on 0.01 kg stable at 60 Hz. Box2D then keeps
+// contacts, friction and joints (their impulses act after ours; any length error they leave is
+// corrected at the next sub-step). See step().
 #pragma once
 
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "engine/cable.h"
 #include "engine/scene.h"
@@ -95,10 +102,12 @@ class World {
 
  private:
   struct Box2D;  // hides every Box2D type from this header
+  struct DofMap;
   void readBodies();
   void applyServos();
   void solveCableForces(double h);
-  void projectRigidCables();
+  Eigen::MatrixXd jointJacobian(const DofMap& dofs) const;
+  Eigen::VectorXd inverseMassOf(const DofMap& dofs) const;
   void checkFinite() const;
 
   SceneDef scene_;
@@ -108,6 +117,7 @@ class World {
   std::vector<Vec3> pendingForces_;  ///< applyForce() loads for the next step
   std::vector<Cable> cables_;
   std::vector<std::string> warnings_;
+  std::vector<std::vector<int>> jointNeighbours_;  ///< bodies jointed to each body
   StepStats stats_;
   double time_ = 0;
   long steps_ = 0;

@@ -78,28 +78,26 @@ std::optional<std::vector<int>> wrapChain(const Vec2& a, const Vec2& b, std::spa
   // Mirror Right into Left: walking the path, the polygon must stay on the right (s = +1).
   const double s = side == WrapSide::Right ? -1.0 : 1.0;
   auto right = [&](const Vec2& from, const Vec2& to, const Vec2& p) { return -s * cross(to - from, p - from); };
-  // Tangent from a: both neighbours of v on the right of a->v (collinear: take the farther vertex).
-  int ta = -1, tb = -1;
-  for (int i = 0; i < n && ta < 0; ++i) {
-    const Vec2& v = polygon[i];
-    bool ok = true;
-    for (int j : {(i + n - 1) % n, (i + 1) % n}) {
-      const double r = right(a, v, polygon[j]);
-      if (r < -eps || (r <= eps && (polygon[j] - a).squaredNorm() > (v - a).squaredNorm())) ok = false;
-    }
-    if (ok) ta = i;
+  // A terminal inside the polygon has no taut path round it.
+  auto insidePolygon = [&](const Vec2& p) {
+    for (int i = 0; i < n; ++i)
+      if (cross(polygon[(i + 1) % n] - polygon[i], p - polygon[i]) <= 0) return false;
+    return true;
+  };
+  if (insidePolygon(a) || insidePolygon(b)) return std::nullopt;
+  // Tangent vertices by one sweep each (seen from an outside point the polygon spans less than
+  // half a turn, so "more to the left" is a total order): from a, the vertex with nothing on the
+  // left of a->v; into b, the vertex with nothing on the left of v->b. Ties (collinear): the
+  // vertex farther from the terminal, so collinear points never become wrap points.
+  int ta = 0, tb = 0;
+  for (int i = 1; i < n; ++i) {
+    const double r = right(a, polygon[ta], polygon[i]);
+    if (r < 0 || (r == 0 && (polygon[i] - a).squaredNorm() > (polygon[ta] - a).squaredNorm())) ta = i;
   }
-  // Tangent into b: both neighbours of v on the right of v->b.
-  for (int i = 0; i < n && tb < 0; ++i) {
-    const Vec2& v = polygon[i];
-    bool ok = true;
-    for (int j : {(i + n - 1) % n, (i + 1) % n}) {
-      const double r = right(v, b, polygon[j]);
-      if (r < -eps || (r <= eps && (polygon[j] - b).squaredNorm() > (v - b).squaredNorm())) ok = false;
-    }
-    if (ok) tb = i;
+  for (int i = 1; i < n; ++i) {
+    const double r = right(polygon[tb], b, polygon[i]);
+    if (r < 0 || (r == 0 && (polygon[i] - b).squaredNorm() > (polygon[tb] - b).squaredNorm())) tb = i;
   }
-  if (ta < 0 || tb < 0) return std::nullopt;  // a terminal inside the polygon
   // Walk the boundary with the polygon on the right: clockwise for Left, counter-clockwise for Right.
   const int stepDir = side == WrapSide::Right ? 1 : -1;
   for (int i = ta;; i = (i + stepDir + n) % n) {
