@@ -29,7 +29,7 @@ struct Soc {
 
 /// sqrt(x0^2 - |x1|^2), computed as a product to limit cancellation; <= 0 outside the cone.
 inline double coneNorm(const double* x) {
-  const double r = std::hypot(x[1], x[2]);
+  const double r = std::sqrt(x[1] * x[1] + x[2] * x[2]);
   const double det = (x[0] - r) * (x[0] + r);
   return det > 0 ? std::sqrt(det) : 0.0;
 }
@@ -325,8 +325,8 @@ void solveStaticsSocp(const StaticsProblem& problem, StaticsResult& result,
     c.b[0] = (src.b.x() - centre.x()) * invScale, c.b[1] = (src.b.y() - centre.y()) * invScale;
     c.k = src.k / kmax;
     c.L = src.L * invScale;
-    c.la = std::hypot(p[0] - c.a[0], p[1] - c.a[1]) + margin;
-    c.lb = std::hypot(p[0] - c.b[0], p[1] - c.b[1]) + margin;
+    c.la = Vec2(p[0] - c.a[0], p[1] - c.a[1]).norm() + margin;
+    c.lb = Vec2(p[0] - c.b[0], p[1] - c.b[1]).norm() + margin;
     c.t = std::max(0.0, c.la + c.lb - c.L) + margin;
     c.s0 = c.t;
     c.s1 = c.t - c.la - c.lb + c.L;
@@ -342,6 +342,7 @@ void solveStaticsSocp(const StaticsProblem& problem, StaticsResult& result,
   SocpStats& stats = workspace.stats_;
   stats = SocpStats{};
   int iter = 0;
+  double lastGap = kInf;
   for (;; ++iter) {
     // Residuals and the gap.
     double rp[2] = {0, 0};
@@ -375,6 +376,12 @@ void solveStaticsSocp(const StaticsProblem& problem, StaticsResult& result,
       break;
     }
     if (iter >= options.maxIterations) break;
+    // Stalled at round-off near the goal: the polish below finishes the job.
+    if (gap <= 100 * options.gapTol && gap > 0.5 * lastGap) {
+      stats.converged = pres <= options.feasTol && dres <= options.feasTol;
+      break;
+    }
+    lastGap = gap;
     const double mu = gap / degree;
 
     // Scalings, the cables' 3x3 blocks and the 2x2 Schur complement in p.

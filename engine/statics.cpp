@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <limits>
 #include <cmath>
 #include <string>
 
@@ -34,6 +35,14 @@ void requireFinite(const Vec2& v, const std::string& source, const std::string& 
 
 }  // namespace
 
+double cableStretch(double ra, double rb, double restLength) {
+  const double stretch = ra + rb - restLength;
+  // Within round-off of the rest length the cable counts as slack: its "tension" would be noise.
+  return stretch > 4 * std::numeric_limits<double>::epsilon() * (ra + rb + std::abs(restLength))
+             ? stretch
+             : 0.0;
+}
+
 void validateStatics(const StaticsProblem& problem, const std::string& source) {
   if (problem.cables.empty()) throw InputError(source, "cables", "needs at least one cable");
   for (size_t i = 0; i < problem.cables.size(); ++i) {
@@ -53,8 +62,8 @@ void validateStatics(const StaticsProblem& problem, const std::string& source) {
 double staticsEnergy(const StaticsProblem& problem, const Vec2& p) {
   double energy = 0;
   for (const StaticsCable& c : problem.cables) {
-    const double stretch = (p - c.a).norm() + (p - c.b).norm() - c.L;
-    if (stretch > 0) energy += 0.5 * c.k * stretch * stretch;
+    const double stretch = cableStretch((p - c.a).norm(), (p - c.b).norm(), c.L);
+    energy += 0.5 * c.k * stretch * stretch;
   }
   return energy;
 }
@@ -69,7 +78,7 @@ StaticsDerivatives staticsDerivatives(const StaticsProblem& problem, const Vec2&
     const double ra = da.norm(), rb = db.norm();
     if (ra < d.nearestDistance) d.nearestDistance = ra, d.nearest = int(2 * i);
     if (rb < d.nearestDistance) d.nearestDistance = rb, d.nearest = int(2 * i + 1);
-    const double stretch = ra + rb - c.L;
+    const double stretch = cableStretch(ra, rb, c.L);
     if (stretch <= 0) continue;  // slack: no force, no stiffness
     const double tension = c.k * stretch;
     d.energy += 0.5 * tension * stretch;
@@ -93,7 +102,7 @@ StaticsKink staticsKink(const StaticsProblem& problem, const Vec2& c) {
   for (const StaticsCable& cable : problem.cables) {
     const Vec2 da = c - cable.a, db = c - cable.b;
     const double ra = da.norm(), rb = db.norm();
-    const double stretch = ra + rb - cable.L;
+    const double stretch = cableStretch(ra, rb, cable.L);
     if (stretch <= 0) continue;
     const double tension = cable.k * stretch;
     kink.maxTension = std::max(kink.maxTension, tension);
@@ -130,7 +139,7 @@ void finishStaticsResult(const StaticsProblem& problem, StaticsResult& result) {
     if (result.anchor < 0 && ra == 0) result.anchor = int(2 * i);
     if (result.anchor < 0 && rb == 0) result.anchor = int(2 * i + 1);
     const double length = ra + rb;
-    const double stretch = std::max(0.0, length - c.L);
+    const double stretch = cableStretch(ra, rb, c.L);
     result.lengths[i] = length;
     result.tensions[i] = c.k * stretch;
     result.energy += 0.5 * c.k * stretch * stretch;

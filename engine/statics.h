@@ -80,6 +80,10 @@ inline const Vec2& fingertip(const StaticsProblem& problem, int j) {
   return (j % 2 == 0) ? c.a : c.b;
 }
 
+/// Stretch max(0, ra + rb - L) of a cable whose segments are ra and rb long (m); a stretch
+/// within round-off of zero (4 eps (ra + rb + |L|)) counts as slack. Every function here uses it.
+double cableStretch(double ra, double rb, double restLength);
+
 /// E(p) (J). Continuous everywhere.
 double staticsEnergy(const StaticsProblem& problem, const Vec2& p);
 

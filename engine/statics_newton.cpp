@@ -14,6 +14,8 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kArmijo = 1e-4;
 constexpr double kMinStep = 1e-12;  // line search gives up below this fraction of the step
 constexpr int kAnchorCheckAfter = 12;  // also check fingertips after this many steps
+constexpr double kSnapDistance = 1e-2;  // fraction of the length scale: "close to a fingertip"
+constexpr int kMaxJumps = 4;            // jumps onto non-minimising fingertips before giving up
 
 /// Backtracks from p + step until E decreases enough; returns the fraction taken (0: failed).
 double lineSearch(const StaticsProblem& problem, const Vec2& p, double energy, const Vec2& step,
@@ -42,7 +44,7 @@ void solveStaticsNewton(const StaticsProblem& problem, StaticsResult& result,
   result.method = StaticsMethod::Newton;
   result.fellBack = false;
   double lastAlpha = 1;
-  int iter = 0;
+  int iter = 0, jumps = 0;
   for (; iter <= options.maxIterations; ++iter) {
     const StaticsDerivatives d = staticsDerivatives(problem, p);
     if (options.detectFingertips && d.nearest >= 0 && d.nearestDistance == 0) {
@@ -74,12 +76,20 @@ void solveStaticsNewton(const StaticsProblem& problem, StaticsResult& result,
       result.converged = true;
       break;
     }
-    if (options.detectFingertips && (lastAlpha < 1 || iter >= kAnchorCheckAfter) &&
-        fingertipIsMinimiser(problem, d.nearest)) {
-      // Newton overshot a kink: the nearest fingertip absorbs the net force, it is the answer.
-      p = fingertip(problem, d.nearest);
-      result.converged = true;
-      break;
+    if (options.detectFingertips && (lastAlpha < 1 || iter >= kAnchorCheckAfter)) {
+      if (fingertipIsMinimiser(problem, d.nearest)) {
+        // Newton overshot a kink: the nearest fingertip absorbs the net force, it is the answer.
+        p = fingertip(problem, d.nearest);
+        result.converged = true;
+        break;
+      }
+      if (d.nearestDistance < kSnapDistance * scale && jumps < kMaxJumps) {
+        // Drawn into a kink that is not the minimiser (its tangential curvature T / r traps
+        // Newton): go onto the fingertip and step off it along the minimum-norm subgradient.
+        ++jumps;
+        p = fingertip(problem, d.nearest);
+        continue;
+      }
     }
     if (iter == options.maxIterations) break;
     Eigen::Matrix2d h = d.hessian;
