@@ -20,7 +20,8 @@ struct StaticsArgs {
 int runStatics(const StaticsArgs& args) {
   // Validate the option before touching the file, so the message names the right culprit.
   if (args.solver != "auto" && args.solver != "socp" && args.solver != "newton")
-    throw InputError("--solver", "solver", "must be auto, socp or newton (got \"" + args.solver + "\")");
+    throw InputError("--solver", "solver",
+                     "must be auto, socp or newton (got \"" + args.solver + "\")");
   const StaticsProblem problem = loadStaticsFile(args.file);
   StaticsResult result;
   if (args.solver == "socp") {
@@ -39,7 +40,8 @@ const bool registered = registerCommand(
     "statics", "equilibrium of a point held by cables (thesis 4.2) from a JSON file",
     [](CLI::App& sub) {
       auto args = std::make_shared<StaticsArgs>();
-      sub.add_option("FILE", args->file, "problem JSON: {\"cables\": [{\"a\", \"b\", \"k\", \"L\"}], \"p0\"}")
+      sub.add_option("FILE", args->file,
+                     "problem JSON: {\"cables\": [{\"a\", \"b\", \"k\", \"L\"}], \"p0\"}")
           ->required();
       sub.add_option("--solver", args->solver,
                      "auto (Newton, SOCP fallback; default), socp (interior point) or newton");

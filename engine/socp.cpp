@@ -14,6 +14,7 @@ namespace cablelab {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kConvergedResidual = 1e-10;  // |net force| / max tension
 
 /// One Lorentz cone Q^3 = {(x0, x1, x2): x0 >= |(x1, x2)|}: slack, dual, NT scaling, direction.
 struct Soc {
@@ -119,7 +120,9 @@ inline double maxStepSoc(const double* x, const double* d) {
   return best;
 }
 
-inline double maxStepLp(double x, double d) { return d < 0 ? -x / d : kInf; }
+inline double maxStepLp(double x, double d) {
+  return d < 0 ? -x / d : kInf;
+}
 
 }  // namespace
 
@@ -131,11 +134,11 @@ struct SocpWorkspace::Cable {
   double d0, d1;            // W^-2 = z / s of the orthant cones
   double xi0, xi1;          // right-hand side parts
   double ds0, ds1, dz0, dz1, corr0, corr1;
-  Soc ca, cb;               // (la, p - a) and (lb, p - b)
-  double rla, rlb, rt;      // dual residual rows
-  double Di[6];             // inverse of the cable's 3x3 block, packed symmetric
-  double dla, dlb, dt;      // direction
-  double xla, xlb, xt;      // direction before a refinement step
+  Soc ca, cb;           // (la, p - a) and (lb, p - b)
+  double rla, rlb, rt;  // dual residual rows
+  double Di[6];         // inverse of the cable's 3x3 block, packed symmetric
+  double dla, dlb, dt;  // direction
+  double xla, xlb, xt;  // direction before a refinement step
 };
 
 SocpWorkspace::SocpWorkspace() = default;
@@ -147,8 +150,7 @@ using Cable = SocpWorkspace::Cable;
 
 /// Solves (P + G^T W^-2 G) dx = rhs given the factorised blocks: the p rows of rhs in rhsP, a
 /// cable's rows in its (dla, dlb, dt) on entry; the cable's rows of dx replace them on exit.
-void solveReduced(Cable* cab, int n, const double schurInv[3], const double rhsP[2],
-                  double dp[2]) {
+void solveReduced(Cable* cab, int n, const double schurInv[3], const double rhsP[2], double dp[2]) {
   double rhs[2] = {rhsP[0], rhsP[1]};
   for (int i = 0; i < n; ++i) {
     const Cable& c = cab[i];
@@ -249,10 +251,10 @@ double maxStep(const Cable* cab, int n) {
   double alpha = kInf;
   for (int i = 0; i < n; ++i) {
     const Cable& c = cab[i];
-    alpha = std::min({alpha, maxStepLp(c.s0, c.ds0), maxStepLp(c.s1, c.ds1),
-                      maxStepLp(c.z0, c.dz0), maxStepLp(c.z1, c.dz1), maxStepSoc(c.ca.s, c.ca.ds),
-                      maxStepSoc(c.ca.z, c.ca.dz), maxStepSoc(c.cb.s, c.cb.ds),
-                      maxStepSoc(c.cb.z, c.cb.dz)});
+    alpha =
+        std::min({alpha, maxStepLp(c.s0, c.ds0), maxStepLp(c.s1, c.ds1), maxStepLp(c.z0, c.dz0),
+                  maxStepLp(c.z1, c.dz1), maxStepSoc(c.ca.s, c.ca.ds), maxStepSoc(c.ca.z, c.ca.dz),
+                  maxStepSoc(c.cb.s, c.cb.ds), maxStepSoc(c.cb.z, c.cb.dz)});
   }
   return alpha;
 }
@@ -486,10 +488,12 @@ void solveStaticsSocp(const StaticsProblem& problem, StaticsResult& result,
   workspace.lastP_ = result.p;
   workspace.hasLast_ = true;
   result.iterations = iter;
-  result.converged = stats.converged;
   result.method = StaticsMethod::Socp;
   result.fellBack = false;
   finishStaticsResult(problem, result);
+  // The interior point may stall at round-off just above its gap tolerance; the answer still
+  // counts when the snap or the polish brought the force residual down.
+  result.converged = stats.converged || result.residual <= kConvergedResidual;
   result.solveMicros =
       std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
 }

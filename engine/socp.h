@@ -30,13 +30,13 @@
 namespace cablelab {
 
 struct SocpOptions {
-  int maxIterations = 30;    ///< interior-point iterations before giving up
-  double gapTol = 1e-10;     ///< stop when s^T z <= gapTol (scaled problem: unit length, unit k)
-  double feasTol = 1e-12;    ///< and the primal and dual residuals are below this (scaled)
-  int polishSteps = 3;       ///< Newton steps on E after the interior point (0: none)
+  int maxIterations = 30;      ///< interior-point iterations before giving up
+  double gapTol = 1e-10;       ///< stop when s^T z <= gapTol (scaled problem: unit length, unit k)
+  double feasTol = 1e-12;      ///< and the primal and dual residuals are below this (scaled)
+  int polishSteps = 3;         ///< Newton steps on E after the interior point (0: none)
   double stepFraction = 0.99;  ///< fraction of the step to the cone boundary
-  int refinements = 1;       ///< iterative-refinement steps per Newton solve
-  bool warmStart = false;    ///< start from the workspace's previous solution (same cable count)
+  int refinements = 1;         ///< iterative-refinement steps per Newton solve
+  bool warmStart = false;      ///< start from the workspace's previous solution (same cable count)
 };
 
 /// What the last solve did (scaled problem units: unit length, unit largest stiffness).
@@ -46,7 +46,7 @@ struct SocpStats {
   double primalResidual = 0;  ///< max |G x + s - h|
   double dualResidual = 0;    ///< max |P x + G^T z|
   bool converged = false;
-  int polishSteps = 0;        ///< Newton polishing steps taken
+  int polishSteps = 0;  ///< Newton polishing steps taken
 };
 
 /// Scratch memory of the solver: reuse one across solves (allocation only when N grows).

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <limits>
-#include <cmath>
 #include <string>
 
 #include "engine/error.h"
@@ -51,7 +51,8 @@ void validateStatics(const StaticsProblem& problem, const std::string& source) {
     requireFinite(c.a, source, at + ".a");
     requireFinite(c.b, source, at + ".b");
     if (!std::isfinite(c.k) || c.k <= 0)
-      throw InputError(source, at + ".k", "must be positive and finite (got " + describe(c.k) + ")");
+      throw InputError(source, at + ".k",
+                       "must be positive and finite (got " + describe(c.k) + ")");
     if (!std::isfinite(c.L) || c.L < 0)
       throw InputError(source, at + ".L",
                        "must be non-negative and finite (got " + describe(c.L) + ")");
@@ -106,10 +107,14 @@ StaticsKink staticsKink(const StaticsProblem& problem, const Vec2& c) {
     if (stretch <= 0) continue;
     const double tension = cable.k * stretch;
     kink.maxTension = std::max(kink.maxTension, tension);
-    if (ra > 0) kink.smoothGradient += (tension / ra) * da;
-    else kink.absorbable += tension;
-    if (rb > 0) kink.smoothGradient += (tension / rb) * db;
-    else kink.absorbable += tension;
+    if (ra > 0)
+      kink.smoothGradient += (tension / ra) * da;
+    else
+      kink.absorbable += tension;
+    if (rb > 0)
+      kink.smoothGradient += (tension / rb) * db;
+    else
+      kink.absorbable += tension;
   }
   return kink;
 }
@@ -153,7 +158,8 @@ double staticsLengthScale(const StaticsProblem& problem) {
   centroid /= double(2 * std::max<size_t>(1, problem.cables.size()));
   double scale = 0;
   for (const StaticsCable& c : problem.cables) {
-    scale = std::max({scale, (c.a - centroid).norm(), (c.b - centroid).norm(), 0.5 * std::abs(c.L)});
+    scale =
+        std::max({scale, (c.a - centroid).norm(), (c.b - centroid).norm(), 0.5 * std::abs(c.L)});
   }
   return scale > 0 ? scale : 1.0;
 }

@@ -65,9 +65,9 @@ struct StaticsResult {
                                  ///< absorb (the minimum-norm subgradient), see staticsResidual()
   double solveMicros = 0;        ///< wall time of the solve (us)
   StaticsMethod method = StaticsMethod::Newton;  ///< the solver that produced p
-  bool fellBack = false;         ///< true: Newton was not safe and the SOCP produced p
-  bool converged = false;        ///< the solver met its tolerance
-  int anchor = -1;  ///< fingertip index p sits exactly on (2 i: a_i, 2 i + 1: b_i), or -1
+  bool fellBack = false;   ///< true: Newton was not safe and the SOCP produced p
+  bool converged = false;  ///< the solver met its tolerance
+  int anchor = -1;         ///< fingertip index p sits exactly on (2 i: a_i, 2 i + 1: b_i), or -1
 };
 
 /// Throws InputError(source, "cables[i].k", ...) on the first bad value: no cables, k <= 0,
@@ -90,10 +90,10 @@ double staticsEnergy(const StaticsProblem& problem, const Vec2& p);
 /// Energy, gradient and Hessian of E at p. A fingertip point that coincides with p exactly
 /// (the kink) contributes nothing to the gradient or Hessian; see staticsKink() for its share.
 struct StaticsDerivatives {
-  double energy = 0;                             ///< J
-  Vec2 gradient = Vec2::Zero();                  ///< dE/dp = minus the net force on p (N)
+  double energy = 0;                                  ///< J
+  Vec2 gradient = Vec2::Zero();                       ///< dE/dp = minus the net force on p (N)
   Eigen::Matrix2d hessian = Eigen::Matrix2d::Zero();  ///< d2E/dp2 (N/m), positive semidefinite
-  double maxTension = 0;                         ///< N
+  double maxTension = 0;                              ///< N
   double nearestDistance = 0;  ///< distance from p to the nearest fingertip point (m)
   int nearest = -1;            ///< that fingertip's index (2 i or 2 i + 1)
 };

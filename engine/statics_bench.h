@@ -10,9 +10,9 @@ namespace cablelab {
 struct StaticsTimings {
   int cables = 0;
   int instances = 0;
-  double socpMicros = 0;      ///< interior-point SOCP (socp.h), us
-  double newtonMicros = 0;    ///< plain damped Newton (no fingertip handling), us
-  double defaultMicros = 0;   ///< solveStatics(): Newton with fingertip handling, SOCP fallback, us
+  double socpMicros = 0;     ///< interior-point SOCP (socp.h), us
+  double newtonMicros = 0;   ///< plain damped Newton (no fingertip handling), us
+  double defaultMicros = 0;  ///< solveStatics(): Newton with fingertip handling, SOCP fallback, us
   double socpMeanIterations = 0;
   int socpMaxIterations = 0;
   double socpMaxResidual = 0;     ///< largest |net force| / max tension, SOCP

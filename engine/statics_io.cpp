@@ -15,18 +15,21 @@ using nlohmann::json;
 
 double readNumber(const json& value, const std::string& source, const std::string& field) {
   if (!value.is_number())
-    throw InputError(source, field, std::string("must be a number (got ") + value.type_name() + ")");
+    throw InputError(source, field,
+                     std::string("must be a number (got ") + value.type_name() + ")");
   const double v = value.get<double>();
-  if (!std::isfinite(v)) throw InputError(source, field, "must be finite (got " + value.dump() + ")");
+  if (!std::isfinite(v))
+    throw InputError(source, field, "must be finite (got " + value.dump() + ")");
   return v;
 }
 
 Vec2 readVec2(const json& value, const std::string& source, const std::string& field) {
   if (!value.is_array() || value.size() != 2)
-    throw InputError(source, field, "must be an array of 2 numbers [x, y] (got " +
-                                        (value.is_array() ? std::to_string(value.size()) + " entries"
-                                                          : std::string(value.type_name())) +
-                                        ")");
+    throw InputError(source, field,
+                     "must be an array of 2 numbers [x, y] (got " +
+                         (value.is_array() ? std::to_string(value.size()) + " entries"
+                                           : std::string(value.type_name())) +
+                         ")");
   return {readNumber(value[0], source, field + "[0]"), readNumber(value[1], source, field + "[1]")};
 }
 
@@ -47,7 +50,7 @@ StaticsProblem parseStaticsJson(const std::string& text, const std::string& sour
   json root;
   try {
     root = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // syntax errors, and numbers beyond double range
     throw InputError(source, "(json)", std::string("not valid JSON: ") + e.what());
   }
   if (!root.is_object()) throw InputError(source, "(root)", "must be a JSON object");

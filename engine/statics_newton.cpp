@@ -12,8 +12,8 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kArmijo = 1e-4;
-constexpr double kMinStep = 1e-12;  // line search gives up below this fraction of the step
-constexpr int kAnchorCheckAfter = 12;  // also check fingertips after this many steps
+constexpr double kMinStep = 1e-12;      // line search gives up below this fraction of the step
+constexpr int kAnchorCheckAfter = 12;   // also check fingertips after this many steps
 constexpr double kSnapDistance = 1e-2;  // fraction of the length scale: "close to a fingertip"
 constexpr int kMaxJumps = 4;            // jumps onto non-minimising fingertips before giving up
 

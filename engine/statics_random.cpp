@@ -24,12 +24,19 @@ StaticsProblem randomStaticsProblem(std::mt19937_64& rng, const RandomStaticsOpt
     const Vec2 c = problem.cables[0].a;
     StaticsProblem others;
     others.cables.assign(problem.cables.begin() + 1, problem.cables.end());
-    const Vec2 g = staticsKink(others, c).smoothGradient;
+    Vec2 g = staticsKink(others, c).smoothGradient;
+    // With no pull at c the kink is not strict (p could slide along cable 0): tighten cable 1.
+    if (g.norm() == 0) {
+      StaticsCable& pull = others.cables[0];
+      pull.L = 0.5 * ((c - pull.a).norm() + (c - pull.b).norm());
+      problem.cables[1] = pull;
+      g = staticsKink(others, c).smoothGradient;
+    }
     const double gnorm = g.norm();
     const double theta = uniform(-0.6, 0.6);
     const Vec2 toward = gnorm > 0 ? Vec2(g / gnorm) : Vec2(std::cos(theta), std::sin(theta));
-    const double tension = gnorm > 0 ? uniform(1.3, 4.0) * gnorm / (2 * std::cos(theta))
-                                     : uniform(0.5, 2.0);
+    const double tension =
+        gnorm > 0 ? uniform(1.3, 4.0) * gnorm / (2 * std::cos(theta)) : uniform(0.5, 2.0);
     StaticsCable& pin = problem.cables[0];
     pin.k = stiffness();
     pin.L = uniform(0.0, 1.0);
