@@ -1,0 +1,52 @@
+// `cablelab statics FILE.json [--solver auto|socp|newton]` (CONTRACT.md): the equilibrium of a
+// point held by cables, as one JSON object on stdout.
+#include <string>
+
+#include "app/command.h"
+#include "engine/error.h"
+#include "engine/socp.h"
+#include "engine/statics.h"
+#include "engine/statics_io.h"
+#include "engine/statics_newton.h"
+
+namespace cablelab::app {
+namespace {
+
+struct StaticsArgs {
+  std::string file;
+  std::string solver = "auto";
+};
+
+int runStatics(const StaticsArgs& args) {
+  // Validate the option before touching the file, so the message names the right culprit.
+  if (args.solver != "auto" && args.solver != "socp" && args.solver != "newton")
+    throw InputError("--solver", "solver",
+                     "must be auto, socp or newton (got \"" + args.solver + "\")");
+  const StaticsProblem problem = loadStaticsFile(args.file);
+  StaticsResult result;
+  if (args.solver == "socp") {
+    SocpWorkspace workspace;
+    solveStaticsSocp(problem, result, workspace);
+  } else if (args.solver == "newton") {
+    solveStaticsNewton(problem, result);
+  } else {
+    solveStatics(problem, result);
+  }
+  printJson(staticsResultToJson(result));
+  return 0;
+}
+
+const bool registered = registerCommand(
+    "statics", "equilibrium of a point held by cables (thesis 4.2) from a JSON file",
+    [](CLI::App& sub) {
+      auto args = std::make_shared<StaticsArgs>();
+      sub.add_option("FILE", args->file,
+                     "problem JSON: {\"cables\": [{\"a\", \"b\", \"k\", \"L\"}], \"p0\"}")
+          ->required();
+      sub.add_option("--solver", args->solver,
+                     "auto (Newton, SOCP fallback; default), socp (interior point) or newton");
+      return [args] { return runStatics(*args); };
+    });
+
+}  // namespace
+}  // namespace cablelab::app

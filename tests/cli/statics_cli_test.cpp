@@ -1,0 +1,85 @@
+// CLI tests for `cablelab statics` (CONTRACT.md): output keys, exit codes, error messages.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace {
+
+struct CliRun {
+  int code = -1;
+  std::string out;  // stdout and stderr together
+};
+
+CliRun runCli(const std::string& args) {
+  const std::string command = std::string(CABLELAB_CLI) + " " + args + " 2>&1";
+  CliRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return run;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) run.out.append(buf.data(), n);
+  const int status = pclose(pipe);
+  run.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+std::string data(const std::string& name) {
+  return std::string(CABLELAB_SOURCE_DIR) + "/tests/data/" + name;
+}
+
+TEST(StaticsCli, PrintsTheContractKeysForEverySolver) {
+  for (const char* solver : {"", " --solver socp", " --solver newton", " --solver auto"}) {
+    const CliRun run = runCli("statics " + data("statics/two_cables.json") + solver);
+    ASSERT_EQ(run.code, 0) << run.out;
+    const auto j = nlohmann::json::parse(run.out);
+    for (const char* key : {"p", "lengths", "tensions", "energy", "iterations", "solve_us"})
+      EXPECT_TRUE(j.contains(key)) << key;
+    EXPECT_NEAR(j["p"][0].get<double>(), 0, 1e-10);
+    EXPECT_NEAR(j["p"][1].get<double>(), 0, 1e-10);
+    EXPECT_EQ(j["tensions"].size(), 2u);
+    EXPECT_NEAR(j["energy"].get<double>(), 150 * std::pow(2 * std::sqrt(2.0) - 1.5, 2), 1e-9);
+  }
+}
+
+TEST(StaticsCli, FingertipExampleEndsOnTheFingertip) {
+  const CliRun run = runCli("statics " + data("statics/on_fingertip.json"));
+  ASSERT_EQ(run.code, 0) << run.out;
+  const auto j = nlohmann::json::parse(run.out);
+  EXPECT_EQ(j["p"][0].get<double>(), 0.0);
+  EXPECT_EQ(j["p"][1].get<double>(), 0.0);
+}
+
+TEST(StaticsCli, BadInputExitsTwoNamingTheField) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"bad/statics_negative_k.json", "cables[1].k"},
+      {"bad/statics_negative_rest_length.json", "cables[0].L"},
+      {"bad/statics_no_cables.json", "cables"},
+      {"bad/statics_truncated.json", "(json)"},
+      {"bad/statics_string_number.json", "cables[0].a[1]"},
+      {"bad/statics_null_k.json", "cables[0].k"},
+      {"bad/statics_huge_number.json", "1e400"},
+      {"bad/statics_wrong_size.json", "cables[0].b"},
+      {"bad/statics_unknown_key.json", "cables[0].stiffness"},
+      {"bad/statics_bad_p0.json", "p0"},
+      {"bad/does_not_exist.json", "cannot open"},
+  };
+  for (const auto& [file, field] : cases) {
+    const CliRun run = runCli("statics " + data(file));
+    EXPECT_EQ(run.code, 2) << file << ": " << run.out;
+    EXPECT_NE(run.out.find(field), std::string::npos) << file << ": " << run.out;
+    EXPECT_EQ(run.out.find("nan"), std::string::npos) << run.out;
+  }
+}
+
+TEST(StaticsCli, UnknownSolverExitsTwo) {
+  const CliRun run = runCli("statics " + data("statics/two_cables.json") + " --solver simplex");
+  EXPECT_EQ(run.code, 2);
+  EXPECT_NE(run.out.find("solver"), std::string::npos) << run.out;
+}
+
+}  // namespace
