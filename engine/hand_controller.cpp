@@ -1,0 +1,62 @@
+#include "engine/hand_controller.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <chrono>
+
+namespace cablelab {
+
+HandController::HandController(HandModel model, HandControllerParams params, EquilibriumSolver solver)
+    : model_(std::move(model)), params_(params), solver_(std::move(solver)) {}
+
+std::vector<SpringCable> HandController::springs(const HandJoints& q) const {
+  const FingertipPoints shifted = reduceToPoint(model_, fingertipPoints(model_, q));
+  // The reduced cable is shorter by the wrapped face (2 h); the preload lengthens the stretch.
+  const double L = model_.restLength() - model_.preload - 2 * model_.boxHalfSize;
+  std::vector<SpringCable> cables(2);
+  for (int i = 0; i < 2; ++i)
+    cables[i] = {shifted.segment<2>(4 * i), shifted.segment<2>(4 * i + 2), model_.stiffness, L};
+  return cables;
+}
+
+BoxPrediction HandController::predict(const HandJoints& q, const Vec2& guess) const {
+  BoxPrediction out;
+  const PointEquilibrium eq = solver_(springs(q), guess);
+  out.box = eq.p;
+  if (!eq.converged || eq.sensitivity.cols() != 8) return out;
+  // The shift of figure 4-2 is a constant offset, so d p / d(shifted) = d p / d(fingertips).
+  out.jacobian = eq.sensitivity * fingertipJacobian(model_, q);
+  out.valid = wrapsFaceOn(model_, fingertipPoints(model_, q), eq.p);
+  return out;
+}
+
+HandJoints HandController::update(const HandJoints& q, const Vec2& box, const Vec2& boxVelocity, const Vec2& target) {
+  last_ = predict(q, box);
+  if (!last_.valid) return HandJoints::Zero();
+  const Vec2 error = box - target;
+  integral_ += error * params_.period;
+  const Vec2 command = params_.kp * error + params_.kd * boxVelocity + params_.ki * integral_;
+  const BoxJacobian& J = last_.jacobian;
+  const Eigen::Matrix2d JJt = J * J.transpose() + params_.lambda * params_.lambda * Eigen::Matrix2d::Identity();
+  return -J.transpose() * JJt.ldlt().solve(command);
+}
+
+double measureControllerUpdateMicros(int repeats) {
+  using Clock = std::chrono::steady_clock;
+  HandController controller{HandModel{}};
+  const HandJoints q = HandJoints::Zero();
+  const Vec2 box = controller.predict(q, Vec2::Zero()).box;
+  std::vector<double> micros;
+  micros.reserve(repeats / 100 + 1);
+  double sink = 0;
+  // Time batches of 100 updates (a single update is near the clock's resolution).
+  for (int r = 0; r < std::max(1, repeats / 100); ++r) {
+    const auto t0 = Clock::now();
+    for (int i = 0; i < 100; ++i) sink += controller.update(q, box, Vec2::Zero(), Vec2(0.01 * (i % 3), 0))[0];
+    micros.push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count() / 100);
+  }
+  std::nth_element(micros.begin(), micros.begin() + micros.size() / 2, micros.end());
+  return micros[micros.size() / 2] + 0 * sink;
+}
+
+}  // namespace cablelab
