@@ -33,12 +33,32 @@ BoxPrediction HandController::predict(const HandJoints& q, const Vec2& guess) co
 HandJoints HandController::update(const HandJoints& q, const Vec2& box, const Vec2& boxVelocity, const Vec2& target) {
   last_ = predict(q, box);
   if (!last_.valid) return HandJoints::Zero();
-  const Vec2 error = box - target;
+  Vec2 error = box - target;
+  if (error.norm() > params_.maxError) error *= params_.maxError / error.norm();
   integral_ += error * params_.period;
   const Vec2 command = params_.kp * error + params_.kd * boxVelocity + params_.ki * integral_;
   const BoxJacobian& J = last_.jacobian;
-  const Eigen::Matrix2d JJt = J * J.transpose() + params_.lambda * params_.lambda * Eigen::Matrix2d::Identity();
-  return -J.transpose() * JJt.ldlt().solve(command);
+  HandJoints winv = HandJoints::Ones();
+  winv[kDistal] = winv[3 + kDistal] = 1.0 / params_.distalWeight;
+  const Eigen::Matrix<double, 6, 2> JWt = winv.asDiagonal() * J.transpose();
+  const Eigen::Matrix2d JWJt = J * JWt + params_.lambda * params_.lambda * Eigen::Matrix2d::Identity();
+  const Eigen::Matrix<double, 6, 2> pinv = JWt * JWJt.inverse();
+  // Secondary task: h(q) = sum tilt^2 + |D_top - D_bottom - (0, 2 baseY)|^2 (paddles face-on, the
+  // pinch's squeeze kept), descended in the null space of the primary task.
+  HandJoints gradient = HandJoints::Zero();
+  const FingerPose top = fingerPose(model_, q, 0), bottom = fingerPose(model_, q, 1);
+  const Vec2 gap = top.paddle - bottom.paddle - Vec2(0, 2 * model_.baseY);
+  for (int f = 0; f < 2; ++f) {
+    const FingerPose& pose = f == 0 ? top : bottom;
+    const double sign = f == 0 ? 1.0 : -1.0;
+    const double tilt = q[3 * f + kProximal] + q[3 * f + kDistal];
+    gradient[3 * f + kProximal] = tilt + sign * gap.dot(perp(pose.paddle - pose.link));
+    gradient[3 * f + kSlide] = sign * gap.dot(Vec2(std::cos(pose.linkAngle), std::sin(pose.linkAngle)));
+    gradient[3 * f + kDistal] = tilt;
+  }
+  const HandJoints faceOn = -params_.faceOnGain * winv.asDiagonal() * gradient;
+  const Eigen::Matrix<double, 6, 6> nullspace = Eigen::Matrix<double, 6, 6>::Identity() - pinv * J;
+  return -pinv * command + nullspace * faceOn;
 }
 
 double measureControllerUpdateMicros(int repeats) {

@@ -7,6 +7,11 @@
 // k_p = 0.1 is the share of the error the joints are asked to remove per update (dimensionless,
 // 0.1 / 0.053 s = 1.9 1/s), k_d = 0.58 s turns the box velocity into metres of error, and the
 // optional k_i (1/s) integrates the error for `--pid`. The new targets go to the inner PD servos.
+// Beyond the thesis (the six joints are redundant for a 2-vector task): the pseudo-inverse is
+// weighted (W = diag(1, 1, w_d, 1, 1, w_d)), J+ = W^-1 J^T (J W^-1 J^T + l^2 I)^-1, and the null
+// space turns each paddle back towards face-on (theta_p + theta_d -> 0) and keeps the paddles' gap
+// at the pinch's, which keeps both membranes wrapping the box face-on, the configuration the
+// box-to-point reduction assumes.
 #pragma once
 
 #include <Eigen/Core>
@@ -23,6 +28,11 @@ struct HandControllerParams {
   double kd = 0.58;       ///< per update (s)
   double ki = 0.0;        ///< per update (1/s); > 0 for PID
   double lambda = 0.05;   ///< pseudo-inverse damping (m per rad or m per m)
+  double maxError = 0.05; ///< the error fed to the law is saturated at this length (m): the
+                          ///< Jacobian is a local model, one update must not leave its validity
+  double distalWeight = 4.0;  ///< joint-space weight of the distal joints in the pseudo-inverse
+                              ///< (> 1: prefer moving the fingers to tilting the paddles)
+  double faceOnGain = 0.3;    ///< per update: null-space pull back to face-on paddles and the pinch gap
 };
 
 /// The integral gain `--pid` uses (1/s per update).

@@ -37,7 +37,7 @@ struct HandModel {
   double boxDamping = 1.0;         ///< box linear damping (1/s): the membranes barely damp sideways
   double linkMass = 1.0;           ///< kg
   double sliderMass = 0.5;         ///< kg
-  double paddleMass = 1.0;         ///< kg
+  double paddleMass = 10.0;        ///< kg (heavy on purpose: see scene_hand.cpp)
   double stiffness = 150.0;        ///< membrane k_s (N/m)
   double damping = 550.0;          ///< membrane b_s (N s/m)
   double preload = 0.3;            ///< membrane pre-stretch (m): tension k (stretch + preload)

@@ -8,7 +8,7 @@ namespace cablelab {
 
 namespace {
 
-constexpr double kGradientTolerance = 1e-10;  // N
+constexpr double kGradientTolerance = 1e-12;  // relative to the force scale
 constexpr double kMinDistance = 1e-9;         // m: closer to a cable end counts as on it
 constexpr int kMaxIterations = 60;
 
@@ -48,6 +48,8 @@ PointEquilibrium solvePointEquilibrium(const std::vector<SpringCable>& cables, c
   PointEquilibrium out;
   Vec2 p = guess;
   Derivatives d = derivatives(cables, p);
+  double forceScale = 1;  // N: tolerances are relative to the largest cable force
+  for (const SpringCable& c : cables) forceScale = std::max(forceScale, c.k * std::max(0.0, (c.b - c.a).norm() - c.L));
   for (int it = 0; it < kMaxIterations; ++it) {
     out.iterations = it + 1;
     if (d.onEnd) {  // step off the kink towards lower energy along a probe direction
@@ -55,16 +57,19 @@ PointEquilibrium solvePointEquilibrium(const std::vector<SpringCable>& cables, c
       d = derivatives(cables, p);
       continue;
     }
-    if (d.gradient.norm() < kGradientTolerance) break;
+    if (d.gradient.norm() < kGradientTolerance * forceScale) break;
     // Newton direction, falling back to steepest descent when the Hessian is not positive definite.
     Eigen::LLT<Eigen::Matrix2d> llt(d.hessian);
     Vec2 step = llt.info() == Eigen::Success ? Vec2(-llt.solve(d.gradient)) : Vec2(-d.gradient);
     if (step.dot(d.gradient) >= 0) step = -d.gradient;
     double t = 1;
     Derivatives next;
+    // Near the minimum the predicted decrease drops below the energy's rounding: take the full
+    // Newton step there (the line search could only reject it on noise).
+    const bool tiny = -step.dot(d.gradient) < 1e-13 * (1 + d.energy);
     for (int ls = 0; ls < 40; ++ls, t *= 0.5) {
       next = derivatives(cables, p + t * step);
-      if (next.energy <= d.energy + 1e-4 * t * step.dot(d.gradient)) break;
+      if (tiny || next.energy <= d.energy + 1e-4 * t * step.dot(d.gradient)) break;
     }
     p += t * step;
     d = next;
@@ -74,7 +79,7 @@ PointEquilibrium solvePointEquilibrium(const std::vector<SpringCable>& cables, c
   const int n = static_cast<int>(cables.size());
   out.sensitivity = Eigen::Matrix<double, 2, Eigen::Dynamic>::Zero(2, 4 * n);
   Eigen::LLT<Eigen::Matrix2d> llt(d.hessian);
-  out.converged = !d.onEnd && d.gradient.norm() < 1e-7 && llt.info() == Eigen::Success;
+  out.converged = !d.onEnd && d.gradient.norm() < 1e-8 * forceScale && llt.info() == Eigen::Success;
   if (!out.converged) return out;
   // Implicit function theorem: H dp = -(d gradient / d ends) d ends.
   const Eigen::Matrix2d I = Eigen::Matrix2d::Identity();

@@ -32,9 +32,13 @@ std::array<double, 6> HandModel::effectiveInertia() const {
   const double iLink = linkMass * linkLength * linkLength / 3;  // rod about its end
   const double iSlider = sliderMass * kSliderLength * kSliderLength / 12;
   const double iPaddle = paddleMass * 4 * paddleHalfWidth * paddleHalfWidth / 12;
-  const double proximal = iLink + (sliderMass + paddleMass) * linkLength * linkLength + iSlider + iPaddle;
-  const double slide = sliderMass + paddleMass;
-  return {proximal, slide, iPaddle, proximal, slide, iPaddle};
+  // The grasped box is carried too (half by each finger): at the pinch it sits a link length from
+  // the base and a paddle half width from the corners that tilt it.
+  const double carried = 0.5 * boxMass;
+  const double proximal = iLink + (sliderMass + paddleMass + carried) * linkLength * linkLength + iSlider + iPaddle;
+  const double slide = sliderMass + paddleMass + carried;
+  const double distal = iPaddle + carried * paddleHalfWidth * paddleHalfWidth;
+  return {proximal, slide, distal, proximal, slide, distal};
 }
 
 SceneDef buildHandScene(const HandModel& m) {
