@@ -77,12 +77,8 @@ const bool registered = registerCommand("track", "Hand closes a pinch grasp, the
       if (!*csv) throw InputError(o->csv, "--csv", "cannot write the file");
     }
 
-    Progress progress("track", 1);
-    const TrackResult r = runTracking(options, HandModel{}, [&](long done, long total) {
-      progress = progress;  // keeps one Progress; total known only here
-      (void)total;
-      progress.update(done);
-    });
+    Progress progress("track", std::lround(options.time * 60.0));  // the hand scene's dt is 1/60 s
+    const TrackResult r = runTracking(options, HandModel{}, [&](long done, long) { progress.update(done); });
     progress.done();
 
     if (csv) {

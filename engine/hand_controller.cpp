@@ -30,9 +30,14 @@ BoxPrediction HandController::predict(const HandJoints& q, const Vec2& guess) co
   return out;
 }
 
-HandJoints HandController::update(const HandJoints& q, const Vec2& box, const Vec2& boxVelocity, const Vec2& target) {
+HandJoints HandController::update(const HandJoints& q, const Vec2& box, const Vec2& boxVelocity, const Vec2& target,
+                                  const HandJoints& commanded) {
+  const BoxPrediction previous = last_;
   last_ = predict(q, box);
-  if (!last_.valid) return HandJoints::Zero();
+  // Outside the model's validity (a membrane no longer wraps a face): steer with the last valid
+  // Jacobian; the null-space task below brings the grasp back to the pinch geometry.
+  if (!last_.valid && previous.valid) last_.jacobian = previous.jacobian;
+  if (last_.jacobian.isZero()) return HandJoints::Zero();
   Vec2 error = box - target;
   if (error.norm() > params_.maxError) error *= params_.maxError / error.norm();
   integral_ += error * params_.period;
@@ -46,12 +51,14 @@ HandJoints HandController::update(const HandJoints& q, const Vec2& box, const Ve
   // Secondary task: h(q) = sum tilt^2 + |D_top - D_bottom - (0, 2 baseY)|^2 (paddles face-on, the
   // pinch's squeeze kept), descended in the null space of the primary task.
   HandJoints gradient = HandJoints::Zero();
-  const FingerPose top = fingerPose(model_, q, 0), bottom = fingerPose(model_, q, 1);
+  // On the commanded targets, not the measured joints: the servos lag under load and a task on
+  // the measured joints would wind up.
+  const FingerPose top = fingerPose(model_, commanded, 0), bottom = fingerPose(model_, commanded, 1);
   const Vec2 gap = top.paddle - bottom.paddle - Vec2(0, 2 * model_.baseY);
   for (int f = 0; f < 2; ++f) {
     const FingerPose& pose = f == 0 ? top : bottom;
     const double sign = f == 0 ? 1.0 : -1.0;
-    const double tilt = q[3 * f + kProximal] + q[3 * f + kDistal];
+    const double tilt = commanded[3 * f + kProximal] + commanded[3 * f + kDistal];
     gradient[3 * f + kProximal] = tilt + sign * gap.dot(perp(pose.paddle - pose.link));
     gradient[3 * f + kSlide] = sign * gap.dot(Vec2(std::cos(pose.linkAngle), std::sin(pose.linkAngle)));
     gradient[3 * f + kDistal] = tilt;
@@ -72,11 +79,13 @@ double measureControllerUpdateMicros(int repeats) {
   // Time batches of 100 updates (a single update is near the clock's resolution).
   for (int r = 0; r < std::max(1, repeats / 100); ++r) {
     const auto t0 = Clock::now();
-    for (int i = 0; i < 100; ++i) sink += controller.update(q, box, Vec2::Zero(), Vec2(0.01 * (i % 3), 0))[0];
+    for (int i = 0; i < 100; ++i) sink += controller.update(q, box, Vec2::Zero(), Vec2(0.01 * (i % 3), 0), q)[0];
     micros.push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count() / 100);
   }
   std::nth_element(micros.begin(), micros.begin() + micros.size() / 2, micros.end());
-  return micros[micros.size() / 2] + 0 * sink;
+  volatile double keep = sink;  // the updates must not be optimised away
+  (void)keep;
+  return micros[micros.size() / 2];
 }
 
 }  // namespace cablelab

@@ -25,7 +25,10 @@ namespace cablelab {
 struct HandControllerParams {
   double period = 0.053;  ///< outer-loop period (s)
   double kp = 0.1;        ///< per update, dimensionless
-  double kd = 0.58;       ///< per update (s)
+  /// per update (s). The thesis's 0.58 makes our loop oscillate and lose the box (the membranes'
+  /// damping delays the box's response to the fingers, and a derivative on the box fights it),
+  /// so the default is 0; pass kThesisKd to reproduce that.
+  double kd = 0.0;
   double ki = 0.0;        ///< per update (1/s); > 0 for PID
   double lambda = 0.05;   ///< pseudo-inverse damping (m per rad or m per m)
   double maxError = 0.05; ///< the error fed to the law is saturated at this length (m): the
@@ -35,8 +38,10 @@ struct HandControllerParams {
   double faceOnGain = 0.3;    ///< per update: null-space pull back to face-on paddles and the pinch gap
 };
 
+inline constexpr double kThesisKd = 0.58;
+
 /// The integral gain `--pid` uses (1/s per update).
-inline constexpr double kHandPidKi = 0.5;
+inline constexpr double kHandPidKi = 0.1;
 
 /// db/dq_u (m/rad, m/m), 2 x 6.
 using BoxJacobian = Eigen::Matrix<double, 2, 6>;
@@ -65,9 +70,10 @@ class HandController {
   /// Clears the integral term.
   void reset() { integral_.setZero(); }
 
-  /// One outer-loop update from the measured joints q, box centre and velocity and the target;
-  /// returns the joint-target increment (rad, m). Zero if the model is invalid at q.
-  HandJoints update(const HandJoints& q, const Vec2& box, const Vec2& boxVelocity, const Vec2& target);
+  /// One outer-loop update from the measured joints q, box centre and velocity, the target and
+  /// the joint targets currently commanded; returns the joint-target increment (rad, m).
+  HandJoints update(const HandJoints& q, const Vec2& box, const Vec2& boxVelocity, const Vec2& target,
+                    const HandJoints& commanded);
 
   /// The last update's prediction (for diagnostics).
   const BoxPrediction& lastPrediction() const { return last_; }

@@ -8,6 +8,10 @@
 
 namespace cablelab {
 
+namespace {
+constexpr double kSqueezeSettle = 0.5;  // s after the closing ramp before the outer loop starts
+}  // namespace
+
 HandJoints readHandJoints(const World& world) {
   HandJoints q;
   for (int j = 0; j < 6; ++j) q[j] = world.joint(world.findJoint(kHandJointNames[j])).value;
@@ -42,6 +46,7 @@ TrackResult runTracking(const TrackOptions& o, const HandModel& model, const std
 
   HandControllerParams params;
   if (o.pid) params.ki = kHandPidKi;
+
   HandController controller(model, params);
 
   const HandJoints open = model.openPose();
@@ -64,7 +69,8 @@ TrackResult runTracking(const TrackOptions& o, const HandModel& model, const std
     const HandJoints nominal = open * std::max(0.0, 1 - t / o.closeTime);
     if (result.graspTime >= 0 && t >= nextUpdate - 1e-9) {
       const BodyState& b = world.body(box);
-      offset += controller.update(readHandJoints(world), b.position, b.velocity, targetAt(t, result.graspTime));
+      offset += controller.update(readHandJoints(world), b.position, b.velocity, targetAt(t, result.graspTime),
+                                  model.clamp(nominal + offset));
       nextUpdate += params.period;
     }
     const HandJoints commanded = model.clamp(nominal + offset);
@@ -74,7 +80,9 @@ TrackResult runTracking(const TrackOptions& o, const HandModel& model, const std
     world.step(dt, substeps);
     if (result.graspTime < 0 && world.cable(cables[0]).wraps() >= 2 && world.cable(cables[1]).wraps() >= 2) {
       result.graspTime = world.time();
-      nextUpdate = world.time();
+      // Control begins once the closing ramp has finished and the squeeze has settled a little
+      // (before that the membranes barely press and the statics model is ill-conditioned).
+      nextUpdate = std::max(world.time(), o.closeTime + kSqueezeSettle);
     }
     const Vec2 target = targetAt(world.time(), result.graspTime);
     const Vec2 position = world.body(box).position;
