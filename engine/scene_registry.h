@@ -42,6 +42,7 @@ std::pair<std::string, double> parseSetting(const std::string& text);
 
 // Builders, one file each (scene_<name>.cpp).
 SceneDef makeBallastScene(const SceneParams& p);
+SceneDef makeHandScene(const SceneParams& p);
 SceneDef makeHexagonScene(const SceneParams& p);
 SceneDef makeMembraneScene(const SceneParams& p);
 SceneDef makePulleyScene(const SceneParams& p);

@@ -1,0 +1,29 @@
+// Controller update and hand-scene step (with and without the membranes).
+#include <benchmark/benchmark.h>
+
+#include "engine/hand_controller.h"
+#include "engine/world.h"
+
+namespace cablelab {
+namespace {
+
+void BM_HandControllerUpdate(benchmark::State& state) {
+  HandController controller{HandModel{}};
+  const HandJoints q = HandJoints::Zero();
+  const Vec2 box = controller.predict(q, Vec2::Zero()).box;
+  for (auto _ : state) benchmark::DoNotOptimize(controller.update(q, box, Vec2::Zero(), Vec2(0.01, 0), q));
+}
+BENCHMARK(BM_HandControllerUpdate);
+
+void BM_HandStep(benchmark::State& state) {
+  SceneDef scene = buildHandScene(HandModel{});
+  if (state.range(0) == 0) scene.cables.clear();
+  World world(scene, "hand");
+  for (auto _ : state) world.step(scene.dt, scene.substeps);
+}
+BENCHMARK(BM_HandStep)->Arg(1)->Arg(0)->ArgNames({"cables"});
+
+}  // namespace
+}  // namespace cablelab
+
+BENCHMARK_MAIN();
