@@ -5,13 +5,13 @@
 // (the `cablelab` CLI already does) and include this header. Example, a measured-vs-predicted
 // scatter plot and a force quiver plot:
 //
-//   cablelab::ui::Plot scatter{.title = "Vertical force", .xLabel = "measured fy (N)",
-//                              .yLabel = "model fy (N)", .identityLine = true};
+//   cablelab::ui::Plot scatter("Vertical force", "measured fy (N)", "model fy (N)");
+//   scatter.identityLine = true;
 //   scatter.addScatter("samples", measured, predicted);
 //   cablelab::ui::writePlotPng(scatter, "out/fy.png");
 //
-//   cablelab::ui::Plot quiver{.title = "Force field", .xLabel = "x (m)", .yLabel = "y (m)",
-//                             .equalAspect = true};
+//   cablelab::ui::Plot quiver("Force field", "x (m)", "y (m)");
+//   quiver.equalAspect = true;
 //   quiver.addArrows("measured", x, y, fx, fy);
 //   quiver.addArrows("model", x, y, gx, gy);  // same auto scale: arrows are comparable
 //   cablelab::ui::writePlotPng(quiver, "out/quiver.png", 800, 800);
@@ -22,6 +22,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ui/image.h"
@@ -45,6 +46,10 @@ struct PlotArrows {
 };
 
 struct Plot {
+  Plot() = default;
+  Plot(std::string title, std::string xLabel, std::string yLabel)
+      : title(std::move(title)), xLabel(std::move(xLabel)), yLabel(std::move(yLabel)) {}
+
   std::string title, xLabel, yLabel;
   std::vector<PlotSeries> series;
   std::vector<PlotArrows> arrows;

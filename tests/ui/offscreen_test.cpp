@@ -1,0 +1,90 @@
+// Offscreen snapshots: determinism, errors, and the golden images of every built-in scene.
+// Golden images: tests/golden/<scene>.png, each scene after kGoldenTime at kGoldenWidth x
+// kGoldenHeight. At most kMaxDifferingFraction of the pixels may differ by more than
+// kLevelTolerance levels. `scripts/update-goldens` rewrites them on purpose
+// (CABLELAB_UPDATE_GOLDENS=1); the Golden.* tests are registered per scene in ui_tests_main.cpp.
+#include "ui/offscreen.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <iostream>
+#include <stdexcept>
+
+#include "tests/ui/test_support.h"
+#include "ui/scene_catalog.h"
+
+namespace cablelab::ui {
+
+constexpr double kGoldenTime = 0.5;  // s
+constexpr int kGoldenWidth = 400, kGoldenHeight = 300;
+constexpr int kLevelTolerance = 8;  // of 255
+constexpr double kMaxDifferingFraction = 0.005;
+
+void checkGolden(const std::string& scene) {
+  const auto world = test::sceneAt(scene, kGoldenTime);
+  const Image actual = renderSnapshot(*world, kGoldenWidth, kGoldenHeight);
+  const std::string golden = std::string(CABLELAB_SOURCE_DIR) + "/tests/golden/" + scene + ".png";
+  if (const char* update = std::getenv("CABLELAB_UPDATE_GOLDENS"); update && *update == '1') {
+    writePng(actual, golden);
+    std::cout << "wrote " << golden << "\n";
+    return;
+  }
+  if (!std::filesystem::exists(golden))
+    FAIL() << "no golden image " << golden << " (run scripts/update-goldens and look at it)";
+  const Image expected = readPng(golden);
+  ASSERT_EQ(expected.width, actual.width) << golden;
+  ASSERT_EQ(expected.height, actual.height) << golden;
+  const auto dir = test::outputDir("golden");
+  const std::string diff = (dir / (scene + "-diff.png")).string();
+  const long differing = test::countDiffering(expected, actual, kLevelTolerance);
+  const long allowed = static_cast<long>(kMaxDifferingFraction * actual.width * actual.height);
+  if (differing > allowed) {
+    test::countDiffering(expected, actual, kLevelTolerance, diff);
+    writePng(actual, dir / (scene + "-actual.png"));
+    FAIL() << scene << ": " << differing << " pixels differ by more than " << kLevelTolerance
+           << " levels (allowed " << allowed << "); diff image: " << diff
+           << ", actual: " << (dir / (scene + "-actual.png")).string();
+  }
+}
+
+namespace {
+
+TEST(Offscreen, SameSceneAndTimeGiveTheSamePixels) {
+  for (const SceneEntry& entry : builtinSceneList()) {
+    const auto a = test::sceneAt(entry.name, 0.25), b = test::sceneAt(entry.name, 0.25);
+    EXPECT_EQ(renderSnapshot(*a, 320, 240).rgba, renderSnapshot(*b, 320, 240).rgba) << entry.name;
+  }
+}
+
+TEST(Offscreen, SnapshotIsNotBlank) {
+  const auto list = builtinSceneList();
+  ASSERT_FALSE(list.empty());
+  const auto world = test::sceneAt(list.front().name, 0);
+  const Image image = renderSnapshot(*world, 200, 150);
+  std::set<std::uint32_t> colours;
+  for (size_t i = 0; i < image.rgba.size(); i += 4)
+    colours.insert(image.rgba[i] << 16 | image.rgba[i + 1] << 8 | image.rgba[i + 2]);
+  EXPECT_GT(colours.size(), 20u);
+}
+
+TEST(Offscreen, WriteSnapshotPngFailsClearly) {
+  const auto list = builtinSceneList();
+  ASSERT_FALSE(list.empty());
+  const auto world = test::sceneAt(list.front().name, 0);
+  try {
+    writeSnapshotPng(*world, "/nonexistent/dir/snap.png", 100, 100);
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/dir/snap.png"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(writeSnapshotPng(*world, test::outputDir("snap") / "zero.png", 0, 10),
+               std::runtime_error);
+  const std::string ok = (test::outputDir("snap") / "ok.png").string();
+  writeSnapshotPng(*world, ok, 64, 48);
+  EXPECT_EQ(readPng(ok).width, 64);
+}
+
+}  // namespace
+}  // namespace cablelab::ui
