@@ -85,6 +85,9 @@ class Cable {
 
   const CableDef& def() const { return def_; }
   const std::string& name() const { return def_.name; }
+  /// Recomputes length, J and J-dot-v for the current wrap points (no re-selection).
+  void refresh(std::span<const BodyState> bodies) { kin_ = cableKinematics(path_, bodies); }
+
   const std::vector<WrapPoint>& path() const { return path_; }
   const CableKinematics& kinematics() const { return kin_; }
   double length() const { return kin_.length; }
@@ -125,6 +128,7 @@ class Cable {
   CableKinematics kin_;
   double tension_ = 0;
   bool firstUpdate_ = true;
+  bool reportedZeroLength_ = false;
 };
 
 }  // namespace cablelab

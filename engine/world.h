@@ -104,6 +104,8 @@ class World {
   SceneDef scene_;
   std::unique_ptr<Box2D> b2_;
   std::vector<BodyState> bodies_;
+  std::vector<Vec3> forces_;         ///< (fx, fy, torque) per body for the current sub-step
+  std::vector<Vec3> pendingForces_;  ///< applyForce() loads for the next step
   std::vector<Cable> cables_;
   std::vector<std::string> warnings_;
   StepStats stats_;

@@ -1,0 +1,52 @@
+// Shared helpers for the engine tests: seeded random numbers and running the CLI.
+#pragma once
+
+#include <array>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <sys/wait.h>
+
+#include "engine/math.h"
+
+namespace cablelab::test {
+
+class Random {
+ public:
+  explicit Random(unsigned seed) : gen_(seed) {}
+  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(gen_); }
+  Vec2 point(double lo, double hi) { return Vec2(uniform(lo, hi), uniform(lo, hi)); }
+  int integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(gen_); }
+
+ private:
+  std::mt19937 gen_;
+};
+
+struct CommandResult {
+  int exitCode = -1;
+  std::string out, err;
+};
+
+/// Runs `cablelab ARGS` (shell-quoted by the caller); captures stdout and stderr.
+inline CommandResult runCli(const std::string& args) {
+  const std::string errFile = std::string(std::tmpnam(nullptr)) + ".err";
+  const std::string cmd = std::string(CABLELAB_CLI) + " " + args + " 2>" + errFile;
+  CommandResult r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+  const int status = pclose(pipe);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  if (FILE* f = std::fopen(errFile.c_str(), "r")) {
+    while ((n = fread(buf.data(), 1, buf.size(), f)) > 0) r.err.append(buf.data(), n);
+    std::fclose(f);
+  }
+  std::remove(errFile.c_str());
+  return r;
+}
+
+inline std::string sourcePath(const std::string& relative) { return std::string(CABLELAB_SOURCE_DIR) + "/" + relative; }
+
+}  // namespace cablelab::test
