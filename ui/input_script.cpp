@@ -46,10 +46,20 @@ bool InputScript::beforeFrame(Sandbox& sandbox, int frame) {
   }
   if (frame == kPress) {
     sandbox.paused = false;
-    for (int i = 0; i < world->bodyCount() && body_ < 0; ++i) {
-      const Vec2 s = sandbox.camera.toScreen(world->body(i).position);
-      if (inFreeArea(sandbox, s) && sandbox.bodyAt(world->body(i).position) == i) body_ = i;
-    }
+    // Prefer a free body (no joint holds it), so that it can follow the mouse anywhere.
+    const SceneDef& scene = world->scene();
+    auto jointed = [&](int i) {
+      for (const JointDef& j : scene.joints)
+        if (j.bodyA == scene.bodies[i].name || j.bodyB == scene.bodies[i].name) return true;
+      return false;
+    };
+    for (int pass = 0; pass < 2 && body_ < 0; ++pass)
+      for (int i = 0; i < world->bodyCount() && body_ < 0; ++i) {
+        const Vec2 s = sandbox.camera.toScreen(world->body(i).position);
+        if ((pass == 1 || !jointed(i)) && inFreeArea(sandbox, s) &&
+            sandbox.bodyAt(world->body(i).position) == i)
+          body_ = i;
+      }
     if (body_ < 0) {
       failure_ = "no dynamic body whose origin is inside its shape in the free area";
       return false;

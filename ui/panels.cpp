@@ -117,6 +117,7 @@ void cableInspector(Sandbox& sandbox, World& world) {
   ImGui::Text("length %.5f m", cable.length());
   bool changed = false;
   auto& e = sandbox.cableEdit;
+  ImGui::PushItemWidth(150);
   changed |= ImGui::InputDouble("rest length (m)", &e.restLength, 0.01, 0.1, "%.4f",
                                 ImGuiInputTextFlags_EnterReturnsTrue);
   changed |= ImGui::InputDouble("stiffness (N/m)", &e.stiffness, 10, 100, "%.2f",
@@ -125,6 +126,7 @@ void cableInspector(Sandbox& sandbox, World& world) {
                                 ImGuiInputTextFlags_EnterReturnsTrue);
   changed |= ImGui::InputDouble("damping (N s/m)", &e.damping, 0.1, 1, "%.3f",
                                 ImGuiInputTextFlags_EnterReturnsTrue);
+  ImGui::PopItemWidth();
   if (changed) sandbox.applyCableEdit();
 
   if (i < static_cast<int>(sandbox.tensionHistory.size())) {

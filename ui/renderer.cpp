@@ -342,19 +342,26 @@ void drawScreenSpace(const World& world, const Overlay& overlay, const RenderOpt
   }
 
   if (options.legend && world.cableCount() > 0) {
-    const float barW = 14, barH = 120;
-    const float x0 = fx + fw - 70, y0 = fy + 26;
+    // A horizontal colour bar in the bottom-right corner, where scenes are seldom drawn.
+    const float barW = std::clamp(0.3f * fw, 90.0f, 160.0f), barH = 10;
+    const float x0 = fx + fw - barW - 24, y0 = fy + fh - 32;
+    glColor4f(kBackground[0], kBackground[1], kBackground[2], 0.85f);
+    glBegin(GL_QUADS);
+    glVertex2f(x0 - 84, y0 - 22);
+    glVertex2f(x0 + barW + 20, y0 - 22);
+    glVertex2f(x0 + barW + 20, y0 + barH + 22);
+    glVertex2f(x0 - 84, y0 + barH + 22);
+    glEnd();
     glBegin(GL_QUADS);
     const int n = 32;
     for (int k = 0; k < n; ++k) {
       const float a = static_cast<float>(k) / n, b = static_cast<float>(k + 1) / n;
-      const Colour ca = tensionColour(a), cb = tensionColour(b);
-      colour(ca);
-      glVertex2f(x0, y0 + barH * (1 - a));
-      glVertex2f(x0 + barW, y0 + barH * (1 - a));
-      colour(cb);
-      glVertex2f(x0 + barW, y0 + barH * (1 - b));
-      glVertex2f(x0, y0 + barH * (1 - b));
+      colour(tensionColour(a));
+      glVertex2f(x0 + barW * a, y0 + barH);
+      glVertex2f(x0 + barW * a, y0);
+      colour(tensionColour(b));
+      glVertex2f(x0 + barW * b, y0);
+      glVertex2f(x0 + barW * b, y0 + barH);
     }
     glEnd();
     glLineWidth(1.0f);
@@ -367,23 +374,24 @@ void drawScreenSpace(const World& world, const Overlay& overlay, const RenderOpt
     glEnd();
     glBegin(GL_LINES);
     for (int k = 0; k <= 4; ++k) {
-      const float y = y0 + barH * (1 - k / 4.0f);
-      glVertex2f(x0 + barW, y);
-      glVertex2f(x0 + barW + 4, y);
+      glVertex2f(x0 + barW * k / 4.0f, y0 + barH);
+      glVertex2f(x0 + barW * k / 4.0f, y0 + barH + 3);
     }
-    // Slack sample: a dashed grey stroke under the bar.
+    // Slack sample, left of the bar: a dashed grey stroke.
     glColor4f(kSlack[0], kSlack[1], kSlack[2], 1);
     for (int k = 0; k < 3; ++k) {
-      glVertex2f(x0 - 4 + 9.0f * k, y0 + barH + 16);
-      glVertex2f(x0 + 2 + 9.0f * k, y0 + barH + 16);
+      glVertex2f(x0 - 76 + 8.0f * k, y0 + 0.5f * barH);
+      glVertex2f(x0 - 71 + 8.0f * k, y0 + 0.5f * barH);
     }
     glEnd();
     if (text) {
-      text->AddText(ImVec2(x0 - 22, y0 - 18), ink, "tension (N)");
-      for (int k = 0; k <= 4; ++k)
-        text->AddText(ImVec2(x0 + barW + 7, y0 + barH * (1 - k / 4.0f) - 7), ink,
-                      format("%.3g", scale * k / 4).c_str());
-      text->AddText(ImVec2(x0 + 24, y0 + barH + 9), ink, "slack");
+      text->AddText(ImVec2(x0, y0 - 17), ink, "tension (N)");
+      text->AddText(ImVec2(x0 - 48, y0 + 0.5f * barH - 7), ink, "slack");
+      for (int k = 0; k <= 4; k += 2) {
+        const std::string label = format("%.3g", scale * k / 4);
+        text->AddText(ImVec2(x0 + barW * k / 4.0f - 3.5f * label.size(), y0 + barH + 4), ink,
+                      label.c_str());
+      }
     }
   }
 }
