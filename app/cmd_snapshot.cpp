@@ -46,7 +46,7 @@ const bool registered = registerCommand(
         const double dt = world.scene().dt;
         const long steps = std::lround(*time / dt);
         for (long i = 0; i < steps; ++i) world.step(dt, world.scene().substeps);
-        writeSnapshotPng(world, *out, s.width, s.height);
+        ui::writeSnapshotPng(world, *out, s.width, s.height);
         return 0;
       };
     });

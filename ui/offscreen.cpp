@@ -13,13 +13,9 @@ Image renderSnapshot(const World& world, int width, int height, const Overlay& o
       [&](ImDrawList* text) { drawWorld(world, camera, overlay, options, text); });
 }
 
-}  // namespace cablelab::ui
-
-namespace cablelab {
-
 void writeSnapshotPng(const World& world, const std::string& path, int width, int height,
-                      const ui::Overlay& overlay) {
-  ui::writePng(ui::renderSnapshot(world, width, height, overlay), path);
+                      const Overlay& overlay) {
+  writePng(renderSnapshot(world, width, height, overlay), path);
 }
 
-}  // namespace cablelab
+}  // namespace cablelab::ui

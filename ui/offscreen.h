@@ -19,13 +19,9 @@ namespace cablelab::ui {
 Image renderSnapshot(const World& world, int width, int height, const Overlay& overlay = {},
                      const RenderOptions& options = {});
 
-}  // namespace cablelab::ui
-
-namespace cablelab {
-
-/// Renders `world` (see ui::renderSnapshot) and writes it to `path` as PNG.
+/// Renders `world` (see renderSnapshot) and writes it to `path` as PNG.
 /// Throws std::runtime_error naming the path on failure.
 void writeSnapshotPng(const World& world, const std::string& path, int width, int height,
-                      const ui::Overlay& overlay = {});
+                      const Overlay& overlay = {});
 
-}  // namespace cablelab
+}  // namespace cablelab::ui
