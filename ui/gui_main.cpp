@@ -36,7 +36,8 @@ constexpr const char* kUsage =
     "  --screenshot F  save the last frame as PNG\n"
     "  --size WxH      window size (default 1280x720)\n"
     "  --open F        after 10 frames, open F as if chosen in the Scene menu (for tests)\n"
-    "  --test-input    drive the mouse with synthetic SDL events and check the result\n";
+    "  --test-input    drive the mouse and keys with synthetic SDL events, check the result\n"
+    "                  (with --screenshot: the script's last frame)\n";
 
 struct Options {
   std::string scene;
@@ -129,7 +130,8 @@ int run(const Options& options) {
       glClearColor(0.97f, 0.97f, 0.95f, 1);
       glClear(GL_COLOR_BUFFER_BIT);
     }
-    const bool lastFrame = options.frames > 0 && frame + 1 == options.frames;
+    // The script ends at an unknown frame: capture every one of its frames.
+    const bool lastFrame = (options.frames > 0 && frame + 1 == options.frames) || script;
     window.endFrame(lastFrame && !options.screenshot.empty() ? &capture : nullptr);
 
     const auto now = Clock::now();

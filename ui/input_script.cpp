@@ -9,7 +9,8 @@ namespace cablelab::ui {
 namespace {
 
 // Frame schedule of the script.
-constexpr int kPress = 3, kMoveFrames = 30, kRelease = 90, kClick = 95, kCheck = 98, kEnd = 100;
+constexpr int kPress = 3, kMoveFrames = 30, kRelease = 90, kClick = 95, kCheck = 98, kKeys = 99,
+              kEnd = 102;
 
 bool inFreeArea(const Sandbox& sandbox, const Vec2& s) {
   return s.x() > kLeftWidth + 20 && s.x() < sandbox.camera.width - kRightWidth - 20 && s.y() > 50 &&
@@ -17,6 +18,18 @@ bool inFreeArea(const Sandbox& sandbox, const Vec2& s) {
 }
 
 }  // namespace
+
+void InputScript::pushKey(SDL_Keycode key) {
+  for (Uint32 type : {SDL_KEYDOWN, SDL_KEYUP}) {
+    SDL_Event event{};
+    event.type = type;
+    event.key.windowID = windowId_;
+    event.key.state = type == SDL_KEYDOWN ? SDL_PRESSED : SDL_RELEASED;
+    event.key.keysym.sym = key;
+    event.key.keysym.scancode = SDL_GetScancodeFromKey(key);
+    SDL_PushEvent(&event);
+  }
+}
 
 void InputScript::push(Uint32 type, const Vec2& screen, Uint8 button) {
   SDL_Event event{};
@@ -97,11 +110,16 @@ bool InputScript::beforeFrame(Sandbox& sandbox, int frame) {
   } else if (frame == kCheck) {
     targetSet_ = sandbox.target.has_value();
     if (targetSet_) targetError_ = (*sandbox.target - sandbox.camera.toWorld(click_)).norm();
+  } else if (frame == kKeys) {
+    pausedBefore_ = sandbox.paused;
+    pushKey(SDLK_h);
+    pushKey(SDLK_SPACE);
   } else if (frame >= kEnd) {
+    keysOk_ = sandbox.showHelp && sandbox.paused != pausedBefore_;
     const double before = (start_ - goal_).norm(), after = (end_ - goal_).norm();
     const bool followed = after < 0.5 * before;
     const bool targetOk = targetSet_ && targetError_ <= 2 * sandbox.camera.metresPerPixel;
-    passed_ = dragSeen_ && followed && targetOk;
+    passed_ = dragSeen_ && followed && targetOk && keysOk_;
     if (!dragSeen_)
       failure_ = "World::draggedBody() did not report the dragged body";
     else if (!followed)
@@ -118,10 +136,11 @@ std::string InputScript::report() const {
   std::snprintf(buffer, sizeof buffer,
                 "{\"test_input\": %s, \"body\": \"%s\", \"start\": [%.17g, %.17g], "
                 "\"goal\": [%.17g, %.17g], \"end\": [%.17g, %.17g], \"drag_seen\": %s, "
-                "\"target_set\": %s, \"target_error\": %.17g, \"failure\": \"%s\"}",
+                "\"target_set\": %s, \"target_error\": %.17g, \"keys\": %s, \"failure\": \"%s\"}",
                 passed_ ? "true" : "false", bodyName_.c_str(), start_.x(), start_.y(), goal_.x(),
                 goal_.y(), end_.x(), end_.y(), dragSeen_ ? "true" : "false",
-                targetSet_ ? "true" : "false", targetError_, failure_.c_str());
+                targetSet_ ? "true" : "false", targetError_, keysOk_ ? "true" : "false",
+                failure_.c_str());
   return buffer;
 }
 

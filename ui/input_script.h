@@ -1,7 +1,8 @@
 // InputScript: the sandbox's self-test (`cablelab-gui --test-input`). It pushes synthetic SDL
 // mouse events (SDL_PushEvent) that go through the normal event path: press on a dynamic body,
 // drag it, hold, release; then click empty space. It checks that the body followed the mouse
-// and that the click set the controller target, and reports JSON on stdout.
+// and that the click set the controller target; then presses h and space and checks that the
+// help opened and the pause toggled. Reports JSON on stdout.
 //
 // Needs: an SDL video subsystem (the sandbox's Window), a Sandbox with a loaded scene.
 #pragma once
@@ -28,6 +29,7 @@ class InputScript {
 
  private:
   void push(Uint32 type, const Vec2& screen, Uint8 button = SDL_BUTTON_LEFT);
+  void pushKey(SDL_Keycode key);
 
   Uint32 windowId_;
   int body_ = -1;
@@ -37,6 +39,7 @@ class InputScript {
   Vec2 goal_ = Vec2::Zero();                        ///< world point under `to_` (m)
   Vec2 click_ = Vec2::Zero();                       ///< empty-space click (px)
   bool dragSeen_ = false, targetSet_ = false, passed_ = false;
+  bool pausedBefore_ = false, keysOk_ = false;
   double targetError_ = -1;
   std::string failure_;
 };
