@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "app/command.h"
+#include "engine/scene_json.h"
 #include "engine/scene_registry.h"
 
 namespace cablelab::app {
@@ -10,7 +11,11 @@ namespace {
 const bool registered = registerCommand("scenes", "List the built-in scenes, one line each", [](CLI::App& sub) {
   auto verbose = std::make_shared<bool>(false);
   sub.add_flag("-v,--verbose", *verbose, "Also list each scene's parameters with defaults and units");
-  return [verbose] {
+  auto exportDir = std::make_shared<std::string>();
+  sub.add_option("--export", *exportDir, "Write every built-in scene (default parameters) as DIR/NAME.json");
+  return [verbose, exportDir] {
+    if (!exportDir->empty())
+      for (const SceneInfo& s : builtinScenes()) saveSceneFile(makeScene(s.name), *exportDir + "/" + s.name + ".json");
     for (const SceneInfo& s : builtinScenes()) {
       std::string params;
       for (const SceneParam& p : s.params) params += (params.empty() ? "" : ",") + p.name;

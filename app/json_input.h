@@ -16,7 +16,7 @@ inline nlohmann::json readJsonFile(const std::string& path) {
   if (!in) throw InputError(path, "(file)", "cannot open the file");
   try {
     return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {
     throw InputError(path, "(json)", std::string("not valid JSON: ") + e.what());
   }
 }

@@ -25,7 +25,8 @@ class Reader {
   }
 
   [[noreturn]] void fail(const std::string& sub, const std::string& what) const {
-    throw InputError(source_, path_ + sub, what);
+    const bool top = path_.empty() && !sub.empty() && sub[0] == '.';
+    throw InputError(source_, top ? sub.substr(1) : path_ + sub, what);
   }
   std::string field(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
   bool has(const std::string& key) {
@@ -323,7 +324,7 @@ SceneDef loadSceneFile(const std::string& path) {
   json j;
   try {
     j = json::parse(in);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
     throw InputError(path, "(json)", std::string("not valid JSON: ") + e.what());
   }
   return sceneFromJson(j, path);

@@ -140,8 +140,12 @@ World::World(SceneDef scene, const std::string& source) : scene_(std::move(scene
 
   for (int i = 0; i < static_cast<int>(scene_.cables.size()); ++i) cables_.emplace_back(scene_, i, source);
   readBodies();
-  for (Cable& c : cables_) c.update(bodies_, &warnings_);
-  for (size_t i = 0; i < cables_.size(); ++i) scene_.cables[i].restLength = cables_[i].restLength();
+  for (size_t i = 0; i < cables_.size(); ++i) {
+    cables_[i].update(bodies_, &warnings_);
+    if (cables_[i].length() < 1e-9)
+      throw InputError(source, "cables[" + std::to_string(i) + "]", "zero-length cable: its ends coincide at the initial pose");
+    scene_.cables[i].restLength = cables_[i].restLength();
+  }
 }
 
 World::~World() = default;

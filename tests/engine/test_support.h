@@ -6,6 +6,9 @@
 #include <random>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
 
 #include "engine/math.h"
 
@@ -29,8 +32,10 @@ struct CommandResult {
 
 /// Runs `cablelab ARGS` (shell-quoted by the caller); captures stdout and stderr.
 inline CommandResult runCli(const std::string& args) {
-  const std::string errFile = std::string(std::tmpnam(nullptr)) + ".err";
-  const std::string cmd = std::string(CABLELAB_CLI) + " " + args + " 2>" + errFile;
+  char errFile[] = "/tmp/cablelab-test-XXXXXX";
+  const int fd = mkstemp(errFile);
+  if (fd >= 0) close(fd);
+  const std::string cmd = std::string(CABLELAB_CLI) + " " + args + " 2>" + std::string(errFile);
   CommandResult r;
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;
@@ -39,11 +44,11 @@ inline CommandResult runCli(const std::string& args) {
   while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
   const int status = pclose(pipe);
   r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  if (FILE* f = std::fopen(errFile.c_str(), "r")) {
+  if (FILE* f = std::fopen(errFile, "r")) {
     while ((n = fread(buf.data(), 1, buf.size(), f)) > 0) r.err.append(buf.data(), n);
     std::fclose(f);
   }
-  std::remove(errFile.c_str());
+  std::remove(errFile);
   return r;
 }
 
