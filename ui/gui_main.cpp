@@ -138,7 +138,7 @@ int run(const Options& options) {
     sandbox.lastFrameSeconds = std::chrono::duration<double>(now - last).count();
     last = now;
     if (frame > 0) frameSeconds.push_back(sandbox.lastFrameSeconds);  // the first is a warm-up
-    if (frame % 30 == 0 && !frameSeconds.empty()) {
+    if (!frameSeconds.empty()) {  // the status line shows the median of the last 60 frames
       const size_t n = std::min<size_t>(frameSeconds.size(), 60);
       const double m = median({frameSeconds.end() - n, frameSeconds.end()});
       sandbox.fps = m > 0 ? 1 / m : 0;
