@@ -71,6 +71,27 @@ void arrowHead(ImDrawList* draw, ImVec2 from, ImVec2 to, ImU32 colour) {
                           ImVec2(base.x + 0.45f * head * uy, base.y - 0.45f * head * ux), colour);
 }
 
+/// Median distance from each arrow site to its nearest other site (0 with fewer than 2 sites).
+double medianSpacing(const std::vector<PlotArrows>& sets) {
+  std::vector<std::pair<double, double>> sites;
+  for (const auto& a : sets)
+    for (size_t i = 0; i < a.x.size() && sites.size() < 2000; ++i)
+      if (std::isfinite(a.x[i]) && std::isfinite(a.y[i])) sites.emplace_back(a.x[i], a.y[i]);
+  std::vector<double> nearest;
+  for (size_t i = 0; i < sites.size(); ++i) {
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t j = 0; j < sites.size(); ++j) {
+      const double d =
+          std::hypot(sites[i].first - sites[j].first, sites[i].second - sites[j].second);
+      if (d > 0) best = std::min(best, d);
+    }
+    if (std::isfinite(best)) nearest.push_back(best);
+  }
+  if (nearest.empty()) return 0;
+  std::nth_element(nearest.begin(), nearest.begin() + nearest.size() / 2, nearest.end());
+  return nearest[nearest.size() / 2];
+}
+
 }  // namespace
 
 Plot& Plot::addLine(std::string label, std::vector<double> x, std::vector<double> y) {
@@ -110,9 +131,13 @@ Image renderPlot(const Plot& plot, int width, int height) {
   base.settle();
   Range baseY = ry;
   baseY.settle();
-  const double arrowScale = plot.arrowScale > 0 ? plot.arrowScale
-                            : longest > 0 ? 0.08 * std::max(base.span(), baseY.span()) / longest
-                                          : 0;
+  // Default: the longest arrow spans 90% of the median nearest-neighbour distance between
+  // sites (so neighbours do not overlap), but at least 5% of the larger axis range.
+  const double larger = std::max(base.span(), baseY.span());
+  const double arrowScale =
+      plot.arrowScale > 0 ? plot.arrowScale
+      : longest > 0       ? std::max(0.9 * medianSpacing(plot.arrows), 0.05 * larger) / longest
+                          : 0;
   for (const auto& a : plot.arrows)
     for (size_t i = 0; i < a.x.size(); ++i)
       if (std::isfinite(a.u[i]) && std::isfinite(a.v[i]))
@@ -226,7 +251,27 @@ Image renderPlot(const Plot& plot, int width, int height) {
       size_t longestLabel = 0;
       for (const auto& l : legend) longestLabel = std::max(longestLabel, l.first.size());
       const float w = 40 + 7.0f * longestLabel, h = 8 + 16.0f * legend.size();
-      const ImVec2 p0(right - w - 8, top + 8);
+      // The corner of the plot area that covers the fewest data points.
+      std::vector<ImVec2> points;
+      for (const auto& series : plot.series)
+        for (size_t i = 0; i < series.x.size(); ++i)
+          points.push_back(map(series.x[i], series.y[i]));
+      for (const auto& a : plot.arrows)
+        for (size_t i = 0; i < a.x.size(); ++i) {
+          points.push_back(map(a.x[i], a.y[i]));
+          points.push_back(map(a.x[i] + arrowScale * a.u[i], a.y[i] + arrowScale * a.v[i]));
+        }
+      const ImVec2 corners[4] = {ImVec2(right - w - 8, top + 8), ImVec2(left + 8, top + 8),
+                                 ImVec2(right - w - 8, bottom - h - 8),
+                                 ImVec2(left + 8, bottom - h - 8)};
+      ImVec2 p0 = corners[0];
+      long fewest = -1;
+      for (const ImVec2& c : corners) {
+        long covered = 0;
+        for (const ImVec2& q : points)
+          covered += q.x >= c.x - 4 && q.x <= c.x + w + 4 && q.y >= c.y - 4 && q.y <= c.y + h + 4;
+        if (fewest < 0 || covered < fewest) fewest = covered, p0 = c;
+      }
       draw->AddRectFilled(p0, ImVec2(p0.x + w, p0.y + h), IM_COL32(255, 255, 255, 230));
       draw->AddRect(p0, ImVec2(p0.x + w, p0.y + h), IM_COL32(160, 160, 160, 255));
       for (size_t i = 0; i < legend.size(); ++i) {
