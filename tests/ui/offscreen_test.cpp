@@ -92,9 +92,11 @@ TEST(Offscreen, SnapshotTimeAt800x600) {
   // Median of 20 whole snapshots (context, ImGui, render, PNG); printed for the record.
   const auto list = builtinSceneList();
   ASSERT_FALSE(list.empty());
-  const std::string scene = std::find_if(list.begin(), list.end(), [](const SceneEntry& e) {
-                              return e.name == "hexagon";
-                            }) != list.end() ? "hexagon" : list.front().name;
+  const std::string scene =
+      std::find_if(list.begin(), list.end(),
+                   [](const SceneEntry& e) { return e.name == "hexagon"; }) != list.end()
+          ? "hexagon"
+          : list.front().name;
   const auto world = test::sceneAt(scene, 0.5);
   const std::string path = (test::outputDir("snap") / "timing.png").string();
   std::vector<double> ms, renderMs;
