@@ -18,6 +18,7 @@ constexpr Colour kGridMinor{0.89f, 0.89f, 0.87f, 1};
 constexpr Colour kGridAxis{0.72f, 0.72f, 0.70f, 1};
 constexpr Colour kSlack{0.55f, 0.55f, 0.55f, 1};
 constexpr Colour kPulley{0.9f, 0.45f, 0.0f, 1};
+constexpr Colour kPulleyIdle{0.95f, 0.75f, 0.55f, 1};  // a pulley the cable does not touch now
 constexpr Colour kJoint{0.25f, 0.25f, 0.3f, 1};
 constexpr Colour kSelected{0.95f, 0.75f, 0.0f, 1};
 constexpr double kPi = 3.14159265358979323846;
@@ -222,17 +223,23 @@ std::vector<Vec2> pulleyPolygon(const World& world, const PulleyDef& pulley) {
   return local;
 }
 
+/// Pulleys a cable is wrapped on now are drawn in full colour, the others faded.
 void drawPulleys(const World& world, const Painter& paint) {
-  for (const CableDef& cable : world.scene().cables)
-    for (const PulleyDef& pulley : cable.pulleys) {
+  const auto& cables = world.scene().cables;
+  for (size_t c = 0; c < cables.size(); ++c)
+    for (size_t k = 0; k < cables[c].pulleys.size(); ++k) {
+      const PulleyDef& pulley = cables[c].pulleys[k];
+      const bool engaged = static_cast<int>(c) < world.cableCount() &&
+                           world.cable(static_cast<int>(c)).engaged(static_cast<int>(k));
+      const Colour colour = engaged ? kPulley : kPulleyIdle;
       if (pulley.kind == PulleyDef::Kind::Polygon) {
         const std::vector<Vec2> points = pulleyPolygon(world, pulley);
-        paint.polygon(points, nullptr, kPulley, 2.5f);
-        for (const Vec2& p : points) paint.disc(p, paint.px(2.5), kPulley);
+        paint.polygon(points, nullptr, colour, 2.5f);
+        for (const Vec2& p : points) paint.disc(p, paint.px(2.5), colour);
       } else {
         const Vec2 p = bodyPoint(world, findBodyIndex(world.scene(), pulley.body), pulley.point);
         const Colour white{1, 1, 1, 1};
-        paint.disc(p, paint.px(6), kPulley);
+        paint.disc(p, paint.px(6), colour);
         paint.disc(p, paint.px(3.5), white);
       }
     }

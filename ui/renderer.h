@@ -8,10 +8,10 @@
 //
 // What it draws, back to front: background and grid; bodies (filled shapes and outlines,
 // coloured by type: static grey-green, kinematic blue, dynamic orange); polygon pulleys
-// (orange outline) and point pulleys (rings); joints; cables coloured by tension (slack
-// segments dashed grey); wrap points; the overlay (targets, arrows, text); then in screen
-// space the tension legend (colour bar with numbers) and the scale bar.
-// The renderer is stateless: the same world, camera and options give the same pixels.
+// (orange outline) and point pulleys (rings), faded while their cable is off them; joints;
+// cables coloured by tension (slack segments dashed grey); wrap points; the overlay (targets,
+// arrows, text); then in screen space the tension legend (colour bar with numbers) and the
+// scale bar. The renderer is stateless: the same world, camera and options give the same pixels.
 #pragma once
 
 #include "engine/world.h"
