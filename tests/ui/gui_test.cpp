@@ -1,0 +1,120 @@
+// The sandbox under Xvfb: frames + screenshot, layout against the offscreen renderer, synthetic
+// mouse input, and a bad scene file. Skipped (GTEST_SKIP) when xvfb-run is not installed.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <iostream>
+
+#include "tests/ui/test_support.h"
+#include "ui/offscreen.h"
+#include "ui/panels.h"
+
+namespace cablelab::test {
+namespace {
+
+const std::string kCli = CABLELAB_CLI;
+const std::string kXvfb = "xvfb-run -a -s \"-screen 0 1280x720x24\" ";
+constexpr int kFrames = 60;
+constexpr int kCell = 20;              // px, layout comparison cells
+constexpr double kInkFraction = 0.04;  // a cell is occupied above this share of ink pixels
+constexpr double kMaxCellMismatch = 0.05;
+
+#define REQUIRE_XVFB() \
+  if (!onPath("xvfb-run")) GTEST_SKIP() << "xvfb-run not installed: GUI tests skipped"
+
+/// A pixel that is neither the background nor a grid line: something the scene drew.
+bool ink(const std::uint8_t* p) {
+  static constexpr int kPlain[3][3] = {{247, 247, 242}, {227, 227, 222}, {184, 184, 179}};
+  for (const auto& c : kPlain) {
+    int d = 0;
+    for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(p[k] - c[k]));
+    if (d <= 24) return false;
+  }
+  return true;
+}
+
+/// Occupancy of kCell x kCell cells over [x0, x1) x [y0, y1).
+std::vector<bool> occupancy(const ui::Image& image, int x0, int y0, int x1, int y1) {
+  std::vector<bool> cells;
+  for (int cy = y0; cy + kCell <= y1; cy += kCell)
+    for (int cx = x0; cx + kCell <= x1; cx += kCell) {
+      int n = 0;
+      for (int y = cy; y < cy + kCell; ++y)
+        for (int x = cx; x < cx + kCell; ++x) n += ink(image.pixel(x, y));
+      cells.push_back(n > kInkFraction * kCell * kCell);
+    }
+  return cells;
+}
+
+TEST(Gui, FramesScreenshotAndLayoutMatchTheOffscreenRenderer) {
+  REQUIRE_XVFB();
+  const std::string shot = (outputDir("gui") / "hexagon.png").string();
+  const RunResult r = run(
+      kXvfb + kCli + " gui hexagon --frames " + std::to_string(kFrames) + " --screenshot " + shot,
+      "gui_frames");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("\"frames\": 60"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"fps\": "), std::string::npos) << r.out;
+  const ui::Image gui = ui::readPng(shot);
+  ASSERT_EQ(gui.width, 1280);
+  ASSERT_EQ(gui.height, 720);
+
+  // The same scene after the same number of steps, offscreen at the window's size.
+  auto world = std::make_unique<World>(ui::loadScene("hexagon"), "hexagon");
+  for (int i = 0; i < kFrames; ++i) world->step(world->scene().dt, world->scene().substeps);
+  const ui::Image offscreen = ui::renderSnapshot(*world, 1280, 720);
+  ui::writePng(offscreen, outputDir("gui") / "hexagon-offscreen.png");
+
+  // Compare the scene area between the panels, leaving out the bottom strip where the legend
+  // and the scale bar sit (placed relative to the free area, so they move with the panels).
+  const int x0 = static_cast<int>(ui::kLeftWidth) + 10;
+  const int x1 = 1280 - static_cast<int>(ui::kRightWidth) - 10;
+  const int y0 = 40, y1 = 720 - static_cast<int>(ui::kStatusHeight) - 70;
+  const auto a = occupancy(gui, x0, y0, x1, y1), b = occupancy(offscreen, x0, y0, x1, y1);
+  ASSERT_EQ(a.size(), b.size());
+  long occupied = 0, mismatched = 0;
+  for (size_t i = 0; i < a.size(); ++i) occupied += a[i], mismatched += a[i] != b[i];
+  std::cout << "layout: " << occupied << " occupied cells, " << mismatched << " of " << a.size()
+            << " differ from the offscreen render\n";
+  EXPECT_GT(occupied, 10) << "the sandbox screenshot looks blank: " << shot;
+  EXPECT_LE(mismatched, kMaxCellMismatch * a.size())
+      << mismatched << " of " << a.size() << " cells differ; compare " << shot << " with "
+      << (outputDir("gui") / "hexagon-offscreen.png").string();
+}
+
+TEST(Gui, SyntheticMouseDragsABodyAndClickSetsTheTarget) {
+  REQUIRE_XVFB();
+  const RunResult r = run(kXvfb + kCli + " gui hexagon --test-input", "gui_input");
+  EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("\"test_input\": true"), std::string::npos) << r.out;
+}
+
+TEST(Gui, BadSceneFileShowsTheErrorAndKeepsRunning) {
+  REQUIRE_XVFB();
+  const std::string bad = (outputDir("gui") / "bad-scene.json").string();
+  std::ofstream(bad) << "{\"bodies\": [ this is not json";
+  const std::string shot = (outputDir("gui") / "bad-scene.png").string();
+  const RunResult r =
+      run(kXvfb + kCli + " gui hexagon --frames 30 --open " + bad + " --screenshot " + shot,
+          "gui_bad_scene");
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find(bad), std::string::npos) << "stderr should name the file: " << r.err;
+  EXPECT_NE(r.out.find("\"frames\": 30"), std::string::npos) << r.out;
+  // The error banner (pale red) is on screen.
+  const ui::Image image = ui::readPng(shot);
+  long banner = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const auto* p = image.pixel(x, y);
+      banner += p[0] == 255 && p[1] > 215 && p[1] < 240 && p[2] > 215 && p[2] < 240;
+    }
+  EXPECT_GT(banner, 2000) << "no error banner in " << shot;
+
+  // A bad scene on the command line: the error, then the default scene, exit 0.
+  const RunResult first = run(kXvfb + kCli + " gui " + bad + " --frames 5", "gui_bad_first");
+  EXPECT_EQ(first.exitCode, 0) << first.err;
+  EXPECT_NE(first.err.find(bad), std::string::npos) << first.err;
+}
+
+}  // namespace
+}  // namespace cablelab::test

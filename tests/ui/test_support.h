@@ -1,0 +1,93 @@
+// Shared helpers of the UI tests: run a command, compare images, step a scene.
+#pragma once
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "engine/world.h"
+#include "ui/image.h"
+#include "ui/scene_catalog.h"
+
+namespace cablelab::test {
+
+/// Where tests may write files (under the build directory).
+inline std::filesystem::path outputDir(const std::string& sub) {
+  const auto dir = std::filesystem::path(CABLELAB_TEST_OUTPUT) / sub;
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+struct RunResult {
+  int exitCode = -1;
+  std::string out, err;
+};
+
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+/// Runs `command` through /bin/sh, capturing stdout and stderr.
+inline RunResult run(const std::string& command, const std::string& tag) {
+  const auto dir = outputDir("run");
+  const auto out = dir / (tag + ".out"), err = dir / (tag + ".err");
+  const int status = std::system((command + " >" + out.string() + " 2>" + err.string()).c_str());
+  RunResult r;
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+/// True when `program` is found on PATH.
+inline bool onPath(const std::string& program) {
+  const char* path = std::getenv("PATH");
+  std::stringstream s(path ? path : "");
+  for (std::string dir; std::getline(s, dir, ':');)
+    if (!dir.empty() && std::filesystem::exists(std::filesystem::path(dir) / program)) return true;
+  return false;
+}
+
+/// Pixels whose largest channel difference exceeds `threshold`; writes a diff image (the
+/// expected image greyed out, differing pixels red) to `diffPath` when it is not empty.
+inline long countDiffering(const ui::Image& a, const ui::Image& b, int threshold,
+                           const std::string& diffPath = {}) {
+  if (a.width != b.width || a.height != b.height) return static_cast<long>(a.width) * a.height;
+  ui::Image diff = a;
+  long count = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      const auto *p = a.pixel(x, y), *q = b.pixel(x, y);
+      int d = 0;
+      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(p[c]) - int(q[c])));
+      auto* o = diff.pixel(x, y);
+      const auto grey = static_cast<std::uint8_t>(200 + (p[0] + p[1] + p[2]) / 3 / 5);
+      if (d > threshold) {
+        ++count;
+        o[0] = 230, o[1] = 0, o[2] = 0;
+      } else {
+        o[0] = o[1] = o[2] = grey;
+      }
+    }
+  if (!diffPath.empty()) ui::writePng(diff, diffPath);
+  return count;
+}
+
+/// A built-in scene stepped for `seconds` at its own dt and substeps (as `cablelab snapshot`).
+inline std::unique_ptr<World> sceneAt(const std::string& name, double seconds) {
+  auto world = std::make_unique<World>(ui::loadScene(name), name);
+  const double dt = world->scene().dt;
+  const long steps = std::lround(seconds / dt);
+  for (long i = 0; i < steps; ++i) world->step(dt, world->scene().substeps);
+  return world;
+}
+
+}  // namespace cablelab::test

@@ -1,0 +1,69 @@
+#include "ui/image.h"
+
+#include <png.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <stdexcept>
+
+namespace cablelab::ui {
+namespace {
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+using File = std::unique_ptr<std::FILE, FileCloser>;
+
+File open(const std::string& path, const char* mode) {
+  File f(std::fopen(path.c_str(), mode));
+  if (!f) throw std::runtime_error(path + ": cannot open: " + std::strerror(errno));
+  return f;
+}
+
+}  // namespace
+
+void writePng(const Image& image, const std::string& path) {
+  if (image.width <= 0 || image.height <= 0 ||
+      image.rgba.size() != static_cast<size_t>(image.width) * image.height * 4)
+    throw std::runtime_error(path + ": cannot write an empty or inconsistent image");
+  File file = open(path, "wb");
+  png_image png;
+  std::memset(&png, 0, sizeof png);
+  png.version = PNG_IMAGE_VERSION;
+  png.width = static_cast<png_uint_32>(image.width);
+  png.height = static_cast<png_uint_32>(image.height);
+  png.format = PNG_FORMAT_RGBA;
+  if (!png_image_write_to_stdio(&png, file.get(), 0, image.rgba.data(), 0, nullptr))
+    throw std::runtime_error(path + ": PNG write failed: " + png.message);
+  if (std::fflush(file.get()) != 0)
+    throw std::runtime_error(path + ": write failed: " + std::strerror(errno));
+}
+
+Image readPng(const std::string& path) {
+  File file = open(path, "rb");
+  png_image png;
+  std::memset(&png, 0, sizeof png);
+  png.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_stdio(&png, file.get()))
+    throw std::runtime_error(path + ": not a PNG: " + png.message);
+  png.format = PNG_FORMAT_RGBA;
+  Image image;
+  image.width = static_cast<int>(png.width);
+  image.height = static_cast<int>(png.height);
+  image.rgba.resize(PNG_IMAGE_SIZE(png));
+  if (!png_image_finish_read(&png, nullptr, image.rgba.data(), 0, nullptr))
+    throw std::runtime_error(path + ": PNG read failed: " + png.message);
+  return image;
+}
+
+void flipRows(Image& image) {
+  const size_t stride = static_cast<size_t>(image.width) * 4;
+  for (int y = 0; y < image.height / 2; ++y)
+    std::swap_ranges(image.rgba.begin() + y * stride, image.rgba.begin() + (y + 1) * stride,
+                     image.rgba.begin() + (image.height - 1 - y) * stride);
+}
+
+}  // namespace cablelab::ui

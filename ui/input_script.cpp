@@ -1,0 +1,147 @@
+#include "ui/input_script.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "ui/panels.h"
+
+namespace cablelab::ui {
+namespace {
+
+// Frame schedule of the script.
+constexpr int kPress = 3, kMoveFrames = 30, kRelease = 90, kClick = 95, kCheck = 98, kKeys = 99,
+              kEnd = 102;
+
+bool inFreeArea(const Sandbox& sandbox, const Vec2& s) {
+  return s.x() > kLeftWidth + 20 && s.x() < sandbox.camera.width - kRightWidth - 20 && s.y() > 50 &&
+         s.y() < sandbox.camera.height - kStatusHeight - 20;
+}
+
+}  // namespace
+
+void InputScript::pushKey(SDL_Keycode key) {
+  for (Uint32 type : {SDL_KEYDOWN, SDL_KEYUP}) {
+    SDL_Event event{};
+    event.type = type;
+    event.key.windowID = windowId_;
+    event.key.state = type == SDL_KEYDOWN ? SDL_PRESSED : SDL_RELEASED;
+    event.key.keysym.sym = key;
+    event.key.keysym.scancode = SDL_GetScancodeFromKey(key);
+    SDL_PushEvent(&event);
+  }
+}
+
+void InputScript::push(Uint32 type, const Vec2& screen, Uint8 button) {
+  SDL_Event event{};
+  event.type = type;
+  const int x = static_cast<int>(std::lround(screen.x())),
+            y = static_cast<int>(std::lround(screen.y()));
+  if (type == SDL_MOUSEMOTION) {
+    event.motion.windowID = windowId_;
+    event.motion.x = x;
+    event.motion.y = y;
+  } else {
+    event.button.windowID = windowId_;
+    event.button.button = button;
+    event.button.state = type == SDL_MOUSEBUTTONDOWN ? SDL_PRESSED : SDL_RELEASED;
+    event.button.clicks = 1;
+    event.button.x = x;
+    event.button.y = y;
+  }
+  SDL_PushEvent(&event);
+}
+
+bool InputScript::beforeFrame(Sandbox& sandbox, int frame) {
+  World* world = sandbox.world();
+  if (!world) {
+    failure_ = "no scene loaded";
+    return false;
+  }
+  if (frame == kPress) {
+    sandbox.paused = false;
+    // Prefer a free body (no joint holds it), so that it can follow the mouse anywhere.
+    const SceneDef& scene = world->scene();
+    auto jointed = [&](int i) {
+      for (const JointDef& j : scene.joints)
+        if (j.bodyA == scene.bodies[i].name || j.bodyB == scene.bodies[i].name) return true;
+      return false;
+    };
+    for (int pass = 0; pass < 2 && body_ < 0; ++pass)
+      for (int i = 0; i < world->bodyCount() && body_ < 0; ++i) {
+        const Vec2 s = sandbox.camera.toScreen(world->body(i).position);
+        if ((pass == 1 || !jointed(i)) && inFreeArea(sandbox, s) &&
+            sandbox.bodyAt(world->body(i).position) == i)
+          body_ = i;
+      }
+    if (body_ < 0) {
+      failure_ = "no dynamic body whose origin is inside its shape in the free area";
+      return false;
+    }
+    bodyName_ = world->scene().bodies[body_].name;
+    start_ = world->body(body_).position;
+    from_ = sandbox.camera.toScreen(start_);
+    const Vec2 centre(0.5 * (kLeftWidth + sandbox.camera.width - kRightWidth),
+                      0.5 * sandbox.camera.height);
+    const Vec2 toward = centre - from_;
+    to_ = from_ + Vec2(toward.x() >= 0 ? 90 : -90, toward.y() >= 0 ? 60 : -60);
+    goal_ = sandbox.camera.toWorld(to_);
+    push(SDL_MOUSEMOTION, from_);
+    push(SDL_MOUSEBUTTONDOWN, from_);
+  } else if (frame > kPress && frame <= kPress + kMoveFrames) {
+    dragSeen_ = dragSeen_ || world->draggedBody() == body_;
+    push(SDL_MOUSEMOTION, from_ + (to_ - from_) * (frame - kPress) / double(kMoveFrames));
+  } else if (frame == kRelease) {
+    dragSeen_ = dragSeen_ && world->draggedBody() == body_;
+    end_ = world->body(body_).position;
+    push(SDL_MOUSEBUTTONUP, to_);
+  } else if (frame == kClick) {
+    // An empty point of the free area: scan a coarse grid for one with no body under it.
+    bool found = false;
+    for (int gy = 0; gy < 8 && !found; ++gy)
+      for (int gx = 0; gx < 8 && !found; ++gx) {
+        const Vec2 s(
+            kLeftWidth + 40 + gx * 0.125 * (sandbox.camera.width - kLeftWidth - kRightWidth - 80),
+            80 + gy * 0.125 * (sandbox.camera.height - 160));
+        if (sandbox.bodyAt(sandbox.camera.toWorld(s)) < 0) click_ = s, found = true;
+      }
+    push(SDL_MOUSEMOTION, click_);
+    push(SDL_MOUSEBUTTONDOWN, click_);
+    push(SDL_MOUSEBUTTONUP, click_);
+  } else if (frame == kCheck) {
+    targetSet_ = sandbox.target.has_value();
+    if (targetSet_) targetError_ = (*sandbox.target - sandbox.camera.toWorld(click_)).norm();
+  } else if (frame == kKeys) {
+    pausedBefore_ = sandbox.paused;
+    pushKey(SDLK_h);
+    pushKey(SDLK_SPACE);
+  } else if (frame >= kEnd) {
+    keysOk_ = sandbox.showHelp && sandbox.paused != pausedBefore_;
+    const double before = (start_ - goal_).norm(), after = (end_ - goal_).norm();
+    const bool followed = after < 0.5 * before;
+    const bool targetOk = targetSet_ && targetError_ <= 2 * sandbox.camera.metresPerPixel;
+    passed_ = dragSeen_ && followed && targetOk && keysOk_;
+    if (!dragSeen_)
+      failure_ = "World::draggedBody() did not report the dragged body";
+    else if (!followed)
+      failure_ = "the body did not follow the mouse";
+    else if (!targetOk)
+      failure_ = "the click did not set the target";
+    return false;
+  }
+  return true;
+}
+
+std::string InputScript::report() const {
+  char buffer[768];
+  std::snprintf(buffer, sizeof buffer,
+                "{\"test_input\": %s, \"body\": \"%s\", \"start\": [%.17g, %.17g], "
+                "\"goal\": [%.17g, %.17g], \"end\": [%.17g, %.17g], \"drag_seen\": %s, "
+                "\"target_set\": %s, \"target_error\": %.17g, \"keys\": %s, \"failure\": \"%s\"}",
+                passed_ ? "true" : "false", bodyName_.c_str(), start_.x(), start_.y(), goal_.x(),
+                goal_.y(), end_.x(), end_.y(), dragSeen_ ? "true" : "false",
+                targetSet_ ? "true" : "false", targetError_, keysOk_ ? "true" : "false",
+                failure_.c_str());
+  return buffer;
+}
+
+}  // namespace cablelab::ui

@@ -1,0 +1,447 @@
+#include "ui/renderer.h"
+
+#include <GL/gl.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "ui/colormap.h"
+
+namespace cablelab::ui {
+namespace {
+
+constexpr Colour kBackground{0.97f, 0.97f, 0.95f, 1};
+constexpr Colour kGridMinor{0.89f, 0.89f, 0.87f, 1};
+constexpr Colour kGridAxis{0.72f, 0.72f, 0.70f, 1};
+constexpr Colour kSlack{0.55f, 0.55f, 0.55f, 1};
+constexpr Colour kPulley{0.9f, 0.45f, 0.0f, 1};
+constexpr Colour kPulleyIdle{0.95f, 0.75f, 0.55f, 1};  // a pulley the cable does not touch now
+constexpr Colour kJoint{0.25f, 0.25f, 0.3f, 1};
+constexpr Colour kSelected{0.95f, 0.75f, 0.0f, 1};
+constexpr double kPi = 3.14159265358979323846;
+
+struct BodyColours {
+  Colour fill, outline;
+};
+
+BodyColours coloursFor(BodyType type) {
+  switch (type) {
+    case BodyType::Static:
+      return {{0.76f, 0.79f, 0.72f, 1}, {0.36f, 0.41f, 0.31f, 1}};
+    case BodyType::Kinematic:
+      return {{0.66f, 0.78f, 0.95f, 1}, {0.2f, 0.35f, 0.62f, 1}};
+    case BodyType::Dynamic:
+      return {{0.98f, 0.80f, 0.56f, 1}, {0.62f, 0.36f, 0.1f, 1}};
+  }
+  return {{1, 0, 1, 1}, {0, 0, 0, 1}};
+}
+
+ImU32 toImU32(const Colour& c) {
+  auto b = [](float v) { return static_cast<int>(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f); };
+  return IM_COL32(b(c[0]), b(c[1]), b(c[2]), b(c[3]));
+}
+
+void colour(const Colour& c, float alpha = 1) {
+  glColor4f(c[0], c[1], c[2], c[3] * alpha);
+}
+void vertex(const Vec2& p) {
+  glVertex2d(p.x(), p.y());
+}
+
+/// Draws the stateless pieces in world coordinates; every size in pixels goes through `px`.
+class Painter {
+ public:
+  Painter(const Camera& camera, ImDrawList* text) : cam_(camera), text_(text) {}
+  double px(double pixels) const { return pixels * cam_.metresPerPixel; }
+
+  void line(const Vec2& a, const Vec2& b, const Colour& c, float width) const {
+    glLineWidth(width);
+    colour(c);
+    glBegin(GL_LINES);
+    vertex(a);
+    vertex(b);
+    glEnd();
+  }
+
+  /// Dashes of `on` px separated by `off` px; `phase` carries the pattern across segments.
+  void dashed(const Vec2& a, const Vec2& b, const Colour& c, float width, double& phase) const {
+    const double on = px(7), off = px(5), period = on + off;
+    const double length = (b - a).norm();
+    if (length <= 0) return;
+    const Vec2 u = (b - a) / length;
+    glLineWidth(width);
+    colour(c);
+    glBegin(GL_LINES);
+    double s = -std::fmod(phase, period);
+    for (; s < length; s += period) {
+      const double s0 = std::max(s, 0.0), s1 = std::min(s + on, length);
+      if (s1 > s0) {
+        vertex(a + u * s0);
+        vertex(a + u * s1);
+      }
+    }
+    glEnd();
+    phase += length;
+  }
+
+  void polygon(const std::vector<Vec2>& points, const Colour* fill, const Colour& outline,
+               float width) const {
+    if (points.size() < 2) return;
+    if (fill) {
+      colour(*fill);
+      glBegin(GL_TRIANGLE_FAN);
+      for (const Vec2& p : points) vertex(p);
+      glEnd();
+    }
+    glLineWidth(width);
+    colour(outline);
+    glBegin(GL_LINE_LOOP);
+    for (const Vec2& p : points) vertex(p);
+    glEnd();
+  }
+
+  std::vector<Vec2> circlePoints(const Vec2& c, double r) const {
+    const int n = std::clamp(static_cast<int>(r / cam_.metresPerPixel), 16, 64);
+    std::vector<Vec2> points;
+    points.reserve(n);
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * kPi * i / n;
+      points.emplace_back(c.x() + r * std::cos(a), c.y() + r * std::sin(a));
+    }
+    return points;
+  }
+
+  void disc(const Vec2& c, double r, const Colour& fill) const {
+    colour(fill);
+    glBegin(GL_TRIANGLE_FAN);
+    for (const Vec2& p : circlePoints(c, r)) vertex(p);
+    glEnd();
+  }
+
+  void square(const Vec2& c, double halfPixels, const Colour& fill) const {
+    const double h = px(halfPixels);
+    colour(fill);
+    glBegin(GL_QUADS);
+    vertex(c + Vec2(-h, -h));
+    vertex(c + Vec2(h, -h));
+    vertex(c + Vec2(h, h));
+    vertex(c + Vec2(-h, h));
+    glEnd();
+  }
+
+  void arrow(const Vec2& from, const Vec2& to, const Colour& c, float width) const {
+    line(from, to, c, width);
+    const double length = (to - from).norm();
+    if (length < px(2)) return;
+    const Vec2 u = (to - from) / length;
+    const double head = std::min(px(10), 0.5 * length);
+    line(to, to - head * rotate(u, 0.45), c, width);
+    line(to, to - head * rotate(u, -0.45), c, width);
+  }
+
+  void label(const Vec2& world, const std::string& s, const Colour& c,
+             Vec2 offsetPx = {6, -16}) const {
+    if (!text_ || s.empty()) return;
+    const Vec2 p = cam_.toScreen(world) + offsetPx;
+    text_->AddText(ImVec2(static_cast<float>(p.x()), static_cast<float>(p.y())), toImU32(c),
+                   s.c_str());
+  }
+
+  const Camera& camera() const { return cam_; }
+  ImDrawList* text() const { return text_; }
+
+ private:
+  const Camera& cam_;
+  ImDrawList* text_;
+};
+
+Vec2 bodyPoint(const World& world, int body, const Vec2& local) {
+  if (body < 0) return local;
+  const BodyState& s = world.body(body);
+  return s.position + rotate(local, s.angle);
+}
+
+double gridStep(const Camera& cam) {
+  return niceCeil(60.0 * cam.metresPerPixel);
+}
+
+void drawGrid(const Painter& paint) {
+  const Camera& cam = paint.camera();
+  const double step = gridStep(cam);
+  const long i0 = static_cast<long>(std::floor(cam.left() / step));
+  const long i1 = static_cast<long>(std::ceil(cam.right() / step));
+  const long j0 = static_cast<long>(std::floor(cam.bottom() / step));
+  const long j1 = static_cast<long>(std::ceil(cam.top() / step));
+  if (i1 - i0 > 2000 || j1 - j0 > 2000) return;
+  for (long i = i0; i <= i1; ++i)
+    paint.line({i * step, cam.bottom()}, {i * step, cam.top()}, i == 0 ? kGridAxis : kGridMinor, 1);
+  for (long j = j0; j <= j1; ++j)
+    paint.line({cam.left(), j * step}, {cam.right(), j * step}, j == 0 ? kGridAxis : kGridMinor, 1);
+}
+
+void drawBodies(const World& world, const RenderOptions& options, const Painter& paint) {
+  const auto& bodies = world.scene().bodies;
+  for (int i = 0; i < world.bodyCount(); ++i) {
+    const BodyColours c = coloursFor(bodies[i].type);
+    const bool selected = i == options.selectedBody || i == world.draggedBody();
+    const Colour& outline = selected ? kSelected : c.outline;
+    const float width = selected ? 3.0f : 1.5f;
+    for (const ShapeDef& shape : bodies[i].shapes) {
+      Colour fill = c.fill;
+      if (shape.sensor) fill[3] = 0.35f;
+      if (shape.kind == ShapeDef::Kind::Circle) {
+        const Vec2 centre = bodyPoint(world, i, shape.center);
+        paint.polygon(paint.circlePoints(centre, shape.radius), &fill, outline, width);
+        // A radius shows the rotation.
+        const Vec2 rim = bodyPoint(world, i, shape.center + Vec2(shape.radius, 0));
+        paint.line(centre, rim, outline, 1.0f);
+      } else {
+        std::vector<Vec2> points;
+        for (const Vec2& v : shape.vertices) points.push_back(bodyPoint(world, i, v));
+        paint.polygon(points, &fill, outline, width);
+      }
+    }
+    if (options.labels && !bodies[i].name.empty() && bodies[i].type != BodyType::Static)
+      paint.label(world.body(i).position, bodies[i].name, {0.3f, 0.3f, 0.3f, 1}, {4, 2});
+  }
+}
+
+/// The polygon a polygon pulley wraps: its own vertices or the body's first polygon shape.
+std::vector<Vec2> pulleyPolygon(const World& world, const PulleyDef& pulley) {
+  std::vector<Vec2> local = pulley.vertices;
+  const int body = findBodyIndex(world.scene(), pulley.body);
+  if (local.empty() && body >= 0)
+    for (const ShapeDef& s : world.scene().bodies[body].shapes)
+      if (s.kind == ShapeDef::Kind::Polygon) {
+        local = s.vertices;
+        break;
+      }
+  for (Vec2& v : local) v = bodyPoint(world, body, v);
+  return local;
+}
+
+/// Pulleys a cable is wrapped on now are drawn in full colour, the others faded.
+void drawPulleys(const World& world, const Painter& paint) {
+  const auto& cables = world.scene().cables;
+  for (size_t c = 0; c < cables.size(); ++c)
+    for (size_t k = 0; k < cables[c].pulleys.size(); ++k) {
+      const PulleyDef& pulley = cables[c].pulleys[k];
+      const bool engaged = static_cast<int>(c) < world.cableCount() &&
+                           world.cable(static_cast<int>(c)).engaged(static_cast<int>(k));
+      const Colour colour = engaged ? kPulley : kPulleyIdle;
+      if (pulley.kind == PulleyDef::Kind::Polygon) {
+        const std::vector<Vec2> points = pulleyPolygon(world, pulley);
+        paint.polygon(points, nullptr, colour, 2.5f);
+        for (const Vec2& p : points) paint.disc(p, paint.px(2.5), colour);
+      } else {
+        const Vec2 p = bodyPoint(world, findBodyIndex(world.scene(), pulley.body), pulley.point);
+        const Colour white{1, 1, 1, 1};
+        paint.disc(p, paint.px(6), colour);
+        paint.disc(p, paint.px(3.5), white);
+      }
+    }
+}
+
+void drawJoints(const World& world, const Painter& paint) {
+  for (int i = 0; i < world.jointCount(); ++i) {
+    const JointState j = world.joint(i);
+    const JointDef& def = world.scene().joints[i];
+    paint.line(j.anchorA, j.anchorB, kJoint, 1.5f);
+    switch (j.kind) {
+      case JointDef::Kind::Revolute:
+        paint.polygon(paint.circlePoints(j.anchorB, paint.px(5)), nullptr, kJoint, 2.0f);
+        break;
+      case JointDef::Kind::Prismatic: {
+        const Vec2 axis = def.axis.norm() > 0 ? Vec2(def.axis.normalized()) : Vec2(1, 0);
+        paint.line(j.anchorB - paint.px(14) * axis, j.anchorB + paint.px(14) * axis, kJoint, 2.0f);
+        paint.square(j.anchorB, 3, kJoint);
+        break;
+      }
+      case JointDef::Kind::Weld:
+        paint.square(j.anchorB, 4, kJoint);
+        break;
+    }
+  }
+}
+
+void drawCables(const World& world, const RenderOptions& options, double scale,
+                const Painter& paint) {
+  for (int i = 0; i < world.cableCount(); ++i) {
+    const Cable& cable = world.cable(i);
+    const auto& path = cable.path();
+    const bool selected = i == options.selectedCable;
+    const float width = selected ? 4.5f : 3.0f;
+    double phase = 0;
+    for (size_t k = 1; k < path.size(); ++k) {
+      if (cable.slack())
+        paint.dashed(path[k - 1].world, path[k].world, kSlack, width - 1, phase);
+      else
+        paint.line(path[k - 1].world, path[k].world, tensionColour(cable.tension() / scale), width);
+    }
+    if (options.wrapPoints)
+      for (const WrapPoint& p : path) {
+        const Colour dark{0.15f, 0.15f, 0.15f, 1};
+        if (p.kind == WrapPoint::Kind::Anchor)
+          paint.disc(p.world, paint.px(3.5), dark);
+        else
+          paint.square(p.world, 3, dark);
+      }
+    if (selected && !path.empty()) paint.label(path.front().world, cable.name(), kSlack);
+  }
+}
+
+void drawOverlay(const Overlay& overlay, const Painter& paint) {
+  for (const Overlay::Arrow& a : overlay.arrows) {
+    paint.arrow(a.from, a.to, a.colour, 2.0f);
+    paint.label(a.to, a.label, a.colour);
+  }
+  for (const Overlay::Target& t : overlay.targets) {
+    const double s = paint.px(8);
+    paint.line(t.position + Vec2(-s, -s), t.position + Vec2(s, s), t.colour, 2.5f);
+    paint.line(t.position + Vec2(-s, s), t.position + Vec2(s, -s), t.colour, 2.5f);
+    paint.polygon(paint.circlePoints(t.position, paint.px(11)), nullptr, t.colour, 1.5f);
+    paint.label(t.position, t.label, t.colour, {12, -18});
+  }
+  for (const Overlay::Text& t : overlay.texts) paint.label(t.position, t.text, t.colour, {0, 0});
+}
+
+std::string format(const char* fmt, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, fmt, value);
+  return buffer;
+}
+
+/// Screen-space pieces: the orthographic matrix is switched to pixels (y down).
+void drawScreenSpace(const World& world, const Overlay& overlay, const RenderOptions& options,
+                     double scale, const Camera& cam, ImDrawList* text) {
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  glOrtho(0, cam.width, cam.height, 0, -1, 1);
+  const bool whole = options.freeWidth <= 0 || options.freeHeight <= 0;
+  const float fx = whole ? 0.0f : options.freeX, fy = whole ? 0.0f : options.freeY;
+  const float fw = whole ? cam.width : options.freeWidth;
+  const float fh = whole ? cam.height : options.freeHeight;
+  const ImU32 ink = IM_COL32(40, 40, 40, 255);
+
+  if (text)
+    for (size_t i = 0; i < overlay.notes.size(); ++i)
+      text->AddText(ImVec2(fx + 8, fy + 8 + 15.0f * i), ink, overlay.notes[i].c_str());
+
+  if (options.grid) {
+    const double step = gridStep(cam);
+    const float length = static_cast<float>(step / cam.metresPerPixel);
+    const float x0 = fx + 16, y0 = fy + fh - 18;
+    glLineWidth(2.0f);
+    glColor4f(0.15f, 0.15f, 0.15f, 1);
+    glBegin(GL_LINES);
+    glVertex2f(x0, y0);
+    glVertex2f(x0 + length, y0);
+    glVertex2f(x0, y0 - 5);
+    glVertex2f(x0, y0 + 5);
+    glVertex2f(x0 + length, y0 - 5);
+    glVertex2f(x0 + length, y0 + 5);
+    glEnd();
+    if (text)
+      text->AddText(ImVec2(x0 + length + 6, y0 - 7), ink, (format("%g", step) + " m").c_str());
+  }
+
+  if (options.legend && world.cableCount() > 0) {
+    // A horizontal colour bar in the bottom-right corner, where scenes are seldom drawn.
+    const float barW = std::clamp(0.3f * fw, 90.0f, 160.0f), barH = 10;
+    const float x0 = fx + fw - barW - 24, y0 = fy + fh - 32;
+    glColor4f(kBackground[0], kBackground[1], kBackground[2], 0.85f);
+    glBegin(GL_QUADS);
+    glVertex2f(x0 - 84, y0 - 22);
+    glVertex2f(x0 + barW + 20, y0 - 22);
+    glVertex2f(x0 + barW + 20, y0 + barH + 22);
+    glVertex2f(x0 - 84, y0 + barH + 22);
+    glEnd();
+    glBegin(GL_QUADS);
+    const int n = 32;
+    for (int k = 0; k < n; ++k) {
+      const float a = static_cast<float>(k) / n, b = static_cast<float>(k + 1) / n;
+      colour(tensionColour(a));
+      glVertex2f(x0 + barW * a, y0 + barH);
+      glVertex2f(x0 + barW * a, y0);
+      colour(tensionColour(b));
+      glVertex2f(x0 + barW * b, y0);
+      glVertex2f(x0 + barW * b, y0 + barH);
+    }
+    glEnd();
+    glLineWidth(1.0f);
+    glColor4f(0.2f, 0.2f, 0.2f, 1);
+    glBegin(GL_LINE_LOOP);
+    glVertex2f(x0, y0);
+    glVertex2f(x0 + barW, y0);
+    glVertex2f(x0 + barW, y0 + barH);
+    glVertex2f(x0, y0 + barH);
+    glEnd();
+    glBegin(GL_LINES);
+    for (int k = 0; k <= 4; ++k) {
+      glVertex2f(x0 + barW * k / 4.0f, y0 + barH);
+      glVertex2f(x0 + barW * k / 4.0f, y0 + barH + 3);
+    }
+    // Slack sample, left of the bar: a dashed grey stroke.
+    glColor4f(kSlack[0], kSlack[1], kSlack[2], 1);
+    for (int k = 0; k < 3; ++k) {
+      glVertex2f(x0 - 76 + 8.0f * k, y0 + 0.5f * barH);
+      glVertex2f(x0 - 71 + 8.0f * k, y0 + 0.5f * barH);
+    }
+    glEnd();
+    if (text) {
+      text->AddText(ImVec2(x0, y0 - 17), ink, "tension (N)");
+      text->AddText(ImVec2(x0 - 48, y0 + 0.5f * barH - 7), ink, "slack");
+      for (int k = 0; k <= 4; k += 2) {
+        const std::string label = format("%.3g", scale * k / 4);
+        text->AddText(ImVec2(x0 + barW * k / 4.0f - 3.5f * label.size(), y0 + barH + 4), ink,
+                      label.c_str());
+      }
+    }
+  }
+}
+
+}  // namespace
+
+double tensionScaleFor(const World& world, const RenderOptions& options) {
+  if (options.tensionScale > 0) return options.tensionScale;
+  double largest = 0;
+  for (int i = 0; i < world.cableCount(); ++i)
+    if (std::isfinite(world.cable(i).tension()))
+      largest = std::max(largest, world.cable(i).tension());
+  return niceCeil(largest);
+}
+
+void drawWorld(const World& world, const Camera& camera, const Overlay& overlay,
+               const RenderOptions& options, ImDrawList* text) {
+  glClearColor(kBackground[0], kBackground[1], kBackground[2], kBackground[3]);
+  glClear(GL_COLOR_BUFFER_BIT);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_TEXTURE_2D);
+  glDisable(GL_SCISSOR_TEST);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glEnable(GL_LINE_SMOOTH);
+  glHint(GL_LINE_SMOOTH_HINT, GL_NICEST);
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  glOrtho(camera.left(), camera.right(), camera.bottom(), camera.top(), -1, 1);
+
+  const Painter paint(camera, text);
+  const double scale = tensionScaleFor(world, options);
+  if (options.grid) drawGrid(paint);
+  drawBodies(world, options, paint);
+  drawPulleys(world, paint);
+  drawJoints(world, paint);
+  drawCables(world, options, scale, paint);
+  drawOverlay(overlay, paint);
+  drawScreenSpace(world, overlay, options, scale, camera, text);
+  glDisable(GL_LINE_SMOOTH);
+}
+
+}  // namespace cablelab::ui

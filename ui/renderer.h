@@ -1,0 +1,47 @@
+// Renderer: draws a cablelab World with legacy (compatibility-profile) OpenGL.
+//
+// Needs: a current OpenGL context with the fixed-function pipeline (OpenGL 2.1 or a 3.x/4.x
+// compatibility profile), glViewport covering camera.width x camera.height, and, when `text`
+// is not null, a Dear ImGui frame in progress (labels go into that draw list; the platform
+// renders ImGui after the scene). It links no GL library itself: the same object code runs in
+// the SDL2 window (libGL) and in the OSMesa offscreen context (libOSMesa); see ui/README.md.
+//
+// What it draws, back to front: background and grid; bodies (filled shapes and outlines,
+// coloured by type: static grey-green, kinematic blue, dynamic orange); polygon pulleys
+// (orange outline) and point pulleys (rings), faded while their cable is off them; joints;
+// cables coloured by tension (slack segments dashed grey); wrap points; the overlay (targets,
+// arrows, text); then in screen space the tension legend (colour bar with numbers) and the
+// scale bar. The renderer is stateless: the same world, camera and options give the same pixels.
+#pragma once
+
+#include "engine/world.h"
+#include "ui/camera.h"
+#include "ui/overlay.h"
+
+struct ImDrawList;
+
+namespace cablelab::ui {
+
+struct RenderOptions {
+  /// Tension (N) at the top of the colour bar; <= 0: the largest current tension, rounded up
+  /// to 1, 2 or 5 times a power of ten.
+  double tensionScale = 0;
+  int selectedBody = -1;   ///< highlighted body, -1 none
+  int selectedCable = -1;  ///< highlighted cable, -1 none
+  bool grid = true;        ///< grid lines and scale bar
+  bool legend = true;      ///< tension colour bar and cable list
+  bool wrapPoints = true;  ///< squares at wrap points, circles at anchors
+  bool labels = true;      ///< body names
+  /// Screen rectangle (px, top-left origin) free of UI panels, where the legend and scale bar
+  /// go; a zero-size rectangle means the whole viewport.
+  float freeX = 0, freeY = 0, freeWidth = 0, freeHeight = 0;
+};
+
+/// Clears the viewport and draws `world` seen by `camera`, with `overlay` on top.
+void drawWorld(const World& world, const Camera& camera, const Overlay& overlay,
+               const RenderOptions& options, ImDrawList* text);
+
+/// The colour-bar maximum the renderer uses for `world` and `options` (N).
+double tensionScaleFor(const World& world, const RenderOptions& options);
+
+}  // namespace cablelab::ui
