@@ -96,4 +96,3 @@ BENCHMARK(BM_StaticsMedians)
 
 }  // namespace
 
-BENCHMARK_MAIN();
