@@ -445,33 +445,36 @@ void World::solveCableForces(double h) {
     }
   }
   const Eigen::MatrixXd C = jointJacobian(dofs);
-  Eigen::MatrixXd W;
-  if (!stiff && C.rows() == 0) {
-    W = invM.asDiagonal() * J0.transpose();
-  } else {
-    Eigen::MatrixXd Mprime = stiff ? stiffness : Eigen::MatrixXd::Zero(n, n);
+  // M'^-1 X: a scaling unless the geometric stiffness couples the dofs. Immovable dofs stay put.
+  Eigen::LDLT<Eigen::MatrixXd> mass;
+  if (stiff) {
+    Eigen::MatrixXd Mprime = stiffness;
     for (int d = 0; d < n; ++d)
       if (invM[d] == 0) Mprime.row(d).setZero(), Mprime.col(d).setZero();
     for (int d = 0; d < n; ++d) Mprime(d, d) += invM[d] > 0 ? 1.0 / invM[d] : 1.0;
-    const Eigen::LDLT<Eigen::MatrixXd> mass(Mprime);
-    const Eigen::MatrixXd mask = invM.cwiseSign().asDiagonal();
-    W = mass.solve(mask * J0.transpose());
-    // Backward Euler on the turning force direction: (M + h^2 T G) v1 = M v* - J^T P, so the
-    // stiffness also resists the motion v* already carries into the band.
-    if (stiff) {
-      const Eigen::VectorXd momentum = invM.cwiseInverse().cwiseProduct(mask * vStar).unaryExpr([](double x) { return std::isfinite(x) ? x : 0.0; });
-      vStar = mass.solve(momentum);
-    }
-    if (C.rows() > 0) {
-      // Schur complement of the joint rows: W <- W - M'^-1 C^T (C M'^-1 C^T)^-1 C W, and v* made
-      // joint-consistent the same way.
-      const Eigen::MatrixXd MinvCt = mass.solve(mask * C.transpose());
-      Eigen::MatrixXd S = C * MinvCt;
-      S.diagonal().array() += 1e-10 * (1 + S.diagonal().array());
-      const Eigen::LDLT<Eigen::MatrixXd> schur(S);
-      W -= MinvCt * schur.solve(C * W);
-      vStar -= MinvCt * schur.solve(C * vStar);
-    }
+    mass.compute(Mprime);
+  }
+  auto inverseMass = [&](const Eigen::MatrixXd& X) -> Eigen::MatrixXd {
+    if (!stiff) return invM.asDiagonal() * X;
+    return mass.solve(invM.cwiseSign().asDiagonal() * X);
+  };
+  Eigen::MatrixXd W = inverseMass(J0.transpose());
+  // Backward Euler on the turning force direction: (M + h^2 T G) v1 = M v* - J^T P, so the
+  // stiffness also resists the motion v* already carries into the band.
+  if (stiff) {
+    Eigen::VectorXd momentum(n);
+    for (int d = 0; d < n; ++d) momentum[d] = invM[d] > 0 ? vStar[d] / invM[d] : 0.0;
+    vStar = mass.solve(momentum);
+  }
+  if (C.rows() > 0) {
+    // Schur complement of the joint rows: W <- W - M'^-1 C^T (C M'^-1 C^T)^-1 C W, and v* made
+    // joint-consistent the same way.
+    const Eigen::MatrixXd MinvCt = inverseMass(C.transpose());
+    Eigen::MatrixXd S = C * MinvCt;
+    S.diagonal().array() += 1e-10 * (1 + S.diagonal().array());
+    const Eigen::LDLT<Eigen::MatrixXd> schur(S);
+    W -= MinvCt * schur.solve(C * W);
+    vStar -= MinvCt * schur.solve(C * vStar);
   }
 
   // 4. Position-level targets. Rigid: length at the end of the step = now (the error below the
@@ -522,9 +525,12 @@ void World::solveCableForces(double h) {
     for (int r = 0; r < m; ++r)
       b[r] += (cables_[rows[r]].elastic() ? phi1[r] - damped[r] : phi1[r] - target[r]) / h;
     const LcpSolution sol = solveLcp(K, b);
+    const double change = (sol.x - P).lpNorm<Eigen::Infinity>();
     P = sol.x;
     stats_.solverIterations += sol.iterations;
-    if (iteration + 1 == kNewtonIterations) stats_.residual = std::max(stats_.residual, sol.residual);
+    stats_.residual = std::max(stats_.residual, sol.residual);
+    // The end-of-step geometry is nearly linear in P: stop once the impulses have settled.
+    if (iteration > 0 && change <= 1e-9 * (1e-9 + P.lpNorm<Eigen::Infinity>())) break;
   }
   for (int r = 0; r < m; ++r) cables_[rows[r]].setTension(P[r] / h);
 
