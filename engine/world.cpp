@@ -495,6 +495,7 @@ void World::solveCableForces(double h) {
 
   // 5. Newton on the end-of-step lengths phi1(P) (Box2D integrates q1 = q0 + h v1), each
   // linearisation an LCP over all cables: tension >= 0, slack cables only shorten.
+  const Eigen::MatrixXd JW0 = J0 * W;
   Eigen::VectorXd P = Eigen::VectorXd::Zero(m), phi1(m);
   Eigen::MatrixXd J1 = Eigen::MatrixXd::Zero(m, n);
   std::vector<BodyState> predicted = bodies_;
@@ -518,7 +519,17 @@ void World::solveCableForces(double h) {
       for (const auto& e : k.jacobian)
         if (dofs.ofBody[e.body] >= 0) J1.block<1, 3>(r, dofs.ofBody[e.body]) = e.d.transpose();
     }
-    const Eigen::MatrixXd JW = J1 * W;
+    Eigen::MatrixXd JW = J1 * W;
+    // Guard (degenerate geometry): far from the start pose the end-of-step linearisation can lose
+    // positive definiteness (a wrap point the predicted motion carries past its neighbour turns a
+    // row's J1 against its J0: K_ii <= 0), and the LCP then answers with impulses of 1e6 N s.
+    // Such a row falls back to the start-of-step Jacobian, whose J0 W is positive semidefinite.
+    for (int r = 0; r < m; ++r)
+      if (!(JW(r, r) > 1e-3 * JW0(r, r))) {
+        J1.row(r) = J0.row(r);
+        JW.row(r) = JW0.row(r);
+        ++stats_.linearisationFallbacks;
+      }
     Eigen::MatrixXd K = JW;
     K.diagonal() += compliance;
     Eigen::VectorXd b = JW * P;

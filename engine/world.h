@@ -43,6 +43,7 @@ struct StepStats {
   int wrapPoints = 0;        ///< pulley wrap points in use, all cables
   int solverIterations = 0;  ///< LCP active-set iterations, summed over sub-steps
   double residual = 0;       ///< largest complementarity residual of the tension solve
+  int linearisationFallbacks = 0;  ///< cable rows solved on the start-of-step Jacobian (guard)
 };
 
 class World {

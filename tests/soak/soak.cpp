@@ -32,8 +32,8 @@ struct Args {
   long steps = 1000000;
   unsigned seed = 1;
   double maxEnergy = 1e5;  // servos swinging the fingers put in ~1e3 J; a blow-up grows far past this
-  long epoch = 10000;       // steps between rebuilding the world (a drag may pull the box out of the grip for good)
-  double maxResidual = 0.02;
+  long epoch = 2000;        // steps between rebuilding the world (a drag may pull the box out of the grip for good)
+  double maxResidual = 0.05;  // m; Box2D's joint limits and the mouse joint act after the cable solve
 };
 
 int usage() {
