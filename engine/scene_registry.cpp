@@ -79,7 +79,7 @@ SceneDef makeScene(const std::string& nameOrPath, const std::vector<std::pair<st
         for (const SceneParam& p : info->params) known += (known.empty() ? "" : ", ") + p.name;
         throw InputError("--set", name, "unknown parameter of scene '" + info->name + "' (known: " + known + ")");
       }
-      const auto range = std::find_if(info->params.begin(), info->params.end(), [&](const SceneParam& p) { return p.name == name; })->range;
+      const auto range = std::find_if(info->params.begin(), info->params.end(), [&key = name](const SceneParam& p) { return p.name == key; })->range;  // clang 14: no capture of a structured binding
       if (range == SceneParam::Range::Positive && value <= 0) throw InputError("--set", name, "must be positive");
       if (range == SceneParam::Range::NonNegative && value < 0) throw InputError("--set", name, "must be >= 0");
       params[name] = value;
