@@ -412,7 +412,15 @@ void solveStaticsSocp(const StaticsProblem& problem, StaticsResult& result,
       schur[2] += c.ca.V[5] + c.cb.V[5] - (va1 * q01 + vb1 * q11);
     }
     if (!interior) break;  // round-off pushed an iterate onto a cone boundary: stop here
-    const double sdet = schur[0] * schur[2] - schur[1] * schur[1];
+    double sdet = schur[0] * schur[2] - schur[1] * schur[1];
+    // Guard: with no curvature along some direction of p (one taut cable and p on its own a-b
+    // segment: every point of the segment is a minimiser) the Schur complement is singular and
+    // the direction would be NaN. A tiny proximal term picks the nearest minimiser instead.
+    if (!(sdet > 1e-12 * std::abs(schur[0] * schur[2]))) {
+      const double reg = 1e-9 * (std::abs(schur[0]) + std::abs(schur[2])) + 1e-300;
+      schur[0] += reg, schur[2] += reg;
+      sdet = schur[0] * schur[2] - schur[1] * schur[1];
+    }
     const double schurInv[3] = {schur[2] / sdet, -schur[1] / sdet, schur[0] / sdet};
 
     // Predictor (affine scaling): complementarity target 0, so W^-1 (lam \ -lam o lam) = -z.
@@ -476,6 +484,9 @@ void solveStaticsSocp(const StaticsProblem& problem, StaticsResult& result,
   stats.iterations = iter;
 
   result.p = centre + scale * Vec2(p[0], p[1]);
+  // Guard: never hand on a non-finite point; the guess is finite (validated input) and the
+  // snap / polish below start from it.
+  if (!isFinite(result.p)) result.p = guess, stats.converged = false;
   stats.polishSteps = 0;
   // A fingertip point that passes the subgradient test is optimal (E is convex): snap onto it.
   const StaticsDerivatives at = staticsDerivatives(problem, result.p, options.polishSteps > 0);
