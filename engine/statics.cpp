@@ -44,7 +44,26 @@ double cableStretch(double ra, double rb, double restLength) {
 }
 
 void validateStatics(const StaticsProblem& problem, const std::string& source) {
+  // Magnitude bounds (a fuzzer finding): beyond them lengths (|p - a|^2) and energies
+  // (k stretch^2) overflow to infinity. Far outside anything a cable could be.
+  constexpr double kMaxCoordinate = 1e9;  // m
+  constexpr double kMaxStiffness = 1e12;  // N/m
+  auto bounded = [&](const Vec2& v, const std::string& field) {
+    if (std::isfinite(v.x()) && std::isfinite(v.y()) && v.cwiseAbs().maxCoeff() > kMaxCoordinate)
+      throw InputError(source, field, "coordinates must be within +/-1e9 m (got " + describe(v.cwiseAbs().maxCoeff()) + ")");
+  };
   if (problem.cables.empty()) throw InputError(source, "cables", "needs at least one cable");
+  for (size_t i = 0; i < problem.cables.size(); ++i) {
+    const StaticsCable& c = problem.cables[i];
+    const std::string at = "cables[" + std::to_string(i) + "]";
+    bounded(c.a, at + ".a");
+    bounded(c.b, at + ".b");
+    if (std::isfinite(c.k) && c.k > kMaxStiffness)
+      throw InputError(source, at + ".k", "must be at most 1e12 N/m (got " + describe(c.k) + ")");
+    if (std::isfinite(c.L) && c.L > 4 * kMaxCoordinate)
+      throw InputError(source, at + ".L", "must be at most 4e9 m (got " + describe(c.L) + ")");
+  }
+  if (problem.p0) bounded(*problem.p0, "p0");
   for (size_t i = 0; i < problem.cables.size(); ++i) {
     const StaticsCable& c = problem.cables[i];
     const std::string at = "cables[" + std::to_string(i) + "]";
