@@ -1,5 +1,7 @@
 #include "engine/scene.h"
 
+#include <cmath>
+#include <cstdio>
 #include <set>
 
 #include "engine/error.h"
@@ -22,11 +24,22 @@ class Checker {
   [[noreturn]] void fail(const std::string& field, const std::string& what) const {
     throw InputError(source_, field, what);
   }
+  // Box2D is float (and Debian's build asserts on non-finite positions): a finite double beyond
+  // float range would become inf there (a fuzzer finding). Every number is kept within
+  // +/-kMaxMagnitude, far beyond anything physical yet safe in float products.
+  static constexpr double kMaxMagnitude = 1e12;
   void finite(double v, const std::string& field) const {
     if (!std::isfinite(v)) fail(field, "must be a finite number");
+    if (std::abs(v) > kMaxMagnitude) {
+      char got[32];
+      std::snprintf(got, sizeof got, "%.6g", v);
+      fail(field, std::string("must be within +/-1e12 (got ") + got + ")");
+    }
   }
   void finite(const Vec2& v, const std::string& field) const {
     if (!isFinite(v)) fail(field, "must be finite numbers");
+    finite(v.x(), field);
+    finite(v.y(), field);
   }
   void nonNegative(double v, const std::string& field) const {
     finite(v, field);
