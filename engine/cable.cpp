@@ -206,7 +206,7 @@ void Cable::update(std::span<const BodyState> bodies, std::vector<std::string>* 
     if (!changed) break;
   }
 
-  kin_ = cableKinematics(path_, bodies);
+  cableKinematics(path_, bodies, kin_);
   if (warnings && kin_.zeroLengthSegments > 0 && !reportedZeroLength_)
     warnings->push_back("cable '" + def_.name + "': " + std::to_string(kin_.zeroLengthSegments) +
                         " zero-length segment(s) (coincident points) left out of the Jacobian");
