@@ -142,6 +142,8 @@ class Cable {
   int startBody_, endBody_;
   std::vector<PulleyState> pulleys_;
   std::vector<WrapPoint> path_;
+  std::vector<int> nodes_;                 ///< buildPath scratch: engaged chain nodes
+  std::vector<std::vector<int>> chains_;   ///< buildPath scratch: polygon vertex chains
   CableKinematics kin_;
   double tension_ = 0;
   bool firstUpdate_ = true;

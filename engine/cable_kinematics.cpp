@@ -31,7 +31,7 @@ class PathFrames {
   Vec2 worldPoint(int body, const Vec2& local) {
     if (body < 0) return local;
     const Rotation& r = rotationOf(body);
-    return bodies_[body].position + Vec2(r.c * local.x() - r.s * local.y(), r.s * local.x() + r.c * local.y());
+    return bodies_[body].position + rotate(local, r.c, r.s);
   }
 
  private:

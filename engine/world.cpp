@@ -136,7 +136,7 @@ struct World::CableWorkspace {
 
   // Newton on the end-of-step lengths.
   Eigen::VectorXd target, compliance, damped, P, phi1, b, WP, v1;
-  Eigen::MatrixXd J1, JW, K;
+  Eigen::MatrixXd JW, K;
   std::vector<BodyState> predicted;
   std::vector<WrapPoint> path;
   CableKinematics kin;
@@ -219,17 +219,21 @@ void World::CableWorkspace::projectOntoJoints() {
     for (int k = 0; k < 2; ++k)
       if (joints[r].dof[k] >= 0) MinvCt.block<3, 1>(joints[r].dof[k], r) += joints[r].coeff[k];
   applyInverseMass(MinvCt);
+  // S is symmetric and the LDLT reads its lower triangle only.
   S.resize(c, c);
   for (int r = 0; r < c; ++r)
-    for (int s = 0; s < c; ++s) S(r, s) = joints[r].dot(MinvCt.col(s));
+    for (int s = 0; s <= r; ++s) S(r, s) = joints[r].dot(MinvCt.col(s));
   S.diagonal().array() += 1e-10 * (1 + S.diagonal().array());
   schur.compute(S);
 
+  // A few columns (one per cable, then v*): column by column is cheaper than the blocked solve.
   CW.resize(c, m);
-  for (int r = 0; r < c; ++r)
-    for (int s = 0; s < m; ++s) CW(r, s) = joints[r].dot(W.col(s));
-  schurCW = schur.solve(CW);
-  correction.noalias() = MinvCt * schurCW;
+  schurCW.resize(c, m);
+  for (int s = 0; s < m; ++s) {
+    for (int r = 0; r < c; ++r) CW(r, s) = joints[r].dot(W.col(s));
+    schurCW.col(s) = schur.solve(CW.col(s));
+  }
+  correction.noalias() = MinvCt.lazyProduct(schurCW);
   W -= correction;
 
   Cv.resize(c);
@@ -654,10 +658,10 @@ void World::solveCableForces(double h) {
   // 5. Newton on the end-of-step lengths phi1(P) (Box2D integrates q1 = q0 + h v1), each
   // linearisation an LCP over all cables: tension >= 0, slack cables only shorten.
   Eigen::VectorXd &P = ws.P, &phi1 = ws.phi1, &v1 = ws.v1, &b = ws.b;
-  Eigen::MatrixXd &J1 = ws.J1, &JW = ws.JW, &K = ws.K;
+  Eigen::MatrixXd &JW = ws.JW, &K = ws.K;
   P.setZero(m);
   phi1.resize(m);
-  J1.resize(m, n);
+  JW.resize(m, m);
   std::vector<BodyState>& predicted = ws.predicted;
   predicted = bodies_;
   for (int iteration = 0; iteration < kNewtonIterations; ++iteration) {
@@ -671,16 +675,16 @@ void World::solveCableForces(double h) {
       p.position = s.position + h * p.velocity;
       p.angle = s.angle + h * p.angularVelocity;
     }
-    J1.setZero();
+    // JW = J1 W straight from the sparse J1 (a cable touches a few of the n dofs).
     for (int r = 0; r < m; ++r) {
       const Cable& c = cables_[rows[r]];
       ws.path.assign(c.path().begin(), c.path().end());
       cableKinematics(ws.path, predicted, ws.kin);
       phi1[r] = c.stretch() + ws.kin.length - c.length();
+      JW.row(r).setZero();
       for (const auto& e : ws.kin.jacobian)
-        if (dofs.ofBody[e.body] >= 0) J1.block<1, 3>(r, dofs.ofBody[e.body]) = e.d.transpose();
+        if (const int d = dofs.ofBody[e.body]; d >= 0) JW.row(r) += e.d.transpose() * W.middleRows<3>(d);
     }
-    JW.noalias() = J1 * W;
     K = JW;
     K.diagonal() += compliance;
     b.noalias() = JW * P;
