@@ -201,6 +201,8 @@ Image renderPlot(const Plot& plot, int width, int height) {
                       IM_COL32(120, 120, 120, 255), 1.5f);
     }
     std::vector<std::pair<std::string, std::pair<ImU32, int>>> legend;  // label, colour, kind
+    if (plot.identityLine && !plot.identityLabel.empty())
+      legend.push_back({plot.identityLabel, {IM_COL32(120, 120, 120, 255), 4}});
     int next = 0;
     for (const auto& s : plot.series) {
       const ImU32 c = toImU32(s.colour.value_or(kPalette[next++ % 6]));
@@ -209,7 +211,7 @@ Image renderPlot(const Plot& plot, int width, int height) {
       std::vector<ImVec2> run;
       auto flush = [&] {
         if (run.size() >= 2)
-          draw->AddPolyline(run.data(), static_cast<int>(run.size()), c, 0, 2.0f);
+          draw->AddPolyline(run.data(), static_cast<int>(run.size()), c, 0, s.lineWidth);
         run.clear();
       };
       for (size_t i = 0; i < s.x.size(); ++i) {
@@ -219,7 +221,7 @@ Image renderPlot(const Plot& plot, int width, int height) {
         }
         const ImVec2 p = map(s.x[i], s.y[i]);
         if (lines) run.push_back(p);
-        if (markers) draw->AddCircleFilled(p, 3.0f, c, 12);
+        if (markers) draw->AddCircleFilled(p, s.markerRadius, c, 16);
       }
       flush();
       if (!s.label.empty()) legend.push_back({s.label, {c, markers ? (lines ? 2 : 1) : 0}});
@@ -232,11 +234,16 @@ Image renderPlot(const Plot& plot, int width, int height) {
             !std::isfinite(ey))
           continue;
         const ImVec2 from = map(a.x[i], a.y[i]), to = map(ex, ey);
-        draw->AddLine(from, to, c, 1.5f);
+        draw->AddLine(from, to, c, a.lineWidth);
         arrowHead(draw, from, to, c);
       }
       if (!a.label.empty()) legend.push_back({a.label, {c, 3}});
     }
+    for (const PlotLabel& l : plot.labels)
+      if (std::isfinite(l.x) && std::isfinite(l.y)) {
+        const ImVec2 p = map(l.x, l.y);
+        draw->AddText(ImVec2(p.x, p.y - 7), kInk, l.text.c_str());
+      }
     draw->PopClipRect();
 
     // Title, axis labels, legend.
@@ -280,6 +287,9 @@ Image renderPlot(const Plot& plot, int width, int height) {
         if (kind == 0 || kind == 2)
           draw->AddLine(ImVec2(p0.x + 6, y), ImVec2(p0.x + 28, y), c, 2.0f);
         if (kind == 1 || kind == 2) draw->AddCircleFilled(ImVec2(p0.x + 17, y), 3.0f, c, 12);
+        if (kind == 4)
+          for (float x = p0.x + 6; x < p0.x + 28; x += 6)
+            draw->AddLine(ImVec2(x, y), ImVec2(std::min(x + 3, p0.x + 28), y), c, 1.5f);
         if (kind == 3) {
           draw->AddLine(ImVec2(p0.x + 6, y), ImVec2(p0.x + 28, y), c, 1.5f);
           arrowHead(draw, ImVec2(p0.x + 6, y), ImVec2(p0.x + 28, y), c);
