@@ -127,8 +127,10 @@ void startPinched(HandControlState& h, double now) {
 
 void handBeforeStep(Sandbox& sandbox, World& world, HandControlState& h) {
   const double t = world.time();
+  // The closing ramp keeps running under the controller's offsets after the grasp, as in
+  // runTracking(), so the squeeze finishes as planned.
   HandJoints nominal = HandJoints::Zero();
-  if (h.phase == HandControlState::Phase::Closing)
+  if (h.phase != HandControlState::Phase::Pinched)
     nominal = h.open * std::max(0.0, 1 - (t - h.sequenceStart) / h.closeTime);
   const bool active = h.enabled && sandbox.target && h.graspTime >= 0 && t >= h.controlStart - 1e-9;
   const BodyState& box = world.body(h.box);
@@ -213,16 +215,7 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
 
   // Grasp sequence.
   if (ImGui::Button("Start grasp")) {
-    sandbox.reset();  // fresh world; controllerOpened() keeps the gains
-    if (HandControlState* fresh = sandbox.controller ? sandbox.controller->hand.get() : nullptr) {
-      placeHand(*sandbox.world(), fresh->model, fresh->open);
-      fresh->phase = HandControlState::Phase::Closing;
-      fresh->sequenceStart = sandbox.world()->time();
-      fresh->graspTime = -1;
-      fresh->controlStart = std::numeric_limits<double>::infinity();
-      if (!sandbox.target) sandbox.target = Vec2::Zero();
-      sandbox.paused = false;
-    }
+    startHandGrasp(sandbox);
     return;  // `h` belonged to the old world
   }
   ImGui::SameLine();
@@ -313,23 +306,8 @@ void membranePanel(Sandbox& sandbox, MembraneViewState& m) {
   ImGui::TextUnformatted("fit JSON (cablelab fit output):");
   ImGui::SetNextItemWidth(-1);
   ImGui::InputText("##fitjson", m.path.data(), m.path.size());
-  if (ImGui::Button("Load k, preload into the band")) {
-    try {
-      const MembraneParams fitted = loadFitParameters(m.path.data());
-      // The fit's preload is the straight band's stretch beyond rest: rest length = |AB|.
-      sandbox.selectedCable = m.band;
-      sandbox.cableEdit = {(n.g.b - n.g.a).norm(), fitted.k, fitted.preload, band.def().damping};
-      if (!sandbox.applyCableEdit()) throw std::runtime_error(sandbox.error);
-      char text[160];
-      std::snprintf(text, sizeof text, "loaded k = %.4g N/m, preload = %.4g m", fitted.k,
-                    fitted.preload);
-      m.message = text;
-      m.messageIsError = false;
-    } catch (const std::exception& e) {
-      m.message = e.what();
-      m.messageIsError = true;
-    }
-  }
+  if (ImGui::Button("Load k, preload into the band"))
+    m.messageIsError = !loadFitIntoBand(sandbox, m.path.data(), m.message);
   if (!m.message.empty()) {
     if (m.messageIsError)
       ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1), "%s", m.message.c_str());
@@ -358,6 +336,21 @@ void HandControlState::rebuildController() {
   HandControllerParams p = params;
   p.ki = pid ? ki : 0.0;
   controller = std::make_unique<HandController>(model, p);
+}
+
+bool startHandGrasp(Sandbox& sandbox) {
+  sandbox.reset();  // a fresh world; controllerOpened() keeps the gains
+  HandControlState* h = sandbox.controller ? sandbox.controller->hand.get() : nullptr;
+  if (!h || !sandbox.world()) return false;
+  placeHand(*sandbox.world(), h->model, h->open);
+  h->phase = HandControlState::Phase::Closing;
+  h->sequenceStart = sandbox.world()->time();
+  h->graspTime = -1;
+  h->controlStart = std::numeric_limits<double>::infinity();
+  h->commanded = h->open;
+  if (!sandbox.target) sandbox.target = Vec2::Zero();
+  sandbox.paused = false;
+  return true;
 }
 
 void controllerOpened(Sandbox& sandbox) {
@@ -410,8 +403,11 @@ void controllerOverlay(const Sandbox& sandbox, Overlay& overlay) {
   const World* world = sandbox.world();
   if (!world || !sandbox.controller) return;
   if (const HandControlState* h = sandbox.controller->hand.get()) {
-    if (h->prediction.valid)
-      overlay.targets.push_back({h->prediction.box, "statics", kPredictionColour});
+    if (h->prediction.valid) {
+      // Unlabelled cross, its label below it: the target's label sits above the same spot.
+      overlay.targets.push_back({h->prediction.box, "", kPredictionColour});
+      overlay.texts.push_back({h->prediction.box + Vec2(0.03, -0.09), "statics", kPredictionColour});
+    }
     return;
   }
   if (const MembraneViewState* m = sandbox.controller->membrane.get()) {
@@ -426,6 +422,31 @@ void controllerOverlay(const Sandbox& sandbox, Overlay& overlay) {
     char text[96];
     std::snprintf(text, sizeof text, "model F %.3g N", n.force.norm());
     overlay.arrows.push_back({n.p, n.p + metresPerNewton * n.force, text, kForceColour});
+  }
+}
+
+bool loadFitIntoBand(Sandbox& sandbox, const std::string& path, std::string& message) {
+  const MembraneViewState* m = sandbox.controller ? sandbox.controller->membrane.get() : nullptr;
+  if (!m || !sandbox.world()) {
+    message = "not a membrane scene";
+    return false;
+  }
+  try {
+    const MembraneParams fitted = loadFitParameters(path);
+    const MembraneNow n = membraneNow(*sandbox.world(), *m);
+    // The fit's preload is the straight band's stretch beyond rest: rest length = |AB|.
+    sandbox.selectedCable = m->band;
+    sandbox.cableEdit = {(n.g.b - n.g.a).norm(), fitted.k, fitted.preload,
+                         sandbox.world()->cable(m->band).def().damping};
+    if (!sandbox.applyCableEdit()) throw std::runtime_error(sandbox.error);
+    char text[160];
+    std::snprintf(text, sizeof text, "loaded k = %.4g N/m, preload = %.4g m (rest length |AB|)",
+                  fitted.k, fitted.preload);
+    message = text;
+    return true;
+  } catch (const std::exception& e) {
+    message = e.what();
+    return false;
   }
 }
 

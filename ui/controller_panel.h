@@ -89,6 +89,12 @@ struct ControllerState {
 /// Sets up the state for the sandbox's current world (after open() or reset()).
 void controllerOpened(Sandbox& sandbox);
 
+/// The hand's grasp sequence, as `cablelab track` runs it: resets the world, swings the fingers
+/// to the open pose and ramps them closed; once both membranes wrap the box (and the squeeze
+/// has settled) the outer loop drives the box to `sandbox.target` (set to (0, 0) if unset).
+/// False if the current scene is not the hand.
+bool startHandGrasp(Sandbox& sandbox);
+
 /// ImGui widgets for the current scene's controller; called inside an open window.
 void drawControllerPanel(Sandbox& sandbox);
 
@@ -100,6 +106,11 @@ void controllerAfterStep(Sandbox& sandbox, const World& world);
 
 /// Adds the controller's drawings (statics prediction, model force) to `overlay`.
 void controllerOverlay(const Sandbox& sandbox, Overlay& overlay);
+
+/// Loads `cablelab fit` output into the membrane scene's band (World::setCableParameters): k,
+/// preload, rest length |AB|; `message` says what happened. False on any error (bad file, not
+/// a membrane scene), the band unchanged.
+bool loadFitIntoBand(Sandbox& sandbox, const std::string& path, std::string& message);
 
 /// Reads k and preload from a `cablelab fit` JSON output file; throws InputError naming the
 /// file and field.
