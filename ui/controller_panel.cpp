@@ -380,13 +380,13 @@ void controllerOpened(Sandbox& sandbox) {
 void drawControllerPanel(Sandbox& sandbox) {
   ControllerState* c = sandbox.controller.get();
   if (c && c->hand && sandbox.world()) return handPanel(sandbox, *c->hand);
-  if (c && c->membrane && sandbox.world()) membranePanel(sandbox, *c->membrane);
+  if (c && c->membrane && sandbox.world()) return membranePanel(sandbox, *c->membrane);
   if (sandbox.target)
     ImGui::Text("target (%.3f, %.3f) m", sandbox.target->x(), sandbox.target->y());
   else
     ImGui::TextDisabled("click empty space to set a target");
   if (sandbox.target && ImGui::Button("Clear target")) sandbox.target.reset();
-  if (!c || !c->membrane) ImGui::TextDisabled("no controller for this scene");
+  ImGui::TextDisabled("no controller for this scene");
 }
 
 void controllerBeforeStep(Sandbox& sandbox, World& world) {
