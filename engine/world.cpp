@@ -340,50 +340,54 @@ Eigen::VectorXd World::inverseMassOf(const DofMap& dofs) const {
 // limits and motors are left to Box2D). Revolute: the anchor points move together (2 rows);
 // prismatic: no motion across the axis and no relative turn (2 rows); weld: all three.
 Eigen::MatrixXd World::jointJacobian(const DofMap& dofs) const {
-  std::vector<Eigen::RowVectorXd> rows;
+  auto involved = [&](size_t j) {
+    const int a = findBody(scene_.joints[j].bodyA), b = findBody(scene_.joints[j].bodyB);
+    return (a >= 0 && dofs.ofBody[a] >= 0) || (b >= 0 && dofs.ofBody[b] >= 0);
+  };
+  int count = 0;
+  for (size_t j = 0; j < scene_.joints.size(); ++j)
+    if (involved(j)) count += scene_.joints[j].kind == JointDef::Kind::Weld ? 3 : 2;
   const int n = dofs.size();
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(count, n);
+  int row = 0;
   for (size_t j = 0; j < scene_.joints.size(); ++j) {
+    if (!involved(j)) continue;
     const int a = findBody(scene_.joints[j].bodyA), b = findBody(scene_.joints[j].bodyB);
     const int da = a >= 0 ? dofs.ofBody[a] : -1, db = b >= 0 ? dofs.ofBody[b] : -1;
-    if (da < 0 && db < 0) continue;
     const b2Joint* joint = b2_->joints[j];
     const Vec2 anchorB = fromB2(joint->GetAnchorB());
     const Vec2 rA = a >= 0 ? Vec2(anchorB - bodies_[a].position) : Vec2::Zero();
     const Vec2 rB = b >= 0 ? Vec2(anchorB - bodies_[b].position) : Vec2::Zero();
     // A row on the relative velocity of the anchor point along direction t.
     auto pointRow = [&](const Vec2& t) {
-      Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(n);
-      if (db >= 0) row.segment<3>(db) << t.x(), t.y(), t.dot(perp(rB));
-      if (da >= 0) row.segment<3>(da) -= Eigen::RowVector3d(t.x(), t.y(), t.dot(perp(rA)));
-      return row;
+      if (db >= 0) C.block<1, 3>(row, db) += Eigen::RowVector3d(t.x(), t.y(), t.dot(perp(rB)));
+      if (da >= 0) C.block<1, 3>(row, da) -= Eigen::RowVector3d(t.x(), t.y(), t.dot(perp(rA)));
+      ++row;
     };
     auto angleRow = [&] {
-      Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(n);
-      if (db >= 0) row[db + 2] = 1;
-      if (da >= 0) row[da + 2] -= 1;
-      return row;
+      if (db >= 0) C(row, db + 2) += 1;
+      if (da >= 0) C(row, da + 2) -= 1;
+      ++row;
     };
     switch (scene_.joints[j].kind) {
       case JointDef::Kind::Revolute:
-        rows.push_back(pointRow(Vec2(1, 0)));
-        rows.push_back(pointRow(Vec2(0, 1)));
+        pointRow(Vec2(1, 0));
+        pointRow(Vec2(0, 1));
         break;
       case JointDef::Kind::Prismatic: {
         auto* pj = static_cast<const b2PrismaticJoint*>(joint);
         const double angleA = a >= 0 ? bodies_[a].angle : 0.0;
-        rows.push_back(pointRow(perp(rotate(fromB2(pj->GetLocalAxisA()), angleA))));
-        rows.push_back(angleRow());
+        pointRow(perp(rotate(fromB2(pj->GetLocalAxisA()), angleA)));
+        angleRow();
         break;
       }
       case JointDef::Kind::Weld:
-        rows.push_back(pointRow(Vec2(1, 0)));
-        rows.push_back(pointRow(Vec2(0, 1)));
-        rows.push_back(angleRow());
+        pointRow(Vec2(1, 0));
+        pointRow(Vec2(0, 1));
+        angleRow();
         break;
     }
   }
-  Eigen::MatrixXd C(rows.size(), n);
-  for (size_t r = 0; r < rows.size(); ++r) C.row(r) = rows[r];
   return C;
 }
 
@@ -431,47 +435,57 @@ void World::solveCableForces(double h) {
   // pulley on a pivoted body turns, it does not translate). M' adds the geometric stiffness
   // h^2 T d^2(length)/dx^2 of taut cables where it matters (a light body on a tight band turns
   // the force direction faster than one step resolves).
-  Eigen::MatrixXd stiffness = Eigen::MatrixXd::Zero(n, n);
+  std::vector<std::pair<int, std::vector<StiffnessBlock>>> hessians;  // (row, blocks) of taut cables
   bool stiff = false;
   for (int r = 0; r < m; ++r) {
     const Cable& c = cables_[rows[r]];
     const double tension = std::max(c.tension(), c.elastic() ? c.def().stiffness * std::max(0.0, c.stretch()) : 0.0);
     if (tension <= 0) continue;
-    for (const StiffnessBlock& blk : lengthHessianTranslation(c.path())) {
-      const int ia = dofs.ofBody[blk.a], ib = dofs.ofBody[blk.b];
-      if (ia < 0 || ib < 0) continue;
-      stiffness.block<2, 2>(ia, ib) += h * h * tension * blk.k;
-      if (blk.a == blk.b) stiff |= h * h * tension * blk.k.trace() * invM[ia] > 0.05;
-    }
+    auto blocks = lengthHessianTranslation(c.path());
+    for (const StiffnessBlock& blk : blocks)
+      if (blk.a == blk.b && dofs.ofBody[blk.a] >= 0)
+        stiff |= h * h * tension * blk.k.trace() * invM[dofs.ofBody[blk.a]] > 0.05;
+    hessians.emplace_back(r, std::move(blocks));
   }
   const Eigen::MatrixXd C = jointJacobian(dofs);
-  Eigen::MatrixXd W;
-  if (!stiff && C.rows() == 0) {
-    W = invM.asDiagonal() * J0.transpose();
-  } else {
-    Eigen::MatrixXd Mprime = stiff ? stiffness : Eigen::MatrixXd::Zero(n, n);
+  // M'^-1 X: a scaling unless the geometric stiffness couples the dofs. Immovable dofs stay put.
+  Eigen::LDLT<Eigen::MatrixXd> mass;
+  if (stiff) {
+    Eigen::MatrixXd Mprime = Eigen::MatrixXd::Zero(n, n);
+    for (const auto& [r, blocks] : hessians) {
+      const Cable& c = cables_[rows[r]];
+      const double tension = std::max(c.tension(), c.elastic() ? c.def().stiffness * std::max(0.0, c.stretch()) : 0.0);
+      for (const StiffnessBlock& blk : blocks) {
+        const int ia = dofs.ofBody[blk.a], ib = dofs.ofBody[blk.b];
+        if (ia >= 0 && ib >= 0) Mprime.block<2, 2>(ia, ib) += h * h * tension * blk.k;
+      }
+    }
     for (int d = 0; d < n; ++d)
       if (invM[d] == 0) Mprime.row(d).setZero(), Mprime.col(d).setZero();
     for (int d = 0; d < n; ++d) Mprime(d, d) += invM[d] > 0 ? 1.0 / invM[d] : 1.0;
-    const Eigen::LDLT<Eigen::MatrixXd> mass(Mprime);
-    const Eigen::MatrixXd mask = invM.cwiseSign().asDiagonal();
-    W = mass.solve(mask * J0.transpose());
-    // Backward Euler on the turning force direction: (M + h^2 T G) v1 = M v* - J^T P, so the
-    // stiffness also resists the motion v* already carries into the band.
-    if (stiff) {
-      const Eigen::VectorXd momentum = invM.cwiseInverse().cwiseProduct(mask * vStar).unaryExpr([](double x) { return std::isfinite(x) ? x : 0.0; });
-      vStar = mass.solve(momentum);
-    }
-    if (C.rows() > 0) {
-      // Schur complement of the joint rows: W <- W - M'^-1 C^T (C M'^-1 C^T)^-1 C W, and v* made
-      // joint-consistent the same way.
-      const Eigen::MatrixXd MinvCt = mass.solve(mask * C.transpose());
-      Eigen::MatrixXd S = C * MinvCt;
-      S.diagonal().array() += 1e-10 * (1 + S.diagonal().array());
-      const Eigen::LDLT<Eigen::MatrixXd> schur(S);
-      W -= MinvCt * schur.solve(C * W);
-      vStar -= MinvCt * schur.solve(C * vStar);
-    }
+    mass.compute(Mprime);
+  }
+  auto inverseMass = [&](const Eigen::MatrixXd& X) -> Eigen::MatrixXd {
+    if (!stiff) return invM.asDiagonal() * X;
+    return mass.solve(invM.cwiseSign().asDiagonal() * X);
+  };
+  Eigen::MatrixXd W = inverseMass(J0.transpose());
+  // Backward Euler on the turning force direction: (M + h^2 T G) v1 = M v* - J^T P, so the
+  // stiffness also resists the motion v* already carries into the band.
+  if (stiff) {
+    Eigen::VectorXd momentum(n);
+    for (int d = 0; d < n; ++d) momentum[d] = invM[d] > 0 ? vStar[d] / invM[d] : 0.0;
+    vStar = mass.solve(momentum);
+  }
+  if (C.rows() > 0) {
+    // Schur complement of the joint rows: W <- W - M'^-1 C^T (C M'^-1 C^T)^-1 C W, and v* made
+    // joint-consistent the same way.
+    const Eigen::MatrixXd MinvCt = inverseMass(C.transpose());
+    Eigen::MatrixXd S = C * MinvCt;
+    S.diagonal().array() += 1e-10 * (1 + S.diagonal().array());
+    const Eigen::LDLT<Eigen::MatrixXd> schur(S);
+    W -= MinvCt * schur.solve(C * W);
+    vStar -= MinvCt * schur.solve(C * vStar);
   }
 
   // 4. Position-level targets. Rigid: length at the end of the step = now (the error below the
@@ -494,8 +508,9 @@ void World::solveCableForces(double h) {
   // linearisation an LCP over all cables: tension >= 0, slack cables only shorten.
   Eigen::VectorXd P = Eigen::VectorXd::Zero(m), phi1(m);
   Eigen::MatrixXd J1 = Eigen::MatrixXd::Zero(m, n);
-  std::vector<BodyState> predicted = bodies_;
-  std::vector<WrapPoint> path;
+  std::vector<BodyState>& predicted = predictedScratch_;
+  predicted = bodies_;
+  std::vector<WrapPoint>& path = pathScratch_;
   for (int iteration = 0; iteration < kNewtonIterations; ++iteration) {
     const Eigen::VectorXd v1 = vStar - W * P;
     for (size_t k = 0; k < dofs.body.size(); ++k) {
@@ -509,7 +524,7 @@ void World::solveCableForces(double h) {
     J1.setZero();
     for (int r = 0; r < m; ++r) {
       const Cable& c = cables_[rows[r]];
-      path = c.path();
+      path.assign(c.path().begin(), c.path().end());
       const CableKinematics k = cableKinematics(path, predicted);
       phi1[r] = c.stretch() + k.length - c.length();
       for (const auto& e : k.jacobian)
@@ -522,9 +537,12 @@ void World::solveCableForces(double h) {
     for (int r = 0; r < m; ++r)
       b[r] += (cables_[rows[r]].elastic() ? phi1[r] - damped[r] : phi1[r] - target[r]) / h;
     const LcpSolution sol = solveLcp(K, b);
+    const double change = (sol.x - P).lpNorm<Eigen::Infinity>();
     P = sol.x;
     stats_.solverIterations += sol.iterations;
-    if (iteration + 1 == kNewtonIterations) stats_.residual = std::max(stats_.residual, sol.residual);
+    stats_.residual = std::max(stats_.residual, sol.residual);
+    // The end-of-step geometry is nearly linear in P: stop once the impulses have settled.
+    if (iteration > 0 && change <= 1e-9 * (1e-9 + P.lpNorm<Eigen::Infinity>())) break;
   }
   for (int r = 0; r < m; ++r) cables_[rows[r]].setTension(P[r] / h);
 

@@ -118,6 +118,8 @@ class World {
   std::vector<Cable> cables_;
   std::vector<std::string> warnings_;
   std::vector<std::vector<int>> jointNeighbours_;  ///< bodies jointed to each body
+  std::vector<BodyState> predictedScratch_;         ///< reused by solveCableForces
+  std::vector<WrapPoint> pathScratch_;
   StepStats stats_;
   double time_ = 0;
   long steps_ = 0;

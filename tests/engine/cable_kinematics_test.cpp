@@ -34,8 +34,8 @@ TEST(CableKinematics, JacobianAndJdotVMatchFiniteDifferences) {
     }
     // anchor on body 0 -> three vertices of a polygon on body 1 -> point on body 2 -> world anchor
     std::vector<WrapPoint> path = {{WrapPoint::Kind::Anchor, 0, rng.point(-0.3, 0.3)}};
-    for (int v = 0; v < 3; ++v) path.push_back({WrapPoint::Kind::Vertex, 1, rng.point(-0.5, 0.5), {}, 0, v});
-    path.push_back({WrapPoint::Kind::Point, 2, rng.point(-0.3, 0.3), {}, 1});
+    for (int v = 0; v < 3; ++v) path.push_back({WrapPoint::Kind::Vertex, 1, rng.point(-0.5, 0.5), Vec2::Zero(), 0, v});
+    path.push_back({WrapPoint::Kind::Point, 2, rng.point(-0.3, 0.3), Vec2::Zero(), 1});
     path.push_back({WrapPoint::Kind::Anchor, -1, rng.point(-3, 3)});
 
     const CableKinematics k = cableKinematics(path, bodies);
