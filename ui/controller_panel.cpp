@@ -99,6 +99,7 @@ std::unique_ptr<HandControlState> makeHandState(const World& world) {
   h->model.damping = band.damping;
   h->model.preload = band.preload;
   h->model.boxMass = world.scene().bodies[h->box].mass;
+  h->model.boxDamping = world.scene().bodies[h->box].linearDamping;
   h->open = h->model.openPose();
   return h;
 }
@@ -135,8 +136,8 @@ void handBeforeStep(Sandbox& sandbox, World& world, HandControlState& h) {
   const bool active = h.enabled && sandbox.target && h.graspTime >= 0 && t >= h.controlStart - 1e-9;
   const BodyState& box = world.body(h.box);
   if (active && t >= h.nextUpdate - 1e-9) {
-    h.offset += h.controller->update(jointValues(world, h), box.position, box.velocity,
-                                     *sandbox.target, h.model.clamp(nominal + h.offset));
+    h.offset += h.controller->update(jointValues(world, h), box.position, *sandbox.target,
+                                     h.model.clamp(nominal + h.offset));
     h.prediction = h.controller->lastPrediction();
     h.predictionTime = t;
     ++h.updates;
@@ -194,18 +195,16 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
   changed |= ImGui::Checkbox("PID", &h.pid);
   ImGui::PushItemWidth(120);
   changed |= ImGui::InputDouble("k_p (per update)", &h.params.kp, 0.01, 0.1, "%.3f");
-  changed |= ImGui::InputDouble("k_d (s)", &h.params.kd, 0.01, 0.1, "%.3f");
+  changed |= ImGui::InputDouble("k_d", &h.params.kd, 0.01, 0.1, "%.3f");
   if (!h.pid) ImGui::BeginDisabled();
   changed |= ImGui::InputDouble("k_i (1/s)", &h.ki, 0.01, 0.1, "%.3f");
   if (!h.pid) ImGui::EndDisabled();
   ImGui::PopItemWidth();
-  if (ImGui::SmallButton("defaults")) {
+  if (ImGui::SmallButton("thesis gains (k_p 0.1, k_d 0.58)")) {
     const HandControllerParams d;
     h.params.kp = d.kp, h.params.kd = d.kd, h.ki = kHandPidKi;
     changed = true;
   }
-  ImGui::SameLine();
-  if (ImGui::SmallButton("thesis k_d 0.58")) h.params.kd = kThesisKd, changed = true;
   if (changed) {
     h.params.kp = std::clamp(h.params.kp, 0.0, 10.0);
     h.params.kd = std::clamp(h.params.kd, 0.0, 10.0);

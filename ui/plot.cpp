@@ -207,11 +207,34 @@ Image renderPlot(const Plot& plot, int width, int height) {
     for (const auto& s : plot.series) {
       const ImU32 c = toImU32(s.colour.value_or(kPalette[next++ % 6]));
       const bool lines = s.style != PlotSeries::Style::Markers;
-      const bool markers = s.style != PlotSeries::Style::Line;
+      const bool markers =
+          s.style == PlotSeries::Style::Markers || s.style == PlotSeries::Style::LineAndMarkers;
+      const bool dashed = s.style == PlotSeries::Style::Dashed;
       std::vector<ImVec2> run;
       auto flush = [&] {
-        if (run.size() >= 2)
+        if (run.size() >= 2 && !dashed)
           draw->AddPolyline(run.data(), static_cast<int>(run.size()), c, 0, s.lineWidth);
+        if (run.size() >= 2 && dashed) {
+          // 9 px on, 6 px off, measured along the polyline.
+          constexpr float kOn = 9, kPeriod = 15;
+          float along = 0;
+          for (size_t i = 0; i + 1 < run.size(); ++i) {
+            const ImVec2 a = run[i], b = run[i + 1];
+            const float len = std::hypot(b.x - a.x, b.y - a.y);
+            float t = 0;
+            while (t < len) {
+              const float phase = std::fmod(along + t, kPeriod);
+              const float step = std::min(len - t, phase < kOn ? kOn - phase : kPeriod - phase);
+              if (phase < kOn && len > 0)
+                draw->AddLine(ImVec2(a.x + (b.x - a.x) * t / len, a.y + (b.y - a.y) * t / len),
+                              ImVec2(a.x + (b.x - a.x) * (t + step) / len,
+                                     a.y + (b.y - a.y) * (t + step) / len),
+                              c, s.lineWidth);
+              t += std::max(step, 1e-3f);
+            }
+            along += len;
+          }
+        }
         run.clear();
       };
       for (size_t i = 0; i < s.x.size(); ++i) {
@@ -224,7 +247,8 @@ Image renderPlot(const Plot& plot, int width, int height) {
         if (markers) draw->AddCircleFilled(p, s.markerRadius, c, 16);
       }
       flush();
-      if (!s.label.empty()) legend.push_back({s.label, {c, markers ? (lines ? 2 : 1) : 0}});
+      if (!s.label.empty())
+        legend.push_back({s.label, {c, dashed ? 4 : markers ? (lines ? 2 : 1) : 0}});
     }
     for (const auto& a : plot.arrows) {
       const ImU32 c = toImU32(a.colour.value_or(kPalette[next++ % 6]));
@@ -288,8 +312,8 @@ Image renderPlot(const Plot& plot, int width, int height) {
           draw->AddLine(ImVec2(p0.x + 6, y), ImVec2(p0.x + 28, y), c, 2.0f);
         if (kind == 1 || kind == 2) draw->AddCircleFilled(ImVec2(p0.x + 17, y), 3.0f, c, 12);
         if (kind == 4)
-          for (float x = p0.x + 6; x < p0.x + 28; x += 6)
-            draw->AddLine(ImVec2(x, y), ImVec2(std::min(x + 3, p0.x + 28), y), c, 1.5f);
+          for (float x = 6; x < 28; x += 8)
+            draw->AddLine(ImVec2(p0.x + x, y), ImVec2(p0.x + std::min(x + 5, 28.0f), y), c, 2.0f);
         if (kind == 3) {
           draw->AddLine(ImVec2(p0.x + 6, y), ImVec2(p0.x + 28, y), c, 1.5f);
           arrowHead(draw, ImVec2(p0.x + 6, y), ImVec2(p0.x + 28, y), c);

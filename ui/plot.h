@@ -31,7 +31,7 @@
 namespace cablelab::ui {
 
 struct PlotSeries {
-  enum class Style { Line, Markers, LineAndMarkers };
+  enum class Style { Line, Markers, LineAndMarkers, Dashed };  ///< Dashed: a dashed line
   std::string label;         ///< legend text; empty = not in the legend
   std::vector<double> x, y;  ///< same length
   Style style = Style::Line;
