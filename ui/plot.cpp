@@ -201,6 +201,8 @@ Image renderPlot(const Plot& plot, int width, int height) {
                       IM_COL32(120, 120, 120, 255), 1.5f);
     }
     std::vector<std::pair<std::string, std::pair<ImU32, int>>> legend;  // label, colour, kind
+    if (plot.identityLine && !plot.identityLabel.empty())
+      legend.push_back({plot.identityLabel, {IM_COL32(120, 120, 120, 255), 4}});
     int next = 0;
     for (const auto& s : plot.series) {
       const ImU32 c = toImU32(s.colour.value_or(kPalette[next++ % 6]));
@@ -211,7 +213,7 @@ Image renderPlot(const Plot& plot, int width, int height) {
       std::vector<ImVec2> run;
       auto flush = [&] {
         if (run.size() >= 2 && !dashed)
-          draw->AddPolyline(run.data(), static_cast<int>(run.size()), c, 0, 2.0f);
+          draw->AddPolyline(run.data(), static_cast<int>(run.size()), c, 0, s.lineWidth);
         if (run.size() >= 2 && dashed) {
           // 9 px on, 6 px off, measured along the polyline.
           constexpr float kOn = 9, kPeriod = 15;
@@ -227,7 +229,7 @@ Image renderPlot(const Plot& plot, int width, int height) {
                 draw->AddLine(ImVec2(a.x + (b.x - a.x) * t / len, a.y + (b.y - a.y) * t / len),
                               ImVec2(a.x + (b.x - a.x) * (t + step) / len,
                                      a.y + (b.y - a.y) * (t + step) / len),
-                              c, 2.0f);
+                              c, s.lineWidth);
               t += std::max(step, 1e-3f);
             }
             along += len;
@@ -242,7 +244,7 @@ Image renderPlot(const Plot& plot, int width, int height) {
         }
         const ImVec2 p = map(s.x[i], s.y[i]);
         if (lines) run.push_back(p);
-        if (markers) draw->AddCircleFilled(p, 3.0f, c, 12);
+        if (markers) draw->AddCircleFilled(p, s.markerRadius, c, 16);
       }
       flush();
       if (!s.label.empty())
@@ -256,11 +258,16 @@ Image renderPlot(const Plot& plot, int width, int height) {
             !std::isfinite(ey))
           continue;
         const ImVec2 from = map(a.x[i], a.y[i]), to = map(ex, ey);
-        draw->AddLine(from, to, c, 1.5f);
+        draw->AddLine(from, to, c, a.lineWidth);
         arrowHead(draw, from, to, c);
       }
       if (!a.label.empty()) legend.push_back({a.label, {c, 3}});
     }
+    for (const PlotLabel& l : plot.labels)
+      if (std::isfinite(l.x) && std::isfinite(l.y)) {
+        const ImVec2 p = map(l.x, l.y);
+        draw->AddText(ImVec2(p.x, p.y - 7), kInk, l.text.c_str());
+      }
     draw->PopClipRect();
 
     // Title, axis labels, legend.
