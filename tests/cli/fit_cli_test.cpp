@@ -13,6 +13,8 @@
 #include <set>
 #include <string>
 
+#include "tests/engine/test_support.h"
+
 #ifdef CABLELAB_HAVE_OFFSCREEN
 #include "ui/image.h"
 #endif
@@ -23,11 +25,7 @@ namespace fs = std::filesystem;
 
 const std::string kPulleys = "--pulleys -0.2,0,0.2,0";
 
-struct CliRun {
-  int exitCode = -1;
-  std::string out;
-  std::string err;
-};
+using CliRun = cablelab::test::CommandResult;
 
 std::string readFile(const fs::path& path) {
   std::ifstream in(path);
@@ -46,20 +44,9 @@ fs::path scratch() {
   return dir;
 }
 
-CliRun cablelab(const std::string& args) {
-  const fs::path dir = fs::temp_directory_path();
-  const std::string tag = std::to_string(getpid());
-  const fs::path out = dir / ("cablelab_fit_out_" + tag), err = dir / ("cablelab_fit_err_" + tag);
-  const std::string command = std::string("cd '") + CABLELAB_SOURCE_DIR + "' && '" + CABLELAB_CLI +
-                              "' fit " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
-  const int status = std::system(command.c_str());
-  CliRun run;
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  run.out = readFile(out);
-  run.err = readFile(err);
-  fs::remove(out);
-  fs::remove(err);
-  return run;
+// `cablelab fit ARGS`, run from the source directory so data paths can be relative.
+cablelab::test::CommandResult cablelab(const std::string& args) {
+  return cablelab::test::runCli("fit " + args, CABLELAB_SOURCE_DIR);
 }
 
 TEST(FitCli, FitsTheExampleDataAndPrintsOneJsonObject) {

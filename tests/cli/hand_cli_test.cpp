@@ -1,27 +1,23 @@
 // cablelab track / reach from the command line (CONTRACT.md).
 #include <gtest/gtest.h>
 
+#include "tests/engine/test_support.h"
+
 #include <array>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <sys/wait.h>
 
 namespace {
 
 struct CliRun {
   int code;
-  std::string out;
+  std::string out;  // stdout only
 };
 
 CliRun run(const std::string& args) {
-  const std::string command = std::string(CABLELAB_CLI) + " " + args + " 2>/dev/null";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf;
-  while (size_t n = fread(buf.data(), 1, buf.size(), pipe)) out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  return {WEXITSTATUS(status), out};
+  const auto r = cablelab::test::runCli(args);
+  return {r.exitCode, r.out};
 }
 
 // Measured (15 s): constant target 0.023 mm (PD) and 0.007 mm (PID); ramp 1.0 mm (PD) and
