@@ -21,6 +21,9 @@
 #include "engine/membrane_fit.h"
 #include "engine/membrane_plot.h"
 #include "engine/membrane_synth.h"
+#ifdef CABLELAB_HAVE_OFFSCREEN
+#include "ui/membrane_figures.h"
+#endif
 
 namespace cablelab::app {
 namespace {
@@ -29,6 +32,7 @@ struct FitOptions {
   std::string data;
   std::string pulleys;
   std::string plots;
+  std::string plotSize = "800x600";
   std::string sigmaFy;
   std::string sigmaAngleDeg;
   // --generate mode
@@ -147,6 +151,17 @@ int runGenerate(const FitOptions& o) {
   return 0;
 }
 
+/// "WxH" -> pixel sizes, each in [200, 4096].
+std::pair<int, int> parsePlotSize(const std::string& text) {
+  const size_t x = text.find_first_of("xX");
+  if (x == std::string::npos) throw InputError("--plot-size", "plot_size", "expected WxH, e.g. 800x600");
+  const double w = parseDouble(text.substr(0, x), "--plot-size", "plot_size");
+  const double h = parseDouble(text.substr(x + 1), "--plot-size", "plot_size");
+  if (w != std::floor(w) || h != std::floor(h) || w < 200 || h < 200 || w > 4096 || h > 4096)
+    throw InputError("--plot-size", "plot_size", "W and H must be whole numbers in 200..4096 (px)");
+  return {static_cast<int>(w), static_cast<int>(h)};
+}
+
 int runFit(const FitOptions& o) {
   if (o.data.empty())
     throw InputError("fit", "DATA",
@@ -193,7 +208,7 @@ int runFit(const FitOptions& o) {
   j["fit_us"] = fitUs;
 
   if (!o.plots.empty()) {
-    // PNG rendering waits for the offscreen plot API (ui/); the data is written now.
+    const auto [width, height] = parsePlotSize(o.plotSize);
     const std::filesystem::path dir(o.plots);
     std::error_code error;
     std::filesystem::create_directories(dir, error);
@@ -205,6 +220,18 @@ int runFit(const FitOptions& o) {
     writeScatterCsv(scatter, plot);
     if (!quiver.flush() || !scatter.flush()) throw InputError(o.plots, "--plots", "write failed");
     j["plots"] = {(dir / "quiver.csv").string(), (dir / "scatter.csv").string()};
+#ifdef CABLELAB_HAVE_OFFSCREEN
+    try {
+      ui::writeMembraneFigures(g, fit.params, plot, dir.string(), width, height);
+    } catch (const std::exception& e) {
+      throw InputError(o.plots, "--plots", e.what());
+    }
+    j["plots"].push_back((dir / "quiver.png").string());
+    j["plots"].push_back((dir / "scatter.png").string());
+#else
+    (void)width, (void)height;
+    j["plots_note"] = "this build has no offscreen renderer: CSV only, no PNG";
+#endif
   }
   printJson(j.dump());
   return 0;
@@ -221,7 +248,10 @@ static const bool registered = registerCommand(
                      "force (N), measured force direction atan2(Fy,Fx) (degrees)");
       sub.add_option("--pulleys", o->pulleys, "pulley positions AX,AY,BX,BY (m)");
       sub.add_option("--plots", o->plots,
-                     "directory for the chapter 3 plot data: quiver.csv and scatter.csv");
+                     "directory for the chapter 3 figures: quiver.png and scatter.png (figures 3-2 "
+                     "and 3-3) and their data, quiver.csv and scatter.csv");
+      sub.add_option("--plot-size", o->plotSize, "size of each plot PNG, WxH (px)")
+          ->capture_default_str();
       sub.add_option("--sigma-fy", o->sigmaFy, "noise level of fy (N); default: estimated");
       sub.add_option("--sigma-angle-deg", o->sigmaAngleDeg,
                      "noise level of angle_deg (degrees); default: estimated");

@@ -66,21 +66,22 @@ const bool registered = registerCommand("run", "Run a scene headless (CSV per st
   sub.add_option("scene", o->scene, "Built-in scene name (see `cablelab scenes`) or a scene JSON file")->required();
   sub.add_option("--set", o->sets, "Scene parameter NAME=VALUE (repeatable)");
   sub.add_option("--time", o->time, "Simulated time (s)")->capture_default_str();
-  sub.add_option("--dt", o->dt, "Time step (s); default: the scene's");
-  sub.add_option("--substeps", o->substeps, "Sub-steps per step; default: the scene's");
+  CLI::Option* dtOption = sub.add_option("--dt", o->dt, "Time step (s); default: the scene's");
+  CLI::Option* substepsOption = sub.add_option("--substeps", o->substeps, "Sub-steps per step; default: the scene's");
   sub.add_option("--csv", o->csv, "Write one row per step to this CSV file");
   sub.add_option("--png", o->png, "Write a snapshot of the final state to this PNG file");
-  return [o] {
+  return [o, dtOption, substepsOption] {
+    if (dtOption->count() && !(o->dt > 0 && o->dt <= 1)) badOption("--dt", "must be in (0, 1] s");
+    if (substepsOption->count() && (o->substeps < 1 || o->substeps > 1000))
+      badOption("--substeps", "must be 1..1000");
     std::vector<std::pair<std::string, double>> overrides;
     for (const std::string& s : o->sets) overrides.push_back(parseSetting(s));
     World world(makeScene(o->scene, overrides), o->scene);
     const double dt = o->dt > 0 ? o->dt : world.scene().dt;
     const int substeps = o->substeps > 0 ? o->substeps : world.scene().substeps;
     requireFinite(o->time, "--time", 0, 1e7);
-    if (o->dt < 0 || !std::isfinite(o->dt)) throw InputError("--dt", "--dt", "must be positive");
-    if (o->substeps < 0 || o->substeps > 1000) throw InputError("--substeps", "--substeps", "must be 1..1000");
     const long steps = std::lround(o->time / dt);
-    if (steps > 100000000) throw InputError("--time", "--time", "more than 1e8 steps; raise --dt");
+    if (steps > 100000000) badOption("--time", "more than 1e8 steps; raise --dt");
 
     std::unique_ptr<CsvWriter> csv;
     if (!o->csv.empty()) {
@@ -100,7 +101,7 @@ const bool registered = registerCommand("run", "Run a scene headless (CSV per st
 #ifdef CABLELAB_HAVE_OFFSCREEN
     if (!o->png.empty()) ui::writeSnapshotPng(world, o->png, 800, 600);
 #else
-    if (!o->png.empty()) throw InputError("--png", "--png", "this build has no offscreen renderer");
+    if (!o->png.empty()) badOption("--png", "this build has no offscreen renderer");
 #endif
     nlohmann::json out = {{"scene", world.scene().name}, {"steps", steps}, {"time", world.time()},
                           {"dt", dt}, {"substeps", substeps}, {"step_us_median", median(stepMicros)},

@@ -89,6 +89,32 @@ const bool registered = registerCommand("track", "Hand closes a pinch grasp, the
         *csv << line;
       }
     }
+#ifdef CABLELAB_HAVE_OFFSCREEN
+    if (!o->png.empty()) {
+      // Figure 4-5: target (dashed) and response (solid), x and y against time.
+      std::vector<double> t, tx, ty, bx, by;
+      for (const TrackSample& s : r.samples) {
+        t.push_back(s.t), tx.push_back(s.target.x()), ty.push_back(s.target.y());
+        bx.push_back(s.box.x()), by.push_back(s.box.y());
+      }
+      char title[160];
+      std::snprintf(title, sizeof title, "Box position, %s%s: final error %.3g mm, grasp at %.2f s",
+                    options.rampTime > 0 ? "ramp" : "constant target", options.pid ? ", PID" : ", PD",
+                    1e3 * r.finalError, r.graspTime);
+      ui::Plot plot(title, "time (s)", "position (m)");
+      const ui::Colour blue{0.12f, 0.38f, 0.75f, 1.0f}, red{0.85f, 0.25f, 0.15f, 1.0f};
+      plot.series.push_back({"target x", t, tx, ui::PlotSeries::Style::Dashed, blue});
+      plot.series.push_back({"box x", t, bx, ui::PlotSeries::Style::Line, blue});
+      plot.series.push_back({"target y", t, ty, ui::PlotSeries::Style::Dashed, red});
+      plot.series.push_back({"box y", t, by, ui::PlotSeries::Style::Line, red});
+      plot.xRange = std::array<double, 2>{0.0, options.time};
+      try {
+        ui::writePlotPng(plot, o->png);
+      } catch (const std::exception& e) {
+        throw InputError(o->png, "--png", e.what());
+      }
+    }
+#endif
     printJson(nlohmann::json{{"final_error", r.finalError}, {"rms_error", r.rmsError}, {"grasp_time", r.graspTime}}.dump());
     return 0;
   };

@@ -12,10 +12,21 @@
 
 namespace cablelab::app {
 
-/// Throws InputError(option, option, ...) unless lo <= v <= hi and finite.
+inline std::string shortNumber(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+/// A bad command-line value: "command line: --dt: must be in (0, 1] s".
+[[noreturn]] inline void badOption(const std::string& option, const std::string& what) {
+  throw InputError("command line", option, what);
+}
+
+/// Throws unless lo <= v <= hi and finite.
 inline void requireFinite(double v, const std::string& option, double lo, double hi) {
   if (!std::isfinite(v) || v < lo || v > hi)
-    throw InputError(option, option, "must be a number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    badOption(option, "must be a number in [" + shortNumber(lo) + ", " + shortNumber(hi) + "]");
 }
 
 inline double median(std::vector<double> v) {

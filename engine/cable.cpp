@@ -2,6 +2,7 @@
 #include "engine/cable.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "engine/error.h"
 #include "engine/wrap.h"
@@ -66,8 +67,16 @@ double Cable::stretch() const {
 }
 
 void Cable::placePulleys(std::span<const BodyState> bodies) {
-  for (PulleyState& p : pulleys_)
-    for (size_t v = 0; v < p.local.size(); ++v) p.world[v] = worldPoint(bodies, p.body, p.local[v]);
+  for (PulleyState& p : pulleys_) {
+    if (p.body < 0) {
+      p.world = p.local;
+      continue;
+    }
+    // One cos/sin per pulley, not per vertex.
+    const BodyState& b = bodies[p.body];
+    const double c = std::cos(b.angle), s = std::sin(b.angle);
+    for (size_t v = 0; v < p.local.size(); ++v) p.world[v] = b.position + rotate(p.local[v], c, s);
+  }
 }
 
 // Node n of the chain: 0 = start anchor, 1..P = pulley n-1, P+1 = end anchor.
@@ -95,14 +104,17 @@ Vec2 Cable::exitPoint(int node, const std::vector<std::vector<int>>& chains) con
 // Rebuilds path_ from the engaged pulleys. Returns false if a polygon had to leave.
 bool Cable::buildPath(std::vector<std::string>* warnings) {
   const int count = static_cast<int>(pulleys_.size());
-  std::vector<int> nodes{0};
+  std::vector<int>& nodes = nodes_;
+  nodes.assign(1, 0);
   for (int j = 0; j < count; ++j)
     if (pulleys_[j].engaged) nodes.push_back(j + 1);
   nodes.push_back(count + 1);
 
   // Polygon chains depend on their neighbours' contact points; neighbouring polygons need a few
   // passes to settle on the common tangent.
-  std::vector<std::vector<int>> chains(count);
+  std::vector<std::vector<int>>& chains = chains_;
+  chains.resize(count);
+  for (std::vector<int>& c : chains) c.clear();
   bool neighbouringPolygons = false;
   for (size_t n = 1; n + 2 < nodes.size(); ++n)
     neighbouringPolygons |= pulleys_[nodes[n] - 1].polygon && pulleys_[nodes[n + 1] - 1].polygon;
@@ -113,15 +125,13 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
       if (!p.polygon) continue;
       const Vec2 a = exitPoint(nodes[n - 1], chains);
       const Vec2 b = entryPoint(nodes[n + 1], chains);
-      auto chain = wrapChain(a, b, p.world, p.side);
-      if (!chain) {
+      if (!wrapChain(a, b, p.world, p.side, chains[nodes[n] - 1])) {
         p.engaged = false;
         if (warnings)
           warnings->push_back("cable '" + def_.name + "': pulley " + std::to_string(nodes[n] - 1) +
                               " left the path: a neighbouring point lies inside its hull");
         return false;
       }
-      chains[nodes[n] - 1] = std::move(*chain);
     }
 
   WrapPoint start{WrapPoint::Kind::Anchor, startBody_, def_.start.point, path_.front().world, -1, -1};
@@ -206,7 +216,7 @@ void Cable::update(std::span<const BodyState> bodies, std::vector<std::string>* 
     if (!changed) break;
   }
 
-  kin_ = cableKinematics(path_, bodies);
+  cableKinematics(path_, bodies, kin_);
   if (warnings && kin_.zeroLengthSegments > 0 && !reportedZeroLength_)
     warnings->push_back("cable '" + def_.name + "': " + std::to_string(kin_.zeroLengthSegments) +
                         " zero-length segment(s) (coincident points) left out of the Jacobian");

@@ -80,12 +80,16 @@ struct StiffnessBlock {
 /// this is the cable's geometric stiffness, which a stiff membrane on a light body needs
 /// implicitly. Rotations are left out. Blocks of world-fixed points are skipped.
 std::vector<StiffnessBlock> lengthHessianTranslation(std::span<const WrapPoint> path);
+/// The same, appended to `blocks` (no allocation once it has the capacity).
+void appendLengthHessianTranslation(std::span<const WrapPoint> path, std::vector<StiffnessBlock>& blocks);
 
 /// World position of a point fixed on a body.
 Vec2 worldPoint(std::span<const BodyState> bodies, int body, const Vec2& local);
 
 /// Fills p.world for every point, then length, J, J-dot-v (NOTES.md formula).
 CableKinematics cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodies);
+/// The same into `k`, reusing its Jacobian's storage (the solver calls this every Newton step).
+void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodies, CableKinematics& k);
 
 class Cable {
  public:
@@ -99,7 +103,7 @@ class Cable {
   const CableDef& def() const { return def_; }
   const std::string& name() const { return def_.name; }
   /// Recomputes length, J and J-dot-v for the current wrap points (no re-selection).
-  void refresh(std::span<const BodyState> bodies) { kin_ = cableKinematics(path_, bodies); }
+  void refresh(std::span<const BodyState> bodies) { cableKinematics(path_, bodies, kin_); }
 
   const std::vector<WrapPoint>& path() const { return path_; }
   const CableKinematics& kinematics() const { return kin_; }
@@ -138,6 +142,8 @@ class Cable {
   int startBody_, endBody_;
   std::vector<PulleyState> pulleys_;
   std::vector<WrapPoint> path_;
+  std::vector<int> nodes_;                 ///< buildPath scratch: engaged chain nodes
+  std::vector<std::vector<int>> chains_;   ///< buildPath scratch: polygon vertex chains
   CableKinematics kin_;
   double tension_ = 0;
   bool firstUpdate_ = true;

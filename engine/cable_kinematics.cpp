@@ -6,6 +6,7 @@
 // A point fixed on body b at world offset r = R(theta) local moves with v_b + omega perp(r); its
 // d/d(x, y, theta) is [I | perp(r)] and its velocity-product acceleration is -omega^2 r.
 #include <algorithm>
+#include <cmath>
 
 #include "engine/cable.h"
 
@@ -19,6 +20,38 @@ struct PointMotion {
   Vec2 offset = Vec2::Zero();    // world offset from the body origin
   Vec2 velocity = Vec2::Zero();  // world velocity of the point
   Vec2 accel = Vec2::Zero();     // -omega^2 r: the J-dot-v part of its acceleration
+};
+
+// World points of a path: a path visits few bodies, most of them at several points (polygon
+// vertices, both ends on one paddle), so each body's cos/sin is worked out once per call.
+class PathFrames {
+ public:
+  explicit PathFrames(std::span<const BodyState> bodies) : bodies_(bodies) {}
+
+  Vec2 worldPoint(int body, const Vec2& local) {
+    if (body < 0) return local;
+    const Rotation& r = rotationOf(body);
+    return bodies_[body].position + rotate(local, r.c, r.s);
+  }
+
+ private:
+  struct Rotation {
+    int body;
+    double c, s;
+  };
+  const Rotation& rotationOf(int body) {
+    for (int i = 0; i < count_; ++i)
+      if (cache_[i].body == body) return cache_[i];
+    const double angle = bodies_[body].angle;
+    Rotation r{body, std::cos(angle), std::sin(angle)};
+    if (count_ == kSize) count_ = 0;  // many bodies: recycle the slots
+    cache_[count_] = r;
+    return cache_[count_++];
+  }
+  static constexpr int kSize = 4;
+  std::span<const BodyState> bodies_;
+  Rotation cache_[kSize];
+  int count_ = 0;
 };
 
 PointMotion motionOf(std::span<const BodyState> bodies, const WrapPoint& p) {
@@ -51,10 +84,23 @@ Vec2 worldPoint(std::span<const BodyState> bodies, int body, const Vec2& local) 
 
 CableKinematics cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodies) {
   CableKinematics k;
-  for (WrapPoint& p : path) p.world = worldPoint(bodies, p.body, p.local);
+  cableKinematics(path, bodies, k);
+  return k;
+}
+
+void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodies, CableKinematics& k) {
+  k.length = k.lengthRate = k.jdotV = 0;
+  k.jacobian.clear();
+  k.zeroLengthSegments = 0;
+  PathFrames frames(bodies);
+  for (WrapPoint& p : path) p.world = frames.worldPoint(p.body, p.local);
+  // Each point's motion serves the segments on both sides of it.
+  PointMotion m1 = path.empty() ? PointMotion{} : motionOf(bodies, path[0]);
   for (size_t i = 0; i + 1 < path.size(); ++i) {
     const WrapPoint& p0 = path[i];
     const WrapPoint& p1 = path[i + 1];
+    const PointMotion m0 = m1;
+    m1 = motionOf(bodies, p1);
     const Vec2 d = p1.world - p0.world;
     const double len = d.norm();
     k.length += len;
@@ -63,8 +109,6 @@ CableKinematics cableKinematics(std::span<WrapPoint> path, std::span<const BodyS
       continue;
     }
     const Vec2 u = d / len;
-    const PointMotion m0 = motionOf(bodies, p0);
-    const PointMotion m1 = motionOf(bodies, p1);
     const Vec2 w = m1.velocity - m0.velocity;
     const double uw = u.dot(w);
     k.lengthRate += uw;
@@ -76,11 +120,15 @@ CableKinematics cableKinematics(std::span<WrapPoint> path, std::span<const BodyS
   }
   std::sort(k.jacobian.begin(), k.jacobian.end(),
             [](const BodyJacobian& a, const BodyJacobian& b) { return a.body < b.body; });
-  return k;
 }
 
 std::vector<StiffnessBlock> lengthHessianTranslation(std::span<const WrapPoint> path) {
   std::vector<StiffnessBlock> blocks;
+  appendLengthHessianTranslation(path, blocks);
+  return blocks;
+}
+
+void appendLengthHessianTranslation(std::span<const WrapPoint> path, std::vector<StiffnessBlock>& blocks) {
   for (size_t i = 0; i + 1 < path.size(); ++i) {
     const int a = path[i].body, b = path[i + 1].body;
     const Vec2 d = path[i + 1].world - path[i].world;
@@ -95,7 +143,6 @@ std::vector<StiffnessBlock> lengthHessianTranslation(std::span<const WrapPoint> 
       blocks.push_back({b, a, -k});
     }
   }
-  return blocks;
 }
 
 }  // namespace cablelab

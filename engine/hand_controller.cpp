@@ -4,45 +4,67 @@
 #include <algorithm>
 #include <chrono>
 
+#include "engine/box_reduction.h"
+#include "engine/statics_sensitivity.h"
+
 namespace cablelab {
 
-HandController::HandController(HandModel model, HandControllerParams params, EquilibriumSolver solver)
-    : model_(std::move(model)), params_(params), solver_(std::move(solver)) {}
+HandController::HandController(HandModel model, HandControllerParams params)
+    : model_(std::move(model)), params_(params) {}
 
-std::vector<SpringCable> HandController::springs(const HandJoints& q) const {
-  const FingertipPoints shifted = reduceToPoint(model_, fingertipPoints(model_, q));
-  // The reduced cable is shorter by the wrapped face (2 h); the preload lengthens the stretch.
-  const double L = model_.restLength() - model_.preload - 2 * model_.boxHalfSize;
-  std::vector<SpringCable> cables(2);
-  for (int i = 0; i < 2; ++i)
-    cables[i] = {shifted.segment<2>(4 * i), shifted.segment<2>(4 * i + 2), model_.stiffness, L};
-  return cables;
+StaticsProblem HandController::staticsProblem(const HandJoints& q, const Vec2& guess) const {
+  const FingertipPoints tips = fingertipPoints(model_, q);
+  const double h = model_.boxHalfSize;
+  std::vector<BoxCable> cables(2);
+  for (int f = 0; f < 2; ++f) {
+    BoxCable& c = cables[f];
+    c.a = tips.segment<2>(4 * f);
+    c.b = tips.segment<2>(4 * f + 2);
+    c.k = model_.stiffness;
+    // Tension k (length - rest + preload): the preload shortens the effective rest length.
+    c.L = model_.restLength() - model_.preload;
+    // The top membrane wraps the top face's two corners, the bottom one the bottom face's.
+    const double face = HandModel::side(f) * h;
+    c.cornerA = Vec2(-h, face);
+    c.cornerB = Vec2(h, face);
+  }
+  return reduceBoxToPoint(cables, guess);
 }
 
 BoxPrediction HandController::predict(const HandJoints& q, const Vec2& guess) const {
   BoxPrediction out;
-  const PointEquilibrium eq = solver_(springs(q), guess);
+  const StaticsProblem problem = staticsProblem(q, guess);
+  StaticsResult eq;
+  solveStatics(problem, eq);
   out.box = eq.p;
-  if (!eq.converged || eq.sensitivity.cols() != 8) return out;
+  if (!eq.converged) return out;
+  const StaticsSensitivity s = staticsSensitivity(problem, eq.p);
+  if (s.kind != StaticsSensitivity::Kind::Smooth) return out;
   // The shift of figure 4-2 is a constant offset, so d p / d(shifted) = d p / d(fingertips).
-  out.jacobian = eq.sensitivity * fingertipJacobian(model_, q);
+  out.jacobian = s.dp * fingertipJacobian(model_, q);
   out.valid = wrapsFaceOn(model_, fingertipPoints(model_, q), eq.p);
   return out;
 }
 
-HandJoints HandController::update(const HandJoints& q, const Vec2& box, const Vec2& boxVelocity, const Vec2& target,
+HandJoints HandController::update(const HandJoints& q, const Vec2& box, const Vec2& target,
                                   const HandJoints& commanded) {
-  const BoxPrediction previous = last_;
+  // The box's change over the last period (zero on the first update).
+  const Vec2 change = hasPrevious_ ? Vec2(box - previousBox_) : Vec2::Zero();
+  previousBox_ = box;
+  hasPrevious_ = true;
   last_ = predict(q, box);
-  // Outside the model's validity (a membrane no longer wraps a face): steer with the last valid
-  // Jacobian; the null-space task below brings the grasp back to the pinch geometry.
-  if (!last_.valid && previous.valid) last_.jacobian = previous.jacobian;
-  if (last_.jacobian.isZero()) return HandJoints::Zero();
+  // Outside the model's validity (a membrane no longer wraps a face, or the statics is not
+  // smooth there): keep steering with the last valid Jacobian; the null-space task below brings
+  // the grasp back to the pinch geometry.
+  if (last_.valid) steering_ = last_.jacobian, hasSteering_ = true;
+  if (!hasSteering_) return HandJoints::Zero();
   Vec2 error = box - target;
+  // Conditional integration (anti-windup): the integral only collects the small residual offset
+  // near the target, never the large transient of the grasp or of a ramp the box lags behind.
+  if (error.norm() < params_.integralZone) integral_ += error * params_.period;
   if (error.norm() > params_.maxError) error *= params_.maxError / error.norm();
-  integral_ += error * params_.period;
-  const Vec2 command = params_.kp * error + params_.kd * boxVelocity + params_.ki * integral_;
-  const BoxJacobian& J = last_.jacobian;
+  const Vec2 command = params_.kp * error + params_.kd * change + params_.ki * integral_;
+  const BoxJacobian& J = steering_;
   HandJoints winv = HandJoints::Ones();
   winv[kDistal] = winv[3 + kDistal] = 1.0 / params_.distalWeight;
   const Eigen::Matrix<double, 6, 2> JWt = winv.asDiagonal() * J.transpose();
@@ -79,7 +101,7 @@ double measureControllerUpdateMicros(int repeats) {
   // Time batches of 100 updates (a single update is near the clock's resolution).
   for (int r = 0; r < std::max(1, repeats / 100); ++r) {
     const auto t0 = Clock::now();
-    for (int i = 0; i < 100; ++i) sink += controller.update(q, box, Vec2::Zero(), Vec2(0.01 * (i % 3), 0), q)[0];
+    for (int i = 0; i < 100; ++i) sink += controller.update(q, box, Vec2(0.01 * (i % 3), 0), q)[0];
     micros.push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count() / 100);
   }
   std::nth_element(micros.begin(), micros.begin() + micros.size() / 2, micros.end());

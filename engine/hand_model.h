@@ -34,10 +34,15 @@ struct HandModel {
   double paddleOffset = 0.05;      ///< corners sit this far from the distal joint towards the box (m)
   double boxHalfSize = 0.25;       ///< the square manipuland's half side (m)
   double boxMass = 1.0;            ///< kg
-  double boxDamping = 1.0;         ///< box linear damping (1/s): the membranes barely damp sideways
+  /// Box linear damping (1/s), the table's viscous drag on the box (seen from above). The
+  /// membranes hold the box sideways only through their bend (about 40 N/m at the pinch, a
+  /// 1 Hz mode for the 1 kg box) and do not damp that motion at all; with 1/s the mode has
+  /// damping ratio 0.08 and the outer loop (k_p / T = 1.9 1/s, k_d = 0.58) excites it into a
+  /// growing oscillation. 6/s gives damping ratio 0.5.
+  double boxDamping = 6.0;
   double linkMass = 1.0;           ///< kg
   double sliderMass = 0.5;         ///< kg
-  double paddleMass = 10.0;        ///< kg (heavy on purpose: see scene_hand.cpp)
+  double paddleMass = 1.0;         ///< kg (the membranes get their full tension on jointed bodies)
   double stiffness = 150.0;        ///< membrane k_s (N/m)
   double damping = 550.0;          ///< membrane b_s (N s/m)
   double preload = 0.3;            ///< membrane pre-stretch (m): tension k (stretch + preload)

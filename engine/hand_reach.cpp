@@ -33,11 +33,19 @@ ReachResult runReach(const ReachOptions& o, const HandModel& m, const std::funct
   std::atomic<int> next{0}, done{0};
 
   auto worker = [&] {
-    HandController controller(m);
+    // Quasi-static: the box sits at the statics prediction after every update, so its change
+    // over a period is exactly the commanded J dq. A derivative term on it would only feed the
+    // last step back with the opposite sign (a pole at -k_d: alternating steps that leave the
+    // face-on grasp), so the sweep runs the proportional law with k_d = 0 and 10 cm saturation.
+    HandControllerParams params;
+    params.kd = 0;
+    params.maxError = 0.1;
+    HandController controller(m, params);
     for (int k = next++; k < n * n; k = next++) {
       const Vec2 target = point(k);
       HandJoints q = HandJoints::Zero();
       Vec2 box = Vec2::Zero();
+      controller.reset();
       for (int u = 0; u < o.maxUpdates; ++u) {
         const BoxPrediction p = controller.predict(q, box);
         box = p.box;
@@ -46,7 +54,7 @@ ReachResult runReach(const ReachOptions& o, const HandModel& m, const std::funct
           reached[k] = 1;
           break;
         }
-        q = m.clamp(q + controller.update(q, box, Vec2::Zero(), target, q));
+        q = m.clamp(q + controller.update(q, box, target, q));
       }
       ++done;
     }

@@ -6,8 +6,8 @@
 //    (horizontal) with their centres at g +/- (0, baseY), within every joint limit (analytic);
 //  * object set: grid points the controller drives the box to (|error| < tolerance, membranes
 //    wrapping face-on), quasi-statically: the fingers sit at the commanded joints and the box at
-//    the statics equilibrium after every outer-loop update (no dynamics, so no k_d term), starting
-//    from the pinch pose. Runs on `threads` threads.
+//    the statics equilibrium after every outer-loop update (no dynamics, so no k_d term; error
+//    saturated at 10 cm), starting from the pinch pose. Runs on `threads` threads.
 #pragma once
 
 #include <functional>

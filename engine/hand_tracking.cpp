@@ -44,7 +44,7 @@ TrackResult runTracking(const TrackOptions& o, const HandModel& model, const std
   const int box = world.findBody(kHandBoxName);
   const int cables[2] = {world.findCable(kHandCableNames[0]), world.findCable(kHandCableNames[1])};
 
-  HandControllerParams params;
+  HandControllerParams params = o.controller;
   if (o.pid) params.ki = kHandPidKi;
 
   HandController controller(model, params);
@@ -69,7 +69,7 @@ TrackResult runTracking(const TrackOptions& o, const HandModel& model, const std
     const HandJoints nominal = open * std::max(0.0, 1 - t / o.closeTime);
     if (result.graspTime >= 0 && t >= nextUpdate - 1e-9) {
       const BodyState& b = world.body(box);
-      offset += controller.update(readHandJoints(world), b.position, b.velocity, targetAt(t, result.graspTime),
+      offset += controller.update(readHandJoints(world), b.position, targetAt(t, result.graspTime),
                                   model.clamp(nominal + offset));
       nextUpdate += params.period;
     }

@@ -24,6 +24,7 @@ struct TrackOptions {
   double time = 15;            ///< simulated time (s)
   bool pid = false;            ///< add the integral term (k_i = kHandPidKi)
   double closeTime = 1.0;      ///< s to swing from the open pose to the pinch pose
+  HandControllerParams controller;  ///< outer-loop gains (`pid` sets ki = kHandPidKi)
 };
 
 struct TrackSample {

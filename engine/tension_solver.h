@@ -8,7 +8,9 @@
 // A slack cable (P_i = 0) may only shorten. World::solveCableForces() assembles K and b.
 #pragma once
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <vector>
 
 namespace cablelab {
 
@@ -21,5 +23,17 @@ struct LcpSolution {
 /// Solves w = K x - b >= 0, x >= 0, x . w = 0 exactly for a symmetric positive (semi)definite K
 /// by principal pivoting on the active set (converges in a few changes for these sizes).
 LcpSolution solveLcp(const Eigen::MatrixXd& K, const Eigen::VectorXd& b);
+
+/// solveLcp's buffers: reused across calls, the solve does not allocate once the sizes settle.
+struct LcpWorkspace {
+  Eigen::MatrixXd K, Ks;
+  Eigen::VectorXd bs, xs, w;
+  Eigen::LDLT<Eigen::MatrixXd> ldlt;
+  std::vector<char> active;
+  std::vector<int> idx;
+};
+
+/// The same solve, writing into `sol` and using `work` for every temporary.
+void solveLcp(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, LcpWorkspace& work, LcpSolution& sol);
 
 }  // namespace cablelab

@@ -36,6 +36,25 @@ b2BodyType toB2(BodyType t) {
   return b2_dynamicBody;
 }
 
+// A joint's coordinate (angle or translation) and its rate; 0 for welds.
+struct JointCoordinate {
+  double value = 0, speed = 0;
+};
+
+JointCoordinate jointCoordinate(const b2Joint* j, JointDef::Kind kind) {
+  JointCoordinate q;
+  if (kind == JointDef::Kind::Revolute) {
+    auto* r = static_cast<const b2RevoluteJoint*>(j);
+    q.value = r->GetJointAngle();
+    q.speed = r->GetJointSpeed();
+  } else if (kind == JointDef::Kind::Prismatic) {
+    auto* p = static_cast<const b2PrismaticJoint*>(j);
+    q.value = p->GetJointTranslation();
+    q.speed = p->GetJointSpeed();
+  }
+  return q;
+}
+
 }  // namespace
 
 struct World::Box2D {
@@ -45,6 +64,184 @@ struct World::Box2D {
   std::vector<b2Joint*> joints;
   b2MouseJoint* mouse = nullptr;
 };
+
+// Generalized coordinates of the bodies the cables move: 3 per moving body.
+struct World::DofMap {
+  std::vector<int> ofBody;  // body -> first dof, -1 if the body does not move
+  std::vector<int> body;    // dof / 3 -> body
+  int size() const { return 3 * static_cast<int>(body.size()); }
+  void reset(size_t bodies) {
+    ofBody.assign(bodies, -1);
+    body.clear();
+  }
+  int add(int b) {
+    if (ofBody[b] < 0) {
+      ofBody[b] = size();
+      body.push_back(b);
+    }
+    return ofBody[b];
+  }
+};
+
+namespace {
+
+// One row of the joint Jacobian C: the relative motion of at most two bodies (dof -1: none).
+// C has n columns but only 2-6 non-zeros per row, so products with C go through these.
+struct JointRow {
+  std::array<int, 2> dof{-1, -1};
+  std::array<Vec3, 2> coeff{Vec3::Zero(), Vec3::Zero()};
+
+  // This row times the dense column x.
+  double dot(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+    double sum = 0;
+    for (int k = 0; k < 2; ++k)
+      if (dof[k] >= 0) sum += coeff[k].dot(x.segment<3>(dof[k]));
+    return sum;
+  }
+};
+
+}  // namespace
+
+// The buffers of solveCableForces. They live as long as the World so that a sub-step does not
+// allocate: after the first step every size has been seen and Eigen reuses the storage.
+struct World::CableWorkspace {
+  DofMap dofs;
+  std::vector<int> rows;          // cable of each LCP row
+  Eigen::VectorXd invM;           // M^-1 diagonal over the dofs
+  Eigen::VectorXd vStar, vFree;   // predicted velocities (see step 2)
+  Eigen::MatrixXd W;              // M'^-1 J^T, then projected onto the joints (n x m)
+
+  // Geometric stiffness of the taut cables: their Hessian blocks, blocks[begin, end).
+  struct TautCable {
+    double tension;
+    size_t begin, end;
+  };
+  std::vector<TautCable> taut;
+  std::vector<StiffnessBlock> blocks;
+  bool stiff = false;
+  // M' = M + h^2 T G. G only couples the translations of bodies on stiff cables: those dofs
+  // ("coupled") get a small dense LDLT, the others a division by their diagonal.
+  std::vector<int> coupledIndex;  // dof -> row of coupledMass, -1: diagonal
+  std::vector<int> coupledDofs;
+  Eigen::VectorXd massDiagonal;
+  Eigen::MatrixXd coupledMass;
+  Eigen::LDLT<Eigen::MatrixXd> coupledLdlt;
+  Eigen::VectorXd coupledRhs, coupledSolution;
+
+  // Joint rows and the Schur complement S = C M'^-1 C^T.
+  std::vector<JointRow> joints;
+  Eigen::MatrixXd MinvCt, S, CW, schurCW, correction;
+  Eigen::VectorXd Cv, schurCv, velocityCorrection;
+  Eigen::LDLT<Eigen::MatrixXd> schur;
+
+  // Newton on the end-of-step lengths.
+  Eigen::VectorXd target, compliance, damped, P, phi1, b, WP, v1;
+  Eigen::MatrixXd JW, K;
+  std::vector<BodyState> predicted;
+  std::vector<WrapPoint> path;
+  CableKinematics kin;
+  LcpWorkspace lcp;
+  LcpSolution lcpSolution;
+
+  void factorStiffMass(double h);
+  void applyInverseMass(Eigen::Ref<Eigen::MatrixXd> X);
+  void projectOntoJoints();
+};
+
+// Builds M' over the coupled dofs and factors it; immovable dofs (M^-1 = 0) stay put.
+void World::CableWorkspace::factorStiffMass(double h) {
+  const int n = dofs.size();
+  coupledIndex.assign(n, -1);
+  coupledDofs.clear();
+  auto couple = [&](int d) {
+    if (invM[d] > 0 && coupledIndex[d] < 0) {
+      coupledIndex[d] = static_cast<int>(coupledDofs.size());
+      coupledDofs.push_back(d);
+    }
+  };
+  for (const TautCable& t : taut)
+    for (size_t i = t.begin; i < t.end; ++i) {
+      const int ia = dofs.ofBody[blocks[i].a], ib = dofs.ofBody[blocks[i].b];
+      if (ia < 0 || ib < 0) continue;
+      for (int c = 0; c < 2; ++c) couple(ia + c), couple(ib + c);
+    }
+  const int nc = static_cast<int>(coupledDofs.size());
+  coupledMass.setZero(nc, nc);
+  for (const TautCable& t : taut) {
+    const double scale = h * h * t.tension;
+    for (size_t i = t.begin; i < t.end; ++i) {
+      const int ia = dofs.ofBody[blocks[i].a], ib = dofs.ofBody[blocks[i].b];
+      if (ia < 0 || ib < 0) continue;
+      for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 2; ++c) {
+          const int cr = coupledIndex[ia + r], cc = coupledIndex[ib + c];
+          if (cr >= 0 && cc >= 0) coupledMass(cr, cc) += scale * blocks[i].k(r, c);
+        }
+    }
+  }
+  massDiagonal.resize(n);
+  for (int d = 0; d < n; ++d) {
+    const double m = invM[d] > 0 ? 1.0 / invM[d] : 1.0;
+    if (coupledIndex[d] >= 0) coupledMass(coupledIndex[d], coupledIndex[d]) += m;
+    massDiagonal[d] = m;
+  }
+  if (nc > 0) coupledLdlt.compute(coupledMass);
+}
+
+// X <- M'^-1 X: a scaling unless the geometric stiffness couples the dofs.
+void World::CableWorkspace::applyInverseMass(Eigen::Ref<Eigen::MatrixXd> X) {
+  const int n = dofs.size();
+  if (!stiff) {
+    for (int d = 0; d < n; ++d) X.row(d) *= invM[d];
+    return;
+  }
+  for (int d = 0; d < n; ++d) {
+    if (invM[d] == 0) X.row(d).setZero();  // immovable: no motion whatever the load
+    if (coupledIndex[d] < 0) X.row(d) /= massDiagonal[d];
+  }
+  const int nc = static_cast<int>(coupledDofs.size());
+  if (nc == 0) return;
+  coupledRhs.resize(nc);
+  coupledSolution.resize(nc);
+  for (Eigen::Index col = 0; col < X.cols(); ++col) {
+    for (int i = 0; i < nc; ++i) coupledRhs[i] = X(coupledDofs[i], col);
+    coupledSolution = coupledLdlt.solve(coupledRhs);
+    for (int i = 0; i < nc; ++i) X(coupledDofs[i], col) = coupledSolution[i];
+  }
+}
+
+// Schur complement of the joint rows: W <- W - M'^-1 C^T S^-1 C W, and v* made
+// joint-consistent the same way (S = C M'^-1 C^T).
+void World::CableWorkspace::projectOntoJoints() {
+  const int n = dofs.size(), c = static_cast<int>(joints.size()), m = static_cast<int>(W.cols());
+  MinvCt.setZero(n, c);
+  for (int r = 0; r < c; ++r)
+    for (int k = 0; k < 2; ++k)
+      if (joints[r].dof[k] >= 0) MinvCt.block<3, 1>(joints[r].dof[k], r) += joints[r].coeff[k];
+  applyInverseMass(MinvCt);
+  // S is symmetric and the LDLT reads its lower triangle only.
+  S.resize(c, c);
+  for (int r = 0; r < c; ++r)
+    for (int s = 0; s <= r; ++s) S(r, s) = joints[r].dot(MinvCt.col(s));
+  S.diagonal().array() += 1e-10 * (1 + S.diagonal().array());
+  schur.compute(S);
+
+  // A few columns (one per cable, then v*): column by column is cheaper than the blocked solve.
+  CW.resize(c, m);
+  schurCW.resize(c, m);
+  for (int s = 0; s < m; ++s) {
+    for (int r = 0; r < c; ++r) CW(r, s) = joints[r].dot(W.col(s));
+    schurCW.col(s) = schur.solve(CW.col(s));
+  }
+  correction.noalias() = MinvCt.lazyProduct(schurCW);
+  W -= correction;
+
+  Cv.resize(c);
+  for (int r = 0; r < c; ++r) Cv[r] = joints[r].dot(vStar);
+  schurCv = schur.solve(Cv);
+  velocityCorrection.noalias() = MinvCt * schurCv;
+  vStar -= velocityCorrection;
+}
 
 World::World(SceneDef scene, const std::string& source) : scene_(std::move(scene)), b2_(std::make_unique<Box2D>()) {
   validateScene(scene_, source);
@@ -142,8 +339,10 @@ World::World(SceneDef scene, const std::string& source) : scene_(std::move(scene
   jointNeighbours_.assign(scene_.bodies.size(), {});
   for (const JointDef& jd : scene_.joints) {
     const int a = findBody(jd.bodyA), b = findBody(jd.bodyB);
+    jointBodies_.push_back({a, b});
     if (a >= 0 && b >= 0) jointNeighbours_[a].push_back(b), jointNeighbours_[b].push_back(a);
   }
+  work_ = std::make_unique<CableWorkspace>();
   for (int i = 0; i < static_cast<int>(scene_.cables.size()); ++i) cables_.emplace_back(scene_, i, source);
   readBodies();
   for (size_t i = 0; i < cables_.size(); ++i) {
@@ -252,15 +451,9 @@ JointState World::joint(int i) const {
   const JointDef& def = scene_.joints[i];
   const b2Joint* j = b2_->joints[i];
   JointState s{def.name, def.kind, fromB2(j->GetAnchorA()), fromB2(j->GetAnchorB())};
-  if (def.kind == JointDef::Kind::Revolute) {
-    auto* r = static_cast<const b2RevoluteJoint*>(j);
-    s.value = r->GetJointAngle();
-    s.speed = r->GetJointSpeed();
-  } else if (def.kind == JointDef::Kind::Prismatic) {
-    auto* p = static_cast<const b2PrismaticJoint*>(j);
-    s.value = p->GetJointTranslation();
-    s.speed = p->GetJointSpeed();
-  }
+  const JointCoordinate q = jointCoordinate(j, def.kind);
+  s.value = q.value;
+  s.speed = q.speed;
   s.servoTarget = def.servo.target;
   return s;
 }
@@ -291,11 +484,10 @@ void World::applyServos() {
   for (size_t i = 0; i < scene_.joints.size(); ++i) {
     const ServoDef& servo = scene_.joints[i].servo;
     if (!servo.enabled) continue;
-    const JointState s = joint(static_cast<int>(i));
-    const double f = std::clamp(servo.kp * (servo.target - s.value) - servo.kd * s.speed, -servo.maxForce, servo.maxForce);
     b2Joint* j = b2_->joints[i];
-    const int a = findBody(scene_.joints[i].bodyA);
-    const int b = findBody(scene_.joints[i].bodyB);
+    const JointCoordinate q = jointCoordinate(j, scene_.joints[i].kind);
+    const double f = std::clamp(servo.kp * (servo.target - q.value) - servo.kd * q.speed, -servo.maxForce, servo.maxForce);
+    const auto [a, b] = jointBodies_[i];
     Vec3 load = Vec3::Zero();
     if (scene_.joints[i].kind == JointDef::Kind::Revolute) {
       load = Vec3(0, 0, f);
@@ -309,41 +501,22 @@ void World::applyServos() {
   }
 }
 
-// Generalized coordinates of the bodies the cables move: 3 per moving body.
-struct World::DofMap {
-  std::vector<int> ofBody;  // body -> first dof, -1 if the body does not move
-  std::vector<int> body;    // dof / 3 -> body
-  int size() const { return 3 * static_cast<int>(body.size()); }
-  int add(int b) {
-    if (ofBody[b] < 0) {
-      ofBody[b] = size();
-      body.push_back(b);
-    }
-    return ofBody[b];
+void World::inverseMassOf(CableWorkspace& ws) const {
+  ws.invM.resize(ws.dofs.size());
+  for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
+    const BodyState& s = bodies_[ws.dofs.body[k]];
+    ws.invM.segment<3>(3 * k) = Vec3(s.invMass, s.invMass, s.invInertia);
   }
-};
-
-namespace {
-
-}  // namespace
-
-Eigen::VectorXd World::inverseMassOf(const DofMap& dofs) const {
-  Eigen::VectorXd inv(dofs.size());
-  for (size_t k = 0; k < dofs.body.size(); ++k) {
-    const BodyState& s = bodies_[dofs.body[k]];
-    inv.segment<3>(3 * k) = Vec3(s.invMass, s.invMass, s.invInertia);
-  }
-  return inv;
 }
 
-// Velocity-level Jacobian of the Box2D joints among `dofs` (rows: constrained relative motions;
+// Velocity-level Jacobian of the Box2D joints among the dofs (rows: constrained relative motions;
 // limits and motors are left to Box2D). Revolute: the anchor points move together (2 rows);
 // prismatic: no motion across the axis and no relative turn (2 rows); weld: all three.
-Eigen::MatrixXd World::jointJacobian(const DofMap& dofs) const {
-  std::vector<Eigen::RowVectorXd> rows;
-  const int n = dofs.size();
+void World::jointJacobian(CableWorkspace& ws) const {
+  const DofMap& dofs = ws.dofs;
+  ws.joints.clear();
   for (size_t j = 0; j < scene_.joints.size(); ++j) {
-    const int a = findBody(scene_.joints[j].bodyA), b = findBody(scene_.joints[j].bodyB);
+    const auto [a, b] = jointBodies_[j];
     const int da = a >= 0 ? dofs.ofBody[a] : -1, db = b >= 0 ? dofs.ofBody[b] : -1;
     if (da < 0 && db < 0) continue;
     const b2Joint* joint = b2_->joints[j];
@@ -352,45 +525,46 @@ Eigen::MatrixXd World::jointJacobian(const DofMap& dofs) const {
     const Vec2 rB = b >= 0 ? Vec2(anchorB - bodies_[b].position) : Vec2::Zero();
     // A row on the relative velocity of the anchor point along direction t.
     auto pointRow = [&](const Vec2& t) {
-      Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(n);
-      if (db >= 0) row.segment<3>(db) << t.x(), t.y(), t.dot(perp(rB));
-      if (da >= 0) row.segment<3>(da) -= Eigen::RowVector3d(t.x(), t.y(), t.dot(perp(rA)));
-      return row;
+      JointRow row;
+      row.dof = {db, da};
+      row.coeff = {Vec3(t.x(), t.y(), t.dot(perp(rB))), -Vec3(t.x(), t.y(), t.dot(perp(rA)))};
+      ws.joints.push_back(row);
     };
     auto angleRow = [&] {
-      Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(n);
-      if (db >= 0) row[db + 2] = 1;
-      if (da >= 0) row[da + 2] -= 1;
-      return row;
+      JointRow row;
+      row.dof = {db, da};
+      row.coeff = {Vec3(0, 0, 1), Vec3(0, 0, -1)};
+      ws.joints.push_back(row);
     };
     switch (scene_.joints[j].kind) {
       case JointDef::Kind::Revolute:
-        rows.push_back(pointRow(Vec2(1, 0)));
-        rows.push_back(pointRow(Vec2(0, 1)));
+        pointRow(Vec2(1, 0));
+        pointRow(Vec2(0, 1));
         break;
       case JointDef::Kind::Prismatic: {
         auto* pj = static_cast<const b2PrismaticJoint*>(joint);
         const double angleA = a >= 0 ? bodies_[a].angle : 0.0;
-        rows.push_back(pointRow(perp(rotate(fromB2(pj->GetLocalAxisA()), angleA))));
-        rows.push_back(angleRow());
+        pointRow(perp(rotate(fromB2(pj->GetLocalAxisA()), angleA)));
+        angleRow();
         break;
       }
       case JointDef::Kind::Weld:
-        rows.push_back(pointRow(Vec2(1, 0)));
-        rows.push_back(pointRow(Vec2(0, 1)));
-        rows.push_back(angleRow());
+        pointRow(Vec2(1, 0));
+        pointRow(Vec2(0, 1));
+        angleRow();
         break;
     }
   }
-  Eigen::MatrixXd C(rows.size(), n);
-  for (size_t r = 0; r < rows.size(); ++r) C.row(r) = rows[r];
-  return C;
 }
 
 void World::solveCableForces(double h) {
+  CableWorkspace& ws = *work_;
+  DofMap& dofs = ws.dofs;
+  std::vector<int>& rows = ws.rows;
+
   // 1. One row per cable that can pull on something that moves.
-  std::vector<int> rows;
-  DofMap dofs{std::vector<int>(bodies_.size(), -1), {}};
+  rows.clear();
+  dofs.reset(bodies_.size());
   for (size_t i = 0; i < cables_.size(); ++i) {
     bool moves = false;
     for (const auto& e : cables_[i].kinematics().jacobian) {
@@ -410,10 +584,12 @@ void World::solveCableForces(double h) {
       if (bodies_[other].invMass > 0 || bodies_[other].invInertia > 0) dofs.add(other);
   const int m = static_cast<int>(rows.size()), n = dofs.size();
 
-  // 2. J at the start of the step and the predicted velocity v* (gravity and loads, no cables).
-  Eigen::MatrixXd J0 = Eigen::MatrixXd::Zero(m, n);
-  Eigen::VectorXd vStar(n);
-  const Eigen::VectorXd invM = inverseMassOf(dofs);
+  // 2. The predicted velocity v* (gravity and loads, no cables) and J at the start of the step,
+  // stored transposed in W (it becomes M'^-1 J^T below).
+  inverseMassOf(ws);
+  const Eigen::VectorXd& invM = ws.invM;
+  Eigen::VectorXd& vStar = ws.vStar;
+  vStar.resize(n);
   for (size_t k = 0; k < dofs.body.size(); ++k) {
     const BodyState& s = bodies_[dofs.body[k]];
     Vec3 v(s.velocity.x(), s.velocity.y(), s.angularVelocity);
@@ -421,66 +597,52 @@ void World::solveCableForces(double h) {
     if (s.invMass > 0) v.head<2>() += h * scene_.gravity;
     vStar.segment<3>(3 * k) = v;
   }
+  Eigen::MatrixXd& W = ws.W;
+  W.setZero(n, m);
   for (int r = 0; r < m; ++r)
     for (const auto& e : cables_[rows[r]].kinematics().jacobian)
-      if (dofs.ofBody[e.body] >= 0) J0.block<1, 3>(r, dofs.ofBody[e.body]) = e.d.transpose();
-  const Eigen::VectorXd vFree = vStar;  // what Box2D would reach without cables and joints
+      if (dofs.ofBody[e.body] >= 0) W.block<3, 1>(dofs.ofBody[e.body], r) = e.d;
+  ws.vFree = vStar;  // what Box2D would reach without cables and joints
 
   // 3. W = M'^-1 J^T projected onto what the joints allow: how tension impulses change
   // velocities. Box2D's joints act after our forces, so the cables must already see them (a
   // pulley on a pivoted body turns, it does not translate). M' adds the geometric stiffness
   // h^2 T d^2(length)/dx^2 of taut cables where it matters (a light body on a tight band turns
   // the force direction faster than one step resolves).
-  Eigen::MatrixXd stiffness = Eigen::MatrixXd::Zero(n, n);
-  bool stiff = false;
+  ws.taut.clear();
+  ws.blocks.clear();
+  ws.stiff = false;
   for (int r = 0; r < m; ++r) {
     const Cable& c = cables_[rows[r]];
     const double tension = std::max(c.tension(), c.elastic() ? c.def().stiffness * std::max(0.0, c.stretch()) : 0.0);
     if (tension <= 0) continue;
-    for (const StiffnessBlock& blk : lengthHessianTranslation(c.path())) {
-      const int ia = dofs.ofBody[blk.a], ib = dofs.ofBody[blk.b];
-      if (ia < 0 || ib < 0) continue;
-      stiffness.block<2, 2>(ia, ib) += h * h * tension * blk.k;
-      if (blk.a == blk.b) stiff |= h * h * tension * blk.k.trace() * invM[ia] > 0.05;
+    const size_t begin = ws.blocks.size();
+    appendLengthHessianTranslation(c.path(), ws.blocks);
+    for (size_t i = begin; i < ws.blocks.size(); ++i) {
+      const StiffnessBlock& blk = ws.blocks[i];
+      if (blk.a == blk.b && dofs.ofBody[blk.a] >= 0)
+        ws.stiff |= h * h * tension * blk.k.trace() * invM[dofs.ofBody[blk.a]] > 0.05;
     }
+    ws.taut.push_back({tension, begin, ws.blocks.size()});
   }
-  const Eigen::MatrixXd C = jointJacobian(dofs);
-  // M'^-1 X: a scaling unless the geometric stiffness couples the dofs. Immovable dofs stay put.
-  Eigen::LDLT<Eigen::MatrixXd> mass;
-  if (stiff) {
-    Eigen::MatrixXd Mprime = stiffness;
-    for (int d = 0; d < n; ++d)
-      if (invM[d] == 0) Mprime.row(d).setZero(), Mprime.col(d).setZero();
-    for (int d = 0; d < n; ++d) Mprime(d, d) += invM[d] > 0 ? 1.0 / invM[d] : 1.0;
-    mass.compute(Mprime);
-  }
-  auto inverseMass = [&](const Eigen::MatrixXd& X) -> Eigen::MatrixXd {
-    if (!stiff) return invM.asDiagonal() * X;
-    return mass.solve(invM.cwiseSign().asDiagonal() * X);
-  };
-  Eigen::MatrixXd W = inverseMass(J0.transpose());
+  jointJacobian(ws);
+  if (ws.stiff) ws.factorStiffMass(h);
+  ws.applyInverseMass(W);
   // Backward Euler on the turning force direction: (M + h^2 T G) v1 = M v* - J^T P, so the
   // stiffness also resists the motion v* already carries into the band.
-  if (stiff) {
-    Eigen::VectorXd momentum(n);
-    for (int d = 0; d < n; ++d) momentum[d] = invM[d] > 0 ? vStar[d] / invM[d] : 0.0;
-    vStar = mass.solve(momentum);
+  if (ws.stiff) {
+    for (int d = 0; d < n; ++d) vStar[d] = invM[d] > 0 ? vStar[d] / invM[d] : 0.0;
+    ws.applyInverseMass(vStar);
   }
-  if (C.rows() > 0) {
-    // Schur complement of the joint rows: W <- W - M'^-1 C^T (C M'^-1 C^T)^-1 C W, and v* made
-    // joint-consistent the same way.
-    const Eigen::MatrixXd MinvCt = inverseMass(C.transpose());
-    Eigen::MatrixXd S = C * MinvCt;
-    S.diagonal().array() += 1e-10 * (1 + S.diagonal().array());
-    const Eigen::LDLT<Eigen::MatrixXd> schur(S);
-    W -= MinvCt * schur.solve(C * W);
-    vStar -= MinvCt * schur.solve(C * vStar);
-  }
+  if (!ws.joints.empty()) ws.projectOntoJoints();
 
   // 4. Position-level targets. Rigid: length at the end of the step = now (the error below the
   // slop is float rounding: fixing it would amplify it by 1/h^2), a slack cable may come taut,
   // an over-long one is shortened by a share of the excess. Elastic: T = k phi1 + b (phi1 - phi0)/h.
-  Eigen::VectorXd target(m), compliance = Eigen::VectorXd::Zero(m), damped = Eigen::VectorXd::Zero(m);
+  Eigen::VectorXd &target = ws.target, &compliance = ws.compliance, &damped = ws.damped;
+  target.resize(m);
+  compliance.setZero(m);
+  damped.setZero(m);
   for (int r = 0; r < m; ++r) {
     const Cable& c = cables_[rows[r]];
     const double phi = c.stretch();
@@ -495,13 +657,24 @@ void World::solveCableForces(double h) {
 
   // 5. Newton on the end-of-step lengths phi1(P) (Box2D integrates q1 = q0 + h v1), each
   // linearisation an LCP over all cables: tension >= 0, slack cables only shorten.
+<<<<<<< HEAD
   const Eigen::MatrixXd JW0 = J0 * W;
   Eigen::VectorXd P = Eigen::VectorXd::Zero(m), phi1(m);
   Eigen::MatrixXd J1 = Eigen::MatrixXd::Zero(m, n);
   std::vector<BodyState> predicted = bodies_;
   std::vector<WrapPoint> path;
+=======
+  Eigen::VectorXd &P = ws.P, &phi1 = ws.phi1, &v1 = ws.v1, &b = ws.b;
+  Eigen::MatrixXd &JW = ws.JW, &K = ws.K;
+  P.setZero(m);
+  phi1.resize(m);
+  JW.resize(m, m);
+  std::vector<BodyState>& predicted = ws.predicted;
+  predicted = bodies_;
+>>>>>>> main
   for (int iteration = 0; iteration < kNewtonIterations; ++iteration) {
-    const Eigen::VectorXd v1 = vStar - W * P;
+    ws.WP.noalias() = W * P;
+    v1 = vStar - ws.WP;
     for (size_t k = 0; k < dofs.body.size(); ++k) {
       const BodyState& s = bodies_[dofs.body[k]];
       BodyState& p = predicted[dofs.body[k]];
@@ -510,15 +683,17 @@ void World::solveCableForces(double h) {
       p.position = s.position + h * p.velocity;
       p.angle = s.angle + h * p.angularVelocity;
     }
-    J1.setZero();
+    // JW = J1 W straight from the sparse J1 (a cable touches a few of the n dofs).
     for (int r = 0; r < m; ++r) {
       const Cable& c = cables_[rows[r]];
-      path = c.path();
-      const CableKinematics k = cableKinematics(path, predicted);
-      phi1[r] = c.stretch() + k.length - c.length();
-      for (const auto& e : k.jacobian)
-        if (dofs.ofBody[e.body] >= 0) J1.block<1, 3>(r, dofs.ofBody[e.body]) = e.d.transpose();
+      ws.path.assign(c.path().begin(), c.path().end());
+      cableKinematics(ws.path, predicted, ws.kin);
+      phi1[r] = c.stretch() + ws.kin.length - c.length();
+      JW.row(r).setZero();
+      for (const auto& e : ws.kin.jacobian)
+        if (const int d = dofs.ofBody[e.body]; d >= 0) JW.row(r) += e.d.transpose() * W.middleRows<3>(d);
     }
+<<<<<<< HEAD
     Eigen::MatrixXd JW = J1 * W;
     // Guard (degenerate geometry): far from the start pose the end-of-step linearisation can lose
     // positive definiteness (a wrap point the predicted motion carries past its neighbour turns a
@@ -531,11 +706,15 @@ void World::solveCableForces(double h) {
         ++stats_.linearisationFallbacks;
       }
     Eigen::MatrixXd K = JW;
+=======
+    K = JW;
+>>>>>>> main
     K.diagonal() += compliance;
-    Eigen::VectorXd b = JW * P;
+    b.noalias() = JW * P;
     for (int r = 0; r < m; ++r)
       b[r] += (cables_[rows[r]].elastic() ? phi1[r] - damped[r] : phi1[r] - target[r]) / h;
-    const LcpSolution sol = solveLcp(K, b);
+    LcpSolution& sol = ws.lcpSolution;
+    solveLcp(K, b, ws.lcp, sol);
     const double change = (sol.x - P).lpNorm<Eigen::Infinity>();
     P = sol.x;
     stats_.solverIterations += sol.iterations;
@@ -547,10 +726,13 @@ void World::solveCableForces(double h) {
 
   // 6. Box2D integrates v += h M^-1 F: the force that gives the end-of-step velocity we solved
   // for (cable pull, geometric stiffness and joint reactions together).
-  const Eigen::VectorXd dv = vStar - W * P - vFree;
+  ws.WP.noalias() = W * P;
   for (size_t k = 0; k < dofs.body.size(); ++k)
-    for (int c = 0; c < 3; ++c)
-      if (invM[3 * k + c] > 0) forces_[dofs.body[k]][c] += dv[3 * k + c] / (h * invM[3 * k + c]);
+    for (int c = 0; c < 3; ++c) {
+      const int d = 3 * static_cast<int>(k) + c;
+      const double dv = vStar[d] - ws.WP[d] - ws.vFree[d];
+      if (invM[d] > 0) forces_[dofs.body[k]][c] += dv / (h * invM[d]);
+    }
 }
 
 void World::checkFinite() const {

@@ -14,6 +14,7 @@
 // corrected at the next sub-step). See step().
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -102,13 +103,14 @@ class World {
   const std::vector<std::string>& warnings() const { return warnings_; }
 
  private:
-  struct Box2D;  // hides every Box2D type from this header
+  struct Box2D;            // hides every Box2D type from this header
   struct DofMap;
+  struct CableWorkspace;   // solveCableForces' buffers, reused so the sub-step does not allocate
   void readBodies();
   void applyServos();
   void solveCableForces(double h);
-  Eigen::MatrixXd jointJacobian(const DofMap& dofs) const;
-  Eigen::VectorXd inverseMassOf(const DofMap& dofs) const;
+  void jointJacobian(CableWorkspace& ws) const;
+  void inverseMassOf(CableWorkspace& ws) const;
   void checkFinite() const;
 
   SceneDef scene_;
@@ -119,6 +121,8 @@ class World {
   std::vector<Cable> cables_;
   std::vector<std::string> warnings_;
   std::vector<std::vector<int>> jointNeighbours_;  ///< bodies jointed to each body
+  std::vector<std::array<int, 2>> jointBodies_;    ///< (body A, body B) per joint, -1: world
+  std::unique_ptr<CableWorkspace> work_;
   StepStats stats_;
   double time_ = 0;
   long steps_ = 0;

@@ -66,6 +66,12 @@ bool segmentCutsPolygon(const Vec2& a, const Vec2& b, std::span<const Vec2> poly
 std::optional<std::vector<int>> wrapChain(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,
                                           WrapSide side) {
   std::vector<int> chain;
+  if (!wrapChain(a, b, polygon, side, chain)) return std::nullopt;
+  return chain;
+}
+
+bool wrapChain(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, WrapSide side, std::vector<int>& chain) {
+  chain.clear();
   const int n = static_cast<int>(polygon.size());
   const Vec2 ab = b - a;
   const double scale = std::max({ab.norm(), (polygon[0] - a).norm(), 1e-300});
@@ -73,7 +79,7 @@ std::optional<std::vector<int>> wrapChain(const Vec2& a, const Vec2& b, std::spa
   // The polygon bends the path only if a vertex lies strictly on the wrap side of line ab.
   bool bends = false;
   for (const Vec2& v : polygon) bends |= wrapSideDistance(a, b, v, side) * scale > eps;
-  if (!bends) return chain;
+  if (!bends) return true;
 
   // Mirror Right into Left: walking the path, the polygon must stay on the right (s = +1).
   const double s = side == WrapSide::Right ? -1.0 : 1.0;
@@ -84,7 +90,7 @@ std::optional<std::vector<int>> wrapChain(const Vec2& a, const Vec2& b, std::spa
       if (cross(polygon[(i + 1) % n] - polygon[i], p - polygon[i]) <= 0) return false;
     return true;
   };
-  if (insidePolygon(a) || insidePolygon(b)) return std::nullopt;
+  if (insidePolygon(a) || insidePolygon(b)) return false;
   // Tangent vertices by one sweep each (seen from an outside point the polygon spans less than
   // half a turn, so "more to the left" is a total order): from a, the vertex with nothing on the
   // left of a->v; into b, the vertex with nothing on the left of v->b. Ties (collinear): the
@@ -104,7 +110,7 @@ std::optional<std::vector<int>> wrapChain(const Vec2& a, const Vec2& b, std::spa
     chain.push_back(i);
     if (i == tb || static_cast<int>(chain.size()) > n) break;
   }
-  return chain;
+  return true;
 }
 
 double chainLength(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,

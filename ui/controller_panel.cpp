@@ -2,18 +2,472 @@
 
 #include <imgui.h>
 
-namespace cablelab::ui {
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
 
-// TODO(lead): the hand's Jacobian controller. Until then the panel only shows the target.
+#include "engine/error.h"
+#include "engine/hand_tracking.h"
+#include "ui/colormap.h"
+
+namespace cablelab::ui {
+namespace {
+
+constexpr double kSqueezeSettle = 0.5;  // s after the closing ramp before the outer loop starts
+constexpr float kTargetRange = 1.0f;    // m, the target sliders' range about the origin
+constexpr Colour kPredictionColour{0.0f, 0.55f, 0.55f, 1.0f};
+constexpr Colour kForceColour{0.1f, 0.3f, 0.85f, 1.0f};
+
+// ---------------------------------------------------------------------------------------------
+// Live time plot: several series against time in one frame, with the time axis in seconds.
+
+struct PlotLine {
+  const char* label;
+  int series;
+  ImU32 colour;
+};
+
+void timePlot(const char* id, const TimeHistory& h, std::initializer_list<PlotLine> lines,
+              const char* unit, float height) {
+  const float width = ImGui::GetContentRegionAvail().x;
+  const ImVec2 p0 = ImGui::GetCursorScreenPos();
+  ImGui::InvisibleButton(id, ImVec2(width, height));
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const ImVec2 p1(p0.x + width, p0.y + height);
+  draw->AddRectFilled(p0, p1, IM_COL32(250, 250, 250, 255));
+  draw->AddRect(p0, p1, IM_COL32(150, 150, 150, 255));
+  if (h.count < 2) {
+    draw->AddText(ImVec2(p0.x + 6, p0.y + 4), IM_COL32(120, 120, 120, 255), "no samples yet");
+    return;
+  }
+  const int first = (h.head - h.count + TimeHistory::kLength) % TimeHistory::kLength;
+  auto at = [&](int k) { return (first + k) % TimeHistory::kLength; };
+  const float t0 = h.t[at(0)], t1 = std::max(h.t[at(h.count - 1)], t0 + 1e-3f);
+  float hi = 0;
+  for (const PlotLine& l : lines)
+    for (int k = 0; k < h.count; ++k)
+      if (std::isfinite(h.values[l.series][at(k)])) hi = std::max(hi, h.values[l.series][at(k)]);
+  hi = static_cast<float>(niceCeil(std::max(hi, 1e-6f)));
+  const float left = p0.x + 4, right = p1.x - 4, top = p0.y + 16, bottom = p1.y - 14;
+  auto map = [&](float t, float v) {
+    return ImVec2(left + (t - t0) / (t1 - t0) * (right - left), bottom - v / hi * (bottom - top));
+  };
+  draw->AddLine(ImVec2(left, bottom), ImVec2(right, bottom), IM_COL32(190, 190, 190, 255));
+  std::vector<ImVec2> run;
+  for (const PlotLine& l : lines) {
+    run.clear();
+    for (int k = 0; k < h.count; ++k) {
+      const float v = h.values[l.series][at(k)];
+      if (!std::isfinite(v)) {
+        if (run.size() >= 2) draw->AddPolyline(run.data(), static_cast<int>(run.size()), l.colour, 0, 1.5f);
+        run.clear();
+        continue;
+      }
+      run.push_back(map(h.t[at(k)], std::clamp(v, 0.0f, hi)));
+    }
+    if (run.size() >= 2) draw->AddPolyline(run.data(), static_cast<int>(run.size()), l.colour, 0, 1.5f);
+  }
+  char text[96];
+  std::snprintf(text, sizeof text, "0 .. %g %s", hi, unit);
+  draw->AddText(ImVec2(p0.x + 4, p0.y + 1), IM_COL32(90, 90, 90, 255), text);
+  float x = p0.x + 8 + ImGui::CalcTextSize(text).x;
+  for (const PlotLine& l : lines) {
+    draw->AddText(ImVec2(x, p0.y + 1), l.colour, l.label);
+    x += ImGui::CalcTextSize(l.label).x + 8;
+  }
+  std::snprintf(text, sizeof text, "t %.1f .. %.1f s", t0, t1);
+  draw->AddText(ImVec2(p0.x + 4, bottom + 1), IM_COL32(90, 90, 90, 255), text);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Hand.
+
+/// The hand's joints, box and membranes in `world`, or nullptr when it is not a hand scene.
+std::unique_ptr<HandControlState> makeHandState(const World& world) {
+  auto h = std::make_unique<HandControlState>();
+  for (int j = 0; j < 6; ++j)
+    if ((h->joints[j] = world.findJoint(kHandJointNames[j])) < 0) return nullptr;
+  h->box = world.findBody(kHandBoxName);
+  for (int f = 0; f < 2; ++f) h->cables[f] = world.findCable(kHandCableNames[f]);
+  if (h->box < 0 || h->cables[0] < 0 || h->cables[1] < 0) return nullptr;
+  // The controller's model must be the scene's: take the parameters `--set` can change.
+  const CableDef& band = world.cable(h->cables[0]).def();
+  h->model.stiffness = band.stiffness;
+  h->model.damping = band.damping;
+  h->model.preload = band.preload;
+  h->model.boxMass = world.scene().bodies[h->box].mass;
+  h->model.boxDamping = world.scene().bodies[h->box].linearDamping;
+  h->open = h->model.openPose();
+  return h;
+}
+
+HandJoints jointValues(const World& world, const HandControlState& h) {
+  HandJoints q;
+  for (int j = 0; j < 6; ++j) q[j] = world.joint(h.joints[j]).value;
+  return q;
+}
+
+bool grasped(const World& world, const HandControlState& h) {
+  return world.cable(h.cables[0]).wraps() >= 2 && world.cable(h.cables[1]).wraps() >= 2;
+}
+
+/// Begins the Pinched phase: the scene starts at the pinch pose with the box between the
+/// membranes, so the outer loop may start after the settle time.
+void startPinched(HandControlState& h, double now) {
+  h.phase = HandControlState::Phase::Pinched;
+  h.graspTime = now;
+  h.controlStart = now + kSqueezeSettle;
+  h.nextUpdate = h.controlStart;
+  h.offset.setZero();
+  h.updates = 0;
+  if (h.controller) h.controller->reset();
+}
+
+void handBeforeStep(Sandbox& sandbox, World& world, HandControlState& h) {
+  const double t = world.time();
+  // The closing ramp keeps running under the controller's offsets after the grasp, as in
+  // runTracking(), so the squeeze finishes as planned.
+  HandJoints nominal = HandJoints::Zero();
+  if (h.phase != HandControlState::Phase::Pinched)
+    nominal = h.open * std::max(0.0, 1 - (t - h.sequenceStart) / h.closeTime);
+  const bool active = h.enabled && sandbox.target && h.graspTime >= 0 && t >= h.controlStart - 1e-9;
+  const BodyState& box = world.body(h.box);
+  if (active && t >= h.nextUpdate - 1e-9) {
+    h.offset += h.controller->update(jointValues(world, h), box.position, *sandbox.target,
+                                     h.model.clamp(nominal + h.offset));
+    h.prediction = h.controller->lastPrediction();
+    h.predictionTime = t;
+    ++h.updates;
+    // After a pause or a slow frame, skip missed ticks rather than catching up in a burst.
+    h.nextUpdate = std::max(h.nextUpdate + h.params.period, t + 0.5 * h.params.period);
+  } else if (!active && t >= h.predictionTime + h.params.period - 1e-9) {
+    // The statics model's view of the current pose, for the overlay.
+    h.prediction = h.controller->predict(jointValues(world, h), box.position);
+    h.predictionTime = t;
+  }
+  h.commanded = h.model.clamp(nominal + h.offset);
+  h.offset = h.commanded - nominal;  // no wind-up against the limits
+  for (int j = 0; j < 6; ++j) world.setServoTarget(h.joints[j], h.commanded[j]);
+}
+
+void handAfterStep(const Sandbox& sandbox, const World& world, HandControlState& h) {
+  const double t = world.time();
+  if (h.phase == HandControlState::Phase::Closing && h.graspTime < 0 && grasped(world, h)) {
+    h.graspTime = t;
+    h.controlStart = std::max(t, h.sequenceStart + h.closeTime + kSqueezeSettle);
+    h.nextUpdate = h.controlStart;
+    h.phase = HandControlState::Phase::Grasped;
+  }
+  const Vec2 box = world.body(h.box).position;
+  const float error = sandbox.target ? static_cast<float>((box - *sandbox.target).norm())
+                                     : std::numeric_limits<float>::quiet_NaN();
+  h.history.push(static_cast<float>(t), {static_cast<float>(world.cable(h.cables[0]).tension()),
+                                         static_cast<float>(world.cable(h.cables[1]).tension()),
+                                         error});
+}
+
+void handPanel(Sandbox& sandbox, HandControlState& h) {
+  World* world = sandbox.world();
+  ImGui::TextUnformatted("Jacobian controller (thesis 4.3)");
+
+  // Target: sliders and click-to-set (the overlay cross).
+  bool hasTarget = sandbox.target.has_value();
+  if (ImGui::Checkbox("target", &hasTarget))
+    sandbox.target = hasTarget ? std::optional<Vec2>(world->body(h.box).position) : std::nullopt;
+  if (sandbox.target) {
+    float xy[2] = {static_cast<float>(sandbox.target->x()), static_cast<float>(sandbox.target->y())};
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(-1);
+    if (ImGui::SliderFloat2("##target", xy, -kTargetRange, kTargetRange, "%.3f m"))
+      sandbox.target = Vec2(xy[0], xy[1]);
+  } else {
+    ImGui::SameLine();
+    ImGui::TextDisabled("(or click empty space)");
+  }
+
+  // Gains.
+  bool changed = false;
+  ImGui::Checkbox("outer loop on", &h.enabled);
+  ImGui::SameLine();
+  changed |= ImGui::Checkbox("PID", &h.pid);
+  ImGui::PushItemWidth(120);
+  changed |= ImGui::InputDouble("k_p (per update)", &h.params.kp, 0.01, 0.1, "%.3f");
+  changed |= ImGui::InputDouble("k_d", &h.params.kd, 0.01, 0.1, "%.3f");
+  if (!h.pid) ImGui::BeginDisabled();
+  changed |= ImGui::InputDouble("k_i (1/s)", &h.ki, 0.01, 0.1, "%.3f");
+  if (!h.pid) ImGui::EndDisabled();
+  ImGui::PopItemWidth();
+  if (ImGui::SmallButton("thesis gains (k_p 0.1, k_d 0.58)")) {
+    const HandControllerParams d;
+    h.params.kp = d.kp, h.params.kd = d.kd, h.ki = kHandPidKi;
+    changed = true;
+  }
+  if (changed) {
+    h.params.kp = std::clamp(h.params.kp, 0.0, 10.0);
+    h.params.kd = std::clamp(h.params.kd, 0.0, 10.0);
+    h.ki = std::clamp(h.ki, 0.0, 10.0);
+    h.rebuildController();
+  }
+
+  // Grasp sequence.
+  if (ImGui::Button("Start grasp")) {
+    startHandGrasp(sandbox);
+    return;  // `h` belonged to the old world
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Reset hand")) {
+    sandbox.reset();
+    return;
+  }
+  const double t = world->time();
+  const char* phase = h.phase == HandControlState::Phase::Closing ? "closing"
+                      : h.phase == HandControlState::Phase::Grasped ? "grasped"
+                                                                     : "pinch pose";
+  if (h.graspTime < 0)
+    ImGui::Text("%s, waiting for both membranes", phase);
+  else if (t < h.controlStart)
+    ImGui::Text("%s at %.2f s, control from %.2f s", phase, h.graspTime, h.controlStart);
+  else
+    ImGui::Text("%s; %d updates%s", phase, h.updates,
+                !h.enabled ? " (loop off)" : !sandbox.target ? " (no target)" : "");
+  const Vec2 box = world->body(h.box).position;
+  ImGui::Text("box (%.3f, %.3f) m", box.x(), box.y());
+  if (sandbox.target) ImGui::Text("error %.4f m", (box - *sandbox.target).norm());
+  if (h.prediction.valid)
+    ImGui::Text("statics (%.3f, %.3f) m", h.prediction.box.x(), h.prediction.box.y());
+  else
+    ImGui::TextDisabled("statics: no face-on wrap");
+
+  timePlot("##tensions", h.history,
+           {{"top", 0, IM_COL32(200, 60, 30, 255)}, {"bottom", 1, IM_COL32(40, 90, 200, 255)}},
+           "N tension", 80);
+  timePlot("##error", h.history, {{"|box - target|", 2, IM_COL32(170, 20, 120, 255)}}, "m", 70);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Membrane.
+
+std::unique_ptr<MembraneViewState> makeMembraneState(const World& world) {
+  auto m = std::make_unique<MembraneViewState>();
+  for (int i = 0; i < world.cableCount(); ++i) {
+    const CableDef& def = world.cable(i).def();
+    if (def.pulleys.size() != 1 || def.pulleys[0].kind != PulleyDef::Kind::Point) continue;
+    if (def.start.body != "world" || def.end.body != "world") continue;
+    const int finger = world.findBody(def.pulleys[0].body);
+    if (finger < 0) continue;
+    m->band = i, m->finger = finger;
+    break;
+  }
+  if (m->band < 0) return nullptr;
+  const std::string example = "fit.json";
+  std::copy(example.begin(), example.end(), m->path.begin());
+  return m;
+}
+
+struct MembraneNow {
+  MembraneGeometry g;
+  MembraneParams params;  ///< the band's k and effective preload
+  Vec2 p = Vec2::Zero();  ///< finger point (m)
+  Vec2 force = Vec2::Zero();
+  bool valid = false;
+};
+
+MembraneNow membraneNow(const World& world, const MembraneViewState& m) {
+  MembraneNow n;
+  const Cable& cable = world.cable(m.band);
+  const CableDef& def = cable.def();
+  n.g = {def.start.point, def.end.point};
+  const BodyState& finger = world.body(m.finger);
+  n.p = finger.position + rotate(def.pulleys[0].point, finger.angle);
+  // The engine's tension is k (length - L + preload); the model's is k (stretch + preload) with
+  // stretch measured from |AB|: the same when the rest length differs from |AB| by this much.
+  n.params.k = def.stiffness;
+  n.params.preload = def.preload + (n.g.b - n.g.a).norm() - cable.restLength();
+  n.valid = def.stiffness > 0 && (n.p - n.g.a).norm() > 1e-9 && (n.p - n.g.b).norm() > 1e-9;
+  if (n.valid) n.force = membraneForce(n.g, n.params, n.p);
+  return n;
+}
+
+void membranePanel(Sandbox& sandbox, MembraneViewState& m) {
+  World* world = sandbox.world();
+  const MembraneNow n = membraneNow(*world, m);
+  ImGui::TextUnformatted("Membrane model (thesis ch. 3)");
+  const Cable& band = world->cable(m.band);
+  ImGui::Text("k %.4g N/m, preload %.4g m", band.def().stiffness, band.def().preload);
+  if (n.valid) {
+    ImGui::Text("model F = (%.3f, %.3f) N", n.force.x(), n.force.y());
+    ImGui::Text("model T %.4g N, engine T %.4g N", membraneTension(n.g, n.params, n.p),
+                band.tension());
+  }
+  ImGui::TextUnformatted("fit JSON (cablelab fit output):");
+  ImGui::SetNextItemWidth(-1);
+  ImGui::InputText("##fitjson", m.path.data(), m.path.size());
+  if (ImGui::Button("Load k, preload into the band"))
+    m.messageIsError = !loadFitIntoBand(sandbox, m.path.data(), m.message);
+  if (!m.message.empty()) {
+    if (m.messageIsError)
+      ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1), "%s", m.message.c_str());
+    else
+      ImGui::TextWrapped("%s", m.message.c_str());
+  }
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+
+TimeHistory::TimeHistory(int series)
+    : t(kLength, 0.0f), values(series, std::vector<float>(kLength, 0.0f)) {}
+
+void TimeHistory::push(float time, const std::vector<float>& sample) {
+  t[head] = time;
+  for (size_t s = 0; s < values.size() && s < sample.size(); ++s) values[s][head] = sample[s];
+  head = (head + 1) % kLength;
+  count = std::min(count + 1, kLength);
+}
+
+void TimeHistory::clear() { head = count = 0; }
+
+void HandControlState::rebuildController() {
+  HandControllerParams p = params;
+  p.ki = pid ? ki : 0.0;
+  controller = std::make_unique<HandController>(model, p);
+}
+
+bool startHandGrasp(Sandbox& sandbox) {
+  sandbox.reset();  // a fresh world; controllerOpened() keeps the gains
+  HandControlState* h = sandbox.controller ? sandbox.controller->hand.get() : nullptr;
+  if (!h || !sandbox.world()) return false;
+  placeHand(*sandbox.world(), h->model, h->open);
+  h->phase = HandControlState::Phase::Closing;
+  h->sequenceStart = sandbox.world()->time();
+  h->graspTime = -1;
+  h->controlStart = std::numeric_limits<double>::infinity();
+  h->commanded = h->open;
+  if (!sandbox.target) sandbox.target = Vec2::Zero();
+  sandbox.paused = false;
+  return true;
+}
+
+void controllerOpened(Sandbox& sandbox) {
+  auto state = std::make_unique<ControllerState>();
+  if (const World* world = sandbox.world()) {
+    state->hand = makeHandState(*world);
+    if (state->hand) {
+      if (sandbox.controller && sandbox.controller->hand) {  // a reset keeps the user's gains
+        const HandControlState& old = *sandbox.controller->hand;
+        state->hand->params = old.params;
+        state->hand->enabled = old.enabled;
+        state->hand->pid = old.pid;
+        state->hand->ki = old.ki;
+      }
+      state->hand->rebuildController();
+      startPinched(*state->hand, world->time());
+      if (!sandbox.target) sandbox.target = world->body(state->hand->box).position;
+    } else {
+      state->membrane = makeMembraneState(*world);
+      if (state->membrane && sandbox.controller && sandbox.controller->membrane)
+        state->membrane->path = sandbox.controller->membrane->path;
+    }
+  }
+  sandbox.controller = std::move(state);
+}
+
 void drawControllerPanel(Sandbox& sandbox) {
+  ControllerState* c = sandbox.controller.get();
+  if (c && c->hand && sandbox.world()) return handPanel(sandbox, *c->hand);
+  if (c && c->membrane && sandbox.world()) return membranePanel(sandbox, *c->membrane);
   if (sandbox.target)
     ImGui::Text("target (%.3f, %.3f) m", sandbox.target->x(), sandbox.target->y());
   else
     ImGui::TextDisabled("click empty space to set a target");
   if (sandbox.target && ImGui::Button("Clear target")) sandbox.target.reset();
-  ImGui::TextDisabled("no controller for this scene yet");
+  ImGui::TextDisabled("no controller for this scene");
 }
 
-void controllerBeforeStep(Sandbox& sandbox, World& world) {}
+void controllerBeforeStep(Sandbox& sandbox, World& world) {
+  if (sandbox.controller && sandbox.controller->hand)
+    handBeforeStep(sandbox, world, *sandbox.controller->hand);
+}
+
+void controllerAfterStep(Sandbox& sandbox, const World& world) {
+  if (sandbox.controller && sandbox.controller->hand)
+    handAfterStep(sandbox, world, *sandbox.controller->hand);
+}
+
+void controllerOverlay(const Sandbox& sandbox, Overlay& overlay) {
+  const World* world = sandbox.world();
+  if (!world || !sandbox.controller) return;
+  if (const HandControlState* h = sandbox.controller->hand.get()) {
+    if (h->prediction.valid) {
+      // Unlabelled cross, its label below it: the target's label sits above the same spot.
+      overlay.targets.push_back({h->prediction.box, "", kPredictionColour});
+      overlay.texts.push_back({h->prediction.box + Vec2(0.03, -0.09), "statics", kPredictionColour});
+    }
+    return;
+  }
+  if (const MembraneViewState* m = sandbox.controller->membrane.get()) {
+    const MembraneNow n = membraneNow(*world, *m);
+    if (!n.valid) return;
+    // Drawn at a fixed length per newton: the finger's weight (when gravity is on) is a
+    // third of the band's width, so the arrow also shows how far the band is from balance.
+    const double width = (n.g.b - n.g.a).norm();
+    const double weight = world->scene().bodies[m->finger].mass * world->gravity().norm();
+    const double reference = weight > 1e-9 ? weight : std::max(n.force.norm(), 1e-9);
+    const double metresPerNewton = width / 3 / reference;
+    char text[96];
+    std::snprintf(text, sizeof text, "model F %.3g N", n.force.norm());
+    overlay.arrows.push_back({n.p, n.p + metresPerNewton * n.force, text, kForceColour});
+  }
+}
+
+bool loadFitIntoBand(Sandbox& sandbox, const std::string& path, std::string& message) {
+  const MembraneViewState* m = sandbox.controller ? sandbox.controller->membrane.get() : nullptr;
+  if (!m || !sandbox.world()) {
+    message = "not a membrane scene";
+    return false;
+  }
+  try {
+    const MembraneParams fitted = loadFitParameters(path);
+    const MembraneNow n = membraneNow(*sandbox.world(), *m);
+    // The fit's preload is the straight band's stretch beyond rest: rest length = |AB|.
+    sandbox.selectedCable = m->band;
+    sandbox.cableEdit = {(n.g.b - n.g.a).norm(), fitted.k, fitted.preload,
+                         sandbox.world()->cable(m->band).def().damping};
+    if (!sandbox.applyCableEdit()) throw std::runtime_error(sandbox.error);
+    char text[160];
+    std::snprintf(text, sizeof text, "loaded k = %.4g N/m, preload = %.4g m (rest length |AB|)",
+                  fitted.k, fitted.preload);
+    message = text;
+    return true;
+  } catch (const std::exception& e) {
+    message = e.what();
+    return false;
+  }
+}
+
+MembraneParams loadFitParameters(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "file", "cannot open");
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const std::exception& e) {
+    throw InputError(path, "json", std::string("not valid JSON: ") + e.what());
+  }
+  MembraneParams p;
+  for (const auto& [key, value] : {std::pair{"k", &p.k}, std::pair{"preload", &p.preload}}) {
+    if (!j.is_object() || !j.contains(key) || !j[key].is_number())
+      throw InputError(path, key, "missing or not a number (expected `cablelab fit` output)");
+    *value = j[key].get<double>();
+    if (!std::isfinite(*value)) throw InputError(path, key, "not finite");
+  }
+  if (p.k <= 0) throw InputError(path, "k", "must be positive (N/m)");
+  if (p.preload < 0) throw InputError(path, "preload", "must be >= 0 (m)");
+  return p;
+}
 
 }  // namespace cablelab::ui

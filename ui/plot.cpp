@@ -201,15 +201,40 @@ Image renderPlot(const Plot& plot, int width, int height) {
                       IM_COL32(120, 120, 120, 255), 1.5f);
     }
     std::vector<std::pair<std::string, std::pair<ImU32, int>>> legend;  // label, colour, kind
+    if (plot.identityLine && !plot.identityLabel.empty())
+      legend.push_back({plot.identityLabel, {IM_COL32(120, 120, 120, 255), 4}});
     int next = 0;
     for (const auto& s : plot.series) {
       const ImU32 c = toImU32(s.colour.value_or(kPalette[next++ % 6]));
       const bool lines = s.style != PlotSeries::Style::Markers;
-      const bool markers = s.style != PlotSeries::Style::Line;
+      const bool markers =
+          s.style == PlotSeries::Style::Markers || s.style == PlotSeries::Style::LineAndMarkers;
+      const bool dashed = s.style == PlotSeries::Style::Dashed;
       std::vector<ImVec2> run;
       auto flush = [&] {
-        if (run.size() >= 2)
-          draw->AddPolyline(run.data(), static_cast<int>(run.size()), c, 0, 2.0f);
+        if (run.size() >= 2 && !dashed)
+          draw->AddPolyline(run.data(), static_cast<int>(run.size()), c, 0, s.lineWidth);
+        if (run.size() >= 2 && dashed) {
+          // 9 px on, 6 px off, measured along the polyline.
+          constexpr float kOn = 9, kPeriod = 15;
+          float along = 0;
+          for (size_t i = 0; i + 1 < run.size(); ++i) {
+            const ImVec2 a = run[i], b = run[i + 1];
+            const float len = std::hypot(b.x - a.x, b.y - a.y);
+            float t = 0;
+            while (t < len) {
+              const float phase = std::fmod(along + t, kPeriod);
+              const float step = std::min(len - t, phase < kOn ? kOn - phase : kPeriod - phase);
+              if (phase < kOn && len > 0)
+                draw->AddLine(ImVec2(a.x + (b.x - a.x) * t / len, a.y + (b.y - a.y) * t / len),
+                              ImVec2(a.x + (b.x - a.x) * (t + step) / len,
+                                     a.y + (b.y - a.y) * (t + step) / len),
+                              c, s.lineWidth);
+              t += std::max(step, 1e-3f);
+            }
+            along += len;
+          }
+        }
         run.clear();
       };
       for (size_t i = 0; i < s.x.size(); ++i) {
@@ -219,10 +244,11 @@ Image renderPlot(const Plot& plot, int width, int height) {
         }
         const ImVec2 p = map(s.x[i], s.y[i]);
         if (lines) run.push_back(p);
-        if (markers) draw->AddCircleFilled(p, 3.0f, c, 12);
+        if (markers) draw->AddCircleFilled(p, s.markerRadius, c, 16);
       }
       flush();
-      if (!s.label.empty()) legend.push_back({s.label, {c, markers ? (lines ? 2 : 1) : 0}});
+      if (!s.label.empty())
+        legend.push_back({s.label, {c, dashed ? 4 : markers ? (lines ? 2 : 1) : 0}});
     }
     for (const auto& a : plot.arrows) {
       const ImU32 c = toImU32(a.colour.value_or(kPalette[next++ % 6]));
@@ -232,11 +258,16 @@ Image renderPlot(const Plot& plot, int width, int height) {
             !std::isfinite(ey))
           continue;
         const ImVec2 from = map(a.x[i], a.y[i]), to = map(ex, ey);
-        draw->AddLine(from, to, c, 1.5f);
+        draw->AddLine(from, to, c, a.lineWidth);
         arrowHead(draw, from, to, c);
       }
       if (!a.label.empty()) legend.push_back({a.label, {c, 3}});
     }
+    for (const PlotLabel& l : plot.labels)
+      if (std::isfinite(l.x) && std::isfinite(l.y)) {
+        const ImVec2 p = map(l.x, l.y);
+        draw->AddText(ImVec2(p.x, p.y - 7), kInk, l.text.c_str());
+      }
     draw->PopClipRect();
 
     // Title, axis labels, legend.
@@ -280,6 +311,9 @@ Image renderPlot(const Plot& plot, int width, int height) {
         if (kind == 0 || kind == 2)
           draw->AddLine(ImVec2(p0.x + 6, y), ImVec2(p0.x + 28, y), c, 2.0f);
         if (kind == 1 || kind == 2) draw->AddCircleFilled(ImVec2(p0.x + 17, y), 3.0f, c, 12);
+        if (kind == 4)
+          for (float x = 6; x < 28; x += 8)
+            draw->AddLine(ImVec2(p0.x + x, y), ImVec2(p0.x + std::min(x + 5, 28.0f), y), c, 2.0f);
         if (kind == 3) {
           draw->AddLine(ImVec2(p0.x + 6, y), ImVec2(p0.x + 28, y), c, 1.5f);
           arrowHead(draw, ImVec2(p0.x + 6, y), ImVec2(p0.x + 28, y), c);

@@ -31,11 +31,13 @@
 namespace cablelab::ui {
 
 struct PlotSeries {
-  enum class Style { Line, Markers, LineAndMarkers };
+  enum class Style { Line, Markers, LineAndMarkers, Dashed };  ///< Dashed: a dashed line
   std::string label;         ///< legend text; empty = not in the legend
   std::vector<double> x, y;  ///< same length
   Style style = Style::Line;
   std::optional<Colour> colour;  ///< default: the next palette colour
+  float markerRadius = 3.0f;     ///< px
+  float lineWidth = 2.0f;        ///< px
 };
 
 /// Arrows from (x, y) to (x + s u, y + s v), s the plot's common arrow scale.
@@ -43,6 +45,13 @@ struct PlotArrows {
   std::string label;
   std::vector<double> x, y, u, v;  ///< same length
   std::optional<Colour> colour;
+  float lineWidth = 1.5f;  ///< px
+};
+
+/// Text at a data point (its left edge at x, vertically centred on y), e.g. naming a marker.
+struct PlotLabel {
+  double x = 0, y = 0;
+  std::string text;
 };
 
 struct Plot {
@@ -54,6 +63,8 @@ struct Plot {
   std::vector<PlotSeries> series;
   std::vector<PlotArrows> arrows;
   bool identityLine = false;  ///< draw y = x (dashed) and use the same range on both axes
+  std::string identityLabel;  ///< legend text of the y = x line; empty = not in the legend
+  std::vector<PlotLabel> labels;
   bool equalAspect = false;   ///< one data unit is as many pixels on x as on y
   /// Data units per unit of u, v for every arrow set; <= 0: the longest arrow is 8% of the
   /// larger axis range.

@@ -38,6 +38,8 @@ bool Sandbox::open(const std::string& nameOrPath) {
     tensionScale = 1;
     accumulator_ = 0;
     loadCableEdit();
+    controller.reset();
+    controllerOpened(*this);
     error.clear();
     return true;
   } catch (const std::exception& e) {
@@ -60,6 +62,7 @@ void Sandbox::reset() {
     historyHead = 0;
     accumulator_ = 0;
     loadCableEdit();
+    controllerOpened(*this);
   } catch (const std::exception& e) {
     error = e.what();
     std::cerr << "cablelab-gui: reset failed: " << e.what() << "\n";
@@ -95,6 +98,7 @@ void Sandbox::advance(double frameSeconds, bool fixedStep) {
 }
 
 void Sandbox::afterStep() {
+  controllerAfterStep(*this, *world_);
   for (int i = 0; i < world_->cableCount() && i < static_cast<int>(tensionHistory.size()); ++i) {
     const double t = world_->cable(i).tension();
     tensionHistory[i][historyHead] = std::isfinite(t) ? static_cast<float>(t) : 0.0f;
@@ -161,6 +165,7 @@ Overlay Sandbox::overlay() const {
                         "",
                         {0.2f, 0.2f, 0.2f, 1.0f}});
   }
+  controllerOverlay(*this, o);
   return o;
 }
 

@@ -17,6 +17,8 @@
 
 namespace cablelab::ui {
 
+struct ControllerState;  // ui/controller_panel.h
+
 /// Screen rectangle of a UI panel (px); the scene under it does not take mouse input.
 struct PanelRect {
   float x = 0, y = 0, width = 0, height = 0;
@@ -54,7 +56,8 @@ class Sandbox {
   /// Applies the live cable edits in `cableEdit` to the selected cable; false + `error` if
   /// the engine rejects them.
   bool applyCableEdit();
-  /// Overlay for this frame: the controller target and the drag spring.
+  /// Overlay for this frame: the controller target, the drag spring and the controller's
+  /// drawings (controllerOverlay).
   Overlay overlay() const;
   /// Renderer options for this frame (selection, legend scale, free screen area).
   RenderOptions renderOptions() const;
@@ -88,6 +91,9 @@ class Sandbox {
   std::vector<std::vector<float>> tensionHistory;
   int historyHead = 0;
   double tensionScale = 1;  ///< legend maximum, grows with the largest tension
+
+  /// The current scene's controller or view (ui/controller_panel.h); rebuilt by open/reset.
+  std::unique_ptr<ControllerState> controller;
 
   // Status.
   double lastFrameSeconds = 0;

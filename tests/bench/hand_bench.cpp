@@ -11,7 +11,7 @@ void BM_HandControllerUpdate(benchmark::State& state) {
   HandController controller{HandModel{}};
   const HandJoints q = HandJoints::Zero();
   const Vec2 box = controller.predict(q, Vec2::Zero()).box;
-  for (auto _ : state) benchmark::DoNotOptimize(controller.update(q, box, Vec2::Zero(), Vec2(0.01, 0), q));
+  for (auto _ : state) benchmark::DoNotOptimize(controller.update(q, box, Vec2(0.01, 0), q));
 }
 BENCHMARK(BM_HandControllerUpdate);
 

@@ -10,7 +10,14 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <set>
 #include <string>
+
+#include "tests/engine/test_support.h"
+
+#ifdef CABLELAB_HAVE_OFFSCREEN
+#include "ui/image.h"
+#endif
 
 namespace {
 
@@ -18,11 +25,7 @@ namespace fs = std::filesystem;
 
 const std::string kPulleys = "--pulleys -0.2,0,0.2,0";
 
-struct CliRun {
-  int exitCode = -1;
-  std::string out;
-  std::string err;
-};
+using CliRun = cablelab::test::CommandResult;
 
 std::string readFile(const fs::path& path) {
   std::ifstream in(path);
@@ -41,20 +44,9 @@ fs::path scratch() {
   return dir;
 }
 
-CliRun cablelab(const std::string& args) {
-  const fs::path dir = fs::temp_directory_path();
-  const std::string tag = std::to_string(getpid());
-  const fs::path out = dir / ("cablelab_fit_out_" + tag), err = dir / ("cablelab_fit_err_" + tag);
-  const std::string command = std::string("cd '") + CABLELAB_SOURCE_DIR + "' && '" + CABLELAB_CLI +
-                              "' fit " + args + " >'" + out.string() + "' 2>'" + err.string() + "'";
-  const int status = std::system(command.c_str());
-  CliRun run;
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  run.out = readFile(out);
-  run.err = readFile(err);
-  fs::remove(out);
-  fs::remove(err);
-  return run;
+// `cablelab fit ARGS`, run from the source directory so data paths can be relative.
+cablelab::test::CommandResult cablelab(const std::string& args) {
+  return cablelab::test::runCli("fit " + args, CABLELAB_SOURCE_DIR);
 }
 
 TEST(FitCli, FitsTheExampleDataAndPrintsOneJsonObject) {
@@ -117,6 +109,55 @@ TEST(FitCli, PlotsWritesQuiverAndScatterData) {
   EXPECT_EQ(std::count(scatter.begin(), scatter.end(), '\n'), 193);
   fs::remove_all(dir.parent_path());
 }
+
+#ifdef CABLELAB_HAVE_OFFSCREEN
+/// Pixels whose channels differ by more than 60 levels: data colours, not white, grey or black.
+long colouredPixels(const cablelab::ui::Image& image) {
+  long n = 0;
+  for (size_t i = 0; i + 3 < image.rgba.size(); i += 4) {
+    const int lo = std::min({image.rgba[i], image.rgba[i + 1], image.rgba[i + 2]});
+    const int hi = std::max({image.rgba[i], image.rgba[i + 1], image.rgba[i + 2]});
+    n += hi - lo > 60;
+  }
+  return n;
+}
+
+TEST(FitCli, PlotsWritesNonBlankPngsOfTheRequestedSize) {
+  const fs::path dir = scratch() / "png";
+  const CliRun run = cablelab("assets/data/membrane_example.csv " + kPulleys + " --plots " +
+                              dir.string() + " --plot-size 640x480");
+  ASSERT_EQ(run.exitCode, 0) << run.err;
+  const auto j = nlohmann::json::parse(run.out);
+  for (const char* name : {"quiver", "scatter"}) {
+    const fs::path png = dir / (std::string(name) + ".png");
+    ASSERT_TRUE(fs::exists(png)) << png;
+    EXPECT_NE(run.out.find(png.string()), std::string::npos) << run.out;
+    const cablelab::ui::Image image = cablelab::ui::readPng(png.string());
+    EXPECT_EQ(image.width, 640) << name;
+    EXPECT_EQ(image.height, 480) << name;
+    std::set<std::uint32_t> colours;
+    for (size_t i = 0; i + 3 < image.rgba.size(); i += 4)
+      colours.insert(image.rgba[i] << 16 | image.rgba[i + 1] << 8 | image.rgba[i + 2]);
+    EXPECT_GT(colours.size(), 20u) << name << " looks blank";
+    // 192 measurements: hundreds of red, cyan or blue pixels at least.
+    EXPECT_GT(colouredPixels(image), 1000) << name;
+  }
+  // Default size 800x600.
+  const fs::path defaults = dir.parent_path() / "default";
+  ASSERT_EQ(cablelab("assets/data/membrane_example.csv " + kPulleys + " --plots " +
+                     defaults.string())
+                .exitCode,
+            0);
+  EXPECT_EQ(cablelab::ui::readPng((defaults / "scatter.png").string()).width, 800);
+  EXPECT_EQ(cablelab::ui::readPng((defaults / "quiver.png").string()).height, 600);
+  // A bad size is an input error naming the flag.
+  const CliRun bad = cablelab("assets/data/membrane_example.csv " + kPulleys + " --plots " +
+                              dir.string() + " --plot-size 10x10");
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.err.find("--plot-size"), std::string::npos) << bad.err;
+  fs::remove_all(dir.parent_path());
+}
+#endif
 
 TEST(FitCli, HelpExitsZero) {
   const CliRun run = cablelab("--help");

@@ -1,7 +1,8 @@
 // CLI tests for `cablelab statics` (CONTRACT.md): output keys, exit codes, error messages.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
+#include "tests/engine/test_support.h"
+
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -16,16 +17,8 @@ struct CliRun {
 };
 
 CliRun runCli(const std::string& args) {
-  const std::string command = std::string(CABLELAB_CLI) + " " + args + " 2>&1";
-  CliRun run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return run;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) run.out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  run.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
+  const auto r = cablelab::test::runCli(args);
+  return {r.exitCode, r.out + r.err};
 }
 
 std::string data(const std::string& name) {

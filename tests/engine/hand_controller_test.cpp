@@ -2,27 +2,36 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/hand_kinematics.h"
+
 namespace cablelab {
 namespace {
 
 constexpr double kFdStep = 1e-6;
 constexpr double kSensitivityTolerance = 1e-5;
 
-TEST(PointEquilibrium, SensitivityMatchesCentralDifferences) {
-  std::vector<SpringCable> cables = {{Vec2(-1, 0.3), Vec2(1.2, 0.2), 150, 1.5}, {Vec2(-0.9, -0.4), Vec2(1, -0.2), 100, 1.4}};
-  const PointEquilibrium eq = solvePointEquilibrium(cables, Vec2::Zero());
-  ASSERT_TRUE(eq.converged);
-  for (int c = 0; c < 8; ++c) {
-    auto shifted = [&](double h) {
-      auto copy = cables;
-      Vec2& end = c % 4 < 2 ? copy[c / 4].a : copy[c / 4].b;
-      end[c % 2] += h;
-      return solvePointEquilibrium(copy, eq.p).p;
-    };
-    const Vec2 fd = (shifted(kFdStep) - shifted(-kFdStep)) / (2 * kFdStep);
-    EXPECT_NEAR(eq.sensitivity(0, c), fd.x(), kSensitivityTolerance) << "column " << c;
-    EXPECT_NEAR(eq.sensitivity(1, c), fd.y(), kSensitivityTolerance) << "column " << c;
+TEST(HandController, StaticsMatchesTheBoxCableEnergy) {
+  // The box-to-point reduction: at the predicted centre, the two membranes wrapped round the box
+  // (fingertip -> corner -> corner -> fingertip) exert no net force on it.
+  HandModel m;
+  HandController controller(m);
+  HandJoints q;
+  q << 0.1, 0.2, -0.08, 0.05, 0.1, -0.03;
+  const BoxPrediction p = controller.predict(q, Vec2::Zero());
+  ASSERT_TRUE(p.valid);
+  const FingertipPoints tips = fingertipPoints(m, q);
+  const double h = m.boxHalfSize;
+  Vec2 force = Vec2::Zero();
+  for (int f = 0; f < 2; ++f) {
+    const double face = HandModel::side(f) * h;
+    const Vec2 a = tips.segment<2>(4 * f), b = tips.segment<2>(4 * f + 2);
+    const Vec2 ca = p.box + Vec2(-h, face), cb = p.box + Vec2(h, face);
+    const double length = (ca - a).norm() + 2 * h + (b - cb).norm();
+    const double tension = m.stiffness * (length - m.restLength() + m.preload);
+    ASSERT_GT(tension, 0);
+    force += tension * ((a - ca).normalized() + (b - cb).normalized());
   }
+  EXPECT_LT(force.norm(), 1e-8);
 }
 
 TEST(HandController, BoxJacobianMatchesFiniteDifferencesThroughKinematics) {
@@ -47,7 +56,7 @@ TEST(HandController, UpdateMovesTheBoxTowardsTheTarget) {
   const Vec2 target(0.1, 0.2);
   Vec2 box = controller.predict(q, Vec2::Zero()).box;
   for (int u = 0; u < 200; ++u) {
-    q = m.clamp(q + controller.update(q, box, Vec2::Zero(), target, q));
+    q = m.clamp(q + controller.update(q, box, target, q));
     box = controller.predict(q, box).box;
   }
   EXPECT_LT((box - target).norm(), 1e-3);

@@ -30,12 +30,14 @@ struct CommandResult {
   std::string out, err;
 };
 
-/// Runs `cablelab ARGS` (shell-quoted by the caller); captures stdout and stderr.
-inline CommandResult runCli(const std::string& args) {
+/// Runs `cablelab ARGS` (shell-quoted by the caller), from `workingDir` if given; captures
+/// stdout and stderr.
+inline CommandResult runCli(const std::string& args, const std::string& workingDir = "") {
   char errFile[] = "/tmp/cablelab-test-XXXXXX";
   const int fd = mkstemp(errFile);
   if (fd >= 0) close(fd);
-  const std::string cmd = std::string(CABLELAB_CLI) + " " + args + " 2>" + std::string(errFile);
+  const std::string cd = workingDir.empty() ? "" : "cd '" + workingDir + "' && ";
+  const std::string cmd = cd + "'" + std::string(CABLELAB_CLI) + "' " + args + " 2>" + std::string(errFile);
   CommandResult r;
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;

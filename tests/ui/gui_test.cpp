@@ -1,5 +1,6 @@
-// The sandbox under Xvfb: frames + screenshot, layout against the offscreen renderer, synthetic
-// mouse input, and a bad scene file. Skipped (GTEST_SKIP) when xvfb-run is not installed.
+// The sandbox under Xvfb: frames + screenshot, layout against the offscreen renderer (hexagon,
+// and the hand with its live controller panel), synthetic mouse input, and a bad scene file.
+// Skipped (GTEST_SKIP) when xvfb-run is not installed.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -46,6 +47,26 @@ std::vector<bool> occupancy(const ui::Image& image, int x0, int y0, int x1, int 
   return cells;
 }
 
+/// Compares the scene area between the panels of a sandbox screenshot with an offscreen render,
+/// leaving out the bottom strip where the legend and the scale bar sit (placed relative to the
+/// free area, so they move with the panels).
+void expectSameLayout(const ui::Image& gui, const ui::Image& offscreen, const std::string& shot,
+                      const std::filesystem::path& offscreenPath) {
+  const int x0 = static_cast<int>(ui::kLeftWidth) + 10;
+  const int x1 = 1280 - static_cast<int>(ui::kRightWidth) - 10;
+  const int y0 = 40, y1 = 720 - static_cast<int>(ui::kStatusHeight) - 70;
+  const auto a = occupancy(gui, x0, y0, x1, y1), b = occupancy(offscreen, x0, y0, x1, y1);
+  ASSERT_EQ(a.size(), b.size());
+  long occupied = 0, mismatched = 0;
+  for (size_t i = 0; i < a.size(); ++i) occupied += a[i], mismatched += a[i] != b[i];
+  std::cout << "layout: " << occupied << " occupied cells, " << mismatched << " of " << a.size()
+            << " differ from the offscreen render\n";
+  EXPECT_GT(occupied, 10) << "the sandbox screenshot looks blank: " << shot;
+  EXPECT_LE(mismatched, kMaxCellMismatch * a.size())
+      << mismatched << " of " << a.size() << " cells differ; compare " << shot << " with "
+      << offscreenPath.string();
+}
+
 TEST(Gui, FramesScreenshotAndLayoutMatchTheOffscreenRenderer) {
   REQUIRE_XVFB();
   const std::string shot = (outputDir("gui") / "hexagon.png").string();
@@ -65,21 +86,43 @@ TEST(Gui, FramesScreenshotAndLayoutMatchTheOffscreenRenderer) {
   const ui::Image offscreen = ui::renderSnapshot(*world, 1280, 720);
   ui::writePng(offscreen, outputDir("gui") / "hexagon-offscreen.png");
 
-  // Compare the scene area between the panels, leaving out the bottom strip where the legend
-  // and the scale bar sit (placed relative to the free area, so they move with the panels).
-  const int x0 = static_cast<int>(ui::kLeftWidth) + 10;
-  const int x1 = 1280 - static_cast<int>(ui::kRightWidth) - 10;
-  const int y0 = 40, y1 = 720 - static_cast<int>(ui::kStatusHeight) - 70;
-  const auto a = occupancy(gui, x0, y0, x1, y1), b = occupancy(offscreen, x0, y0, x1, y1);
-  ASSERT_EQ(a.size(), b.size());
-  long occupied = 0, mismatched = 0;
-  for (size_t i = 0; i < a.size(); ++i) occupied += a[i], mismatched += a[i] != b[i];
-  std::cout << "layout: " << occupied << " occupied cells, " << mismatched << " of " << a.size()
-            << " differ from the offscreen render\n";
-  EXPECT_GT(occupied, 10) << "the sandbox screenshot looks blank: " << shot;
-  EXPECT_LE(mismatched, kMaxCellMismatch * a.size())
-      << mismatched << " of " << a.size() << " cells differ; compare " << shot << " with "
-      << (outputDir("gui") / "hexagon-offscreen.png").string();
+  expectSameLayout(gui, offscreen, shot, outputDir("gui") / "hexagon-offscreen.png");
+}
+
+TEST(Gui, HandSceneRunsTheControllerWithLivePlots) {
+  REQUIRE_XVFB();
+  constexpr int kHandFrames = 120;
+  const std::string shot = (outputDir("gui") / "hand.png").string();
+  const RunResult r = run(kXvfb + kCli + " gui hand --frames " + std::to_string(kHandFrames) +
+                              " --screenshot " + shot,
+                          "gui_hand");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.out.find("\"frames\": 120"), std::string::npos) << r.out;
+  const ui::Image gui = ui::readPng(shot);
+  ASSERT_EQ(gui.width, 1280);
+  ASSERT_EQ(gui.height, 720);
+
+  // The scene matches the offscreen renderer after as many steps (the controller holds the
+  // pinch: its joint offsets move the fingers by less than a layout cell).
+  auto world = std::make_unique<World>(ui::loadScene("hand"), "hand");
+  for (int i = 0; i < kHandFrames; ++i) world->step(world->scene().dt, world->scene().substeps);
+  const ui::Image offscreen = ui::renderSnapshot(*world, 1280, 720);
+  ui::writePng(offscreen, outputDir("gui") / "hand-offscreen.png");
+  expectSameLayout(gui, offscreen, shot, outputDir("gui") / "hand-offscreen.png");
+
+  // The controller panel's live plots: the tracking-error line (magenta) and the bottom
+  // membrane's tension line (blue) are drawn in the Simulation panel.
+  auto count = [&](int r0, int g0, int b0) {
+    long n = 0;
+    for (int y = 0; y < gui.height; ++y)
+      for (int x = 0; x < static_cast<int>(ui::kLeftWidth); ++x) {
+        const auto* p = gui.pixel(x, y);
+        n += std::abs(p[0] - r0) < 25 && std::abs(p[1] - g0) < 25 && std::abs(p[2] - b0) < 25;
+      }
+    return n;
+  };
+  EXPECT_GT(count(170, 20, 120), 40) << "no tracking-error plot in " << shot;
+  EXPECT_GT(count(40, 90, 200), 40) << "no tension plot in " << shot;
 }
 
 TEST(Gui, SyntheticMouseDragsABodyAndClickSetsTheTarget) {

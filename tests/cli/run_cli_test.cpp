@@ -1,0 +1,95 @@
+// CLI tests for `cablelab scenes`, `run` and `wrap` (CONTRACT.md): formats, columns, exit codes.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "engine/scene_registry.h"
+#include "tests/engine/test_support.h"
+
+namespace cablelab {
+namespace {
+
+TEST(ScenesCli, OneLinePerBuiltinScene) {
+  const auto r = test::runCli("scenes");
+  ASSERT_EQ(r.exitCode, 0);
+  std::istringstream lines(r.out);
+  std::vector<std::string> names;
+  for (std::string line; std::getline(lines, line);) names.push_back(line.substr(0, line.find(' ')));
+  std::vector<std::string> expected;
+  for (const SceneInfo& s : builtinScenes()) expected.push_back(s.name);
+  EXPECT_EQ(names, expected);
+  for (const char* name : {"ballast", "hexagon", "membrane", "pulley", "hand"})
+    EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+}
+
+TEST(RunCli, CsvHasTheContractColumnsAndOneRowPerStep) {
+  const std::string csv = "/tmp/cablelab_run_cli_test.csv";
+  const auto r = test::runCli("run pulley --time 0.5 --dt 0.01 --csv " + csv);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::ifstream in(csv);
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header,
+            "t,left.x,left.y,left.theta,left.vx,left.vy,left.omega,right.x,right.y,right.theta,right.vx,right.vy,"
+            "right.omega,cable.length,cable.tension,cable.wraps");
+  int rows = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++rows;
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 15);
+    EXPECT_EQ(line.find("nan"), std::string::npos);
+  }
+  EXPECT_EQ(rows, 51);  // the initial state and 50 steps
+  const auto summary = nlohmann::json::parse(r.out);
+  EXPECT_EQ(summary["steps"], 50);
+}
+
+TEST(RunCli, SameScenesSameBytes) {
+  const auto a = test::runCli("run hexagon --time 2 --csv /tmp/cablelab_det_a.csv");
+  const auto b = test::runCli("run hexagon --time 2 --csv /tmp/cablelab_det_b.csv");
+  ASSERT_EQ(a.exitCode, 0);
+  ASSERT_EQ(b.exitCode, 0);
+  std::ifstream fa("/tmp/cablelab_det_a.csv"), fb("/tmp/cablelab_det_b.csv");
+  std::stringstream sa, sb;
+  sa << fa.rdbuf();
+  sb << fb.rdbuf();
+  EXPECT_GT(sa.str().size(), 1000u);
+  EXPECT_EQ(sa.str(), sb.str());
+}
+
+TEST(RunCli, BadOptionsExitTwo) {
+  for (const char* args : {"run ballast --time -1", "run ballast --dt 0", "run ballast --substeps 0",
+                           "run ballast --set l=-1", "run ballast --set l", "run nowhere"}) {
+    const auto r = test::runCli(args);
+    EXPECT_EQ(r.exitCode, 2) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+  }
+}
+
+TEST(WrapCli, SquareOverTheTop) {
+  const auto r = test::runCli("wrap " + test::sourcePath("tests/data/wrap/square.json"));
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["contact_vertices"], nlohmann::json::array({3, 2}));
+  EXPECT_NEAR(j["length"].get<double>(), 2 * std::hypot(1.5, 0.5) + 1, 1e-14);
+  ASSERT_EQ(j["path"].size(), 4u);
+  EXPECT_EQ(j["path"][1], nlohmann::json::array({-0.5, 0.5}));
+}
+
+TEST(WrapCli, BadInputNamesTheField) {
+  const struct {
+    const char* file;
+    const char* field;
+  } cases[] = {{"wrap_not_convex.json", "polygon"}, {"wrap_bad_side.json", "side"},
+               {"wrap_inside.json", "A"},           {"wrap_missing_b.json", "B"}};
+  for (const auto& c : cases) {
+    const std::string path = test::sourcePath(std::string("tests/data/bad/") + c.file);
+    const auto r = test::runCli("wrap " + path);
+    EXPECT_EQ(r.exitCode, 2) << c.file;
+    EXPECT_NE(r.err.find(path + ": " + c.field), std::string::npos) << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace cablelab
