@@ -136,7 +136,7 @@ struct World::CableWorkspace {
 
   // Newton on the end-of-step lengths.
   Eigen::VectorXd target, compliance, damped, P, phi1, b, WP, v1;
-  Eigen::MatrixXd JW, K;
+  Eigen::MatrixXd JW, K, JW0;
   std::vector<BodyState> predicted;
   std::vector<WrapPoint> path;
   CableKinematics kin;
@@ -657,13 +657,6 @@ void World::solveCableForces(double h) {
 
   // 5. Newton on the end-of-step lengths phi1(P) (Box2D integrates q1 = q0 + h v1), each
   // linearisation an LCP over all cables: tension >= 0, slack cables only shorten.
-<<<<<<< HEAD
-  const Eigen::MatrixXd JW0 = J0 * W;
-  Eigen::VectorXd P = Eigen::VectorXd::Zero(m), phi1(m);
-  Eigen::MatrixXd J1 = Eigen::MatrixXd::Zero(m, n);
-  std::vector<BodyState> predicted = bodies_;
-  std::vector<WrapPoint> path;
-=======
   Eigen::VectorXd &P = ws.P, &phi1 = ws.phi1, &v1 = ws.v1, &b = ws.b;
   Eigen::MatrixXd &JW = ws.JW, &K = ws.K;
   P.setZero(m);
@@ -671,7 +664,12 @@ void World::solveCableForces(double h) {
   JW.resize(m, m);
   std::vector<BodyState>& predicted = ws.predicted;
   predicted = bodies_;
->>>>>>> main
+  // J0 W from the start-of-step Jacobians (positive semidefinite), for the guard below.
+  Eigen::MatrixXd& JW0 = ws.JW0;
+  JW0.setZero(m, m);
+  for (int r = 0; r < m; ++r)
+    for (const auto& e : cables_[rows[r]].kinematics().jacobian)
+      if (const int d = dofs.ofBody[e.body]; d >= 0) JW0.row(r) += e.d.transpose() * W.middleRows<3>(d);
   for (int iteration = 0; iteration < kNewtonIterations; ++iteration) {
     ws.WP.noalias() = W * P;
     v1 = vStar - ws.WP;
@@ -693,22 +691,16 @@ void World::solveCableForces(double h) {
       for (const auto& e : ws.kin.jacobian)
         if (const int d = dofs.ofBody[e.body]; d >= 0) JW.row(r) += e.d.transpose() * W.middleRows<3>(d);
     }
-<<<<<<< HEAD
-    Eigen::MatrixXd JW = J1 * W;
     // Guard (degenerate geometry): far from the start pose the end-of-step linearisation can lose
     // positive definiteness (a wrap point the predicted motion carries past its neighbour turns a
     // row's J1 against its J0: K_ii <= 0), and the LCP then answers with impulses of 1e6 N s.
     // Such a row falls back to the start-of-step Jacobian, whose J0 W is positive semidefinite.
     for (int r = 0; r < m; ++r)
       if (!(JW(r, r) > 1e-3 * JW0(r, r))) {
-        J1.row(r) = J0.row(r);
         JW.row(r) = JW0.row(r);
         ++stats_.linearisationFallbacks;
       }
-    Eigen::MatrixXd K = JW;
-=======
     K = JW;
->>>>>>> main
     K.diagonal() += compliance;
     b.noalias() = JW * P;
     for (int r = 0; r < m; ++r)
