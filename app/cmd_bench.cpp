@@ -36,111 +36,133 @@ nlohmann::json machine() {
 #else
   const bool optimised = false;
 #endif
-  return {{"cores", std::thread::hardware_concurrency()}, {"cpu", cpu},
-          {"compiler", __VERSION__}, {"ndebug", optimised}};
+  return {{"cores", std::thread::hardware_concurrency()},
+          {"cpu", cpu},
+          {"compiler", __VERSION__},
+          {"ndebug", optimised}};
 }
 
-void stage(const char* what) { std::fprintf(stderr, "bench: %s\n", what); }
+void stage(const char* what) {
+  std::fprintf(stderr, "bench: %s\n", what);
+}
 
-const bool registered = registerCommand("bench", "Measure the headline performance figures (CONTRACT.md)", [](CLI::App& sub) {
-  struct Options {
-    bool json = false, quick = false;
-  };
-  auto o = std::make_shared<Options>();
-  sub.add_flag("--json", o->json, "Print one JSON object instead of a table");
-  sub.add_flag("--quick", o->quick, "Fewer samples and a 20 x 20 reach grid scaled to 50 x 50 (under 20 s)");
-  return [o] {
-    using Clock = std::chrono::steady_clock;
-    const auto start = Clock::now();
-    const bool quick = o->quick;
-    nlohmann::json out;
-    out["quick"] = quick;
+const bool registered = registerCommand(
+    "bench", "Measure the headline performance figures (CONTRACT.md)", [](CLI::App& sub) {
+      struct Options {
+        bool json = false, quick = false;
+      };
+      auto o = std::make_shared<Options>();
+      sub.add_flag("--json", o->json, "Print one JSON object instead of a table");
+      sub.add_flag("--quick", o->quick,
+                   "Fewer samples and a 20 x 20 reach grid scaled to 50 x 50 (under 20 s)");
+      return [o] {
+        using Clock = std::chrono::steady_clock;
+        const auto start = Clock::now();
+        const bool quick = o->quick;
+        nlohmann::json out;
+        out["quick"] = quick;
 
-    // 1. The hand scene with and without its cables, interleaved rounds.
-    stage("hand scene step, with and without cables");
-    const SceneDef hand = makeScene("hand");
-    const int handSteps = quick ? 3000 : 20000;
-    const SceneTiming h = measureScene(hand, 60, handSteps, quick ? 4 : 10);
-    out["box2d_step_us"] = h.withoutCables.stepMicros;
-    out["cable_step_us"] = h.withCables.stepMicros;
-    out["cable_overhead"] = h.overhead;
-    out["wrap_point_ns"] = h.withCables.wrapPointNanos;
-    out["wrap_point_substep_ns"] = h.withCables.substepWrapPointNanos;
-    out["hand"] = {{"steps", h.withCables.steps}, {"substeps", hand.substeps}, {"dt", hand.dt},
-                   {"wrap_points_mean", h.withCables.meanWrapPoints}, {"cable_us", h.withCables.cableMicros}};
+        // 1. The hand scene with and without its cables, interleaved rounds.
+        stage("hand scene step, with and without cables");
+        const SceneDef hand = makeScene("hand");
+        const int handSteps = quick ? 3000 : 20000;
+        const SceneTiming h = measureScene(hand, 60, handSteps, quick ? 4 : 10);
+        out["box2d_step_us"] = h.withoutCables.stepMicros;
+        out["cable_step_us"] = h.withCables.stepMicros;
+        out["cable_overhead"] = h.overhead;
+        out["wrap_point_ns"] = h.withCables.wrapPointNanos;
+        out["wrap_point_substep_ns"] = h.withCables.substepWrapPointNanos;
+        out["hand"] = {{"steps", h.withCables.steps},
+                       {"substeps", hand.substeps},
+                       {"dt", hand.dt},
+                       {"wrap_points_mean", h.withCables.meanWrapPoints},
+                       {"cable_us", h.withCables.cableMicros}};
 
-    // Every other built-in scene, for context (same method).
-    stage("other built-in scenes");
-    nlohmann::json scenes = nlohmann::json::object();
-    for (const SceneInfo& info : builtinScenes()) {
-      const SceneTiming t = info.name == "hand" ? h : measureScene(makeScene(info.name), 30, quick ? 1000 : 5000, 4);
-      scenes[info.name] = {{"box2d_step_us", t.withoutCables.stepMicros}, {"cable_step_us", t.withCables.stepMicros},
-                           {"cable_overhead", t.overhead}, {"wrap_points_mean", t.withCables.meanWrapPoints}};
-    }
-    out["scenes"] = scenes;
+        // Every other built-in scene, for context (same method).
+        stage("other built-in scenes");
+        nlohmann::json scenes = nlohmann::json::object();
+        for (const SceneInfo& info : builtinScenes()) {
+          const SceneTiming t =
+              info.name == "hand" ? h
+                                  : measureScene(makeScene(info.name), 30, quick ? 1000 : 5000, 4);
+          scenes[info.name] = {{"box2d_step_us", t.withoutCables.stepMicros},
+                               {"cable_step_us", t.withCables.stepMicros},
+                               {"cable_overhead", t.overhead},
+                               {"wrap_points_mean", t.withCables.meanWrapPoints}};
+        }
+        out["scenes"] = scenes;
 
-    // 2. Statics solvers, cold start, seeded random instances.
-    const int instances = quick ? 150 : 1000;
-    nlohmann::json socp = nlohmann::json::object(), newton = nlohmann::json::object();
-    for (int n : {2, 4, 8}) {
-      stage(("statics, " + std::to_string(n) + " cables").c_str());
-      const StaticsTimings t = measureStatics(n, instances, 42);
-      socp[std::to_string(n)] = t.socpMicros;
-      newton[std::to_string(n)] = t.newtonMicros;
-    }
-    out["statics_socp_us"] = socp;
-    out["statics_newton_us"] = newton;
-    out["statics_instances"] = instances;
+        // 2. Statics solvers, cold start, seeded random instances.
+        const int instances = quick ? 150 : 1000;
+        nlohmann::json socp = nlohmann::json::object(), newton = nlohmann::json::object();
+        for (int n : {2, 4, 8}) {
+          stage(("statics, " + std::to_string(n) + " cables").c_str());
+          const StaticsTimings t = measureStatics(n, instances, 42);
+          socp[std::to_string(n)] = t.socpMicros;
+          newton[std::to_string(n)] = t.newtonMicros;
+        }
+        out["statics_socp_us"] = socp;
+        out["statics_newton_us"] = newton;
+        out["statics_instances"] = instances;
 
-    // 3. Controller update.
-    stage("controller update");
-    out["controller_update_us"] = measureControllerUpdateMicros(quick ? 5000 : 20000);
+        // 3. Controller update.
+        stage("controller update");
+        out["controller_update_us"] = measureControllerUpdateMicros(quick ? 5000 : 20000);
 
-    // 4. The reach sweep, the code `cablelab reach` runs (same options).
-    const int grid = quick ? 20 : kFullReachGrid;
-    stage(("reach sweep, " + std::to_string(grid) + " x " + std::to_string(grid)).c_str());
-    ReachOptions reach;
-    reach.grid = grid;
-    reach.threads = static_cast<int>(std::max(1u, std::min(2u, std::thread::hardware_concurrency())));
-    Progress progress("reach", static_cast<long>(grid) * grid);
-    const ReachResult r = runReach(reach, HandModel{}, [&](long done, long) { progress.update(done); });
-    progress.done();
-    const double scale = double(kFullReachGrid) * kFullReachGrid / (double(grid) * grid);
-    out["reach_sweep_s"] = r.seconds * scale;
-    out["reach_sweep"] = {{"grid", grid}, {"measured_s", r.seconds}, {"threads", reach.threads},
-                          {"scaled_to_50x50", quick},
-                          {"note", quick ? "--quick: a 20 x 20 grid timed and scaled by 6.25 to 50 x 50"
-                                         : "50 x 50 grid timed"}};
+        // 4. The reach sweep, the code `cablelab reach` runs (same options).
+        const int grid = quick ? 20 : kFullReachGrid;
+        stage(("reach sweep, " + std::to_string(grid) + " x " + std::to_string(grid)).c_str());
+        ReachOptions reach;
+        reach.grid = grid;
+        reach.threads =
+            static_cast<int>(std::max(1u, std::min(2u, std::thread::hardware_concurrency())));
+        Progress progress("reach", static_cast<long>(grid) * grid);
+        const ReachResult r =
+            runReach(reach, HandModel{}, [&](long done, long) { progress.update(done); });
+        progress.done();
+        const double scale = double(kFullReachGrid) * kFullReachGrid / (double(grid) * grid);
+        out["reach_sweep_s"] = r.seconds * scale;
+        out["reach_sweep"] = {
+            {"grid", grid},
+            {"measured_s", r.seconds},
+            {"threads", reach.threads},
+            {"scaled_to_50x50", quick},
+            {"note", quick ? "--quick: a 20 x 20 grid timed and scaled by 6.25 to 50 x 50"
+                           : "50 x 50 grid timed"}};
 
-    out["machine"] = machine();
-    out["bench_s"] = std::chrono::duration<double>(Clock::now() - start).count();
+        out["machine"] = machine();
+        out["bench_s"] = std::chrono::duration<double>(Clock::now() - start).count();
 
-    if (o->json) {
-      printJson(out.dump());
-      return 0;
-    }
-    const nlohmann::json& m = out["machine"];
-    std::printf("cablelab bench%s  (%s, %d cores)\n", quick ? " --quick" : "", m["cpu"].get<std::string>().c_str(),
-                m["cores"].get<int>());
-    std::printf("  %-34s %12s\n", "figure (median)", "value");
-    auto row = [](const char* name, double v, const char* unit) { std::printf("  %-34s %12.3f %s\n", name, v, unit); };
-    row("hand step, Box2D alone", out["box2d_step_us"], "us");
-    row("hand step, with cables", out["cable_step_us"], "us");
-    row("cable overhead", 100.0 * out["cable_overhead"].get<double>(), "%");
-    row("cable update + solve per wrap point", out["wrap_point_ns"], "ns/step");
-    for (const char* n : {"2", "4", "8"}) {
-      row(("statics SOCP, " + std::string(n) + " cables").c_str(), socp[n], "us");
-      row(("statics Newton, " + std::string(n) + " cables").c_str(), newton[n], "us");
-    }
-    row("controller update", out["controller_update_us"], "us");
-    row(quick ? "reach sweep 50x50 (scaled from 20x20)" : "reach sweep 50x50", out["reach_sweep_s"], "s");
-    std::printf("  per scene (step us: Box2D alone / with cables / overhead):\n");
-    for (const auto& [name, s] : scenes.items())
-      std::printf("    %-10s %9.2f %9.2f %8.1f %%\n", name.c_str(), s["box2d_step_us"].get<double>(),
-                  s["cable_step_us"].get<double>(), 100 * s["cable_overhead"].get<double>());
-    return 0;
-  };
-});
+        if (o->json) {
+          printJson(out.dump());
+          return 0;
+        }
+        const nlohmann::json& m = out["machine"];
+        std::printf("cablelab bench%s  (%s, %d cores)\n", quick ? " --quick" : "",
+                    m["cpu"].get<std::string>().c_str(), m["cores"].get<int>());
+        std::printf("  %-34s %12s\n", "figure (median)", "value");
+        auto row = [](const char* name, double v, const char* unit) {
+          std::printf("  %-34s %12.3f %s\n", name, v, unit);
+        };
+        row("hand step, Box2D alone", out["box2d_step_us"], "us");
+        row("hand step, with cables", out["cable_step_us"], "us");
+        row("cable overhead", 100.0 * out["cable_overhead"].get<double>(), "%");
+        row("cable update + solve per wrap point", out["wrap_point_ns"], "ns/step");
+        for (const char* n : {"2", "4", "8"}) {
+          row(("statics SOCP, " + std::string(n) + " cables").c_str(), socp[n], "us");
+          row(("statics Newton, " + std::string(n) + " cables").c_str(), newton[n], "us");
+        }
+        row("controller update", out["controller_update_us"], "us");
+        row(quick ? "reach sweep 50x50 (scaled from 20x20)" : "reach sweep 50x50",
+            out["reach_sweep_s"], "s");
+        std::printf("  per scene (step us: Box2D alone / with cables / overhead):\n");
+        for (const auto& [name, s] : scenes.items())
+          std::printf("    %-10s %9.2f %9.2f %8.1f %%\n", name.c_str(),
+                      s["box2d_step_us"].get<double>(), s["cable_step_us"].get<double>(),
+                      100 * s["cable_overhead"].get<double>());
+        return 0;
+      };
+    });
 
 }  // namespace
 }  // namespace cablelab::app

@@ -154,7 +154,8 @@ int runGenerate(const FitOptions& o) {
 /// "WxH" -> pixel sizes, each in [200, 4096].
 std::pair<int, int> parsePlotSize(const std::string& text) {
   const size_t x = text.find_first_of("xX");
-  if (x == std::string::npos) throw InputError("--plot-size", "plot_size", "expected WxH, e.g. 800x600");
+  if (x == std::string::npos)
+    throw InputError("--plot-size", "plot_size", "expected WxH, e.g. 800x600");
   const double w = parseDouble(text.substr(0, x), "--plot-size", "plot_size");
   const double h = parseDouble(text.substr(x + 1), "--plot-size", "plot_size");
   if (w != std::floor(w) || h != std::floor(h) || w < 200 || h < 200 || w > 4096 || h > 4096)

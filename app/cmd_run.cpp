@@ -18,16 +18,19 @@
 namespace cablelab::app {
 namespace {
 
-// Writes t, then NAME.x .y .theta .vx .vy .omega per body, then NAME.length .tension .wraps per cable.
+// Writes t, then NAME.x .y .theta .vx .vy .omega per body, then NAME.length .tension .wraps per
+// cable.
 class CsvWriter {
  public:
   CsvWriter(const std::string& path, const World& world) : out_(path) {
     if (!out_) throw InputError(path, "--csv", "cannot write the file");
     out_ << "t";
     for (const BodyDef& b : world.scene().bodies)
-      for (const char* c : {".x", ".y", ".theta", ".vx", ".vy", ".omega"}) out_ << "," << b.name << c;
+      for (const char* c : {".x", ".y", ".theta", ".vx", ".vy", ".omega"})
+        out_ << "," << b.name << c;
     for (int i = 0; i < world.cableCount(); ++i)
-      for (const char* c : {".length", ".tension", ".wraps"}) out_ << "," << world.cable(i).name() << c;
+      for (const char* c : {".length", ".tension", ".wraps"})
+        out_ << "," << world.cable(i).name() << c;
     out_ << "\n";
   }
   void row(const World& world) {
@@ -55,61 +58,68 @@ class CsvWriter {
   std::ofstream out_;
 };
 
-const bool registered = registerCommand("run", "Run a scene headless (CSV per step, PNG of the end state)", [](CLI::App& sub) {
-  struct Options {
-    std::string scene, csv, png;
-    std::vector<std::string> sets;
-    double time = 5.0, dt = 0;
-    int substeps = 0;
-  };
-  auto o = std::make_shared<Options>();
-  sub.add_option("scene", o->scene, "Built-in scene name (see `cablelab scenes`) or a scene JSON file")->required();
-  sub.add_option("--set", o->sets, "Scene parameter NAME=VALUE (repeatable)");
-  sub.add_option("--time", o->time, "Simulated time (s)")->capture_default_str();
-  CLI::Option* dtOption = sub.add_option("--dt", o->dt, "Time step (s); default: the scene's");
-  CLI::Option* substepsOption = sub.add_option("--substeps", o->substeps, "Sub-steps per step; default: the scene's");
-  sub.add_option("--csv", o->csv, "Write one row per step to this CSV file");
-  sub.add_option("--png", o->png, "Write a snapshot of the final state to this PNG file");
-  return [o, dtOption, substepsOption] {
-    if (dtOption->count() && !(o->dt > 0 && o->dt <= 1)) badOption("--dt", "must be in (0, 1] s");
-    if (substepsOption->count() && (o->substeps < 1 || o->substeps > 1000))
-      badOption("--substeps", "must be 1..1000");
-    std::vector<std::pair<std::string, double>> overrides;
-    for (const std::string& s : o->sets) overrides.push_back(parseSetting(s));
-    World world(makeScene(o->scene, overrides), o->scene);
-    const double dt = o->dt > 0 ? o->dt : world.scene().dt;
-    const int substeps = o->substeps > 0 ? o->substeps : world.scene().substeps;
-    requireFinite(o->time, "--time", 0, 1e7);
-    const long steps = std::lround(o->time / dt);
-    if (steps > 100000000) badOption("--time", "more than 1e8 steps; raise --dt");
+const bool registered = registerCommand(
+    "run", "Run a scene headless (CSV per step, PNG of the end state)", [](CLI::App& sub) {
+      struct Options {
+        std::string scene, csv, png;
+        std::vector<std::string> sets;
+        double time = 5.0, dt = 0;
+        int substeps = 0;
+      };
+      auto o = std::make_shared<Options>();
+      sub.add_option("scene", o->scene,
+                     "Built-in scene name (see `cablelab scenes`) or a scene JSON file")
+          ->required();
+      sub.add_option("--set", o->sets, "Scene parameter NAME=VALUE (repeatable)");
+      sub.add_option("--time", o->time, "Simulated time (s)")->capture_default_str();
+      CLI::Option* dtOption = sub.add_option("--dt", o->dt, "Time step (s); default: the scene's");
+      CLI::Option* substepsOption =
+          sub.add_option("--substeps", o->substeps, "Sub-steps per step; default: the scene's");
+      sub.add_option("--csv", o->csv, "Write one row per step to this CSV file");
+      sub.add_option("--png", o->png, "Write a snapshot of the final state to this PNG file");
+      return [o, dtOption, substepsOption] {
+        if (dtOption->count() && !(o->dt > 0 && o->dt <= 1))
+          badOption("--dt", "must be in (0, 1] s");
+        if (substepsOption->count() && (o->substeps < 1 || o->substeps > 1000))
+          badOption("--substeps", "must be 1..1000");
+        std::vector<std::pair<std::string, double>> overrides;
+        for (const std::string& s : o->sets) overrides.push_back(parseSetting(s));
+        World world(makeScene(o->scene, overrides), o->scene);
+        const double dt = o->dt > 0 ? o->dt : world.scene().dt;
+        const int substeps = o->substeps > 0 ? o->substeps : world.scene().substeps;
+        requireFinite(o->time, "--time", 0, 1e7);
+        const long steps = std::lround(o->time / dt);
+        if (steps > 100000000) badOption("--time", "more than 1e8 steps; raise --dt");
 
-    std::unique_ptr<CsvWriter> csv;
-    if (!o->csv.empty()) {
-      csv = std::make_unique<CsvWriter>(o->csv, world);
-      csv->row(world);
-    }
-    Progress progress("run " + o->scene, steps);
-    std::vector<double> stepMicros;
-    stepMicros.reserve(std::min<long>(steps, 1000000));
-    for (long i = 0; i < steps; ++i) {
-      world.step(dt, substeps);
-      if (static_cast<long>(stepMicros.size()) < 1000000) stepMicros.push_back(world.lastStepStats().stepMicros);
-      if (csv) csv->row(world);
-      progress.update(i + 1);
-    }
-    progress.done();
+        std::unique_ptr<CsvWriter> csv;
+        if (!o->csv.empty()) {
+          csv = std::make_unique<CsvWriter>(o->csv, world);
+          csv->row(world);
+        }
+        Progress progress("run " + o->scene, steps);
+        std::vector<double> stepMicros;
+        stepMicros.reserve(std::min<long>(steps, 1000000));
+        for (long i = 0; i < steps; ++i) {
+          world.step(dt, substeps);
+          if (static_cast<long>(stepMicros.size()) < 1000000)
+            stepMicros.push_back(world.lastStepStats().stepMicros);
+          if (csv) csv->row(world);
+          progress.update(i + 1);
+        }
+        progress.done();
 #ifdef CABLELAB_HAVE_OFFSCREEN
-    if (!o->png.empty()) ui::writeSnapshotPng(world, o->png, 800, 600);
+        if (!o->png.empty()) ui::writeSnapshotPng(world, o->png, 800, 600);
 #else
     if (!o->png.empty()) badOption("--png", "this build has no offscreen renderer");
 #endif
-    nlohmann::json out = {{"scene", world.scene().name}, {"steps", steps}, {"time", world.time()},
-                          {"dt", dt}, {"substeps", substeps}, {"step_us_median", median(stepMicros)},
-                          {"warnings", world.warnings()}};
-    printJson(out.dump());
-    return 0;
-  };
-});
+        nlohmann::json out = {{"scene", world.scene().name}, {"steps", steps},
+                              {"time", world.time()},        {"dt", dt},
+                              {"substeps", substeps},        {"step_us_median", median(stepMicros)},
+                              {"warnings", world.warnings()}};
+        printJson(out.dump());
+        return 0;
+      };
+    });
 
 }  // namespace
 }  // namespace cablelab::app

@@ -9,16 +9,19 @@
 namespace cablelab::app {
 namespace {
 
-const bool registered = registerCommand("wrap", "Taut cable path from A to B around a convex polygon", [](CLI::App& sub) {
-  auto file = std::make_shared<std::string>();
-  sub.add_option("file", *file, "Input JSON {\"A\": [x, y], \"B\": [x, y], \"polygon\": [[x, y], ...], \"side\": \"left\"|\"right\"}")
-      ->required();
-  return [file] {
-    const WrapProblem problem = parseWrapJson(readJsonFile(*file), *file);
-    printJson(wrapSolutionToJson(solveWrap(problem, *file)).dump());
-    return 0;
-  };
-});
+const bool registered = registerCommand(
+    "wrap", "Taut cable path from A to B around a convex polygon", [](CLI::App& sub) {
+      auto file = std::make_shared<std::string>();
+      sub.add_option("file", *file,
+                     "Input JSON {\"A\": [x, y], \"B\": [x, y], \"polygon\": [[x, y], ...], "
+                     "\"side\": \"left\"|\"right\"}")
+          ->required();
+      return [file] {
+        const WrapProblem problem = parseWrapJson(readJsonFile(*file), *file);
+        printJson(wrapSolutionToJson(solveWrap(problem, *file)).dump());
+        return 0;
+      };
+    });
 
 }  // namespace
 }  // namespace cablelab::app

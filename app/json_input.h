@@ -21,7 +21,8 @@ inline nlohmann::json readJsonFile(const std::string& path) {
   }
 }
 
-inline double jsonNumber(const nlohmann::json& v, const std::string& file, const std::string& field) {
+inline double jsonNumber(const nlohmann::json& v, const std::string& file,
+                         const std::string& field) {
   if (!v.is_number()) throw InputError(file, field, "must be a number");
   const double d = v.get<double>();
   if (!std::isfinite(d)) throw InputError(file, field, "must be finite");

@@ -21,7 +21,8 @@ bool registerCommand(std::string name, std::string description, CommandSetup set
 
 const std::vector<Command>& commands() {
   auto& all = registry();
-  std::sort(all.begin(), all.end(), [](const Command& a, const Command& b) { return a.name < b.name; });
+  std::sort(all.begin(), all.end(),
+            [](const Command& a, const Command& b) { return a.name < b.name; });
   return all;
 }
 

@@ -38,18 +38,23 @@ inline double median(std::vector<double> v) {
 /// Prints "label: 42% (eta 3 s)" on stderr at most twice a second, only for runs longer than 2 s.
 class Progress {
  public:
-  Progress(std::string label, long total) : label_(std::move(label)), total_(total), start_(Clock::now()) {}
+  Progress(std::string label, long total)
+      : label_(std::move(label)), total_(total), start_(Clock::now()) {}
   void update(long done) {
     const auto now = Clock::now();
     const double elapsed = std::chrono::duration<double>(now - start_).count();
-    if (elapsed < 2.0 || std::chrono::duration<double>(now - last_).count() < 0.5 || total_ <= 0) return;
+    if (elapsed < 2.0 || std::chrono::duration<double>(now - last_).count() < 0.5 || total_ <= 0)
+      return;
     last_ = now;
     const double share = static_cast<double>(done) / total_;
-    std::fprintf(stderr, "\r%s: %3.0f%% (eta %.0f s)   ", label_.c_str(), 100 * share, elapsed * (1 - share) / std::max(share, 1e-9));
+    std::fprintf(stderr, "\r%s: %3.0f%% (eta %.0f s)   ", label_.c_str(), 100 * share,
+                 elapsed * (1 - share) / std::max(share, 1e-9));
     printed_ = true;
   }
   void done() {
-    if (printed_) std::fprintf(stderr, "\r%s: done in %.1f s        \n", label_.c_str(), std::chrono::duration<double>(Clock::now() - start_).count());
+    if (printed_)
+      std::fprintf(stderr, "\r%s: done in %.1f s        \n", label_.c_str(),
+                   std::chrono::duration<double>(Clock::now() - start_).count());
   }
 
  private:

@@ -70,7 +70,8 @@ SceneTiming measureScene(const SceneDef& scene, int warmup, int steps, int round
   t.scene = scene.name;
   t.withCables = summarise(with);
   t.withoutCables = summarise(without);
-  t.overhead = t.withoutCables.stepMicros > 0 ? t.withCables.stepMicros / t.withoutCables.stepMicros - 1 : 0;
+  t.overhead =
+      t.withoutCables.stepMicros > 0 ? t.withCables.stepMicros / t.withoutCables.stepMicros - 1 : 0;
   return t;
 }
 

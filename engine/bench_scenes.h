@@ -13,11 +13,11 @@
 namespace cablelab {
 
 struct StepTiming {
-  int steps = 0;                 ///< timed steps (after the warm-up)
-  double stepMicros = 0;         ///< median wall time of World::step (us)
-  double cableMicros = 0;        ///< median of StepStats::cableMicros (us): cable update + solve
-  double meanWrapPoints = 0;     ///< wrap points in use, mean over the timed steps
-  double wrapPointNanos = 0;     ///< median over steps of cableMicros / wrap points (ns), 0 if none
+  int steps = 0;              ///< timed steps (after the warm-up)
+  double stepMicros = 0;      ///< median wall time of World::step (us)
+  double cableMicros = 0;     ///< median of StepStats::cableMicros (us): cable update + solve
+  double meanWrapPoints = 0;  ///< wrap points in use, mean over the timed steps
+  double wrapPointNanos = 0;  ///< median over steps of cableMicros / wrap points (ns), 0 if none
   double substepWrapPointNanos = 0;  ///< the same per sub-step (ns)
 };
 

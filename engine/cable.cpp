@@ -17,7 +17,8 @@ std::string cableField(int index, const std::string& rest) {
 
 }  // namespace
 
-Cable::Cable(const SceneDef& scene, int index, const std::string& source) : def_(scene.cables[index]) {
+Cable::Cable(const SceneDef& scene, int index, const std::string& source)
+    : def_(scene.cables[index]) {
   auto resolve = [&](const std::string& name, const std::string& field) {
     const int b = findBodyIndex(scene, name);
     if (b == -2) throw InputError(source, cableField(index, field), "unknown body '" + name + "'");
@@ -134,7 +135,8 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
       }
     }
 
-  WrapPoint start{WrapPoint::Kind::Anchor, startBody_, def_.start.point, path_.front().world, -1, -1};
+  WrapPoint start{WrapPoint::Kind::Anchor, startBody_, def_.start.point,
+                  path_.front().world,     -1,         -1};
   WrapPoint end{WrapPoint::Kind::Anchor, endBody_, def_.end.point, path_.back().world, -1, -1};
   path_.clear();
   path_.push_back(start);
@@ -145,7 +147,8 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
       path_.push_back({WrapPoint::Kind::Point, p.body, p.local[0], p.world[0], j, -1});
       continue;
     }
-    for (int v : chains[j]) path_.push_back({WrapPoint::Kind::Vertex, p.body, p.local[v], p.world[v], j, v});
+    for (int v : chains[j])
+      path_.push_back({WrapPoint::Kind::Vertex, p.body, p.local[v], p.world[v], j, v});
   }
   path_.push_back(end);
   return true;
@@ -167,7 +170,8 @@ void Cable::update(std::span<const BodyState> bodies, std::vector<std::string>* 
       const int j = path_[i].pulley;
       PulleyState& p = pulleys_[j];
       if (p.side == WrapSide::Threaded || p.polygon) continue;
-      const double depth = wrapSideDistance(path_[i - 1].world, path_[i + 1].world, p.world[0], p.side);
+      const double depth =
+          wrapSideDistance(path_[i - 1].world, path_[i + 1].world, p.world[0], p.side);
       if (depth < 0) {
         p.engaged = false;
         p.previousDepth = depth;
@@ -178,7 +182,8 @@ void Cable::update(std::span<const BodyState> bodies, std::vector<std::string>* 
     for (int j = 0; j < count && !changed; ++j) {
       PulleyState& p = pulleys_[j];
       if (!p.engaged || !p.polygon) continue;
-      const bool inPath = std::any_of(path_.begin(), path_.end(), [j](const WrapPoint& w) { return w.pulley == j; });
+      const bool inPath = std::any_of(path_.begin(), path_.end(),
+                                      [j](const WrapPoint& w) { return w.pulley == j; });
       if (!inPath) {
         p.engaged = false;
         p.previousDepth = 0;

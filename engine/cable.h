@@ -48,11 +48,11 @@ struct BodyState {
 struct WrapPoint {
   enum class Kind { Anchor, Point, Vertex };
   Kind kind = Kind::Anchor;
-  int body = -1;                ///< -1: world
-  Vec2 local = Vec2::Zero();    ///< body frame (world frame for the world)
-  Vec2 world = Vec2::Zero();    ///< current world position
-  int pulley = -1;              ///< index into CableDef::pulleys, -1 for anchors
-  int vertex = -1;              ///< polygon vertex index, -1 otherwise
+  int body = -1;              ///< -1: world
+  Vec2 local = Vec2::Zero();  ///< body frame (world frame for the world)
+  Vec2 world = Vec2::Zero();  ///< current world position
+  int pulley = -1;            ///< index into CableDef::pulleys, -1 for anchors
+  int vertex = -1;            ///< polygon vertex index, -1 otherwise
 };
 
 /// d(length)/d(x, y, theta) of one body.
@@ -63,11 +63,11 @@ struct BodyJacobian {
 
 /// length, J and J-dot-v of a path (pure functions of the path and the bodies' state).
 struct CableKinematics {
-  double length = 0;                    ///< m
-  double lengthRate = 0;                ///< J v (m/s)
-  double jdotV = 0;                     ///< J-dot v (m/s^2)
-  std::vector<BodyJacobian> jacobian;   ///< one entry per moving body touched, sorted by body
-  int zeroLengthSegments = 0;           ///< segments left out of J (coincident points)
+  double length = 0;                   ///< m
+  double lengthRate = 0;               ///< J v (m/s)
+  double jdotV = 0;                    ///< J-dot v (m/s^2)
+  std::vector<BodyJacobian> jacobian;  ///< one entry per moving body touched, sorted by body
+  int zeroLengthSegments = 0;          ///< segments left out of J (coincident points)
 };
 
 /// One 2x2 block of d^2 length / (d x_a d x_b), x = a body's translation.
@@ -81,7 +81,8 @@ struct StiffnessBlock {
 /// implicitly. Rotations are left out. Blocks of world-fixed points are skipped.
 std::vector<StiffnessBlock> lengthHessianTranslation(std::span<const WrapPoint> path);
 /// The same, appended to `blocks` (no allocation once it has the capacity).
-void appendLengthHessianTranslation(std::span<const WrapPoint> path, std::vector<StiffnessBlock>& blocks);
+void appendLengthHessianTranslation(std::span<const WrapPoint> path,
+                                    std::vector<StiffnessBlock>& blocks);
 
 /// World position of a point fixed on a body.
 Vec2 worldPoint(std::span<const BodyState> bodies, int body, const Vec2& local);
@@ -89,7 +90,8 @@ Vec2 worldPoint(std::span<const BodyState> bodies, int body, const Vec2& local);
 /// Fills p.world for every point, then length, J, J-dot-v (NOTES.md formula).
 CableKinematics cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodies);
 /// The same into `k`, reusing its Jacobian's storage (the solver calls this every Newton step).
-void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodies, CableKinematics& k);
+void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodies,
+                     CableKinematics& k);
 
 class Cable {
  public:
@@ -126,8 +128,8 @@ class Cable {
  private:
   struct PulleyState {
     int body = -1;
-    std::vector<Vec2> local;   ///< point or polygon vertices, body frame
-    std::vector<Vec2> world;   ///< the same in the world frame, this update
+    std::vector<Vec2> local;  ///< point or polygon vertices, body frame
+    std::vector<Vec2> world;  ///< the same in the world frame, this update
     WrapSide side = WrapSide::Left;
     bool polygon = false;
     bool engaged = false;
@@ -142,8 +144,8 @@ class Cable {
   int startBody_, endBody_;
   std::vector<PulleyState> pulleys_;
   std::vector<WrapPoint> path_;
-  std::vector<int> nodes_;                 ///< buildPath scratch: engaged chain nodes
-  std::vector<std::vector<int>> chains_;   ///< buildPath scratch: polygon vertex chains
+  std::vector<int> nodes_;                ///< buildPath scratch: engaged chain nodes
+  std::vector<std::vector<int>> chains_;  ///< buildPath scratch: polygon vertex chains
   CableKinematics kin_;
   double tension_ = 0;
   bool firstUpdate_ = true;

@@ -88,7 +88,8 @@ CableKinematics cableKinematics(std::span<WrapPoint> path, std::span<const BodyS
   return k;
 }
 
-void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodies, CableKinematics& k) {
+void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodies,
+                     CableKinematics& k) {
   k.length = k.lengthRate = k.jdotV = 0;
   k.jacobian.clear();
   k.zeroLengthSegments = 0;
@@ -128,7 +129,8 @@ std::vector<StiffnessBlock> lengthHessianTranslation(std::span<const WrapPoint> 
   return blocks;
 }
 
-void appendLengthHessianTranslation(std::span<const WrapPoint> path, std::vector<StiffnessBlock>& blocks) {
+void appendLengthHessianTranslation(std::span<const WrapPoint> path,
+                                    std::vector<StiffnessBlock>& blocks) {
   for (size_t i = 0; i + 1 < path.size(); ++i) {
     const int a = path[i].body, b = path[i + 1].body;
     const Vec2 d = path[i + 1].world - path[i].world;

@@ -68,21 +68,24 @@ HandJoints HandController::update(const HandJoints& q, const Vec2& box, const Ve
   HandJoints winv = HandJoints::Ones();
   winv[kDistal] = winv[3 + kDistal] = 1.0 / params_.distalWeight;
   const Eigen::Matrix<double, 6, 2> JWt = winv.asDiagonal() * J.transpose();
-  const Eigen::Matrix2d JWJt = J * JWt + params_.lambda * params_.lambda * Eigen::Matrix2d::Identity();
+  const Eigen::Matrix2d JWJt =
+      J * JWt + params_.lambda * params_.lambda * Eigen::Matrix2d::Identity();
   const Eigen::Matrix<double, 6, 2> pinv = JWt * JWJt.inverse();
   // Secondary task: h(q) = sum tilt^2 + |D_top - D_bottom - (0, 2 baseY)|^2 (paddles face-on, the
   // pinch's squeeze kept), descended in the null space of the primary task.
   HandJoints gradient = HandJoints::Zero();
   // On the commanded targets, not the measured joints: the servos lag under load and a task on
   // the measured joints would wind up.
-  const FingerPose top = fingerPose(model_, commanded, 0), bottom = fingerPose(model_, commanded, 1);
+  const FingerPose top = fingerPose(model_, commanded, 0),
+                   bottom = fingerPose(model_, commanded, 1);
   const Vec2 gap = top.paddle - bottom.paddle - Vec2(0, 2 * model_.baseY);
   for (int f = 0; f < 2; ++f) {
     const FingerPose& pose = f == 0 ? top : bottom;
     const double sign = f == 0 ? 1.0 : -1.0;
     const double tilt = commanded[3 * f + kProximal] + commanded[3 * f + kDistal];
     gradient[3 * f + kProximal] = tilt + sign * gap.dot(perp(pose.paddle - pose.link));
-    gradient[3 * f + kSlide] = sign * gap.dot(Vec2(std::cos(pose.linkAngle), std::sin(pose.linkAngle)));
+    gradient[3 * f + kSlide] =
+        sign * gap.dot(Vec2(std::cos(pose.linkAngle), std::sin(pose.linkAngle)));
     gradient[3 * f + kDistal] = tilt;
   }
   const HandJoints faceOn = -params_.faceOnGain * winv.asDiagonal() * gradient;

@@ -39,9 +39,10 @@ struct HandControllerParams {
   double maxError = 0.2;  ///< the error fed to the law is saturated at this length (m): the
                           ///< Jacobian is a local model, one update must not leave its validity
   double integralZone = 0.02;  ///< the integral collects the error only while |e| is below this (m)
-  double distalWeight = 4.0;  ///< joint-space weight of the distal joints in the pseudo-inverse
-                              ///< (> 1: prefer moving the fingers to tilting the paddles)
-  double faceOnGain = 0.3;    ///< per update: null-space pull back to face-on paddles and the pinch gap
+  double distalWeight = 4.0;   ///< joint-space weight of the distal joints in the pseudo-inverse
+                               ///< (> 1: prefer moving the fingers to tilting the paddles)
+  double faceOnGain =
+      0.3;  ///< per update: null-space pull back to face-on paddles and the pinch gap
 };
 
 /// The integral gain `--pid` uses (1/s per update).
@@ -52,7 +53,7 @@ using BoxJacobian = Eigen::Matrix<double, 2, 6>;
 
 /// The statics model's prediction at joint values q.
 struct BoxPrediction {
-  Vec2 box = Vec2::Zero();                   ///< equilibrium box centre (m)
+  Vec2 box = Vec2::Zero();  ///< equilibrium box centre (m)
   BoxJacobian jacobian = BoxJacobian::Zero();
   bool valid = false;  ///< solver converged and both membranes wrap the box face-on
 };
@@ -80,7 +81,8 @@ class HandController {
   /// One outer-loop update from the measured joints q and box centre, the target and the joint
   /// targets currently commanded; returns the joint-target increment (rad, m). Call it once per
   /// period: the derivative term uses the box centre of the previous call.
-  HandJoints update(const HandJoints& q, const Vec2& box, const Vec2& target, const HandJoints& commanded);
+  HandJoints update(const HandJoints& q, const Vec2& box, const Vec2& target,
+                    const HandJoints& commanded);
 
   /// The last update's prediction (for diagnostics).
   const BoxPrediction& lastPrediction() const { return last_; }

@@ -39,7 +39,8 @@ FingertipPoints fingertipPoints(const HandModel& m, const HandJoints& q) {
   for (int f = 0; f < 2; ++f) {
     const FingerPose pose = fingerPose(m, q, f);
     for (int c = 0; c < 2; ++c)
-      tips.segment<2>(4 * f + 2 * c) = pose.paddle + rotate(paddleCorner(m, f, c), pose.paddleAngle);
+      tips.segment<2>(4 * f + 2 * c) =
+          pose.paddle + rotate(paddleCorner(m, f, c), pose.paddleAngle);
   }
   return tips;
 }
@@ -81,7 +82,8 @@ bool wrapsFaceOn(const HandModel& m, const FingertipPoints& tips, const Vec2& p)
     // Each corner must sit beside the box and between its faces, on the wrapped face's side.
     if (a.x() >= p.x() - h || b.x() <= p.x() + h) return false;
     for (const Vec2& t : {a, b}) {
-      const double depth = s * (t.y() - p.y());  // height of the corner above the centre, towards the face
+      const double depth =
+          s * (t.y() - p.y());  // height of the corner above the centre, towards the face
       if (depth >= h || depth <= -h) return false;
     }
   }

@@ -21,14 +21,17 @@ bool fingertipsReach(const HandModel& m, const Vec2& g) {
   return true;
 }
 
-ReachResult runReach(const ReachOptions& o, const HandModel& m, const std::function<void(long, long)>& progress) {
+ReachResult runReach(const ReachOptions& o, const HandModel& m,
+                     const std::function<void(long, long)>& progress) {
   const auto start = std::chrono::steady_clock::now();
   ReachResult r;
   r.lower = Vec2(-1.6, -2.6);
   r.upper = Vec2(1.6, 2.6);
   const int n = o.grid;
   const Vec2 cell = (r.upper - r.lower) / n;
-  auto point = [&](int k) { return Vec2(r.lower.x() + (k % n + 0.5) * cell.x(), r.lower.y() + (k / n + 0.5) * cell.y()); };
+  auto point = [&](int k) {
+    return Vec2(r.lower.x() + (k % n + 0.5) * cell.x(), r.lower.y() + (k / n + 0.5) * cell.y());
+  };
   std::vector<char> reached(n * n, 0);
   std::atomic<int> next{0}, done{0};
 

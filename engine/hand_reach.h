@@ -18,19 +18,19 @@
 namespace cablelab {
 
 struct ReachOptions {
-  int grid = 50;             ///< N: N x N targets
+  int grid = 50;  ///< N: N x N targets
   int threads = 2;
   int maxUpdates = 600;      ///< outer-loop updates per target
   double tolerance = 0.005;  ///< m
 };
 
 struct ReachResult {
-  double objectArea = 0;     ///< m^2
-  double fingertipArea = 0;  ///< m^2
-  int points = 0;            ///< targets tried (N^2)
+  double objectArea = 0;                            ///< m^2
+  double fingertipArea = 0;                         ///< m^2
+  int points = 0;                                   ///< targets tried (N^2)
   std::vector<Vec2> objectPoints, fingertipPoints;  ///< the grid points in each set (m)
   Vec2 lower = Vec2::Zero(), upper = Vec2::Zero();  ///< grid window (m)
-  double seconds = 0;        ///< wall time
+  double seconds = 0;                               ///< wall time
 };
 
 /// `progress(done, total)` is called from the calling thread about every 0.1 s.

@@ -36,7 +36,8 @@ void placeHand(World& world, const HandModel& model, const HandJoints& q) {
   for (int j = 0; j < 6; ++j) world.setServoTarget(world.findJoint(kHandJointNames[j]), q[j]);
 }
 
-TrackResult runTracking(const TrackOptions& o, const HandModel& model, const std::function<void(long, long)>& onStep) {
+TrackResult runTracking(const TrackOptions& o, const HandModel& model,
+                        const std::function<void(long, long)>& onStep) {
   World world(buildHandScene(model), "hand");
   const double dt = world.scene().dt;
   const int substeps = world.scene().substeps;
@@ -78,7 +79,8 @@ TrackResult runTracking(const TrackOptions& o, const HandModel& model, const std
     for (int j = 0; j < 6; ++j) world.setServoTarget(j, commanded[j]);
 
     world.step(dt, substeps);
-    if (result.graspTime < 0 && world.cable(cables[0]).wraps() >= 2 && world.cable(cables[1]).wraps() >= 2) {
+    if (result.graspTime < 0 && world.cable(cables[0]).wraps() >= 2 &&
+        world.cable(cables[1]).wraps() >= 2) {
       result.graspTime = world.time();
       // Control begins once the closing ramp has finished and the squeeze has settled a little
       // (before that the membranes barely press and the statics model is ill-conditioned).
@@ -95,7 +97,8 @@ TrackResult runTracking(const TrackOptions& o, const HandModel& model, const std
   }
   const TrackSample& last = result.samples.back();
   result.finalError = (last.box - last.target).norm();
-  result.rmsError = controlledSteps > 0 ? std::sqrt(sumSquares / controlledSteps) : result.finalError;
+  result.rmsError =
+      controlledSteps > 0 ? std::sqrt(sumSquares / controlledSteps) : result.finalError;
   return result;
 }
 

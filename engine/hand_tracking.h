@@ -18,12 +18,12 @@
 namespace cablelab {
 
 struct TrackOptions {
-  Vec2 target = Vec2::Zero();  ///< final target box centre (m)
-  double rampTime = 0;         ///< s; > 0: the target moves linearly from (0, 0) to `target`
-                               ///< over this long, starting at grasp time; 0: constant target
-  double time = 15;            ///< simulated time (s)
-  bool pid = false;            ///< add the integral term (k_i = kHandPidKi)
-  double closeTime = 1.0;      ///< s to swing from the open pose to the pinch pose
+  Vec2 target = Vec2::Zero();       ///< final target box centre (m)
+  double rampTime = 0;              ///< s; > 0: the target moves linearly from (0, 0) to `target`
+                                    ///< over this long, starting at grasp time; 0: constant target
+  double time = 15;                 ///< simulated time (s)
+  bool pid = false;                 ///< add the integral term (k_i = kHandPidKi)
+  double closeTime = 1.0;           ///< s to swing from the open pose to the pinch pose
   HandControllerParams controller;  ///< outer-loop gains (`pid` sets ki = kHandPidKi)
 };
 
@@ -34,9 +34,9 @@ struct TrackSample {
 };
 
 struct TrackResult {
-  double finalError = 0;  ///< |box - target| at the end (m)
-  double rmsError = 0;    ///< RMS of |box - target| over the steps after the grasp (m)
-  double graspTime = -1;  ///< s; -1 if the membranes never both wrapped the box
+  double finalError = 0;             ///< |box - target| at the end (m)
+  double rmsError = 0;               ///< RMS of |box - target| over the steps after the grasp (m)
+  double graspTime = -1;             ///< s; -1 if the membranes never both wrapped the box
   std::vector<TrackSample> samples;  ///< one per step, t = 0 first
 };
 

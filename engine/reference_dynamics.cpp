@@ -5,7 +5,8 @@
 namespace cablelab {
 
 ConstrainedAcceleration constrainedAcceleration(const Eigen::MatrixXd& H, const Eigen::MatrixXd& J,
-                                                const Eigen::VectorXd& jdotV, const Eigen::VectorXd& force) {
+                                                const Eigen::VectorXd& jdotV,
+                                                const Eigen::VectorXd& force) {
   const Eigen::LDLT<Eigen::MatrixXd> Hinv(H);
   const Eigen::MatrixXd HinvJt = Hinv.solve(J.transpose());
   const Eigen::MatrixXd A = J * HinvJt;

@@ -20,6 +20,7 @@ struct ConstrainedAcceleration {
 /// @param jdotV  J-dot v (m)
 /// @param force  generalized applied force B u (n)
 ConstrainedAcceleration constrainedAcceleration(const Eigen::MatrixXd& H, const Eigen::MatrixXd& J,
-                                                const Eigen::VectorXd& jdotV, const Eigen::VectorXd& force);
+                                                const Eigen::VectorXd& jdotV,
+                                                const Eigen::VectorXd& force);
 
 }  // namespace cablelab

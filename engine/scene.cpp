@@ -54,7 +54,9 @@ class Checker {
   const std::string& source_;
 };
 
-std::string at(const std::string& list, size_t i) { return list + "[" + std::to_string(i) + "]"; }
+std::string at(const std::string& list, size_t i) {
+  return list + "[" + std::to_string(i) + "]";
+}
 
 }  // namespace
 
@@ -72,7 +74,8 @@ void validateScene(const SceneDef& scene, const std::string& source) {
     const std::string f = at("bodies", i);
     if (b.name.empty()) check.fail(f + ".name", "must not be empty");
     if (b.name == "world") check.fail(f + ".name", "'world' is reserved for the fixed frame");
-    if (!names.insert(b.name).second) check.fail(f + ".name", "duplicate body name '" + b.name + "'");
+    if (!names.insert(b.name).second)
+      check.fail(f + ".name", "duplicate body name '" + b.name + "'");
     check.finite(b.position, f + ".position");
     check.finite(b.angle, f + ".angle");
     check.finite(b.velocity, f + ".velocity");
@@ -90,9 +93,12 @@ void validateScene(const SceneDef& scene, const std::string& source) {
         check.positive(sh.radius, fs + ".radius");
         check.finite(sh.center, fs + ".center");
       } else {
-        if (sh.vertices.size() < 3 || sh.vertices.size() > 8) check.fail(fs + ".vertices", "a polygon needs 3 to 8 vertices");
-        for (size_t v = 0; v < sh.vertices.size(); ++v) check.finite(sh.vertices[v], fs + at(".vertices", v));
-        if (!isConvexCCW(sh.vertices)) check.fail(fs + ".vertices", "polygon must be convex and counter-clockwise");
+        if (sh.vertices.size() < 3 || sh.vertices.size() > 8)
+          check.fail(fs + ".vertices", "a polygon needs 3 to 8 vertices");
+        for (size_t v = 0; v < sh.vertices.size(); ++v)
+          check.finite(sh.vertices[v], fs + at(".vertices", v));
+        if (!isConvexCCW(sh.vertices))
+          check.fail(fs + ".vertices", "polygon must be convex and counter-clockwise");
       }
     }
   }
@@ -104,17 +110,20 @@ void validateScene(const SceneDef& scene, const std::string& source) {
   for (size_t i = 0; i < scene.joints.size(); ++i) {
     const JointDef& j = scene.joints[i];
     const std::string f = at("joints", i);
-    if (!j.name.empty() && !jointNames.insert(j.name).second) check.fail(f + ".name", "duplicate joint name '" + j.name + "'");
+    if (!j.name.empty() && !jointNames.insert(j.name).second)
+      check.fail(f + ".name", "duplicate joint name '" + j.name + "'");
     bodyRef(j.bodyA, f + ".body_a");
     bodyRef(j.bodyB, f + ".body_b");
     if (j.bodyB == "world") check.fail(f + ".body_b", "must be a body, not the world");
     if (j.bodyA == j.bodyB) check.fail(f + ".body_b", "a joint needs two different bodies");
     check.finite(j.anchor, f + ".anchor");
     check.finite(j.axis, f + ".axis");
-    if (j.kind == JointDef::Kind::Prismatic && j.axis.norm() < 1e-9) check.fail(f + ".axis", "must not be zero");
+    if (j.kind == JointDef::Kind::Prismatic && j.axis.norm() < 1e-9)
+      check.fail(f + ".axis", "must not be zero");
     check.finite(j.lower, f + ".limits");
     check.finite(j.upper, f + ".limits");
-    if (j.enableLimit && j.lower > j.upper) check.fail(f + ".limits", "lower limit above upper limit");
+    if (j.enableLimit && j.lower > j.upper)
+      check.fail(f + ".limits", "lower limit above upper limit");
     check.nonNegative(j.servo.kp, f + ".servo.kp");
     check.nonNegative(j.servo.kd, f + ".servo.kd");
     check.finite(j.servo.target, f + ".servo.target");
@@ -126,7 +135,8 @@ void validateScene(const SceneDef& scene, const std::string& source) {
     const CableDef& c = scene.cables[i];
     const std::string f = at("cables", i);
     if (c.name.empty()) check.fail(f + ".name", "must not be empty");
-    if (!cableNames.insert(c.name).second) check.fail(f + ".name", "duplicate cable name '" + c.name + "'");
+    if (!cableNames.insert(c.name).second)
+      check.fail(f + ".name", "duplicate cable name '" + c.name + "'");
     bodyRef(c.start.body, f + ".start.body");
     bodyRef(c.end.body, f + ".end.body");
     check.finite(c.start.point, f + ".start.point");
@@ -141,7 +151,8 @@ void validateScene(const SceneDef& scene, const std::string& source) {
       const std::string fp = f + at(".pulleys", p);
       bodyRef(pd.body, fp + ".body");
       check.finite(pd.point, fp + ".point");
-      for (size_t v = 0; v < pd.vertices.size(); ++v) check.finite(pd.vertices[v], fp + at(".vertices", v));
+      for (size_t v = 0; v < pd.vertices.size(); ++v)
+        check.finite(pd.vertices[v], fp + at(".vertices", v));
       if (pd.kind == PulleyDef::Kind::Polygon && !pd.vertices.empty() && !isConvexCCW(pd.vertices))
         check.fail(fp + ".vertices", "polygon must be convex and counter-clockwise");
     }

@@ -19,46 +19,46 @@ enum class BodyType { Static, Kinematic, Dynamic };
 struct ShapeDef {
   enum class Kind { Circle, Polygon };
   Kind kind = Kind::Circle;
-  double radius = 0.1;            ///< circle radius (m)
-  Vec2 center = Vec2::Zero();     ///< circle centre, local (m)
-  std::vector<Vec2> vertices;     ///< convex polygon, counter-clockwise, local (m); 3..8 vertices
-  double friction = 0.6;          ///< Coulomb friction coefficient
-  double restitution = 0.0;       ///< bounciness in [0, 1]
-  bool sensor = false;            ///< true: takes part in no contact (a pure pulley)
+  double radius = 0.1;         ///< circle radius (m)
+  Vec2 center = Vec2::Zero();  ///< circle centre, local (m)
+  std::vector<Vec2> vertices;  ///< convex polygon, counter-clockwise, local (m); 3..8 vertices
+  double friction = 0.6;       ///< Coulomb friction coefficient
+  double restitution = 0.0;    ///< bounciness in [0, 1]
+  bool sensor = false;         ///< true: takes part in no contact (a pure pulley)
 };
 
 struct BodyDef {
-  std::string name;                        ///< unique, non-empty; "world" is reserved
+  std::string name;  ///< unique, non-empty; "world" is reserved
   BodyType type = BodyType::Dynamic;
-  Vec2 position = Vec2::Zero();            ///< origin of the body frame, world (m)
-  double angle = 0.0;                      ///< rad
-  Vec2 velocity = Vec2::Zero();            ///< of the body origin (m/s)
-  double angularVelocity = 0.0;            ///< rad/s
-  double mass = 1.0;                       ///< kg, > 0 for dynamic bodies; the shapes share it
-  double inertia = 0.0;                    ///< kg m^2 about the origin; 0 = from the shapes
-  bool fixedRotation = false;              ///< true: the body translates only
-  double linearDamping = 0.0;              ///< 1/s
-  double angularDamping = 0.0;             ///< 1/s
-  std::vector<ShapeDef> shapes;            ///< at least one for dynamic bodies
+  Vec2 position = Vec2::Zero();  ///< origin of the body frame, world (m)
+  double angle = 0.0;            ///< rad
+  Vec2 velocity = Vec2::Zero();  ///< of the body origin (m/s)
+  double angularVelocity = 0.0;  ///< rad/s
+  double mass = 1.0;             ///< kg, > 0 for dynamic bodies; the shapes share it
+  double inertia = 0.0;          ///< kg m^2 about the origin; 0 = from the shapes
+  bool fixedRotation = false;    ///< true: the body translates only
+  double linearDamping = 0.0;    ///< 1/s
+  double angularDamping = 0.0;   ///< 1/s
+  std::vector<ShapeDef> shapes;  ///< at least one for dynamic bodies
 };
 
 /// A servo on a joint: PD force on the joint coordinate, tracking `target`.
 struct ServoDef {
   bool enabled = false;
-  double kp = 500.0;        ///< N/m or N m/rad
-  double kd = 44.72;        ///< N s/m or N m s/rad (default 2 sqrt(500))
-  double target = 0.0;      ///< m or rad, in the joint's coordinate
-  double maxForce = 1e4;    ///< N or N m, clamp
+  double kp = 500.0;      ///< N/m or N m/rad
+  double kd = 44.72;      ///< N s/m or N m s/rad (default 2 sqrt(500))
+  double target = 0.0;    ///< m or rad, in the joint's coordinate
+  double maxForce = 1e4;  ///< N or N m, clamp
 };
 
 struct JointDef {
   enum class Kind { Revolute, Prismatic, Weld };
   Kind kind = Kind::Revolute;
-  std::string name;                 ///< unique among joints
-  std::string bodyA = "world";      ///< "world" or a body name
-  std::string bodyB;                ///< a body name
-  Vec2 anchor = Vec2::Zero();       ///< world point at the scene's initial pose (m)
-  Vec2 axis = Vec2(1, 0);           ///< prismatic: sliding axis, world, unit
+  std::string name;             ///< unique among joints
+  std::string bodyA = "world";  ///< "world" or a body name
+  std::string bodyB;            ///< a body name
+  Vec2 anchor = Vec2::Zero();   ///< world point at the scene's initial pose (m)
+  Vec2 axis = Vec2(1, 0);       ///< prismatic: sliding axis, world, unit
   bool enableLimit = false;
   double lower = 0.0, upper = 0.0;  ///< limits on the joint coordinate (rad or m)
   bool collideConnected = false;
@@ -72,7 +72,8 @@ struct JointDef {
 ///  Threaded: always in the path, whatever the bend (an eyelet the cable runs through).
 enum class WrapSide { Left, Right, Threaded };
 
-/// A radius-zero pulley: a point, or the vertices of a convex polygon, fixed to a body or the world.
+/// A radius-zero pulley: a point, or the vertices of a convex polygon, fixed to a body or the
+/// world.
 struct PulleyDef {
   enum class Kind { Point, Polygon };
   Kind kind = Kind::Point;
@@ -86,7 +87,7 @@ struct PulleyDef {
 /// One end of a cable, fixed to a body (or the world).
 struct AnchorDef {
   std::string body = "world";
-  Vec2 point = Vec2::Zero();       ///< body frame (world frame for "world")
+  Vec2 point = Vec2::Zero();  ///< body frame (world frame for "world")
 };
 
 /// A cable from `start` over `pulleys` (in order) to `end`.
@@ -97,10 +98,10 @@ struct CableDef {
   std::string name;
   AnchorDef start, end;
   std::vector<PulleyDef> pulleys;
-  double restLength = -1.0;   ///< m; < 0 = the length at the initial pose
-  double stiffness = 0.0;     ///< N/m; 0 = rigid
-  double preload = 0.0;       ///< m of pre-stretch, >= 0 (elastic cables only)
-  double damping = 0.0;       ///< N s/m, >= 0 (elastic cables only)
+  double restLength = -1.0;  ///< m; < 0 = the length at the initial pose
+  double stiffness = 0.0;    ///< N/m; 0 = rigid
+  double preload = 0.0;      ///< m of pre-stretch, >= 0 (elastic cables only)
+  double damping = 0.0;      ///< N s/m, >= 0 (elastic cables only)
 };
 
 /// Where the camera looks by default (for the sandbox and snapshots).

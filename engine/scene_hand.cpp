@@ -35,7 +35,8 @@ std::array<double, 6> HandModel::effectiveInertia() const {
   // The grasped box is carried too (half by each finger): at the pinch it sits a link length from
   // the base and a paddle half width from the corners that tilt it.
   const double carried = 0.5 * boxMass;
-  const double proximal = iLink + (sliderMass + paddleMass + carried) * linkLength * linkLength + iSlider + iPaddle;
+  const double proximal =
+      iLink + (sliderMass + paddleMass + carried) * linkLength * linkLength + iSlider + iPaddle;
   const double slide = sliderMass + paddleMass + carried;
   const double distal = iPaddle + carried * paddleHalfWidth * paddleHalfWidth;
   return {proximal, slide, distal, proximal, slide, distal};
@@ -45,15 +46,16 @@ SceneDef buildHandScene(const HandModel& m) {
   SceneDef s;
   s.name = "hand";
   char text[640];
-  std::snprintf(text, sizeof text,
-                "thesis ch. 4 two-finger soft hand seen from above (gravity off), metres: proximal joints at "
-                "(%g, +/-%g), link %g, slide [%g, %g], paddle %g wide, membrane corners %g from the "
-                "distal joint, square box %g x %g (%g kg) centred at the pinch (0, 0); membranes k %g N/m, "
-                "b %g N s/m, preload %g m; joint limits proximal/distal +/-%g rad; servos k_p = 500 I, "
-                "k_d = 2 sqrt(500) I per joint effective inertia I",
-                m.baseX, m.baseY, m.linkLength, m.lower[kSlide], m.upper[kSlide], 2 * m.paddleHalfWidth,
-                m.paddleOffset, 2 * m.boxHalfSize, 2 * m.boxHalfSize, m.boxMass, m.stiffness, m.damping,
-                m.preload, m.upper[kProximal]);
+  std::snprintf(
+      text, sizeof text,
+      "thesis ch. 4 two-finger soft hand seen from above (gravity off), metres: proximal joints at "
+      "(%g, +/-%g), link %g, slide [%g, %g], paddle %g wide, membrane corners %g from the "
+      "distal joint, square box %g x %g (%g kg) centred at the pinch (0, 0); membranes k %g N/m, "
+      "b %g N s/m, preload %g m; joint limits proximal/distal +/-%g rad; servos k_p = 500 I, "
+      "k_d = 2 sqrt(500) I per joint effective inertia I",
+      m.baseX, m.baseY, m.linkLength, m.lower[kSlide], m.upper[kSlide], 2 * m.paddleHalfWidth,
+      m.paddleOffset, 2 * m.boxHalfSize, 2 * m.boxHalfSize, m.boxMass, m.stiffness, m.damping,
+      m.preload, m.upper[kProximal]);
   s.description = text;
   s.gravity = Vec2::Zero();
   s.substeps = 4;
@@ -86,7 +88,8 @@ SceneDef buildHandScene(const HandModel& m) {
     paddle.position = pose.paddle;
     paddle.mass = m.paddleMass;
     paddle.inertia = m.paddleMass * 4 * m.paddleHalfWidth * m.paddleHalfWidth / 12;
-    paddle.shapes = {bar(-m.paddleHalfWidth, m.paddleHalfWidth, sgn > 0 ? 0.0 : -0.06, sgn > 0 ? 0.06 : 0.0)};
+    paddle.shapes = {
+        bar(-m.paddleHalfWidth, m.paddleHalfWidth, sgn > 0 ? 0.0 : -0.06, sgn > 0 ? 0.06 : 0.0)};
     s.bodies.insert(s.bodies.end(), {link, slider, paddle});
 
     for (int j = 0; j < 3; ++j) {
@@ -128,7 +131,8 @@ SceneDef buildHandScene(const HandModel& m) {
     PulleyDef wrap;
     wrap.kind = PulleyDef::Kind::Polygon;
     wrap.body = kHandBoxName;
-    // Walking left to right, the top band has the box on its right (Left), the bottom one on its left.
+    // Walking left to right, the top band has the box on its right (Left), the bottom one on its
+    // left.
     wrap.side = f == 0 ? WrapSide::Left : WrapSide::Right;
     band.pulleys = {wrap};
     band.restLength = m.restLength();

@@ -18,7 +18,8 @@ SceneDef makeHexagonScene(const SceneParams& p) {
   hex.angularVelocity = p.at("omega");
   ShapeDef shape;
   shape.kind = ShapeDef::Kind::Polygon;
-  for (int i = 0; i < 6; ++i) shape.vertices.push_back(r * Vec2(std::cos(i * M_PI / 3), std::sin(i * M_PI / 3)));
+  for (int i = 0; i < 6; ++i)
+    shape.vertices.push_back(r * Vec2(std::cos(i * M_PI / 3), std::sin(i * M_PI / 3)));
   hex.shapes.push_back(shape);
 
   BodyDef weight;

@@ -15,7 +15,8 @@ using nlohmann::json;
 // Walks a JSON object, reading typed fields and remembering the path for error messages.
 class Reader {
  public:
-  Reader(const json& j, std::string source, std::string path) : j_(j), source_(std::move(source)), path_(std::move(path)) {
+  Reader(const json& j, std::string source, std::string path)
+      : j_(j), source_(std::move(source)), path_(std::move(path)) {
     if (!j_.is_object()) fail("", "must be an object");
   }
   ~Reader() noexcept(false) {
@@ -28,7 +29,9 @@ class Reader {
     const bool top = path_.empty() && !sub.empty() && sub[0] == '.';
     throw InputError(source_, top ? sub.substr(1) : path_ + sub, what);
   }
-  std::string field(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  std::string field(const std::string& key) const {
+    return path_.empty() ? key : path_ + "." + key;
+  }
   bool has(const std::string& key) {
     used_.insert(key);
     return j_.contains(key);
@@ -79,13 +82,15 @@ class Reader {
     return d;
   }
   Vec2 toVec2(const json& v, const std::string& f) const {
-    if (!v.is_array() || v.size() != 2) throw InputError(source_, f, "must be a list of 2 numbers [x, y]");
+    if (!v.is_array() || v.size() != 2)
+      throw InputError(source_, f, "must be a list of 2 numbers [x, y]");
     return Vec2(toNumber(v[0], f + "[0]"), toNumber(v[1], f + "[1]"));
   }
   std::vector<Vec2> polygon(const std::string& key) {
     std::vector<Vec2> out;
     const json& l = list(key);
-    for (size_t i = 0; i < l.size(); ++i) out.push_back(toVec2(l[i], field(key) + "[" + std::to_string(i) + "]"));
+    for (size_t i = 0; i < l.size(); ++i)
+      out.push_back(toVec2(l[i], field(key) + "[" + std::to_string(i) + "]"));
     return out;
   }
 
@@ -95,7 +100,9 @@ class Reader {
   std::set<std::string> used_;
 };
 
-std::string item(const std::string& list, size_t i) { return list + "[" + std::to_string(i) + "]"; }
+std::string item(const std::string& list, size_t i) {
+  return list + "[" + std::to_string(i) + "]";
+}
 
 ShapeDef readShape(Reader r) {
   ShapeDef s;
@@ -128,10 +135,14 @@ BodyDef readBody(Reader r) {
   BodyDef b;
   b.name = r.required("name");
   const std::string type = r.string("type", "dynamic");
-  if (type == "dynamic") b.type = BodyType::Dynamic;
-  else if (type == "static") b.type = BodyType::Static;
-  else if (type == "kinematic") b.type = BodyType::Kinematic;
-  else r.fail(".type", "unknown body type '" + type + "' (dynamic, static, kinematic)");
+  if (type == "dynamic")
+    b.type = BodyType::Dynamic;
+  else if (type == "static")
+    b.type = BodyType::Static;
+  else if (type == "kinematic")
+    b.type = BodyType::Kinematic;
+  else
+    r.fail(".type", "unknown body type '" + type + "' (dynamic, static, kinematic)");
   b.position = r.vec2("position", b.position);
   b.angle = r.number("angle", 0);
   b.velocity = r.vec2("velocity", b.velocity);
@@ -142,17 +153,22 @@ BodyDef readBody(Reader r) {
   b.linearDamping = r.number("linear_damping", 0);
   b.angularDamping = r.number("angular_damping", 0);
   const json& shapes = r.list("shapes");
-  for (size_t i = 0; i < shapes.size(); ++i) b.shapes.push_back(readShape(Reader(shapes[i], r.source(), r.field(item("shapes", i)))));
+  for (size_t i = 0; i < shapes.size(); ++i)
+    b.shapes.push_back(readShape(Reader(shapes[i], r.source(), r.field(item("shapes", i)))));
   return b;
 }
 
 JointDef readJoint(Reader r) {
   JointDef j;
   const std::string type = r.required("type");
-  if (type == "revolute") j.kind = JointDef::Kind::Revolute;
-  else if (type == "prismatic") j.kind = JointDef::Kind::Prismatic;
-  else if (type == "weld") j.kind = JointDef::Kind::Weld;
-  else r.fail(".type", "unknown joint type '" + type + "' (revolute, prismatic, weld)");
+  if (type == "revolute")
+    j.kind = JointDef::Kind::Revolute;
+  else if (type == "prismatic")
+    j.kind = JointDef::Kind::Prismatic;
+  else if (type == "weld")
+    j.kind = JointDef::Kind::Weld;
+  else
+    r.fail(".type", "unknown joint type '" + type + "' (revolute, prismatic, weld)");
   j.name = r.string("name", "");
   j.bodyA = r.string("body_a", "world");
   j.bodyB = r.required("body_b");
@@ -177,7 +193,9 @@ JointDef readJoint(Reader r) {
 }
 
 WrapSide readSide(Reader& r, WrapSide fallback) {
-  const std::string side = r.string("side", fallback == WrapSide::Left ? "left" : fallback == WrapSide::Right ? "right" : "threaded");
+  const std::string side = r.string("side", fallback == WrapSide::Left    ? "left"
+                                            : fallback == WrapSide::Right ? "right"
+                                                                          : "threaded");
   if (side == "left") return WrapSide::Left;
   if (side == "right") return WrapSide::Right;
   if (side == "threaded") return WrapSide::Threaded;
@@ -225,13 +243,17 @@ CableDef readCable(Reader r) {
   return c;
 }
 
-json vec(const Vec2& v) { return json::array({v.x(), v.y()}); }
+json vec(const Vec2& v) {
+  return json::array({v.x(), v.y()});
+}
 json polygonJson(const std::vector<Vec2>& vs) {
   json out = json::array();
   for (const Vec2& v : vs) out.push_back(vec(v));
   return out;
 }
-const char* sideName(WrapSide s) { return s == WrapSide::Left ? "left" : s == WrapSide::Right ? "right" : "threaded"; }
+const char* sideName(WrapSide s) {
+  return s == WrapSide::Left ? "left" : s == WrapSide::Right ? "right" : "threaded";
+}
 
 }  // namespace
 
@@ -250,11 +272,14 @@ SceneDef sceneFromJson(const json& j, const std::string& source) {
       s.view.height = v.number("height", s.view.height);
     }
     const json& bodies = r.list("bodies");
-    for (size_t i = 0; i < bodies.size(); ++i) s.bodies.push_back(readBody(Reader(bodies[i], source, item("bodies", i))));
+    for (size_t i = 0; i < bodies.size(); ++i)
+      s.bodies.push_back(readBody(Reader(bodies[i], source, item("bodies", i))));
     const json& joints = r.list("joints");
-    for (size_t i = 0; i < joints.size(); ++i) s.joints.push_back(readJoint(Reader(joints[i], source, item("joints", i))));
+    for (size_t i = 0; i < joints.size(); ++i)
+      s.joints.push_back(readJoint(Reader(joints[i], source, item("joints", i))));
     const json& cables = r.list("cables");
-    for (size_t i = 0; i < cables.size(); ++i) s.cables.push_back(readCable(Reader(cables[i], source, item("cables", i))));
+    for (size_t i = 0; i < cables.size(); ++i)
+      s.cables.push_back(readCable(Reader(cables[i], source, item("cables", i))));
   }
   validateScene(s, source);
   return s;
@@ -271,11 +296,19 @@ json sceneToJson(const SceneDef& s) {
   j["bodies"] = json::array();
   for (const BodyDef& b : s.bodies) {
     json jb = {{"name", b.name},
-               {"type", b.type == BodyType::Dynamic ? "dynamic" : b.type == BodyType::Static ? "static" : "kinematic"},
-               {"position", vec(b.position)}, {"angle", b.angle}, {"velocity", vec(b.velocity)},
-               {"angular_velocity", b.angularVelocity}, {"mass", b.mass}, {"inertia", b.inertia},
-               {"fixed_rotation", b.fixedRotation}, {"linear_damping", b.linearDamping},
-               {"angular_damping", b.angularDamping}, {"shapes", json::array()}};
+               {"type", b.type == BodyType::Dynamic  ? "dynamic"
+                        : b.type == BodyType::Static ? "static"
+                                                     : "kinematic"},
+               {"position", vec(b.position)},
+               {"angle", b.angle},
+               {"velocity", vec(b.velocity)},
+               {"angular_velocity", b.angularVelocity},
+               {"mass", b.mass},
+               {"inertia", b.inertia},
+               {"fixed_rotation", b.fixedRotation},
+               {"linear_damping", b.linearDamping},
+               {"angular_damping", b.angularDamping},
+               {"shapes", json::array()}};
     for (const ShapeDef& sh : b.shapes) {
       json js = {{"friction", sh.friction}, {"restitution", sh.restitution}, {"sensor", sh.sensor}};
       if (sh.kind == ShapeDef::Kind::Circle) {
@@ -292,12 +325,21 @@ json sceneToJson(const SceneDef& s) {
   }
   j["joints"] = json::array();
   for (const JointDef& jd : s.joints) {
-    json jj = {{"type", jd.kind == JointDef::Kind::Revolute ? "revolute" : jd.kind == JointDef::Kind::Prismatic ? "prismatic" : "weld"},
-               {"name", jd.name}, {"body_a", jd.bodyA}, {"body_b", jd.bodyB}, {"anchor", vec(jd.anchor)},
-               {"axis", vec(jd.axis)}, {"collide_connected", jd.collideConnected}};
+    json jj = {{"type", jd.kind == JointDef::Kind::Revolute    ? "revolute"
+                        : jd.kind == JointDef::Kind::Prismatic ? "prismatic"
+                                                               : "weld"},
+               {"name", jd.name},
+               {"body_a", jd.bodyA},
+               {"body_b", jd.bodyB},
+               {"anchor", vec(jd.anchor)},
+               {"axis", vec(jd.axis)},
+               {"collide_connected", jd.collideConnected}};
     if (jd.enableLimit) jj["limits"] = json::array({jd.lower, jd.upper});
     if (jd.servo.enabled)
-      jj["servo"] = {{"kp", jd.servo.kp}, {"kd", jd.servo.kd}, {"target", jd.servo.target}, {"max_force", jd.servo.maxForce}};
+      jj["servo"] = {{"kp", jd.servo.kp},
+                     {"kd", jd.servo.kd},
+                     {"target", jd.servo.target},
+                     {"max_force", jd.servo.maxForce}};
     j["joints"].push_back(jj);
   }
   j["cables"] = json::array();
@@ -305,12 +347,19 @@ json sceneToJson(const SceneDef& s) {
     json jc = {{"name", c.name},
                {"start", {{"body", c.start.body}, {"point", vec(c.start.point)}}},
                {"end", {{"body", c.end.body}, {"point", vec(c.end.point)}}},
-               {"pulleys", json::array()}, {"stiffness", c.stiffness}, {"preload", c.preload}, {"damping", c.damping}};
+               {"pulleys", json::array()},
+               {"stiffness", c.stiffness},
+               {"preload", c.preload},
+               {"damping", c.damping}};
     if (c.restLength > 0) jc["rest_length"] = c.restLength;
     for (const PulleyDef& p : c.pulleys) {
-      json jp = {{"type", p.kind == PulleyDef::Kind::Point ? "point" : "polygon"}, {"body", p.body}, {"side", sideName(p.side)}};
-      if (p.kind == PulleyDef::Kind::Point) jp["point"] = vec(p.point);
-      else if (!p.vertices.empty()) jp["vertices"] = polygonJson(p.vertices);
+      json jp = {{"type", p.kind == PulleyDef::Kind::Point ? "point" : "polygon"},
+                 {"body", p.body},
+                 {"side", sideName(p.side)}};
+      if (p.kind == PulleyDef::Kind::Point)
+        jp["point"] = vec(p.point);
+      else if (!p.vertices.empty())
+        jp["vertices"] = polygonJson(p.vertices);
       jc["pulleys"].push_back(jp);
     }
     j["cables"].push_back(jc);

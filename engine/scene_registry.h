@@ -35,7 +35,8 @@ const SceneInfo* findBuiltinScene(const std::string& name);
 
 /// A built-in name or a scene file path, with --set overrides ("name", value).
 /// Throws InputError for an unknown scene or parameter, or a bad file.
-SceneDef makeScene(const std::string& nameOrPath, const std::vector<std::pair<std::string, double>>& overrides = {});
+SceneDef makeScene(const std::string& nameOrPath,
+                   const std::vector<std::pair<std::string, double>>& overrides = {});
 
 /// Parses "NAME=VALUE" (for --set); throws InputError naming the argument.
 std::pair<std::string, double> parseSetting(const std::string& text);

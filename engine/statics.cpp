@@ -50,7 +50,9 @@ void validateStatics(const StaticsProblem& problem, const std::string& source) {
   constexpr double kMaxStiffness = 1e12;  // N/m
   auto bounded = [&](const Vec2& v, const std::string& field) {
     if (std::isfinite(v.x()) && std::isfinite(v.y()) && v.cwiseAbs().maxCoeff() > kMaxCoordinate)
-      throw InputError(source, field, "coordinates must be within +/-1e9 m (got " + describe(v.cwiseAbs().maxCoeff()) + ")");
+      throw InputError(
+          source, field,
+          "coordinates must be within +/-1e9 m (got " + describe(v.cwiseAbs().maxCoeff()) + ")");
   };
   if (problem.cables.empty()) throw InputError(source, "cables", "needs at least one cable");
   for (size_t i = 0; i < problem.cables.size(); ++i) {

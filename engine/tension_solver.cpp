@@ -28,13 +28,15 @@ LcpSolution solveLcp(const Eigen::MatrixXd& K, const Eigen::VectorXd& b) {
   return sol;
 }
 
-void solveLcp(const Eigen::MatrixXd& Kin, const Eigen::VectorXd& b, LcpWorkspace& work, LcpSolution& sol) {
+void solveLcp(const Eigen::MatrixXd& Kin, const Eigen::VectorXd& b, LcpWorkspace& work,
+              LcpSolution& sol) {
   const int n = static_cast<int>(b.size());
   // A row that touches only immovable bodies has K_ii = 0: regularise so it stays solvable.
   Eigen::MatrixXd& K = work.K;
   K = Kin;
   for (int i = 0; i < n; ++i) K(i, i) += 1e-12 * (1 + K(i, i));
-  if (n == 1 && K(0, 0) > std::numeric_limits<double>::min()) return solveSingle(K(0, 0), b[0], sol);
+  if (n == 1 && K(0, 0) > std::numeric_limits<double>::min())
+    return solveSingle(K(0, 0), b[0], sol);
 
   sol.x.setZero(n);
   sol.iterations = 0;

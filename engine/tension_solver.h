@@ -15,9 +15,9 @@
 namespace cablelab {
 
 struct LcpSolution {
-  Eigen::VectorXd x;   ///< the impulses P (N s), >= 0
-  int iterations = 0;  ///< active-set changes
-  double residual = 0; ///< max_i |min(x_i K_ii, w_i)| (m/s)
+  Eigen::VectorXd x;    ///< the impulses P (N s), >= 0
+  int iterations = 0;   ///< active-set changes
+  double residual = 0;  ///< max_i |min(x_i K_ii, w_i)| (m/s)
 };
 
 /// Solves w = K x - b >= 0, x >= 0, x . w = 0 exactly for a symmetric positive (semi)definite K
@@ -34,6 +34,7 @@ struct LcpWorkspace {
 };
 
 /// The same solve, writing into `sol` and using `work` for every temporary.
-void solveLcp(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, LcpWorkspace& work, LcpSolution& sol);
+void solveLcp(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, LcpWorkspace& work,
+              LcpSolution& sol);
 
 }  // namespace cablelab

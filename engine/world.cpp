@@ -24,14 +24,21 @@ constexpr double kBaumgarte = 0.2;  // share of a rigid cable's length error fix
 constexpr double kLengthSlop = 1e-5;
 constexpr int kNewtonIterations = 3;  // on the end-of-step lengths; geometry is nearly linear
 
-b2Vec2 toB2(const Vec2& v) { return b2Vec2(static_cast<float>(v.x()), static_cast<float>(v.y())); }
-Vec2 fromB2(const b2Vec2& v) { return Vec2(v.x, v.y); }
+b2Vec2 toB2(const Vec2& v) {
+  return b2Vec2(static_cast<float>(v.x()), static_cast<float>(v.y()));
+}
+Vec2 fromB2(const b2Vec2& v) {
+  return Vec2(v.x, v.y);
+}
 
 b2BodyType toB2(BodyType t) {
   switch (t) {
-    case BodyType::Static: return b2_staticBody;
-    case BodyType::Kinematic: return b2_kinematicBody;
-    case BodyType::Dynamic: return b2_dynamicBody;
+    case BodyType::Static:
+      return b2_staticBody;
+    case BodyType::Kinematic:
+      return b2_kinematicBody;
+    case BodyType::Dynamic:
+      return b2_dynamicBody;
   }
   return b2_dynamicBody;
 }
@@ -106,10 +113,10 @@ struct JointRow {
 // allocate: after the first step every size has been seen and Eigen reuses the storage.
 struct World::CableWorkspace {
   DofMap dofs;
-  std::vector<int> rows;          // cable of each LCP row
-  Eigen::VectorXd invM;           // M^-1 diagonal over the dofs
-  Eigen::VectorXd vStar, vFree;   // predicted velocities (see step 2)
-  Eigen::MatrixXd W;              // M'^-1 J^T, then projected onto the joints (n x m)
+  std::vector<int> rows;         // cable of each LCP row
+  Eigen::VectorXd invM;          // M^-1 diagonal over the dofs
+  Eigen::VectorXd vStar, vFree;  // predicted velocities (see step 2)
+  Eigen::MatrixXd W;             // M'^-1 J^T, then projected onto the joints (n x m)
 
   // Geometric stiffness of the taut cables: their Hessian blocks, blocks[begin, end).
   struct TautCable {
@@ -243,7 +250,8 @@ void World::CableWorkspace::projectOntoJoints() {
   vStar -= velocityCorrection;
 }
 
-World::World(SceneDef scene, const std::string& source) : scene_(std::move(scene)), b2_(std::make_unique<Box2D>()) {
+World::World(SceneDef scene, const std::string& source)
+    : scene_(std::move(scene)), b2_(std::make_unique<Box2D>()) {
   validateScene(scene_, source);
   b2World& w = b2_->world;
   w.SetGravity(toB2(scene_.gravity));
@@ -343,12 +351,14 @@ World::World(SceneDef scene, const std::string& source) : scene_(std::move(scene
     if (a >= 0 && b >= 0) jointNeighbours_[a].push_back(b), jointNeighbours_[b].push_back(a);
   }
   work_ = std::make_unique<CableWorkspace>();
-  for (int i = 0; i < static_cast<int>(scene_.cables.size()); ++i) cables_.emplace_back(scene_, i, source);
+  for (int i = 0; i < static_cast<int>(scene_.cables.size()); ++i)
+    cables_.emplace_back(scene_, i, source);
   readBodies();
   for (size_t i = 0; i < cables_.size(); ++i) {
     cables_[i].update(bodies_, &warnings_);
     if (cables_[i].length() < 1e-9)
-      throw InputError(source, "cables[" + std::to_string(i) + "]", "zero-length cable: its ends coincide at the initial pose");
+      throw InputError(source, "cables[" + std::to_string(i) + "]",
+                       "zero-length cable: its ends coincide at the initial pose");
     scene_.cables[i].restLength = cables_[i].restLength();
   }
 }
@@ -384,7 +394,8 @@ void World::readBodies() {
     s.angularVelocity = b->GetAngularVelocity();
     const bool dynamic = b->GetType() == b2_dynamicBody;
     s.invMass = dynamic && b->GetMass() > 0 ? 1.0 / b->GetMass() : 0.0;
-    s.invInertia = dynamic && !b->IsFixedRotation() && b->GetInertia() > 0 ? 1.0 / b->GetInertia() : 0.0;
+    s.invInertia =
+        dynamic && !b->IsFixedRotation() && b->GetInertia() > 0 ? 1.0 / b->GetInertia() : 0.0;
   }
 }
 
@@ -414,7 +425,8 @@ void World::beginDrag(int body, const Vec2& worldPoint, double stiffnessHz) {
   def.bodyB = b;
   def.target = toB2(worldPoint);
   def.maxForce = static_cast<float>(1000.0 * b->GetMass() * std::max(9.81, scene_.gravity.norm()));
-  b2LinearStiffness(def.stiffness, def.damping, static_cast<float>(stiffnessHz), 0.7f, def.bodyA, def.bodyB);
+  b2LinearStiffness(def.stiffness, def.damping, static_cast<float>(stiffnessHz), 0.7f, def.bodyA,
+                    def.bodyB);
   b2_->mouse = static_cast<b2MouseJoint*>(b2_->world.CreateJoint(&def));
   dragBody_ = body;
   dragTarget_ = worldPoint;
@@ -432,7 +444,8 @@ void World::endDrag() {
   dragBody_ = -1;
 }
 
-void World::setCableParameters(int i, double restLength, double stiffness, double preload, double damping) {
+void World::setCableParameters(int i, double restLength, double stiffness, double preload,
+                               double damping) {
   const std::string field = "cables[" + std::to_string(i) + "]";
   auto check = [&](double v, const char* name, bool positiveOnly) {
     if (!std::isfinite(v) || v < 0 || (positiveOnly && v == 0))
@@ -444,7 +457,8 @@ void World::setCableParameters(int i, double restLength, double stiffness, doubl
   check(damping, "damping", false);
   cables_[i].setParameters(restLength, stiffness, preload, damping);
   CableDef& def = scene_.cables[i];
-  def.restLength = restLength, def.stiffness = stiffness, def.preload = preload, def.damping = damping;
+  def.restLength = restLength, def.stiffness = stiffness, def.preload = preload,
+  def.damping = damping;
 }
 
 JointState World::joint(int i) const {
@@ -458,7 +472,9 @@ JointState World::joint(int i) const {
   return s;
 }
 
-void World::setServoTarget(int i, double target) { scene_.joints[i].servo.target = target; }
+void World::setServoTarget(int i, double target) {
+  scene_.joints[i].servo.target = target;
+}
 
 void World::setGravity(const Vec2& g) {
   scene_.gravity = g;
@@ -486,7 +502,8 @@ void World::applyServos() {
     if (!servo.enabled) continue;
     b2Joint* j = b2_->joints[i];
     const JointCoordinate q = jointCoordinate(j, scene_.joints[i].kind);
-    const double f = std::clamp(servo.kp * (servo.target - q.value) - servo.kd * q.speed, -servo.maxForce, servo.maxForce);
+    const double f = std::clamp(servo.kp * (servo.target - q.value) - servo.kd * q.speed,
+                                -servo.maxForce, servo.maxForce);
     const auto [a, b] = jointBodies_[i];
     Vec3 load = Vec3::Zero();
     if (scene_.joints[i].kind == JointDef::Kind::Revolute) {
@@ -574,8 +591,10 @@ void World::solveCableForces(double h) {
         moves = true;
       }
     }
-    if (moves) rows.push_back(static_cast<int>(i));
-    else cables_[i].setTension(0);
+    if (moves)
+      rows.push_back(static_cast<int>(i));
+    else
+      cables_[i].setTension(0);
   }
   if (rows.empty()) return;
   // Bodies jointed to those the cables pull on move with them: add them (breadth first).
@@ -614,7 +633,8 @@ void World::solveCableForces(double h) {
   ws.stiff = false;
   for (int r = 0; r < m; ++r) {
     const Cable& c = cables_[rows[r]];
-    const double tension = std::max(c.tension(), c.elastic() ? c.def().stiffness * std::max(0.0, c.stretch()) : 0.0);
+    const double tension =
+        std::max(c.tension(), c.elastic() ? c.def().stiffness * std::max(0.0, c.stretch()) : 0.0);
     if (tension <= 0) continue;
     const size_t begin = ws.blocks.size();
     appendLengthHessianTranslation(c.path(), ws.blocks);
@@ -638,7 +658,8 @@ void World::solveCableForces(double h) {
 
   // 4. Position-level targets. Rigid: length at the end of the step = now (the error below the
   // slop is float rounding: fixing it would amplify it by 1/h^2), a slack cable may come taut,
-  // an over-long one is shortened by a share of the excess. Elastic: T = k phi1 + b (phi1 - phi0)/h.
+  // an over-long one is shortened by a share of the excess. Elastic: T = k phi1 + b (phi1 -
+  // phi0)/h.
   Eigen::VectorXd &target = ws.target, &compliance = ws.compliance, &damped = ws.damped;
   target.resize(m);
   compliance.setZero(m);
@@ -647,7 +668,9 @@ void World::solveCableForces(double h) {
     const Cable& c = cables_[rows[r]];
     const double phi = c.stretch();
     if (!c.elastic()) {
-      target[r] = phi < -kLengthSlop ? 0.0 : phi > kLengthSlop ? phi - kBaumgarte * (phi - kLengthSlop) : phi;
+      target[r] = phi < -kLengthSlop  ? 0.0
+                  : phi > kLengthSlop ? phi - kBaumgarte * (phi - kLengthSlop)
+                                      : phi;
     } else {
       const double stiffK = c.def().stiffness, damp = c.def().damping;
       compliance[r] = 1.0 / (h * (stiffK * h + damp));
@@ -669,7 +692,8 @@ void World::solveCableForces(double h) {
   JW0.setZero(m, m);
   for (int r = 0; r < m; ++r)
     for (const auto& e : cables_[rows[r]].kinematics().jacobian)
-      if (const int d = dofs.ofBody[e.body]; d >= 0) JW0.row(r) += e.d.transpose() * W.middleRows<3>(d);
+      if (const int d = dofs.ofBody[e.body]; d >= 0)
+        JW0.row(r) += e.d.transpose() * W.middleRows<3>(d);
   for (int iteration = 0; iteration < kNewtonIterations; ++iteration) {
     ws.WP.noalias() = W * P;
     v1 = vStar - ws.WP;
@@ -689,7 +713,8 @@ void World::solveCableForces(double h) {
       phi1[r] = c.stretch() + ws.kin.length - c.length();
       JW.row(r).setZero();
       for (const auto& e : ws.kin.jacobian)
-        if (const int d = dofs.ofBody[e.body]; d >= 0) JW.row(r) += e.d.transpose() * W.middleRows<3>(d);
+        if (const int d = dofs.ofBody[e.body]; d >= 0)
+          JW.row(r) += e.d.transpose() * W.middleRows<3>(d);
     }
     // Guard (degenerate geometry): far from the start pose the end-of-step linearisation can lose
     // positive definiteness (a wrap point the predicted motion carries past its neighbour turns a
@@ -730,13 +755,15 @@ void World::solveCableForces(double h) {
 void World::checkFinite() const {
   for (size_t i = 0; i < bodies_.size(); ++i) {
     const BodyState& b = bodies_[i];
-    if (!isFinite(b.position) || !isFinite(b.velocity) || !std::isfinite(b.angle) || !std::isfinite(b.angularVelocity))
-      throw SimulationError("body '" + scene_.bodies[i].name + "' has a non-finite state at t = " + std::to_string(time_) +
-                            " s (reduce --dt or raise --substeps)");
+    if (!isFinite(b.position) || !isFinite(b.velocity) || !std::isfinite(b.angle) ||
+        !std::isfinite(b.angularVelocity))
+      throw SimulationError("body '" + scene_.bodies[i].name + "' has a non-finite state at t = " +
+                            std::to_string(time_) + " s (reduce --dt or raise --substeps)");
   }
   for (const Cable& c : cables_)
     if (!std::isfinite(c.tension()) || !std::isfinite(c.length()))
-      throw SimulationError("cable '" + c.name() + "' has a non-finite tension or length at t = " + std::to_string(time_) + " s");
+      throw SimulationError("cable '" + c.name() + "' has a non-finite tension or length at t = " +
+                            std::to_string(time_) + " s");
 }
 
 void World::step(double dt, int substeps) {

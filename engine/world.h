@@ -31,19 +31,19 @@ namespace cablelab {
 struct JointState {
   std::string name;
   JointDef::Kind kind;
-  Vec2 anchorA, anchorB;  ///< world (m)
-  double value = 0;       ///< angle (rad) or translation (m)
-  double speed = 0;       ///< rad/s or m/s
-  double servoTarget = 0; ///< rad or m
+  Vec2 anchorA, anchorB;   ///< world (m)
+  double value = 0;        ///< angle (rad) or translation (m)
+  double speed = 0;        ///< rad/s or m/s
+  double servoTarget = 0;  ///< rad or m
 };
 
 /// Timing and solver figures of the last step() call.
 struct StepStats {
-  double stepMicros = 0;     ///< wall time of the whole step (us)
-  double cableMicros = 0;    ///< of that, cable geometry + tension solve (us)
-  int wrapPoints = 0;        ///< pulley wrap points in use, all cables
-  int solverIterations = 0;  ///< LCP active-set iterations, summed over sub-steps
-  double residual = 0;       ///< largest complementarity residual of the tension solve
+  double stepMicros = 0;           ///< wall time of the whole step (us)
+  double cableMicros = 0;          ///< of that, cable geometry + tension solve (us)
+  int wrapPoints = 0;              ///< pulley wrap points in use, all cables
+  int solverIterations = 0;        ///< LCP active-set iterations, summed over sub-steps
+  double residual = 0;             ///< largest complementarity residual of the tension solve
   int linearisationFallbacks = 0;  ///< cable rows solved on the start-of-step Jacobian (guard)
 };
 
@@ -103,9 +103,9 @@ class World {
   const std::vector<std::string>& warnings() const { return warnings_; }
 
  private:
-  struct Box2D;            // hides every Box2D type from this header
+  struct Box2D;  // hides every Box2D type from this header
   struct DofMap;
-  struct CableWorkspace;   // solveCableForces' buffers, reused so the sub-step does not allocate
+  struct CableWorkspace;  // solveCableForces' buffers, reused so the sub-step does not allocate
   void readBodies();
   void applyServos();
   void solveCableForces(double h);

@@ -56,21 +56,24 @@ bool segmentCutsPolygon(const Vec2& a, const Vec2& b, std::span<const Vec2> poly
       continue;
     }
     const double t = -num / den;
-    if (den > 0) t0 = std::max(t0, t);
-    else t1 = std::min(t1, t);
+    if (den > 0)
+      t0 = std::max(t0, t);
+    else
+      t1 = std::min(t1, t);
     if (t0 >= t1) return false;
   }
   return t1 - t0 > 1e-12;
 }
 
-std::optional<std::vector<int>> wrapChain(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,
-                                          WrapSide side) {
+std::optional<std::vector<int>> wrapChain(const Vec2& a, const Vec2& b,
+                                          std::span<const Vec2> polygon, WrapSide side) {
   std::vector<int> chain;
   if (!wrapChain(a, b, polygon, side, chain)) return std::nullopt;
   return chain;
 }
 
-bool wrapChain(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, WrapSide side, std::vector<int>& chain) {
+bool wrapChain(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, WrapSide side,
+               std::vector<int>& chain) {
   chain.clear();
   const int n = static_cast<int>(polygon.size());
   const Vec2 ab = b - a;
@@ -83,7 +86,9 @@ bool wrapChain(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, Wrap
 
   // Mirror Right into Left: walking the path, the polygon must stay on the right (s = +1).
   const double s = side == WrapSide::Right ? -1.0 : 1.0;
-  auto right = [&](const Vec2& from, const Vec2& to, const Vec2& p) { return -s * cross(to - from, p - from); };
+  auto right = [&](const Vec2& from, const Vec2& to, const Vec2& p) {
+    return -s * cross(to - from, p - from);
+  };
   // A terminal inside the polygon has no taut path round it.
   auto insidePolygon = [&](const Vec2& p) {
     for (int i = 0; i < n; ++i)
@@ -98,13 +103,16 @@ bool wrapChain(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, Wrap
   int ta = 0, tb = 0;
   for (int i = 1; i < n; ++i) {
     const double r = right(a, polygon[ta], polygon[i]);
-    if (r < 0 || (r == 0 && (polygon[i] - a).squaredNorm() > (polygon[ta] - a).squaredNorm())) ta = i;
+    if (r < 0 || (r == 0 && (polygon[i] - a).squaredNorm() > (polygon[ta] - a).squaredNorm()))
+      ta = i;
   }
   for (int i = 1; i < n; ++i) {
     const double r = right(polygon[tb], b, polygon[i]);
-    if (r < 0 || (r == 0 && (polygon[i] - b).squaredNorm() > (polygon[tb] - b).squaredNorm())) tb = i;
+    if (r < 0 || (r == 0 && (polygon[i] - b).squaredNorm() > (polygon[tb] - b).squaredNorm()))
+      tb = i;
   }
-  // Walk the boundary with the polygon on the right: clockwise for Left, counter-clockwise for Right.
+  // Walk the boundary with the polygon on the right: clockwise for Left, counter-clockwise for
+  // Right.
   const int stepDir = side == WrapSide::Right ? 1 : -1;
   for (int i = ta;; i = (i + stepDir + n) % n) {
     chain.push_back(i);

@@ -17,10 +17,11 @@ namespace cablelab {
 /// Vertex indices (into `polygon`) the taut path A -> ... -> B touches, in path order.
 /// Left: the cable passes on the left of the polygon walking from A to B.
 /// Returns nullopt when a terminal lies inside the polygon's hull (no taut path exists).
-std::optional<std::vector<int>> wrapChain(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,
-                                          WrapSide side);
+std::optional<std::vector<int>> wrapChain(const Vec2& a, const Vec2& b,
+                                          std::span<const Vec2> polygon, WrapSide side);
 /// The same into `chain` (reusing its storage); false when no taut path exists.
-bool wrapChain(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, WrapSide side, std::vector<int>& chain);
+bool wrapChain(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, WrapSide side,
+               std::vector<int>& chain);
 
 /// Length of the path A -> polygon[chain...] -> B.
 double chainLength(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,

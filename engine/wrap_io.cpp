@@ -33,7 +33,8 @@ WrapProblem parseWrapJson(const json& in, const std::string& file) {
   WrapProblem p;
   p.a = vec2(in["A"], file, "A");
   p.b = vec2(in["B"], file, "B");
-  if (!in["polygon"].is_array() || in["polygon"].size() < 3) throw InputError(file, "polygon", "needs at least 3 vertices");
+  if (!in["polygon"].is_array() || in["polygon"].size() < 3)
+    throw InputError(file, "polygon", "needs at least 3 vertices");
   for (size_t i = 0; i < in["polygon"].size(); ++i)
     p.polygon.push_back(vec2(in["polygon"][i], file, "polygon[" + std::to_string(i) + "]"));
   if (!in["side"].is_string() || (in["side"] != "left" && in["side"] != "right"))
@@ -46,7 +47,8 @@ WrapProblem parseWrapJson(const json& in, const std::string& file) {
   if (!isConvexCCW(p.polygon)) {
     std::reverse(p.polygon.begin(), p.polygon.end());
     std::reverse(p.order.begin(), p.order.end());
-    if (!isConvexCCW(p.polygon)) throw InputError(file, "polygon", "is not convex (or has repeated or collinear vertices)");
+    if (!isConvexCCW(p.polygon))
+      throw InputError(file, "polygon", "is not convex (or has repeated or collinear vertices)");
   }
   if ((p.a - p.b).norm() == 0) throw InputError(file, "B", "coincides with A");
   return p;
@@ -64,7 +66,8 @@ WrapProblem parseWrapText(const std::string& text, const std::string& source) {
 
 WrapSolution solveWrap(const WrapProblem& p, const std::string& file) {
   const auto chain = wrapChain(p.a, p.b, p.polygon, p.side);
-  if (!chain) throw InputError(file, "A", "A or B lies inside the polygon: no taut path goes round it");
+  if (!chain)
+    throw InputError(file, "A", "A or B lies inside the polygon: no taut path goes round it");
   WrapSolution s;
   s.path.push_back(p.a);
   for (int v : *chain) {

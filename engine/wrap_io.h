@@ -23,9 +23,9 @@ struct WrapProblem {
 };
 
 struct WrapSolution {
-  std::vector<Vec2> path;          ///< A, contact vertices, B
-  double length = 0;               ///< m
-  std::vector<int> contacts;       ///< input vertex indices, path order
+  std::vector<Vec2> path;     ///< A, contact vertices, B
+  double length = 0;          ///< m
+  std::vector<int> contacts;  ///< input vertex indices, path order
 };
 
 /// Validates a parsed document; throws InputError(source, field, what) naming the field.

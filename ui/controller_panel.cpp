@@ -62,13 +62,15 @@ void timePlot(const char* id, const TimeHistory& h, std::initializer_list<PlotLi
     for (int k = 0; k < h.count; ++k) {
       const float v = h.values[l.series][at(k)];
       if (!std::isfinite(v)) {
-        if (run.size() >= 2) draw->AddPolyline(run.data(), static_cast<int>(run.size()), l.colour, 0, 1.5f);
+        if (run.size() >= 2)
+          draw->AddPolyline(run.data(), static_cast<int>(run.size()), l.colour, 0, 1.5f);
         run.clear();
         continue;
       }
       run.push_back(map(h.t[at(k)], std::clamp(v, 0.0f, hi)));
     }
-    if (run.size() >= 2) draw->AddPolyline(run.data(), static_cast<int>(run.size()), l.colour, 0, 1.5f);
+    if (run.size() >= 2)
+      draw->AddPolyline(run.data(), static_cast<int>(run.size()), l.colour, 0, 1.5f);
   }
   char text[96];
   std::snprintf(text, sizeof text, "0 .. %g %s", hi, unit);
@@ -164,9 +166,9 @@ void handAfterStep(const Sandbox& sandbox, const World& world, HandControlState&
   const Vec2 box = world.body(h.box).position;
   const float error = sandbox.target ? static_cast<float>((box - *sandbox.target).norm())
                                      : std::numeric_limits<float>::quiet_NaN();
-  h.history.push(static_cast<float>(t), {static_cast<float>(world.cable(h.cables[0]).tension()),
-                                         static_cast<float>(world.cable(h.cables[1]).tension()),
-                                         error});
+  h.history.push(static_cast<float>(t),
+                 {static_cast<float>(world.cable(h.cables[0]).tension()),
+                  static_cast<float>(world.cable(h.cables[1]).tension()), error});
 }
 
 void handPanel(Sandbox& sandbox, HandControlState& h) {
@@ -178,7 +180,8 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
   if (ImGui::Checkbox("target", &hasTarget))
     sandbox.target = hasTarget ? std::optional<Vec2>(world->body(h.box).position) : std::nullopt;
   if (sandbox.target) {
-    float xy[2] = {static_cast<float>(sandbox.target->x()), static_cast<float>(sandbox.target->y())};
+    float xy[2] = {static_cast<float>(sandbox.target->x()),
+                   static_cast<float>(sandbox.target->y())};
     ImGui::SameLine();
     ImGui::SetNextItemWidth(-1);
     if (ImGui::SliderFloat2("##target", xy, -kTargetRange, kTargetRange, "%.3f m"))
@@ -223,16 +226,18 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
     return;
   }
   const double t = world->time();
-  const char* phase = h.phase == HandControlState::Phase::Closing ? "closing"
+  const char* phase = h.phase == HandControlState::Phase::Closing   ? "closing"
                       : h.phase == HandControlState::Phase::Grasped ? "grasped"
-                                                                     : "pinch pose";
+                                                                    : "pinch pose";
   if (h.graspTime < 0)
     ImGui::Text("%s, waiting for both membranes", phase);
   else if (t < h.controlStart)
     ImGui::Text("%s at %.2f s, control from %.2f s", phase, h.graspTime, h.controlStart);
   else
     ImGui::Text("%s; %d updates%s", phase, h.updates,
-                !h.enabled ? " (loop off)" : !sandbox.target ? " (no target)" : "");
+                !h.enabled        ? " (loop off)"
+                : !sandbox.target ? " (no target)"
+                                  : "");
   const Vec2 box = world->body(h.box).position;
   ImGui::Text("box (%.3f, %.3f) m", box.x(), box.y());
   if (sandbox.target) ImGui::Text("error %.4f m", (box - *sandbox.target).norm());
@@ -329,7 +334,9 @@ void TimeHistory::push(float time, const std::vector<float>& sample) {
   count = std::min(count + 1, kLength);
 }
 
-void TimeHistory::clear() { head = count = 0; }
+void TimeHistory::clear() {
+  head = count = 0;
+}
 
 void HandControlState::rebuildController() {
   HandControllerParams p = params;
@@ -405,7 +412,8 @@ void controllerOverlay(const Sandbox& sandbox, Overlay& overlay) {
     if (h->prediction.valid) {
       // Unlabelled cross, its label below it: the target's label sits above the same spot.
       overlay.targets.push_back({h->prediction.box, "", kPredictionColour});
-      overlay.texts.push_back({h->prediction.box + Vec2(0.03, -0.09), "statics", kPredictionColour});
+      overlay.texts.push_back(
+          {h->prediction.box + Vec2(0.03, -0.09), "statics", kPredictionColour});
     }
     return;
   }

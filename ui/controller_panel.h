@@ -34,8 +34,8 @@ namespace cablelab::ui {
 
 /// Fixed-length history of samples against time (oldest overwritten), for the live plots.
 struct TimeHistory {
-  static constexpr int kLength = 900;  ///< samples (15 s at the default 60 Hz)
-  std::vector<float> t;                ///< s
+  static constexpr int kLength = 900;      ///< samples (15 s at the default 60 Hz)
+  std::vector<float> t;                    ///< s
   std::vector<std::vector<float>> values;  ///< one ring per series, NaN = no value
   int head = 0, count = 0;
   explicit TimeHistory(int series = 0);
@@ -48,16 +48,16 @@ struct HandControlState {
   enum class Phase { Pinched, Closing, Grasped };
   HandModel model;  ///< from the scene's membranes and box
   HandControllerParams params;
-  bool enabled = true;        ///< the outer loop runs (once grasped and settled)
-  bool pid = false;           ///< use params.ki (else k_i = 0)
-  double ki = kHandPidKi;     ///< the integral gain used when `pid` (per update, 1/s)
+  bool enabled = true;     ///< the outer loop runs (once grasped and settled)
+  bool pid = false;        ///< use params.ki (else k_i = 0)
+  double ki = kHandPidKi;  ///< the integral gain used when `pid` (per update, 1/s)
   std::unique_ptr<HandController> controller;
   Phase phase = Phase::Pinched;
-  double sequenceStart = 0;   ///< s, world time the grasp sequence began
-  double closeTime = 1.0;     ///< s, open pose -> pinch pose ramp
-  double graspTime = -1;      ///< s, both membranes wrap the box; -1 not yet
-  double controlStart = 0;    ///< s, the outer loop starts here
-  double nextUpdate = 0;      ///< s, next outer-loop tick
+  double sequenceStart = 0;  ///< s, world time the grasp sequence began
+  double closeTime = 1.0;    ///< s, open pose -> pinch pose ramp
+  double graspTime = -1;     ///< s, both membranes wrap the box; -1 not yet
+  double controlStart = 0;   ///< s, the outer loop starts here
+  double nextUpdate = 0;     ///< s, next outer-loop tick
   int updates = 0;
   HandJoints open = HandJoints::Zero();
   HandJoints offset = HandJoints::Zero();  ///< controller's accumulated joint-target change
@@ -65,10 +65,10 @@ struct HandControlState {
   std::array<int, 6> joints{};  ///< world joint index of each HandJoints entry
   int box = -1;
   std::array<int, 2> cables{-1, -1};
-  BoxPrediction prediction;     ///< the statics model at the last outer tick
-  double predictionTime = -1;   ///< s
-  TimeHistory history{3};       ///< top tension, bottom tension (N), |box - target| (m)
-  double lastSample = -1;       ///< s
+  BoxPrediction prediction;    ///< the statics model at the last outer tick
+  double predictionTime = -1;  ///< s
+  TimeHistory history{3};      ///< top tension, bottom tension (N), |box - target| (m)
+  double lastSample = -1;      ///< s
 
   void rebuildController();
 };

@@ -89,8 +89,8 @@ Plot membraneQuiverPlot(const MembraneGeometry& g, const MembraneParams& fitted,
 }
 
 Plot membraneScatterPlot(const MembraneParams& fitted, const MembranePlotData& data) {
-  Plot plot("Vertical force, measured vs model (" + parameterText(fitted) + ")",
-            "measured fy (N)", "model fy (N)");
+  Plot plot("Vertical force, measured vs model (" + parameterText(fitted) + ")", "measured fy (N)",
+            "model fy (N)");
   plot.identityLine = true;
   plot.identityLabel = "y = x (perfect fit)";
   std::vector<double> measured, model;

@@ -65,7 +65,7 @@ struct Plot {
   bool identityLine = false;  ///< draw y = x (dashed) and use the same range on both axes
   std::string identityLabel;  ///< legend text of the y = x line; empty = not in the legend
   std::vector<PlotLabel> labels;
-  bool equalAspect = false;   ///< one data unit is as many pixels on x as on y
+  bool equalAspect = false;  ///< one data unit is as many pixels on x as on y
   /// Data units per unit of u, v for every arrow set; <= 0: the longest arrow is 8% of the
   /// larger axis range.
   double arrowScale = 0;

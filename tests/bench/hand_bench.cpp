@@ -25,4 +25,3 @@ BENCHMARK(BM_HandStep)->Arg(1)->Arg(0)->ArgNames({"cables"});
 
 }  // namespace
 }  // namespace cablelab
-

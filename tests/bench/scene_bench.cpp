@@ -30,7 +30,8 @@ void BM_CableKinematics(benchmark::State& state) {
   std::vector<WrapPoint> path;
   path.push_back({WrapPoint::Kind::Anchor, -1, Vec2(-1, 1), Vec2::Zero(), -1, -1});
   for (int i = 0; i < points; ++i)
-    path.push_back({WrapPoint::Kind::Point, i % 4, Vec2(0.05 * i, (i % 2) ? 0.3 : -0.3), Vec2::Zero(), i, -1});
+    path.push_back(
+        {WrapPoint::Kind::Point, i % 4, Vec2(0.05 * i, (i % 2) ? 0.3 : -0.3), Vec2::Zero(), i, -1});
   path.push_back({WrapPoint::Kind::Anchor, -1, Vec2(5, 1), Vec2::Zero(), -1, -1});
   for (auto _ : state) {
     CableKinematics k = cableKinematics(path, bodies);
@@ -74,11 +75,23 @@ void BM_SceneStep(benchmark::State& state, const std::string& name) {
   state.counters["wraps"] = double(wraps) / double(state.iterations());
   state.counters["substeps"] = scene.substeps;
 }
-BENCHMARK_CAPTURE(BM_SceneStep, ballast, std::string("ballast"))->Arg(1)->Arg(0)->ArgNames({"cables"});
+BENCHMARK_CAPTURE(BM_SceneStep, ballast, std::string("ballast"))
+    ->Arg(1)
+    ->Arg(0)
+    ->ArgNames({"cables"});
 BENCHMARK_CAPTURE(BM_SceneStep, hand, std::string("hand"))->Arg(1)->Arg(0)->ArgNames({"cables"});
-BENCHMARK_CAPTURE(BM_SceneStep, hexagon, std::string("hexagon"))->Arg(1)->Arg(0)->ArgNames({"cables"});
-BENCHMARK_CAPTURE(BM_SceneStep, membrane, std::string("membrane"))->Arg(1)->Arg(0)->ArgNames({"cables"});
-BENCHMARK_CAPTURE(BM_SceneStep, pulley, std::string("pulley"))->Arg(1)->Arg(0)->ArgNames({"cables"});
+BENCHMARK_CAPTURE(BM_SceneStep, hexagon, std::string("hexagon"))
+    ->Arg(1)
+    ->Arg(0)
+    ->ArgNames({"cables"});
+BENCHMARK_CAPTURE(BM_SceneStep, membrane, std::string("membrane"))
+    ->Arg(1)
+    ->Arg(0)
+    ->ArgNames({"cables"});
+BENCHMARK_CAPTURE(BM_SceneStep, pulley, std::string("pulley"))
+    ->Arg(1)
+    ->Arg(0)
+    ->ArgNames({"cables"});
 
 // The medians `cablelab bench` reports for the hand (measureScene), as counters.
 void BM_HandMedians(benchmark::State& state) {

@@ -95,4 +95,3 @@ BENCHMARK(BM_StaticsMedians)
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace
-

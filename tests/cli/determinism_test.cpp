@@ -17,7 +17,8 @@ std::string slurp(const std::string& path) {
 }
 
 void expectIdenticalRuns(const std::string& args, const std::string& tag) {
-  const std::string a = "/tmp/cablelab_determinism_" + tag + "_a.csv", b = "/tmp/cablelab_determinism_" + tag + "_b.csv";
+  const std::string a = "/tmp/cablelab_determinism_" + tag + "_a.csv",
+                    b = "/tmp/cablelab_determinism_" + tag + "_b.csv";
   const auto r1 = cablelab::test::runCli(args + " --csv " + a);
   const auto r2 = cablelab::test::runCli(args + " --csv " + b);
   ASSERT_EQ(r1.exitCode, 0) << r1.err;
@@ -29,7 +30,9 @@ void expectIdenticalRuns(const std::string& args, const std::string& tag) {
   std::remove(b.c_str());
 }
 
-TEST(Determinism, HexagonCsvIsByteIdenticalAcrossRuns) { expectIdenticalRuns("run hexagon --time 3", "hexagon"); }
+TEST(Determinism, HexagonCsvIsByteIdenticalAcrossRuns) {
+  expectIdenticalRuns("run hexagon --time 3", "hexagon");
+}
 
 TEST(Determinism, HandCsvIsByteIdenticalAcrossRuns) {
   expectIdenticalRuns("run hand --time 2 --set k=300", "hand");

@@ -9,8 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <set>
+#include <sstream>
 #include <string>
 
 #include "tests/engine/test_support.h"
@@ -144,10 +144,10 @@ TEST(FitCli, PlotsWritesNonBlankPngsOfTheRequestedSize) {
   }
   // Default size 800x600.
   const fs::path defaults = dir.parent_path() / "default";
-  ASSERT_EQ(cablelab("assets/data/membrane_example.csv " + kPulleys + " --plots " +
-                     defaults.string())
-                .exitCode,
-            0);
+  ASSERT_EQ(
+      cablelab("assets/data/membrane_example.csv " + kPulleys + " --plots " + defaults.string())
+          .exitCode,
+      0);
   EXPECT_EQ(cablelab::ui::readPng((defaults / "scatter.png").string()).width, 800);
   EXPECT_EQ(cablelab::ui::readPng((defaults / "quiver.png").string()).height, 600);
   // A bad size is an input error naming the flag.

@@ -34,7 +34,8 @@ TEST(CableKinematics, JacobianAndJdotVMatchFiniteDifferences) {
     }
     // anchor on body 0 -> three vertices of a polygon on body 1 -> point on body 2 -> world anchor
     std::vector<WrapPoint> path = {{WrapPoint::Kind::Anchor, 0, rng.point(-0.3, 0.3)}};
-    for (int v = 0; v < 3; ++v) path.push_back({WrapPoint::Kind::Vertex, 1, rng.point(-0.5, 0.5), Vec2::Zero(), 0, v});
+    for (int v = 0; v < 3; ++v)
+      path.push_back({WrapPoint::Kind::Vertex, 1, rng.point(-0.5, 0.5), Vec2::Zero(), 0, v});
     path.push_back({WrapPoint::Kind::Point, 2, rng.point(-0.3, 0.3), Vec2::Zero(), 1});
     path.push_back({WrapPoint::Kind::Anchor, -1, rng.point(-3, 3)});
 
@@ -51,7 +52,8 @@ TEST(CableKinematics, JacobianAndJdotVMatchFiniteDifferences) {
         double analytic = 0;
         for (const auto& e : k.jacobian)
           if (e.body == b) analytic = e.d[c];
-        EXPECT_NEAR(analytic, fd, kRelative * std::max(1.0, std::abs(fd))) << "trial " << trial << " body " << b << " coord " << c;
+        EXPECT_NEAR(analytic, fd, kRelative * std::max(1.0, std::abs(fd)))
+            << "trial " << trial << " body " << b << " coord " << c;
         const double vc = c < 2 ? bodies[b].velocity[c] : bodies[b].angularVelocity;
         jv += analytic * vc;
       }

@@ -33,7 +33,8 @@ Outcome simulate(const std::string& path, int steps) {
       if (i == 0) o.firstWraps = world.cable(0).wraps();
       for (int b = 0; b < world.bodyCount(); ++b) {
         const BodyState& s = world.body(b);
-        EXPECT_TRUE(isFinite(s.position) && isFinite(s.velocity) && std::isfinite(s.angle)) << path << " step " << i;
+        EXPECT_TRUE(isFinite(s.position) && isFinite(s.velocity) && std::isfinite(s.angle))
+            << path << " step " << i;
       }
       for (int c = 0; c < world.cableCount(); ++c) {
         EXPECT_TRUE(std::isfinite(world.cable(c).length())) << path << " step " << i;
@@ -67,27 +68,42 @@ TEST(Degenerate, EveryCorpusSceneRunsGuardedOrStopsCleanly) {
       {"stiff_band_huge_mass", Expect::RunsOrStops},
   };
   int seen = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(test::sourcePath("tests/data/degenerate"))) {
+  for (const auto& entry :
+       std::filesystem::directory_iterator(test::sourcePath("tests/data/degenerate"))) {
     if (entry.path().extension() != ".json") continue;
     const std::string name = entry.path().stem().string();
     ASSERT_TRUE(expected.count(name)) << "no expectation for " << entry.path();
     ++seen;
     const Outcome o = simulate(entry.path().string(), 300);
-    std::string summary = o.refused ? "refused: " + o.message : o.stopped ? "stopped: " + o.message : "ran";
+    std::string summary = o.refused   ? "refused: " + o.message
+                          : o.stopped ? "stopped: " + o.message
+                                      : "ran";
     for (const auto& w : o.warnings) summary += "\n  warning: " + w;
     SCOPED_TRACE(name + ": " + summary);
-    if (o.refused || o.stopped) EXPECT_NE(o.message.find(':'), std::string::npos) << "a clear message names the culprit";
+    if (o.refused || o.stopped) {
+      EXPECT_NE(o.message.find(':'), std::string::npos) << "a clear message names the culprit";
+    }
     switch (expected.at(name)) {
-      case Expect::Refused: EXPECT_TRUE(o.refused); break;
-      case Expect::Runs: EXPECT_FALSE(o.refused || o.stopped); break;
+      case Expect::Refused:
+        EXPECT_TRUE(o.refused);
+        break;
+      case Expect::Runs:
+        EXPECT_FALSE(o.refused || o.stopped);
+        break;
       case Expect::RunsWithWarning:
         EXPECT_FALSE(o.refused || o.stopped);
         EXPECT_FALSE(o.warnings.empty());
         break;
-      case Expect::RunsOrStops: EXPECT_FALSE(o.refused); break;
-      case Expect::WarnsOrRefused: EXPECT_TRUE(o.refused || !o.warnings.empty()); break;
+      case Expect::RunsOrStops:
+        EXPECT_FALSE(o.refused);
+        break;
+      case Expect::WarnsOrRefused:
+        EXPECT_TRUE(o.refused || !o.warnings.empty());
+        break;
     }
-    if (name == "polygon_beyond_segment") EXPECT_EQ(o.firstWraps, 0) << "the polygon lies beyond the segment: not wrapped";
+    if (name == "polygon_beyond_segment") {
+      EXPECT_EQ(o.firstWraps, 0) << "the polygon lies beyond the segment: not wrapped";
+    }
     std::printf("[degenerate] %s\n", summary.c_str());
   }
   EXPECT_EQ(seen, static_cast<int>(expected.size()));

@@ -43,7 +43,8 @@ TEST(HandController, BoxJacobianMatchesFiniteDifferencesThroughKinematics) {
   for (int j = 0; j < 6; ++j) {
     HandJoints a = q, b = q;
     a[j] += kFdStep, b[j] -= kFdStep;
-    const Vec2 fd = (controller.predict(a, p.box).box - controller.predict(b, p.box).box) / (2 * kFdStep);
+    const Vec2 fd =
+        (controller.predict(a, p.box).box - controller.predict(b, p.box).box) / (2 * kFdStep);
     EXPECT_NEAR(p.jacobian(0, j), fd.x(), kSensitivityTolerance) << "joint " << j;
     EXPECT_NEAR(p.jacobian(1, j), fd.y(), kSensitivityTolerance) << "joint " << j;
   }

@@ -17,7 +17,8 @@ TEST(HandKinematics, JacobianMatchesCentralDifferences) {
     HandJoints a = q, b = q;
     a[j] += kFdStep, b[j] -= kFdStep;
     const FingertipPoints fd = (fingertipPoints(m, a) - fingertipPoints(m, b)) / (2 * kFdStep);
-    for (int r = 0; r < 8; ++r) EXPECT_NEAR(J(r, j), fd[r], kJacobianTolerance) << "row " << r << " joint " << j;
+    for (int r = 0; r < 8; ++r)
+      EXPECT_NEAR(J(r, j), fd[r], kJacobianTolerance) << "row " << r << " joint " << j;
   }
 }
 

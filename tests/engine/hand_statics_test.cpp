@@ -17,11 +17,16 @@ constexpr double kSettleTime = 12.0;       // s
 TEST(HandScene, BoxSettlesAtTheStaticsPrediction) {
   HandModel m;
   HandController controller(m);
-  const double poses[10][6] = {{0, 0, 0, 0, 0, 0},           {0.1, 0, -0.1, 0.1, 0, -0.1},
-                               {-0.1, 0.1, 0.1, -0.1, 0.1, 0.1}, {0.2, 0.3, -0.2, 0.2, 0.3, -0.2},
-                               {0.05, 0, 0, 0, 0, 0.05},     {0, 0.2, 0, 0, 0.2, 0},
-                               {0, 0.1, 0, 0, -0.1, 0},      {0.15, -0.2, -0.15, 0.15, -0.2, -0.15},
-                               {0.02, 0.05, 0.03, -0.02, 0.0, 0.0}, {-0.2, 0.4, 0.2, -0.2, 0.4, 0.2}};
+  const double poses[10][6] = {{0, 0, 0, 0, 0, 0},
+                               {0.1, 0, -0.1, 0.1, 0, -0.1},
+                               {-0.1, 0.1, 0.1, -0.1, 0.1, 0.1},
+                               {0.2, 0.3, -0.2, 0.2, 0.3, -0.2},
+                               {0.05, 0, 0, 0, 0, 0.05},
+                               {0, 0.2, 0, 0, 0.2, 0},
+                               {0, 0.1, 0, 0, -0.1, 0},
+                               {0.15, -0.2, -0.15, 0.15, -0.2, -0.15},
+                               {0.02, 0.05, 0.03, -0.02, 0.0, 0.0},
+                               {-0.2, 0.4, 0.2, -0.2, 0.4, 0.2}};
   for (const auto& pose : poses) {
     const HandJoints targets = Eigen::Map<const HandJoints>(pose);
     World world(buildHandScene(m), "hand");
@@ -35,8 +40,8 @@ TEST(HandScene, BoxSettlesAtTheStaticsPrediction) {
     std::printf("settle error %.3g mm\n", 1e3 * (world.body(box).position - p.box).norm());
     ASSERT_TRUE(p.valid) << "pose " << targets.transpose();
     EXPECT_LT((world.body(box).position - p.box).norm(), kSettleTolerance)
-        << "pose " << targets.transpose() << " sim " << world.body(box).position.transpose() << " statics "
-        << p.box.transpose();
+        << "pose " << targets.transpose() << " sim " << world.body(box).position.transpose()
+        << " statics " << p.box.transpose();
   }
 }
 

@@ -11,7 +11,8 @@ namespace {
 
 constexpr double kTolerance = 1e-9;
 
-// q = (point x, y, theta, ballast x, y, theta); the cable runs (-l, 0) -> point -> (l, 0) -> ballast.
+// q = (point x, y, theta, ballast x, y, theta); the cable runs (-l, 0) -> point -> (l, 0) ->
+// ballast.
 struct Ballast {
   double l, mPoint, mBallast;
   Vec2 v0;
@@ -38,14 +39,16 @@ TEST(ReferenceDynamics, BallastAccelerationsMatchTheAnalyticSolution) {
     for (const auto& e : k.jacobian) J.block<1, 3>(0, 3 * e.body) = e.d.transpose();
     Eigen::VectorXd H(6);
     H << c.mPoint, c.mPoint, 1.0, c.mBallast, c.mBallast, 1.0;
-    const auto acc = constrainedAcceleration(H.asDiagonal().toDenseMatrix(), J,
-                                             Eigen::VectorXd::Constant(1, k.jdotV), Eigen::VectorXd::Zero(6));
+    const auto acc =
+        constrainedAcceleration(H.asDiagonal().toDenseMatrix(), J,
+                                Eigen::VectorXd::Constant(1, k.jdotV), Eigen::VectorXd::Zero(6));
     const double expected = 2 * c.v0.y() * c.v0.y() / c.l;  // ballast, towards the pulley (+y)
     EXPECT_NEAR(acc.qdd[0], 0, kTolerance);
     EXPECT_NEAR(acc.qdd[1], 0, kTolerance);
     EXPECT_NEAR(acc.qdd[3], 0, kTolerance);
     EXPECT_NEAR(acc.qdd[4], expected, kTolerance * std::max(1.0, expected));
-    EXPECT_NEAR(-acc.lambda[0], c.mBallast * expected, kTolerance * std::max(1.0, c.mBallast * expected));
+    EXPECT_NEAR(-acc.lambda[0], c.mBallast * expected,
+                kTolerance * std::max(1.0, c.mBallast * expected));
   }
 }
 

@@ -24,16 +24,21 @@ std::string readAll(const std::filesystem::path& p) {
 /// Runs the harness the file's name prefix selects; returns false for an unknown prefix.
 bool replay(const std::filesystem::path& p, fuzz::Outcome& outcome) {
   const std::string name = p.filename().string(), text = readAll(p);
-  if (name.rfind("scene_", 0) == 0) outcome = fuzz::runSceneInput(text);
-  else if (name.rfind("statics_", 0) == 0) outcome = fuzz::runStaticsInput(text);
-  else if (name.rfind("wrap_", 0) == 0) outcome = fuzz::runWrapInput(text);
-  else return false;
+  if (name.rfind("scene_", 0) == 0)
+    outcome = fuzz::runSceneInput(text);
+  else if (name.rfind("statics_", 0) == 0)
+    outcome = fuzz::runStaticsInput(text);
+  else if (name.rfind("wrap_", 0) == 0)
+    outcome = fuzz::runWrapInput(text);
+  else
+    return false;
   return true;
 }
 
 TEST(Regress, FuzzerFindingsReplayCleanly) {
   int replayed = 0;
-  for (const auto& e : std::filesystem::directory_iterator(test::sourcePath("tests/data/regress"))) {
+  for (const auto& e :
+       std::filesystem::directory_iterator(test::sourcePath("tests/data/regress"))) {
     if (!e.is_regular_file() || e.path().extension() == ".md") continue;
     SCOPED_TRACE(e.path().string());
     fuzz::Outcome outcome;
@@ -64,7 +69,8 @@ TEST(Regress, ShippedInputsAreAccepted) {
       EXPECT_EQ(outcome, fuzz::Outcome::Accepted);
     }
   }
-  for (const auto& e : std::filesystem::directory_iterator(test::sourcePath("tests/data/statics"))) {
+  for (const auto& e :
+       std::filesystem::directory_iterator(test::sourcePath("tests/data/statics"))) {
     SCOPED_TRACE(e.path().string());
     fuzz::Outcome outcome = fuzz::Outcome::Refused;
     EXPECT_NO_THROW(outcome = fuzz::runStaticsInput(readAll(e.path())));

@@ -24,7 +24,8 @@ TEST(SceneJson, EveryBuiltinSceneRoundTrips) {
 TEST(SceneJson, ShippedAssetsAreTheBuiltinScenes) {
   for (const SceneInfo& info : builtinScenes()) {
     const SceneDef file = loadSceneFile(test::sourcePath("assets/scenes/" + info.name + ".json"));
-    EXPECT_EQ(sceneToJson(file), sceneToJson(makeScene(info.name))) << "regenerate with: cablelab scenes --export assets/scenes";
+    EXPECT_EQ(sceneToJson(file), sceneToJson(makeScene(info.name)))
+        << "regenerate with: cablelab scenes --export assets/scenes";
   }
 }
 
@@ -79,14 +80,17 @@ TEST(SceneJson, BadFilesExitTwoNamingTheField) {
     const std::string path = test::sourcePath(std::string("tests/data/bad/") + bad.file);
     const auto r = test::runCli("run '" + path + "' --time 0.1");
     EXPECT_EQ(r.exitCode, 2) << bad.file << ": " << r.err;
-    EXPECT_NE(r.err.find(path + ": " + bad.field), std::string::npos) << bad.file << " said: " << r.err;
+    EXPECT_NE(r.err.find(path + ": " + bad.field), std::string::npos)
+        << bad.file << " said: " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad.file << " said: " << r.err;
   }
 }
 
 TEST(SceneJson, TheGoodTwinOfTheBadFilesRuns) {
-  // The bad files are mutations of this one: it must load, so each bad file fails for its own reason.
-  const auto r = test::runCli("run '" + test::sourcePath("tests/data/good_scene.json") + "' --time 0.1");
+  // The bad files are mutations of this one: it must load, so each bad file fails for its own
+  // reason.
+  const auto r =
+      test::runCli("run '" + test::sourcePath("tests/data/good_scene.json") + "' --time 0.1");
   EXPECT_EQ(r.exitCode, 0) << r.err;
 }
 

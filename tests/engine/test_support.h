@@ -1,12 +1,12 @@
 // Shared helpers for the engine tests: seeded random numbers and running the CLI.
 #pragma once
 
+#include <sys/wait.h>
+#include <unistd.h>
 #include <array>
 #include <cstdio>
 #include <random>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdlib>
 
@@ -17,7 +17,9 @@ namespace cablelab::test {
 class Random {
  public:
   explicit Random(unsigned seed) : gen_(seed) {}
-  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(gen_); }
+  double uniform(double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(gen_);
+  }
   Vec2 point(double lo, double hi) { return Vec2(uniform(lo, hi), uniform(lo, hi)); }
   int integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(gen_); }
 
@@ -37,7 +39,8 @@ inline CommandResult runCli(const std::string& args, const std::string& workingD
   const int fd = mkstemp(errFile);
   if (fd >= 0) close(fd);
   const std::string cd = workingDir.empty() ? "" : "cd '" + workingDir + "' && ";
-  const std::string cmd = cd + "'" + std::string(CABLELAB_CLI) + "' " + args + " 2>" + std::string(errFile);
+  const std::string cmd =
+      cd + "'" + std::string(CABLELAB_CLI) + "' " + args + " 2>" + std::string(errFile);
   CommandResult r;
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;
@@ -54,6 +57,8 @@ inline CommandResult runCli(const std::string& args, const std::string& workingD
   return r;
 }
 
-inline std::string sourcePath(const std::string& relative) { return std::string(CABLELAB_SOURCE_DIR) + "/" + relative; }
+inline std::string sourcePath(const std::string& relative) {
+  return std::string(CABLELAB_SOURCE_DIR) + "/" + relative;
+}
 
 }  // namespace cablelab::test

@@ -40,9 +40,11 @@ TEST(World, BallastRunReproducesTheInitialAcceleration) {
   for (const auto& c : cases) {
     const std::string csv = "/tmp/cablelab_ballast_test.csv";
     char sets[256];
-    std::snprintf(sets, sizeof sets, "--set l=%g --set v0x=%g --set v0y=%g --set m_point=%g --set m_ballast=%g", c.l, c.v0x,
-                  c.v0y, c.mPoint, c.mBallast);
-    const auto r = test::runCli(std::string("run ballast --dt 1e-5 --time 0.002 --csv ") + csv + " " + sets);
+    std::snprintf(sets, sizeof sets,
+                  "--set l=%g --set v0x=%g --set v0y=%g --set m_point=%g --set m_ballast=%g", c.l,
+                  c.v0x, c.v0y, c.mPoint, c.mBallast);
+    const auto r =
+        test::runCli(std::string("run ballast --dt 1e-5 --time 0.002 --csv ") + csv + " " + sets);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto cols = readCsv(csv);
     // Slope of the ballast's speed towards the pulley (+y) over the first 20 steps.
@@ -53,13 +55,15 @@ TEST(World, BallastRunReproducesTheInitialAcceleration) {
     const double expected = 2 * c.v0y * c.v0y / c.l;
     EXPECT_NEAR(measured, expected, 0.03 * expected) << "l=" << c.l << " v0y=" << c.v0y;
     // The point is not accelerated by the cable at t = 0.
-    const double pointAccel = std::hypot(cols.at("point.vx")[20] - c.v0x, cols.at("point.vy")[20] - c.v0y) / t[20];
+    const double pointAccel =
+        std::hypot(cols.at("point.vx")[20] - c.v0x, cols.at("point.vy")[20] - c.v0y) / t[20];
     EXPECT_LT(pointAccel, 0.03 * expected);
   }
 }
 
 // Body states linearly between two steps, for locating a wrap change inside a step.
-std::vector<BodyState> lerp(const std::vector<BodyState>& a, const std::vector<BodyState>& b, double s) {
+std::vector<BodyState> lerp(const std::vector<BodyState>& a, const std::vector<BodyState>& b,
+                            double s) {
   std::vector<BodyState> out = a;
   for (size_t i = 0; i < a.size(); ++i) {
     out[i].position = (1 - s) * a[i].position + s * b[i].position;
@@ -78,7 +82,8 @@ TEST(World, Theorem1NoVelocityJumpAtWrapChanges) {
   auto chainAt = [&](const std::vector<BodyState>& bodies) {
     std::vector<Vec2> poly;
     for (const Vec2& v : local) poly.push_back(worldPoint(bodies, 0, v));
-    return wrapChain(anchor, bodies[1].position, poly, WrapSide::Left).value_or(std::vector<int>{-1});
+    return wrapChain(anchor, bodies[1].position, poly, WrapSide::Left)
+        .value_or(std::vector<int>{-1});
   };
   auto kinematicsWith = [&](const std::vector<int>& chain, const std::vector<BodyState>& bodies) {
     std::vector<WrapPoint> path{{WrapPoint::Kind::Anchor, -1, anchor}};
@@ -111,7 +116,9 @@ TEST(World, Theorem1NoVelocityJumpAtWrapChanges) {
     const auto kOld = kinematicsWith(chain0, at);
     const auto kNew = kinematicsWith(chainAt(lerp(before, after, hi)), at);
     const Eigen::VectorXd jOld = row(kOld), jNew = row(kNew);
-    EXPECT_NEAR(kOld.length, kNew.length, 1e-9) << "lo " << lo << " hi " << hi << " n " << kOld.jacobian.size() << " " << kNew.jacobian.size();
+    EXPECT_NEAR(kOld.length, kNew.length, 1e-9)
+        << "lo " << lo << " hi " << hi << " n " << kOld.jacobian.size() << " "
+        << kNew.jacobian.size();
     // Velocity jump the new constraint would impose: M^-1 J^T (J M^-1 J^T)^-1 (J_new - J_old) v.
     Eigen::VectorXd v(6), invM(6);
     for (int b = 0; b < 2; ++b) {
@@ -125,7 +132,8 @@ TEST(World, Theorem1NoVelocityJumpAtWrapChanges) {
       for (int i : c) s += std::to_string(i) + " ";
       return s;
     };
-    EXPECT_LT(jump.norm(), 1e-6 * v.norm()) << "wrap change at step " << step << ": " << show(chain0) << "-> " << show(chain1);
+    EXPECT_LT(jump.norm(), 1e-6 * v.norm())
+        << "wrap change at step " << step << ": " << show(chain0) << "-> " << show(chain1);
     ++changes;
   }
   EXPECT_GT(changes, 3) << "the hexagon scene must exercise wrap-point changes";
@@ -169,11 +177,14 @@ TEST(World, PulleySceneMatchesAtwoodAndBox2DPulleyJoint) {
     b2PolygonShape box;
     box.SetAsBox(1, 2);
     bodies[i]->CreateFixture(&box, 1.0f);
-    b2MassData md{static_cast<float>(i == 0 ? m1 : m2), b2Vec2(0, 0), bodies[i]->GetInertia() * static_cast<float>(i == 0 ? m1 : m2) / bodies[i]->GetMass()};
+    b2MassData md{
+        static_cast<float>(i == 0 ? m1 : m2), b2Vec2(0, 0),
+        bodies[i]->GetInertia() * static_cast<float>(i == 0 ? m1 : m2) / bodies[i]->GetMass()};
     bodies[i]->SetMassData(&md);
   }
   b2PulleyJointDef pj;
-  pj.Initialize(bodies[0], bodies[1], b2Vec2(-10, 30), b2Vec2(10, 30), b2Vec2(-10, 18), b2Vec2(10, 18), 1.0f);
+  pj.Initialize(bodies[0], bodies[1], b2Vec2(-10, 30), b2Vec2(10, 30), b2Vec2(-10, 18),
+                b2Vec2(10, 18), 1.0f);
   ref.CreateJoint(&pj);
 
   const double y0 = world.body(0).position.y();
@@ -184,7 +195,8 @@ TEST(World, PulleySceneMatchesAtwoodAndBox2DPulleyJoint) {
     ref.Step(static_cast<float>(kDt), 8, 3);
     const double travel = std::abs(world.body(0).position.y() - y0);
     for (int i = 0; i < 2; ++i)
-      maxGap = std::max(maxGap, std::abs(world.body(i).position.y() - bodies[i]->GetPosition().y) / std::max(travel, 1e-3));
+      maxGap = std::max(maxGap, std::abs(world.body(i).position.y() - bodies[i]->GetPosition().y) /
+                                    std::max(travel, 1e-3));
   }
   const double t = steps * kDt;
   const double expected = 9.81 * (m1 - m2) / (m1 + m2);
@@ -223,7 +235,8 @@ TEST(World, MembraneSettlesWhereTheBandCarriesTheWeight) {
   const CableDef& band = world.scene().cables[0];
   const Vec2 p = world.body(0).position;
   const Vec2 a = band.start.point, b = band.end.point;
-  const double tension = band.stiffness * ((p - a).norm() + (p - b).norm() - band.restLength + band.preload);
+  const double tension =
+      band.stiffness * ((p - a).norm() + (p - b).norm() - band.restLength + band.preload);
   const Vec2 force = -tension * ((p - a).normalized() + (p - b).normalized());
   const Vec2 weight = world.scene().bodies[0].mass * world.scene().gravity;
   EXPECT_LT((force + weight).norm(), 0.01 * weight.norm());

@@ -33,7 +33,8 @@ bool inside(const std::vector<Vec2>& poly, const Vec2& p) {
 // Every segment of a taut path keeps the whole polygon on one side (the cable's right for Left):
 // try every run of consecutive vertices (walked with the polygon on that side) and the empty
 // path, keep the valid ones, return the shortest.
-std::vector<int> bruteForceChain(const Vec2& a, const Vec2& b, const std::vector<Vec2>& poly, WrapSide side) {
+std::vector<int> bruteForceChain(const Vec2& a, const Vec2& b, const std::vector<Vec2>& poly,
+                                 WrapSide side) {
   const int n = static_cast<int>(poly.size());
   const double s = side == WrapSide::Left ? 1 : -1;
   auto keepsPolygonOnSide = [&](const Vec2& p, const Vec2& q) {
@@ -56,7 +57,8 @@ std::vector<int> bruteForceChain(const Vec2& a, const Vec2& b, const std::vector
     for (int i : c) path.push_back(poly[i]);
     path.push_back(b);
     bool valid = true;
-    for (size_t i = 0; i + 1 < path.size() && valid; ++i) valid = keepsPolygonOnSide(path[i], path[i + 1]);
+    for (size_t i = 0; i + 1 < path.size() && valid; ++i)
+      valid = keepsPolygonOnSide(path[i], path[i + 1]);
     if (!valid) continue;
     const double len = chainLength(a, b, poly, c);
     if (len < bestLength - kLengthTolerance) best = c, bestLength = len;

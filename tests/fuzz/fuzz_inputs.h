@@ -70,7 +70,8 @@ inline Outcome runSceneInput(std::string_view text) {
       for (int c = 0; c < world.cableCount(); ++c) {
         requireFinite(world.cable(c).length(), "cable " + std::to_string(c) + " length");
         requireFinite(world.cable(c).tension(), "cable " + std::to_string(c) + " tension");
-        if (world.cable(c).tension() < 0) throw HarnessFailure("cable " + std::to_string(c) + " pushes");
+        if (world.cable(c).tension() < 0)
+          throw HarnessFailure("cable " + std::to_string(c) + " pushes");
       }
       if (std::isnan(world.energy())) throw HarnessFailure("energy is NaN");
     }
@@ -82,7 +83,8 @@ inline Outcome runSceneInput(std::string_view text) {
   }
 }
 
-inline void checkStatics(const StaticsProblem& problem, const StaticsResult& r, const char* solver) {
+inline void checkStatics(const StaticsProblem& problem, const StaticsResult& r,
+                         const char* solver) {
   const std::string s = solver;
   requireFinite(r.p, s + " p");
   requireFinite(r.energy, s + " energy");
@@ -124,9 +126,11 @@ inline Outcome runWrapInput(std::string_view text) {
     const WrapSolution s = solveWrap(problem, "fuzz");
     requireFinite(s.length, "wrap length");
     for (const Vec2& p : s.path) requireFinite(p, "wrap path point");
-    if (s.contacts.size() + 2 != s.path.size()) throw HarnessFailure("wrap: contacts and path disagree");
+    if (s.contacts.size() + 2 != s.path.size())
+      throw HarnessFailure("wrap: contacts and path disagree");
     for (int v : s.contacts)
-      if (v < 0 || v >= static_cast<int>(problem.polygon.size())) throw HarnessFailure("wrap: contact index out of range");
+      if (v < 0 || v >= static_cast<int>(problem.polygon.size()))
+        throw HarnessFailure("wrap: contact index out of range");
     (void)wrapSolutionToJson(s).dump();
     return Outcome::Accepted;
   } catch (const InputError&) {

@@ -10,12 +10,12 @@
 //   cablelab_soak [--steps N] [--seed S] [--max-energy E] [--max-residual R]
 //   cablelab_soak --ctest     run only if CABLELAB_SOAK_STEPS is set (ctest label `soak`), else
 //                             exit 77, which ctest counts as skipped
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <algorithm>
 #include <memory>
 #include <random>
 #include <string>
@@ -31,13 +31,18 @@ using namespace cablelab;
 struct Args {
   long steps = 1000000;
   unsigned seed = 1;
-  double maxEnergy = 1e5;  // servos swinging the fingers put in ~1e3 J; a blow-up grows far past this
-  long epoch = 2000;        // steps between rebuilding the world (a drag may pull the box out of the grip for good)
-  double maxResidual = 0.1;  // m; Box2D's joint limits and the mouse joint act after the cable solve (6 cm seen: seed 1, step 362146)
+  double maxEnergy =
+      1e5;            // servos swinging the fingers put in ~1e3 J; a blow-up grows far past this
+  long epoch = 2000;  // steps between rebuilding the world (a drag may pull the box out of the grip
+                      // for good)
+  double maxResidual = 0.1;  // m; Box2D's joint limits and the mouse joint act after the cable
+                             // solve (6 cm seen: seed 1, step 362146)
 };
 
 int usage() {
-  std::fprintf(stderr, "usage: cablelab_soak [--steps N] [--seed S] [--max-energy J] [--max-residual M] [--epoch N] [--verbose] [--ctest]\n");
+  std::fprintf(stderr,
+               "usage: cablelab_soak [--steps N] [--seed S] [--max-energy J] [--max-residual M] "
+               "[--epoch N] [--verbose] [--ctest]\n");
   return 2;
 }
 
@@ -91,7 +96,9 @@ int main(int argc, char** argv) {
   const double dt = base.dt;
   const int substeps = base.substeps;
   std::mt19937_64 rng(a.seed);
-  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  auto uniform = [&](double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng);
+  };
   auto integer = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
 
   long drags = 0, servoEdits = 0, cableEdits = 0, rigidSwitches = 0;
@@ -119,11 +126,13 @@ int main(int argc, char** argv) {
       if (dragLeft == 0 && event < 1 && integer(0, 2) == 0) {
         const int body = integer(0, world.bodyCount() - 1);
         const Vec2 p = world.body(body).position;
-        world.beginDrag(body, p + Vec2(uniform(-0.02, 0.02), uniform(-0.02, 0.02)), uniform(1.0, 8.0));
+        world.beginDrag(body, p + Vec2(uniform(-0.02, 0.02), uniform(-0.02, 0.02)),
+                        uniform(1.0, 8.0));
         dragGoal = p + Vec2(uniform(-0.2, 0.2), uniform(-0.2, 0.2));
         dragLeft = integer(10, 300);
         ++drags;
-        if (verbose) std::fprintf(stderr, "%ld: drag body %d for %ld steps\n", step, body, dragLeft);
+        if (verbose)
+          std::fprintf(stderr, "%ld: drag body %d for %ld steps\n", step, body, dragLeft);
       } else if (event < 3) {
         const int j = integer(0, world.jointCount() - 1);
         const JointDef& jd = base.joints[j];
@@ -131,8 +140,9 @@ int main(int argc, char** argv) {
         // Mostly nudges round the current target (the grip holds); one in ten a jump anywhere,
         // also beyond the limits (the box is usually thrown out, until the next epoch).
         const double now = world.joint(j).servoTarget;
-        const double target = integer(0, 9) == 0 ? uniform(lo - 0.1 * (hi - lo), hi + 0.1 * (hi - lo))
-                                                 : std::clamp(now + uniform(-0.03, 0.03) * (hi - lo), lo, hi);
+        const double target = integer(0, 9) == 0
+                                  ? uniform(lo - 0.1 * (hi - lo), hi + 0.1 * (hi - lo))
+                                  : std::clamp(now + uniform(-0.03, 0.03) * (hi - lo), lo, hi);
         world.setServoTarget(j, target);
         ++servoEdits;
         if (verbose) std::fprintf(stderr, "%ld: servo %d -> %g\n", step, j, target);
@@ -145,12 +155,16 @@ int main(int argc, char** argv) {
           rigidSince[c] = step;
           ++rigidSwitches;
         } else {
-          world.setCableParameters(c, def.restLength * uniform(0.95, 1.05), def.stiffness * uniform(0.5, 2.0),
-                                   def.preload * uniform(0.5, 1.5), def.damping * uniform(0.5, 2.0));
+          world.setCableParameters(
+              c, def.restLength * uniform(0.95, 1.05), def.stiffness * uniform(0.5, 2.0),
+              def.preload * uniform(0.5, 1.5), def.damping * uniform(0.5, 2.0));
           rigidSince[c] = -1;
         }
         ++cableEdits;
-        if (verbose) std::fprintf(stderr, "%ld: cable %d rest %g k %g preload %g\n", step, c, world.cable(c).restLength(), world.cable(c).def().stiffness, world.cable(c).def().preload);
+        if (verbose)
+          std::fprintf(stderr, "%ld: cable %d rest %g k %g preload %g\n", step, c,
+                       world.cable(c).restLength(), world.cable(c).def().stiffness,
+                       world.cable(c).def().preload);
       }
       if (dragLeft > 0) {
         const Vec2 t = world.dragTarget();
@@ -162,11 +176,23 @@ int main(int argc, char** argv) {
 
       const double e = world.energy();
       if (world.lastStepStats().wrapPoints > 0) ++wrapped;
-      if (verbose && (step % 10 == 0 || std::getenv("SOAK_TRACE_FROM") && step >= std::atol(std::getenv("SOAK_TRACE_FROM")))) {
-        std::fprintf(stderr, "%ld: E %.4g box (%.3f, %.3f) wraps %d %d len %.3f %.3f T %.3g %.3g\n", step, e, world.body(6).position.x(), world.body(6).position.y(), world.cable(0).wraps(), world.cable(1).wraps(), world.cable(0).length(), world.cable(1).length(), world.cable(0).tension(), world.cable(1).tension());
+      if (verbose && (step % 10 == 0 || (std::getenv("SOAK_TRACE_FROM") &&
+                                         step >= std::atol(std::getenv("SOAK_TRACE_FROM"))))) {
+        std::fprintf(stderr, "%ld: E %.4g box (%.3f, %.3f) wraps %d %d len %.3f %.3f T %.3g %.3g\n",
+                     step, e, world.body(6).position.x(), world.body(6).position.y(),
+                     world.cable(0).wraps(), world.cable(1).wraps(), world.cable(0).length(),
+                     world.cable(1).length(), world.cable(0).tension(), world.cable(1).tension());
         const StepStats& st = world.lastStepStats();
-        std::fprintf(stderr, "    stats: iters %d residual %.3g cable_us %.1f | rest %.4f %.4f k %g %g\n", st.solverIterations, st.residual, st.cableMicros, world.cable(0).restLength(), world.cable(1).restLength(), world.cable(0).def().stiffness, world.cable(1).def().stiffness);
-        for (int b = 0; b < world.bodyCount(); ++b) std::fprintf(stderr, "    %s (%.4f %.4f %.4f) v (%.3g %.3g %.3g)\n", world.scene().bodies[b].name.c_str(), world.body(b).position.x(), world.body(b).position.y(), world.body(b).angle, world.body(b).velocity.x(), world.body(b).velocity.y(), world.body(b).angularVelocity);
+        std::fprintf(stderr,
+                     "    stats: iters %d residual %.3g cable_us %.1f | rest %.4f %.4f k %g %g\n",
+                     st.solverIterations, st.residual, st.cableMicros, world.cable(0).restLength(),
+                     world.cable(1).restLength(), world.cable(0).def().stiffness,
+                     world.cable(1).def().stiffness);
+        for (int b = 0; b < world.bodyCount(); ++b)
+          std::fprintf(stderr, "    %s (%.4f %.4f %.4f) v (%.3g %.3g %.3g)\n",
+                       world.scene().bodies[b].name.c_str(), world.body(b).position.x(),
+                       world.body(b).position.y(), world.body(b).angle, world.body(b).velocity.x(),
+                       world.body(b).velocity.y(), world.body(b).angularVelocity);
       }
       if (!std::isfinite(e)) failure = "energy is not finite";
       maxEnergy = std::max(maxEnergy, e);
@@ -179,23 +205,33 @@ int main(int argc, char** argv) {
         if (!cable.elastic() && rigidSince[c] >= 0 && step > rigidSince[c] + 1) {
           const double residual = cable.length() - cable.restLength();
           maxResidual = std::max(maxResidual, residual);
-          if (residual > a.maxResidual) failure = "rigid cable '" + cable.name() + "' is " + std::to_string(residual) + " m too long";
+          if (residual > a.maxResidual)
+            failure =
+                "rigid cable '" + cable.name() + "' is " + std::to_string(residual) + " m too long";
         }
       }
-      if (!failure.empty()) failure += " at step " + std::to_string(step) + " (t = " + std::to_string(world.time()) + " s)";
+      if (!failure.empty())
+        failure +=
+            " at step " + std::to_string(step) + " (t = " + std::to_string(world.time()) + " s)";
     }
   } catch (const SimulationError& e) {
     failure = std::string("simulation stopped at step ") + std::to_string(step) + ": " + e.what();
   } catch (const InputError& e) {
     failure = std::string("input error at step ") + std::to_string(step) + ": " + e.what();
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf(
-      "{\"steps\": %ld, \"seed\": %u, \"seconds\": %.3f, \"steps_per_s\": %.1f, \"drags\": %ld, \"servo_edits\": %ld, "
-      "\"cable_edits\": %ld, \"rigid_switches\": %ld, \"max_energy\": %.6g, \"max_rigid_residual\": %.6g, "
-      "\"min_tension\": %.6g, \"max_tension\": %.6g, \"epochs\": %ld, \"wrapped_share\": %.3f, \"warnings\": %zu, \"passed\": %s}\n",
-      step, a.seed, seconds, step / std::max(seconds, 1e-9), drags, servoEdits, cableEdits, rigidSwitches, maxEnergy,
-      maxResidual, minTension, maxTension, epochs, double(wrapped) / std::max(1L, step), warnings + worldPtr->warnings().size(), failure.empty() ? "true" : "false");
+      "{\"steps\": %ld, \"seed\": %u, \"seconds\": %.3f, \"steps_per_s\": %.1f, \"drags\": %ld, "
+      "\"servo_edits\": %ld, "
+      "\"cable_edits\": %ld, \"rigid_switches\": %ld, \"max_energy\": %.6g, "
+      "\"max_rigid_residual\": %.6g, "
+      "\"min_tension\": %.6g, \"max_tension\": %.6g, \"epochs\": %ld, \"wrapped_share\": %.3f, "
+      "\"warnings\": %zu, \"passed\": %s}\n",
+      step, a.seed, seconds, step / std::max(seconds, 1e-9), drags, servoEdits, cableEdits,
+      rigidSwitches, maxEnergy, maxResidual, minTension, maxTension, epochs,
+      double(wrapped) / std::max(1L, step), warnings + worldPtr->warnings().size(),
+      failure.empty() ? "true" : "false");
   if (!failure.empty()) {
     std::fprintf(stderr, "soak FAILED: %s\n", failure.c_str());
     return 1;

@@ -47,7 +47,8 @@ TEST(ControllerPanel, GraspSequenceMatchesCablelabTrack) {
   ASSERT_GE(h.graspTime, 0);
   const Vec2 box = sandbox.world()->body(h.box).position;
 
-  const auto r = test::run(std::string(CABLELAB_CLI) + " track --target 0.1,0.05 --time 4", "track");
+  const auto r =
+      test::run(std::string(CABLELAB_CLI) + " track --target 0.1,0.05 --time 4", "track");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_NEAR(h.graspTime, j["grasp_time"].get<double>(), 1e-9);

@@ -93,9 +93,9 @@ TEST(Gui, HandSceneRunsTheControllerWithLivePlots) {
   REQUIRE_XVFB();
   constexpr int kHandFrames = 120;
   const std::string shot = (outputDir("gui") / "hand.png").string();
-  const RunResult r = run(kXvfb + kCli + " gui hand --frames " + std::to_string(kHandFrames) +
-                              " --screenshot " + shot,
-                          "gui_hand");
+  const RunResult r = run(
+      kXvfb + kCli + " gui hand --frames " + std::to_string(kHandFrames) + " --screenshot " + shot,
+      "gui_hand");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.out.find("\"frames\": 120"), std::string::npos) << r.out;
   const ui::Image gui = ui::readPng(shot);
