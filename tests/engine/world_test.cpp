@@ -47,14 +47,17 @@ TEST(World, BallastRunReproducesTheInitialAcceleration) {
         test::runCli(std::string("run ballast --dt 1e-5 --time 0.002 --csv ") + csv + " " + sets);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto cols = readCsv(csv);
-    // Slope of the ballast's speed towards the pulley (+y) over the first 20 steps.
+    // Slope of the ballast's speed towards the pulley (+y) over the first 100 steps (0.001 s: the
+    // point rises 1 mm, so the geometry barely changes; the first step, which starts with the
+    // point exactly on the cable, gets half the acceleration).
     const auto& t = cols.at("t");
     const auto& vy = cols.at("ballast.vy");
-    ASSERT_GT(t.size(), 21u);
-    const double measured = (vy[20] - vy[0]) / (t[20] - t[0]);
+    ASSERT_GT(t.size(), 101u);
+    const double measured = (vy[100] - vy[0]) / (t[100] - t[0]);
     const double expected = 2 * c.v0y * c.v0y / c.l;
     EXPECT_NEAR(measured, expected, 0.03 * expected) << "l=" << c.l << " v0y=" << c.v0y;
-    // The point is not accelerated by the cable at t = 0.
+    // The point is not accelerated by the cable at t = 0 (its push grows with its rise, so look
+    // at the first 20 steps only).
     const double pointAccel =
         std::hypot(cols.at("point.vx")[20] - c.v0x, cols.at("point.vy")[20] - c.v0y) / t[20];
     EXPECT_LT(pointAccel, 0.03 * expected);
