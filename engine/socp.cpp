@@ -391,7 +391,9 @@ void solveStaticsSocp(const StaticsProblem& problem, StaticsResult& result,
     bool interior = true;
     for (int i = 0; i < n; ++i) {
       Cable& c = cab[i];
-      interior &= ntScaling(c.ca) & ntScaling(c.cb);
+      // Both scalings must be computed (they fill c.ca and c.cb), so no short-circuit.
+      const bool insideA = ntScaling(c.ca), insideB = ntScaling(c.cb);
+      interior = interior && insideA && insideB;
       c.d0 = c.z0 / c.s0;
       c.d1 = c.z1 / c.s1;
       // Block of (la, lb, t): P + G^T W^-2 G restricted to the cable.

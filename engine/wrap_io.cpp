@@ -12,10 +12,14 @@ namespace {
 
 using nlohmann::json;
 
+// Coordinates beyond this (m) would overflow squared lengths; like the statics input's bound.
+constexpr double kMaxCoordinate = 1e9;
+
 double number(const json& v, const std::string& file, const std::string& field) {
   if (!v.is_number()) throw InputError(file, field, "must be a number");
   const double d = v.get<double>();
   if (!std::isfinite(d)) throw InputError(file, field, "must be finite");
+  if (std::abs(d) > kMaxCoordinate) throw InputError(file, field, "must be within +/-1e9 m");
   return d;
 }
 
