@@ -9,6 +9,7 @@
 #include "app/options.h"
 #include "engine/error.h"
 #include "engine/hand_tracking.h"
+#include "engine/scene_registry.h"
 #ifdef CABLELAB_HAVE_OFFSCREEN
 #include "ui/plot.h"
 #endif
@@ -22,18 +23,12 @@ std::vector<double> parseNumbers(const std::string& text, int count, const std::
   std::stringstream in(text);
   std::string item;
   while (std::getline(in, item, ',')) {
-    size_t used = 0;
-    double v = 0;
-    try {
-      v = std::stod(item, &used);
-    } catch (...) {
-      used = 0;
-    }
-    if (used == 0 || used != item.size() || !std::isfinite(v))
+    const auto v = parseFiniteNumber(item);
+    if (!v)
       throw InputError(
           option, option,
           "'" + text + "' is not " + std::to_string(count) + " comma-separated numbers");
-    values.push_back(v);
+    values.push_back(*v);
   }
   if (static_cast<int>(values.size()) != count || (!text.empty() && text.back() == ','))
     throw InputError(option, option,

@@ -58,20 +58,25 @@ const SceneInfo* findBuiltinScene(const std::string& name) {
   return nullptr;
 }
 
+std::optional<double> parseFiniteNumber(const std::string& text) {
+  size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (...) {
+    return std::nullopt;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
 std::pair<std::string, double> parseSetting(const std::string& text) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0) throw InputError("--set", text, "expected NAME=VALUE");
   const std::string name = text.substr(0, eq), value = text.substr(eq + 1);
-  size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(value, &used);
-  } catch (...) {
-    used = 0;
-  }
-  if (used == 0 || used != value.size() || !std::isfinite(v))
-    throw InputError("--set", name, "value '" + value + "' is not a finite number");
-  return {name, v};
+  const auto v = parseFiniteNumber(value);
+  if (!v) throw InputError("--set", name, "value '" + value + "' is not a finite number");
+  return {name, *v};
 }
 
 SceneDef makeScene(const std::string& nameOrPath,

@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,6 +38,9 @@ const SceneInfo* findBuiltinScene(const std::string& name);
 /// Throws InputError for an unknown scene or parameter, or a bad file.
 SceneDef makeScene(const std::string& nameOrPath,
                    const std::vector<std::pair<std::string, double>>& overrides = {});
+
+/// The whole of `text` as one finite number, or nullopt ("1.5" yes; "1.5x", "", "nan" no).
+std::optional<double> parseFiniteNumber(const std::string& text);
 
 /// Parses "NAME=VALUE" (for --set); throws InputError naming the argument.
 std::pair<std::string, double> parseSetting(const std::string& text);
