@@ -11,11 +11,11 @@
 
 #include "app/command.h"
 #include "app/options.h"
-#include "engine/bench_scenes.h"
-#include "engine/hand_controller.h"
-#include "engine/hand_reach.h"
-#include "engine/scene_registry.h"
-#include "engine/statics_bench.h"
+#include "engine/scenes/bench_scenes.h"
+#include "engine/hand/hand_controller.h"
+#include "engine/hand/hand_reach.h"
+#include "engine/scenes/scene_registry.h"
+#include "engine/statics/statics_bench.h"
 
 namespace cablelab::app {
 namespace {

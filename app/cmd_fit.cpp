@@ -16,11 +16,11 @@
 #include <vector>
 
 #include "app/command.h"
-#include "engine/error.h"
-#include "engine/membrane_data.h"
-#include "engine/membrane_fit.h"
-#include "engine/membrane_plot.h"
-#include "engine/membrane_synth.h"
+#include "engine/core/error.h"
+#include "engine/membrane/membrane_data.h"
+#include "engine/membrane/membrane_fit.h"
+#include "engine/membrane/membrane_plot.h"
+#include "engine/membrane/membrane_synth.h"
 #ifdef CABLELAB_HAVE_OFFSCREEN
 #include "ui/membrane_figures.h"
 #endif

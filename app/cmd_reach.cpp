@@ -6,8 +6,8 @@
 
 #include "app/command.h"
 #include "app/options.h"
-#include "engine/error.h"
-#include "engine/hand_reach.h"
+#include "engine/core/error.h"
+#include "engine/hand/hand_reach.h"
 #ifdef CABLELAB_HAVE_OFFSCREEN
 #include "ui/plot.h"
 #endif

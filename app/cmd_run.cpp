@@ -8,9 +8,9 @@
 
 #include "app/command.h"
 #include "app/options.h"
-#include "engine/error.h"
-#include "engine/scene_registry.h"
-#include "engine/world.h"
+#include "engine/core/error.h"
+#include "engine/scenes/scene_registry.h"
+#include "engine/dynamics/world.h"
 #ifdef CABLELAB_HAVE_OFFSCREEN
 #include "ui/offscreen.h"
 #endif

@@ -2,8 +2,8 @@
 #include <cstdio>
 
 #include "app/command.h"
-#include "engine/scene_json.h"
-#include "engine/scene_registry.h"
+#include "engine/model/scene_json.h"
+#include "engine/scenes/scene_registry.h"
 
 namespace cablelab::app {
 namespace {

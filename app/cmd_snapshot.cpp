@@ -4,8 +4,8 @@
 #include <string>
 
 #include "app/command.h"
-#include "engine/error.h"
-#include "engine/world.h"
+#include "engine/core/error.h"
+#include "engine/dynamics/world.h"
 #include "ui/offscreen.h"
 #include "ui/scene_catalog.h"
 

@@ -3,11 +3,11 @@
 #include <string>
 
 #include "app/command.h"
-#include "engine/error.h"
-#include "engine/socp.h"
-#include "engine/statics.h"
-#include "engine/statics_io.h"
-#include "engine/statics_newton.h"
+#include "engine/core/error.h"
+#include "engine/statics/socp.h"
+#include "engine/statics/statics.h"
+#include "engine/statics/statics_io.h"
+#include "engine/statics/statics_newton.h"
 
 namespace cablelab::app {
 namespace {

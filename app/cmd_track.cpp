@@ -7,9 +7,9 @@
 
 #include "app/command.h"
 #include "app/options.h"
-#include "engine/error.h"
-#include "engine/hand_tracking.h"
-#include "engine/scene_registry.h"
+#include "engine/core/error.h"
+#include "engine/hand/hand_tracking.h"
+#include "engine/scenes/scene_registry.h"
 #ifdef CABLELAB_HAVE_OFFSCREEN
 #include "ui/plot.h"
 #endif

@@ -1,10 +1,10 @@
 // cablelab wrap FILE.json: the taut path from A to B around one convex polygon.
-// Parsing and solving live in engine/wrap_io.h (shared with the fuzzer).
+// Parsing and solving live in engine/cable/wrap_io.h (shared with the fuzzer).
 #include <nlohmann/json.hpp>
 
 #include "app/command.h"
 #include "app/json_input.h"
-#include "engine/wrap_io.h"
+#include "engine/cable/wrap_io.h"
 
 namespace cablelab::app {
 namespace {

@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "engine/error.h"
-#include "engine/math.h"
+#include "engine/core/error.h"
+#include "engine/core/math.h"
 
 namespace cablelab::app {
 

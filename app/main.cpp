@@ -5,7 +5,7 @@
 #include <map>
 
 #include "app/command.h"
-#include "engine/error.h"
+#include "engine/core/error.h"
 
 namespace cablelab::app {
 

@@ -1,12 +1,12 @@
 // Camera: maps world metres to framebuffer pixels for the renderer and the sandbox's mouse.
 //
-// Needs: engine/math.h only. A camera is a centre (m), a scale (metres per pixel) and a
+// Needs: engine/core/math.h only. A camera is a centre (m), a scale (metres per pixel) and a
 // viewport size (px). Screen pixels have their origin at the top-left corner, y down; world
 // coordinates have y up. The camera never changes by itself: the app owns it.
 #pragma once
 
-#include "engine/math.h"
-#include "engine/scene.h"
+#include "engine/core/math.h"
+#include "engine/model/scene.h"
 
 namespace cablelab::ui {
 

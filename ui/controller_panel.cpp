@@ -9,8 +9,8 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
-#include "engine/error.h"
-#include "engine/hand_tracking.h"
+#include "engine/core/error.h"
+#include "engine/hand/hand_tracking.h"
 #include "ui/colormap.h"
 
 namespace cablelab::ui {

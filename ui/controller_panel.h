@@ -2,12 +2,12 @@
 // they can be wired in without touching the rest of the sandbox.
 //
 //   hand      the statics-based Jacobian controller of thesis section 4.3
-//             (engine/hand_controller.h) runs live: the target is `sandbox.target` (click empty
+//             (engine/hand/hand_controller.h) runs live: the target is `sandbox.target` (click empty
 //             space, or the sliders), gains k_p, k_d, k_i and the PID toggle are editable, the
 //             grasp sequence (open pose -> closing ramp -> grasp -> control, as `cablelab track`)
 //             can be started and reset; membrane tensions and tracking error are plotted against
 //             time; the overlay shows the target and the statics model's box prediction.
-//   membrane  the chapter 3 model force F = -T (u1 + u2) (engine/membrane_model.h) is drawn at
+//   membrane  the chapter 3 model force F = -T (u1 + u2) (engine/membrane/membrane_model.h) is drawn at
 //             the finger point, and k and preload fitted by `cablelab fit` (its JSON output) can
 //             be loaded into the band.
 //
@@ -23,10 +23,10 @@
 #include <string>
 #include <vector>
 
-#include "engine/hand_controller.h"
-#include "engine/hand_model.h"
-#include "engine/membrane_model.h"
-#include "engine/world.h"
+#include "engine/hand/hand_controller.h"
+#include "engine/hand/hand_model.h"
+#include "engine/membrane/membrane_model.h"
+#include "engine/dynamics/world.h"
 #include "ui/overlay.h"
 #include "ui/sandbox.h"
 

@@ -1,5 +1,5 @@
 // The chapter 3 fit figures as plots (ui/plot.h), from the engine's plot data
-// (engine/membrane_plot.h):
+// (engine/membrane/membrane_plot.h):
 //   quiver (thesis figure 3-2): at every deformation point the measured force direction (red)
 //     and the fitted model's (black); each measurement mirrored across the band's perpendicular
 //     bisector (cyan, the model predicts the mirror image); the pulleys A and B and the straight
@@ -12,8 +12,8 @@
 
 #include <string>
 
-#include "engine/membrane_model.h"
-#include "engine/membrane_plot.h"
+#include "engine/membrane/membrane_model.h"
+#include "engine/membrane/membrane_plot.h"
 #include "ui/plot.h"
 
 namespace cablelab::ui {

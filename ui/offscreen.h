@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "engine/world.h"
+#include "engine/dynamics/world.h"
 #include "ui/image.h"
 #include "ui/overlay.h"
 #include "ui/renderer.h"

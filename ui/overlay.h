@@ -1,6 +1,6 @@
 // Overlay: what the app draws on top of a scene (controller targets, arrows, notes).
 //
-// Needs: engine/math.h only. Plain data owned by the caller and passed to the renderer each
+// Needs: engine/core/math.h only. Plain data owned by the caller and passed to the renderer each
 // frame; the renderer keeps nothing. Colours are RGBA in [0, 1].
 #pragma once
 
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/math.h"
+#include "engine/core/math.h"
 
 namespace cablelab::ui {
 

@@ -14,7 +14,7 @@
 // scale bar. The renderer is stateless: the same world, camera and options give the same pixels.
 #pragma once
 
-#include "engine/world.h"
+#include "engine/dynamics/world.h"
 #include "ui/camera.h"
 #include "ui/overlay.h"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <iostream>
 
-#include "engine/error.h"
+#include "engine/core/error.h"
 #include "ui/colormap.h"
 #include "ui/controller_panel.h"
 #include "ui/scene_catalog.h"

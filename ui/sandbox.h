@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/world.h"
+#include "engine/dynamics/world.h"
 #include "ui/camera.h"
 #include "ui/overlay.h"
 #include "ui/renderer.h"

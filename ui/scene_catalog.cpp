@@ -1,6 +1,6 @@
 #include "ui/scene_catalog.h"
 
-#include "engine/scene_registry.h"
+#include "engine/scenes/scene_registry.h"
 
 namespace cablelab::ui {
 

@@ -1,6 +1,6 @@
 // Scene catalog: the one place the UI reaches the engine's scene registry.
 //
-// Needs: engine/scene_registry.h (built-in scenes) and engine/scene_json.h (scene files).
+// Needs: engine/scenes/scene_registry.h (built-in scenes) and engine/model/scene_json.h (scene files).
 // The sandbox menu, `cablelab snapshot` and the golden-image tests all list and load scenes
 // through these two functions, so they always agree with `cablelab scenes`.
 #pragma once
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/scene.h"
+#include "engine/model/scene.h"
 
 namespace cablelab::ui {
 

@@ -1,8 +1,8 @@
 // Controller update and hand-scene step (with and without the membranes).
 #include <benchmark/benchmark.h>
 
-#include "engine/hand_controller.h"
-#include "engine/world.h"
+#include "engine/hand/hand_controller.h"
+#include "engine/dynamics/world.h"
 
 namespace cablelab {
 namespace {

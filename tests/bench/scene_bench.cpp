@@ -1,16 +1,16 @@
 // Cable kinematics per wrap point, the joint tension solve (LCP), and a whole step of every
 // built-in scene with its cables and with them removed (Box2D alone, sleeping off in World).
-// `cablelab bench` reports the same step figures through engine/bench_scenes.h.
+// `cablelab bench` reports the same step figures through engine/scenes/bench_scenes.h.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Dense>
 #include <random>
 
-#include "engine/bench_scenes.h"
-#include "engine/cable.h"
-#include "engine/scene_registry.h"
-#include "engine/tension_solver.h"
-#include "engine/world.h"
+#include "engine/scenes/bench_scenes.h"
+#include "engine/cable/cable.h"
+#include "engine/scenes/scene_registry.h"
+#include "engine/dynamics/tension_solver.h"
+#include "engine/dynamics/world.h"
 
 namespace cablelab {
 namespace {

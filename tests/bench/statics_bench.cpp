@@ -6,10 +6,10 @@
 #include <random>
 #include <vector>
 
-#include "engine/socp.h"
-#include "engine/statics_bench.h"
-#include "engine/statics_newton.h"
-#include "engine/statics_random.h"
+#include "engine/statics/socp.h"
+#include "engine/statics/statics_bench.h"
+#include "engine/statics/statics_newton.h"
+#include "engine/statics/statics_random.h"
 
 namespace {
 

@@ -5,7 +5,7 @@
 #include <sstream>
 #include <string>
 
-#include "tests/engine/test_support.h"
+#include "tests/support/engine_test_support.h"
 
 namespace {
 

@@ -13,7 +13,7 @@
 #include <sstream>
 #include <string>
 
-#include "tests/engine/test_support.h"
+#include "tests/support/engine_test_support.h"
 
 #ifdef CABLELAB_HAVE_OFFSCREEN
 #include "ui/image.h"

@@ -1,7 +1,7 @@
 // cablelab track / reach from the command line (CONTRACT.md).
 #include <gtest/gtest.h>
 
-#include "tests/engine/test_support.h"
+#include "tests/support/engine_test_support.h"
 
 #include <array>
 #include <cstdio>

@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "engine/scene_registry.h"
-#include "tests/engine/test_support.h"
+#include "engine/scenes/scene_registry.h"
+#include "tests/support/engine_test_support.h"
 
 namespace cablelab {
 namespace {

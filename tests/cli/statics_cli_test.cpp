@@ -1,7 +1,7 @@
 // CLI tests for `cablelab statics` (CONTRACT.md): output keys, exit codes, error messages.
 #include <gtest/gtest.h>
 
-#include "tests/engine/test_support.h"
+#include "tests/support/engine_test_support.h"
 
 #include <array>
 #include <cmath>

@@ -14,14 +14,14 @@
 #include <string>
 #include <string_view>
 
-#include "engine/error.h"
-#include "engine/scene_json.h"
-#include "engine/socp.h"
-#include "engine/statics.h"
-#include "engine/statics_io.h"
-#include "engine/statics_newton.h"
-#include "engine/world.h"
-#include "engine/wrap_io.h"
+#include "engine/core/error.h"
+#include "engine/model/scene_json.h"
+#include "engine/statics/socp.h"
+#include "engine/statics/statics.h"
+#include "engine/statics/statics_io.h"
+#include "engine/statics/statics_newton.h"
+#include "engine/dynamics/world.h"
+#include "engine/cable/wrap_io.h"
 
 namespace cablelab::fuzz {
 

@@ -20,9 +20,9 @@
 #include <random>
 #include <string>
 
-#include "engine/error.h"
-#include "engine/scene_registry.h"
-#include "engine/world.h"
+#include "engine/core/error.h"
+#include "engine/scenes/scene_registry.h"
+#include "engine/dynamics/world.h"
 
 namespace {
 

@@ -8,8 +8,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "engine/error.h"
-#include "engine/membrane_model.h"
+#include "engine/core/error.h"
+#include "engine/membrane/membrane_model.h"
 #include "tests/ui/test_support.h"
 
 namespace cablelab::ui {

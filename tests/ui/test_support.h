@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "engine/world.h"
+#include "engine/dynamics/world.h"
 #include "ui/image.h"
 #include "ui/scene_catalog.h"
 

@@ -1,0 +1,38 @@
+// Taut cable path around one convex polygon pulley (thesis section 2.4.3, NOTES.md).
+//
+// For terminals A and B and a winding side, the taut path is the chain of the convex hull of
+// {A, B, polygon vertices} on that side. It is a pure function of the geometry. Collinear points
+// are not part of the chain (they would add a wrap point that changes neither length nor J).
+#pragma once
+
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "engine/core/math.h"
+#include "engine/core/polygon.h"
+#include "engine/model/scene.h"
+
+namespace cablelab {
+
+/// Vertex indices (into `polygon`) the taut path A -> ... -> B touches, in path order.
+/// Left: the cable passes on the left of the polygon walking from A to B.
+/// Returns nullopt when a terminal lies inside the polygon's hull (no taut path exists).
+std::optional<std::vector<int>> wrapChain(const Vec2& a, const Vec2& b,
+                                          std::span<const Vec2> polygon, WrapSide side);
+/// The same into `chain` (reusing its storage); false when no taut path exists.
+bool wrapChain(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, WrapSide side,
+               std::vector<int>& chain);
+
+/// Length of the path A -> polygon[chain...] -> B.
+double chainLength(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,
+                   const std::vector<int>& chain);
+
+/// Signed distance of p from the directed line a->b, positive on the side the pulley must reach to
+/// be wrapped (the cable's right for Left, its left for Right).
+double wrapSideDistance(const Vec2& a, const Vec2& b, const Vec2& p, WrapSide side);
+
+/// True when the segment a-b passes through the interior of the convex CCW polygon.
+bool segmentCutsPolygon(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon);
+
+}  // namespace cablelab

@@ -1,0 +1,93 @@
+#include "engine/hand/hand_kinematics.h"
+
+namespace cablelab {
+
+HandJoints HandModel::clamp(const HandJoints& q) const {
+  HandJoints c;
+  for (int i = 0; i < 6; ++i) c[i] = std::min(upper[i], std::max(lower[i], q[i]));
+  return c;
+}
+
+HandJoints HandModel::openPose() const {
+  HandJoints q = HandJoints::Zero();
+  // Swung apart by 0.35 rad; the distal joints keep the paddles horizontal, face-on to the box.
+  q[kProximal] = 0.35, q[kDistal] = -0.35;
+  q[3 + kProximal] = -0.35, q[3 + kDistal] = 0.35;
+  return q;
+}
+
+FingerPose fingerPose(const HandModel& m, const HandJoints& q, int finger) {
+  const double tp = q[3 * finger + kProximal];
+  const double reach = m.linkLength + q[3 * finger + kSlide];
+  FingerPose pose;
+  pose.link = m.base(finger);
+  pose.linkAngle = tp;
+  pose.slider = pose.link + reach * Vec2(std::cos(tp), std::sin(tp));
+  pose.sliderAngle = tp;
+  pose.paddle = pose.slider;
+  pose.paddleAngle = tp + q[3 * finger + kDistal];
+  return pose;
+}
+
+Vec2 paddleCorner(const HandModel& m, int finger, int corner) {
+  return {corner == 0 ? -m.paddleHalfWidth : m.paddleHalfWidth,
+          -HandModel::side(finger) * m.paddleOffset};
+}
+
+FingertipPoints fingertipPoints(const HandModel& m, const HandJoints& q) {
+  FingertipPoints tips;
+  for (int f = 0; f < 2; ++f) {
+    const FingerPose pose = fingerPose(m, q, f);
+    for (int c = 0; c < 2; ++c)
+      tips.segment<2>(4 * f + 2 * c) =
+          pose.paddle + rotate(paddleCorner(m, f, c), pose.paddleAngle);
+  }
+  return tips;
+}
+
+FingertipJacobian fingertipJacobian(const HandModel& m, const HandJoints& q) {
+  FingertipJacobian J = FingertipJacobian::Zero();
+  for (int f = 0; f < 2; ++f) {
+    const FingerPose pose = fingerPose(m, q, f);
+    const Vec2 axis(std::cos(pose.linkAngle), std::sin(pose.linkAngle));
+    for (int c = 0; c < 2; ++c) {
+      const Vec2 arm = rotate(paddleCorner(m, f, c), pose.paddleAngle);  // distal joint -> corner
+      const Vec2 corner = pose.paddle + arm;
+      // Proximal turns everything about the base; the slide moves along the link; the distal
+      // joint turns the paddle about the slider tip.
+      J.block<2, 1>(4 * f + 2 * c, 3 * f + kProximal) = perp(corner - pose.link);
+      J.block<2, 1>(4 * f + 2 * c, 3 * f + kSlide) = axis;
+      J.block<2, 1>(4 * f + 2 * c, 3 * f + kDistal) = perp(arm);
+    }
+  }
+  return J;
+}
+
+FingertipPoints reduceToPoint(const HandModel& m, const FingertipPoints& tips) {
+  const double h = m.boxHalfSize;
+  FingertipPoints r = tips;
+  for (int f = 0; f < 2; ++f) {
+    const double face = HandModel::side(f) * h;  // the top membrane wraps the top face
+    r.segment<2>(4 * f) -= Vec2(-h, face);
+    r.segment<2>(4 * f + 2) -= Vec2(h, face);
+  }
+  return r;
+}
+
+bool wrapsFaceOn(const HandModel& m, const FingertipPoints& tips, const Vec2& p) {
+  const double h = m.boxHalfSize;
+  for (int f = 0; f < 2; ++f) {
+    const double s = HandModel::side(f);
+    const Vec2 a = tips.segment<2>(4 * f), b = tips.segment<2>(4 * f + 2);
+    // Each corner must sit beside the box and between its faces, on the wrapped face's side.
+    if (a.x() >= p.x() - h || b.x() <= p.x() + h) return false;
+    for (const Vec2& t : {a, b}) {
+      const double depth =
+          s * (t.y() - p.y());  // height of the corner above the centre, towards the face
+      if (depth >= h || depth <= -h) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace cablelab

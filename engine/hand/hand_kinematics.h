@@ -1,0 +1,48 @@
+// Forward kinematics of the hand's fingertips (the membrane corners) and its analytic Jacobian.
+//
+// Fingertip vector layout (8 x 1, metres), the order the statics sensitivity uses:
+//   (a0.x, a0.y, b0.x, b0.y, a1.x, a1.y, b1.x, b1.y)
+// with cable 0 the top membrane, cable 1 the bottom one, a the left corner (the cable's start)
+// and b the right corner (its end).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "engine/hand/hand_model.h"
+
+namespace cablelab {
+
+using FingertipPoints = Eigen::Matrix<double, 8, 1>;
+/// d(fingertip points)/d(actuated joints): 8 x 6 (m/rad or m/m).
+using FingertipJacobian = Eigen::Matrix<double, 8, 6>;
+
+/// World pose of one finger's three bodies (link, slider, paddle); origins in metres, angles rad.
+struct FingerPose {
+  Vec2 link, slider, paddle;
+  double linkAngle = 0, sliderAngle = 0, paddleAngle = 0;
+};
+
+/// Body poses of finger `finger` (0 top, 1 bottom) at joints q. Bodies' origins: the link at the
+/// base, the slider and the paddle at the distal joint.
+FingerPose fingerPose(const HandModel& m, const HandJoints& q, int finger);
+
+/// Membrane corner in the paddle frame: corner 0 (left, cable start) or 1 (right, cable end).
+Vec2 paddleCorner(const HandModel& m, int finger, int corner);
+
+/// The four membrane corners in world coordinates.
+FingertipPoints fingertipPoints(const HandModel& m, const HandJoints& q);
+
+/// Analytic d(fingertipPoints)/dq.
+FingertipJacobian fingertipJacobian(const HandModel& m, const HandJoints& q);
+
+/// Box-to-point reduction (thesis figure 4-2, NOTES.md): a non-rotating square box wrapped
+/// face-on touches each membrane at two fixed corners, so the cable a -> corner -> corner -> b has
+/// the length |p - a'| + |b' - p| + 2 h with a' = a - (left corner offset), b' = b - (right corner
+/// offset), p the box centre and h the half side. Returns the shifted points (same layout).
+FingertipPoints reduceToPoint(const HandModel& m, const FingertipPoints& tips);
+
+/// Whether both membranes wrap the box at centre p face-on (each fingertip beside its face's
+/// corner, below/above it), the configuration the reduction assumes.
+bool wrapsFaceOn(const HandModel& m, const FingertipPoints& tips, const Vec2& p);
+
+}  // namespace cablelab

@@ -1,0 +1,162 @@
+#include "engine/model/scene.h"
+
+#include <cmath>
+#include <cstdio>
+#include <set>
+
+#include "engine/core/error.h"
+#include "engine/core/polygon.h"
+
+namespace cablelab {
+
+int findBodyIndex(const SceneDef& scene, const std::string& name) {
+  if (name == "world") return -1;
+  for (size_t i = 0; i < scene.bodies.size(); ++i)
+    if (scene.bodies[i].name == name) return static_cast<int>(i);
+  return -2;
+}
+
+namespace {
+
+class Checker {
+ public:
+  explicit Checker(const std::string& source) : source_(source) {}
+  [[noreturn]] void fail(const std::string& field, const std::string& what) const {
+    throw InputError(source_, field, what);
+  }
+  // Box2D is float (and Debian's build asserts on non-finite positions): a finite double beyond
+  // float range would become inf there (a fuzzer finding). Every number is kept within
+  // +/-kMaxMagnitude, far beyond anything physical yet safe in float products.
+  static constexpr double kMaxMagnitude = 1e12;
+  void finite(double v, const std::string& field) const {
+    if (!std::isfinite(v)) fail(field, "must be a finite number");
+    if (std::abs(v) > kMaxMagnitude) {
+      char got[32];
+      std::snprintf(got, sizeof got, "%.6g", v);
+      fail(field, std::string("must be within +/-1e12 (got ") + got + ")");
+    }
+  }
+  void finite(const Vec2& v, const std::string& field) const {
+    if (!isFinite(v)) fail(field, "must be finite numbers");
+    finite(v.x(), field);
+    finite(v.y(), field);
+  }
+  void nonNegative(double v, const std::string& field) const {
+    finite(v, field);
+    if (v < 0) fail(field, "must be >= 0 (got " + std::to_string(v) + ")");
+  }
+  void positive(double v, const std::string& field) const {
+    finite(v, field);
+    if (v <= 0) fail(field, "must be positive (got " + std::to_string(v) + ")");
+  }
+
+ private:
+  const std::string& source_;
+};
+
+std::string at(const std::string& list, size_t i) {
+  return list + "[" + std::to_string(i) + "]";
+}
+
+}  // namespace
+
+void validateScene(const SceneDef& scene, const std::string& source) {
+  Checker check(source);
+  check.finite(scene.gravity, "gravity");
+  check.positive(scene.dt, "dt");
+  if (scene.substeps < 1 || scene.substeps > 1000) check.fail("substeps", "must be 1..1000");
+  check.finite(scene.view.center, "view.center");
+  check.positive(scene.view.height, "view.height");
+
+  std::set<std::string> names;
+  for (size_t i = 0; i < scene.bodies.size(); ++i) {
+    const BodyDef& b = scene.bodies[i];
+    const std::string f = at("bodies", i);
+    if (b.name.empty()) check.fail(f + ".name", "must not be empty");
+    if (b.name == "world") check.fail(f + ".name", "'world' is reserved for the fixed frame");
+    if (!names.insert(b.name).second)
+      check.fail(f + ".name", "duplicate body name '" + b.name + "'");
+    check.finite(b.position, f + ".position");
+    check.finite(b.angle, f + ".angle");
+    check.finite(b.velocity, f + ".velocity");
+    check.finite(b.angularVelocity, f + ".angular_velocity");
+    if (b.type == BodyType::Dynamic) check.positive(b.mass, f + ".mass");
+    check.nonNegative(b.inertia, f + ".inertia");
+    check.nonNegative(b.linearDamping, f + ".linear_damping");
+    check.nonNegative(b.angularDamping, f + ".angular_damping");
+    for (size_t s = 0; s < b.shapes.size(); ++s) {
+      const ShapeDef& sh = b.shapes[s];
+      const std::string fs = f + at(".shapes", s);
+      check.nonNegative(sh.friction, fs + ".friction");
+      check.nonNegative(sh.restitution, fs + ".restitution");
+      if (sh.kind == ShapeDef::Kind::Circle) {
+        check.positive(sh.radius, fs + ".radius");
+        check.finite(sh.center, fs + ".center");
+      } else {
+        if (sh.vertices.size() < 3 || sh.vertices.size() > 8)
+          check.fail(fs + ".vertices", "a polygon needs 3 to 8 vertices");
+        for (size_t v = 0; v < sh.vertices.size(); ++v)
+          check.finite(sh.vertices[v], fs + at(".vertices", v));
+        if (!isConvexCCW(sh.vertices))
+          check.fail(fs + ".vertices", "polygon must be convex and counter-clockwise");
+      }
+    }
+  }
+
+  auto bodyRef = [&](const std::string& name, const std::string& field) {
+    if (findBodyIndex(scene, name) == -2) check.fail(field, "unknown body '" + name + "'");
+  };
+  std::set<std::string> jointNames;
+  for (size_t i = 0; i < scene.joints.size(); ++i) {
+    const JointDef& j = scene.joints[i];
+    const std::string f = at("joints", i);
+    if (!j.name.empty() && !jointNames.insert(j.name).second)
+      check.fail(f + ".name", "duplicate joint name '" + j.name + "'");
+    bodyRef(j.bodyA, f + ".body_a");
+    bodyRef(j.bodyB, f + ".body_b");
+    if (j.bodyB == "world") check.fail(f + ".body_b", "must be a body, not the world");
+    if (j.bodyA == j.bodyB) check.fail(f + ".body_b", "a joint needs two different bodies");
+    check.finite(j.anchor, f + ".anchor");
+    check.finite(j.axis, f + ".axis");
+    if (j.kind == JointDef::Kind::Prismatic && j.axis.norm() < 1e-9)
+      check.fail(f + ".axis", "must not be zero");
+    check.finite(j.lower, f + ".limits");
+    check.finite(j.upper, f + ".limits");
+    if (j.enableLimit && j.lower > j.upper)
+      check.fail(f + ".limits", "lower limit above upper limit");
+    check.nonNegative(j.servo.kp, f + ".servo.kp");
+    check.nonNegative(j.servo.kd, f + ".servo.kd");
+    check.finite(j.servo.target, f + ".servo.target");
+    check.positive(j.servo.maxForce, f + ".servo.max_force");
+  }
+
+  std::set<std::string> cableNames;
+  for (size_t i = 0; i < scene.cables.size(); ++i) {
+    const CableDef& c = scene.cables[i];
+    const std::string f = at("cables", i);
+    if (c.name.empty()) check.fail(f + ".name", "must not be empty");
+    if (!cableNames.insert(c.name).second)
+      check.fail(f + ".name", "duplicate cable name '" + c.name + "'");
+    bodyRef(c.start.body, f + ".start.body");
+    bodyRef(c.end.body, f + ".end.body");
+    check.finite(c.start.point, f + ".start.point");
+    check.finite(c.end.point, f + ".end.point");
+    check.finite(c.restLength, f + ".rest_length");
+    if (c.restLength == 0) check.fail(f + ".rest_length", "zero-length cable");
+    check.nonNegative(c.stiffness, f + ".stiffness");
+    check.nonNegative(c.preload, f + ".preload");
+    check.nonNegative(c.damping, f + ".damping");
+    for (size_t p = 0; p < c.pulleys.size(); ++p) {
+      const PulleyDef& pd = c.pulleys[p];
+      const std::string fp = f + at(".pulleys", p);
+      bodyRef(pd.body, fp + ".body");
+      check.finite(pd.point, fp + ".point");
+      for (size_t v = 0; v < pd.vertices.size(); ++v)
+        check.finite(pd.vertices[v], fp + at(".vertices", v));
+      if (pd.kind == PulleyDef::Kind::Polygon && !pd.vertices.empty() && !isConvexCCW(pd.vertices))
+        check.fail(fp + ".vertices", "polygon must be convex and counter-clockwise");
+    }
+  }
+}
+
+}  // namespace cablelab

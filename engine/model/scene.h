@@ -1,0 +1,131 @@
+// Scene definitions: what a user authors (in JSON or in code) before a World is built.
+//
+// Authoring (SceneDef) -> World (Box2D bodies + cablelab cables, per-step state).
+// Every def has documented defaults and units; validateScene() checks a whole scene once
+// and throws InputError naming the field ("bodies[2].mass: must be positive").
+// Lengths in metres, masses in kilograms, angles in radians, time in seconds.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "engine/core/math.h"
+
+namespace cablelab {
+
+enum class BodyType { Static, Kinematic, Dynamic };
+
+/// A collision shape fixed to a body, in the body's local frame.
+struct ShapeDef {
+  enum class Kind { Circle, Polygon };
+  Kind kind = Kind::Circle;
+  double radius = 0.1;         ///< circle radius (m)
+  Vec2 center = Vec2::Zero();  ///< circle centre, local (m)
+  std::vector<Vec2> vertices;  ///< convex polygon, counter-clockwise, local (m); 3..8 vertices
+  double friction = 0.6;       ///< Coulomb friction coefficient
+  double restitution = 0.0;    ///< bounciness in [0, 1]
+  bool sensor = false;         ///< true: takes part in no contact (a pure pulley)
+};
+
+struct BodyDef {
+  std::string name;  ///< unique, non-empty; "world" is reserved
+  BodyType type = BodyType::Dynamic;
+  Vec2 position = Vec2::Zero();  ///< origin of the body frame, world (m)
+  double angle = 0.0;            ///< rad
+  Vec2 velocity = Vec2::Zero();  ///< of the body origin (m/s)
+  double angularVelocity = 0.0;  ///< rad/s
+  double mass = 1.0;             ///< kg, > 0 for dynamic bodies; the shapes share it
+  double inertia = 0.0;          ///< kg m^2 about the origin; 0 = from the shapes
+  bool fixedRotation = false;    ///< true: the body translates only
+  double linearDamping = 0.0;    ///< 1/s
+  double angularDamping = 0.0;   ///< 1/s
+  std::vector<ShapeDef> shapes;  ///< at least one for dynamic bodies
+};
+
+/// A servo on a joint: PD force on the joint coordinate, tracking `target`.
+struct ServoDef {
+  bool enabled = false;
+  double kp = 500.0;      ///< N/m or N m/rad
+  double kd = 44.72;      ///< N s/m or N m s/rad (default 2 sqrt(500))
+  double target = 0.0;    ///< m or rad, in the joint's coordinate
+  double maxForce = 1e4;  ///< N or N m, clamp
+};
+
+struct JointDef {
+  enum class Kind { Revolute, Prismatic, Weld };
+  Kind kind = Kind::Revolute;
+  std::string name;             ///< unique among joints
+  std::string bodyA = "world";  ///< "world" or a body name
+  std::string bodyB;            ///< a body name
+  Vec2 anchor = Vec2::Zero();   ///< world point at the scene's initial pose (m)
+  Vec2 axis = Vec2(1, 0);       ///< prismatic: sliding axis, world, unit
+  bool enableLimit = false;
+  double lower = 0.0, upper = 0.0;  ///< limits on the joint coordinate (rad or m)
+  bool collideConnected = false;
+  ServoDef servo;
+};
+
+/// Which way the cable goes round a pulley.
+///  Left:  walking along the cable, the cable passes on the left of the pulley
+///         (the pulley lies on the cable's right).
+///  Right: the mirror image.
+///  Threaded: always in the path, whatever the bend (an eyelet the cable runs through).
+enum class WrapSide { Left, Right, Threaded };
+
+/// A radius-zero pulley: a point, or the vertices of a convex polygon, fixed to a body or the
+/// world.
+struct PulleyDef {
+  enum class Kind { Point, Polygon };
+  Kind kind = Kind::Point;
+  std::string body = "world";      ///< "world" or a body name
+  Vec2 point = Vec2::Zero();       ///< Point: position in the body frame (world frame for "world")
+  std::vector<Vec2> vertices;      ///< Polygon: CCW convex polygon, body frame; empty = the
+                                   ///< body's first polygon shape
+  WrapSide side = WrapSide::Left;  ///< Polygon pulleys cannot be Threaded
+};
+
+/// One end of a cable, fixed to a body (or the world).
+struct AnchorDef {
+  std::string body = "world";
+  Vec2 point = Vec2::Zero();  ///< body frame (world frame for "world")
+};
+
+/// A cable from `start` over `pulleys` (in order) to `end`.
+/// stiffness == 0: an inextensible cable, tension from the constraint.
+/// stiffness > 0: an elastic cable (membrane), tension k (length - restLength + preload)
+///                + damping * d(length)/dt, never negative.
+struct CableDef {
+  std::string name;
+  AnchorDef start, end;
+  std::vector<PulleyDef> pulleys;
+  double restLength = -1.0;  ///< m; < 0 = the length at the initial pose
+  double stiffness = 0.0;    ///< N/m; 0 = rigid
+  double preload = 0.0;      ///< m of pre-stretch, >= 0 (elastic cables only)
+  double damping = 0.0;      ///< N s/m, >= 0 (elastic cables only)
+};
+
+/// Where the camera looks by default (for the sandbox and snapshots).
+struct ViewDef {
+  Vec2 center = Vec2::Zero();  ///< m
+  double height = 4.0;         ///< visible world height (m)
+};
+
+struct SceneDef {
+  std::string name;
+  std::string description;
+  Vec2 gravity = Vec2(0, -9.81);  ///< m/s^2
+  double dt = 1.0 / 60.0;         ///< default time step (s)
+  int substeps = 1;               ///< default substeps per step
+  ViewDef view;
+  std::vector<BodyDef> bodies;
+  std::vector<JointDef> joints;
+  std::vector<CableDef> cables;
+};
+
+/// Checks every field; throws InputError(source, field, what) on the first bad one.
+void validateScene(const SceneDef& scene, const std::string& source);
+
+/// Index of the body called `name` in scene.bodies, -1 for "world", -2 if unknown.
+int findBodyIndex(const SceneDef& scene, const std::string& name);
+
+}  // namespace cablelab

@@ -1,0 +1,388 @@
+#include "engine/model/scene_json.h"
+
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "engine/core/error.h"
+
+namespace cablelab {
+
+namespace {
+
+using nlohmann::json;
+
+// Walks a JSON object, reading typed fields and remembering the path for error messages.
+class Reader {
+ public:
+  Reader(const json& j, std::string source, std::string path)
+      : j_(j), source_(std::move(source)), path_(std::move(path)) {
+    if (!j_.is_object()) fail("", "must be an object");
+  }
+  ~Reader() noexcept(false) {
+    if (std::uncaught_exceptions() > 0) return;
+    for (const auto& [key, value] : j_.items())
+      if (!used_.count(key)) fail("." + key, "unknown key");
+  }
+
+  [[noreturn]] void fail(const std::string& sub, const std::string& what) const {
+    const bool top = path_.empty() && !sub.empty() && sub[0] == '.';
+    throw InputError(source_, top ? sub.substr(1) : path_ + sub, what);
+  }
+  std::string field(const std::string& key) const {
+    return path_.empty() ? key : path_ + "." + key;
+  }
+  bool has(const std::string& key) {
+    used_.insert(key);
+    return j_.contains(key);
+  }
+  double number(const std::string& key, double fallback) {
+    if (!has(key)) return fallback;
+    return toNumber(j_.at(key), field(key));
+  }
+  int integer(const std::string& key, int fallback) {
+    const double v = number(key, fallback);
+    if (v != std::floor(v) || std::abs(v) > 1e9) fail("." + key, "must be a whole number");
+    return static_cast<int>(v);
+  }
+  bool boolean(const std::string& key, bool fallback) {
+    if (!has(key)) return fallback;
+    if (!j_.at(key).is_boolean()) fail("." + key, "must be true or false");
+    return j_.at(key).get<bool>();
+  }
+  std::string string(const std::string& key, const std::string& fallback) {
+    if (!has(key)) return fallback;
+    if (!j_.at(key).is_string()) fail("." + key, "must be a string");
+    return j_.at(key).get<std::string>();
+  }
+  std::string required(const std::string& key) {
+    if (!has(key)) fail("." + key, "is required");
+    return string(key, "");
+  }
+  Vec2 vec2(const std::string& key, const Vec2& fallback) {
+    if (!has(key)) return fallback;
+    return toVec2(j_.at(key), field(key));
+  }
+  const json& list(const std::string& key) {
+    static const json empty = json::array();
+    if (!has(key)) return empty;
+    if (!j_.at(key).is_array()) fail("." + key, "must be a list");
+    return j_.at(key);
+  }
+  Reader child(const std::string& key) {
+    has(key);
+    return Reader(j_.at(key), source_, field(key));
+  }
+  const std::string& source() const { return source_; }
+
+  double toNumber(const json& v, const std::string& f) const {
+    if (!v.is_number()) throw InputError(source_, f, "must be a number");
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) throw InputError(source_, f, "must be finite");
+    return d;
+  }
+  Vec2 toVec2(const json& v, const std::string& f) const {
+    if (!v.is_array() || v.size() != 2)
+      throw InputError(source_, f, "must be a list of 2 numbers [x, y]");
+    return Vec2(toNumber(v[0], f + "[0]"), toNumber(v[1], f + "[1]"));
+  }
+  std::vector<Vec2> polygon(const std::string& key) {
+    std::vector<Vec2> out;
+    const json& l = list(key);
+    for (size_t i = 0; i < l.size(); ++i)
+      out.push_back(toVec2(l[i], field(key) + "[" + std::to_string(i) + "]"));
+    return out;
+  }
+
+ private:
+  const json& j_;
+  std::string source_, path_;
+  std::set<std::string> used_;
+};
+
+std::string item(const std::string& list, size_t i) {
+  return list + "[" + std::to_string(i) + "]";
+}
+
+ShapeDef readShape(Reader r) {
+  ShapeDef s;
+  const std::string type = r.required("type");
+  s.friction = r.number("friction", s.friction);
+  s.restitution = r.number("restitution", s.restitution);
+  s.sensor = r.boolean("sensor", false);
+  if (type == "circle") {
+    s.kind = ShapeDef::Kind::Circle;
+    s.radius = r.number("radius", s.radius);
+    s.center = r.vec2("center", Vec2::Zero());
+  } else if (type == "box") {
+    s.kind = ShapeDef::Kind::Polygon;
+    const Vec2 half = r.vec2("half_size", Vec2(0.1, 0.1));
+    if (half.x() <= 0 || half.y() <= 0) r.fail(".half_size", "must be positive");
+    const Vec2 c = r.vec2("center", Vec2::Zero());
+    const double angle = r.number("angle", 0);
+    for (const Vec2& corner : {Vec2(-1, -1), Vec2(1, -1), Vec2(1, 1), Vec2(-1, 1)})
+      s.vertices.push_back(c + rotate(corner.cwiseProduct(half), angle));
+  } else if (type == "polygon") {
+    s.kind = ShapeDef::Kind::Polygon;
+    s.vertices = r.polygon("vertices");
+  } else {
+    r.fail(".type", "unknown shape type '" + type + "' (circle, box, polygon)");
+  }
+  return s;
+}
+
+BodyDef readBody(Reader r) {
+  BodyDef b;
+  b.name = r.required("name");
+  const std::string type = r.string("type", "dynamic");
+  if (type == "dynamic")
+    b.type = BodyType::Dynamic;
+  else if (type == "static")
+    b.type = BodyType::Static;
+  else if (type == "kinematic")
+    b.type = BodyType::Kinematic;
+  else
+    r.fail(".type", "unknown body type '" + type + "' (dynamic, static, kinematic)");
+  b.position = r.vec2("position", b.position);
+  b.angle = r.number("angle", 0);
+  b.velocity = r.vec2("velocity", b.velocity);
+  b.angularVelocity = r.number("angular_velocity", 0);
+  b.mass = r.number("mass", b.mass);
+  b.inertia = r.number("inertia", 0);
+  b.fixedRotation = r.boolean("fixed_rotation", false);
+  b.linearDamping = r.number("linear_damping", 0);
+  b.angularDamping = r.number("angular_damping", 0);
+  const json& shapes = r.list("shapes");
+  for (size_t i = 0; i < shapes.size(); ++i)
+    b.shapes.push_back(readShape(Reader(shapes[i], r.source(), r.field(item("shapes", i)))));
+  return b;
+}
+
+JointDef readJoint(Reader r) {
+  JointDef j;
+  const std::string type = r.required("type");
+  if (type == "revolute")
+    j.kind = JointDef::Kind::Revolute;
+  else if (type == "prismatic")
+    j.kind = JointDef::Kind::Prismatic;
+  else if (type == "weld")
+    j.kind = JointDef::Kind::Weld;
+  else
+    r.fail(".type", "unknown joint type '" + type + "' (revolute, prismatic, weld)");
+  j.name = r.string("name", "");
+  j.bodyA = r.string("body_a", "world");
+  j.bodyB = r.required("body_b");
+  j.anchor = r.vec2("anchor", j.anchor);
+  j.axis = r.vec2("axis", j.axis);
+  if (r.has("limits")) {
+    const Vec2 lim = r.vec2("limits", Vec2::Zero());
+    j.enableLimit = true;
+    j.lower = lim.x();
+    j.upper = lim.y();
+  }
+  j.collideConnected = r.boolean("collide_connected", false);
+  if (r.has("servo")) {
+    Reader s = r.child("servo");
+    j.servo.enabled = true;
+    j.servo.kp = s.number("kp", j.servo.kp);
+    j.servo.kd = s.number("kd", j.servo.kd);
+    j.servo.target = s.number("target", 0);
+    j.servo.maxForce = s.number("max_force", j.servo.maxForce);
+  }
+  return j;
+}
+
+WrapSide readSide(Reader& r, WrapSide fallback) {
+  const std::string side = r.string("side", fallback == WrapSide::Left    ? "left"
+                                            : fallback == WrapSide::Right ? "right"
+                                                                          : "threaded");
+  if (side == "left") return WrapSide::Left;
+  if (side == "right") return WrapSide::Right;
+  if (side == "threaded") return WrapSide::Threaded;
+  r.fail(".side", "must be left, right or threaded (got '" + side + "')");
+}
+
+AnchorDef readAnchor(Reader r) {
+  AnchorDef a;
+  a.body = r.string("body", "world");
+  a.point = r.vec2("point", Vec2::Zero());
+  return a;
+}
+
+CableDef readCable(Reader r) {
+  CableDef c;
+  c.name = r.required("name");
+  if (!r.has("start")) r.fail(".start", "is required");
+  if (!r.has("end")) r.fail(".end", "is required");
+  c.start = readAnchor(r.child("start"));
+  c.end = readAnchor(r.child("end"));
+  const json& pulleys = r.list("pulleys");
+  for (size_t i = 0; i < pulleys.size(); ++i) {
+    Reader p(pulleys[i], r.source(), r.field(item("pulleys", i)));
+    PulleyDef pd;
+    const std::string type = p.string("type", "point");
+    pd.body = p.string("body", "world");
+    if (type == "point") {
+      pd.kind = PulleyDef::Kind::Point;
+      pd.point = p.vec2("point", Vec2::Zero());
+      pd.side = readSide(p, WrapSide::Threaded);
+    } else if (type == "polygon") {
+      pd.kind = PulleyDef::Kind::Polygon;
+      pd.vertices = p.polygon("vertices");
+      pd.side = readSide(p, WrapSide::Left);
+    } else {
+      p.fail(".type", "unknown pulley type '" + type + "' (point, polygon)");
+    }
+    c.pulleys.push_back(pd);
+  }
+  c.restLength = r.number("rest_length", -1);
+  if (c.restLength < 0 && r.has("rest_length")) r.fail(".rest_length", "must be positive");
+  c.stiffness = r.number("stiffness", 0);
+  c.preload = r.number("preload", 0);
+  c.damping = r.number("damping", 0);
+  return c;
+}
+
+json vec(const Vec2& v) {
+  return json::array({v.x(), v.y()});
+}
+json polygonJson(const std::vector<Vec2>& vs) {
+  json out = json::array();
+  for (const Vec2& v : vs) out.push_back(vec(v));
+  return out;
+}
+const char* sideName(WrapSide s) {
+  return s == WrapSide::Left ? "left" : s == WrapSide::Right ? "right" : "threaded";
+}
+
+}  // namespace
+
+SceneDef sceneFromJson(const json& j, const std::string& source) {
+  SceneDef s;
+  {
+    Reader r(j, source, "");
+    s.name = r.string("name", "");
+    s.description = r.string("description", "");
+    s.gravity = r.vec2("gravity", s.gravity);
+    s.dt = r.number("dt", s.dt);
+    s.substeps = r.integer("substeps", s.substeps);
+    if (r.has("view")) {
+      Reader v = r.child("view");
+      s.view.center = v.vec2("center", s.view.center);
+      s.view.height = v.number("height", s.view.height);
+    }
+    const json& bodies = r.list("bodies");
+    for (size_t i = 0; i < bodies.size(); ++i)
+      s.bodies.push_back(readBody(Reader(bodies[i], source, item("bodies", i))));
+    const json& joints = r.list("joints");
+    for (size_t i = 0; i < joints.size(); ++i)
+      s.joints.push_back(readJoint(Reader(joints[i], source, item("joints", i))));
+    const json& cables = r.list("cables");
+    for (size_t i = 0; i < cables.size(); ++i)
+      s.cables.push_back(readCable(Reader(cables[i], source, item("cables", i))));
+  }
+  validateScene(s, source);
+  return s;
+}
+
+json sceneToJson(const SceneDef& s) {
+  json j;
+  j["name"] = s.name;
+  j["description"] = s.description;
+  j["gravity"] = vec(s.gravity);
+  j["dt"] = s.dt;
+  j["substeps"] = s.substeps;
+  j["view"] = {{"center", vec(s.view.center)}, {"height", s.view.height}};
+  j["bodies"] = json::array();
+  for (const BodyDef& b : s.bodies) {
+    json jb = {{"name", b.name},
+               {"type", b.type == BodyType::Dynamic  ? "dynamic"
+                        : b.type == BodyType::Static ? "static"
+                                                     : "kinematic"},
+               {"position", vec(b.position)},
+               {"angle", b.angle},
+               {"velocity", vec(b.velocity)},
+               {"angular_velocity", b.angularVelocity},
+               {"mass", b.mass},
+               {"inertia", b.inertia},
+               {"fixed_rotation", b.fixedRotation},
+               {"linear_damping", b.linearDamping},
+               {"angular_damping", b.angularDamping},
+               {"shapes", json::array()}};
+    for (const ShapeDef& sh : b.shapes) {
+      json js = {{"friction", sh.friction}, {"restitution", sh.restitution}, {"sensor", sh.sensor}};
+      if (sh.kind == ShapeDef::Kind::Circle) {
+        js["type"] = "circle";
+        js["radius"] = sh.radius;
+        js["center"] = vec(sh.center);
+      } else {
+        js["type"] = "polygon";
+        js["vertices"] = polygonJson(sh.vertices);
+      }
+      jb["shapes"].push_back(js);
+    }
+    j["bodies"].push_back(jb);
+  }
+  j["joints"] = json::array();
+  for (const JointDef& jd : s.joints) {
+    json jj = {{"type", jd.kind == JointDef::Kind::Revolute    ? "revolute"
+                        : jd.kind == JointDef::Kind::Prismatic ? "prismatic"
+                                                               : "weld"},
+               {"name", jd.name},
+               {"body_a", jd.bodyA},
+               {"body_b", jd.bodyB},
+               {"anchor", vec(jd.anchor)},
+               {"axis", vec(jd.axis)},
+               {"collide_connected", jd.collideConnected}};
+    if (jd.enableLimit) jj["limits"] = json::array({jd.lower, jd.upper});
+    if (jd.servo.enabled)
+      jj["servo"] = {{"kp", jd.servo.kp},
+                     {"kd", jd.servo.kd},
+                     {"target", jd.servo.target},
+                     {"max_force", jd.servo.maxForce}};
+    j["joints"].push_back(jj);
+  }
+  j["cables"] = json::array();
+  for (const CableDef& c : s.cables) {
+    json jc = {{"name", c.name},
+               {"start", {{"body", c.start.body}, {"point", vec(c.start.point)}}},
+               {"end", {{"body", c.end.body}, {"point", vec(c.end.point)}}},
+               {"pulleys", json::array()},
+               {"stiffness", c.stiffness},
+               {"preload", c.preload},
+               {"damping", c.damping}};
+    if (c.restLength > 0) jc["rest_length"] = c.restLength;
+    for (const PulleyDef& p : c.pulleys) {
+      json jp = {{"type", p.kind == PulleyDef::Kind::Point ? "point" : "polygon"},
+                 {"body", p.body},
+                 {"side", sideName(p.side)}};
+      if (p.kind == PulleyDef::Kind::Point)
+        jp["point"] = vec(p.point);
+      else if (!p.vertices.empty())
+        jp["vertices"] = polygonJson(p.vertices);
+      jc["pulleys"].push_back(jp);
+    }
+    j["cables"].push_back(jc);
+  }
+  return j;
+}
+
+SceneDef loadSceneFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "(file)", "cannot open the scene file");
+  json j;
+  try {
+    j = json::parse(in);
+  } catch (const json::exception& e) {
+    throw InputError(path, "(json)", std::string("not valid JSON: ") + e.what());
+  }
+  return sceneFromJson(j, path);
+}
+
+void saveSceneFile(const SceneDef& scene, const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw InputError(path, "(file)", "cannot write the scene file");
+  out << sceneToJson(scene).dump(2) << "\n";
+}
+
+}  // namespace cablelab

@@ -1,0 +1,119 @@
+#include "engine/scenes/scene_registry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "engine/core/error.h"
+#include "engine/model/scene_json.h"
+
+namespace cablelab {
+
+const std::vector<SceneInfo>& builtinScenes() {
+  static const std::vector<SceneInfo> scenes = {
+      {"ballast",
+       "thesis 2.4.2: a point strikes a taut cable that ends in a ballast (gravity off)",
+       {{"l", 1.0, "half distance between the fixed cable points (m)"},
+        {"v0x", 0.0, "point's initial x velocity (m/s)", SceneParam::Range::Any},
+        {"v0y", 1.0, "point's initial y velocity (m/s)", SceneParam::Range::Any},
+        {"m_point", 1.0, "mass of the point (kg)"},
+        {"m_ballast", 1.0, "mass of the ballast (kg)"}},
+       makeBallastScene},
+      {"hand",
+       "chapter 4: two-finger soft hand pinching a square box between two membranes (gravity off)",
+       {{"k", 150.0, "membrane stiffness k_s (N/m)"},
+        {"damping", 550.0, "membrane damping b_s (N s/m)", SceneParam::Range::NonNegative},
+        {"preload", 0.3, "membrane pre-stretch (m)", SceneParam::Range::NonNegative},
+        {"box_mass", 1.0, "manipuland mass (kg)"}},
+       makeHandScene},
+      {"hexagon",
+       "figure 2-4: a cable wrapping a swinging hexagonal pulley, wrap points come and go",
+       {{"radius", 0.5, "hexagon circumradius (m)"},
+        {"m_hexagon", 2.0, "hexagon mass (kg)"},
+        {"m_weight", 1.0, "hanging weight mass (kg)"},
+        {"omega", 1.5, "hexagon's initial angular velocity (rad/s)", SceneParam::Range::Any}},
+       makeHexagonScene},
+      {"membrane",
+       "chapter 3: a weighted point pressed into an elastic band between two pulleys",
+       {{"k", 200.0, "band stiffness (N/m)"},
+        {"preload", 0.05, "band pre-stretch (m)", SceneParam::Range::NonNegative},
+        {"damping", 2.0, "band damping (N s/m)", SceneParam::Range::NonNegative},
+        {"mass", 0.5, "mass of the pressing point (kg)"},
+        {"x0", 0.1, "initial x of the point (m)", SceneParam::Range::Any},
+        {"width", 1.0, "distance between the pulleys (m)"}},
+       makeMembraneScene},
+      {"pulley",
+       "two bodies hung over two ground pulleys by one cable (Box2D's pulley joint test)",
+       {{"m_left", 2.0, "left body mass (kg)"},
+        {"m_right", 1.0, "right body mass (kg)"},
+        {"L", 12.0, "hanging length on each side at the start (m)"}},
+       makePulleyScene},
+  };
+  return scenes;
+}
+
+const SceneInfo* findBuiltinScene(const std::string& name) {
+  for (const SceneInfo& s : builtinScenes())
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+std::optional<double> parseFiniteNumber(const std::string& text) {
+  size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (...) {
+    return std::nullopt;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+std::pair<std::string, double> parseSetting(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) throw InputError("--set", text, "expected NAME=VALUE");
+  const std::string name = text.substr(0, eq), value = text.substr(eq + 1);
+  const auto v = parseFiniteNumber(value);
+  if (!v) throw InputError("--set", name, "value '" + value + "' is not a finite number");
+  return {name, *v};
+}
+
+SceneDef makeScene(const std::string& nameOrPath,
+                   const std::vector<std::pair<std::string, double>>& overrides) {
+  if (const SceneInfo* info = findBuiltinScene(nameOrPath)) {
+    SceneParams params;
+    for (const SceneParam& p : info->params) params[p.name] = p.value;
+    for (const auto& [name, value] : overrides) {
+      if (!params.count(name)) {
+        std::string known;
+        for (const SceneParam& p : info->params) known += (known.empty() ? "" : ", ") + p.name;
+        throw InputError("--set", name,
+                         "unknown parameter of scene '" + info->name + "' (known: " + known + ")");
+      }
+      const auto range = std::find_if(info->params.begin(), info->params.end(),
+                                      [&key = name](const SceneParam& p) { return p.name == key; })
+                             ->range;  // clang 14: no capture of a structured binding
+      if (range == SceneParam::Range::Positive && value <= 0)
+        throw InputError("--set", name, "must be positive");
+      if (range == SceneParam::Range::NonNegative && value < 0)
+        throw InputError("--set", name, "must be >= 0");
+      params[name] = value;
+    }
+    SceneDef scene = info->build(params);
+    validateScene(scene, "scene '" + info->name + "'");
+    return scene;
+  }
+  if (!std::filesystem::exists(nameOrPath)) {
+    std::string known;
+    for (const SceneInfo& s : builtinScenes()) known += (known.empty() ? "" : ", ") + s.name;
+    throw InputError(nameOrPath, "(scene)",
+                     "no such built-in scene or file (built-in: " + known + ")");
+  }
+  if (!overrides.empty())
+    throw InputError("--set", overrides.front().first,
+                     "scene files take no parameters; edit the file");
+  return loadSceneFile(nameOrPath);
+}
+
+}  // namespace cablelab

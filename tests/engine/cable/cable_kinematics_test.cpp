@@ -1,0 +1,85 @@
+// J and J-dot-v of cable paths against central finite differences.
+#include <gtest/gtest.h>
+
+#include "engine/cable/cable.h"
+#include "tests/support/engine_test_support.h"
+
+namespace cablelab {
+namespace {
+
+constexpr double kRelative = 1e-6;
+
+double lengthOf(std::vector<WrapPoint> path, const std::vector<BodyState>& bodies) {
+  return cableKinematics(path, bodies).length;
+}
+
+// Moves every body along its velocity for time t (theta with omega): q(t) = q + t v.
+std::vector<BodyState> advance(std::vector<BodyState> bodies, double t) {
+  for (BodyState& b : bodies) {
+    b.position += t * b.velocity;
+    b.angle += t * b.angularVelocity;
+  }
+  return bodies;
+}
+
+TEST(CableKinematics, JacobianAndJdotVMatchFiniteDifferences) {
+  test::Random rng(3);
+  for (int trial = 0; trial < 150; ++trial) {
+    std::vector<BodyState> bodies(3);
+    for (BodyState& b : bodies) {
+      b.position = rng.point(-2, 2);
+      b.angle = rng.uniform(-3, 3);
+      b.velocity = rng.point(-2, 2);
+      b.angularVelocity = rng.uniform(-4, 4);
+    }
+    // anchor on body 0 -> three vertices of a polygon on body 1 -> point on body 2 -> world anchor
+    std::vector<WrapPoint> path = {{WrapPoint::Kind::Anchor, 0, rng.point(-0.3, 0.3)}};
+    for (int v = 0; v < 3; ++v)
+      path.push_back({WrapPoint::Kind::Vertex, 1, rng.point(-0.5, 0.5), Vec2::Zero(), 0, v});
+    path.push_back({WrapPoint::Kind::Point, 2, rng.point(-0.3, 0.3), Vec2::Zero(), 1});
+    path.push_back({WrapPoint::Kind::Anchor, -1, rng.point(-3, 3)});
+
+    const CableKinematics k = cableKinematics(path, bodies);
+    ASSERT_EQ(k.zeroLengthSegments, 0);
+    const double eps = 1e-6;
+    double jv = 0;
+    for (int b = 0; b < 3; ++b)
+      for (int c = 0; c < 3; ++c) {
+        auto plus = bodies, minus = bodies;
+        (c < 2 ? plus[b].position[c] : plus[b].angle) += eps;
+        (c < 2 ? minus[b].position[c] : minus[b].angle) -= eps;
+        const double fd = (lengthOf(path, plus) - lengthOf(path, minus)) / (2 * eps);
+        double analytic = 0;
+        for (const auto& e : k.jacobian)
+          if (e.body == b) analytic = e.d[c];
+        EXPECT_NEAR(analytic, fd, kRelative * std::max(1.0, std::abs(fd)))
+            << "trial " << trial << " body " << b << " coord " << c;
+        const double vc = c < 2 ? bodies[b].velocity[c] : bodies[b].angularVelocity;
+        jv += analytic * vc;
+      }
+    EXPECT_NEAR(k.lengthRate, jv, 1e-12 * std::max(1.0, std::abs(jv)));
+    // J-dot-v = d/dt (J v) along q + t v with v fixed.
+    const double h = 1e-5;
+    const double rateP = cableKinematics(path, advance(bodies, h)).lengthRate;
+    const double rateM = cableKinematics(path, advance(bodies, -h)).lengthRate;
+    const double fdJdot = (rateP - rateM) / (2 * h);
+    EXPECT_NEAR(k.jdotV, fdJdot, kRelative * std::max(1.0, std::abs(fdJdot))) << "trial " << trial;
+  }
+}
+
+TEST(CableKinematics, CoincidentPointsAreLeftOutNotNaN) {
+  std::vector<BodyState> bodies(1);
+  bodies[0].position = Vec2(1, 0);
+  bodies[0].velocity = Vec2(0, 1);
+  std::vector<WrapPoint> path = {{WrapPoint::Kind::Anchor, -1, Vec2(0, 0)},
+                                 {WrapPoint::Kind::Point, -1, Vec2(1, 0)},
+                                 {WrapPoint::Kind::Anchor, 0, Vec2::Zero()}};
+  const CableKinematics k = cableKinematics(path, bodies);
+  EXPECT_EQ(k.zeroLengthSegments, 1);
+  EXPECT_DOUBLE_EQ(k.length, 1.0);
+  EXPECT_TRUE(std::isfinite(k.jdotV));
+  EXPECT_TRUE(k.jacobian.empty());  // the only moving segment has no direction
+}
+
+}  // namespace
+}  // namespace cablelab

@@ -1,0 +1,123 @@
+// wrapChain against a brute-force search over every run of polygon vertices.
+#include "engine/cable/wrap.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "tests/support/engine_test_support.h"
+
+namespace cablelab {
+namespace {
+
+constexpr double kLengthTolerance = 1e-12;
+
+std::vector<Vec2> randomConvexPolygon(test::Random& rng) {
+  const int n = rng.integer(3, 8);
+  const Vec2 c = rng.point(-1, 1);
+  const double r = rng.uniform(0.2, 1.0);
+  std::vector<double> angles;
+  for (int i = 0; i < n; ++i) angles.push_back(rng.uniform(0, 2 * M_PI));
+  std::sort(angles.begin(), angles.end());
+  std::vector<Vec2> poly;
+  for (double a : angles) poly.push_back(c + r * Vec2(std::cos(a), std::sin(a)));
+  return poly;
+}
+
+bool inside(const std::vector<Vec2>& poly, const Vec2& p) {
+  for (size_t i = 0; i < poly.size(); ++i)
+    if (cross(poly[(i + 1) % poly.size()] - poly[i], p - poly[i]) <= 0) return false;
+  return true;
+}
+
+// Every segment of a taut path keeps the whole polygon on one side (the cable's right for Left):
+// try every run of consecutive vertices (walked with the polygon on that side) and the empty
+// path, keep the valid ones, return the shortest.
+std::vector<int> bruteForceChain(const Vec2& a, const Vec2& b, const std::vector<Vec2>& poly,
+                                 WrapSide side) {
+  const int n = static_cast<int>(poly.size());
+  const double s = side == WrapSide::Left ? 1 : -1;
+  auto keepsPolygonOnSide = [&](const Vec2& p, const Vec2& q) {
+    for (const Vec2& v : poly)
+      if (s * cross(q - p, v - p) > 1e-12) return false;
+    return true;
+  };
+  std::vector<std::vector<int>> candidates{{}};
+  const int step = side == WrapSide::Left ? -1 : 1;
+  for (int start = 0; start < n; ++start)
+    for (int len = 1; len <= n; ++len) {
+      std::vector<int> run;
+      for (int k = 0; k < len; ++k) run.push_back(((start + step * k) % n + n) % n);
+      candidates.push_back(run);
+    }
+  std::vector<int> best;
+  double bestLength = 1e300;
+  for (const auto& c : candidates) {
+    std::vector<Vec2> path{a};
+    for (int i : c) path.push_back(poly[i]);
+    path.push_back(b);
+    bool valid = true;
+    for (size_t i = 0; i + 1 < path.size() && valid; ++i)
+      valid = keepsPolygonOnSide(path[i], path[i + 1]);
+    if (!valid) continue;
+    const double len = chainLength(a, b, poly, c);
+    if (len < bestLength - kLengthTolerance) best = c, bestLength = len;
+  }
+  return best;
+}
+
+TEST(WrapChain, MatchesBruteForceShortestPathOnRandomCases) {
+  test::Random rng(7);
+  int tested = 0, wrapped = 0;
+  while (tested < 400) {
+    const auto poly = randomConvexPolygon(rng);
+    if (!isConvexCCW(poly)) continue;
+    const Vec2 a = rng.point(-3, 3), b = rng.point(-3, 3);
+    if (inside(poly, a) || inside(poly, b) || (a - b).norm() < 1e-3) continue;
+    for (WrapSide side : {WrapSide::Left, WrapSide::Right}) {
+      const auto chain = wrapChain(a, b, poly, side);
+      ASSERT_TRUE(chain.has_value());
+      const auto expected = bruteForceChain(a, b, poly, side);
+      EXPECT_NEAR(chainLength(a, b, poly, *chain), chainLength(a, b, poly, expected), 1e-9);
+      EXPECT_EQ(*chain, expected) << "case " << tested;
+      wrapped += !chain->empty();
+      ++tested;
+    }
+  }
+  EXPECT_GT(wrapped, 100);  // the cases exercise real wrapping, not only straight cables
+}
+
+TEST(WrapChain, SquareFromBothSides) {
+  const std::vector<Vec2> square{{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}};
+  const Vec2 a(-2, 0), b(2, 0);
+  EXPECT_EQ(*wrapChain(a, b, square, WrapSide::Left), (std::vector<int>{3, 2}));   // over the top
+  EXPECT_EQ(*wrapChain(a, b, square, WrapSide::Right), (std::vector<int>{0, 1}));  // underneath
+  EXPECT_NEAR(chainLength(a, b, square, {3, 2}), 2 * std::hypot(1.5, 0.5) + 1, 1e-15);
+}
+
+TEST(WrapChain, TerminalInsideHasNoPath) {
+  const std::vector<Vec2> square{{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}};
+  EXPECT_FALSE(wrapChain(Vec2(0.1, 0.4), Vec2(2, 2), square, WrapSide::Left).has_value());
+}
+
+TEST(WrapChain, PolygonOnTheOtherSideLeavesTheCableStraight) {
+  const std::vector<Vec2> square{{-0.5, 1}, {0.5, 1}, {0.5, 2}, {-0.5, 2}};
+  EXPECT_TRUE(wrapChain(Vec2(-2, 0), Vec2(2, 0), square, WrapSide::Right)->empty());
+}
+
+TEST(SegmentCutsPolygon, CrossingTouchingAndMissing) {
+  const std::vector<Vec2> square{{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}};
+  EXPECT_TRUE(segmentCutsPolygon(Vec2(-2, 0), Vec2(2, 0.1), square));
+  EXPECT_FALSE(segmentCutsPolygon(Vec2(-2, 0.5), Vec2(2, 0.5), square));  // along an edge
+  EXPECT_FALSE(segmentCutsPolygon(Vec2(-2, 0), Vec2(-0.6, 0), square));   // stops short
+}
+
+TEST(IsConvexCCW, RejectsClockwiseAndReflex) {
+  EXPECT_TRUE(isConvexCCW(std::vector<Vec2>{{0, 0}, {1, 0}, {0, 1}}));
+  EXPECT_FALSE(isConvexCCW(std::vector<Vec2>{{0, 0}, {0, 1}, {1, 0}}));
+  EXPECT_FALSE(isConvexCCW(std::vector<Vec2>{{0, 0}, {2, 0}, {1, 0.2}, {2, 2}, {0, 2}}));
+  EXPECT_FALSE(isConvexCCW(std::vector<Vec2>{{0, 0}, {1, 0}, {2, 0}, {0, 1}}));
+}
+
+}  // namespace
+}  // namespace cablelab

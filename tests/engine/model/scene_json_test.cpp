@@ -1,0 +1,109 @@
+// Scene files: round trips, the shipped assets, and bad files named field by field.
+#include "engine/model/scene_json.h"
+
+#include <gtest/gtest.h>
+
+#include "engine/core/error.h"
+#include "engine/scenes/scene_registry.h"
+#include "engine/dynamics/world.h"
+#include "tests/support/engine_test_support.h"
+
+namespace cablelab {
+namespace {
+
+TEST(SceneJson, EveryBuiltinSceneRoundTrips) {
+  for (const SceneInfo& info : builtinScenes()) {
+    const SceneDef scene = makeScene(info.name);
+    const nlohmann::json once = sceneToJson(scene);
+    const nlohmann::json twice = sceneToJson(sceneFromJson(once, info.name));
+    EXPECT_EQ(once, twice) << info.name;
+    EXPECT_GT(scene.bodies.size(), 0u) << info.name;
+  }
+}
+
+TEST(SceneJson, ShippedAssetsAreTheBuiltinScenes) {
+  for (const SceneInfo& info : builtinScenes()) {
+    const SceneDef file = loadSceneFile(test::sourcePath("assets/scenes/" + info.name + ".json"));
+    EXPECT_EQ(sceneToJson(file), sceneToJson(makeScene(info.name)))
+        << "regenerate with: cablelab scenes --export assets/scenes";
+  }
+}
+
+TEST(SceneJson, SetOverridesAParameterAndRejectsUnknownOnes) {
+  const SceneDef scene = makeScene("ballast", {{"l", 2.5}});
+  EXPECT_DOUBLE_EQ(scene.cables[0].start.point.x(), -2.5);
+  try {
+    makeScene("ballast", {{"length", 1}});
+    FAIL() << "unknown parameter accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.field(), "length");
+  }
+  EXPECT_THROW(makeScene("ballast", {{"m_point", -1}}), InputError);
+  EXPECT_THROW(parseSetting("l=abc"), InputError);
+  EXPECT_THROW(parseSetting("l"), InputError);
+  EXPECT_EQ(parseSetting("v0y=2.5").second, 2.5);
+}
+
+struct BadScene {
+  const char* file;
+  const char* field;
+};
+
+// Each file breaks one thing; the CLI must exit 2 with one line naming the file and the field.
+const BadScene kBadScenes[] = {
+    {"scene_negative_mass.json", "bodies[0].mass"},
+    {"scene_zero_rest_length.json", "cables[0].rest_length"},
+    {"scene_unknown_cable_body.json", "cables[0].end.body"},
+    {"scene_polygon_not_convex.json", "bodies[1].shapes[0].vertices"},
+    {"scene_unknown_key.json", "bodies[0].mas"},
+    {"scene_position_wrong_size.json", "bodies[0].position"},
+    {"scene_position_not_number.json", "bodies[0].position[0]"},
+    {"scene_duplicate_body.json", "bodies[1].name"},
+    {"scene_bad_shape_type.json", "bodies[0].shapes[0].type"},
+    {"scene_negative_radius.json", "bodies[0].shapes[0].radius"},
+    {"scene_bad_side.json", "cables[0].pulleys[0].side"},
+    {"scene_joint_unknown_body.json", "joints[0].body_b"},
+    {"scene_limits_reversed.json", "joints[0].limits"},
+    {"scene_negative_stiffness.json", "cables[0].stiffness"},
+    {"scene_threaded_polygon.json", "cables[0].pulleys[0].side"},
+    {"scene_cable_without_name.json", "cables[0].name"},
+    {"scene_zero_dt.json", "dt"},
+    {"scene_bodies_not_list.json", "bodies"},
+    {"scene_coincident_cable_ends.json", "cables[0]"},
+    {"scene_unknown_body_type.json", "bodies[0].type"},
+    {"scene_not_json.json", "(json)"},
+    {"scene_infinite_mass.json", "(json)"},
+};
+
+TEST(SceneJson, BadFilesExitTwoNamingTheField) {
+  for (const BadScene& bad : kBadScenes) {
+    const std::string path = test::sourcePath(std::string("tests/data/bad/") + bad.file);
+    const auto r = test::runCli("run '" + path + "' --time 0.1");
+    EXPECT_EQ(r.exitCode, 2) << bad.file << ": " << r.err;
+    EXPECT_NE(r.err.find(path + ": " + bad.field), std::string::npos)
+        << bad.file << " said: " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad.file << " said: " << r.err;
+  }
+}
+
+TEST(SceneJson, TheGoodTwinOfTheBadFilesRuns) {
+  // The bad files are mutations of this one: it must load, so each bad file fails for its own
+  // reason.
+  const auto r =
+      test::runCli("run '" + test::sourcePath("tests/data/good_scene.json") + "' --time 0.1");
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+}
+
+TEST(SceneJson, MissingFileAndUnknownSceneExitTwo) {
+  auto r = test::runCli("run /no/such/scene.json");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("/no/such/scene.json"), std::string::npos);
+  r = test::runCli("run ballast --set nope=1");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("nope"), std::string::npos);
+  r = test::runCli("run ballast --dt -1");
+  EXPECT_EQ(r.exitCode, 2);
+}
+
+}  // namespace
+}  // namespace cablelab

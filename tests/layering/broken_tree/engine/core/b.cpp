@@ -1,0 +1,2 @@
+// Broken on purpose: the engine including the UI.
+#include "ui/renderer.h"

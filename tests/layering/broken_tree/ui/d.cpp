@@ -1,0 +1,2 @@
+// Broken on purpose: ui including the app.
+#include "app/command.h"

@@ -1,0 +1,64 @@
+// Shared helpers for the engine tests: seeded random numbers and running the CLI.
+#pragma once
+
+#include <sys/wait.h>
+#include <unistd.h>
+#include <array>
+#include <cstdio>
+#include <random>
+#include <string>
+
+#include <cstdlib>
+
+#include "engine/core/math.h"
+
+namespace cablelab::test {
+
+class Random {
+ public:
+  explicit Random(unsigned seed) : gen_(seed) {}
+  double uniform(double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(gen_);
+  }
+  Vec2 point(double lo, double hi) { return Vec2(uniform(lo, hi), uniform(lo, hi)); }
+  int integer(int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(gen_); }
+
+ private:
+  std::mt19937 gen_;
+};
+
+struct CommandResult {
+  int exitCode = -1;
+  std::string out, err;
+};
+
+/// Runs `cablelab ARGS` (shell-quoted by the caller), from `workingDir` if given; captures
+/// stdout and stderr.
+inline CommandResult runCli(const std::string& args, const std::string& workingDir = "") {
+  char errFile[] = "/tmp/cablelab-test-XXXXXX";
+  const int fd = mkstemp(errFile);
+  if (fd >= 0) close(fd);
+  const std::string cd = workingDir.empty() ? "" : "cd '" + workingDir + "' && ";
+  const std::string cmd =
+      cd + "'" + std::string(CABLELAB_CLI) + "' " + args + " 2>" + std::string(errFile);
+  CommandResult r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+  const int status = pclose(pipe);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  if (FILE* f = std::fopen(errFile, "r")) {
+    while ((n = fread(buf.data(), 1, buf.size(), f)) > 0) r.err.append(buf.data(), n);
+    std::fclose(f);
+  }
+  std::remove(errFile);
+  return r;
+}
+
+inline std::string sourcePath(const std::string& relative) {
+  return std::string(CABLELAB_SOURCE_DIR) + "/" + relative;
+}
+
+}  // namespace cablelab::test
