@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -114,6 +115,11 @@ void cableInspector(Sandbox& sandbox, World& world) {
   const Cable& cable = world.cable(i);
   ImGui::Text("%s: %s", cable.name().c_str(), cable.elastic() ? "elastic" : "rigid");
   ImGui::Text("tension %.4g N %s", cable.tension(), cable.slack() ? "(slack)" : "");
+  // Wheels that grip the cable split it into spans of their own tension.
+  for (int k = 0; k < cable.spanCount() && cable.spanCount() > 1; ++k)
+    ImGui::Text("  span %d: %.4g N%s", k, cable.spanTension(k),
+                k + 1 < cable.spanCount() && cable.link(k).slipped ? "  (slides on the next wheel)"
+                                                                   : "");
   ImGui::Text("length %.5f m", cable.length());
   bool changed = false;
   auto& e = sandbox.cableEdit;
@@ -149,6 +155,8 @@ void cableInspector(Sandbox& sandbox, World& world) {
         ImGui::TextUnformatted("anchor");
       else if (p.kind == WrapPoint::Kind::Point)
         ImGui::Text("pulley %d", p.pulley);
+      else if (p.kind == WrapPoint::Kind::Circle)
+        ImGui::Text("circle %d, %.1f turns", p.pulley, p.arc / (2 * M_PI));
       else
         ImGui::Text("pulley %d v%d", p.pulley, p.vertex);
       ImGui::TableNextColumn();

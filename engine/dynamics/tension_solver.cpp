@@ -38,6 +38,10 @@ void solveLcp(const Eigen::MatrixXd& Kin, const Eigen::VectorXd& b, LcpWorkspace
   if (n == 1 && K(0, 0) > std::numeric_limits<double>::min())
     return solveSingle(K(0, 0), b[0], sol);
 
+  // A cable sliding on a capstan pulls with e^(mu theta) times the tension its constraint row
+  // carries: K is then not symmetric (docs/wheels.md) and needs LU instead of LDLT.
+  const bool symmetric = (K - K.transpose()).lpNorm<Eigen::Infinity>() <=
+                         1e-12 * K.lpNorm<Eigen::Infinity>();
   sol.x.setZero(n);
   sol.iterations = 0;
   sol.residual = 0;
@@ -60,9 +64,14 @@ void solveLcp(const Eigen::MatrixXd& Kin, const Eigen::VectorXd& b, LcpWorkspace
         work.bs[r] = b[idx[r]];
         for (int c = 0; c < m; ++c) work.Ks(r, c) = K(idx[r], idx[c]);
       }
-      work.ldlt.compute(work.Ks);
       work.xs.resize(m);
-      work.xs = work.ldlt.solve(work.bs);
+      if (symmetric) {
+        work.ldlt.compute(work.Ks);
+        work.xs = work.ldlt.solve(work.bs);
+      } else {
+        work.lu.compute(work.Ks);
+        work.xs = work.lu.solve(work.bs);
+      }
       for (int r = 0; r < m; ++r) sol.x[idx[r]] = work.xs[r];
     }
     w.noalias() = K * sol.x;

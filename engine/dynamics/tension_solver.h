@@ -9,6 +9,7 @@
 #pragma once
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <Eigen/Core>
 #include <vector>
 
@@ -29,6 +30,7 @@ struct LcpWorkspace {
   Eigen::MatrixXd K, Ks;
   Eigen::VectorXd bs, xs, w;
   Eigen::LDLT<Eigen::MatrixXd> ldlt;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu;  ///< for a non-symmetric K (sliding capstans)
   std::vector<char> active;
   std::vector<int> idx;
 };

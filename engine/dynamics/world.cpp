@@ -113,7 +113,16 @@ struct JointRow {
 // allocate: after the first step every size has been seen and Eigen reuses the storage.
 struct World::CableWorkspace {
   DofMap dofs;
-  std::vector<int> rows;         // cable of each LCP row
+  // One LCP row per cable span (wheels that grip a cable split it, docs/wheels.md); a row over
+  // several spans is a cable sliding on capstans between them: its constraint is their summed
+  // length and span k pulls with weight[k] times the row's tension (the e^(mu theta) ratios).
+  struct Row {
+    int cable = 0;
+    int first = 0, last = 0;  // spans
+    size_t weights = 0;       // offset of span first's weight in rowWeights
+  };
+  std::vector<Row> rows;
+  std::vector<double> rowWeights;
   Eigen::VectorXd invM;          // M^-1 diagonal over the dofs
   Eigen::VectorXd vStar, vFree;  // predicted velocities (see step 2)
   Eigen::MatrixXd W;             // M'^-1 J^T, then projected onto the joints (n x m)
@@ -502,7 +511,7 @@ void World::applyServos() {
     if (!servo.enabled) continue;
     b2Joint* j = b2_->joints[i];
     const JointCoordinate q = jointCoordinate(j, scene_.joints[i].kind);
-    const double f = std::clamp(servo.kp * (servo.target - q.value) - servo.kd * q.speed,
+    const double f = std::clamp(servo.kp * (servo.target - q.value) + servo.kd * (servo.speed - q.speed),
                                 -servo.maxForce, servo.maxForce);
     const auto [a, b] = jointBodies_[i];
     Vec3 load = Vec3::Zero();
@@ -577,30 +586,98 @@ void World::jointJacobian(CableWorkspace& ws) const {
 void World::solveCableForces(double h) {
   CableWorkspace& ws = *work_;
   DofMap& dofs = ws.dofs;
-  std::vector<int>& rows = ws.rows;
+  auto& rows = ws.rows;
 
-  // 1. One row per cable that can pull on something that moves.
+  // 1. One row per span of every cable that can pull on something that moves.
   rows.clear();
+  ws.rowWeights.clear();
   dofs.reset(bodies_.size());
   for (size_t i = 0; i < cables_.size(); ++i) {
     bool moves = false;
-    for (const auto& e : cables_[i].kinematics().jacobian) {
-      const BodyState& b = bodies_[e.body];
-      if (b.invMass > 0 || b.invInertia > 0) {
-        dofs.add(e.body);
-        moves = true;
+    for (int k = 0; k < cables_[i].spanCount(); ++k)
+      for (const auto& e : cables_[i].spanKinematics(k).jacobian) {
+        const BodyState& b = bodies_[e.body];
+        if (b.invMass > 0 || b.invInertia > 0) {
+          dofs.add(e.body);
+          moves = true;
+        }
       }
-    }
-    if (moves)
-      rows.push_back(static_cast<int>(i));
-    else
+    if (!moves) {
       cables_[i].setTension(0);
+      continue;
+    }
+    for (int k = 0; k < cables_[i].spanCount(); ++k) {
+      rows.push_back({static_cast<int>(i), k, k, ws.rowWeights.size()});
+      ws.rowWeights.push_back(1.0);
+    }
   }
   if (rows.empty()) return;
   // Bodies jointed to those the cables pull on move with them: add them (breadth first).
   for (size_t k = 0; k < dofs.body.size(); ++k)
     for (int other : jointNeighbours_[dofs.body[k]])
       if (bodies_[other].invMass > 0 || bodies_[other].invInertia > 0) dofs.add(other);
+
+  solveCableRows(h);
+  // Capstans: where the sticking tensions break T_high <= T_low e^(mu theta), the cable slides
+  // at that ratio instead (Euler-Eytelwein); solve again with those spans merged.
+  if (mergeSlidingSpans()) solveCableRows(h);
+  const Eigen::VectorXd& P = ws.P;
+  for (size_t r = 0; r < rows.size(); ++r) {
+    const CableWorkspace::Row& row = rows[r];
+    for (int k = row.first; k <= row.last; ++k)
+      cables_[row.cable].setSpanTension(k, ws.rowWeights[row.weights + k - row.first] * P[r] / h);
+    for (int k = row.first; k < row.last; ++k) cables_[row.cable].setSlipped(k, true);
+  }
+
+  // 6. Box2D integrates v += h M^-1 F: the force that gives the end-of-step velocity we solved
+  // for (cable pull, geometric stiffness and joint reactions together).
+  const Eigen::VectorXd& invM = ws.invM;
+  const Eigen::VectorXd& vStar = ws.vStar;
+  ws.WP.noalias() = ws.W * P;
+  for (size_t k = 0; k < dofs.body.size(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      const int d = 3 * static_cast<int>(k) + c;
+      const double dv = vStar[d] - ws.WP[d] - ws.vFree[d];
+      if (invM[d] > 0) forces_[dofs.body[k]][c] += dv / (h * invM[d]);
+    }
+}
+
+// Merges the two rows beside every capstan whose sticking tensions exceed the friction ratio.
+bool World::mergeSlidingSpans() {
+  CableWorkspace& ws = *work_;
+  bool merged = false;
+  for (size_t r = 0; r + 1 < ws.rows.size(); ++r) {
+    CableWorkspace::Row& a = ws.rows[r];
+    const CableWorkspace::Row& b = ws.rows[r + 1];
+    if (a.cable != b.cable || a.last + 1 != b.first) continue;
+    const SpanLink& link = cables_[a.cable].link(a.last);
+    if (link.grip != Grip::Capstan) continue;
+    const double ta = ws.P[r] * ws.rowWeights[a.weights + a.last - a.first];
+    const double tb = ws.P[r + 1] * ws.rowWeights[b.weights];
+    const double ratio = std::exp(link.mu * std::max(0.0, link.wrapAngle));
+    const double high = std::max(ta, tb), low = std::min(ta, tb);
+    if (high <= 0 || high <= ratio * low * (1 + 1e-9)) continue;
+    // Side a pulls with ratio times side b's tension or the reverse; the weights of a row are
+    // relative to its last span's.
+    const double scale = (ta > tb ? ratio : 1.0 / ratio) * ws.rowWeights[b.weights] /
+                         ws.rowWeights[a.weights + a.last - a.first];
+    for (int k = a.first; k <= a.last; ++k) ws.rowWeights[a.weights + k - a.first] *= scale;
+    const size_t offset = ws.rowWeights.size();
+    for (int k = a.first; k <= a.last; ++k) ws.rowWeights.push_back(ws.rowWeights[a.weights + k - a.first]);
+    for (int k = b.first; k <= b.last; ++k) ws.rowWeights.push_back(ws.rowWeights[b.weights + k - b.first]);
+    a.weights = offset;
+    a.last = b.last;
+    ws.rows.erase(ws.rows.begin() + r + 1);
+    merged = true;
+    --r;  // the merged row may slide on its next capstan too
+  }
+  return merged;
+}
+
+void World::solveCableRows(double h) {
+  CableWorkspace& ws = *work_;
+  DofMap& dofs = ws.dofs;
+  std::vector<CableWorkspace::Row>& rows = ws.rows;
   const int m = static_cast<int>(rows.size()), n = dofs.size();
 
   // 2. The predicted velocity v* (gravity and loads, no cables) and J at the start of the step,
@@ -618,9 +695,14 @@ void World::solveCableForces(double h) {
   }
   Eigen::MatrixXd& W = ws.W;
   W.setZero(n, m);
-  for (int r = 0; r < m; ++r)
-    for (const auto& e : cables_[rows[r]].kinematics().jacobian)
-      if (dofs.ofBody[e.body] >= 0) W.block<3, 1>(dofs.ofBody[e.body], r) = e.d;
+  for (int r = 0; r < m; ++r) {
+    const CableWorkspace::Row& row = rows[r];
+    for (int k = row.first; k <= row.last; ++k) {
+      const double weight = ws.rowWeights[row.weights + k - row.first];
+      for (const auto& e : cables_[row.cable].spanKinematics(k).jacobian)
+        if (dofs.ofBody[e.body] >= 0) W.block<3, 1>(dofs.ofBody[e.body], r) += weight * e.d;
+    }
+  }
   ws.vFree = vStar;  // what Box2D would reach without cables and joints
 
   // 3. W = M'^-1 J^T projected onto what the joints allow: how tension impulses change
@@ -632,7 +714,8 @@ void World::solveCableForces(double h) {
   ws.blocks.clear();
   ws.stiff = false;
   for (int r = 0; r < m; ++r) {
-    const Cable& c = cables_[rows[r]];
+    if (rows[r].first != 0) continue;  // once per cable
+    const Cable& c = cables_[rows[r].cable];
     const double tension =
         std::max(c.tension(), c.elastic() ? c.def().stiffness * std::max(0.0, c.stretch()) : 0.0);
     if (tension <= 0) continue;
@@ -665,8 +748,9 @@ void World::solveCableForces(double h) {
   compliance.setZero(m);
   damped.setZero(m);
   for (int r = 0; r < m; ++r) {
-    const Cable& c = cables_[rows[r]];
-    const double phi = c.stretch();
+    const Cable& c = cables_[rows[r].cable];
+    double phi = 0;
+    for (int k = rows[r].first; k <= rows[r].last; ++k) phi += c.spanStretch(k);
     if (!c.elastic()) {
       target[r] = phi < -kLengthSlop  ? 0.0
                   : phi > kLengthSlop ? phi - kBaumgarte * (phi - kLengthSlop)
@@ -691,9 +775,10 @@ void World::solveCableForces(double h) {
   Eigen::MatrixXd& JW0 = ws.JW0;
   JW0.setZero(m, m);
   for (int r = 0; r < m; ++r)
-    for (const auto& e : cables_[rows[r]].kinematics().jacobian)
-      if (const int d = dofs.ofBody[e.body]; d >= 0)
-        JW0.row(r) += e.d.transpose() * W.middleRows<3>(d);
+    for (int k = rows[r].first; k <= rows[r].last; ++k)
+      for (const auto& e : cables_[rows[r].cable].spanKinematics(k).jacobian)
+        if (const int d = dofs.ofBody[e.body]; d >= 0)
+          JW0.row(r) += e.d.transpose() * W.middleRows<3>(d);
   for (int iteration = 0; iteration < kNewtonIterations; ++iteration) {
     ws.WP.noalias() = W * P;
     v1 = vStar - ws.WP;
@@ -707,14 +792,18 @@ void World::solveCableForces(double h) {
     }
     // JW = J1 W straight from the sparse J1 (a cable touches a few of the n dofs).
     for (int r = 0; r < m; ++r) {
-      const Cable& c = cables_[rows[r]];
-      ws.path.assign(c.path().begin(), c.path().end());
-      cableKinematics(ws.path, predicted, ws.kin);
-      phi1[r] = c.stretch() + ws.kin.length - c.length();
+      const Cable& c = cables_[rows[r].cable];
+      phi1[r] = 0;
       JW.row(r).setZero();
-      for (const auto& e : ws.kin.jacobian)
-        if (const int d = dofs.ofBody[e.body]; d >= 0)
-          JW.row(r) += e.d.transpose() * W.middleRows<3>(d);
+      for (int k = rows[r].first; k <= rows[r].last; ++k) {
+        const std::span<const WrapPoint> span = c.spanPath(k);
+        ws.path.assign(span.begin(), span.end());
+        cableKinematics(ws.path, predicted, ws.kin);
+        phi1[r] += c.spanStretch(k) + ws.kin.length - c.spanKinematics(k).length;
+        for (const auto& e : ws.kin.jacobian)
+          if (const int d = dofs.ofBody[e.body]; d >= 0)
+            JW.row(r) += e.d.transpose() * W.middleRows<3>(d);
+      }
     }
     // Guard (degenerate geometry): far from the start pose the end-of-step linearisation can lose
     // positive definiteness (a wrap point the predicted motion carries past its neighbour turns a
@@ -729,7 +818,7 @@ void World::solveCableForces(double h) {
     K.diagonal() += compliance;
     b.noalias() = JW * P;
     for (int r = 0; r < m; ++r)
-      b[r] += (cables_[rows[r]].elastic() ? phi1[r] - damped[r] : phi1[r] - target[r]) / h;
+      b[r] += (cables_[rows[r].cable].elastic() ? phi1[r] - damped[r] : phi1[r] - target[r]) / h;
     LcpSolution& sol = ws.lcpSolution;
     solveLcp(K, b, ws.lcp, sol);
     const double change = (sol.x - P).lpNorm<Eigen::Infinity>();
@@ -739,17 +828,6 @@ void World::solveCableForces(double h) {
     // The end-of-step geometry is nearly linear in P: stop once the impulses have settled.
     if (iteration > 0 && change <= 1e-9 * (1e-9 + P.lpNorm<Eigen::Infinity>())) break;
   }
-  for (int r = 0; r < m; ++r) cables_[rows[r]].setTension(P[r] / h);
-
-  // 6. Box2D integrates v += h M^-1 F: the force that gives the end-of-step velocity we solved
-  // for (cable pull, geometric stiffness and joint reactions together).
-  ws.WP.noalias() = W * P;
-  for (size_t k = 0; k < dofs.body.size(); ++k)
-    for (int c = 0; c < 3; ++c) {
-      const int d = 3 * static_cast<int>(k) + c;
-      const double dv = vStar[d] - ws.WP[d] - ws.vFree[d];
-      if (invM[d] > 0) forces_[dofs.body[k]][c] += dv / (h * invM[d]);
-    }
 }
 
 void World::checkFinite() const {
@@ -788,6 +866,8 @@ void World::step(double dt, int substeps) {
       body->ApplyTorque(static_cast<float>(forces_[b].z()), false);
     }
     b2_->world.Step(static_cast<float>(h), kVelocityIterations, kPositionIterations);
+    for (JointDef& j : scene_.joints)
+      if (j.servo.enabled) j.servo.target += j.servo.speed * h;  // a drive at constant speed
     readBodies();
     time_ += h;
   }

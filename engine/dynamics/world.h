@@ -109,6 +109,8 @@ class World {
   void readBodies();
   void applyServos();
   void solveCableForces(double h);
+  void solveCableRows(double h);
+  bool mergeSlidingSpans();
   void jointJacobian(CableWorkspace& ws) const;
   void inverseMassOf(CableWorkspace& ws) const;
   void checkFinite() const;
