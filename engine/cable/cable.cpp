@@ -34,20 +34,21 @@ Vec2 arriving(const WrapPoint& p) {
 }  // namespace
 
 Cable::Cable(const SceneDef& scene, int index, const std::string& source)
-    : def_(scene.cables[index]) {
+    : def_(&scene.cables[index]),
+      params_{def_->restLength, def_->stiffness, def_->preload, def_->damping} {
   auto resolve = [&](const std::string& name, const std::string& field) {
     const int b = findBodyIndex(scene, name);
     if (b == -2) throw InputError(source, cableField(index, field), "unknown body '" + name + "'");
     return b;
   };
-  startBody_ = resolve(def_.start.body, ".start.body");
-  endBody_ = resolve(def_.end.body, ".end.body");
-  start_ = terminal(startBody_, def_.start);
-  end_ = terminal(endBody_, def_.end);
-  startDrum_ = {def_.start.point, def_.start.radius};
-  endDrum_ = {def_.end.point, def_.end.radius};
-  for (size_t j = 0; j < def_.pulleys.size(); ++j) {
-    const PulleyDef& pd = def_.pulleys[j];
+  startBody_ = resolve(def_->start.body, ".start.body");
+  endBody_ = resolve(def_->end.body, ".end.body");
+  start_ = terminal(startBody_, def_->start);
+  end_ = terminal(endBody_, def_->end);
+  startDrum_ = {def_->start.point, def_->start.radius};
+  endDrum_ = {def_->end.point, def_->end.radius};
+  for (size_t j = 0; j < def_->pulleys.size(); ++j) {
+    const PulleyDef& pd = def_->pulleys[j];
     const std::string field = ".pulleys[" + std::to_string(j) + "]";
     PulleyState ps;
     ps.body = resolve(pd.body, field + ".body");
@@ -86,17 +87,14 @@ Cable::Cable(const SceneDef& scene, int index, const std::string& source)
   }
 }
 
-void Cable::setParameters(double restLength, double stiffness, double preload, double damping) {
+void Cable::setParameters(const CableParameters& parameters) {
   // Spans share a change of the rest length equally.
-  for (Span& s : spans_) s.rest += (restLength - def_.restLength) / spans_.size();
-  def_.restLength = restLength;
-  def_.stiffness = stiffness;
-  def_.preload = preload;
-  def_.damping = damping;
+  for (Span& s : spans_) s.rest += (parameters.restLength - params_.restLength) / spans_.size();
+  params_ = parameters;
 }
 
 double Cable::stretch() const {
-  return kin_.length - def_.restLength + (elastic() ? def_.preload : 0.0);
+  return kin_.length - params_.restLength + (elastic() ? params_.preload : 0.0);
 }
 
 void Cable::setTension(double t) {
@@ -195,7 +193,7 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
       if (!wrapChain(a, b, p.world, p.side, chains[nodes[n] - 1])) {
         p.engaged = false;
         if (warnings)
-          warnings->push_back("cable '" + def_.name + "': pulley " + std::to_string(nodes[n] - 1) +
+          warnings->push_back("cable '" + def_->name + "': pulley " + std::to_string(nodes[n] - 1) +
                               " left the path: a neighbouring point lies inside its hull");
         return false;
       }
@@ -328,7 +326,7 @@ void Cable::placeDrumMarks(std::span<const BodyState> bodies) {
   for (WrapPoint* w : {&path_.front(), &path_.back()}) {
     if (w->radius == 0) continue;
     const bool atStart = w == &path_.front();
-    w->arc = 2 * M_PI * (atStart ? def_.start.turns : def_.end.turns);
+    w->arc = 2 * M_PI * (atStart ? def_->start.turns : def_->end.turns);
     const Vec2 t = atStart ? w->tangentOut : w->tangentIn;
     const double beta = std::atan2(t.y() - w->world.y(), t.x() - w->world.x());
     const double s = w->radius > 0 ? 1.0 : -1.0;
@@ -392,7 +390,7 @@ void Cable::update(std::span<const BodyState> bodies, std::vector<std::string>* 
     if (!joinRound()) break;
   }
   if (warnings && kin_.zeroLengthSegments > 0 && !reportedZeroLength_)
-    warnings->push_back("cable '" + def_.name + "': " + std::to_string(kin_.zeroLengthSegments) +
+    warnings->push_back("cable '" + def_->name + "': " + std::to_string(kin_.zeroLengthSegments) +
                         " zero-length segment(s) (coincident points) left out of the Jacobian");
   reportedZeroLength_ = kin_.zeroLengthSegments > 0;
   // Drum ends that ran out of cable, or that the cable wraps again.
@@ -401,7 +399,7 @@ void Cable::update(std::span<const BodyState> bodies, std::vector<std::string>* 
     cableKinematics(path_, bodies, kin_);
     storeArcs();
   }
-  if (firstUpdate_ && def_.restLength < 0) def_.restLength = kin_.length;
+  if (firstUpdate_ && params_.restLength < 0) params_.restLength = kin_.length;
   updateSpans(bodies);
   firstUpdate_ = false;
 }

@@ -178,12 +178,6 @@ void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodie
             [](const BodyJacobian& a, const BodyJacobian& b) { return a.body < b.body; });
 }
 
-std::vector<StiffnessBlock> lengthHessianTranslation(std::span<const WrapPoint> path) {
-  std::vector<StiffnessBlock> blocks;
-  appendLengthHessianTranslation(path, blocks);
-  return blocks;
-}
-
 void appendLengthHessianTranslation(std::span<const WrapPoint> path,
                                     std::vector<StiffnessBlock>& blocks) {
   // du/dD = (I - u u^T) / l for a tangent between circles too (the tangent points' offsets do

@@ -13,7 +13,7 @@
 namespace cablelab {
 
 void Cable::splitIntoSpans(std::span<const BodyState> bodies, const std::vector<size_t>& splits) {
-  double total = def_.restLength;
+  double total = params_.restLength;
   if (!spans_.empty()) {
     total = 0;
     for (const Span& s : spans_) total += s.rest;
@@ -30,7 +30,7 @@ void Cable::splitIntoSpans(std::span<const BodyState> bodies, const std::vector<
     w.mark = beta - s * 0.5 * w.arc - angle;
     w.arc *= 0.5;
     wheels.push_back(w);
-    const PulleyDef& pd = def_.pulleys[w.pulley];
+    const PulleyDef& pd = def_->pulleys[w.pulley];
     links_[k] = {w.pulley, pd.grip, pd.mu, 2 * w.arc, false};
   }
   double lengths = 0;
@@ -83,7 +83,7 @@ void Cable::updateSpans(std::span<const BodyState> bodies) {
     if (!spans_.empty()) {
       double total = 0;
       for (const Span& s : spans_) total += s.rest;
-      def_.restLength = total;
+      params_.restLength = total;
     }
     spans_.clear();
     links_.clear();
