@@ -27,7 +27,7 @@ SceneDef makeWheelScene(const SceneParams& p) {
   s.description =
       "Atwood machine over a no-slip wheel: try --set I=0 (a massless wheel), m1=m2 (balance), "
       "or drag a box and watch the wheel's spoke turn";
-  s.view = {Vec2(0, 1.8), 5.5};
+  s.view = {Vec2(0, 1.5), 7.0};
 
   BodyDef wheel;
   wheel.name = "wheel";

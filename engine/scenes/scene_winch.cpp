@@ -11,7 +11,7 @@ SceneDef makeWinchScene(const SceneParams& p) {
   s.description =
       "a servo-driven drum winds the cable and lifts the weight: try --set omega=-2 (lowers), "
       "omega=0 (holds), or r=0.2 (twice as fast)";
-  s.view = {Vec2(0, 1.6), 4.5};
+  s.view = {Vec2(0, 1.0), 6.0};
 
   BodyDef drum;
   drum.name = "drum";
