@@ -293,7 +293,7 @@ World::World(SceneDef scene, const std::string& source)
     }
     if (bd.type == BodyType::Dynamic) {
       // The centre of mass is the body origin by definition, so the mass matrix is diagonal in
-      // (x, y, theta) (NOTES.md conventions). Inertia defaults to the shapes' at uniform density.
+      // (x, y, theta) (docs/model.md#conventions). Inertia defaults to the shapes' at uniform density.
       const double shapeMass = body->GetMass();
       double inertia = bd.inertia;
       if (inertia <= 0) inertia = shapeMass > 0 ? body->GetInertia() * bd.mass / shapeMass : 0;

@@ -35,7 +35,7 @@ FingertipPoints fingertipPoints(const HandModel& m, const HandJoints& q);
 /// Analytic d(fingertipPoints)/dq.
 FingertipJacobian fingertipJacobian(const HandModel& m, const HandJoints& q);
 
-/// Box-to-point reduction (thesis figure 4-2, NOTES.md): a non-rotating square box wrapped
+/// Box-to-point reduction (thesis figure 4-2, docs/model.md#box-reduction): a non-rotating square box wrapped
 /// face-on touches each membrane at two fixed corners, so the cable a -> corner -> corner -> b has
 /// the length |p - a'| + |b' - p| + 2 h with a' = a - (left corner offset), b' = b - (right corner
 /// offset), p the box centre and h the half side. Returns the shifted points (same layout).

@@ -181,11 +181,11 @@ TEST(FitCli, BadDataFilesExitTwoNamingRowAndField) {
   expectInputError("tests/data/bad/fit_two_rows.csv " + kPulleys,
                    "tests/data/bad/fit_two_rows.csv: rows: need at least 3 measurements");
   expectInputError("tests/data/bad/fit_nan.csv " + kPulleys,
-                   "tests/data/bad/fit_nan.csv: row 7: fy: must be finite");
+                   "tests/data/bad/fit_nan.csv: row 7, fy: must be a finite number (got \"nan\")");
   expectInputError("tests/data/bad/fit_not_a_number.csv " + kPulleys,
-                   "tests/data/bad/fit_not_a_number.csv: row 2: angle_deg: not a number");
+                   "tests/data/bad/fit_not_a_number.csv: row 2, angle_deg: must be a finite number");
   expectInputError("tests/data/bad/fit_on_line.csv " + kPulleys,
-                   "tests/data/bad/fit_on_line.csv: row 3: y: point lies on the band between the "
+                   "tests/data/bad/fit_on_line.csv: row 3, y: point lies on the band between the "
                    "pulleys");
   expectInputError("tests/data/bad/does_not_exist.csv " + kPulleys,
                    "tests/data/bad/does_not_exist.csv: file: cannot open");
