@@ -79,6 +79,7 @@ TEST(InputErrors, AnUnwritableOutputExitsTwoBeforeRunning) {
 #ifdef CABLELAB_HAVE_OFFSCREEN
   expectError({"run pulley --time 0.1 --png " + bad + ".png", said("--png", ".png")});
   expectError({"snapshot pulley --out " + bad + ".png", said("--out", ".png")});
+  expectError({"record pulley --time 0.1 --out " + bad + ".gif", said("--out", ".gif")});
   expectError({"track --time 0.1 --png " + bad + ".png", said("--png", ".png")});
   expectError({"reach --grid 2 --png " + bad + ".png", said("--png", ".png")});
   // A folder is not a file either.
