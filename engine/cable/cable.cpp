@@ -21,7 +21,7 @@ Cable::Cable(const SceneDef& scene, int index, const std::string& source)
     : def_(scene.cables[index]) {
   auto resolve = [&](const std::string& name, const std::string& field) {
     const int b = findBodyIndex(scene, name);
-    if (b == -2) throw InputError(source, cableField(index, field), "unknown body '" + name + "'");
+    if (b == -2) throw InputError(source, cableField(index, field), "unknown body" + gotValue(name));
     return b;
   };
   startBody_ = resolve(def_.start.body, ".start.body");

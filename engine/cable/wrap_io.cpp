@@ -32,6 +32,7 @@ WrapProblem parseWrapJson(const json& in, const std::string& file) {
   std::string side;
   {
     JsonReader r(in, file);
+    r.onlyKeys({"A", "B", "polygon", "side"});
     p.a = bounded(r.requiredVec2("A"), file, "A");
     p.b = bounded(r.requiredVec2("B"), file, "B");
     const json& polygon = r.requiredList("polygon");

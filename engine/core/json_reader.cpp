@@ -38,6 +38,12 @@ void JsonReader::fail(const std::string& key, const std::string& what) const {
   throw InputError(source_, field(key), what);
 }
 
+void JsonReader::onlyKeys(std::initializer_list<const char*> keys) {
+  for (const char* k : keys) used_.insert(k);
+  for (const auto& [key, value] : j_.items())
+    if (!used_.count(key)) fail(key, "unknown key");
+}
+
 bool JsonReader::has(const std::string& key) {
   used_.insert(key);
   return j_.contains(key);

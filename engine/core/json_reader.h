@@ -5,6 +5,7 @@
 // in the style of engine/core/error.h.
 #pragma once
 
+#include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
@@ -28,6 +29,9 @@ class JsonReader {
   JsonReader& operator=(const JsonReader&) = delete;
   JsonReader(JsonReader&&) = delete;  // returned and passed as prvalues only (C++17 elision)
 
+  /// Declares every key this object may have and rejects any other at once (so a typo is
+  /// reported before the field it misspells is found missing).
+  void onlyKeys(std::initializer_list<const char*> keys);
   /// Accept keys no accessor asked about (for reading a few fields of another tool's output).
   void allowOtherKeys() { strict_ = false; }
 

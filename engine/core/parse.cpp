@@ -1,5 +1,6 @@
 #include "engine/core/parse.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <regex>
@@ -58,9 +59,10 @@ std::vector<double> parseNumberList(std::string_view text, size_t count, const s
 
 PixelSize parsePixelSize(std::string_view text, const std::string& source,
                          const std::string& field, int minSide, int maxSide) {
-  const size_t x = text.find_first_of("xX");
+  size_t x = text.find_first_of("xX");
+  if (x == text.npos) x = text.size();  // no 'x': the height below is empty, so it fails
   const auto w = parseFiniteNumber(text.substr(0, x));
-  const auto h = x == text.npos ? std::nullopt : parseFiniteNumber(text.substr(x + 1));
+  const auto h = parseFiniteNumber(text.substr(std::min(x + 1, text.size())));
   auto side = [&](const std::optional<double>& v) {
     return v && *v == std::floor(*v) && *v >= minSide && *v <= maxSide;
   };

@@ -14,9 +14,11 @@ StaticsProblem parseStaticsJson(const std::string& text, const std::string& sour
   StaticsProblem problem;
   {
     JsonReader r(root, source);
+    r.onlyKeys({"cables", "p0"});
     const json& cables = r.requiredList("cables");
     for (size_t i = 0; i < cables.size(); ++i) {
       JsonReader c = r.item("cables", i);
+      c.onlyKeys({"a", "b", "k", "L"});
       StaticsCable cable;
       cable.a = c.requiredVec2("a");
       cable.b = c.requiredVec2("b");

@@ -126,7 +126,7 @@ TEST(CableGuards, APointPulleyLeavesWhenTheTurnAtItGoesTheWrongWay) {
 
 TEST(CableGuards, AThreadedPulleyNeverLeaves) {
   Rig rig(sceneWith({pointPulley(WrapSide::Threaded)}));
-  for (const Vec2 p : {Vec2(0, 0.3), Vec2(0, -0.3), Vec2(3, 1)}) {
+  for (const Vec2& p : {Vec2(0, 0.3), Vec2(0, -0.3), Vec2(3, 1)}) {
     rig.at(p);
     EXPECT_EQ(rig.cable.wraps(), 1) << p.transpose();
     EXPECT_NEAR(rig.cable.length(), bentLength(p), kTight) << p.transpose();
