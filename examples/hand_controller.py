@@ -102,7 +102,8 @@ def main():
     ax2.set(xlabel="time (s)", ylabel="|box - target| (m)", title="tracking error")
     fig.tight_layout()
     fig.savefig(out / "hand_controller.png", dpi=100)
-    cablelab.snapshot(world, out / "hand_final.png", (640, 480))
+    if cablelab.HAS_RENDERER:
+        cablelab.snapshot(world, out / "hand_final.png", (640, 480))
     print(json.dumps({"start_error": float(np.linalg.norm(start - target)),
                       "final_error": float(error[-1]), "grasp_held": bool(held),
                       "plot": str(out / "hand_controller.png")}))

@@ -55,6 +55,11 @@ void snapshotCall(const PyWorld&, py::handle, py::handle) {
 
 void bindRender(py::module_& m) {
   using namespace pybind11::literals;
+#ifdef CABLELAB_HAVE_OFFSCREEN
+  m.attr("HAS_RENDERER") = true;
+#else
+  m.attr("HAS_RENDERER") = false;  // a build with -DCABLELAB_BUILD_UI=OFF
+#endif
   m.def("render", &renderCall, "world"_a, "size"_a = py::make_tuple(800, 600),
         R"doc(render(world, size=(800, 600)) -> ndarray (height, width, 4) uint8
 

@@ -160,18 +160,20 @@ py::object runWorld(PyWorld& self, py::handle time, py::handle steps, py::handle
     count = static_cast<long>(s);
   }
   if (count > 100000000) throw InputError("run", "time", "more than 1e8 steps; raise dt");
-  const int nb = w.bodyCount(), nc = w.cableCount();
-  const double rowBytes = 8.0 * (1 + 6 * nb + 3 * nc);
+  const int nb = w.bodyCount(), nc = w.cableCount(), nj = w.jointCount();
+  const double rowBytes = 8.0 * (1 + 6 * nb + 3 * nc + 2 * nj);
   if (record && rowBytes * (count + 1) > 4e9)
     throw InputError("run", "record", "the record would take more than 4 GB; record fewer steps");
 
-  py::array_t<double> t, bodies, cables;
-  double *pt = nullptr, *pb = nullptr, *pc = nullptr;
+  py::array_t<double> t, bodies, cables, joints;
+  double *pt = nullptr, *pb = nullptr, *pc = nullptr, *pj = nullptr;
   if (record) {
     t = newArray({count + 1});
     bodies = newArray({count + 1, nb, 6});
     cables = newArray({count + 1, nc, 3});
+    joints = newArray({count + 1, nj, 2});
     pt = t.mutable_data(), pb = bodies.mutable_data(), pc = cables.mutable_data();
+    pj = joints.mutable_data();
   }
   auto row = [&] {
     *pt++ = w.time();
@@ -179,6 +181,10 @@ py::object runWorld(PyWorld& self, py::handle time, py::handle steps, py::handle
     for (int i = 0; i < nc; ++i, pc += 3) {
       const Cable& c = w.cable(i);
       pc[0] = c.length(), pc[1] = c.tension(), pc[2] = c.wraps();
+    }
+    for (int i = 0; i < nj; ++i, pj += 2) {
+      const JointState j = w.joint(i);
+      pj[0] = j.value, pj[1] = j.speed;
     }
   };
   {
@@ -201,8 +207,10 @@ py::object runWorld(PyWorld& self, py::handle time, py::handle steps, py::handle
   out["t"] = t;
   out["bodies"] = bodies;
   out["cables"] = cables;
+  out["joints"] = joints;
   out["body_names"] = self.bodyNames;
   out["cable_names"] = self.cableNames;
+  out["joint_names"] = self.jointNames;
   return out;
 }
 
@@ -374,7 +382,8 @@ becomes non-finite.)doc");
 Many steps in C++ with the GIL released (other Python threads run meanwhile): either
 `time` seconds (round(time / dt) steps, as `cablelab run --time`) or `steps` steps.
 record=True returns {"t": (n+1,), "bodies": (n+1, bodies, 6) x y theta vx vy omega,
-"cables": (n+1, cables, 3) length (m) tension (N) wraps, "body_names", "cable_names"},
+"cables": (n+1, cables, 3) length (m) tension (N) wraps, "joints": (n+1, joints, 2) value
+(rad or m) speed, "body_names", "cable_names", "joint_names"},
 row 0 being the state before the first step: the same numbers as `cablelab run --csv`.
 Ctrl-C interrupts it (KeyboardInterrupt) between steps.)doc");
 

@@ -15,12 +15,14 @@ Tools        statics, wrap, fit, membrane_data, membrane_model, scenes
 The hand     HandModel, ControllerParams, HandController, hand_joints, place_hand,
              track, reach (the GIL is released while they run)
 Pictures     render (numpy RGBA image), snapshot (PNG); offscreen, no display needed
+             (HAS_RENDERER is False in a build without the UI)
 Errors       InputError (a ValueError; str(e) is the CLI's one-line message, with
              e.source and e.field), SimulationError (a RuntimeError)
 """
 
 from . import _core
 from ._core import (
+    HAS_RENDERER,
     HAND_BOX,
     HAND_CABLES,
     HAND_JOINT_NAMES,
@@ -49,13 +51,13 @@ __all__ = [
     "World", "statics", "wrap", "fit", "membrane_data", "membrane_model", "scenes",
     "HandModel", "ControllerParams", "HandController", "hand_joints", "place_hand",
     "track", "reach", "render", "snapshot", "InputError", "SimulationError",
-    "HAND_JOINT_NAMES", "HAND_BOX", "HAND_CABLES", "PID_KI",
+    "HAND_JOINT_NAMES", "HAND_BOX", "HAND_CABLES", "PID_KI", "HAS_RENDERER",
 ]
 
 # Show the public names as cablelab.X (not cablelab._core.X) in help() and reprs.
 for _name in __all__:
     _obj = globals()[_name]
-    if hasattr(_obj, "__module__") and not isinstance(_obj, (str, tuple, float)):
+    if hasattr(_obj, "__module__") and not isinstance(_obj, (str, tuple, float, bool)):
         try:
             _obj.__module__ = "cablelab"
         except (AttributeError, TypeError):

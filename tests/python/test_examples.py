@@ -49,7 +49,8 @@ def test_python_hand_controller_reaches_the_target(tmp_path):
     assert r["grasp_held"]
     assert r["start_error"] > 0.05
     assert r["final_error"] < 0.1 * r["start_error"]
-    assert (tmp_path / "hand_final.png").stat().st_size > 1000
+    if cablelab.HAS_RENDERER:
+        assert (tmp_path / "hand_final.png").stat().st_size > 1000
 
 
 def test_parallel_reach_equals_serial_runs(tmp_path):

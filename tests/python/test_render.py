@@ -6,6 +6,8 @@ import pytest
 
 import cablelab
 
+pytestmark = pytest.mark.skipif(not cablelab.HAS_RENDERER, reason="a build without the UI")
+
 
 def test_render_is_an_rgba_image_of_the_scene():
     w = cablelab.World.load("hand")

@@ -117,6 +117,16 @@ def test_cable_parameters_change_the_tension():
         w.set_cable_parameters(name, rest_length=-1)
 
 
+def test_run_record_has_the_joints():
+    a, b = cablelab.World.load("hand"), cablelab.World.load("hand")
+    rec = a.run(steps=20, record=True)
+    b.run(steps=20)
+    assert rec["joints"].shape == (21, len(a.joint_names), 2)
+    assert np.array_equal(rec["joints"][-1, :, 0], b.joint_values())
+    assert np.array_equal(rec["joints"][-1, :, 1], b.joint_speeds())
+    assert rec["joint_names"] == a.joint_names
+
+
 def test_hand_joints_and_servo_targets():
     w = cablelab.World.load("hand")
     assert w.joint_names[:6] == list(cablelab.HAND_JOINT_NAMES)
