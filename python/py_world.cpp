@@ -84,7 +84,7 @@ SceneDef currentScene(const World& world) {
   }
   for (int i = 0; i < world.jointCount(); ++i) s.joints[i].servo.target = world.joint(i).servoTarget;
   for (int i = 0; i < world.cableCount(); ++i) {
-    const CableDef& live = world.cable(i).def();
+    const CableParameters& live = world.cable(i).parameters();
     CableDef& c = s.cables[i];
     c.restLength = live.restLength, c.stiffness = live.stiffness;
     c.preload = live.preload, c.damping = live.damping;
@@ -295,7 +295,7 @@ void setCableParameters(PyWorld& self, py::handle cable, py::object restLength,
                         py::object stiffness, py::object preload, py::object damping) {
   PyWorld::Busy busy(self);
   const int i = self.cableIndex(cable, "set_cable_parameters");
-  const CableDef& d = self.world->cable(i).def();
+  const CableParameters& d = self.world->cable(i).parameters();
   auto pick = [](const py::object& v, double current) {
     return v.is_none() ? current : v.cast<double>();
   };
@@ -516,6 +516,21 @@ step only (call it before every step for a lasting load).)doc");
         return out;
       },
       "cable_paths() -> list of (k, 2) arrays: cable_path() of every cable.");
+  c.def(
+      "cable_parameters",
+      [](const PyWorld& self, py::handle cable) {
+        PyWorld::Busy busy(self);
+        const CableParameters& p = self.world->cable(self.cableIndex(cable, "cable_parameters")).parameters();
+        py::dict d;
+        d["rest_length"] = p.restLength;
+        d["stiffness"] = p.stiffness;
+        d["preload"] = p.preload;
+        d["damping"] = p.damping;
+        return d;
+      },
+      "cable"_a,
+      "cable_parameters(cable) -> dict: the live rest_length (m), stiffness (N/m, 0 = rigid), "
+      "preload (m) and damping (N s/m).");
   c.def("set_cable_parameters", &setCableParameters, "cable"_a, py::kw_only(),
         "rest_length"_a = py::none(), "stiffness"_a = py::none(), "preload"_a = py::none(),
         "damping"_a = py::none(),

@@ -108,13 +108,22 @@ def test_cable_paths_are_wraps_plus_anchors():
     assert np.array_equal(w.cable_path("cable" if "cable" in w.cable_names else 0), w.cable_paths()[0])
 
 
-def test_cable_parameters_change_the_tension():
-    w = cablelab.World.load("membrane")
+def test_cable_parameters_are_live():
+    w = cablelab.World.load("pulley")  # one rigid cable
     w.run(0.5)
-    name = w.cable_names[0]
-    w.set_cable_parameters(name, stiffness=0.0)  # a rigid cable now
+    before = w.cable_parameters("cable")
+    assert before["stiffness"] == 0 and w.cable_tensions()[0] > 0
+    rest = before["rest_length"] + 0.5
+    w.set_cable_parameters("cable", rest_length=rest)  # 0.5 m of slack: both bodies fall freely
+    assert w.cable_parameters("cable") == dict(before, rest_length=rest)
+    w.run(0.1)
+    assert w.cable_tensions()[0] == 0 and w.cable_lengths()[0] < rest
+    w.run(1.0)  # taut again at the new rest length
+    assert w.cable_tensions()[0] > 0
+    assert w.cable_lengths()[0] == pytest.approx(rest, abs=1e-3)
     with pytest.raises(cablelab.InputError):
-        w.set_cable_parameters(name, rest_length=-1)
+        w.set_cable_parameters("cable", rest_length=-1)
+    assert w.cable_parameters("cable")["rest_length"] == rest
 
 
 def test_run_record_has_the_joints():
