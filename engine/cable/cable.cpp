@@ -38,7 +38,7 @@ Cable::Cable(const SceneDef& scene, int index, const std::string& source)
       params_{def_->restLength, def_->stiffness, def_->preload, def_->damping} {
   auto resolve = [&](const std::string& name, const std::string& field) {
     const int b = findBodyIndex(scene, name);
-    if (b == -2) throw InputError(source, cableField(index, field), "unknown body '" + name + "'");
+    if (b == -2) throw InputError(source, cableField(index, field), "unknown body" + gotValue(name));
     return b;
   };
   startBody_ = resolve(def_->start.body, ".start.body");
@@ -376,6 +376,11 @@ void Cable::refresh(std::span<const BodyState> bodies) {
 void Cable::update(std::span<const BodyState> bodies, std::vector<std::string>* warnings) {
   placePulleys(bodies);
   if (path_.empty()) path_ = {start_, end_};
+  // The terminals where they are now (a polygon's chain is built against them).
+  start_.world = path_.front().world = worldPoint(bodies, start_.body, start_.local);
+  end_.world = path_.back().world = worldPoint(bodies, end_.body, end_.local);
+  if (start_.radius == 0) path_.front().tangentOut = start_.tangentOut = start_.world;
+  if (end_.radius == 0) path_.back().tangentIn = end_.tangentIn = end_.world;
   // Settle the engaged set: leaves first, then joins, until nothing changes.
   const int count = static_cast<int>(pulleys_.size());
   for (int round = 0; round < 2 * count + 2; ++round) {

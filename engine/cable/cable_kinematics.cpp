@@ -1,5 +1,5 @@
-// Length, Jacobian and J-dot-v of a cable path (thesis section 2.3 with the docs/wheels.md
-// generalisation to circles).
+// Length, Jacobian and J-dot-v of a cable path (thesis section 2.3 as corrected in
+// docs/model.md#cable-geometry, generalised to circles in docs/wheels.md).
 //
 // Every path point is a circle with centre C (fixed on a body) and signed radius rho (0 for
 // anchors, points and polygon vertices). Segment i runs tangent to circles i and i+1 with unit u,

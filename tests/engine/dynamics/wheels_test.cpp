@@ -177,3 +177,69 @@ TEST(Wheel, FrictionlessPostAndWindingDrumKeepTheirEnergy) {
 
 }  // namespace
 }  // namespace cablelab
+
+namespace cablelab {
+namespace {
+
+// A 0.1 kg puck carrying an "auto" circle thrown at a rope loaded by 5 kg (60 Hz, 1 sub-step).
+SceneDef puckScene(double speed, bool fromBelow) {
+  SceneDef s;
+  s.name = "puck";
+  BodyDef puck;
+  puck.name = "puck";
+  puck.position = Vec2(0, fromBelow ? -0.3 : 0.3);
+  puck.velocity = Vec2(0, fromBelow ? speed : -speed);
+  puck.mass = 0.1;
+  ShapeDef disc;
+  disc.radius = 0.05;
+  disc.sensor = true;
+  puck.shapes = {disc};
+  BodyDef weight;
+  weight.name = "weight";
+  weight.position = Vec2(2, -1);
+  weight.mass = 5;
+  weight.shapes = {disc};
+  s.bodies = {puck, weight};
+  s.gravity = Vec2::Zero();  // the rope straight and taut from the start: the puck's own motion
+  CableDef c;
+  c.name = "rope";
+  c.start = {"world", Vec2(-2, 0)};
+  PulleyDef catcher;
+  catcher.kind = PulleyDef::Kind::Circle;
+  catcher.body = "puck";
+  catcher.radius = 0.05;
+  catcher.side = WrapSide::Auto;
+  PulleyDef over;
+  over.point = Vec2(2, 0);
+  over.side = WrapSide::Threaded;
+  c.pulleys = {catcher, over};
+  c.end = {"weight", Vec2::Zero()};
+  s.cables = {c};
+  return s;
+}
+
+// Disabled: it FAILS today (the puck passes through the rope at 5 m/s already; the auto join in
+// Cable::joinRound does not catch it yet, and the event location inside the step is not used).
+// The acceptance test of "side": "auto"; enable it once that works.
+TEST(AutoSide, DISABLED_APuckThrownFromEitherSideIsCaughtAndNeverPassesThrough) {
+  for (bool fromBelow : {true, false})
+    for (double speed : {5.0, 15.0, 50.0}) {
+      World w(puckScene(speed, fromBelow), "puck");
+      const double sign = fromBelow ? 1 : -1;
+      bool caught = false;
+      for (int i = 0; i < 60; ++i) {
+        w.step(kDt);
+        caught |= w.cable(0).engaged(0);
+        // Once past the rope's line, the puck is wrapped, on the side it came from.
+        if (sign * w.body(0).position.y() > 0.05) {
+          ASSERT_TRUE(w.cable(0).engaged(0)) << "passed through at " << speed << " m/s, step " << i;
+          EXPECT_EQ(w.cable(0).wrapSide(0), fromBelow ? WrapSide::Left : WrapSide::Right);
+        }
+      }
+      EXPECT_TRUE(caught) << speed << " m/s " << (fromBelow ? "from below" : "from above");
+      EXPECT_GT(w.body(1).position.y(), -1 + 1e-3) << "the weight was pulled up";
+    }
+}
+
+}  // namespace
+}  // namespace cablelab
