@@ -12,6 +12,7 @@
 #include "engine/core/error.h"
 #include "engine/hand/hand_tracking.h"
 #include "ui/colormap.h"
+#include "ui/panels.h"
 
 namespace cablelab::ui {
 namespace {
@@ -387,12 +388,13 @@ void drawControllerPanel(Sandbox& sandbox) {
   ControllerState* c = sandbox.controller.get();
   if (c && c->hand && sandbox.world()) return handPanel(sandbox, *c->hand);
   if (c && c->membrane && sandbox.world()) return membranePanel(sandbox, *c->membrane);
+  ImGui::TextDisabled("no controller in this scene");
   if (sandbox.target)
-    ImGui::Text("target (%.3f, %.3f) m", sandbox.target->x(), sandbox.target->y());
+    ImGui::Text("marked point (%.3f, %.3f) m", sandbox.target->x(), sandbox.target->y());
   else
-    ImGui::TextDisabled("click empty space to set a target");
-  if (sandbox.target && ImGui::Button("Clear target")) sandbox.target.reset();
-  ImGui::TextDisabled("no controller for this scene");
+    ImGui::TextDisabled("Ctrl + click marks a point");
+  if (sandbox.target && ImGui::Button("Clear mark")) sandbox.target.reset();
+  tooltip("Remove the marked point.");
 }
 
 void controllerBeforeStep(Sandbox& sandbox, World& world) {

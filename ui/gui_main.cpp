@@ -2,7 +2,7 @@
 // `cablelab gui` execs this program; it links libGL and never libOSMesa (see README.md).
 //
 //   cablelab-gui [SCENE] [--frames N] [--screenshot F.png] [--size WxH] [--open F]
-//                [--test-input]
+//                [--record F.gif] [--ui-scale S] [--test-input]
 #include <GL/gl.h>
 #include <imgui.h>
 
@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -20,6 +21,7 @@
 #include "ui/input.h"
 #include "ui/input_script.h"
 #include "ui/panels.h"
+#include "ui/recorder.h"
 #include "ui/renderer.h"
 #include "ui/sandbox.h"
 #include "ui/scene_catalog.h"
@@ -29,12 +31,14 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: cablelab-gui [SCENE] [--frames N] [--screenshot F.png] [--size WxH] [--open F]\n"
-    "                    [--test-input]\n"
+    "                    [--record F.gif] [--ui-scale S] [--test-input]\n"
     "  SCENE           built-in scene name or scene JSON file (default: hand)\n"
     "  --frames N      quit after N frames (one scene time step per frame) and print\n"
     "                  {\"frames\": N, \"fps\": f} (fps from the median frame time)\n"
     "  --screenshot F  save the last frame as PNG\n"
-    "  --size WxH      window size (default 1280x720)\n"
+    "  --size WxH      window size (default: fitted to the display)\n"
+    "  --record F      record the world view as an animated GIF from the first frame\n"
+    "  --ui-scale S    text and panel scale (default: from the display's size)\n"
     "  --open F        after 10 frames, open F as if chosen in the Scene menu (for tests)\n"
     "  --test-input    drive the mouse and keys with synthetic SDL events, check the result\n"
     "                  (with --screenshot: the script's last frame)\n";
@@ -43,8 +47,10 @@ struct Options {
   std::string scene;
   int frames = 0;
   std::string screenshot;
-  int width = 1280, height = 720;
+  int width = 0, height = 0;  ///< 0: fitted to the display
   std::string openLater;
+  std::string record;
+  float uiScale = 0;  ///< 0: from the display
   bool testInput = false;
 };
 
@@ -73,6 +79,14 @@ std::optional<Options> parse(int argc, char** argv) {
       if (std::sscanf(v.c_str(), "%d%c%d%c", &o.width, &x, &o.height, &extra) != 3 || x != 'x' ||
           o.width < 320 || o.height < 240)
         throw std::runtime_error("--size: expected WxH, at least 320x240 (got " + v + ")");
+    } else if (a == "--record") {
+      o.record = value();
+    } else if (a == "--ui-scale") {
+      const std::string v = value();
+      char* end = nullptr;
+      o.uiScale = std::strtof(v.c_str(), &end);
+      if (*end || !(o.uiScale >= 0.5f && o.uiScale <= 4))
+        throw std::runtime_error("--ui-scale: expected a number in [0.5, 4] (got " + v + ")");
     } else if (a == "--open") {
       o.openLater = value();
     } else if (a == "--test-input") {
@@ -88,10 +102,43 @@ std::optional<Options> parse(int argc, char** argv) {
   return o;
 }
 
+cablelab::ui::PanelRect recordArea;  // the window rectangle the recording crops (px)
+
 double median(std::vector<double> v) {
   if (v.empty()) return 0;
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
   return v[v.size() / 2];
+}
+
+/// A file name in the working directory that does not exist yet: cablelab-SCENE-N.EXT.
+std::string freshName(const std::string& scene, const char* extension) {
+  std::string base = std::filesystem::path(scene).stem().string();
+  if (base.empty()) base = "scene";
+  for (int n = 1;; ++n) {
+    const std::string name = "cablelab-" + base + "-" + std::to_string(n) + extension;
+    if (!std::filesystem::exists(name)) return name;
+  }
+}
+
+/// Starts or stops the GIF recording of the world view (the free area between the panels).
+void toggleRecording(cablelab::ui::Sandbox& sandbox, cablelab::ui::Recorder& recorder,
+                     const std::string& path) {
+  using namespace cablelab::ui;
+  if (recorder.recording()) {
+    sandbox.message = recorder.stop();
+    std::cerr << "cablelab-gui: " << sandbox.message << "\n";
+    return;
+  }
+  const PanelRect free = sandbox.freeArea();
+  const int w = std::max(16, static_cast<int>(free.width)), h = std::max(16, static_cast<int>(free.height));
+  try {
+    recorder.start(path.empty() ? freshName(sandbox.sceneName, ".gif") : path, w, h,
+                   sandbox.recordFps, sandbox.world() ? sandbox.world()->time() : 0);
+    recordArea = {free.x, free.y, static_cast<float>(w), static_cast<float>(h)};
+    sandbox.message = "recording " + recorder.path();
+  } catch (const std::exception& e) {
+    sandbox.error = e.what();
+  }
 }
 
 int run(const Options& options) {
@@ -100,7 +147,10 @@ int run(const Options& options) {
   const bool scripted = options.frames > 0 || options.testInput;
   Window window("cablelab sandbox", options.width, options.height, !scripted);
   Sandbox sandbox(window.width(), window.height());
+  sandbox.uiScale = options.uiScale > 0 ? options.uiScale : window.suggestedUiScale();
+  window.setUiScale(sandbox.uiScale);
   PanelState panelState;
+  Recorder recorder;
 
   const std::string first = options.scene.empty() ? defaultSceneName() : options.scene;
   if (!sandbox.open(first)) {
@@ -108,6 +158,7 @@ int run(const Options& options) {
     if (first != defaultSceneName()) sandbox.open(defaultSceneName());
     sandbox.error = error;
   }
+  bool startRecording = !options.record.empty();
 
   std::optional<InputScript> script;
   if (options.testInput) script.emplace(window.id());
@@ -120,9 +171,11 @@ int run(const Options& options) {
     if (!window.pollEvents([&](const SDL_Event& e) { handleEvent(sandbox, e); })) break;
     if (!options.openLater.empty() && frame == 10) sandbox.open(options.openLater);
     sandbox.advance(sandbox.lastFrameSeconds, scripted);
+    if (!ImGui::IsAnyItemActive()) window.setUiScale(sandbox.uiScale);  // not mid-drag
 
     window.beginFrame();
     drawPanels(sandbox, panelState);
+    if (sandbox.fitPending) sandbox.fitView();  // needs this frame's panel layout
     if (const cablelab::World* world = sandbox.world()) {
       drawWorld(*world, sandbox.camera, sandbox.overlay(), sandbox.renderOptions(),
                 ImGui::GetBackgroundDrawList());
@@ -130,13 +183,41 @@ int run(const Options& options) {
       glClearColor(0.97f, 0.97f, 0.95f, 1);
       glClear(GL_COLOR_BUFFER_BIT);
     }
+    // The panels of the first frame decide the recorded area.
+    if (startRecording && frame > 0) {
+      toggleRecording(sandbox, recorder, options.record);
+      startRecording = false;
+    } else if (sandbox.recordToggleRequested) {
+      toggleRecording(sandbox, recorder, "");
+    }
+    sandbox.recordToggleRequested = false;
+    const double now = sandbox.world() ? sandbox.world()->time() : 0;
+    const bool recordNow = recorder.due(now);
+    const bool screenshot = sandbox.screenshotRequested;
+    sandbox.screenshotRequested = false;
     // The script ends at an unknown frame: capture every one of its frames.
     const bool lastFrame = (options.frames > 0 && frame + 1 == options.frames) || script;
-    window.endFrame(lastFrame && !options.screenshot.empty() ? &capture : nullptr);
+    const bool keep = lastFrame && !options.screenshot.empty();
+    window.endFrame(keep || recordNow || screenshot ? &capture : nullptr);
+    if (recordNow)
+      recorder.add(cropped(capture, static_cast<int>(recordArea.x), static_cast<int>(recordArea.y),
+                           recorder.width(), recorder.height()),
+                   now);
+    if (screenshot) {
+      const std::string name = freshName(sandbox.sceneName, ".png");
+      try {
+        writePng(capture, name);
+        sandbox.message = "saved " + name;
+      } catch (const std::exception& e) {
+        sandbox.error = e.what();
+      }
+    }
+    sandbox.recording = recorder.recording();
+    sandbox.recordedFrames = recorder.frames();
 
-    const auto now = Clock::now();
-    sandbox.lastFrameSeconds = std::chrono::duration<double>(now - last).count();
-    last = now;
+    const auto now2 = Clock::now();
+    sandbox.lastFrameSeconds = std::chrono::duration<double>(now2 - last).count();
+    last = now2;
     if (frame > 0) frameSeconds.push_back(sandbox.lastFrameSeconds);  // the first is a warm-up
     if (!frameSeconds.empty()) {  // the status line shows the median of the last 60 frames
       const size_t n = std::min<size_t>(frameSeconds.size(), 60);
@@ -144,6 +225,7 @@ int run(const Options& options) {
       sandbox.fps = m > 0 ? 1 / m : 0;
     }
   }
+  if (recorder.recording()) std::cerr << "cablelab-gui: " << recorder.stop() << "\n";
 
   if (!options.screenshot.empty() && !capture.rgba.empty()) writePng(capture, options.screenshot);
   if (script) {
@@ -152,7 +234,13 @@ int run(const Options& options) {
   }
   if (options.frames > 0) {
     const double m = median(frameSeconds);
-    std::printf("{\"frames\": %d, \"fps\": %.17g}\n", options.frames, m > 0 ? 1 / m : 0.0);
+    // The view, so that a test can draw the same picture offscreen.
+    const Camera& c = sandbox.camera;
+    const PanelRect f = sandbox.freeArea();
+    std::printf("{\"frames\": %d, \"fps\": %.17g, \"camera\": [%.17g, %.17g, %.17g], "
+                "\"free\": [%g, %g, %g, %g], \"tension_scale\": %.17g}\n",
+                options.frames, m > 0 ? 1 / m : 0.0, c.center.x(), c.center.y(), c.metresPerPixel,
+                f.x, f.y, f.width, f.height, sandbox.tensionScale);
   }
   return 0;
 }

@@ -2,18 +2,38 @@
 
 #include <imgui.h>
 
+#include <iterator>
+
 namespace cablelab::ui {
 
 const char* const kShortcuts[][2] = {{"space", "play / pause"},
                                      {"s", "single step (pauses)"},
                                      {"r", "reset the scene"},
+                                     {"[ / ]", "slower / faster (0.1x .. 4x)"},
+                                     {"f", "camera follows the selected body"},
+                                     {"F12", "screenshot (PNG in the working directory)"},
+                                     {"F9", "start / stop recording a GIF"},
                                      {"h, F1", "this help"},
                                      {"+ / -", "zoom in / out"},
                                      {"wheel", "zoom about the cursor"},
-                                     {"left drag", "drag a dynamic body"},
-                                     {"left click", "set the controller target (empty space)"},
+                                     {"left click", "select a body or a cable"},
+                                     {"left drag", "drag a body (force-limited; paused: pose)"},
+                                     {"click empty space", "set the target (hand scene)"},
+                                     {"Ctrl + click", "set a target anywhere"},
                                      {"right drag", "pan"},
+                                     {"drop a .json file", "open it as a scene"},
                                      {nullptr, nullptr}};
+
+double stepSpeed(double speed, int direction) {
+  if (direction > 0) {
+    for (double s : kSpeeds)
+      if (s > speed + 1e-9) return s;
+    return kSpeeds[std::size(kSpeeds) - 1];
+  }
+  for (int k = static_cast<int>(std::size(kSpeeds)) - 1; k >= 0; --k)
+    if (kSpeeds[k] < speed - 1e-9) return kSpeeds[k];
+  return kSpeeds[0];
+}
 
 namespace {
 
@@ -23,30 +43,49 @@ bool overPanel(const Sandbox& sandbox, const Vec2& mouse) {
   return ImGui::IsAnyItemActive();  // a slider or text field owns the mouse
 }
 
+void leftDown(Sandbox& sandbox, World& world, const Vec2& mouse, const Vec2& point) {
+  const int body = sandbox.bodyAt(point, true);
+  const bool ctrl = (SDL_GetModState() & KMOD_CTRL) != 0;
+  if (ctrl) {
+    sandbox.target = point;
+    return;
+  }
+  if (body >= 0) {
+    sandbox.selectedBody = body;
+    if (world.scene().bodies[body].type == BodyType::Dynamic) {
+      const BodyState& s = world.body(body);
+      sandbox.gesture = {Gesture::Kind::DragBody, mouse, rotate(point - s.position, -s.angle)};
+      sandbox.beginDrag(body, point);
+    }
+    return;
+  }
+  const int cable = sandbox.cableAt(point, 6 * sandbox.camera.metresPerPixel);
+  if (cable >= 0) {
+    sandbox.selectedCable = cable;
+    const Cable& c = world.cable(cable);
+    sandbox.cableEdit = {c.restLength(), c.def().stiffness, c.def().preload, c.def().damping};
+    return;
+  }
+  if (sandbox.hasController())
+    sandbox.target = point;
+  else
+    sandbox.selectedBody = -1;
+}
+
 void mouseDown(Sandbox& sandbox, const SDL_MouseButtonEvent& e) {
   const Vec2 mouse(e.x, e.y);
   World* world = sandbox.world();
   if (!world || overPanel(sandbox, mouse)) return;
   const Vec2 point = sandbox.camera.toWorld(mouse);
-  if (e.button == SDL_BUTTON_LEFT) {
-    const int body = sandbox.bodyAt(point);
-    if (body >= 0) {
-      const BodyState& s = world->body(body);
-      sandbox.gesture = {Gesture::Kind::DragBody, mouse, rotate(point - s.position, -s.angle)};
-      sandbox.selectedBody = body;
-      world->beginDrag(body, point);
-    } else {
-      sandbox.target = point;
-    }
-  } else if (e.button == SDL_BUTTON_RIGHT) {
+  if (e.button == SDL_BUTTON_LEFT)
+    leftDown(sandbox, *world, mouse, point);
+  else if (e.button == SDL_BUTTON_RIGHT)
     sandbox.gesture = {Gesture::Kind::Pan, mouse, Vec2::Zero()};
-  }
 }
 
 void mouseUp(Sandbox& sandbox, const SDL_MouseButtonEvent& e) {
-  World* world = sandbox.world();
   if (sandbox.gesture.kind == Gesture::Kind::DragBody && e.button == SDL_BUTTON_LEFT) {
-    if (world) world->endDrag();
+    sandbox.endDrag();
     sandbox.gesture = {};
   } else if (sandbox.gesture.kind == Gesture::Kind::Pan && e.button == SDL_BUTTON_RIGHT) {
     sandbox.gesture = {};
@@ -55,11 +94,11 @@ void mouseUp(Sandbox& sandbox, const SDL_MouseButtonEvent& e) {
 
 void mouseMotion(Sandbox& sandbox, const SDL_MouseMotionEvent& e) {
   const Vec2 mouse(e.x, e.y);
-  World* world = sandbox.world();
-  if (sandbox.gesture.kind == Gesture::Kind::DragBody && world) {
-    world->dragTo(sandbox.camera.toWorld(mouse));
+  if (sandbox.gesture.kind == Gesture::Kind::DragBody && sandbox.world()) {
+    sandbox.dragTo(sandbox.camera.toWorld(mouse));
   } else if (sandbox.gesture.kind == Gesture::Kind::Pan) {
     sandbox.camera.panPixels(mouse - sandbox.gesture.lastMouse);
+    sandbox.follow = false;
   }
   sandbox.gesture.lastMouse = mouse;
 }
@@ -68,34 +107,26 @@ void key(Sandbox& sandbox, const SDL_KeyboardEvent& e) {
   if (ImGui::GetIO().WantTextInput) return;
   const Vec2 centre(0.5 * sandbox.camera.width, 0.5 * sandbox.camera.height);
   switch (e.keysym.sym) {
-    case SDLK_SPACE:
-      sandbox.paused = !sandbox.paused;
-      break;
+    case SDLK_SPACE: sandbox.paused = !sandbox.paused; break;
     case SDLK_s:
       sandbox.paused = true;
       ++sandbox.pendingSteps;
       break;
-    case SDLK_r:
-      sandbox.reset();
-      break;
+    case SDLK_r: sandbox.reset(); break;
     case SDLK_h:
-    case SDLK_F1:
-      sandbox.showHelp = !sandbox.showHelp;
-      break;
+    case SDLK_F1: sandbox.showHelp = !sandbox.showHelp; break;
+    case SDLK_f: sandbox.follow = !sandbox.follow && sandbox.selectedBody >= 0; break;
+    case SDLK_LEFTBRACKET: sandbox.speed = stepSpeed(sandbox.speed, -1); break;
+    case SDLK_RIGHTBRACKET: sandbox.speed = stepSpeed(sandbox.speed, +1); break;
+    case SDLK_F12: sandbox.screenshotRequested = true; break;
+    case SDLK_F9: sandbox.recordToggleRequested = true; break;
     case SDLK_PLUS:
     case SDLK_EQUALS:
-    case SDLK_KP_PLUS:
-      sandbox.camera.zoomAt(centre, 1.25);
-      break;
+    case SDLK_KP_PLUS: sandbox.camera.zoomAt(centre, 1.25); break;
     case SDLK_MINUS:
-    case SDLK_KP_MINUS:
-      sandbox.camera.zoomAt(centre, 1 / 1.25);
-      break;
-    case SDLK_ESCAPE:
-      sandbox.showHelp = false;
-      break;
-    default:
-      break;
+    case SDLK_KP_MINUS: sandbox.camera.zoomAt(centre, 1 / 1.25); break;
+    case SDLK_ESCAPE: sandbox.showHelp = false; break;
+    default: break;
   }
 }
 
@@ -103,15 +134,9 @@ void key(Sandbox& sandbox, const SDL_KeyboardEvent& e) {
 
 void handleEvent(Sandbox& sandbox, const SDL_Event& event) {
   switch (event.type) {
-    case SDL_MOUSEBUTTONDOWN:
-      mouseDown(sandbox, event.button);
-      break;
-    case SDL_MOUSEBUTTONUP:
-      mouseUp(sandbox, event.button);
-      break;
-    case SDL_MOUSEMOTION:
-      mouseMotion(sandbox, event.motion);
-      break;
+    case SDL_MOUSEBUTTONDOWN: mouseDown(sandbox, event.button); break;
+    case SDL_MOUSEBUTTONUP: mouseUp(sandbox, event.button); break;
+    case SDL_MOUSEMOTION: mouseMotion(sandbox, event.motion); break;
     case SDL_MOUSEWHEEL: {
       int x = 0, y = 0;
       SDL_GetMouseState(&x, &y);
@@ -123,12 +148,17 @@ void handleEvent(Sandbox& sandbox, const SDL_Event& event) {
     case SDL_KEYDOWN:
       if (!event.key.repeat || event.key.keysym.sym == SDLK_s) key(sandbox, event.key);
       break;
+    case SDL_DROPFILE:
+      if (event.drop.file) {
+        sandbox.open(event.drop.file);
+        SDL_free(event.drop.file);
+      }
+      break;
     case SDL_WINDOWEVENT:
       if (event.window.event == SDL_WINDOWEVENT_SIZE_CHANGED)
         sandbox.resize(event.window.data1, event.window.data2);
       break;
-    default:
-      break;
+    default: break;
   }
 }
 

@@ -32,10 +32,26 @@ struct RenderOptions {
   bool legend = true;      ///< tension colour bar and cable list
   bool wrapPoints = true;  ///< squares at wrap points, circles at anchors
   bool labels = true;      ///< body names
+  bool tensions = true;    ///< cables coloured by tension (else one plain colour)
+  bool forces = false;     ///< arrows of the cable forces at the anchors, length per newton
+  bool markerLegend = false;  ///< a key of the markers drawn (the sandbox turns it on)
+  /// Line widths and marker sizes are multiplied by this (projector mode: 2).
+  float lineScale = 1;
+  /// Cables drawn with an overstretch mark (rigid: longer than rest by > kOverstretch).
+  bool overstretch = true;
   /// Screen rectangle (px, top-left origin) free of UI panels, where the legend and scale bar
   /// go; a zero-size rectangle means the whole viewport.
   float freeX = 0, freeY = 0, freeWidth = 0, freeHeight = 0;
 };
+
+/// A rigid cable longer than its rest length by more than this (m) is drawn as overstretched.
+inline constexpr double kOverstretch = 0.01;
+/// An elastic cable stretched beyond this share of its rest length is drawn as overstretched.
+inline constexpr double kOverstretchElastic = 0.5;
+
+/// True when `cable` is longer than it should be (see kOverstretch): a drag or a guard has
+/// pulled it through a constraint.
+bool overstretched(const Cable& cable);
 
 /// Clears the viewport and draws `world` seen by `camera`, with `overlay` on top.
 void drawWorld(const World& world, const Camera& camera, const Overlay& overlay,

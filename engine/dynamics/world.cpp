@@ -404,6 +404,14 @@ void World::setBodyTransform(int i, const Vec2& position, double angle) {
   readBodies();
 }
 
+void World::refreshCables() {
+  readBodies();
+  for (Cable& c : cables_) {
+    c.update(bodies_, &warnings_);
+    c.refresh(bodies_);
+  }
+}
+
 void World::setBodyVelocity(int i, const Vec2& velocity, double angularVelocity) {
   b2_->bodies[i]->SetLinearVelocity(toB2(velocity));
   b2_->bodies[i]->SetAngularVelocity(static_cast<float>(angularVelocity));

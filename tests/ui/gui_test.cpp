@@ -5,6 +5,7 @@
 
 #include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "tests/ui/test_support.h"
 #include "ui/offscreen.h"
@@ -47,6 +48,24 @@ std::vector<bool> occupancy(const ui::Image& image, int x0, int y0, int x1, int 
   return cells;
 }
 
+/// The offscreen picture of `world` as the sandbox drew it: its camera, free area and tension
+/// scale from the `--frames` JSON report, the first cable selected, the marker key on.
+ui::Image offscreenLike(const World& world, const std::string& report) {
+  const auto j = nlohmann::json::parse(report);
+  ui::Camera camera;
+  camera.center = Vec2(j["camera"][0], j["camera"][1]);
+  camera.metresPerPixel = j["camera"][2];
+  camera.width = 1280;
+  camera.height = 720;
+  ui::RenderOptions options;
+  options.markerLegend = true;
+  options.selectedCable = world.cableCount() > 0 ? 0 : -1;
+  options.tensionScale = j["tension_scale"];
+  options.freeX = j["free"][0], options.freeY = j["free"][1];
+  options.freeWidth = j["free"][2], options.freeHeight = j["free"][3];
+  return ui::renderSnapshot(world, camera, {}, options);
+}
+
 /// Compares the scene area between the panels of a sandbox screenshot with an offscreen render,
 /// leaving out the bottom strip where the legend and the scale bar sit (placed relative to the
 /// free area, so they move with the panels).
@@ -71,7 +90,7 @@ TEST(Gui, FramesScreenshotAndLayoutMatchTheOffscreenRenderer) {
   REQUIRE_XVFB();
   const std::string shot = (outputDir("gui") / "hexagon.png").string();
   const RunResult r = run(
-      kXvfb + kCli + " gui hexagon --frames " + std::to_string(kFrames) + " --screenshot " + shot,
+      kXvfb + kCli + " gui hexagon --size 1280x720 --frames " + std::to_string(kFrames) + " --screenshot " + shot,
       "gui_frames");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.out.find("\"frames\": 60"), std::string::npos) << r.out;
@@ -83,7 +102,7 @@ TEST(Gui, FramesScreenshotAndLayoutMatchTheOffscreenRenderer) {
   // The same scene after the same number of steps, offscreen at the window's size.
   auto world = std::make_unique<World>(ui::loadScene("hexagon"), "hexagon");
   for (int i = 0; i < kFrames; ++i) world->step(world->scene().dt, world->scene().substeps);
-  const ui::Image offscreen = ui::renderSnapshot(*world, 1280, 720);
+  const ui::Image offscreen = offscreenLike(*world, r.out);
   ui::writePng(offscreen, outputDir("gui") / "hexagon-offscreen.png");
 
   expectSameLayout(gui, offscreen, shot, outputDir("gui") / "hexagon-offscreen.png");
@@ -94,7 +113,7 @@ TEST(Gui, HandSceneRunsTheControllerWithLivePlots) {
   constexpr int kHandFrames = 120;
   const std::string shot = (outputDir("gui") / "hand.png").string();
   const RunResult r = run(
-      kXvfb + kCli + " gui hand --frames " + std::to_string(kHandFrames) + " --screenshot " + shot,
+      kXvfb + kCli + " gui hand --size 1280x720 --frames " + std::to_string(kHandFrames) + " --screenshot " + shot,
       "gui_hand");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.out.find("\"frames\": 120"), std::string::npos) << r.out;
@@ -106,7 +125,7 @@ TEST(Gui, HandSceneRunsTheControllerWithLivePlots) {
   // pinch: its joint offsets move the fingers by less than a layout cell).
   auto world = std::make_unique<World>(ui::loadScene("hand"), "hand");
   for (int i = 0; i < kHandFrames; ++i) world->step(world->scene().dt, world->scene().substeps);
-  const ui::Image offscreen = ui::renderSnapshot(*world, 1280, 720);
+  const ui::Image offscreen = offscreenLike(*world, r.out);
   ui::writePng(offscreen, outputDir("gui") / "hand-offscreen.png");
   expectSameLayout(gui, offscreen, shot, outputDir("gui") / "hand-offscreen.png");
 
@@ -127,7 +146,7 @@ TEST(Gui, HandSceneRunsTheControllerWithLivePlots) {
 
 TEST(Gui, SyntheticMouseDragsABodyAndClickSetsTheTarget) {
   REQUIRE_XVFB();
-  const RunResult r = run(kXvfb + kCli + " gui hexagon --test-input", "gui_input");
+  const RunResult r = run(kXvfb + kCli + " gui hexagon --size 1280x720 --test-input", "gui_input");
   EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("\"test_input\": true"), std::string::npos) << r.out;
 }
@@ -138,7 +157,7 @@ TEST(Gui, BadSceneFileShowsTheErrorAndKeepsRunning) {
   std::ofstream(bad) << "{\"bodies\": [ this is not json";
   const std::string shot = (outputDir("gui") / "bad-scene.png").string();
   const RunResult r =
-      run(kXvfb + kCli + " gui hexagon --frames 30 --open " + bad + " --screenshot " + shot,
+      run(kXvfb + kCli + " gui hexagon --size 1280x720 --frames 30 --open " + bad + " --screenshot " + shot,
           "gui_bad_scene");
   EXPECT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find(bad), std::string::npos) << "stderr should name the file: " << r.err;
