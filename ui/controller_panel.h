@@ -56,6 +56,11 @@ struct HandControlState {
   double sequenceStart = 0;  ///< s, world time the grasp sequence began
   double closeTime = 1.0;    ///< s, open pose -> pinch pose ramp
   double graspTime = -1;     ///< s, both membranes wrap the box; -1 not yet
+  /// Grasp loss: after the grasp, a membrane stopped wrapping the box (or went slack) for
+  /// longer than kGraspLossSeconds; the world time it happened, -1 while held.
+  double lostTime = -1;
+  double offSince = -1;  ///< s, when a membrane last let go of the box; -1 both hold it
+  std::string lostWhy;
   double controlStart = 0;   ///< s, the outer loop starts here
   double nextUpdate = 0;     ///< s, next outer-loop tick
   int updates = 0;
@@ -67,7 +72,15 @@ struct HandControlState {
   std::array<int, 2> cables{-1, -1};
   BoxPrediction prediction;    ///< the statics model at the last outer tick
   double predictionTime = -1;  ///< s
-  TimeHistory history{3};      ///< top tension, bottom tension (N), |box - target| (m)
+  /// top tension, bottom tension (N), |box - target|, box x, box y, target x, target y (m)
+  TimeHistory history{7};
+  float errorRange = 0.05f, xyRange = 0.2f;  ///< stable plot ranges (m), grow only
+  // A ramp target as `cablelab track --ramp X,Y,SECONDS`: from the box to `rampTo` over
+  // `rampSeconds`, starting at world time `rampStart` (-1: a constant target).
+  double rampStart = -1, rampSeconds = 2;
+  Vec2 rampFrom = Vec2::Zero(), rampTo = Vec2(0.1, 0.1);
+  std::optional<Vec2> rampLast;  ///< the target the ramp set last (a different one: a click)
+  PanelRect plotRect;  ///< screen rectangle of the plots (for the PNG export)
   double lastSample = -1;      ///< s
 
   void rebuildController();
@@ -85,6 +98,17 @@ struct ControllerState {
   std::unique_ptr<HandControlState> hand;
   std::unique_ptr<MembraneViewState> membrane;
 };
+
+/// Writes the hand's plot history as CSV (t, both tensions, error, x, y, target x, target y);
+/// throws std::runtime_error naming the path.
+void writeHandHistoryCsv(const HandControlState& h, const std::string& path);
+
+/// A membrane must be off the box this long (s) before the grasp counts as lost.
+inline constexpr double kGraspLossSeconds = 0.1;
+
+/// The hand's grasp state as the panel shows it: "pinch pose", "closing", "grasped",
+/// "grasp lost"; "" when the scene is not the hand.
+std::string handGraspState(const Sandbox& sandbox);
 
 /// Sets up the state for the sandbox's current world (after open() or reset()).
 void controllerOpened(Sandbox& sandbox);

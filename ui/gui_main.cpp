@@ -22,6 +22,7 @@
 #include "ui/input_script.h"
 #include "ui/panels.h"
 #include "ui/recorder.h"
+#include "ui/scenario_script.h"
 #include "ui/renderer.h"
 #include "ui/sandbox.h"
 #include "ui/scene_catalog.h"
@@ -40,6 +41,9 @@ constexpr const char* kUsage =
     "  --record F      record the world view as an animated GIF from the first frame\n"
     "  --ui-scale S    text and panel scale (default: from the display's size)\n"
     "  --open F        after 10 frames, open F as if chosen in the Scene menu (for tests)\n"
+    "  --script NAME   run an acceptance scenario (describe, reset-scale, rigid-drag, drop-box,\n"
+    "                  author) with synthetic events and print its JSON report\n"
+    "  --script-out F  the scene file the author scenario saves\n"
     "  --test-input    drive the mouse and keys with synthetic SDL events, check the result\n"
     "                  (with --screenshot: the script's last frame)\n";
 
@@ -52,6 +56,7 @@ struct Options {
   std::string record;
   float uiScale = 0;  ///< 0: from the display
   bool testInput = false;
+  std::string script, scriptOut = "authored.json";
 };
 
 std::optional<Options> parse(int argc, char** argv) {
@@ -89,6 +94,13 @@ std::optional<Options> parse(int argc, char** argv) {
         throw std::runtime_error("--ui-scale: expected a number in [0.5, 4] (got " + v + ")");
     } else if (a == "--open") {
       o.openLater = value();
+    } else if (a == "--script") {
+      o.script = value();
+      const auto& names = cablelab::ui::ScenarioScript::names();
+      if (std::find(names.begin(), names.end(), o.script) == names.end())
+        throw std::runtime_error("--script: unknown scenario " + o.script);
+    } else if (a == "--script-out") {
+      o.scriptOut = value();
     } else if (a == "--test-input") {
       o.testInput = true;
     } else if (!a.empty() && a[0] == '-') {
@@ -144,7 +156,7 @@ void toggleRecording(cablelab::ui::Sandbox& sandbox, cablelab::ui::Recorder& rec
 int run(const Options& options) {
   using namespace cablelab::ui;
   using Clock = std::chrono::steady_clock;
-  const bool scripted = options.frames > 0 || options.testInput;
+  const bool scripted = options.frames > 0 || options.testInput || !options.script.empty();
   Window window("cablelab sandbox", options.width, options.height, !scripted);
   Sandbox sandbox(window.width(), window.height());
   sandbox.uiScale = options.uiScale > 0 ? options.uiScale : window.suggestedUiScale();
@@ -162,12 +174,15 @@ int run(const Options& options) {
 
   std::optional<InputScript> script;
   if (options.testInput) script.emplace(window.id());
+  std::optional<ScenarioScript> scenario;
+  if (!options.script.empty()) scenario.emplace(options.script, window.id(), options.scriptOut);
   std::vector<double> frameSeconds;
   Image capture;
   auto last = Clock::now();
   for (int frame = 0;; ++frame) {
     if (options.frames > 0 && frame >= options.frames) break;
     if (script && !script->beforeFrame(sandbox, frame)) break;
+    if (scenario && !scenario->beforeFrame(sandbox, frame)) break;
     if (!window.pollEvents([&](const SDL_Event& e) { handleEvent(sandbox, e); })) break;
     if (!options.openLater.empty() && frame == 10) sandbox.open(options.openLater);
     sandbox.advance(sandbox.lastFrameSeconds, scripted);
@@ -193,10 +208,10 @@ int run(const Options& options) {
     sandbox.recordToggleRequested = false;
     const double now = sandbox.world() ? sandbox.world()->time() : 0;
     const bool recordNow = recorder.due(now);
-    const bool screenshot = sandbox.screenshotRequested;
+    const bool screenshot = sandbox.screenshotRequested || sandbox.pngRequest.has_value();
     sandbox.screenshotRequested = false;
     // The script ends at an unknown frame: capture every one of its frames.
-    const bool lastFrame = (options.frames > 0 && frame + 1 == options.frames) || script;
+    const bool lastFrame = (options.frames > 0 && frame + 1 == options.frames) || script || scenario;
     const bool keep = lastFrame && !options.screenshot.empty();
     window.endFrame(keep || recordNow || screenshot ? &capture : nullptr);
     if (recordNow)
@@ -204,9 +219,16 @@ int run(const Options& options) {
                            recorder.width(), recorder.height()),
                    now);
     if (screenshot) {
-      const std::string name = freshName(sandbox.sceneName, ".png");
+      const std::optional<PanelRect> part = sandbox.pngRequest;
+      const std::string name = part ? sandbox.pngRequestPath : freshName(sandbox.sceneName, ".png");
+      sandbox.pngRequest.reset();
       try {
-        writePng(capture, name);
+        if (part)
+          writePng(cropped(capture, static_cast<int>(part->x), static_cast<int>(part->y),
+                           static_cast<int>(part->width), static_cast<int>(part->height)),
+                   name);
+        else
+          writePng(capture, name);
         sandbox.message = "saved " + name;
       } catch (const std::exception& e) {
         sandbox.error = e.what();
@@ -228,6 +250,10 @@ int run(const Options& options) {
   if (recorder.recording()) std::cerr << "cablelab-gui: " << recorder.stop() << "\n";
 
   if (!options.screenshot.empty() && !capture.rgba.empty()) writePng(capture, options.screenshot);
+  if (scenario) {
+    std::cout << scenario->report() << std::endl;
+    return 0;
+  }
   if (script) {
     std::cout << script->report() << std::endl;
     return script->passed() ? 0 : 1;

@@ -4,6 +4,8 @@
 
 #include <iterator>
 
+#include "ui/authoring.h"
+
 namespace cablelab::ui {
 
 const char* const kShortcuts[][2] = {{"space", "play / pause"},
@@ -21,6 +23,8 @@ const char* const kShortcuts[][2] = {{"space", "play / pause"},
                                      {"click empty space", "set the target (hand scene)"},
                                      {"Ctrl + click", "set a target anywhere"},
                                      {"right drag", "pan"},
+                                     {"Ctrl+Z / Ctrl+Y", "undo / redo a scene edit"},
+                                     {"Delete", "delete the selected body"},
                                      {"drop a .json file", "open it as a scene"},
                                      {nullptr, nullptr}};
 
@@ -44,6 +48,7 @@ bool overPanel(const Sandbox& sandbox, const Vec2& mouse) {
 }
 
 void leftDown(Sandbox& sandbox, World& world, const Vec2& mouse, const Vec2& point) {
+  if (authoringClick(sandbox, point, false)) return;
   const int body = sandbox.bodyAt(point, true);
   const bool ctrl = (SDL_GetModState() & KMOD_CTRL) != 0;
   if (ctrl) {
@@ -63,7 +68,7 @@ void leftDown(Sandbox& sandbox, World& world, const Vec2& mouse, const Vec2& poi
   if (cable >= 0) {
     sandbox.selectedCable = cable;
     const Cable& c = world.cable(cable);
-    sandbox.cableEdit = {c.restLength(), c.def().stiffness, c.def().preload, c.def().damping};
+    sandbox.cableEdit = {c.restLength(), c.stiffness(), c.preload(), c.damping()};
     return;
   }
   if (sandbox.hasController())
@@ -79,7 +84,7 @@ void mouseDown(Sandbox& sandbox, const SDL_MouseButtonEvent& e) {
   const Vec2 point = sandbox.camera.toWorld(mouse);
   if (e.button == SDL_BUTTON_LEFT)
     leftDown(sandbox, *world, mouse, point);
-  else if (e.button == SDL_BUTTON_RIGHT)
+  else if (e.button == SDL_BUTTON_RIGHT && !authoringClick(sandbox, point, true))
     sandbox.gesture = {Gesture::Kind::Pan, mouse, Vec2::Zero()};
 }
 
@@ -108,6 +113,22 @@ void key(Sandbox& sandbox, const SDL_KeyboardEvent& e) {
   const Vec2 centre(0.5 * sandbox.camera.width, 0.5 * sandbox.camera.height);
   switch (e.keysym.sym) {
     case SDLK_SPACE: sandbox.paused = !sandbox.paused; break;
+    case SDLK_z:
+      if (SDL_GetModState() & KMOD_CTRL)
+        (SDL_GetModState() & KMOD_SHIFT) ? redoEdit(sandbox) : undoEdit(sandbox);
+      break;
+    case SDLK_y:
+      if (SDL_GetModState() & KMOD_CTRL) redoEdit(sandbox);
+      break;
+    case SDLK_DELETE:
+      if (sandbox.selectedBody >= 0 && sandbox.world()) {
+        const BodyState& b = sandbox.world()->body(sandbox.selectedBody);
+        const Authoring::Tool tool = sandbox.authoring->tool;
+        sandbox.authoring->tool = Authoring::Tool::Delete;
+        authoringClick(sandbox, b.position, false);
+        sandbox.authoring->tool = tool;
+      }
+      break;
     case SDLK_s:
       sandbox.paused = true;
       ++sandbox.pendingSteps;

@@ -21,7 +21,7 @@ void cableList(Sandbox& sandbox, const World& world) {
                   overstretched(c) ? "  OVERSTRETCHED" : "");
     if (ImGui::Selectable(label, i == sandbox.selectedCable)) {
       sandbox.selectedCable = i;
-      sandbox.cableEdit = {c.restLength(), c.def().stiffness, c.def().preload, c.def().damping};
+      sandbox.cableEdit = {c.restLength(), c.stiffness(), c.preload(), c.damping()};
     }
   }
   ImGui::EndListBox();

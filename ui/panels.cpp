@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-#include "engine/model/scene_json.h"
+#include "ui/authoring.h"
 #include "ui/controller_panel.h"
 #include "ui/input.h"
 #include "ui/panel_sections.h"
@@ -125,6 +125,8 @@ void simulationPanel(Sandbox& sandbox, PanelState& state, float top) {
     if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) scenePanel(sandbox);
     if (ImGui::CollapsingHeader("Controller", ImGuiTreeNodeFlags_DefaultOpen))
       drawControllerPanel(sandbox);
+    if (ImGui::CollapsingHeader("Build")) authoringPanel(sandbox);
+    tooltip("Add bodies, pulleys and cables by clicks; undo, redo; save as scene JSON.");
     if (ImGui::CollapsingHeader("View")) viewPanel(sandbox);
     if (ImGui::CollapsingHeader("Integration")) integrationPanel(sandbox);
   }
@@ -213,9 +215,7 @@ void saveDialog(Sandbox& sandbox, PanelState& state) {
                                       ImGuiInputTextFlags_EnterReturnsTrue);
   if ((ImGui::Button("Save") || enter) && state.savePath[0] != '\0') {
     try {
-      SceneDef def = sandbox.scene;
-      def.dt = sandbox.dt, def.substeps = sandbox.substeps, def.gravity = sandbox.gravity;
-      saveSceneFile(def, state.savePath.data());
+      saveScene(sandbox, state.savePath.data());
       sandbox.message = std::string("saved ") + state.savePath.data();
       state.showSave = false;
     } catch (const std::exception& e) {

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "engine/core/error.h"
+#include "ui/authoring.h"
 #include "ui/colormap.h"
 #include "ui/controller_panel.h"
 #include "ui/scene_catalog.h"
@@ -22,6 +23,7 @@ Sandbox::Sandbox(int width, int height) {
   camera.width = width;
   camera.height = height;
   draw.markerLegend = true;
+  authoring = std::make_unique<Authoring>();
 }
 
 Sandbox::~Sandbox() = default;
@@ -61,6 +63,9 @@ bool Sandbox::adopt(SceneDef def, const std::string& name, bool fitCamera) {
 bool Sandbox::open(const std::string& nameOrPath) {
   try {
     adopt(loadScene(nameOrPath), nameOrPath, true);
+    const Authoring::Tool tool = authoring->tool;
+    authoring = std::make_unique<Authoring>();
+    authoring->tool = tool;
     parameters.clear();
     for (const SceneParameter& p : sceneParameters(nameOrPath))
       parameters.emplace_back(p.name, p.value);
@@ -89,8 +94,9 @@ bool Sandbox::rebuild(const std::vector<std::pair<std::string, double>>& values)
 bool Sandbox::replaceScene(const SceneDef& def) {
   try {
     validateScene(def, "edited scene");
-    const std::string name = sceneName;
-    adopt(def, name, false);
+    // An edited scene is no longer the built-in one: its --set sliders no longer apply.
+    const std::string base = def.name.empty() ? "scene" : def.name;
+    adopt(def, base.rfind("edited-", 0) == 0 ? base : "edited-" + base, false);
     parameters.clear();
     return true;
   } catch (const std::exception& e) {
@@ -277,7 +283,7 @@ void Sandbox::resize(int width, int height) {
 void Sandbox::loadCableEdit() {
   if (!world_ || selectedCable < 0 || selectedCable >= world_->cableCount()) return;
   const Cable& c = world_->cable(selectedCable);
-  cableEdit = {c.restLength(), c.def().stiffness, c.def().preload, c.def().damping};
+  cableEdit = {c.restLength(), c.stiffness(), c.preload(), c.damping()};
 }
 
 bool Sandbox::applyCableEdit() {
@@ -312,6 +318,7 @@ Overlay Sandbox::overlay() const {
                       c});
   }
   controllerOverlay(*this, o);
+  authoringOverlay(*this, o);
   o.banner = banner;
   return o;
 }

@@ -19,6 +19,7 @@
 namespace cablelab::ui {
 
 struct ControllerState;  // ui/controller_panel.h
+struct Authoring;        // ui/authoring.h
 
 /// Screen rectangle of a UI panel (px); the scene under it does not take mouse input.
 struct PanelRect {
@@ -156,12 +157,19 @@ class Sandbox {
   // Requests for the platform (handled by gui_main between frames).
   bool screenshotRequested = false;
   bool recordToggleRequested = false;
+  std::optional<PanelRect> pngRequest;  ///< a window rectangle to save as PNG (plot export)
+  std::string pngRequestPath;
   bool recording = false;  ///< set by the platform
   int recordedFrames = 0;  ///< set by the platform
   double recordFps = 30;
 
   /// The current scene's controller or view (ui/controller_panel.h); rebuilt by open/reset.
   std::unique_ptr<ControllerState> controller;
+  /// The scene editor (ui/authoring.h): tool, sizes, undo and redo; open() clears its history.
+  std::unique_ptr<Authoring> authoring;
+
+  // What the Scene panel showed last (for the scripted checks).
+  std::string shownTitle, shownDescription;
 
   // Status.
   double lastFrameSeconds = 0;

@@ -62,6 +62,8 @@ void scenePanel(Sandbox& sandbox) {
   if (!d.empty()) ImGui::TextUnformatted(shown.c_str());
   ImGui::PopTextWrapPos();
   if (longText) tooltip(d.c_str());
+  sandbox.shownTitle = title;
+  sandbox.shownDescription = shown;
   if (ImGui::TreeNode("What to try")) {
     ImGui::PushTextWrapPos(0);
     ImGui::TextUnformatted(whatToTry(sandbox.sceneName).c_str());
