@@ -39,7 +39,8 @@ std::string freshCableName(const SceneDef& scene) {
 
 std::vector<Vec2> regularPolygon(int n, double radius) {
   std::vector<Vec2> v;
-  for (int k = 0; k < n; ++k) v.push_back(radius * Vec2(std::cos(2 * kPi * k / n), std::sin(2 * kPi * k / n)));
+  for (int k = 0; k < n; ++k)
+    v.push_back(radius * Vec2(std::cos(2 * kPi * k / n), std::sin(2 * kPi * k / n)));
   return v;
 }
 
@@ -141,7 +142,8 @@ bool cableClick(Sandbox& sandbox, Authoring& a, const Vec2& p) {
   SceneDef next = sandbox.scene;
   next.cables.push_back(routedCable(sandbox, a, anchorAt(sandbox, p), p));
   a.cableStarted = false;
-  if (applyEdit(sandbox, std::move(next))) sandbox.message = "added " + sandbox.scene.cables.back().name;
+  if (applyEdit(sandbox, std::move(next)))
+    sandbox.message = "added " + sandbox.scene.cables.back().name;
   return true;
 }
 
@@ -157,7 +159,8 @@ void deleteAt(Sandbox& sandbox, const Vec2& p) {
     };
     next.bodies.erase(next.bodies.begin() + body);
     std::erase_if(next.cables, uses);
-    std::erase_if(next.joints, [&](const JointDef& j) { return j.bodyA == name || j.bodyB == name; });
+    std::erase_if(next.joints,
+                  [&](const JointDef& j) { return j.bodyA == name || j.bodyB == name; });
     if (applyEdit(sandbox, std::move(next))) sandbox.message = "deleted " + name;
     return;
   }
@@ -172,15 +175,24 @@ void deleteAt(Sandbox& sandbox, const Vec2& p) {
 
 const char* toolName(Authoring::Tool tool) {
   switch (tool) {
-    case Authoring::Tool::None: return "select";
-    case Authoring::Tool::Box: return "box";
-    case Authoring::Tool::Circle: return "circle";
-    case Authoring::Tool::Polygon: return "polygon";
-    case Authoring::Tool::PointPulley: return "point pulley";
-    case Authoring::Tool::PolygonPulley: return "polygon pulley";
-    case Authoring::Tool::CirclePulley: return "circle pulley";
-    case Authoring::Tool::Cable: return "cable";
-    case Authoring::Tool::Delete: return "delete";
+    case Authoring::Tool::None:
+      return "select";
+    case Authoring::Tool::Box:
+      return "box";
+    case Authoring::Tool::Circle:
+      return "circle";
+    case Authoring::Tool::Polygon:
+      return "polygon";
+    case Authoring::Tool::PointPulley:
+      return "point pulley";
+    case Authoring::Tool::PolygonPulley:
+      return "polygon pulley";
+    case Authoring::Tool::CirclePulley:
+      return "circle pulley";
+    case Authoring::Tool::Cable:
+      return "cable";
+    case Authoring::Tool::Delete:
+      return "delete";
   }
   return "?";
 }
@@ -255,8 +267,9 @@ bool authoringClick(Sandbox& sandbox, const Vec2& p, bool right) {
   const double r = 0.5 * a.size;
   switch (a.tool) {
     case Tool::Box:
-      next.bodies.push_back(makeBody(next, "box", p, a.isStatic, a.mass,
-                                     polygonShape({Vec2(-r, -r), Vec2(r, -r), Vec2(r, r), Vec2(-r, r)})));
+      next.bodies.push_back(
+          makeBody(next, "box", p, a.isStatic, a.mass,
+                   polygonShape({Vec2(-r, -r), Vec2(r, -r), Vec2(r, r), Vec2(-r, r)})));
       break;
     case Tool::Circle: {
       ShapeDef c;
@@ -264,7 +277,9 @@ bool authoringClick(Sandbox& sandbox, const Vec2& p, bool right) {
       next.bodies.push_back(makeBody(next, "circle", p, a.isStatic, a.mass, c));
       break;
     }
-    case Tool::Polygon: a.polygon.push_back(p); return true;
+    case Tool::Polygon:
+      a.polygon.push_back(p);
+      return true;
     case Tool::PointPulley: {
       ShapeDef c;
       c.radius = 0.03;
@@ -279,11 +294,16 @@ bool authoringClick(Sandbox& sandbox, const Vec2& p, bool right) {
       next.bodies.push_back(makeBody(next, "pulley", p, true, 1, s));
       break;
     }
-    case Tool::Cable: return cableClick(sandbox, a, p);
-    case Tool::Delete: deleteAt(sandbox, p); return true;
-    case Tool::None: return false;
+    case Tool::Cable:
+      return cableClick(sandbox, a, p);
+    case Tool::Delete:
+      deleteAt(sandbox, p);
+      return true;
+    case Tool::None:
+      return false;
   }
-  if (applyEdit(sandbox, std::move(next))) sandbox.message = "added " + sandbox.scene.bodies.back().name;
+  if (applyEdit(sandbox, std::move(next)))
+    sandbox.message = "added " + sandbox.scene.bodies.back().name;
   return true;
 }
 

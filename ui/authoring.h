@@ -23,11 +23,20 @@
 namespace cablelab::ui {
 
 struct Authoring {
-  enum class Tool { None, Box, Circle, Polygon, PointPulley, PolygonPulley, CirclePulley, Cable,
-                    Delete };
+  enum class Tool {
+    None,
+    Box,
+    Circle,
+    Polygon,
+    PointPulley,
+    PolygonPulley,
+    CirclePulley,
+    Cable,
+    Delete
+  };
   Tool tool = Tool::None;
-  double size = 0.4;   ///< box side, circle diameter, pulley diameter (m)
-  double mass = 1.0;   ///< kg
+  double size = 0.4;  ///< box side, circle diameter, pulley diameter (m)
+  double mass = 1.0;  ///< kg
   bool isStatic = false;
   std::vector<Vec2> polygon;  ///< polygon vertices clicked so far (world, m)
   // The cable in progress.

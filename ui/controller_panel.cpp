@@ -168,8 +168,9 @@ void startPinched(HandControlState& h, double now) {
 
 void handBeforeStep(Sandbox& sandbox, World& world, HandControlState& h) {
   const double t = world.time();
-  if (h.rampStart >= 0 && sandbox.target && h.rampLast && (*sandbox.target - *h.rampLast).norm() > 1e-12)
-    h.rampStart = -1;  // the user moved the target (a click): the ramp gives way
+  if (h.rampStart >= 0 && sandbox.target && h.rampLast &&
+      (*sandbox.target - *h.rampLast).norm() > 1e-12)
+    h.rampStart = -1;      // the user moved the target (a click): the ramp gives way
   if (h.rampStart >= 0) {  // as runTracking's ramp: linear from the start point to the goal
     const double u = std::clamp((t - h.rampStart) / std::max(h.rampSeconds, 1e-9), 0.0, 1.0);
     sandbox.target = h.rampFrom + u * (h.rampTo - h.rampFrom);
@@ -222,7 +223,7 @@ void handAfterStep(const Sandbox& sandbox, const World& world, HandControlState&
       if (t - h.offSince >= kGraspLossSeconds) {
         h.lostTime = h.offSince;
         h.lostWhy = top.wraps() < 2 || top.tension() <= 1e-6 ? "top membrane let go"
-                                                              : "bottom membrane let go";
+                                                             : "bottom membrane let go";
       }
     }
   }
@@ -232,10 +233,10 @@ void handAfterStep(const Sandbox& sandbox, const World& world, HandControlState&
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float tx = sandbox.target ? static_cast<float>(sandbox.target->x()) : nan;
   const float ty = sandbox.target ? static_cast<float>(sandbox.target->y()) : nan;
-  h.history.push(static_cast<float>(t), {static_cast<float>(world.cable(h.cables[0]).tension()),
-                                         static_cast<float>(world.cable(h.cables[1]).tension()),
-                                         error, static_cast<float>(box.x()),
-                                         static_cast<float>(box.y()), tx, ty});
+  h.history.push(static_cast<float>(t),
+                 {static_cast<float>(world.cable(h.cables[0]).tension()),
+                  static_cast<float>(world.cable(h.cables[1]).tension()), error,
+                  static_cast<float>(box.x()), static_cast<float>(box.y()), tx, ty});
 }
 
 void handPanel(Sandbox& sandbox, HandControlState& h) {
@@ -311,8 +312,9 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
   ImGui::TextUnformatted("start pose:");
   ImGui::SameLine();
   const bool grasp = ImGui::Button("open (grasp)");
-  tooltip("As `cablelab track`: reset, swing the fingers open, close them over 1 s, grasp, then "
-          "control the box.");
+  tooltip(
+      "As `cablelab track`: reset, swing the fingers open, close them over 1 s, grasp, then "
+      "control the box.");
   ImGui::SameLine();
   const bool pinch = ImGui::Button("pinch");
   tooltip("Reset to the pinch pose, the box already between the membranes.");
@@ -331,8 +333,9 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
     ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(200, 0, 20, 255));
     ImGui::TextWrapped("GRASP LOST at %.2f s: %s", h.lostTime, h.lostWhy.c_str());
     ImGui::PopStyleColor();
-    tooltip("A membrane stopped wrapping the box (or went slack) for more than 0.1 s after the "
-            "grasp. Reset hand or Start grasp to try again.");
+    tooltip(
+        "A membrane stopped wrapping the box (or went slack) for more than 0.1 s after the "
+        "grasp. Reset hand or Start grasp to try again.");
   } else if (h.graspTime < 0)
     ImGui::Text("%s, waiting for both membranes", phase);
   else if (t < h.controlStart)
@@ -358,8 +361,8 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
            "N tension", 6 * lh, 0, tensionTop);
   tooltip("Membrane tensions; the range is the colour bar's.");
   h.errorRange = stableRange(h.history, {{"", 2, 0}}, h.errorRange);
-  timePlot("##error", h.history, {{"|box - target|", 2, IM_COL32(170, 20, 120, 255)}}, "m",
-           5 * lh, 0, h.errorRange);
+  timePlot("##error", h.history, {{"|box - target|", 2, IM_COL32(170, 20, 120, 255)}}, "m", 5 * lh,
+           0, h.errorRange);
   tooltip("Tracking error; the range only grows (Reset starts it again).");
   h.xyRange = stableRange(h.history, {{"", 3, 0}, {"", 4, 0}, {"", 5, 0}, {"", 6, 0}}, h.xyRange);
   timePlot("##xy", h.history,
@@ -485,7 +488,8 @@ void writeHandHistoryCsv(const HandControlState& h, const std::string& path) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path + ": cannot write the CSV");
   out << "t,top_tension,bottom_tension,error,x,y,target_x,target_y\n";
-  const int first = (h.history.head - h.history.count + TimeHistory::kLength) % TimeHistory::kLength;
+  const int first =
+      (h.history.head - h.history.count + TimeHistory::kLength) % TimeHistory::kLength;
   char line[256];
   for (int k = 0; k < h.history.count; ++k) {
     const int i = (first + k) % TimeHistory::kLength;
@@ -502,9 +506,12 @@ std::string handGraspState(const Sandbox& sandbox) {
   if (!h) return "";
   if (h->lostTime >= 0) return "grasp lost";
   switch (h->phase) {
-    case HandControlState::Phase::Closing: return "closing";
-    case HandControlState::Phase::Grasped: return "grasped";
-    case HandControlState::Phase::Pinched: return "pinch pose";
+    case HandControlState::Phase::Closing:
+      return "closing";
+    case HandControlState::Phase::Grasped:
+      return "grasped";
+    case HandControlState::Phase::Pinched:
+      return "pinch pose";
   }
   return "";
 }
@@ -580,6 +587,7 @@ void controllerOverlay(const Sandbox& sandbox, Overlay& overlay) {
       overlay.targets.push_back({h->prediction.box, "", kPredictionColour});
       overlay.texts.push_back(
           {h->prediction.box + Vec2(0.03, -0.09), "statics", kPredictionColour});
+      overlay.keys.push_back({Overlay::Key::Marker::Cross, "statics model's box", kPredictionColour});
     }
     return;
   }
@@ -595,6 +603,7 @@ void controllerOverlay(const Sandbox& sandbox, Overlay& overlay) {
     char text[96];
     std::snprintf(text, sizeof text, "model F %.3g N", n.force.norm());
     overlay.arrows.push_back({n.p, n.p + metresPerNewton * n.force, text, kForceColour});
+    overlay.keys.push_back({Overlay::Key::Marker::Arrow, "membrane model force", kForceColour});
   }
 }
 

@@ -2,12 +2,13 @@
 // they can be wired in without touching the rest of the sandbox.
 //
 //   hand      the statics-based Jacobian controller of thesis section 4.3
-//             (engine/hand/hand_controller.h) runs live: the target is `sandbox.target` (click empty
-//             space, or the sliders), gains k_p, k_d, k_i and the PID toggle are editable, the
-//             grasp sequence (open pose -> closing ramp -> grasp -> control, as `cablelab track`)
-//             can be started and reset; membrane tensions and tracking error are plotted against
-//             time; the overlay shows the target and the statics model's box prediction.
-//   membrane  the chapter 3 model force F = -T (u1 + u2) (engine/membrane/membrane_model.h) is drawn at
+//             (engine/hand/hand_controller.h) runs live: the target is `sandbox.target` (click
+//             empty space, or the sliders), gains k_p, k_d, k_i and the PID toggle are editable,
+//             the grasp sequence (open pose -> closing ramp -> grasp -> control, as `cablelab
+//             track`) can be started and reset; membrane tensions and tracking error are plotted
+//             against time; the overlay shows the target and the statics model's box prediction.
+//   membrane  the chapter 3 model force F = -T (u1 + u2) (engine/membrane/membrane_model.h) is
+//   drawn at
 //             the finger point, and k and preload fitted by `cablelab fit` (its JSON output) can
 //             be loaded into the band.
 //
@@ -23,10 +24,10 @@
 #include <string>
 #include <vector>
 
+#include "engine/dynamics/world.h"
 #include "engine/hand/hand_controller.h"
 #include "engine/hand/hand_model.h"
 #include "engine/membrane/membrane_model.h"
-#include "engine/dynamics/world.h"
 #include "ui/overlay.h"
 #include "ui/sandbox.h"
 
@@ -61,8 +62,8 @@ struct HandControlState {
   double lostTime = -1;
   double offSince = -1;  ///< s, when a membrane last let go of the box; -1 both hold it
   std::string lostWhy;
-  double controlStart = 0;   ///< s, the outer loop starts here
-  double nextUpdate = 0;     ///< s, next outer-loop tick
+  double controlStart = 0;  ///< s, the outer loop starts here
+  double nextUpdate = 0;    ///< s, next outer-loop tick
   int updates = 0;
   HandJoints open = HandJoints::Zero();
   HandJoints offset = HandJoints::Zero();  ///< controller's accumulated joint-target change
@@ -80,8 +81,8 @@ struct HandControlState {
   double rampStart = -1, rampSeconds = 2;
   Vec2 rampFrom = Vec2::Zero(), rampTo = Vec2(0.1, 0.1);
   std::optional<Vec2> rampLast;  ///< the target the ramp set last (a different one: a click)
-  PanelRect plotRect;  ///< screen rectangle of the plots (for the PNG export)
-  double lastSample = -1;      ///< s
+  PanelRect plotRect;            ///< screen rectangle of the plots (for the PNG export)
+  double lastSample = -1;        ///< s
 
   void rebuildController();
 };

@@ -3,9 +3,9 @@
 //
 //   cablelab-gui [SCENE] [--frames N] [--screenshot F.png] [--size WxH] [--open F]
 //                [--record F.gif] [--ui-scale S] [--script NAME] [--test-input]
-#include <CLI/CLI.hpp>
 #include <GL/gl.h>
 #include <imgui.h>
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -24,9 +24,9 @@
 #include "ui/input_script.h"
 #include "ui/panels.h"
 #include "ui/recorder.h"
-#include "ui/scenario_script.h"
 #include "ui/renderer.h"
 #include "ui/sandbox.h"
+#include "ui/scenario_script.h"
 #include "ui/scene_catalog.h"
 #include "ui/window.h"
 
@@ -76,8 +76,8 @@ std::optional<Options> parse(int argc, char** argv) {
     throw cablelab::commandLineError(e.what(), "see cablelab-gui --help");
   }
   if (!frames.empty())
-    o.frames = static_cast<int>(cablelab::parseWholeNumber(frames, cablelab::kCommandLine,
-                                                           "--frames", 0, 100000000));
+    o.frames = static_cast<int>(
+        cablelab::parseWholeNumber(frames, cablelab::kCommandLine, "--frames", 0, 100000000));
   if (!size.empty()) {
     const auto s = cablelab::parsePixelSize(size, cablelab::kCommandLine, "--size", 240, 16384);
     o.width = s.width;
@@ -129,7 +129,8 @@ void toggleRecording(cablelab::ui::Sandbox& sandbox, cablelab::ui::Recorder& rec
     return;
   }
   const PanelRect free = sandbox.freeArea();
-  const int w = std::max(16, static_cast<int>(free.width)), h = std::max(16, static_cast<int>(free.height));
+  const int w = std::max(16, static_cast<int>(free.width)),
+            h = std::max(16, static_cast<int>(free.height));
   try {
     recorder.start(path.empty() ? freshName(sandbox.sceneName, ".gif") : path, w, h,
                    sandbox.recordFps, sandbox.world() ? sandbox.world()->time() : 0);
@@ -198,7 +199,8 @@ int run(const Options& options) {
     const bool screenshot = sandbox.screenshotRequested || sandbox.pngRequest.has_value();
     sandbox.screenshotRequested = false;
     // The script ends at an unknown frame: capture every one of its frames.
-    const bool lastFrame = (options.frames > 0 && frame + 1 == options.frames) || script || scenario;
+    const bool lastFrame =
+        (options.frames > 0 && frame + 1 == options.frames) || script || scenario;
     const bool keep = lastFrame && !options.screenshot.empty();
     window.endFrame(keep || recordNow || screenshot ? &capture : nullptr);
     if (recordNow)
@@ -250,10 +252,11 @@ int run(const Options& options) {
     // The view, so that a test can draw the same picture offscreen.
     const Camera& c = sandbox.camera;
     const PanelRect f = sandbox.freeArea();
-    std::printf("{\"frames\": %d, \"fps\": %.17g, \"camera\": [%.17g, %.17g, %.17g], "
-                "\"free\": [%g, %g, %g, %g], \"tension_scale\": %.17g}\n",
-                options.frames, m > 0 ? 1 / m : 0.0, c.center.x(), c.center.y(), c.metresPerPixel,
-                f.x, f.y, f.width, f.height, sandbox.tensionScale);
+    std::printf(
+        "{\"frames\": %d, \"fps\": %.17g, \"camera\": [%.17g, %.17g, %.17g], "
+        "\"free\": [%g, %g, %g, %g], \"tension_scale\": %.17g}\n",
+        options.frames, m > 0 ? 1 / m : 0.0, c.center.x(), c.center.y(), c.metresPerPixel, f.x, f.y,
+        f.width, f.height, sandbox.tensionScale);
   }
   return 0;
 }

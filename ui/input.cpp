@@ -112,7 +112,9 @@ void key(Sandbox& sandbox, const SDL_KeyboardEvent& e) {
   if (ImGui::GetIO().WantTextInput) return;
   const Vec2 centre(0.5 * sandbox.camera.width, 0.5 * sandbox.camera.height);
   switch (e.keysym.sym) {
-    case SDLK_SPACE: sandbox.paused = !sandbox.paused; break;
+    case SDLK_SPACE:
+      sandbox.paused = !sandbox.paused;
+      break;
     case SDLK_z:
       if (SDL_GetModState() & KMOD_CTRL)
         (SDL_GetModState() & KMOD_SHIFT) ? redoEdit(sandbox) : undoEdit(sandbox);
@@ -133,21 +135,42 @@ void key(Sandbox& sandbox, const SDL_KeyboardEvent& e) {
       sandbox.paused = true;
       ++sandbox.pendingSteps;
       break;
-    case SDLK_r: sandbox.reset(); break;
+    case SDLK_r:
+      sandbox.reset();
+      break;
     case SDLK_h:
-    case SDLK_F1: sandbox.showHelp = !sandbox.showHelp; break;
-    case SDLK_f: sandbox.follow = !sandbox.follow && sandbox.selectedBody >= 0; break;
-    case SDLK_LEFTBRACKET: sandbox.speed = stepSpeed(sandbox.speed, -1); break;
-    case SDLK_RIGHTBRACKET: sandbox.speed = stepSpeed(sandbox.speed, +1); break;
-    case SDLK_F12: sandbox.screenshotRequested = true; break;
-    case SDLK_F9: sandbox.recordToggleRequested = true; break;
+    case SDLK_F1:
+      sandbox.showHelp = !sandbox.showHelp;
+      break;
+    case SDLK_f:
+      sandbox.follow = !sandbox.follow && sandbox.selectedBody >= 0;
+      break;
+    case SDLK_LEFTBRACKET:
+      sandbox.speed = stepSpeed(sandbox.speed, -1);
+      break;
+    case SDLK_RIGHTBRACKET:
+      sandbox.speed = stepSpeed(sandbox.speed, +1);
+      break;
+    case SDLK_F12:
+      sandbox.screenshotRequested = true;
+      break;
+    case SDLK_F9:
+      sandbox.recordToggleRequested = true;
+      break;
     case SDLK_PLUS:
     case SDLK_EQUALS:
-    case SDLK_KP_PLUS: sandbox.camera.zoomAt(centre, 1.25); break;
+    case SDLK_KP_PLUS:
+      sandbox.camera.zoomAt(centre, 1.25);
+      break;
     case SDLK_MINUS:
-    case SDLK_KP_MINUS: sandbox.camera.zoomAt(centre, 1 / 1.25); break;
-    case SDLK_ESCAPE: sandbox.showHelp = false; break;
-    default: break;
+    case SDLK_KP_MINUS:
+      sandbox.camera.zoomAt(centre, 1 / 1.25);
+      break;
+    case SDLK_ESCAPE:
+      sandbox.showHelp = false;
+      break;
+    default:
+      break;
   }
 }
 
@@ -155,9 +178,15 @@ void key(Sandbox& sandbox, const SDL_KeyboardEvent& e) {
 
 void handleEvent(Sandbox& sandbox, const SDL_Event& event) {
   switch (event.type) {
-    case SDL_MOUSEBUTTONDOWN: mouseDown(sandbox, event.button); break;
-    case SDL_MOUSEBUTTONUP: mouseUp(sandbox, event.button); break;
-    case SDL_MOUSEMOTION: mouseMotion(sandbox, event.motion); break;
+    case SDL_MOUSEBUTTONDOWN:
+      mouseDown(sandbox, event.button);
+      break;
+    case SDL_MOUSEBUTTONUP:
+      mouseUp(sandbox, event.button);
+      break;
+    case SDL_MOUSEMOTION:
+      mouseMotion(sandbox, event.motion);
+      break;
     case SDL_MOUSEWHEEL: {
       int x = 0, y = 0;
       SDL_GetMouseState(&x, &y);
@@ -179,7 +208,8 @@ void handleEvent(Sandbox& sandbox, const SDL_Event& event) {
       if (event.window.event == SDL_WINDOWEVENT_SIZE_CHANGED)
         sandbox.resize(event.window.data1, event.window.data2);
       break;
-    default: break;
+    default:
+      break;
   }
 }
 

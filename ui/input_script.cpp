@@ -102,9 +102,11 @@ bool InputScript::beforeFrame(Sandbox& sandbox, int frame) {
     const PanelRect f = sandbox.freeArea();
     for (int gy = 0; gy < 8 && !found; ++gy)
       for (int gx = 0; gx < 8 && !found; ++gx) {
-        const Vec2 s(f.x + 40 + gx * 0.125 * (f.width - 80), f.y + 40 + gy * 0.125 * (f.height - 80));
+        const Vec2 s(f.x + 40 + gx * 0.125 * (f.width - 80),
+                     f.y + 40 + gy * 0.125 * (f.height - 80));
         const Vec2 w = sandbox.camera.toWorld(s);
-        if (sandbox.bodyAt(w, true) < 0 && sandbox.cableAt(w, 10 * sandbox.camera.metresPerPixel) < 0)
+        if (sandbox.bodyAt(w, true) < 0 &&
+            sandbox.cableAt(w, 10 * sandbox.camera.metresPerPixel) < 0)
           click_ = s, found = true;
       }
     sandbox.target.reset();

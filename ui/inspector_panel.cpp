@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "ui/authoring.h"
 #include "ui/panel_sections.h"
 #include "ui/renderer.h"
 
@@ -102,6 +103,50 @@ void cableInspector(Sandbox& sandbox, const World& world) {
   wrapTable(cable);
 }
 
+/// Edits of the selected body's definition (an authoring edit: the scene restarts, undo works).
+void bodyEdits(Sandbox& sandbox, int b) {
+  if (b >= static_cast<int>(sandbox.scene.bodies.size())) return;
+  const BodyDef& def = sandbox.scene.bodies[b];
+  double mass = def.mass, x = def.position.x(), y = def.position.y();
+  bool isStatic = def.type == BodyType::Static;
+  ImGui::PushItemWidth(ImGui::GetFontSize() * 7);
+  const bool m =
+      ImGui::InputDouble("mass (kg)", &mass, 0, 0, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue);
+  tooltip("Edit the body's mass (Enter applies it; the scene restarts; Ctrl+Z undoes it).");
+  const bool px =
+      ImGui::InputDouble("start x (m)", &x, 0, 0, "%.4f", ImGuiInputTextFlags_EnterReturnsTrue);
+  tooltip("The body's starting position, x.");
+  const bool py =
+      ImGui::InputDouble("start y (m)", &y, 0, 0, "%.4f", ImGuiInputTextFlags_EnterReturnsTrue);
+  tooltip("The body's starting position, y.");
+  ImGui::PopItemWidth();
+  const bool st = ImGui::Checkbox("static", &isStatic);
+  tooltip("A static body does not move.");
+  ImGui::SameLine();
+  const bool del = ImGui::SmallButton("Delete body");
+  tooltip("Remove the body with its cables and joints (Delete key; Ctrl+Z undoes it).");
+  if (del) {
+    SceneDef next = sandbox.scene;
+    const std::string name = def.name;
+    next.bodies.erase(next.bodies.begin() + b);
+    std::erase_if(next.cables, [&](const CableDef& c) {
+      return c.start.body == name || c.end.body == name ||
+             std::any_of(c.pulleys.begin(), c.pulleys.end(),
+                         [&](const PulleyDef& p) { return p.body == name; });
+    });
+    std::erase_if(next.joints,
+                  [&](const JointDef& j) { return j.bodyA == name || j.bodyB == name; });
+    applyEdit(sandbox, std::move(next));
+    return;
+  }
+  if (!(m || px || py || st)) return;
+  SceneDef next = sandbox.scene;
+  next.bodies[b].mass = mass;
+  next.bodies[b].position = Vec2(x, y);
+  if (st) next.bodies[b].type = isStatic ? BodyType::Static : BodyType::Dynamic;
+  if (applyEdit(sandbox, std::move(next))) sandbox.selectedBody = b;
+}
+
 }  // namespace
 
 void inspectorContents(Sandbox& sandbox) {
@@ -119,11 +164,11 @@ void inspectorContents(Sandbox& sandbox) {
                                                   : "static",
                 def.mass);
     ImGui::Text("x %.4f  y %.4f  theta %.4f", s.position.x(), s.position.y(), s.angle);
-    ImGui::Text("vx %.3f  vy %.3f  omega %.3f", s.velocity.x(), s.velocity.y(),
-                s.angularVelocity);
+    ImGui::Text("vx %.3f  vy %.3f  omega %.3f", s.velocity.x(), s.velocity.y(), s.angularVelocity);
     if (sandbox.drag.body == b)
       ImGui::Text("drag %.4g N of %.4g N%s", sandbox.drag.force.norm(), sandbox.dragLimit(b),
                   sandbox.drag.limited ? " (at the limit)" : "");
+    bodyEdits(sandbox, b);
   }
   if (!world->warnings().empty()) {
     section("Engine warnings (guards)");

@@ -49,8 +49,8 @@ void sceneMenu(Sandbox& sandbox, PanelState& state) {
   if (ImGui::MenuItem("Save scene as...")) {
     state.showSave = true;
     if (state.savePath[0] == '\0')
-      copyPath(state.savePath, (sandbox.scene.name.empty() ? "scene" : sandbox.scene.name) +
-                                   std::string(".json"));
+      copyPath(state.savePath,
+               (sandbox.scene.name.empty() ? "scene" : sandbox.scene.name) + std::string(".json"));
   }
   tooltip("Write the current scene (as edited) as scene JSON that `cablelab run` loads.");
   ImGui::EndMenu();
@@ -184,7 +184,8 @@ void openDialog(Sandbox& sandbox, PanelState& state) {
   if (!state.showOpen) return;
   ImGui::SetNextWindowPos(ImVec2(0.5f * sandbox.camera.width, 0.15f * sandbox.camera.height),
                           ImGuiCond_Always, ImVec2(0.5f, 0));
-  ImGui::SetNextWindowSize(ImVec2(std::min(520.0f * sandbox.uiScale, sandbox.camera.width - 20.0f), 0));
+  ImGui::SetNextWindowSize(
+      ImVec2(std::min(520.0f * sandbox.uiScale, sandbox.camera.width - 20.0f), 0));
   ImGui::Begin("Open scene file", &state.showOpen, ImGuiWindowFlags_NoCollapse);
   record(sandbox);
   ImGui::TextUnformatted("Bundled scenes (assets/scenes):");
@@ -206,7 +207,8 @@ void saveDialog(Sandbox& sandbox, PanelState& state) {
   if (!state.showSave) return;
   ImGui::SetNextWindowPos(ImVec2(0.5f * sandbox.camera.width, 0.15f * sandbox.camera.height),
                           ImGuiCond_Always, ImVec2(0.5f, 0));
-  ImGui::SetNextWindowSize(ImVec2(std::min(520.0f * sandbox.uiScale, sandbox.camera.width - 20.0f), 0));
+  ImGui::SetNextWindowSize(
+      ImVec2(std::min(520.0f * sandbox.uiScale, sandbox.camera.width - 20.0f), 0));
   ImGui::Begin("Save scene", &state.showSave, ImGuiWindowFlags_NoCollapse);
   record(sandbox);
   ImGui::TextUnformatted("Scene JSON file to write (`cablelab run FILE` runs it):");
@@ -231,7 +233,8 @@ void errorBanner(Sandbox& sandbox) {
   if (sandbox.error.empty()) return;
   ImGui::SetNextWindowPos(ImVec2(0.5f * sandbox.camera.width, 40 * sandbox.uiScale),
                           ImGuiCond_Always, ImVec2(0.5f, 0));
-  ImGui::SetNextWindowSize(ImVec2(std::min(600.0f * sandbox.uiScale, sandbox.camera.width - 40.0f), 0));
+  ImGui::SetNextWindowSize(
+      ImVec2(std::min(600.0f * sandbox.uiScale, sandbox.camera.width - 40.0f), 0));
   ImGui::PushStyleColor(ImGuiCol_WindowBg, IM_COL32(255, 228, 228, 245));
   ImGui::Begin("Error", nullptr, ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoResize);
   record(sandbox);

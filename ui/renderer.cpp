@@ -159,8 +159,9 @@ class Painter {
     for (const Label& l : labels_) {
       const ImVec2 size = ImGui::CalcTextSize(l.text.c_str());
       const double w = size.x, h = size.y, g = 4 * scale_;
-      const Vec2 candidates[] = {l.offset,       {g, g},         {g, -h - g},     {-w - g, g},
-                                 {-w - g, -h - g}, {-0.5 * w, g}, {-0.5 * w, -h - g}, {g, -0.5 * h}};
+      const Vec2 candidates[] = {l.offset,           {g, g},           {g, -h - g},
+                                 {-w - g, g},        {-w - g, -h - g}, {-0.5 * w, g},
+                                 {-0.5 * w, -h - g}, {g, -0.5 * h}};
       double best = 1e300;
       ImVec4 bestRect;
       for (const Vec2& offset : candidates) {
@@ -470,8 +471,17 @@ void drawTensionBar(double scale, const Frame& f, ImDrawList* text) {
 
 /// One row of the marker key: which sample to draw, its colour, its text.
 struct KeyRow {
-  enum class Sample { Anchor, WrapPoint, PointPulley, PulleyInUse, PulleyIdle, Cross, Arrow,
-                      DashedCross, Stretch };
+  enum class Sample {
+    Anchor,
+    WrapPoint,
+    PointPulley,
+    PulleyInUse,
+    PulleyIdle,
+    Cross,
+    Arrow,
+    DashedCross,
+    Stretch
+  };
   Sample sample;
   Colour colour;
   std::string label;
@@ -496,12 +506,24 @@ void drawSample(const KeyRow& row, float cx, float cy, float s) {
   };
   const float h = 8 * s;
   switch (row.sample) {
-    case KeyRow::Sample::Anchor: disc(3.5f * s, c); break;
-    case KeyRow::Sample::WrapPoint: colour(c); quad(cx - 3 * s, cy - 3 * s, cx + 3 * s, cy + 3 * s); break;
-    case KeyRow::Sample::PointPulley: disc(6 * s, c); disc(3.5f * s, {1, 1, 1, 1}); break;
+    case KeyRow::Sample::Anchor:
+      disc(3.5f * s, c);
+      break;
+    case KeyRow::Sample::WrapPoint:
+      colour(c);
+      quad(cx - 3 * s, cy - 3 * s, cx + 3 * s, cy + 3 * s);
+      break;
+    case KeyRow::Sample::PointPulley:
+      disc(6 * s, c);
+      disc(3.5f * s, {1, 1, 1, 1});
+      break;
     case KeyRow::Sample::PulleyInUse:
-    case KeyRow::Sample::PulleyIdle: segment(cx - h, cy, cx + h, cy, 2.5f); break;
-    case KeyRow::Sample::Stretch: segment(cx - h, cy, cx + h, cy, 10.0f); break;
+    case KeyRow::Sample::PulleyIdle:
+      segment(cx - h, cy, cx + h, cy, 2.5f);
+      break;
+    case KeyRow::Sample::Stretch:
+      segment(cx - h, cy, cx + h, cy, 10.0f);
+      break;
     case KeyRow::Sample::Arrow:
       segment(cx - h, cy, cx + h, cy, 2);
       segment(cx + h, cy, cx + h - 0.6f * h, cy - 0.4f * h, 2);
@@ -522,7 +544,8 @@ void drawMarkerKey(const World& world, const Overlay& overlay, const RenderOptio
   std::vector<KeyRow> rows;
   bool point = false, polygon = false, stretched = false;
   for (const CableDef& c : world.scene().cables)
-    for (const PulleyDef& p : c.pulleys) (p.kind == PulleyDef::Kind::Point ? point : polygon) = true;
+    for (const PulleyDef& p : c.pulleys)
+      (p.kind == PulleyDef::Kind::Point ? point : polygon) = true;
   for (int i = 0; i < world.cableCount(); ++i) stretched |= overstretched(world.cable(i));
   const Colour dark{0.15f, 0.15f, 0.15f, 1};
   if (options.wrapPoints && world.cableCount() > 0) {
@@ -534,20 +557,26 @@ void drawMarkerKey(const World& world, const Overlay& overlay, const RenderOptio
     rows.push_back({KeyRow::Sample::PulleyInUse, kPulley, "pulley, cable on it"});
     rows.push_back({KeyRow::Sample::PulleyIdle, kPulleyIdle, "pulley, cable off it"});
   }
+  bool revolute = false;
+  for (const JointDef& j : world.scene().joints) revolute |= j.kind == JointDef::Kind::Revolute;
+  if (revolute) rows.push_back({KeyRow::Sample::PointPulley, kJoint, "revolute joint"});
   if (options.forces && world.cableCount() > 0)
     rows.push_back({KeyRow::Sample::Arrow, {0.55f, 0.1f, 0.6f, 1}, "cable force"});
   if (options.overstretch && stretched)
     rows.push_back({KeyRow::Sample::Stretch, {0.9f, 0.0f, 0.1f, 0.35f}, "overstretched cable"});
   for (const Overlay::Key& k : overlay.keys) {
-    const KeyRow::Sample sample = k.marker == Overlay::Key::Marker::Arrow ? KeyRow::Sample::Arrow
-                                                                          : KeyRow::Sample::Cross;
+    const KeyRow::Sample sample =
+        k.marker == Overlay::Key::Marker::Arrow ? KeyRow::Sample::Arrow : KeyRow::Sample::Cross;
     rows.push_back({sample, k.colour, k.label});
   }
   if (rows.empty()) return;
   const float lh = f.lineHeight, s = options.lineScale, sampleW = 24 * s;
   float width = 0;
   for (const KeyRow& r : rows) width = std::max(width, ImGui::CalcTextSize(r.label.c_str()).x);
-  const float x1 = f.x + f.w - 8, x0 = x1 - width - sampleW - 16, y0 = f.y + 8;
+  // The key gives way on a small view: it would hide the scene (the View toggle brings it back
+  // once the window is larger).
+  if (width + sampleW + 16 > 0.4f * f.w) return;
+  const float x1 = f.x + f.w - 8, x0 = x1 - width - sampleW - 16, y0 = f.y + 8 + options.keyTop;
   const float rowH = std::max(lh + 2, 16 * s);
   glColor4f(kBackground[0], kBackground[1], kBackground[2], 0.85f);
   quad(x0, y0, x1, y0 + rows.size() * rowH + 8);

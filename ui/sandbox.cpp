@@ -198,7 +198,8 @@ void Sandbox::applyDrag() {
   const Vec2 velocity = s.velocity + s.angularVelocity * Vec2(-r.y(), r.x());
   const double m = world_->scene().bodies[drag.body].mass;
   const double omega = 2 * kPi * drag.hz;
-  Vec2 force = m * (omega * omega * (drag.target - point) - 2 * drag.dampingRatio * omega * velocity);
+  Vec2 force =
+      m * (omega * omega * (drag.target - point) - 2 * drag.dampingRatio * omega * velocity);
   const double limit = dragLimit(drag.body);
   drag.limited = force.norm() > limit;
   if (drag.limited) force *= limit / force.norm();
@@ -311,10 +312,12 @@ Overlay Sandbox::overlay() const {
     const Colour c = drag.limited ? Colour{0.85f, 0.1f, 0.1f, 1} : Colour{0.2f, 0.2f, 0.2f, 1};
     char text[64];
     std::snprintf(text, sizeof text, "%.3g N%s", drag.force.norm(), drag.limited ? " (limit)" : "");
-    o.arrows.push_back({s.position + rotate(drag.grabLocal, s.angle), drag.target,
-                        paused ? "pose" : text, c});
+    o.arrows.push_back(
+        {s.position + rotate(drag.grabLocal, s.angle), drag.target, paused ? "pose" : text, c});
     o.keys.push_back({Overlay::Key::Marker::Arrow,
-                      paused ? "pose (paused)" : drag.limited ? "drag, at its force limit" : "drag",
+                      paused         ? "pose (paused)"
+                      : drag.limited ? "drag, at its force limit"
+                                     : "drag",
                       c});
   }
   controllerOverlay(*this, o);
@@ -386,6 +389,9 @@ RenderOptions Sandbox::renderOptions() const {
   options.freeY = free.y;
   options.freeWidth = free.width;
   options.freeHeight = free.height;
+  for (const PanelRect& p : panels)  // a collapsed side panel's title bar, top right
+    if (p.height < 0.25f * camera.height && p.y <= free.y + 1 && p.x + p.width >= camera.width - 1)
+      options.keyTop = std::max(options.keyTop, p.y + p.height - free.y);
   return options;
 }
 

@@ -107,14 +107,14 @@ class Sandbox {
   const World* world() const { return world_.get(); }
 
   // Scene and settings (edited by the panels).
-  std::string sceneName;  ///< built-in name or file path
-  SceneDef scene;         ///< as loaded (reset rebuilds from it)
+  std::string sceneName;                                   ///< built-in name or file path
+  SceneDef scene;                                          ///< as loaded (reset rebuilds from it)
   std::vector<std::pair<std::string, double>> parameters;  ///< built-in scene's --set values
   bool paused = false;
   int pendingSteps = 0;    ///< single steps requested while paused
   double dt = 1.0 / 60.0;  ///< s
   int substeps = 1;
-  double speed = 1;  ///< simulated seconds per wall second (0.1 .. 4)
+  double speed = 1;               ///< simulated seconds per wall second (0.1 .. 4)
   Vec2 gravity = Vec2(0, -9.81);  ///< m/s^2
   Camera camera;
   bool follow = false;  ///< the camera keeps the selected body at the view centre

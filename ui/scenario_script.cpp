@@ -30,7 +30,8 @@ std::string number(double v) {
 int rigidCableBody(const World& world, int* cable) {
   for (int i = 0; i < world.cableCount(); ++i) {
     if (world.cable(i).elastic()) continue;
-    for (const std::string& name : {world.cable(i).def().end.body, world.cable(i).def().start.body}) {
+    for (const std::string& name :
+         {world.cable(i).def().end.body, world.cable(i).def().start.body}) {
       const int b = world.findBody(name);
       if (b >= 0 && world.scene().bodies[b].type == BodyType::Dynamic) {
         *cable = i;
@@ -61,7 +62,8 @@ ScenarioScript::ScenarioScript(std::string name, Uint32 windowId, std::string ou
 void ScenarioScript::mouse(Uint32 type, const Vec2& screen, Uint8 button) {
   SDL_Event e{};
   e.type = type;
-  const int x = static_cast<int>(std::lround(screen.x())), y = static_cast<int>(std::lround(screen.y()));
+  const int x = static_cast<int>(std::lround(screen.x())),
+            y = static_cast<int>(std::lround(screen.y()));
   if (type == SDL_MOUSEMOTION) {
     e.motion.windowID = windowId_;
     e.motion.x = x, e.motion.y = y;
@@ -124,7 +126,8 @@ bool ScenarioScript::resetScale(Sandbox& sandbox, int frame) {
     }
   } else if (frame > 2 && frame <= 40) {
     mouse(SDL_MOUSEMOTION, from_ + (to_ - from_) * std::min(1.0, (frame - 2) / 20.0));
-    for (int i = 0; i < world.cableCount(); ++i) largest_ = std::max(largest_, world.cable(i).tension());
+    for (int i = 0; i < world.cableCount(); ++i)
+      largest_ = std::max(largest_, world.cable(i).tension());
   } else if (frame == 41) {
     mouse(SDL_MOUSEBUTTONUP, to_);
     figures_[1] = sandbox.tensionScale;
@@ -133,10 +136,11 @@ bool ScenarioScript::resetScale(Sandbox& sandbox, int frame) {
   } else if (frame == 50) {
     figures_[2] = sandbox.tensionScale;
     report_ = "{\"scenario\": \"reset-scale\", \"before\": " + number(figures_[0]) +
-              ", \"after_drag\": " + number(figures_[1]) + ", \"after_reset\": " +
-              number(figures_[2]) + ", \"expected\": " + number(expectedTensionScale(sandbox.scene)) +
-              ", \"largest_tension\": " + number(largest_) + ", \"time_after_reset\": " +
-              number(world.time()) + "}";
+              ", \"after_drag\": " + number(figures_[1]) +
+              ", \"after_reset\": " + number(figures_[2]) +
+              ", \"expected\": " + number(expectedTensionScale(sandbox.scene)) +
+              ", \"largest_tension\": " + number(largest_) +
+              ", \"time_after_reset\": " + number(world.time()) + "}";
     return false;
   }
   return true;
@@ -168,11 +172,12 @@ bool ScenarioScript::rigidDrag(Sandbox& sandbox, int frame) {
     figures_[1] += sandbox.drag.limited ? 1 : 0;
   } else if (frame == 151) {
     mouse(SDL_MOUSEBUTTONUP, to_);
-    report_ = "{\"scenario\": \"rigid-drag\", \"body\": " +
-              quoted(world.scene().bodies[body_].name) + ", \"largest_stretch\": " +
-              number(largest_) + ", \"largest_drag_force\": " + number(figures_[0]) +
-              ", \"drag_limit\": " + number(sandbox.dragLimit(body_)) +
-              ", \"frames_at_limit\": " + number(figures_[1]) + "}";
+    report_ =
+        "{\"scenario\": \"rigid-drag\", \"body\": " + quoted(world.scene().bodies[body_].name) +
+        ", \"largest_stretch\": " + number(largest_) +
+        ", \"largest_drag_force\": " + number(figures_[0]) +
+        ", \"drag_limit\": " + number(sandbox.dragLimit(body_)) +
+        ", \"frames_at_limit\": " + number(figures_[1]) + "}";
     return false;
   }
   return true;
@@ -201,8 +206,8 @@ bool ScenarioScript::dropBox(Sandbox& sandbox, int frame) {
   } else if (frame == 180) {
     report_.pop_back();
     report_ += ", \"state_after\": " + quoted(handGraspState(sandbox)) + ", \"box\": [" +
-               number(world.body(box).position.x()) + ", " +
-               number(world.body(box).position.y()) + "]}";
+               number(world.body(box).position.x()) + ", " + number(world.body(box).position.y()) +
+               "]}";
     return false;
   }
   return true;
@@ -219,12 +224,28 @@ bool ScenarioScript::author(Sandbox& sandbox, int frame) {
     mouse(SDL_MOUSEBUTTONUP, p);
   };
   switch (frame) {
-    case 2: newScene(sandbox); sandbox.paused = true; break;
-    case 5: a.tool = Authoring::Tool::Box; click(0.6, 0.6); break;
-    case 8: a.tool = Authoring::Tool::PointPulley; click(0.6, 0.25); break;
-    case 11: a.tool = Authoring::Tool::Cable; click(0.25, 0.25); break;  // start: world anchor
-    case 13: click(0.6, 0.25); break;                                     // over the pulley
-    case 15: click(0.6, 0.6); break;                                      // end: on the box
+    case 2:
+      newScene(sandbox);
+      sandbox.paused = true;
+      break;
+    case 5:
+      a.tool = Authoring::Tool::Box;
+      click(0.6, 0.6);
+      break;
+    case 8:
+      a.tool = Authoring::Tool::PointPulley;
+      click(0.6, 0.25);
+      break;
+    case 11:
+      a.tool = Authoring::Tool::Cable;
+      click(0.25, 0.25);
+      break;  // start: world anchor
+    case 13:
+      click(0.6, 0.25);
+      break;  // over the pulley
+    case 15:
+      click(0.6, 0.6);
+      break;  // end: on the box
     case 18: {
       a.tool = Authoring::Tool::None;
       std::string error;
@@ -235,13 +256,14 @@ bool ScenarioScript::author(Sandbox& sandbox, int frame) {
       }
       const SceneDef& s = sandbox.scene;
       report_ = "{\"scenario\": \"author\", \"bodies\": " + number(s.bodies.size()) +
-                ", \"cables\": " + number(s.cables.size()) + ", \"pulleys\": " +
-                number(s.cables.empty() ? 0 : s.cables.front().pulleys.size()) +
+                ", \"cables\": " + number(s.cables.size()) +
+                ", \"pulleys\": " + number(s.cables.empty() ? 0 : s.cables.front().pulleys.size()) +
                 ", \"undo\": " + number(a.undo.size()) + ", \"file\": " + quoted(out_) +
                 ", \"error\": " + quoted(error + sandbox.error) + "}";
       return false;
     }
-    default: break;
+    default:
+      break;
   }
   return true;
 }

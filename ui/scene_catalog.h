@@ -1,7 +1,7 @@
 // Scene catalog: the one place the UI reaches the engine's scene registry.
 //
-// Needs: engine/scenes/scene_registry.h (built-in scenes) and engine/model/scene_json.h (scene files).
-// The sandbox menu, `cablelab snapshot` and the golden-image tests all list and load scenes
+// Needs: engine/scenes/scene_registry.h (built-in scenes) and engine/model/scene_json.h (scene
+// files). The sandbox menu, `cablelab snapshot` and the golden-image tests all list and load scenes
 // through these two functions, so they always agree with `cablelab scenes`.
 #pragma once
 

@@ -24,13 +24,14 @@ void parameterSliders(Sandbox& sandbox) {
   bool apply = false;
   auto values = sandbox.parameters;
   for (const SceneParameter& p : params) {
-    auto it = std::find_if(values.begin(), values.end(), [&](auto& v) { return v.first == p.name; });
+    auto it =
+        std::find_if(values.begin(), values.end(), [&](auto& v) { return v.first == p.name; });
     if (it == values.end()) it = values.insert(values.end(), {p.name, p.value});
     float v = static_cast<float>(it->second);
     ImGui::SetNextItemWidth(-ImGui::CalcTextSize("m_ballast_").x);
     const ImGuiSliderFlags flags = p.logarithmic ? ImGuiSliderFlags_Logarithmic : 0;
-    if (ImGui::SliderFloat(p.name.c_str(), &v, static_cast<float>(p.lo),
-                           static_cast<float>(p.hi), "%.4g", flags))
+    if (ImGui::SliderFloat(p.name.c_str(), &v, static_cast<float>(p.lo), static_cast<float>(p.hi),
+                           "%.4g", flags))
       it->second = v;
     apply |= ImGui::IsItemDeactivatedAfterEdit();
     const std::string tip = p.description + "\nDefault " + std::to_string(p.value) +
@@ -55,7 +56,8 @@ void scenePanel(Sandbox& sandbox) {
   ImGui::PopStyleColor();
   // A long description shows its first sentence; the whole text is in the tooltip.
   const std::string& d = sandbox.scene.description;
-  const size_t stop = d.find(": ") != std::string::npos && d.find(": ") < 90 ? d.find(": ") : d.find(". ");
+  const size_t stop =
+      d.find(": ") != std::string::npos && d.find(": ") < 90 ? d.find(": ") : d.find(". ");
   const bool longText = d.size() > 140;
   const std::string shown = longText ? d.substr(0, std::min(stop, size_t{120})) + " ..." : d;
   ImGui::PushTextWrapPos(0);
@@ -116,8 +118,9 @@ void runPanel(Sandbox& sandbox) {
                 sandbox.recordedFrames);
   if (ImGui::Button(label)) sandbox.recordToggleRequested = true;
   if (recording) ImGui::PopStyleColor();
-  tooltip("Record the world view as an animated GIF (F9), one frame per 1/fps s of simulated "
-          "time: it plays at the simulation's own speed. Saved in the working directory.");
+  tooltip(
+      "Record the world view as an animated GIF (F9), one frame per 1/fps s of simulated "
+      "time: it plays at the simulation's own speed. Saved in the working directory.");
   ImGui::SameLine();
   float fps = static_cast<float>(sandbox.recordFps);
   ImGui::SetNextItemWidth(ImGui::GetFontSize() * 3.5f);
@@ -195,9 +198,10 @@ void viewPanel(Sandbox& sandbox) {
   drawToggles(sandbox);
 
   ImGui::Checkbox("lock tension scale", &sandbox.tensionScaleLocked);
-  tooltip("Locked: the colour bar keeps the scene's expected range, so a colour always means "
-          "the same tension. Unlocked: it grows with the largest tension seen. Reset restores "
-          "the scene's range.");
+  tooltip(
+      "Locked: the colour bar keeps the scene's expected range, so a colour always means "
+      "the same tension. Unlocked: it grows with the largest tension seen. Reset restores "
+      "the scene's range.");
   float top = static_cast<float>(sandbox.tensionScale);
   ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
   if (ImGui::DragFloat("scale max (N)", &top, std::max(top * 0.01f, 0.01f), 0.01f, 1e7f, "%.4g"))
@@ -208,8 +212,9 @@ void viewPanel(Sandbox& sandbox) {
   float drag = static_cast<float>(sandbox.dragWeights);
   if (ImGui::SliderFloat("drag limit", &drag, 0.5f, 20.0f, "%.1f weights"))
     sandbox.dragWeights = drag;
-  tooltip("The mouse pulls with at most this many times the body's weight (at least 9.81 "
-          "m/s^2), so a cable can hold against it.");
+  tooltip(
+      "The mouse pulls with at most this many times the body's weight (at least 9.81 "
+      "m/s^2), so a cable can hold against it.");
   ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
   ImGui::SliderFloat("UI scale", &sandbox.uiScale, 0.75f, 3.0f, "%.2f");
   tooltip("Size of the text and the panels.");

@@ -90,9 +90,9 @@ void expectSameLayout(const ui::Image& gui, const ui::Image& offscreen, const st
 TEST(Gui, FramesScreenshotAndLayoutMatchTheOffscreenRenderer) {
   REQUIRE_XVFB();
   const std::string shot = (outputDir("gui") / "hexagon.png").string();
-  const RunResult r = run(
-      kXvfb + kCli + " gui hexagon --size 1280x720 --frames " + std::to_string(kFrames) + " --screenshot " + shot,
-      "gui_frames");
+  const RunResult r = run(kXvfb + kCli + " gui hexagon --size 1280x720 --frames " +
+                              std::to_string(kFrames) + " --screenshot " + shot,
+                          "gui_frames");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.out.find("\"frames\": 60"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"fps\": "), std::string::npos) << r.out;
@@ -113,9 +113,9 @@ TEST(Gui, HandSceneRunsTheControllerWithLivePlots) {
   REQUIRE_XVFB();
   constexpr int kHandFrames = 120;
   const std::string shot = (outputDir("gui") / "hand.png").string();
-  const RunResult r = run(
-      kXvfb + kCli + " gui hand --size 1280x720 --frames " + std::to_string(kHandFrames) + " --screenshot " + shot,
-      "gui_hand");
+  const RunResult r = run(kXvfb + kCli + " gui hand --size 1280x720 --frames " +
+                              std::to_string(kHandFrames) + " --screenshot " + shot,
+                          "gui_hand");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.out.find("\"frames\": 120"), std::string::npos) << r.out;
   const ui::Image gui = ui::readPng(shot);
@@ -157,9 +157,9 @@ TEST(Gui, BadSceneFileShowsTheErrorAndKeepsRunning) {
   const std::string bad = (outputDir("gui") / "bad-scene.json").string();
   std::ofstream(bad) << "{\"bodies\": [ this is not json";
   const std::string shot = (outputDir("gui") / "bad-scene.png").string();
-  const RunResult r =
-      run(kXvfb + kCli + " gui hexagon --size 1280x720 --frames 30 --open " + bad + " --screenshot " + shot,
-          "gui_bad_scene");
+  const RunResult r = run(kXvfb + kCli + " gui hexagon --size 1280x720 --frames 30 --open " + bad +
+                              " --screenshot " + shot,
+                          "gui_bad_scene");
   EXPECT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find(bad), std::string::npos) << "stderr should name the file: " << r.err;
   EXPECT_NE(r.out.find("\"frames\": 30"), std::string::npos) << r.out;
@@ -188,9 +188,9 @@ namespace {
 /// Runs the sandbox's acceptance scenario NAME on SCENE and returns its JSON report.
 nlohmann::json scenario(const std::string& scene, const std::string& name,
                         const std::string& extra = "") {
-  const RunResult r = run(kXvfb + kCli + " gui " + scene + " --size 1280x720 --script " + name +
-                              " " + extra,
-                          "gui_script_" + name);
+  const RunResult r =
+      run(kXvfb + kCli + " gui " + scene + " --size 1280x720 --script " + name + " " + extra,
+          "gui_script_" + name);
   EXPECT_EQ(r.exitCode, 0) << r.err;
   try {
     return nlohmann::json::parse(r.out);
@@ -208,7 +208,8 @@ TEST(GuiAcceptance, EachSceneShowsItsDescription) {
     ASSERT_FALSE(full.empty()) << entry.name << " has no description";
     EXPECT_EQ(j.value("title", ""), entry.name);
     // The panel shows the whole description, or its beginning and " ..." (the rest in a tooltip).
-    const std::string head = shown.size() > 4 && shown.ends_with(" ...") ? shown.substr(0, shown.size() - 4) : shown;
+    const std::string head =
+        shown.size() > 4 && shown.ends_with(" ...") ? shown.substr(0, shown.size() - 4) : shown;
     EXPECT_GE(head.size(), 20u) << entry.name << ": " << shown;
     EXPECT_EQ(full.substr(0, head.size()), head) << entry.name;
   }
@@ -271,8 +272,8 @@ TEST(GuiAcceptance, AuthoredSceneRunsInTheCli) {
 TEST(GuiAcceptance, SmallWindowStillShowsTheWorldView) {
   REQUIRE_XVFB();
   const std::string shot = (outputDir("gui") / "hexagon-640.png").string();
-  const RunResult r = run(kXvfb + kCli + " gui hexagon --size 640x480 --frames 30 --screenshot " + shot,
-                          "gui_small");
+  const RunResult r = run(
+      kXvfb + kCli + " gui hexagon --size 640x480 --frames 30 --screenshot " + shot, "gui_small");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   const double x = j["free"][0], y = j["free"][1], w = j["free"][2], h = j["free"][3];
@@ -280,16 +281,16 @@ TEST(GuiAcceptance, SmallWindowStillShowsTheWorldView) {
   EXPECT_GE(h, 0.7 * 480) << r.out;
   const ui::Image image = ui::readPng(shot);
   ASSERT_EQ(image.width, 640);
-  const auto cells = occupancy(image, static_cast<int>(x), static_cast<int>(y), static_cast<int>(x + w),
-                               static_cast<int>(y + h));
+  const auto cells = occupancy(image, static_cast<int>(x), static_cast<int>(y),
+                               static_cast<int>(x + w), static_cast<int>(y + h));
   EXPECT_GT(std::count(cells.begin(), cells.end(), true), 10) << "no scene drawn in " << shot;
 }
 
 TEST(GuiAcceptance, RecordButtonWritesOneFramePerThirtiethOfASimulatedSecond) {
   REQUIRE_XVFB();
   const std::string gif = (outputDir("gui") / "recorded.gif").string();
-  const RunResult r = run(kXvfb + kCli + " gui hexagon --size 1280x720 --frames 61 --record " + gif,
-                          "gui_record");
+  const RunResult r =
+      run(kXvfb + kCli + " gui hexagon --size 1280x720 --frames 61 --record " + gif, "gui_record");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   const ui::GifAnimation a = ui::readGif(gif);
