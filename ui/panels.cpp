@@ -3,7 +3,6 @@
 #include <imgui.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <string>
@@ -134,109 +133,8 @@ void simulationPanel(Sandbox& sandbox, PanelState& state, float top) {
   ImGui::End();
 }
 
-<<<<<<< HEAD
-void cableInspector(Sandbox& sandbox, World& world) {
-  if (world.cableCount() == 0) {
-    ImGui::TextDisabled("no cables");
-    return;
-  }
-  if (ImGui::BeginListBox("cables", ImVec2(-1, 4.5f * ImGui::GetTextLineHeightWithSpacing()))) {
-    for (int i = 0; i < world.cableCount(); ++i) {
-      const Cable& c = world.cable(i);
-      const std::string label = c.name() + "  " + std::to_string(c.tension()).substr(0, 7) + " N";
-      if (ImGui::Selectable(label.c_str(), i == sandbox.selectedCable)) {
-        sandbox.selectedCable = i;
-        const Cable& s = world.cable(i);
-        sandbox.cableEdit = {s.restLength(), s.stiffness(), s.preload(), s.damping()};
-      }
-    }
-    ImGui::EndListBox();
-  }
-  const int i = std::clamp(sandbox.selectedCable, 0, world.cableCount() - 1);
-  const Cable& cable = world.cable(i);
-  ImGui::Text("%s: %s", cable.name().c_str(), cable.elastic() ? "elastic" : "rigid");
-  ImGui::Text("tension %.4g N %s", cable.tension(), cable.slack() ? "(slack)" : "");
-  // Wheels that grip the cable split it into spans of their own tension.
-  for (int k = 0; k < cable.spanCount() && cable.spanCount() > 1; ++k)
-    ImGui::Text("  span %d: %.4g N%s", k, cable.spanTension(k),
-                k + 1 < cable.spanCount() && cable.link(k).slipped ? "  (slides on the next wheel)"
-                                                                   : "");
-  ImGui::Text("length %.5f m", cable.length());
-  bool changed = false;
-  auto& e = sandbox.cableEdit;
-  ImGui::PushItemWidth(150);
-  changed |= ImGui::InputDouble("rest length (m)", &e.restLength, 0.01, 0.1, "%.4f",
-                                ImGuiInputTextFlags_EnterReturnsTrue);
-  changed |= ImGui::InputDouble("stiffness (N/m)", &e.stiffness, 10, 100, "%.2f",
-                                ImGuiInputTextFlags_EnterReturnsTrue);
-  changed |= ImGui::InputDouble("preload (m)", &e.preload, 0.001, 0.01, "%.4f",
-                                ImGuiInputTextFlags_EnterReturnsTrue);
-  changed |= ImGui::InputDouble("damping (N s/m)", &e.damping, 0.1, 1, "%.3f",
-                                ImGuiInputTextFlags_EnterReturnsTrue);
-  ImGui::PopItemWidth();
-  if (changed) sandbox.applyCableEdit();
-
-  if (i < static_cast<int>(sandbox.tensionHistory.size())) {
-    const auto& h = sandbox.tensionHistory[i];
-    ImGui::PlotLines("##tension", h.data(), static_cast<int>(h.size()), sandbox.historyHead,
-                     "tension (N), last 600 steps", 0.0f, static_cast<float>(sandbox.tensionScale),
-                     ImVec2(ImGui::GetContentRegionAvail().x, 90));
-  }
-  ImGui::Text("wrap points (%d)", cable.wraps());
-  if (ImGui::BeginTable("path", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY,
-                        ImVec2(-1, 8 * ImGui::GetTextLineHeightWithSpacing()))) {
-    ImGui::TableSetupColumn("kind");
-    ImGui::TableSetupColumn("x (m)");
-    ImGui::TableSetupColumn("y (m)");
-    ImGui::TableHeadersRow();
-    for (const WrapPoint& p : cable.path()) {
-      ImGui::TableNextRow();
-      ImGui::TableNextColumn();
-      if (p.kind == WrapPoint::Kind::Anchor)
-        ImGui::TextUnformatted("anchor");
-      else if (p.kind == WrapPoint::Kind::Point)
-        ImGui::Text("pulley %d", p.pulley);
-      else if (p.kind == WrapPoint::Kind::Circle)
-        ImGui::Text("circle %d, %.1f turns", p.pulley, p.arc / (2 * M_PI));
-      else
-        ImGui::Text("pulley %d v%d", p.pulley, p.vertex);
-      ImGui::TableNextColumn();
-      ImGui::Text("%.4f", p.world.x());
-      ImGui::TableNextColumn();
-      ImGui::Text("%.4f", p.world.y());
-    }
-    ImGui::EndTable();
-  }
-}
-
-void inspectorPanel(Sandbox& sandbox, float top) {
-  const float height = sandbox.camera.height - top - kStatusHeight;
-  ImGui::SetNextWindowPos(ImVec2(sandbox.camera.width - kRightWidth, top));
-  ImGui::SetNextWindowSize(ImVec2(kRightWidth, height));
-  ImGui::Begin("Inspector", nullptr, kFixed);
-  record(sandbox);
-  if (World* world = sandbox.world()) {
-    cableInspector(sandbox, *world);
-    const int b = sandbox.selectedBody;
-    if (b >= 0 && b < world->bodyCount()) {
-      section("Body");
-      const BodyState& s = world->body(b);
-      ImGui::Text("%s", world->scene().bodies[b].name.c_str());
-      ImGui::Text("x %.4f  y %.4f  theta %.4f", s.position.x(), s.position.y(), s.angle);
-      ImGui::Text("vx %.3f  vy %.3f  omega %.3f", s.velocity.x(), s.velocity.y(),
-                  s.angularVelocity);
-    }
-    if (!world->warnings().empty()) {
-      section("Engine warnings");
-      const auto& w = world->warnings();
-      for (size_t k = w.size() > 5 ? w.size() - 5 : 0; k < w.size(); ++k)
-        ImGui::TextWrapped("%s", w[k].c_str());
-    }
-  }
-=======
 void inspectorPanel(Sandbox& sandbox, PanelState& state, float top) {
   if (beginSidePanel(sandbox, state, "Inspector", false, top)) inspectorContents(sandbox);
->>>>>>> main
   ImGui::End();
 }
 
