@@ -8,6 +8,7 @@
 #include "app/command.h"
 #include "app/options.h"
 #include "engine/core/error.h"
+#include "engine/core/file_input.h"
 #include "engine/hand/hand_reach.h"
 #ifdef CABLELAB_HAVE_OFFSCREEN
 #include "ui/plot.h"
@@ -54,7 +55,7 @@ void writeReachPng(const std::string& path, const ReachResult& r, int grid, doub
   try {
     ui::writePlotPng(plot, path, 800, 900);
   } catch (const std::exception& e) {
-    throw InputError(path, "--png", e.what());
+    badOption("--png", std::string("cannot write the file: ") + e.what());
   }
 }
 #endif
@@ -79,20 +80,15 @@ const bool registered = registerCommand(
       sub.add_option("--png", o->png, "Draw the sets to this PNG file");
       return [o] {
         if (o->grid < 1 || o->grid > 1000)
-          throw InputError("command line", "--grid",
-                           "must be an integer in [1, 1000] (got " + std::to_string(o->grid) + ")");
+          badOption("--grid", "must be a whole number in [1, 1000]" + gotValue(o->grid));
         if (o->model != "simulation" && o->model != "quasi-static")
-          throw InputError("command line", "--model",
-                           "must be simulation or quasi-static (got " + o->model + ")");
+          badOption("--model", "must be simulation or quasi-static (got " + o->model + ")");
 #ifndef CABLELAB_HAVE_OFFSCREEN
-        if (!o->png.empty())
-          throw InputError("--png", "--png", "this build has no offscreen renderer");
+        if (!o->png.empty()) badOption("--png", "this build has no offscreen renderer");
 #endif
+        requireOutputFile(o->png, "--png");
         std::unique_ptr<std::ofstream> csv;
-        if (!o->csv.empty()) {
-          csv = std::make_unique<std::ofstream>(o->csv);
-          if (!*csv) throw InputError(o->csv, "--csv", "cannot write the file");
-        }
+        if (!o->csv.empty()) csv = std::make_unique<std::ofstream>(openOutputFile(o->csv, "--csv"));
         ReachOptions options;
         options.grid = o->grid;
         options.model = o->model == "simulation" ? ReachModel::Simulation : ReachModel::QuasiStatic;
@@ -111,6 +107,7 @@ const bool registered = registerCommand(
                           int(simulated ? t.simulated : t.quasiStatic), int(t.fingertip));
             *csv << line;
           }
+          finishOutputFile(*csv, o->csv, "--csv");
         }
 #ifdef CABLELAB_HAVE_OFFSCREEN
         if (!o->png.empty()) writeReachPng(o->png, r, o->grid, ratio);

@@ -3,11 +3,12 @@
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "app/command.h"
 #include "app/options.h"
 #include "engine/core/error.h"
+#include "engine/core/file_input.h"
+#include "engine/core/parse.h"
 #include "engine/hand/hand_kinematics.h"
 #include "engine/hand/hand_tracking.h"
 #include "engine/scenes/scene_registry.h"
@@ -17,25 +18,6 @@
 
 namespace cablelab::app {
 namespace {
-
-/// Parses "a,b[,c]" into exactly `count` finite numbers; throws InputError naming `option`.
-std::vector<double> parseNumbers(const std::string& text, int count, const std::string& option) {
-  std::vector<double> values;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    const auto v = parseFiniteNumber(item);
-    if (!v)
-      throw InputError(
-          option, option,
-          "'" + text + "' is not " + std::to_string(count) + " comma-separated numbers");
-    values.push_back(*v);
-  }
-  if (static_cast<int>(values.size()) != count || (!text.empty() && text.back() == ','))
-    throw InputError(option, option,
-                     "'" + text + "' is not " + std::to_string(count) + " comma-separated numbers");
-  return values;
-}
 
 #ifdef CABLELAB_HAVE_OFFSCREEN
 /// Figure 4-5: target (dashed) and the box's x and y against time, for the chosen law and, as a
@@ -80,7 +62,7 @@ void writeTrackPng(const std::string& path, const TrackOptions& options, const T
   try {
     ui::writePlotPng(plot, path);
   } catch (const std::exception& e) {
-    throw InputError(path, "--png", e.what());
+    badOption("--png", std::string("cannot write the file: ") + e.what());
   }
 }
 #endif
@@ -105,42 +87,38 @@ const bool registered = registerCommand(
                    "Add the integral term to the outer loop (removes the steady offset)");
       sub.add_option("--csv", o->csv, "Write t,target_x,target_y,x,y per step to this CSV file");
       sub.add_option("--png", o->png,
-                     "Plot target (dashed) and response (solid; the other law, PD or PID, thin) "
+                     "Plot target (dashed) and response (solid; the other law, PD or PID, pale) "
                      "to this PNG file");
       return [o] {
         TrackOptions options;
         if (!o->target.empty() && !o->ramp.empty())
-          throw InputError("--ramp", "--ramp", "give either --target or --ramp, not both");
+          badOption("--ramp", "give either --target or --ramp, not both");
         if (!o->target.empty()) {
-          const auto v = parseNumbers(o->target, 2, "--target");
+          const auto v = parseNumberList(o->target, 2, kCommandLine, "--target", "X,Y");
           options.target = Vec2(v[0], v[1]);
         }
         if (!o->ramp.empty()) {
-          const auto v = parseNumbers(o->ramp, 3, "--ramp");
-          if (v[2] <= 0) throw InputError("--ramp", "--ramp", "SECONDS must be positive");
+          const auto v = parseNumberList(o->ramp, 3, kCommandLine, "--ramp", "X,Y,SECONDS");
+          if (v[2] <= 0) badOption("--ramp", "SECONDS must be positive" + gotValue(v[2]));
           options.target = Vec2(v[0], v[1]);
           options.rampTime = v[2];
         }
         requireFinite(options.target.norm(), o->ramp.empty() ? "--target" : "--ramp", 0, 100);
         if (!o->start.empty()) {
-          const auto v = parseNumbers(o->start, 2, "--start");
+          const auto v = parseNumberList(o->start, 2, kCommandLine, "--start", "X,Y");
           options.start = Vec2(v[0], v[1]);
           if (!pinchWithinLimits(HandModel{}, *options.start))
-            throw InputError("--start", "--start",
-                             "the fingers cannot pinch the box there (got " + o->start + ")");
+            badOption("--start", "the fingers cannot pinch the box there (got " + o->start + ")");
         }
         requireFinite(o->time, "--time", 0, 1e5);
         options.time = o->time;
         options.pid = o->pid;
 #ifndef CABLELAB_HAVE_OFFSCREEN
-        if (!o->png.empty())
-          throw InputError("--png", "--png", "this build has no offscreen renderer");
+        if (!o->png.empty()) badOption("--png", "this build has no offscreen renderer");
 #endif
+        requireOutputFile(o->png, "--png");
         std::unique_ptr<std::ofstream> csv;
-        if (!o->csv.empty()) {
-          csv = std::make_unique<std::ofstream>(o->csv);
-          if (!*csv) throw InputError(o->csv, "--csv", "cannot write the file");
-        }
+        if (!o->csv.empty()) csv = std::make_unique<std::ofstream>(openOutputFile(o->csv, "--csv"));
 
         const long steps = std::lround(options.time * 60.0);  // the hand scene's dt is 1/60 s
         Progress progress("track", o->png.empty() ? steps : 2 * steps);
@@ -163,6 +141,7 @@ const bool registered = registerCommand(
                           s.target.y(), s.box.x(), s.box.y());
             *csv << line;
           }
+          finishOutputFile(*csv, o->csv, "--csv");
         }
 #ifdef CABLELAB_HAVE_OFFSCREEN
         if (!o->png.empty()) writeTrackPng(o->png, options, r, other);

@@ -1,4 +1,5 @@
-// Length, Jacobian and J-dot-v of a cable path (thesis section 2.3 with the NOTES.md correction).
+// Length, Jacobian and J-dot-v of a cable path (thesis section 2.3 as corrected in
+// docs/model.md#cable-geometry).
 //
 // Segment d = p_{i+1} - p_i, u = d / |d|, w = d'(t):
 //   d|d|/dt     = u . w
@@ -121,12 +122,6 @@ void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodie
   }
   std::sort(k.jacobian.begin(), k.jacobian.end(),
             [](const BodyJacobian& a, const BodyJacobian& b) { return a.body < b.body; });
-}
-
-std::vector<StiffnessBlock> lengthHessianTranslation(std::span<const WrapPoint> path) {
-  std::vector<StiffnessBlock> blocks;
-  appendLengthHessianTranslation(path, blocks);
-  return blocks;
 }
 
 void appendLengthHessianTranslation(std::span<const WrapPoint> path,

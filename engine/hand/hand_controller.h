@@ -1,31 +1,37 @@
 // The statics-based Jacobian controller of thesis section 4.3 (outer loop).
 //
 //   db/dq_u = db/dp_ij * dp_ij/dq_u                 (2 x 6: statics sensitivity x fingertip FK)
-//   dq_u    = J+ (dr - k_p e - k_d de - k_i T sum e)   per outer update (period T),
-//   J+      = W^-1 J^T (J W^-1 J^T + l^2 I)^-1,
-// with e = b - r the manipuland's error from a reference r that moves towards the target
-// (docs/controller.md). Equation (4.4) of the thesis is a joint *rate* from a 2-vector,
-// q_dot = -J+ (k_p' e + k_d b_dot); integrated over one period it is the law above with k_p the
-// share of the error removed per update (dimensionless, k_p' = k_p / T), k_d dimensionless on
-// the error's change over one period, and k_i per update per second (1/s).
+//   dq_u    = A+ (dr - k_p e - k_d de - k_i T sum e_box, gap task)  per outer update (period T),
+//   A+      = W^-1 A^T (A W^-1 A^T + l^2 I)^-1,  A = [db/dq_u; d gap/dq_u]   (4 x 6)
+// Equation (4.4) of the thesis is a joint *rate* from a 2-vector, q_dot = -J+ (k_p' e + k_d b_dot)
+// (docs/model.md#controller); integrated over one period it is a law of this form, k_p the share
+// of the error removed per update (dimensionless, k_p' = k_p / T), k_d dimensionless on the
+// error's change over one period, k_i per update per second (1/s).
 //
 // What keeps the grasp (beyond the thesis):
-//  * The reference r, not the target, is what the box is asked to follow. r moves towards the
-//    target no faster than the membranes can carry the box: moving the box at velocity v against
-//    the table's drag c v (c = box mass x damping) deflects the membranes by c K^-1 v, K the
-//    box's stiffness from the statics Hessian, so |c K^-1 v| <= maxLag bounds the speed along
-//    every direction, and the same lag bounds the acceleration (m K^-1 a). A target jump becomes
-//    a smooth ramp at that speed. r never runs more than `leadLimit` ahead of the box, so a target
-//    outside the reachable set leaves r (and the box) at the boundary.
-//  * The feedforward dr moves the statics equilibrium with r; the feedback only corrects.
-//  * Joints at a limit that the update would push further are taken out of J+ (their weight
-//    zeroed) so the others take over, instead of clipping the update after the fact.
-//  * The integral collects e while the update is not saturated (by the rate limit or by joint
-//    limits), so it winds up neither during the ramp nor against a limit, and removes an offset
-//    of any size where the box can reach.
-//  * The null space turns each paddle back towards face-on (theta_p + theta_d -> 0) and keeps
-//    the paddles' gap at the pinch's: both membranes keep wrapping the box face-on, the
-//    configuration the box-to-point reduction assumes.
+//  * The box follows a reference r, not the target. r moves towards the target no faster than
+//    the membranes can carry the box: at velocity v the box lags by (c K^-1 + tau_s) v, with c
+//    the table's drag (box mass x damping), K the box's stiffness (the statics Hessian) and tau_s
+//    the servos' ramp lag; that lag must stay within `lagShare` of the membranes' room (along
+//    and across the paddles). It speeds up and brakes over twice the box's velocity decay time,
+//    so a target jump becomes a smooth ramp. r waits while the box falls behind the reference
+//    model or the commanded equilibrium behind r (joints at their limits), and brakes to stop
+//    `wrapMargin` before the membranes would stop wrapping the box face-on: a target outside the
+//    reachable set leaves the box at the boundary, still held.
+//  * A reference model (servo lag, then the box's mass, drag and K) says where the box should be;
+//    its own lag is expected, not fed back. k_p acts on the equilibrium of the commanded joints
+//    (plus the servos' static droop) against r while r moves, on the box against the target once
+//    r rests there; k_d on the box's departure from the reference model.
+//  * The feedforward dr moves the statics equilibrium with r.
+//  * Joints at a limit that the update would push further are taken out of A+ (their weight
+//    zeroed) so the others take over.
+//  * The integral collects the box's error only once r rests on the target and the update is
+//    not saturated (by the rate limit or by joint limits): no wind-up during the ramp or against
+//    a limit, and an offset of any size within the reachable set is removed.
+//  * The paddles' gap is held at the pinch's as a task stacked with the box's (so saturated
+//    joints cannot spread the fingers), and the null space turns each paddle back towards face-on
+//    (theta_p + theta_d -> 0): both membranes keep wrapping the box face-on, the configuration
+//    the box-to-point reduction (box_reduction.h) assumes.
 #pragma once
 
 #include <Eigen/Core>
