@@ -50,6 +50,16 @@ void writeReachPng(const std::string& path, const ReachResult& r, int grid, doub
   plot.series.push_back({label, coordinates(r.fingertipPoints, 0),
                          coordinates(r.fingertipPoints, 1), Style::Markers,
                          ui::Colour{0.1f, 0.2f, 0.55f, 1.0f}});
+  if (r.model == ReachModel::Simulation) {
+    // Where the fingertips reach but the simulated hand did not: drawn last, so never hidden.
+    std::vector<Vec2> missed;
+    for (const ReachTarget& t : r.targets)
+      if (t.fingertip && !t.simulated) missed.push_back(t.point);
+    std::snprintf(label, sizeof label, "fingertips, not reached in simulation (%zu)",
+                  missed.size());
+    plot.series.push_back({label, coordinates(missed, 0), coordinates(missed, 1), Style::Markers,
+                           ui::Colour{0.85f, 0.1f, 0.1f, 1.0f}});
+  }
   plot.xRange = std::array<double, 2>{r.lower.x(), r.upper.x()};
   plot.yRange = std::array<double, 2>{r.lower.y(), r.upper.y()};
   try {

@@ -155,7 +155,7 @@ const bool registered = registerCommand(
                                  {"grasp_held", r.graspHeld},
                                  {"losses", r.losses},
                                  {"start", {r.start.x(), r.start.y()}},
-                                 {"box", {r.samples.back().box.x(), r.samples.back().box.y()}},
+                                 {"final_box", {r.samples.back().box.x(), r.samples.back().box.y()}},
                                  {"max_tension", r.maxTension},
                                  {"events", events}}
                       .dump());

@@ -18,7 +18,6 @@
 namespace cablelab::ui {
 namespace {
 
-constexpr double kSqueezeSettle = 0.5;  // s after the closing ramp before the outer loop starts
 constexpr float kTargetRange = 1.0f;    // m, the target sliders' range about the origin
 constexpr Colour kPredictionColour{0.0f, 0.55f, 0.55f, 1.0f};
 constexpr Colour kForceColour{0.1f, 0.3f, 0.85f, 1.0f};
@@ -89,88 +88,54 @@ void timePlot(const char* id, const TimeHistory& h, std::initializer_list<PlotLi
 // ---------------------------------------------------------------------------------------------
 // Hand.
 
-/// The hand's joints, box and membranes in `world`, or nullptr when it is not a hand scene.
+/// The hand's grasp sequence on `world`, or nullptr when it is not a hand scene.
 std::unique_ptr<HandControlState> makeHandState(const World& world) {
   auto h = std::make_unique<HandControlState>();
-  for (int j = 0; j < 6; ++j)
-    if ((h->joints[j] = world.findJoint(kHandJointNames[j])) < 0) return nullptr;
-  h->box = world.findBody(kHandBoxName);
-  for (int f = 0; f < 2; ++f) h->cables[f] = world.findCable(kHandCableNames[f]);
-  if (h->box < 0 || h->cables[0] < 0 || h->cables[1] < 0) return nullptr;
+  const int box = world.findBody(kHandBoxName);
+  const int band = world.findCable(kHandCableNames[0]);
+  if (box < 0 || band < 0) return nullptr;
   // The controller's model must be the scene's: take the parameters `--set` can change.
-  const Cable& band = world.cable(h->cables[0]);
-  h->model.stiffness = band.stiffness();
-  h->model.damping = band.damping();
-  h->model.preload = band.preload();
-  h->model.boxMass = world.scene().bodies[h->box].mass;
-  h->model.boxDamping = world.scene().bodies[h->box].linearDamping;
-  h->open = h->model.openPose();
+  const Cable& membrane = world.cable(band);
+  h->model.stiffness = membrane.stiffness();
+  h->model.damping = membrane.damping();
+  h->model.preload = membrane.preload();
+  h->model.boxMass = world.scene().bodies[box].mass;
+  h->model.boxDamping = world.scene().bodies[box].linearDamping;
+  h->grasp = std::make_unique<HandGrasp>(h->model, h->params);
+  if (!h->grasp->attach(world)) return nullptr;
   return h;
-}
-
-HandJoints jointValues(const World& world, const HandControlState& h) {
-  HandJoints q;
-  for (int j = 0; j < 6; ++j) q[j] = world.joint(h.joints[j]).value;
-  return q;
-}
-
-bool grasped(const World& world, const HandControlState& h) {
-  return world.cable(h.cables[0]).wraps() >= 2 && world.cable(h.cables[1]).wraps() >= 2;
-}
-
-/// Begins the Pinched phase: the scene starts at the pinch pose with the box between the
-/// membranes, so the outer loop may start after the settle time.
-void startPinched(HandControlState& h, double now) {
-  h.phase = HandControlState::Phase::Pinched;
-  h.graspTime = now;
-  h.controlStart = now + kSqueezeSettle;
-  h.nextUpdate = h.controlStart;
-  h.offset.setZero();
-  h.updates = 0;
-  if (h.controller) h.controller->reset();
 }
 
 void handBeforeStep(Sandbox& sandbox, World& world, HandControlState& h) {
   const double t = world.time();
-  // The closing ramp keeps running under the controller's offsets after the grasp, as in
-  // runTracking(), so the squeeze finishes as planned.
-  HandJoints nominal = HandJoints::Zero();
-  if (h.phase != HandControlState::Phase::Pinched)
-    nominal = h.open * std::max(0.0, 1 - (t - h.sequenceStart) / h.closeTime);
-  const bool active = h.enabled && sandbox.target && h.graspTime >= 0 && t >= h.controlStart - 1e-9;
-  const BodyState& box = world.body(h.box);
-  if (active && t >= h.nextUpdate - 1e-9) {
-    h.offset += h.controller->update(jointValues(world, h), box.position, *sandbox.target,
-                                     h.model.clamp(nominal + h.offset));
-    h.prediction = h.controller->lastPrediction();
-    h.predictionTime = t;
-    ++h.updates;
-    // After a pause or a slow frame, skip missed ticks rather than catching up in a burst.
-    h.nextUpdate = std::max(h.nextUpdate + h.params.period, t + 0.5 * h.params.period);
-  } else if (!active && t >= h.predictionTime + h.params.period - 1e-9) {
+  h.grasp->beforeStep(world, h.enabled ? sandbox.target : std::nullopt);
+  if (t >= h.predictionTime + h.params.period - 1e-9) {
     // The statics model's view of the current pose, for the overlay.
-    h.prediction = h.controller->predict(jointValues(world, h), box.position);
+    h.prediction = h.grasp->controller().predict(h.grasp->joints(world),
+                                                 world.body(h.grasp->boxBody()).position);
     h.predictionTime = t;
   }
-  h.commanded = h.model.clamp(nominal + h.offset);
-  h.offset = h.commanded - nominal;  // no wind-up against the limits
-  for (int j = 0; j < 6; ++j) world.setServoTarget(h.joints[j], h.commanded[j]);
 }
 
 void handAfterStep(const Sandbox& sandbox, const World& world, HandControlState& h) {
-  const double t = world.time();
-  if (h.phase == HandControlState::Phase::Closing && h.graspTime < 0 && grasped(world, h)) {
-    h.graspTime = t;
-    h.controlStart = std::max(t, h.sequenceStart + h.closeTime + kSqueezeSettle);
-    h.nextUpdate = h.controlStart;
-    h.phase = HandControlState::Phase::Grasped;
-  }
-  const Vec2 box = world.body(h.box).position;
+  h.grasp->afterStep(world);
+  const Vec2 box = world.body(h.grasp->boxBody()).position;
   const float error = sandbox.target ? static_cast<float>((box - *sandbox.target).norm())
                                      : std::numeric_limits<float>::quiet_NaN();
-  h.history.push(static_cast<float>(t),
-                 {static_cast<float>(world.cable(h.cables[0]).tension()),
-                  static_cast<float>(world.cable(h.cables[1]).tension()), error});
+  h.history.push(static_cast<float>(world.time()),
+                 {static_cast<float>(world.cable(h.grasp->membrane(0)).tension()),
+                  static_cast<float>(world.cable(h.grasp->membrane(1)).tension()), error});
+}
+
+const char* phaseName(HandGrasp::Phase phase) {
+  switch (phase) {
+    case HandGrasp::Phase::Opening: return "opening";
+    case HandGrasp::Phase::Closing: return "closing";
+    case HandGrasp::Phase::Control: return "grasped";
+    case HandGrasp::Phase::Lost: return "box lost";
+    case HandGrasp::Phase::Failed: return "gave up";
+  }
+  return "";
 }
 
 void handPanel(Sandbox& sandbox, HandControlState& h) {
@@ -180,7 +145,8 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
   // Target: sliders and click-to-set (the overlay cross).
   bool hasTarget = sandbox.target.has_value();
   if (ImGui::Checkbox("target", &hasTarget))
-    sandbox.target = hasTarget ? std::optional<Vec2>(world->body(h.box).position) : std::nullopt;
+    sandbox.target =
+        hasTarget ? std::optional<Vec2>(world->body(h.grasp->boxBody()).position) : std::nullopt;
   if (sandbox.target) {
     float xy[2] = {static_cast<float>(sandbox.target->x()),
                    static_cast<float>(sandbox.target->y())};
@@ -214,7 +180,7 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
     h.params.kp = std::clamp(h.params.kp, 0.0, 10.0);
     h.params.kd = std::clamp(h.params.kd, 0.0, 10.0);
     h.ki = std::clamp(h.ki, 0.0, 10.0);
-    h.rebuildController();
+    h.applyGains();
   }
 
   // Grasp sequence.
@@ -228,19 +194,21 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
     return;
   }
   const double t = world->time();
-  const char* phase = h.phase == HandControlState::Phase::Closing   ? "closing"
-                      : h.phase == HandControlState::Phase::Grasped ? "grasped"
-                                                                    : "pinch pose";
-  if (h.graspTime < 0)
+  const HandGrasp& g = *h.grasp;
+  const char* phase = phaseName(g.phase());
+  if (g.graspTime() < 0)
     ImGui::Text("%s, waiting for both membranes", phase);
-  else if (t < h.controlStart)
-    ImGui::Text("%s at %.2f s, control from %.2f s", phase, h.graspTime, h.controlStart);
+  else if (t < g.controlStart())
+    ImGui::Text("%s at %.2f s, control from %.2f s", phase, g.graspTime(), g.controlStart());
   else
-    ImGui::Text("%s; %d updates%s", phase, h.updates,
+    ImGui::Text("%s; %d updates%s", phase, g.updates(),
                 !h.enabled        ? " (loop off)"
                 : !sandbox.target ? " (no target)"
                                   : "");
-  const Vec2 box = world->body(h.box).position;
+  if (g.losses() > 0 && !g.events().empty())
+    ImGui::TextColored(ImVec4(0.8f, 0.3f, 0.1f, 1), "lost %d x; %.2f s: %s", g.losses(),
+                       g.events().back().t, g.events().back().what.c_str());
+  const Vec2 box = world->body(g.boxBody()).position;
   ImGui::Text("box (%.3f, %.3f) m", box.x(), box.y());
   if (sandbox.target) ImGui::Text("error %.4f m", (box - *sandbox.target).norm());
   if (h.prediction.valid)
@@ -340,22 +308,18 @@ void TimeHistory::clear() {
   head = count = 0;
 }
 
-void HandControlState::rebuildController() {
+void HandControlState::applyGains() {
   HandControllerParams p = params;
   p.ki = pid ? ki : 0.0;
-  controller = std::make_unique<HandController>(model, p);
+  grasp->controller().setParams(p);
 }
 
 bool startHandGrasp(Sandbox& sandbox) {
   sandbox.reset();  // a fresh world; controllerOpened() keeps the gains
   HandControlState* h = sandbox.controller ? sandbox.controller->hand.get() : nullptr;
   if (!h || !sandbox.world()) return false;
-  placeHand(*sandbox.world(), h->model, h->open);
-  h->phase = HandControlState::Phase::Closing;
-  h->sequenceStart = sandbox.world()->time();
-  h->graspTime = -1;
-  h->controlStart = std::numeric_limits<double>::infinity();
-  h->commanded = h->open;
+  World& world = *sandbox.world();
+  h->grasp->begin(world, world.body(h->grasp->boxBody()).position);
   if (!sandbox.target) sandbox.target = Vec2::Zero();
   sandbox.paused = false;
   return true;
@@ -373,9 +337,10 @@ void controllerOpened(Sandbox& sandbox) {
         state->hand->pid = old.pid;
         state->hand->ki = old.ki;
       }
-      state->hand->rebuildController();
-      startPinched(*state->hand, world->time());
-      if (!sandbox.target) sandbox.target = world->body(state->hand->box).position;
+      state->hand->applyGains();
+      state->hand->grasp->beginPinched(*world);
+      if (!sandbox.target)
+        sandbox.target = world->body(state->hand->grasp->boxBody()).position;
     } else {
       state->membrane = makeMembraneState(*world);
       if (state->membrane && sandbox.controller && sandbox.controller->membrane)

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "engine/hand/hand_controller.h"
+#include "engine/hand/hand_grasp.h"
 #include "engine/hand/hand_model.h"
 #include "engine/membrane/membrane_model.h"
 #include "engine/dynamics/world.h"
@@ -43,34 +44,22 @@ struct TimeHistory {
   void clear();
 };
 
-/// Live state of the hand controller (per world; gains survive a reset).
+/// Live state of the hand controller (per world; gains survive a reset). The grasp sequence and
+/// the controller are the engine's (engine/hand/hand_grasp.h), the ones `cablelab track` runs.
 struct HandControlState {
-  enum class Phase { Pinched, Closing, Grasped };
   HandModel model;  ///< from the scene's membranes and box
   HandControllerParams params;
   bool enabled = true;     ///< the outer loop runs (once grasped and settled)
   bool pid = false;        ///< use params.ki (else k_i = 0)
   double ki = kHandPidKi;  ///< the integral gain used when `pid` (per update, 1/s)
-  std::unique_ptr<HandController> controller;
-  Phase phase = Phase::Pinched;
-  double sequenceStart = 0;  ///< s, world time the grasp sequence began
-  double closeTime = 1.0;    ///< s, open pose -> pinch pose ramp
-  double graspTime = -1;     ///< s, both membranes wrap the box; -1 not yet
-  double controlStart = 0;   ///< s, the outer loop starts here
-  double nextUpdate = 0;     ///< s, next outer-loop tick
-  int updates = 0;
-  HandJoints open = HandJoints::Zero();
-  HandJoints offset = HandJoints::Zero();  ///< controller's accumulated joint-target change
-  HandJoints commanded = HandJoints::Zero();
-  std::array<int, 6> joints{};  ///< world joint index of each HandJoints entry
-  int box = -1;
-  std::array<int, 2> cables{-1, -1};
-  BoxPrediction prediction;    ///< the statics model at the last outer tick
+  std::unique_ptr<HandGrasp> grasp;
+  BoxPrediction prediction;    ///< the statics model at the measured joints, for the overlay
   double predictionTime = -1;  ///< s
   TimeHistory history{3};      ///< top tension, bottom tension (N), |box - target| (m)
   double lastSample = -1;      ///< s
 
-  void rebuildController();
+  /// The controller's gains from params, pid and ki (its state kept).
+  void applyGains();
 };
 
 /// The membrane scene's view: model force and fitted parameters.
@@ -89,9 +78,10 @@ struct ControllerState {
 /// Sets up the state for the sandbox's current world (after open() or reset()).
 void controllerOpened(Sandbox& sandbox);
 
-/// The hand's grasp sequence, as `cablelab track` runs it: resets the world, swings the fingers
-/// to the open pose and ramps them closed; once both membranes wrap the box (and the squeeze
-/// has settled) the outer loop drives the box to `sandbox.target` (set to (0, 0) if unset).
+/// The hand's grasp sequence (HandGrasp, as `cablelab track` runs it): resets the world, swings
+/// the fingers to the open pose about the box and ramps them closed; once both membranes wrap
+/// the box (and the squeeze has settled) the outer loop drives the box to `sandbox.target` (set
+/// to (0, 0) if unset); a lost box is re-grasped.
 /// False if the current scene is not the hand.
 bool startHandGrasp(Sandbox& sandbox);
 

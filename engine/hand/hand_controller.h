@@ -95,6 +95,8 @@ class HandController {
 
   const HandModel& model() const { return model_; }
   const HandControllerParams& params() const { return params_; }
+  /// New gains from the next update on (the reference, model and integral are kept).
+  void setParams(const HandControllerParams& params) { params_ = params; }
 
   /// The statics problem of the box-to-point reduction at joints q (warm start `guess`): the two
   /// membranes as point cables, fingertips shifted by the box corners they wrap.
