@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
+#include <cmath>
+
 #include "engine/hand/hand_kinematics.h"
 
 namespace cablelab {

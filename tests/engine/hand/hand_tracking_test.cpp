@@ -76,7 +76,9 @@ TEST(HandTracking, NearestPinchIsInsideTheFingertipsReach) {
   for (const Vec2& g : {Vec2(5, 5), Vec2(-3, 0), Vec2(0.5, -4), Vec2(0.1, 0.1)}) {
     const Vec2 p = nearestPinch(m, g);
     EXPECT_TRUE(pinchWithinLimits(m, p)) << g.transpose();
-    if (pinchWithinLimits(m, g)) EXPECT_LT((p - g).norm(), 1e-6);
+    if (pinchWithinLimits(m, g)) {
+      EXPECT_LT((p - g).norm(), 1e-6);
+    }
   }
 }
 
