@@ -86,7 +86,7 @@ def test_bad_world_calls_raise(call):
 
 def test_unknown_scene_lists_the_builtins():
     text = message(cablelab.World.load, "no_such_scene")
-    assert "pulley" in text and text.startswith("no_such_scene: (scene): ")
+    assert "pulley" in text and "no_such_scene" in text
 
 
 def test_bad_scene_parameter_values():
