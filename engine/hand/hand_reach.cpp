@@ -44,8 +44,13 @@ ReachTarget simulateTarget(const HandModel& m, const Vec2& target, const ReachOp
   track.time = o.time;
   track.stop.enabled = true;
   track.stop.tolerance = o.tolerance;
-  const TrackResult r = runTracking(track, m);
   ReachTarget t;
+  TrackResult r;
+  try {
+    r = runTracking(track, m);
+  } catch (const std::exception&) {
+    return t;  // the simulation blew up (SimulationError): not reached, and no crash of the sweep
+  }
   t.error = r.finalError;
   t.graspHeld = r.graspHeld;
   t.simulated = r.graspHeld && r.finalError < o.tolerance;
