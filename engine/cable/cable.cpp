@@ -154,11 +154,12 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
   return true;
 }
 
-void Cable::update(std::span<const BodyState> bodies, std::vector<std::string>* warnings) {
-  placePulleys(bodies);
+void Cable::update(std::span<const BodyState> select, std::span<const BodyState> bodies,
+                   std::vector<std::string>* warnings) {
+  placePulleys(select);
   if (path_.empty()) path_.resize(2);
-  path_.front().world = worldPoint(bodies, startBody_, def_.start.point);
-  path_.back().world = worldPoint(bodies, endBody_, def_.end.point);
+  path_.front().world = worldPoint(select, startBody_, def_.start.point);
+  path_.back().world = worldPoint(select, endBody_, def_.end.point);
 
   // Settle the engaged set: leaves first, then joins, until nothing changes.
   const int count = static_cast<int>(pulleys_.size());

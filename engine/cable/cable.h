@@ -26,6 +26,7 @@
 //  does work T times that jump. It is second order in the step (tests bound it).
 #pragma once
 
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -93,6 +94,14 @@ CableKinematics cableKinematics(std::span<WrapPoint> path, std::span<const BodyS
 void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodies,
                      CableKinematics& k);
 
+/// A wrap change inside a sub-step (docs/cables.md, "Events").
+struct WrapEvent {
+  enum class Kind { Join, Leave, Vertex };
+  double time = 0;  ///< s into the sub-step
+  int pulley = -1;  ///< index into CableDef::pulleys
+  Kind kind = Kind::Join;
+};
+
 class Cable {
  public:
   /// `scene` resolves body names and polygon shapes; throws InputError on bad references.
@@ -100,7 +109,17 @@ class Cable {
 
   /// Re-selects the wrap points (guards above), then recomputes length, J and J-dot-v.
   /// Appends a line to `warnings` when a guard had to repair the geometry.
-  void update(std::span<const BodyState> bodies, std::vector<std::string>* warnings = nullptr);
+  void update(std::span<const BodyState> bodies, std::vector<std::string>* warnings = nullptr) {
+    update(bodies, bodies, warnings);
+  }
+  /// The same with the wrap points selected on `select` (the bodies a moment later, so that a
+  /// point exactly on a segment and moving onto its wrap side counts as crossed) and length, J and
+  /// J-dot-v worked out on `bodies`.
+  void update(std::span<const BodyState> select, std::span<const BodyState> bodies,
+              std::vector<std::string>* warnings);
+  /// The first wrap change in (0, h] if every body moves as `motion` says over the sub-step
+  /// (start pose, and the velocity it moves with); nullopt if none.
+  std::optional<WrapEvent> nextEvent(std::span<const BodyState> motion, double h) const;
 
   const CableDef& def() const { return def_; }
   const std::string& name() const { return def_.name; }
