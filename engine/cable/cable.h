@@ -94,6 +94,13 @@ CableKinematics cableKinematics(std::span<WrapPoint> path, std::span<const BodyS
 void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodies,
                      CableKinematics& k);
 
+/// The discrete gradient of a path's length between two states (docs/cables.md, "Energy"):
+/// a row G with G (q1 - q0) = length(q1) - length(q0) exactly, which tends to J as q1 -> q0.
+/// Each segment contributes along (d0 + d1) / (|d0| + |d1|); a turn dtheta of a body moves its
+/// point by sinc(dtheta / 2) dtheta perp(r_mid). `path`'s world points are left at q1.
+void lengthDiscreteGradient(std::span<WrapPoint> path, std::span<const BodyState> q0,
+                            std::span<const BodyState> q1, std::vector<BodyJacobian>& gradient);
+
 /// A wrap change inside a sub-step (docs/cables.md, "Events").
 struct WrapEvent {
   enum class Kind { Join, Leave, Vertex };
