@@ -96,10 +96,10 @@ std::unique_ptr<HandControlState> makeHandState(const World& world) {
   for (int f = 0; f < 2; ++f) h->cables[f] = world.findCable(kHandCableNames[f]);
   if (h->box < 0 || h->cables[0] < 0 || h->cables[1] < 0) return nullptr;
   // The controller's model must be the scene's: take the parameters `--set` can change.
-  const CableDef& band = world.cable(h->cables[0]).def();
-  h->model.stiffness = band.stiffness;
-  h->model.damping = band.damping;
-  h->model.preload = band.preload;
+  const Cable& band = world.cable(h->cables[0]);
+  h->model.stiffness = band.stiffness();
+  h->model.damping = band.damping();
+  h->model.preload = band.preload();
   h->model.boxMass = world.scene().bodies[h->box].mass;
   h->model.boxDamping = world.scene().bodies[h->box].linearDamping;
   h->open = h->model.openPose();
@@ -289,9 +289,9 @@ MembraneNow membraneNow(const World& world, const MembraneViewState& m) {
   n.p = finger.position + rotate(def.pulleys[0].point, finger.angle);
   // The engine's tension is k (length - L + preload); the model's is k (stretch + preload) with
   // stretch measured from |AB|: the same when the rest length differs from |AB| by this much.
-  n.params.k = def.stiffness;
-  n.params.preload = def.preload + (n.g.b - n.g.a).norm() - cable.restLength();
-  n.valid = def.stiffness > 0 && (n.p - n.g.a).norm() > 1e-9 && (n.p - n.g.b).norm() > 1e-9;
+  n.params.k = cable.stiffness();
+  n.params.preload = cable.preload() + (n.g.b - n.g.a).norm() - cable.restLength();
+  n.valid = cable.stiffness() > 0 && (n.p - n.g.a).norm() > 1e-9 && (n.p - n.g.b).norm() > 1e-9;
   if (n.valid) n.force = membraneForce(n.g, n.params, n.p);
   return n;
 }
@@ -301,7 +301,7 @@ void membranePanel(Sandbox& sandbox, MembraneViewState& m) {
   const MembraneNow n = membraneNow(*world, m);
   ImGui::TextUnformatted("Membrane model (thesis ch. 3)");
   const Cable& band = world->cable(m.band);
-  ImGui::Text("k %.4g N/m, preload %.4g m", band.def().stiffness, band.def().preload);
+  ImGui::Text("k %.4g N/m, preload %.4g m", band.stiffness(), band.preload());
   if (n.valid) {
     ImGui::Text("model F = (%.3f, %.3f) N", n.force.x(), n.force.y());
     ImGui::Text("model T %.4g N, engine T %.4g N", membraneTension(n.g, n.params, n.p),
@@ -444,7 +444,7 @@ bool loadFitIntoBand(Sandbox& sandbox, const std::string& path, std::string& mes
     // The fit's preload is the straight band's stretch beyond rest: rest length = |AB|.
     sandbox.selectedCable = m->band;
     sandbox.cableEdit = {(n.g.b - n.g.a).norm(), fitted.k, fitted.preload,
-                         sandbox.world()->cable(m->band).def().damping};
+                         sandbox.world()->cable(m->band).damping()};
     if (!sandbox.applyCableEdit()) throw std::runtime_error(sandbox.error);
     char text[160];
     std::snprintf(text, sizeof text, "loaded k = %.4g N/m, preload = %.4g m (rest length |AB|)",

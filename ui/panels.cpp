@@ -105,7 +105,7 @@ void cableInspector(Sandbox& sandbox, World& world) {
       if (ImGui::Selectable(label.c_str(), i == sandbox.selectedCable)) {
         sandbox.selectedCable = i;
         const Cable& s = world.cable(i);
-        sandbox.cableEdit = {s.restLength(), s.def().stiffness, s.def().preload, s.def().damping};
+        sandbox.cableEdit = {s.restLength(), s.stiffness(), s.preload(), s.damping()};
       }
     }
     ImGui::EndListBox();

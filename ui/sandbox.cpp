@@ -139,7 +139,7 @@ void Sandbox::resize(int width, int height) {
 void Sandbox::loadCableEdit() {
   if (!world_ || selectedCable < 0 || selectedCable >= world_->cableCount()) return;
   const Cable& c = world_->cable(selectedCable);
-  cableEdit = {c.restLength(), c.def().stiffness, c.def().preload, c.def().damping};
+  cableEdit = {c.restLength(), c.stiffness(), c.preload(), c.damping()};
 }
 
 bool Sandbox::applyCableEdit() {

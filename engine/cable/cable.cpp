@@ -18,16 +18,17 @@ std::string cableField(int index, const std::string& rest) {
 }  // namespace
 
 Cable::Cable(const SceneDef& scene, int index, const std::string& source)
-    : def_(scene.cables[index]) {
+    : def_(&scene.cables[index]),
+      params_{def_->restLength, def_->stiffness, def_->preload, def_->damping} {
   auto resolve = [&](const std::string& name, const std::string& field) {
     const int b = findBodyIndex(scene, name);
     if (b == -2) throw InputError(source, cableField(index, field), "unknown body '" + name + "'");
     return b;
   };
-  startBody_ = resolve(def_.start.body, ".start.body");
-  endBody_ = resolve(def_.end.body, ".end.body");
-  for (size_t j = 0; j < def_.pulleys.size(); ++j) {
-    const PulleyDef& pd = def_.pulleys[j];
+  startBody_ = resolve(def_->start.body, ".start.body");
+  endBody_ = resolve(def_->end.body, ".end.body");
+  for (size_t j = 0; j < def_->pulleys.size(); ++j) {
+    const PulleyDef& pd = def_->pulleys[j];
     const std::string field = ".pulleys[" + std::to_string(j) + "]";
     PulleyState ps;
     ps.body = resolve(pd.body, field + ".body");
@@ -56,15 +57,8 @@ Cable::Cable(const SceneDef& scene, int index, const std::string& source)
   }
 }
 
-void Cable::setParameters(double restLength, double stiffness, double preload, double damping) {
-  def_.restLength = restLength;
-  def_.stiffness = stiffness;
-  def_.preload = preload;
-  def_.damping = damping;
-}
-
 double Cable::stretch() const {
-  return kin_.length - def_.restLength + (elastic() ? def_.preload : 0.0);
+  return kin_.length - params_.restLength + (elastic() ? params_.preload : 0.0);
 }
 
 void Cable::placePulleys(std::span<const BodyState> bodies) {
@@ -129,15 +123,15 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
       if (!wrapChain(a, b, p.world, p.side, chains[nodes[n] - 1])) {
         p.engaged = false;
         if (warnings)
-          warnings->push_back("cable '" + def_.name + "': pulley " + std::to_string(nodes[n] - 1) +
+          warnings->push_back("cable '" + def_->name + "': pulley " + std::to_string(nodes[n] - 1) +
                               " left the path: a neighbouring point lies inside its hull");
         return false;
       }
     }
 
-  WrapPoint start{WrapPoint::Kind::Anchor, startBody_, def_.start.point,
+  WrapPoint start{WrapPoint::Kind::Anchor, startBody_, def_->start.point,
                   path_.front().world,     -1,         -1};
-  WrapPoint end{WrapPoint::Kind::Anchor, endBody_, def_.end.point, path_.back().world, -1, -1};
+  WrapPoint end{WrapPoint::Kind::Anchor, endBody_, def_->end.point, path_.back().world, -1, -1};
   path_.clear();
   path_.push_back(start);
   for (size_t n = 1; n + 1 < nodes.size(); ++n) {
@@ -158,8 +152,8 @@ void Cable::update(std::span<const BodyState> select, std::span<const BodyState>
                    std::vector<std::string>* warnings) {
   placePulleys(select);
   if (path_.empty()) path_.resize(2);
-  path_.front().world = worldPoint(select, startBody_, def_.start.point);
-  path_.back().world = worldPoint(select, endBody_, def_.end.point);
+  path_.front().world = worldPoint(select, startBody_, def_->start.point);
+  path_.back().world = worldPoint(select, endBody_, def_->end.point);
 
   // Settle the engaged set: leaves first, then joins, until nothing changes.
   const int count = static_cast<int>(pulleys_.size());
@@ -224,10 +218,10 @@ void Cable::update(std::span<const BodyState> select, std::span<const BodyState>
 
   cableKinematics(path_, bodies, kin_);
   if (warnings && kin_.zeroLengthSegments > 0 && !reportedZeroLength_)
-    warnings->push_back("cable '" + def_.name + "': " + std::to_string(kin_.zeroLengthSegments) +
+    warnings->push_back("cable '" + def_->name + "': " + std::to_string(kin_.zeroLengthSegments) +
                         " zero-length segment(s) (coincident points) left out of the Jacobian");
   reportedZeroLength_ = kin_.zeroLengthSegments > 0;
-  if (firstUpdate_ && def_.restLength < 0) def_.restLength = kin_.length;
+  if (firstUpdate_ && params_.restLength < 0) params_.restLength = kin_.length;
   firstUpdate_ = false;
 }
 

@@ -77,11 +77,10 @@ struct StiffnessBlock {
   Eigen::Matrix2d k;
 };
 
-/// The translational Hessian of the length of a path (world points already set): tension times
-/// this is the cable's geometric stiffness, which a stiff membrane on a light body needs
-/// implicitly. Rotations are left out. Blocks of world-fixed points are skipped.
-std::vector<StiffnessBlock> lengthHessianTranslation(std::span<const WrapPoint> path);
-/// The same, appended to `blocks` (no allocation once it has the capacity).
+/// The translational Hessian of the length of a path (world points already set), appended to
+/// `blocks` (no allocation once it has the capacity): tension times this is the cable's
+/// geometric stiffness, which a stiff membrane on a light body needs implicitly. Rotations are
+/// left out. Blocks of world-fixed points are skipped.
 void appendLengthHessianTranslation(std::span<const WrapPoint> path,
                                     std::vector<StiffnessBlock>& blocks);
 
@@ -109,9 +108,19 @@ struct WrapEvent {
   Kind kind = Kind::Join;
 };
 
+/// A cable's parameters as they are now: the scene's values until World::setCableParameters
+/// edits them (the scene itself is never edited).
+struct CableParameters {
+  double restLength = -1.0;  ///< m; < 0 until the first update measures the initial length
+  double stiffness = 0.0;    ///< N/m; 0 = rigid
+  double preload = 0.0;      ///< m
+  double damping = 0.0;      ///< N s/m
+};
+
 class Cable {
  public:
   /// `scene` resolves body names and polygon shapes; throws InputError on bad references.
+  /// The cable refers to scene.cables[index], which must outlive it (the World owns both).
   Cable(const SceneDef& scene, int index, const std::string& source);
 
   /// Re-selects the wrap points (guards above), then recomputes length, J and J-dot-v.
@@ -128,16 +137,21 @@ class Cable {
   /// (start pose, and the velocity it moves with); nullopt if none.
   std::optional<WrapEvent> nextEvent(std::span<const BodyState> motion, double h) const;
 
-  const CableDef& def() const { return def_; }
-  const std::string& name() const { return def_.name; }
+  /// The authored definition (geometry and initial parameters); parameters() has the live ones.
+  const CableDef& def() const { return *def_; }
+  const std::string& name() const { return def_->name; }
   /// Recomputes length, J and J-dot-v for the current wrap points (no re-selection).
   void refresh(std::span<const BodyState> bodies) { cableKinematics(path_, bodies, kin_); }
 
   const std::vector<WrapPoint>& path() const { return path_; }
   const CableKinematics& kinematics() const { return kin_; }
   double length() const { return kin_.length; }
-  double restLength() const { return def_.restLength; }
-  bool elastic() const { return def_.stiffness > 0; }
+  const CableParameters& parameters() const { return params_; }
+  double restLength() const { return params_.restLength; }
+  double stiffness() const { return params_.stiffness; }
+  double preload() const { return params_.preload; }
+  double damping() const { return params_.damping; }
+  bool elastic() const { return params_.stiffness > 0; }
   /// Pulley wrap points in use (path points that are not anchors).
   int wraps() const { return static_cast<int>(path_.size()) - 2; }
   bool engaged(int pulley) const { return pulleys_[pulley].engaged; }
@@ -149,7 +163,7 @@ class Cable {
   bool slack() const { return tension_ <= 0; }
   void setTension(double t) { tension_ = t; }
   /// Live parameter edits (validated by the World).
-  void setParameters(double restLength, double stiffness, double preload, double damping);
+  void setParameters(const CableParameters& parameters) { params_ = parameters; }
 
  private:
   struct PulleyState {
@@ -166,7 +180,8 @@ class Cable {
   Vec2 entryPoint(int node, const std::vector<std::vector<int>>& chains) const;
   Vec2 exitPoint(int node, const std::vector<std::vector<int>>& chains) const;
 
-  CableDef def_;
+  const CableDef* def_;     ///< the scene's, never edited
+  CableParameters params_;  ///< live values
   int startBody_, endBody_;
   std::vector<PulleyState> pulleys_;
   std::vector<WrapPoint> path_;

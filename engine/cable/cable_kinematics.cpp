@@ -123,12 +123,6 @@ void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodie
             [](const BodyJacobian& a, const BodyJacobian& b) { return a.body < b.body; });
 }
 
-std::vector<StiffnessBlock> lengthHessianTranslation(std::span<const WrapPoint> path) {
-  std::vector<StiffnessBlock> blocks;
-  appendLengthHessianTranslation(path, blocks);
-  return blocks;
-}
-
 void appendLengthHessianTranslation(std::span<const WrapPoint> path,
                                     std::vector<StiffnessBlock>& blocks) {
   for (size_t i = 0; i + 1 < path.size(); ++i) {

@@ -35,14 +35,21 @@ SpringSecant springSecant(double k, double phi0, double phi1) {
   return {tension, 0.5 * k * (dv1 * d - (v1 - v0)) / (d * d)};
 }
 
-// The axial mode of an elastic cable (rad/s): sqrt(k J M^-1 J^T).
+// The fastest the axial mode of an elastic cable can get on its current path (rad/s):
+// sqrt(k J M^-1 J^T) with J at its largest, each segment adding a unit vector (and its lever
+// arm) at both ends. Bounded rather than taken at J now, since J of a point that just joined is
+// zero (theorem 1) and grows within steps.
 double elasticMode(const Cable& c, std::span<const BodyState> bodies) {
-  double jmj = 0;
-  for (const auto& e : c.kinematics().jacobian) {
-    const BodyState& b = bodies[e.body];
-    jmj += b.invMass * e.d.head<2>().squaredNorm() + b.invInertia * e.d.z() * e.d.z();
+  double bound = 0;
+  const auto& path = c.path();
+  for (size_t i = 0; i < path.size(); ++i) {
+    const int body = path[i].body;
+    if (body < 0) continue;
+    const double segments = (i > 0) + (i + 1 < path.size());
+    const BodyState& b = bodies[body];
+    bound += (b.invMass + b.invInertia * path[i].local.squaredNorm()) * segments * segments;
   }
-  return std::sqrt(c.def().stiffness * jmj);
+  return std::sqrt(c.parameters().stiffness * bound);
 }
 
 // The rigid-cable length target at the end of the step (as in the main solve).
@@ -98,6 +105,23 @@ void MidpointSolver::evaluate(std::span<const BodyState> bodies, std::span<const
       length1 += (path_[i + 1].world - path_[i].world).norm();
     phi1_[r] = phi0_[r] + length1 - c.length();
   }
+}
+
+double MidpointSolver::transverseMode(std::span<const BodyState> bodies,
+                                      std::span<const Cable> cables) const {
+  double fastest = 0;
+  for (int row : rows_) {
+    const Cable& c = cables[row];
+    const auto& path = c.path();
+    double invMass = 0, curvature = 0;
+    for (size_t i = 0; i < path.size(); ++i) {
+      if (path[i].body >= 0) invMass = std::max(invMass, bodies[path[i].body].invMass);
+      if (i + 1 < path.size())
+        curvature += 1.0 / std::max((path[i + 1].world - path[i].world).norm(), 1e-9);
+    }
+    fastest = std::max(fastest, std::sqrt(c.tension() * curvature * invMass));
+  }
+  return fastest;
 }
 
 int MidpointSolver::solve(std::span<const BodyState> bodies, std::span<Cable> cables,
@@ -162,24 +186,48 @@ bool MidpointSolver::buildRows(std::span<const BodyState> bodies, std::span<Cabl
   return true;
 }
 
-// A = M + h/4 sum_r P_r H_r: the discrete gradient turns with q1 at half J's rate (H: the
-// length's translational Hessian at the midpoint pose; rotations are left out).
+// A = M + h/4 sum_r P_r H_r: the discrete gradient turns with q1 at half J's rate. H_r is the
+// length's Hessian in (x, y, theta) at the midpoint pose: per segment B_i^T (I - u u^T) / |d| B_j
+// with B = [I | perp(r)] of each end, and u . (-r) on a turning end's theta-theta entry.
 void MidpointSolver::buildIterationMatrix(std::span<const Cable> cables, double h) {
   const int n = static_cast<int>(invM_.size());
   A_.setZero(n, n);
   for (int d = 0; d < n; ++d) A_(d, d) = invM_[d] > 0 ? 1.0 / invM_[d] : 1.0;
   for (size_t r = 0; r < rows_.size(); ++r) {
     if (P_[r] <= 0) continue;
-    blocks_.clear();
+    const double scale = 0.25 * h * P_[r];
     path_.assign(cables[rows_[r]].path().begin(), cables[rows_[r]].path().end());
     for (WrapPoint& w : path_) w.world = worldPoint(midpoint_, w.body, w.local);
-    appendLengthHessianTranslation(path_, blocks_);
-    for (const StiffnessBlock& blk : blocks_) {
-      const int da = dofOfBody_[blk.a], db = dofOfBody_[blk.b];
-      if (da < 0 || db < 0 || invM_[da] == 0 || invM_[db] == 0) continue;
-      A_.block<2, 2>(da, db) += 0.25 * h * P_[r] * blk.k;
+    for (size_t i = 0; i + 1 < path_.size(); ++i) {
+      const WrapPoint* ends[2] = {&path_[i], &path_[i + 1]};
+      if (ends[0]->body == ends[1]->body) continue;
+      const Vec2 d = ends[1]->world - ends[0]->world;
+      const double len = d.norm();
+      if (len < 1e-12) continue;
+      const Vec2 u = d / len;
+      const Eigen::Matrix2d hs = (Eigen::Matrix2d::Identity() - u * u.transpose()) / len;
+      Eigen::Matrix<double, 2, 3> B[2];
+      int dof[2];
+      for (int e = 0; e < 2; ++e) {
+        const int body = ends[e]->body;
+        dof[e] = body >= 0 ? dofOfBody_[body] : -1;
+        const Vec2 arm = body >= 0 ? Vec2(ends[e]->world - midpoint_[body].position) : Vec2::Zero();
+        B[e] << 1, 0, perp(arm).x(), 0, 1, perp(arm).y();
+        if (e == 0) B[e] = -B[e];
+        if (dof[e] >= 0) A_(dof[e] + 2, dof[e] + 2) += scale * (e == 0 ? 1 : -1) * u.dot(arm);
+      }
+      for (int e = 0; e < 2; ++e)
+        for (int f = 0; f < 2; ++f)
+          if (dof[e] >= 0 && dof[f] >= 0)
+            A_.block<3, 3>(dof[e], dof[f]) += scale * B[e].transpose() * hs * B[f];
     }
   }
+  for (int d = 0; d < n; ++d)
+    if (invM_[d] == 0) {
+      A_.row(d).setZero();
+      A_.col(d).setZero();
+      A_(d, d) = 1;
+    }
   ldlt_.compute(A_);
 }
 
@@ -211,7 +259,7 @@ bool MidpointSolver::newtonStep(std::span<const BodyState> bodies, std::span<con
       continue;
     }
     // P / h = the secant tension (+ damping) at the new phi1, linearised.
-    const double k = c.def().stiffness, damp = c.def().damping;
+    const double k = c.parameters().stiffness, damp = c.parameters().damping;
     const SpringSecant sec = springSecant(k, phi0_[r], phi1_[r]);
     const double tension = sec.tension + damp * (phi1_[r] - phi0_[r]) / h;
     const double slope = std::max(sec.slope + damp / h, 1e-12 * (k + damp / h));

@@ -52,6 +52,10 @@ class MidpointSolver {
   int solve(std::span<const BodyState> bodies, std::span<Cable> cables, const Vec2& gravity,
             double h, std::span<Vec3> forces, std::span<Vec3> kicks);
 
+  /// The fastest transverse mode of the last solve's cables (rad/s), from their tensions and
+  /// segment curvatures over the lightest body they move: sqrt(T sum(1 / |d|) / m).
+  double transverseMode(std::span<const BodyState> bodies, std::span<const Cable> cables) const;
+
  private:
   bool buildRows(std::span<const BodyState> bodies, std::span<Cable> cables, const Vec2& gravity,
                  double h, std::span<const Vec3> forces);
@@ -68,7 +72,6 @@ class MidpointSolver {
   Eigen::VectorXd residual_, AinvR_, GAinvR_, dP_, dv_;
   Eigen::MatrixXd A_, Gt_, AinvGt_, K_;
   Eigen::LDLT<Eigen::MatrixXd> ldlt_;
-  std::vector<StiffnessBlock> blocks_;
   std::vector<BodyState> predicted_, midpoint_;
   std::vector<WrapPoint> path_;
   std::vector<BodyJacobian> gradient_;

@@ -1,7 +1,7 @@
 // World: Box2D's rigid bodies, joints and contacts, plus cablelab's cables and membranes.
 //
-// Coupling (why it is done this way): Box2D 2.4 has no custom-joint API, so cables act through
-// forces applied before each Box2D sub-step. Knowing that Box2D then integrates
+// Coupling (why it is done this way, docs/model.md): Box2D 2.4 has no custom-joint API, so cables
+// act through forces applied before each Box2D sub-step. Knowing that Box2D then integrates
 // v1 = v0 + h M^-1 F and q1 = q0 + h v1, the force is chosen so that the cable lengths at the END
 // of the sub-step are right (a SHAKE-like position-level condition, solved by Newton on the
 // end-of-step geometry): this keeps rigid cables at length without drift or a projection pass,
@@ -12,6 +12,10 @@
 // stiffness implicitly, which keeps k = 1e4 N/m on 0.01 kg stable at 60 Hz. Box2D then keeps
 // contacts, friction and joints (their impulses act after ours; any length error they leave is
 // corrected at the next sub-step). See step().
+//
+// Model and state: the SceneDef is fixed once the World is built (scene()). What changes while
+// it runs lives in the World: bodies (in Box2D), cable parameters (Cable::parameters()), gravity
+// and servo targets.
 #pragma once
 
 #include <array>
@@ -26,6 +30,11 @@
 #include "engine/model/scene.h"
 
 namespace cablelab {
+
+class Box2DBridge;
+class CableSolver;
+class MidpointSolver;
+struct JointFrame;
 
 /// Per-joint state read back from Box2D.
 struct JointState {
@@ -45,6 +54,10 @@ struct StepStats {
   int solverIterations = 0;        ///< LCP active-set iterations, summed over sub-steps
   double residual = 0;             ///< largest complementarity residual of the tension solve
   int linearisationFallbacks = 0;  ///< cable rows solved on the start-of-step Jacobian (guard)
+  int events = 0;                  ///< Box2D steps cut short at a wrap event
+  int midpointSolves = 0;          ///< cable solves by the energy-consistent midpoint rule
+  int midpointFallbacks = 0;       ///< of those tried, not converged (the main solve was used)
+  int refinements = 0;             ///< Box2D steps shortened to resolve a fast catch
 };
 
 class World {
@@ -84,6 +97,7 @@ class World {
   const Cable& cable(int i) const { return cables_[i]; }
   int findCable(std::string_view name) const;  ///< -1 if unknown
   /// Live edits of rest length, stiffness, preload, damping (validated; throws InputError).
+  /// The scene keeps the authored values; cable(i).parameters() has the live ones.
   void setCableParameters(int i, double restLength, double stiffness, double preload,
                           double damping);
 
@@ -94,7 +108,7 @@ class World {
   void setServoTarget(int i, double target);
 
   void setGravity(const Vec2& g);
-  Vec2 gravity() const { return scene_.gravity; }
+  Vec2 gravity() const { return gravity_; }
 
   /// Kinetic + gravitational + elastic (membrane) energy (J).
   double energy() const;
@@ -103,26 +117,32 @@ class World {
   const std::vector<std::string>& warnings() const { return warnings_; }
 
  private:
-  struct Box2D;  // hides every Box2D type from this header
-  struct DofMap;
-  struct CableWorkspace;  // solveCableForces' buffers, reused so the sub-step does not allocate
-  void readBodies();
   void applyServos();
-  void solveCableForces(double h);
-  void jointJacobian(CableWorkspace& ws) const;
-  void inverseMassOf(CableWorkspace& ws) const;
   void checkFinite() const;
+  void selectWraps(double h);
+  void predictMotion(double dt);
+  void solveForces(double dt);
+  double advance(double left, double h, bool locate);
 
-  SceneDef scene_;
-  std::unique_ptr<Box2D> b2_;
-  std::vector<BodyState> bodies_;
+  const SceneDef scene_;                         ///< the model: never edited after construction
+  std::unique_ptr<Box2DBridge> b2_;              ///< bodies, joints, contacts
+  std::unique_ptr<CableSolver> solver_;          ///< tensions, one solve per sub-step
+  std::unique_ptr<MidpointSolver> midpoint_;     ///< the energy-consistent solve, where it applies
+  std::vector<BodyState> motion_;    ///< look-ahead or predicted body states (wrap events)
+  std::vector<char> excluded_;       ///< bodies the midpoint solve leaves alone (joints, contacts)
+  std::vector<Vec3> kicks_;          ///< velocity added after Box2D's step (midpoint solve)
+  bool midpointUsed_ = false;        ///< the last solveForces() was a midpoint one
+  std::vector<BodyState> bodies_;                ///< read back from Box2D
   std::vector<Vec3> forces_;         ///< (fx, fy, torque) per body for the current sub-step
   std::vector<Vec3> pendingForces_;  ///< applyForce() loads for the next step
   std::vector<Cable> cables_;
   std::vector<std::string> warnings_;
   std::vector<std::vector<int>> jointNeighbours_;  ///< bodies jointed to each body
   std::vector<std::array<int, 2>> jointBodies_;    ///< (body A, body B) per joint, -1: world
-  std::unique_ptr<CableWorkspace> work_;
+  std::vector<JointFrame> jointFrames_;            ///< the joints as the solver sees them
+  // State the user edits while the world runs (the scene keeps the authored values).
+  Vec2 gravity_ = Vec2::Zero();
+  std::vector<double> servoTargets_;  ///< per joint (rad or m)
   StepStats stats_;
   double time_ = 0;
   long steps_ = 0;

@@ -63,17 +63,6 @@ FingertipJacobian fingertipJacobian(const HandModel& m, const HandJoints& q) {
   return J;
 }
 
-FingertipPoints reduceToPoint(const HandModel& m, const FingertipPoints& tips) {
-  const double h = m.boxHalfSize;
-  FingertipPoints r = tips;
-  for (int f = 0; f < 2; ++f) {
-    const double face = HandModel::side(f) * h;  // the top membrane wraps the top face
-    r.segment<2>(4 * f) -= Vec2(-h, face);
-    r.segment<2>(4 * f + 2) -= Vec2(h, face);
-  }
-  return r;
-}
-
 bool wrapsFaceOn(const HandModel& m, const FingertipPoints& tips, const Vec2& p) {
   const double h = m.boxHalfSize;
   for (int f = 0; f < 2; ++f) {

@@ -35,12 +35,6 @@ FingertipPoints fingertipPoints(const HandModel& m, const HandJoints& q);
 /// Analytic d(fingertipPoints)/dq.
 FingertipJacobian fingertipJacobian(const HandModel& m, const HandJoints& q);
 
-/// Box-to-point reduction (thesis figure 4-2, NOTES.md): a non-rotating square box wrapped
-/// face-on touches each membrane at two fixed corners, so the cable a -> corner -> corner -> b has
-/// the length |p - a'| + |b' - p| + 2 h with a' = a - (left corner offset), b' = b - (right corner
-/// offset), p the box centre and h the half side. Returns the shifted points (same layout).
-FingertipPoints reduceToPoint(const HandModel& m, const FingertipPoints& tips);
-
 /// Whether both membranes wrap the box at centre p face-on (each fingertip beside its face's
 /// corner, below/above it), the configuration the reduction assumes.
 bool wrapsFaceOn(const HandModel& m, const FingertipPoints& tips, const Vec2& p);

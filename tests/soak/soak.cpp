@@ -163,8 +163,8 @@ int main(int argc, char** argv) {
         ++cableEdits;
         if (verbose)
           std::fprintf(stderr, "%ld: cable %d rest %g k %g preload %g\n", step, c,
-                       world.cable(c).restLength(), world.cable(c).def().stiffness,
-                       world.cable(c).def().preload);
+                       world.cable(c).restLength(), world.cable(c).stiffness(),
+                       world.cable(c).preload());
       }
       if (dragLeft > 0) {
         const Vec2 t = world.dragTarget();
@@ -186,8 +186,8 @@ int main(int argc, char** argv) {
         std::fprintf(stderr,
                      "    stats: iters %d residual %.3g cable_us %.1f | rest %.4f %.4f k %g %g\n",
                      st.solverIterations, st.residual, st.cableMicros, world.cable(0).restLength(),
-                     world.cable(1).restLength(), world.cable(0).def().stiffness,
-                     world.cable(1).def().stiffness);
+                     world.cable(1).restLength(), world.cable(0).stiffness(),
+                     world.cable(1).stiffness());
         for (int b = 0; b < world.bodyCount(); ++b)
           std::fprintf(stderr, "    %s (%.4f %.4f %.4f) v (%.3g %.3g %.3g)\n",
                        world.scene().bodies[b].name.c_str(), world.body(b).position.x(),

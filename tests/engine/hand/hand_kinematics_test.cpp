@@ -22,17 +22,13 @@ TEST(HandKinematics, JacobianMatchesCentralDifferences) {
   }
 }
 
-TEST(HandKinematics, PinchPoseCornersAndReduction) {
+TEST(HandKinematics, PinchPoseCorners) {
   HandModel m;
   const FingertipPoints tips = fingertipPoints(m, HandJoints::Zero());
   EXPECT_NEAR(tips[0], -m.paddleHalfWidth, 1e-12);
   EXPECT_NEAR(tips[1], m.baseY - m.paddleOffset, 1e-12);
   EXPECT_TRUE(wrapsFaceOn(m, tips, Vec2::Zero()));
   EXPECT_FALSE(wrapsFaceOn(m, fingertipPoints(m, m.openPose()), Vec2::Zero()));
-  const FingertipPoints r = reduceToPoint(m, tips);
-  // Top left corner shifted by the box's top-left corner offset.
-  EXPECT_NEAR(r[0], tips[0] + m.boxHalfSize, 1e-12);
-  EXPECT_NEAR(r[1], tips[1] - m.boxHalfSize, 1e-12);
 }
 
 }  // namespace

@@ -1,0 +1,269 @@
+// The Box2D bridge. Box2D is float; everything cablelab computes is double, converted here.
+#include "engine/dynamics/box2d_bridge.h"
+
+#include <box2d/box2d.h>
+
+#include <algorithm>
+
+namespace cablelab {
+
+namespace {
+
+constexpr int kVelocityIterations = 8;
+constexpr int kPositionIterations = 3;
+
+b2Vec2 toB2(const Vec2& v) {
+  return b2Vec2(static_cast<float>(v.x()), static_cast<float>(v.y()));
+}
+Vec2 fromB2(const b2Vec2& v) {
+  return Vec2(v.x, v.y);
+}
+
+b2BodyType toB2(BodyType t) {
+  switch (t) {
+    case BodyType::Static:
+      return b2_staticBody;
+    case BodyType::Kinematic:
+      return b2_kinematicBody;
+    case BodyType::Dynamic:
+      return b2_dynamicBody;
+  }
+  return b2_dynamicBody;
+}
+
+void addShape(b2Body* body, const ShapeDef& sd) {
+  b2FixtureDef fd;
+  b2CircleShape circle;
+  b2PolygonShape polygon;
+  if (sd.kind == ShapeDef::Kind::Circle) {
+    circle.m_radius = static_cast<float>(sd.radius);
+    circle.m_p = toB2(sd.center);
+    fd.shape = &circle;
+  } else {
+    std::vector<b2Vec2> v;
+    for (const Vec2& p : sd.vertices) v.push_back(toB2(p));
+    polygon.Set(v.data(), static_cast<int32>(v.size()));
+    fd.shape = &polygon;
+  }
+  fd.density = 1.0f;
+  fd.friction = static_cast<float>(sd.friction);
+  fd.restitution = static_cast<float>(sd.restitution);
+  fd.isSensor = sd.sensor;
+  body->CreateFixture(&fd);
+}
+
+b2Body* createBody(b2World& w, const BodyDef& bd) {
+  b2BodyDef def;
+  def.type = toB2(bd.type);
+  def.position = toB2(bd.position);
+  def.angle = static_cast<float>(bd.angle);
+  def.linearVelocity = toB2(bd.velocity);
+  def.angularVelocity = static_cast<float>(bd.angularVelocity);
+  def.fixedRotation = bd.fixedRotation;
+  def.linearDamping = static_cast<float>(bd.linearDamping);
+  def.angularDamping = static_cast<float>(bd.angularDamping);
+  def.allowSleep = false;
+  b2Body* body = w.CreateBody(&def);
+  for (const ShapeDef& sd : bd.shapes) addShape(body, sd);
+  if (bd.type == BodyType::Dynamic) {
+    // The centre of mass is the body origin by definition, so the mass matrix is diagonal in
+    // (x, y, theta) (docs/model.md). Inertia defaults to the shapes' at uniform density.
+    const double shapeMass = body->GetMass();
+    double inertia = bd.inertia;
+    if (inertia <= 0) inertia = shapeMass > 0 ? body->GetInertia() * bd.mass / shapeMass : 0;
+    if (inertia <= 0) inertia = 0.5 * bd.mass * 0.01;  // shapeless: a 0.1 m disc
+    b2MassData md{static_cast<float>(bd.mass), b2Vec2(0, 0), static_cast<float>(inertia)};
+    body->SetMassData(&md);
+  }
+  return body;
+}
+
+b2Joint* createJoint(b2World& w, const JointDef& jd, b2Body* a, b2Body* b) {
+  switch (jd.kind) {
+    case JointDef::Kind::Revolute: {
+      b2RevoluteJointDef def;
+      def.Initialize(a, b, toB2(jd.anchor));
+      def.enableLimit = jd.enableLimit;
+      def.lowerAngle = static_cast<float>(jd.lower);
+      def.upperAngle = static_cast<float>(jd.upper);
+      def.collideConnected = jd.collideConnected;
+      return w.CreateJoint(&def);
+    }
+    case JointDef::Kind::Prismatic: {
+      b2PrismaticJointDef def;
+      def.Initialize(a, b, toB2(jd.anchor), toB2(jd.axis.normalized()));
+      def.enableLimit = jd.enableLimit;
+      def.lowerTranslation = static_cast<float>(jd.lower);
+      def.upperTranslation = static_cast<float>(jd.upper);
+      def.collideConnected = jd.collideConnected;
+      return w.CreateJoint(&def);
+    }
+    case JointDef::Kind::Weld: {
+      b2WeldJointDef def;
+      def.Initialize(a, b, toB2(jd.anchor));
+      def.collideConnected = jd.collideConnected;
+      return w.CreateJoint(&def);
+    }
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+struct Box2DBridge::Impl {
+  b2World world{b2Vec2(0, 0)};
+  b2Body* ground = nullptr;
+  std::vector<b2Body*> bodies;
+  std::vector<b2Joint*> joints;
+  std::vector<JointDef::Kind> kinds;
+  b2MouseJoint* mouse = nullptr;
+};
+
+Box2DBridge::Box2DBridge(const SceneDef& scene) : impl_(std::make_unique<Impl>()) {
+  b2World& w = impl_->world;
+  w.SetGravity(toB2(scene.gravity));
+  w.SetAllowSleeping(false);
+  b2BodyDef groundDef;
+  impl_->ground = w.CreateBody(&groundDef);
+  for (const BodyDef& bd : scene.bodies) impl_->bodies.push_back(createBody(w, bd));
+  auto bodyOf = [&](const std::string& name) {
+    const int i = findBodyIndex(scene, name);
+    return i < 0 ? impl_->ground : impl_->bodies[i];
+  };
+  for (const JointDef& jd : scene.joints) {
+    impl_->joints.push_back(createJoint(w, jd, bodyOf(jd.bodyA), bodyOf(jd.bodyB)));
+    impl_->kinds.push_back(jd.kind);
+  }
+}
+
+Box2DBridge::~Box2DBridge() = default;
+
+void Box2DBridge::readBodies(std::vector<BodyState>& bodies) const {
+  bodies.resize(impl_->bodies.size());
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    const b2Body* b = impl_->bodies[i];
+    BodyState& s = bodies[i];
+    s.position = fromB2(b->GetPosition());
+    s.angle = b->GetAngle();
+    s.velocity = fromB2(b->GetLinearVelocity());
+    s.angularVelocity = b->GetAngularVelocity();
+    const bool dynamic = b->GetType() == b2_dynamicBody;
+    s.invMass = dynamic && b->GetMass() > 0 ? 1.0 / b->GetMass() : 0.0;
+    s.invInertia =
+        dynamic && !b->IsFixedRotation() && b->GetInertia() > 0 ? 1.0 / b->GetInertia() : 0.0;
+  }
+}
+
+void Box2DBridge::setTransform(int body, const Vec2& position, double angle) {
+  impl_->bodies[body]->SetTransform(toB2(position), static_cast<float>(angle));
+}
+
+void Box2DBridge::setVelocity(int body, const Vec2& velocity, double angularVelocity) {
+  impl_->bodies[body]->SetLinearVelocity(toB2(velocity));
+  impl_->bodies[body]->SetAngularVelocity(static_cast<float>(angularVelocity));
+}
+
+void Box2DBridge::setGravity(const Vec2& g) {
+  impl_->world.SetGravity(toB2(g));
+}
+
+void Box2DBridge::applyLoads(std::span<const Vec3> loads) {
+  for (size_t b = 0; b < loads.size(); ++b) {
+    if (loads[b].isZero()) continue;
+    b2Body* body = impl_->bodies[b];
+    body->ApplyForceToCenter(toB2(loads[b].head<2>()), false);
+    body->ApplyTorque(static_cast<float>(loads[b].z()), false);
+  }
+}
+
+void Box2DBridge::step(double h) {
+  impl_->world.Step(static_cast<float>(h), kVelocityIterations, kPositionIterations);
+}
+
+void Box2DBridge::addVelocities(std::span<const Vec3> dv) {
+  for (size_t b = 0; b < dv.size(); ++b) {
+    if (dv[b].isZero()) continue;
+    b2Body* body = impl_->bodies[b];
+    body->SetLinearVelocity(body->GetLinearVelocity() + toB2(dv[b].head<2>()));
+    body->SetAngularVelocity(body->GetAngularVelocity() + static_cast<float>(dv[b].z()));
+  }
+}
+
+void Box2DBridge::markTouching(std::vector<char>& touching) const {
+  for (const b2Contact* c = impl_->world.GetContactList(); c; c = c->GetNext()) {
+    if (!c->IsTouching() || c->GetFixtureA()->IsSensor() || c->GetFixtureB()->IsSensor()) continue;
+    for (const b2Body* body : {c->GetFixtureA()->GetBody(), c->GetFixtureB()->GetBody()})
+      for (size_t i = 0; i < impl_->bodies.size() && i < touching.size(); ++i)
+        if (impl_->bodies[i] == body) touching[i] = 1;
+  }
+}
+
+JointCoordinate Box2DBridge::jointCoordinate(int joint) const {
+  const b2Joint* j = impl_->joints[joint];
+  JointCoordinate q;
+  if (impl_->kinds[joint] == JointDef::Kind::Revolute) {
+    auto* r = static_cast<const b2RevoluteJoint*>(j);
+    q.value = r->GetJointAngle();
+    q.speed = r->GetJointSpeed();
+  } else if (impl_->kinds[joint] == JointDef::Kind::Prismatic) {
+    auto* p = static_cast<const b2PrismaticJoint*>(j);
+    q.value = p->GetJointTranslation();
+    q.speed = p->GetJointSpeed();
+  }
+  return q;
+}
+
+Vec2 Box2DBridge::anchorA(int joint) const {
+  return fromB2(impl_->joints[joint]->GetAnchorA());
+}
+
+Vec2 Box2DBridge::anchorB(int joint) const {
+  return fromB2(impl_->joints[joint]->GetAnchorB());
+}
+
+Vec2 Box2DBridge::prismaticAxis(int joint) const {
+  b2Joint* j = impl_->joints[joint];
+  auto* p = static_cast<const b2PrismaticJoint*>(j);
+  return rotate(fromB2(p->GetLocalAxisA()), j->GetBodyA()->GetAngle());
+}
+
+void Box2DBridge::jointFrames(std::span<const JointDef> defs,
+                              std::span<const std::array<int, 2>> bodies,
+                              std::vector<JointFrame>& frames) const {
+  frames.resize(defs.size());
+  for (size_t j = 0; j < defs.size(); ++j) {
+    JointFrame& f = frames[j];
+    f.kind = defs[j].kind;
+    f.bodyA = bodies[j][0];
+    f.bodyB = bodies[j][1];
+    f.anchor = anchorB(static_cast<int>(j));
+    if (f.kind == JointDef::Kind::Prismatic) f.axis = prismaticAxis(static_cast<int>(j));
+  }
+}
+
+bool Box2DBridge::beginDrag(int body, const Vec2& worldPoint, double stiffnessHz,
+                            double gravity) {
+  endDrag();
+  b2Body* b = impl_->bodies[body];
+  if (b->GetType() != b2_dynamicBody) return false;
+  b2MouseJointDef def;
+  def.bodyA = impl_->ground;
+  def.bodyB = b;
+  def.target = toB2(worldPoint);
+  def.maxForce = static_cast<float>(1000.0 * b->GetMass() * std::max(9.81, gravity));
+  b2LinearStiffness(def.stiffness, def.damping, static_cast<float>(stiffnessHz), 0.7f, def.bodyA,
+                    def.bodyB);
+  impl_->mouse = static_cast<b2MouseJoint*>(impl_->world.CreateJoint(&def));
+  return true;
+}
+
+void Box2DBridge::dragTo(const Vec2& target) {
+  if (impl_->mouse) impl_->mouse->SetTarget(toB2(target));
+}
+
+void Box2DBridge::endDrag() {
+  if (impl_->mouse) impl_->world.DestroyJoint(impl_->mouse);
+  impl_->mouse = nullptr;
+}
+
+}  // namespace cablelab

@@ -1,0 +1,73 @@
+// The Box2D bridge: the one place Box2D's bodies and joints are made, read and stepped.
+//
+// Box2D is float; everything cablelab computes is double, converted here. The header shows no
+// Box2D type, so the World and the cable solver read like the rest of the engine. Private to
+// engine/dynamics.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "engine/cable/cable.h"
+#include "engine/model/scene.h"
+
+namespace cablelab {
+
+/// A joint's coordinate (angle in rad or translation in m) and its rate; 0 for welds.
+struct JointCoordinate {
+  double value = 0, speed = 0;
+};
+
+/// A Box2D joint as the cable solver sees it this sub-step.
+struct JointFrame {
+  JointDef::Kind kind = JointDef::Kind::Revolute;
+  int bodyA = -1, bodyB = -1;  ///< indices into the scene's bodies, -1: the world
+  Vec2 anchor = Vec2::Zero();  ///< Box2D's anchor on body B, world (m)
+  Vec2 axis = Vec2(1, 0);      ///< prismatic: sliding axis, world, unit (turns with body A)
+};
+
+class Box2DBridge {
+ public:
+  /// Creates the bodies and joints of a validated scene (mass and inertia as World documents).
+  explicit Box2DBridge(const SceneDef& scene);
+  ~Box2DBridge();
+  Box2DBridge(const Box2DBridge&) = delete;
+  Box2DBridge& operator=(const Box2DBridge&) = delete;
+
+  /// Pose, velocity and inverse mass of every body, in double precision.
+  void readBodies(std::vector<BodyState>& bodies) const;
+  void setTransform(int body, const Vec2& position, double angle);
+  void setVelocity(int body, const Vec2& velocity, double angularVelocity);
+  void setGravity(const Vec2& g);
+
+  /// Applies (fx, fy, torque) per body at its origin for the next step(); zero loads are skipped.
+  void applyLoads(std::span<const Vec3> loads);
+  /// One Box2D step of h seconds (fixed velocity and position iterations).
+  void step(double h);
+  /// Adds (dvx, dvy, domega) per body to the velocities Box2D holds; zeros are skipped.
+  void addVelocities(std::span<const Vec3> dv);
+  /// Sets touching[b] = 1 for every body in a touching, non-sensor contact.
+  void markTouching(std::vector<char>& touching) const;
+
+  JointCoordinate jointCoordinate(int joint) const;
+  Vec2 anchorA(int joint) const;
+  Vec2 anchorB(int joint) const;
+  /// Prismatic joints: the sliding axis in the world, turning with body A.
+  Vec2 prismaticAxis(int joint) const;
+  /// Every joint's frame (bodies as given, anchors and axes from Box2D now).
+  void jointFrames(std::span<const JointDef> defs, std::span<const std::array<int, 2>> bodies,
+                   std::vector<JointFrame>& frames) const;
+
+  /// Mouse drag (Box2D's mouse joint): false, and nothing made, if the body is not dynamic.
+  bool beginDrag(int body, const Vec2& worldPoint, double stiffnessHz, double gravity);
+  void dragTo(const Vec2& target);
+  void endDrag();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace cablelab

@@ -1,0 +1,464 @@
+// The cable solver's stages (see cable_solver.h for the table of contents, docs/model.md for the
+// equations).
+#include "engine/dynamics/cable_solver.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "engine/dynamics/tension_solver.h"
+
+namespace cablelab {
+
+namespace {
+
+constexpr double kBaumgarte = 0.2;  // share of a rigid cable's length error fixed per step
+// Length error a rigid cable tolerates before stabilisation acts (m). Box2D keeps positions in
+// float (about 1e-7 m resolution at 1 m): correcting below that only amplifies rounding, by
+// beta / h^2 in the tension.
+constexpr double kLengthSlop = 1e-5;
+constexpr int kNewtonIterations = 3;  // on the end-of-step lengths; geometry is nearly linear
+
+bool moves(const BodyState& b) {
+  return b.invMass > 0 || b.invInertia > 0;
+}
+
+// Generalized coordinates of the bodies the cables move: 3 per moving body.
+struct DofMap {
+  std::vector<int> ofBody;  // body -> first dof, -1 if the body does not move
+  std::vector<int> body;    // dof / 3 -> body
+  int size() const { return 3 * static_cast<int>(body.size()); }
+  void reset(size_t bodies) {
+    ofBody.assign(bodies, -1);
+    body.clear();
+  }
+  int add(int b) {
+    if (ofBody[b] < 0) {
+      ofBody[b] = size();
+      body.push_back(b);
+    }
+    return ofBody[b];
+  }
+};
+
+// One row of the joint Jacobian C: the relative motion of at most two bodies (dof -1: none).
+// C has n columns but only 2-6 non-zeros per row, so products with C go through these.
+struct JointRow {
+  std::array<int, 2> dof{-1, -1};
+  std::array<Vec3, 2> coeff{Vec3::Zero(), Vec3::Zero()};
+
+  // This row times the dense column x.
+  double dot(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+    double sum = 0;
+    for (int k = 0; k < 2; ++k)
+      if (dof[k] >= 0) sum += coeff[k].dot(x.segment<3>(dof[k]));
+    return sum;
+  }
+};
+
+}  // namespace
+
+// The buffers of the stages. They live as long as the World so that a sub-step does not
+// allocate: after the first step every size has been seen and Eigen reuses the storage.
+struct CableSolverWorkspace {
+  DofMap dofs;
+  std::vector<int> rows;         // cable of each LCP row
+  Eigen::VectorXd invM;          // M^-1 diagonal over the dofs
+  Eigen::VectorXd vStar, vFree;  // predicted velocities (stage 2)
+  Eigen::MatrixXd W;             // M'^-1 J^T, then projected onto the joints (n x m)
+
+  // Geometric stiffness of the taut cables: their Hessian blocks, blocks[begin, end).
+  struct TautCable {
+    double tension;
+    size_t begin, end;
+  };
+  std::vector<TautCable> taut;
+  std::vector<StiffnessBlock> blocks;
+  bool stiff = false;
+  // M' = M + h^2 T G. G only couples the translations of bodies on stiff cables: those dofs
+  // ("coupled") get a small dense LDLT, the others a division by their diagonal.
+  std::vector<int> coupledIndex;  // dof -> row of coupledMass, -1: diagonal
+  std::vector<int> coupledDofs;
+  Eigen::VectorXd massDiagonal;
+  Eigen::MatrixXd coupledMass;
+  Eigen::LDLT<Eigen::MatrixXd> coupledLdlt;
+  Eigen::VectorXd coupledRhs, coupledSolution;
+
+  // Joint rows and the Schur complement S = C M'^-1 C^T.
+  std::vector<JointRow> joints;
+  Eigen::MatrixXd MinvCt, S, CW, schurCW, correction;
+  Eigen::VectorXd Cv, schurCv, velocityCorrection;
+  Eigen::LDLT<Eigen::MatrixXd> schur;
+
+  // Newton on the end-of-step lengths.
+  Eigen::VectorXd target, compliance, damped, P, phi1, b, WP, v1;
+  Eigen::MatrixXd JW, K, JW0;
+  std::vector<BodyState> predicted;
+  std::vector<WrapPoint> path;
+  CableKinematics kin;
+  LcpWorkspace lcp;
+  LcpSolution lcpSolution;
+
+  void factorStiffMass(double h);
+  void applyInverseMass(Eigen::Ref<Eigen::MatrixXd> X);
+  void projectOntoJoints();
+};
+
+// Builds M' over the coupled dofs and factors it; immovable dofs (M^-1 = 0) stay put.
+void CableSolverWorkspace::factorStiffMass(double h) {
+  const int n = dofs.size();
+  coupledIndex.assign(n, -1);
+  coupledDofs.clear();
+  auto couple = [&](int d) {
+    if (invM[d] > 0 && coupledIndex[d] < 0) {
+      coupledIndex[d] = static_cast<int>(coupledDofs.size());
+      coupledDofs.push_back(d);
+    }
+  };
+  for (const TautCable& t : taut)
+    for (size_t i = t.begin; i < t.end; ++i) {
+      const int ia = dofs.ofBody[blocks[i].a], ib = dofs.ofBody[blocks[i].b];
+      if (ia < 0 || ib < 0) continue;
+      for (int c = 0; c < 2; ++c) couple(ia + c), couple(ib + c);
+    }
+  const int nc = static_cast<int>(coupledDofs.size());
+  coupledMass.setZero(nc, nc);
+  for (const TautCable& t : taut) {
+    const double scale = h * h * t.tension;
+    for (size_t i = t.begin; i < t.end; ++i) {
+      const int ia = dofs.ofBody[blocks[i].a], ib = dofs.ofBody[blocks[i].b];
+      if (ia < 0 || ib < 0) continue;
+      for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 2; ++c) {
+          const int cr = coupledIndex[ia + r], cc = coupledIndex[ib + c];
+          if (cr >= 0 && cc >= 0) coupledMass(cr, cc) += scale * blocks[i].k(r, c);
+        }
+    }
+  }
+  massDiagonal.resize(n);
+  for (int d = 0; d < n; ++d) {
+    const double m = invM[d] > 0 ? 1.0 / invM[d] : 1.0;
+    if (coupledIndex[d] >= 0) coupledMass(coupledIndex[d], coupledIndex[d]) += m;
+    massDiagonal[d] = m;
+  }
+  if (nc > 0) coupledLdlt.compute(coupledMass);
+}
+
+// X <- M'^-1 X: a scaling unless the geometric stiffness couples the dofs.
+void CableSolverWorkspace::applyInverseMass(Eigen::Ref<Eigen::MatrixXd> X) {
+  const int n = dofs.size();
+  if (!stiff) {
+    for (int d = 0; d < n; ++d) X.row(d) *= invM[d];
+    return;
+  }
+  for (int d = 0; d < n; ++d) {
+    if (invM[d] == 0) X.row(d).setZero();  // immovable: no motion whatever the load
+    if (coupledIndex[d] < 0) X.row(d) /= massDiagonal[d];
+  }
+  const int nc = static_cast<int>(coupledDofs.size());
+  if (nc == 0) return;
+  coupledRhs.resize(nc);
+  coupledSolution.resize(nc);
+  for (Eigen::Index col = 0; col < X.cols(); ++col) {
+    for (int i = 0; i < nc; ++i) coupledRhs[i] = X(coupledDofs[i], col);
+    coupledSolution = coupledLdlt.solve(coupledRhs);
+    for (int i = 0; i < nc; ++i) X(coupledDofs[i], col) = coupledSolution[i];
+  }
+}
+
+// Schur complement of the joint rows: W <- W - M'^-1 C^T S^-1 C W, and v* made
+// joint-consistent the same way (S = C M'^-1 C^T).
+void CableSolverWorkspace::projectOntoJoints() {
+  const int n = dofs.size(), c = static_cast<int>(joints.size()), m = static_cast<int>(W.cols());
+  MinvCt.setZero(n, c);
+  for (int r = 0; r < c; ++r)
+    for (int k = 0; k < 2; ++k)
+      if (joints[r].dof[k] >= 0) MinvCt.block<3, 1>(joints[r].dof[k], r) += joints[r].coeff[k];
+  applyInverseMass(MinvCt);
+  // S is symmetric and the LDLT reads its lower triangle only.
+  S.resize(c, c);
+  for (int r = 0; r < c; ++r)
+    for (int s = 0; s <= r; ++s) S(r, s) = joints[r].dot(MinvCt.col(s));
+  S.diagonal().array() += 1e-10 * (1 + S.diagonal().array());
+  schur.compute(S);
+
+  // A few columns (one per cable, then v*): column by column is cheaper than the blocked solve.
+  CW.resize(c, m);
+  schurCW.resize(c, m);
+  for (int s = 0; s < m; ++s) {
+    for (int r = 0; r < c; ++r) CW(r, s) = joints[r].dot(W.col(s));
+    schurCW.col(s) = schur.solve(CW.col(s));
+  }
+  correction.noalias() = MinvCt.lazyProduct(schurCW);
+  W -= correction;
+
+  Cv.resize(c);
+  for (int r = 0; r < c; ++r) Cv[r] = joints[r].dot(vStar);
+  schurCv = schur.solve(Cv);
+  velocityCorrection.noalias() = MinvCt * schurCv;
+  vStar -= velocityCorrection;
+}
+
+namespace {
+
+using Workspace = CableSolverWorkspace;
+
+// 1. One row per cable that can pull on something that moves, and the dofs of the bodies it
+// moves plus those jointed to them (they move with them). False if no cable pulls on anything.
+bool buildRows(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables) {
+  ws.rows.clear();
+  ws.dofs.reset(in.bodies.size());
+  for (size_t i = 0; i < cables.size(); ++i) {
+    bool pulls = false;
+    for (const auto& e : cables[i].kinematics().jacobian)
+      if (moves(in.bodies[e.body])) {
+        ws.dofs.add(e.body);
+        pulls = true;
+      }
+    if (pulls)
+      ws.rows.push_back(static_cast<int>(i));
+    else
+      cables[i].setTension(0);
+  }
+  if (ws.rows.empty()) return false;
+  for (size_t k = 0; k < ws.dofs.body.size(); ++k)  // breadth first
+    for (int other : in.jointNeighbours[ws.dofs.body[k]])
+      if (moves(in.bodies[other])) ws.dofs.add(other);
+  return true;
+}
+
+// 2. M^-1, the predicted velocity v* (gravity and loads, no cables) and J at the start of the
+// step, stored transposed in W (it becomes M'^-1 J^T in stage 3).
+void predictVelocities(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
+                       std::span<const Vec3> loads) {
+  const DofMap& dofs = ws.dofs;
+  const int n = dofs.size(), m = static_cast<int>(ws.rows.size());
+  ws.invM.resize(n);
+  for (size_t k = 0; k < dofs.body.size(); ++k) {
+    const BodyState& s = in.bodies[dofs.body[k]];
+    ws.invM.segment<3>(3 * k) = Vec3(s.invMass, s.invMass, s.invInertia);
+  }
+  ws.vStar.resize(n);
+  for (size_t k = 0; k < dofs.body.size(); ++k) {
+    const BodyState& s = in.bodies[dofs.body[k]];
+    Vec3 v(s.velocity.x(), s.velocity.y(), s.angularVelocity);
+    v += in.h * (ws.invM.segment<3>(3 * k).cwiseProduct(loads[dofs.body[k]]));
+    if (s.invMass > 0) v.head<2>() += in.h * in.gravity;
+    ws.vStar.segment<3>(3 * k) = v;
+  }
+  ws.W.setZero(n, m);
+  for (int r = 0; r < m; ++r)
+    for (const auto& e : cables[ws.rows[r]].kinematics().jacobian)
+      if (dofs.ofBody[e.body] >= 0) ws.W.block<3, 1>(dofs.ofBody[e.body], r) = e.d;
+  ws.vFree = ws.vStar;  // what Box2D would reach without cables and joints
+}
+
+// 3. W = M'^-1 J^T. M' adds the geometric stiffness h^2 T d^2(length)/dx^2 of taut cables where
+// it matters (a light body on a tight band turns the force direction faster than one step
+// resolves). Backward Euler on the turning force direction: (M + h^2 T G) v1 = M v* - J^T P, so
+// the stiffness also resists the motion v* already carries into the band.
+void inverseMass(Workspace& ws, double h, std::span<const Cable> cables) {
+  ws.taut.clear();
+  ws.blocks.clear();
+  ws.stiff = false;
+  for (int row : ws.rows) {
+    const Cable& c = cables[row];
+    const double tension =
+        std::max(c.tension(), c.elastic() ? c.stiffness() * std::max(0.0, c.stretch()) : 0.0);
+    if (tension <= 0) continue;
+    const size_t begin = ws.blocks.size();
+    appendLengthHessianTranslation(c.path(), ws.blocks);
+    for (size_t i = begin; i < ws.blocks.size(); ++i) {
+      const StiffnessBlock& blk = ws.blocks[i];
+      if (blk.a == blk.b && ws.dofs.ofBody[blk.a] >= 0)
+        ws.stiff |= h * h * tension * blk.k.trace() * ws.invM[ws.dofs.ofBody[blk.a]] > 0.05;
+    }
+    ws.taut.push_back({tension, begin, ws.blocks.size()});
+  }
+  if (ws.stiff) ws.factorStiffMass(h);
+  ws.applyInverseMass(ws.W);
+  if (ws.stiff) {
+    const int n = ws.dofs.size();
+    for (int d = 0; d < n; ++d) ws.vStar[d] = ws.invM[d] > 0 ? ws.vStar[d] / ws.invM[d] : 0.0;
+    ws.applyInverseMass(ws.vStar);
+  }
+}
+
+// Velocity-level Jacobian of the Box2D joints among the dofs (rows: constrained relative motions;
+// limits and motors are left to Box2D). Revolute: the anchor points move together (2 rows);
+// prismatic: no motion across the axis and no relative turn (2 rows); weld: all three.
+void jointRows(Workspace& ws, const CableSolveInput& in) {
+  const DofMap& dofs = ws.dofs;
+  ws.joints.clear();
+  for (const JointFrame& joint : in.joints) {
+    const int a = joint.bodyA, b = joint.bodyB;
+    const int da = a >= 0 ? dofs.ofBody[a] : -1, db = b >= 0 ? dofs.ofBody[b] : -1;
+    if (da < 0 && db < 0) continue;
+    const Vec2 rA = a >= 0 ? Vec2(joint.anchor - in.bodies[a].position) : Vec2::Zero();
+    const Vec2 rB = b >= 0 ? Vec2(joint.anchor - in.bodies[b].position) : Vec2::Zero();
+    // A row on the relative velocity of the anchor point along direction t.
+    auto pointRow = [&](const Vec2& t) {
+      JointRow row;
+      row.dof = {db, da};
+      row.coeff = {Vec3(t.x(), t.y(), t.dot(perp(rB))), -Vec3(t.x(), t.y(), t.dot(perp(rA)))};
+      ws.joints.push_back(row);
+    };
+    auto angleRow = [&] {
+      JointRow row;
+      row.dof = {db, da};
+      row.coeff = {Vec3(0, 0, 1), Vec3(0, 0, -1)};
+      ws.joints.push_back(row);
+    };
+    switch (joint.kind) {
+      case JointDef::Kind::Revolute:
+        pointRow(Vec2(1, 0));
+        pointRow(Vec2(0, 1));
+        break;
+      case JointDef::Kind::Prismatic:
+        pointRow(perp(joint.axis));
+        angleRow();
+        break;
+      case JointDef::Kind::Weld:
+        pointRow(Vec2(1, 0));
+        pointRow(Vec2(0, 1));
+        angleRow();
+        break;
+    }
+  }
+}
+
+// 4. W and v* projected onto what the joints allow: Box2D's joints act after our forces, so the
+// cables must already see them (a pulley on a pivoted body turns, it does not translate).
+void projectOntoJoints(Workspace& ws, const CableSolveInput& in) {
+  jointRows(ws, in);
+  if (!ws.joints.empty()) ws.projectOntoJoints();
+}
+
+// 5. Position-level targets. Rigid: length at the end of the step = now (the error below the
+// slop is float rounding: fixing it would amplify it by 1/h^2), a slack cable may come taut, an
+// over-long one is shortened by a share of the excess. Elastic: T = k phi1 + b (phi1 - phi0)/h.
+void lengthTargets(Workspace& ws, double h, std::span<const Cable> cables) {
+  const int m = static_cast<int>(ws.rows.size());
+  ws.target.resize(m);
+  ws.compliance.setZero(m);
+  ws.damped.setZero(m);
+  for (int r = 0; r < m; ++r) {
+    const Cable& c = cables[ws.rows[r]];
+    const double phi = c.stretch();
+    if (!c.elastic()) {
+      ws.target[r] = phi < -kLengthSlop  ? 0.0
+                     : phi > kLengthSlop ? phi - kBaumgarte * (phi - kLengthSlop)
+                                         : phi;
+    } else {
+      const double stiffK = c.stiffness(), damp = c.damping();
+      ws.compliance[r] = 1.0 / (h * (stiffK * h + damp));
+      ws.damped[r] = damp * phi / (stiffK * h + damp);
+    }
+  }
+}
+
+// J W for a row from a sparse Jacobian (a cable touches a few of the n dofs).
+void jacobianTimesW(const Workspace& ws, const std::vector<BodyJacobian>& jacobian,
+                    Eigen::Ref<Eigen::RowVectorXd, 0, Eigen::InnerStride<>> out) {
+  out.setZero();
+  for (const auto& e : jacobian)
+    if (const int d = ws.dofs.ofBody[e.body]; d >= 0) out += e.d.transpose() * ws.W.middleRows<3>(d);
+}
+
+// The end-of-step state for impulses P (Box2D integrates q1 = q0 + h v1), then each row's
+// end-of-step length error phi1 and its linearisation J1 W.
+void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  const double h = in.h;
+  ws.WP.noalias() = ws.W * ws.P;
+  ws.v1 = ws.vStar - ws.WP;
+  for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
+    const BodyState& s = in.bodies[ws.dofs.body[k]];
+    BodyState& p = ws.predicted[ws.dofs.body[k]];
+    p.velocity = ws.v1.segment<2>(3 * k);
+    p.angularVelocity = ws.v1[3 * k + 2];
+    p.position = s.position + h * p.velocity;
+    p.angle = s.angle + h * p.angularVelocity;
+  }
+  for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
+    const Cable& c = cables[ws.rows[r]];
+    ws.path.assign(c.path().begin(), c.path().end());
+    cableKinematics(ws.path, ws.predicted, ws.kin);
+    ws.phi1[r] = c.stretch() + ws.kin.length - c.length();
+    jacobianTimesW(ws, ws.kin.jacobian, ws.JW.row(r));
+  }
+}
+
+// 6. Newton on the end-of-step lengths phi1(P), each linearisation an LCP over all cables:
+// tension >= 0, slack cables only shorten.
+void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
+                     StepStats& stats) {
+  const int m = static_cast<int>(ws.rows.size());
+  const double h = in.h;
+  ws.P.setZero(m);
+  ws.phi1.resize(m);
+  ws.JW.resize(m, m);
+  ws.predicted.assign(in.bodies.begin(), in.bodies.end());
+  // J0 W from the start-of-step Jacobians (positive semidefinite), for the guard below.
+  ws.JW0.setZero(m, m);
+  for (int r = 0; r < m; ++r) jacobianTimesW(ws, cables[ws.rows[r]].kinematics().jacobian, ws.JW0.row(r));
+  for (int iteration = 0; iteration < kNewtonIterations; ++iteration) {
+    linearise(ws, in, cables);
+    // Guard (degenerate geometry): far from the start pose the end-of-step linearisation can lose
+    // positive definiteness (a wrap point the predicted motion carries past its neighbour turns a
+    // row's J1 against its J0: K_ii <= 0), and the LCP then answers with impulses of 1e6 N s.
+    // Such a row falls back to the start-of-step Jacobian, whose J0 W is positive semidefinite.
+    for (int r = 0; r < m; ++r)
+      if (!(ws.JW(r, r) > 1e-3 * ws.JW0(r, r))) {
+        ws.JW.row(r) = ws.JW0.row(r);
+        ++stats.linearisationFallbacks;
+      }
+    ws.K = ws.JW;
+    ws.K.diagonal() += ws.compliance;
+    ws.b.noalias() = ws.JW * ws.P;
+    for (int r = 0; r < m; ++r)
+      ws.b[r] += (cables[ws.rows[r]].elastic() ? ws.phi1[r] - ws.damped[r]
+                                               : ws.phi1[r] - ws.target[r]) /
+                 h;
+    LcpSolution& sol = ws.lcpSolution;
+    solveLcp(ws.K, ws.b, ws.lcp, sol);
+    const double change = (sol.x - ws.P).lpNorm<Eigen::Infinity>();
+    ws.P = sol.x;
+    stats.solverIterations += sol.iterations;
+    stats.residual = std::max(stats.residual, sol.residual);
+    // The end-of-step geometry is nearly linear in P: stop once the impulses have settled.
+    if (iteration > 0 && change <= 1e-9 * (1e-9 + ws.P.lpNorm<Eigen::Infinity>())) break;
+  }
+}
+
+// 7. The tensions, and the force that gives the end-of-step velocity solved for (cable pull,
+// geometric stiffness and joint reactions together): Box2D integrates v += h M^-1 F.
+void applyForces(Workspace& ws, double h, std::span<Cable> cables, std::span<Vec3> loads) {
+  for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r)
+    cables[ws.rows[r]].setTension(ws.P[r] / h);
+  ws.WP.noalias() = ws.W * ws.P;
+  for (size_t k = 0; k < ws.dofs.body.size(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      const int d = 3 * static_cast<int>(k) + c;
+      const double dv = ws.vStar[d] - ws.WP[d] - ws.vFree[d];
+      if (ws.invM[d] > 0) loads[ws.dofs.body[k]][c] += dv / (h * ws.invM[d]);
+    }
+}
+
+}  // namespace
+
+CableSolver::CableSolver() : ws_(std::make_unique<CableSolverWorkspace>()) {}
+CableSolver::~CableSolver() = default;
+
+void CableSolver::solve(const CableSolveInput& in, std::span<Cable> cables, std::span<Vec3> loads,
+                        StepStats& stats) {
+  CableSolverWorkspace& ws = *ws_;
+  if (!buildRows(ws, in, cables)) return;
+  predictVelocities(ws, in, cables, loads);
+  inverseMass(ws, in.h, cables);
+  projectOntoJoints(ws, in);
+  lengthTargets(ws, in.h, cables);
+  newtonOnLengths(ws, in, cables, stats);
+  applyForces(ws, in.h, cables, loads);
+}
+
+}  // namespace cablelab

@@ -1,0 +1,54 @@
+// The cable solver: the tensions of every cable for one sub-step, as forces Box2D then applies.
+//
+// Box2D integrates v1 = v0 + h M^-1 F and q1 = q0 + h v1. The solver picks the cable forces so
+// that the cable lengths at the END of the sub-step are right (a SHAKE-like position-level
+// condition, docs/model.md), in named stages:
+//   1. buildRows            one row per cable that pulls on a moving body; the dofs it moves
+//   2. predictVelocities    v* (gravity and loads, no cables) and J^T at the start of the step
+//   3. inverseMass          W = M'^-1 J^T, M' with the taut cables' geometric stiffness
+//   4. projectOntoJoints    W and v* restricted to what Box2D's joints allow (Schur complement)
+//   5. lengthTargets        rigid: the end-of-step length; elastic: the implicit spring-damper
+//   6. newtonOnLengths      Newton on the end-of-step lengths, one LCP per iteration
+//   7. applyForces          the force that gives the solved end-of-step velocity
+// Private to engine/dynamics.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "engine/cable/cable.h"
+#include "engine/dynamics/box2d_bridge.h"
+#include "engine/dynamics/world.h"
+
+namespace cablelab {
+
+/// What one solve reads: the sub-step, the bodies now, and the joints among them.
+struct CableSolveInput {
+  double h = 0;                                      ///< sub-step (s)
+  Vec2 gravity = Vec2::Zero();                       ///< m/s^2
+  std::span<const BodyState> bodies;                 ///< start of the sub-step
+  std::span<const JointFrame> joints;                ///< every joint, indexed as the scene's
+  std::span<const std::vector<int>> jointNeighbours; ///< bodies jointed to each body
+};
+
+struct CableSolverWorkspace;  // the stages' buffers (cable_solver.cpp)
+
+class CableSolver {
+ public:
+  CableSolver();
+  ~CableSolver();
+  CableSolver(const CableSolver&) = delete;
+  CableSolver& operator=(const CableSolver&) = delete;
+
+  /// Sets every cable's tension and adds to `loads` (fx, fy, torque per body, already holding
+  /// gravity-free external loads) the forces that realise them. Adds its LCP figures to `stats`.
+  void solve(const CableSolveInput& in, std::span<Cable> cables, std::span<Vec3> loads,
+             StepStats& stats);
+
+ private:
+  std::unique_ptr<CableSolverWorkspace> ws_;  // reused across sub-steps: no allocation
+};
+
+}  // namespace cablelab

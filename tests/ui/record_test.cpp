@@ -1,0 +1,102 @@
+// Animated GIFs: the giflib writer round trip (ui/gif.h) and `cablelab record` (headless).
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "tests/ui/test_support.h"
+#include "ui/gif.h"
+
+namespace cablelab::test {
+namespace {
+
+const std::string kCli = CABLELAB_CLI;
+
+/// A frame of four flat colour bands whose boundary moves with `k`.
+ui::Image bands(int width, int height, int k) {
+  ui::Image image;
+  image.width = width;
+  image.height = height;
+  image.rgba.assign(static_cast<size_t>(width) * height * 4, 255);
+  static const std::uint8_t kColours[4][3] = {{250, 20, 20}, {20, 200, 40}, {30, 40, 220}, {5, 5, 5}};
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const int band = ((x + 3 * k) / 10 + y / 12) % 4;
+      std::copy(kColours[band], kColours[band] + 3, image.pixel(x, y));
+    }
+  return image;
+}
+
+TEST(Gif, WriterRoundTripKeepsFlatColoursAndTheFrameRate) {
+  const std::string path = (outputDir("gif") / "bands.gif").string();
+  constexpr int kFrames = 12;
+  constexpr double kFps = 30;
+  {
+    ui::GifWriter gif(path, 64, 48, 1 / kFps);
+    for (int k = 0; k < kFrames; ++k) gif.add(bands(64, 48, k));
+    gif.close();
+    EXPECT_EQ(gif.frames(), kFrames);
+  }
+  const ui::GifAnimation a = ui::readGif(path);
+  ASSERT_EQ(a.frames.size(), static_cast<size_t>(kFrames));
+  EXPECT_TRUE(a.loops);
+  int total = 0;
+  for (int d : a.delays) {
+    EXPECT_GE(d, 3);  // 3.33 cs per frame, spread as 3s and 4s
+    EXPECT_LE(d, 4);
+    total += d;
+  }
+  EXPECT_EQ(total, static_cast<int>(std::lround(kFrames * 100 / kFps)));
+  // Four colours fit any palette: every pixel comes back, to the 5 bits per channel giflib's
+  // quantiser keeps (its palette entries are multiples of 8).
+  for (int k = 0; k < kFrames; ++k) {
+    EXPECT_EQ(countDiffering(a.frames[k], bands(64, 48, k), 7), 0) << "frame " << k;
+    EXPECT_GT(countDiffering(a.frames[k], bands(64, 48, k + 1), 7), 100) << "frame " << k;
+  }
+}
+
+TEST(Gif, WriterRejectsAWrongSizeAndAnUnwritablePath) {
+  EXPECT_THROW(ui::GifWriter("/nonexistent/dir/x.gif", 10, 10, 0.1), std::runtime_error);
+  ui::GifWriter gif((outputDir("gif") / "size.gif").string(), 10, 10, 0.1);
+  EXPECT_THROW(gif.add(bands(11, 10, 0)), std::runtime_error);
+}
+
+TEST(RecordCli, HexagonForTwoSecondsHasSixtyDifferentFrames) {
+  const std::string out = (outputDir("record") / "clip.gif").string();
+  const RunResult r =
+      run(kCli + " record hexagon --out " + out + " --time 2 --size 320x240", "record_hexagon");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const ui::GifAnimation a = ui::readGif(out);
+  // One frame per 1/30 s from t = 0 to t = 2 inclusive.
+  ASSERT_EQ(a.frames.size(), 61u);
+  EXPECT_EQ(a.frames[0].width, 320);
+  EXPECT_EQ(a.frames[0].height, 240);
+  // The hexagon spins and the weight swings: every frame differs from the one before.
+  for (size_t k = 1; k < a.frames.size(); ++k)
+    EXPECT_GT(countDiffering(a.frames[k], a.frames[k - 1], 40), 20) << "frame " << k;
+  // Frames to look at.
+  ui::writePng(a.frames[0], outputDir("record") / "clip-0.png");
+  ui::writePng(a.frames[45], outputDir("record") / "clip-45.png");
+  int delaySum = 0;
+  for (int d : a.delays) delaySum += d;
+  EXPECT_EQ(delaySum, 203);  // round(61 * 100 / 30)
+}
+
+TEST(RecordCli, BadArgumentsExitTwoWithOneLine) {
+  const std::string out = (outputDir("record") / "bad.gif").string();
+  const std::string o = " --out " + out;
+  const std::vector<std::string> bad = {
+      "hexagon" + o + " --fps 0 --time 0.1",     "hexagon" + o + " --fps 200 --time 0.1",
+      "hexagon" + o + " --time -1",              "hexagon" + o + " --size 10 --time 0.1",
+      "hexagon" + o + " --size 0x100 --time 0.1", "nosuchscene" + o,
+      "hexagon --out /nonexistent/dir/clip.gif", "hexagon" + o + " --set nosuch=1",
+      "hexagon" + o + " --fps abc",              "hexagon --time 0.1"};
+  for (const std::string& args : bad) {
+    const RunResult r = run(kCli + " record " + args, "record_bad");
+    EXPECT_EQ(r.exitCode, 2) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+  }
+  EXPECT_EQ(run(kCli + " record --help", "record_help").exitCode, 0);
+}
+
+}  // namespace
+}  // namespace cablelab::test

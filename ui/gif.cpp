@@ -1,0 +1,156 @@
+#include "ui/gif.h"
+
+#include <fcntl.h>
+#include <gif_lib.h>
+#include <unistd.h>
+
+#include <cerrno>
+
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+#include <vector>
+
+namespace cablelab::ui {
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& what, int code) {
+  const char* reason = GifErrorString(code);
+  throw std::runtime_error(path + ": " + what + " (" + (reason ? reason : "giflib error") + ")");
+}
+
+}  // namespace
+
+GifWriter::GifWriter(const std::string& path, int width, int height, double frameSeconds)
+    : path_(path), width_(width), height_(height), frameSeconds_(frameSeconds) {
+  if (width <= 0 || height <= 0 || width > 65535 || height > 65535)
+    throw std::runtime_error(path + ": GIF size must be 1..65535 pixels per side");
+  if (!(frameSeconds > 0)) throw std::runtime_error(path + ": frame time must be positive");
+  // Opened here rather than by EGifOpenFileName, which creates files readable by their owner
+  // only (0600): the umask decides, as for every other output.
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
+  if (fd < 0) throw std::runtime_error(path + ": cannot write the GIF (" + std::strerror(errno) + ")");
+  int error = 0;
+  gif_ = EGifOpenFileHandle(fd, &error);  // owns fd from here on, closed by EGifCloseFile
+  if (!gif_) {
+    ::close(fd);
+    fail(path, "cannot write the GIF", error);
+  }
+  EGifSetGifVersion(gif_, true);  // GIF89a: delays and looping
+  if (EGifPutScreenDesc(gif_, width, height, 8, 0, nullptr) == GIF_ERROR)
+    fail(path, "cannot write the GIF header", gif_->Error);
+  // NETSCAPE2.0 application extension, loop count 0 = forever.
+  static const GifByteType kApp[] = "NETSCAPE2.0";
+  static const GifByteType kLoop[] = {1, 0, 0};
+  if (EGifPutExtensionLeader(gif_, APPLICATION_EXT_FUNC_CODE) == GIF_ERROR ||
+      EGifPutExtensionBlock(gif_, 11, kApp) == GIF_ERROR ||
+      EGifPutExtensionBlock(gif_, 3, kLoop) == GIF_ERROR ||
+      EGifPutExtensionTrailer(gif_) == GIF_ERROR)
+    fail(path, "cannot write the GIF loop extension", gif_->Error);
+}
+
+GifWriter::~GifWriter() {
+  if (gif_) {
+    int error = 0;
+    EGifCloseFile(gif_, &error);
+  }
+}
+
+void GifWriter::add(const Image& frame) {
+  if (!gif_) throw std::runtime_error(path_ + ": GIF already closed");
+  if (frame.width != width_ || frame.height != height_)
+    throw std::runtime_error(path_ + ": frame size " + std::to_string(frame.width) + "x" +
+                             std::to_string(frame.height) + " differs from the GIF's");
+  const size_t n = static_cast<size_t>(width_) * height_;
+  std::vector<GifByteType> r(n), g(n), b(n), indices(n);
+  for (size_t i = 0; i < n; ++i) {
+    r[i] = frame.rgba[4 * i];
+    g[i] = frame.rgba[4 * i + 1];
+    b[i] = frame.rgba[4 * i + 2];
+  }
+  GifColorType palette[256];
+  std::memset(palette, 0, sizeof palette);
+  int colours = 256;
+  if (GifQuantizeBuffer(width_, height_, &colours, r.data(), g.data(), b.data(), indices.data(),
+                        palette) == GIF_ERROR)
+    throw std::runtime_error(path_ + ": colour quantisation failed");
+  // Whole centiseconds per frame, spread so that the total stays on frames * frameSeconds.
+  const double end = std::round((frames_ + 1) * frameSeconds_ * 100);
+  const int delay = static_cast<int>(end - written_);
+  written_ = end;
+  GraphicsControlBlock gcb{};
+  gcb.DisposalMode = DISPOSE_DO_NOT;
+  gcb.DelayTime = delay;
+  gcb.TransparentColor = NO_TRANSPARENT_COLOR;
+  GifByteType extension[4];
+  const size_t length = EGifGCBToExtension(&gcb, extension);
+  ColorMapObject* map = GifMakeMapObject(256, palette);
+  if (!map) throw std::runtime_error(path_ + ": out of memory for the GIF palette");
+  bool ok = EGifPutExtension(gif_, GRAPHICS_EXT_FUNC_CODE, static_cast<int>(length), extension) !=
+                GIF_ERROR &&
+            EGifPutImageDesc(gif_, 0, 0, width_, height_, false, map) != GIF_ERROR;
+  for (int y = 0; ok && y < height_; ++y)
+    ok = EGifPutLine(gif_, indices.data() + static_cast<size_t>(y) * width_, width_) != GIF_ERROR;
+  GifFreeMapObject(map);
+  if (!ok) fail(path_, "cannot write GIF frame " + std::to_string(frames_), gif_->Error);
+  ++frames_;
+}
+
+void GifWriter::close() {
+  if (!gif_) return;
+  int error = 0;
+  const int result = EGifCloseFile(gif_, &error);
+  gif_ = nullptr;
+  if (result == GIF_ERROR) fail(path_, "cannot finish the GIF", error);
+}
+
+GifAnimation readGif(const std::string& path) {
+  int error = 0;
+  GifFileType* gif = DGifOpenFileName(path.c_str(), &error);
+  if (!gif) fail(path, "cannot open the GIF", error);
+  struct Closer {
+    GifFileType* g;
+    ~Closer() {
+      int e = 0;
+      DGifCloseFile(g, &e);
+    }
+  } closer{gif};
+  if (DGifSlurp(gif) == GIF_ERROR) fail(path, "cannot decode the GIF", gif->Error);
+  GifAnimation animation;
+  Image canvas;
+  canvas.width = gif->SWidth;
+  canvas.height = gif->SHeight;
+  canvas.rgba.assign(static_cast<size_t>(canvas.width) * canvas.height * 4, 255);
+  for (int k = 0; k < gif->ImageCount; ++k) {
+    const SavedImage& image = gif->SavedImages[k];
+    for (int e = 0; e < image.ExtensionBlockCount; ++e) {
+      const ExtensionBlock& block = image.ExtensionBlocks[e];
+      if (block.Function == APPLICATION_EXT_FUNC_CODE && block.ByteCount == 11 &&
+          std::memcmp(block.Bytes, "NETSCAPE2.0", 11) == 0)
+        animation.loops = true;
+    }
+    const GifImageDesc& d = image.ImageDesc;
+    const ColorMapObject* map = d.ColorMap ? d.ColorMap : gif->SColorMap;
+    if (!map) throw std::runtime_error(path + ": frame " + std::to_string(k) + " has no palette");
+    GraphicsControlBlock gcb{};
+    gcb.TransparentColor = NO_TRANSPARENT_COLOR;
+    DGifSavedExtensionToGCB(gif, k, &gcb);
+    for (int y = 0; y < d.Height; ++y)
+      for (int x = 0; x < d.Width; ++x) {
+        const int cx = d.Left + x, cy = d.Top + y;
+        if (cx < 0 || cy < 0 || cx >= canvas.width || cy >= canvas.height) continue;
+        const int index = image.RasterBits[static_cast<size_t>(y) * d.Width + x];
+        if (index == gcb.TransparentColor || index >= map->ColorCount) continue;
+        std::uint8_t* p = canvas.pixel(cx, cy);
+        p[0] = map->Colors[index].Red;
+        p[1] = map->Colors[index].Green;
+        p[2] = map->Colors[index].Blue;
+        p[3] = 255;
+      }
+    animation.frames.push_back(canvas);
+    animation.delays.push_back(gcb.DelayTime);
+  }
+  return animation;
+}
+
+}  // namespace cablelab::ui

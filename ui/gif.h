@@ -1,0 +1,56 @@
+// GifWriter: an animated GIF written frame by frame with giflib (Debian's libgif), each frame
+// quantised to its own 256-colour palette by giflib's GifQuantizeBuffer (median cut).
+//
+// Needs: giflib only (no GL), ui/image.h. Frames must all have the writer's size. The delay
+// of each frame is in GIF's centiseconds; frameSeconds that are not a whole number of them
+// are spread (3, 3, 4, 3, 3, 4 cs for 30 fps) so the animation keeps the right average rate.
+// The file loops forever (the NETSCAPE2.0 extension browsers understand).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "ui/image.h"
+
+struct GifFileType;
+
+namespace cablelab::ui {
+
+class GifWriter {
+ public:
+  /// Opens `path` for a width x height animation at one frame per `frameSeconds`; throws
+  /// std::runtime_error naming the path if it cannot be written.
+  GifWriter(const std::string& path, int width, int height, double frameSeconds);
+  ~GifWriter();  ///< closes the file if close() was not called (errors then ignored)
+  GifWriter(const GifWriter&) = delete;
+  GifWriter& operator=(const GifWriter&) = delete;
+
+  /// Appends one frame (its size must be the writer's); throws std::runtime_error on failure.
+  void add(const Image& frame);
+  /// Finishes the file; throws std::runtime_error naming the path on failure.
+  void close();
+
+  int frames() const { return frames_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  GifFileType* gif_ = nullptr;
+  int width_, height_;
+  double frameSeconds_;
+  double written_ = 0;  ///< centiseconds of delay written so far
+  int frames_ = 0;
+};
+
+/// One decoded GIF (for tests and tools): every frame as an RGBA image (frames composed as a
+/// viewer shows them: each covers the previous one) and its delay in centiseconds.
+struct GifAnimation {
+  std::vector<Image> frames;
+  std::vector<int> delays;
+  bool loops = false;  ///< has the NETSCAPE2.0 looping extension
+};
+
+/// Reads a GIF with giflib; throws std::runtime_error naming the path on failure.
+GifAnimation readGif(const std::string& path);
+
+}  // namespace cablelab::ui
