@@ -13,6 +13,10 @@ namespace {
 constexpr double kLengthSlop = 1e-5;
 constexpr double kBaumgarte = 0.2;
 constexpr int kIterations = 40;
+// Floors (docs/cables.md): a segment shorter than kFloorWatch gets a row keeping it at least
+// kFloorLength long, so a body that reaches its pulley stops there (an inelastic stop).
+constexpr double kFloorWatch = 0.5;    // m
+constexpr double kFloorLength = 0.01;  // m
 constexpr double kPositionTolerance = 1e-12;  // m: end-of-step pose settled
 
 bool moves(const BodyState& b) {
@@ -76,6 +80,9 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
     const auto& path = c.path();
     for (size_t i = 1; i + 1 < path.size(); ++i)
       wanted |= path[i].body >= 0 && moves(bodies[path[i].body]);
+    for (size_t i = 0; i + 1 < path.size(); ++i)
+      wanted |= path[i].body != path[i + 1].body &&
+                (path[i + 1].world - path[i].world).norm() < kFloorWatch;
     if (c.elastic()) {
       if (elasticMode(c, bodies) * h > kMaxElasticOmegaH) return false;
       wanted = true;
@@ -98,6 +105,13 @@ void MidpointSolver::evaluate(std::span<const BodyState> bodies, std::span<const
   }
   for (size_t r = 0; r < rows_.size(); ++r) {
     const Cable& c = cables[rows_[r]];
+    if (const int seg = segment_[r]; seg >= 0) {  // a floor: kFloorLength - |segment|
+      path_.assign(c.path().begin() + seg, c.path().begin() + seg + 2);
+      lengthDiscreteGradient(path_, bodies, predicted_, gradients_[r]);
+      for (auto& e : gradients_[r]) e.d = -e.d;
+      phi1_[r] = kFloorLength - (path_[1].world - path_[0].world).norm();
+      continue;
+    }
     path_.assign(c.path().begin(), c.path().end());
     lengthDiscreteGradient(path_, bodies, predicted_, gradients_[r]);
     double length1 = 0;
@@ -110,8 +124,9 @@ void MidpointSolver::evaluate(std::span<const BodyState> bodies, std::span<const
 double MidpointSolver::transverseMode(std::span<const BodyState> bodies,
                                       std::span<const Cable> cables) const {
   double fastest = 0;
-  for (int row : rows_) {
-    const Cable& c = cables[row];
+  for (size_t r = 0; r < rows_.size(); ++r) {
+    if (segment_[r] >= 0) continue;
+    const Cable& c = cables[rows_[r]];
     const auto& path = c.path();
     double invMass = 0, curvature = 0;
     for (size_t i = 0; i < path.size(); ++i) {
@@ -158,6 +173,19 @@ bool MidpointSolver::buildRows(std::span<const BodyState> bodies, std::span<Cabl
     else
       cables[i].setTension(0);
   }
+  segment_.assign(rows_.size(), -1);
+  const size_t cableRows = rows_.size();
+  for (size_t r = 0; r < cableRows; ++r) {
+    const auto& path = cables[rows_[r]].path();
+    for (size_t i = 0; i + 1 < path.size(); ++i) {
+      const int a = path[i].body, b = path[i + 1].body;
+      const bool moving = (a >= 0 && dofOfBody_[a] >= 0) || (b >= 0 && dofOfBody_[b] >= 0);
+      if (a != b && moving && (path[i + 1].world - path[i].world).norm() < kFloorWatch) {
+        rows_.push_back(rows_[r]);
+        segment_.push_back(static_cast<int>(i));
+      }
+    }
+  }
   const int m = static_cast<int>(rows_.size()), n = 3 * static_cast<int>(bodyOfDof_.size());
   if (m == 0) return false;
   invM_.resize(n);
@@ -177,7 +205,12 @@ bool MidpointSolver::buildRows(std::span<const BodyState> bodies, std::span<Cabl
   phi0_.resize(m);
   phi1_.resize(m);
   gradients_.resize(m);
-  for (int r = 0; r < m; ++r) phi0_[r] = cables[rows_[r]].stretch();
+  for (int r = 0; r < m; ++r) {
+    const auto& path = cables[rows_[r]].path();
+    const int seg = segment_[r];
+    phi0_[r] = seg < 0 ? cables[rows_[r]].stretch()
+                       : kFloorLength - (path[seg + 1].world - path[seg].world).norm();
+  }
   P_.setZero(m);
   vb_ = vStar_;
   predicted_.assign(bodies.begin(), bodies.end());
@@ -194,7 +227,7 @@ void MidpointSolver::buildIterationMatrix(std::span<const Cable> cables, double 
   A_.setZero(n, n);
   for (int d = 0; d < n; ++d) A_(d, d) = invM_[d] > 0 ? 1.0 / invM_[d] : 1.0;
   for (size_t r = 0; r < rows_.size(); ++r) {
-    if (P_[r] <= 0) continue;
+    if (P_[r] <= 0 || segment_[r] >= 0) continue;  // floors: their (negative) Hessian left out
     const double scale = 0.25 * h * P_[r];
     path_.assign(cables[rows_[r]].path().begin(), cables[rows_[r]].path().end());
     for (WrapPoint& w : path_) w.world = worldPoint(midpoint_, w.body, w.local);
@@ -254,7 +287,7 @@ bool MidpointSolver::newtonStep(std::span<const BodyState> bodies, std::span<con
   for (int r = 0; r < m; ++r) {
     const Cable& c = cables[rows_[r]];
     const double kp = K_.row(r).dot(P_) - GAinvR_[r];
-    if (!c.elastic()) {
+    if (!c.elastic() || segment_[r] >= 0) {
       b_[r] = kp + (phi1_[r] - rigidTarget(phi0_[r])) / h;
       continue;
     }
@@ -278,7 +311,8 @@ bool MidpointSolver::newtonStep(std::span<const BodyState> bodies, std::span<con
 // Tensions, the force that gives Box2D the velocity v_b, and the second half after its step.
 void MidpointSolver::finish(std::span<const BodyState> bodies, std::span<Cable> cables, double h,
                             std::span<Vec3> forces, std::span<Vec3> kicks) {
-  for (size_t r = 0; r < rows_.size(); ++r) cables[rows_[r]].setTension(P_[r] / h);
+  for (size_t r = 0; r < rows_.size(); ++r)
+    if (segment_[r] < 0) cables[rows_[r]].setTension(P_[r] / h);
   for (size_t k = 0; k < bodyOfDof_.size(); ++k) {
     const int body = bodyOfDof_[k];
     const BodyState& s = bodies[body];

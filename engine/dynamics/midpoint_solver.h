@@ -40,8 +40,8 @@ class MidpointSolver {
   /// resolved by the step, and the main solve's backward Euler damps them (stable at any k).
   static constexpr double kMaxElasticOmegaH = 2.0;
 
-  /// Whether this solve should take the step: some cable is elastic or wraps a point on a
-  /// moving body (straight cables between fixed pulleys keep Box2D's own integration), no moved
+  /// Whether this solve should take the step: some cable is elastic, wraps a point on a
+  /// moving body or has a segment short enough to need a floor (a body nearing its pulley) (straight cables between fixed pulleys keep Box2D's own integration), no moved
   /// body is `excluded` (jointed or in contact), and every mode is resolved at h.
   bool applies(std::span<const BodyState> bodies, std::span<const Cable> cables,
                std::span<const char> excluded, double h);
@@ -66,6 +66,7 @@ class MidpointSolver {
               std::span<Vec3> forces, std::span<Vec3> kicks);
 
   std::vector<int> rows_;        // cable of each row
+  std::vector<int> segment_;     // -1: the cable's length; i: a floor on its segment i
   std::vector<int> dofOfBody_;   // body -> first dof, -1: not moved
   std::vector<int> bodyOfDof_;   // dof / 3 -> body
   Eigen::VectorXd invM_, vStar_, vFree_, vb_, P_, phi0_, phi1_, b_;
