@@ -13,11 +13,7 @@ std::string typeName(py::handle value) {
   return py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>();
 }
 
-std::string numberText(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
+std::string numberText(double v) { return formatNumber(v); }  // the one format (error.h)
 
 }  // namespace
 
@@ -45,7 +41,18 @@ nlohmann::json toJson(py::handle value, const std::string& source, const std::st
     return out;
   }
   // Integers (also numpy's) stay integers; every other number becomes a double.
-  if (PyIndex_Check(value.ptr())) return py::int_(value.cast<py::object>()).cast<long long>();
+  if (PyIndex_Check(value.ptr())) {
+    const py::int_ i(py::reinterpret_borrow<py::object>(value));
+    int overflow = 0;
+    const long long v = PyLong_AsLongLongAndOverflow(i.ptr(), &overflow);
+    if (!overflow) return v;
+    const double d = PyLong_AsDouble(i.ptr());  // beyond 64 bits: a double, as JSON reads it
+    if (d == -1.0 && PyErr_Occurred()) {
+      PyErr_Clear();
+      throw InputError(source, here, "is too large a number");
+    }
+    return d;
+  }
   if (PyFloat_Check(value.ptr()) || PyNumber_Check(value.ptr())) {
     const double d = py::float_(value.cast<py::object>()).cast<double>();
     if (!std::isfinite(d)) throw InputError(source, here, "must be finite (got " + numberText(d) + ")");
