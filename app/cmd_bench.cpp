@@ -1,5 +1,5 @@
 // cablelab bench: the headline performance figures, all measured in this process and this run
-// (CONTRACT.md). Medians throughout; the measuring code lives in the engine (bench_scenes.h,
+// (docs/cli.md). Medians throughout; the measuring code lives in the engine (bench_scenes.h,
 // statics_bench.h, hand_controller.h, hand_reach.h) and is shared with tests/bench/.
 #include <algorithm>
 #include <chrono>
@@ -47,7 +47,7 @@ void stage(const char* what) {
 }
 
 const bool registered = registerCommand(
-    "bench", "Measure the headline performance figures (CONTRACT.md)", [](CLI::App& sub) {
+    "bench", "Measure the headline performance figures (docs/cli.md)", [](CLI::App& sub) {
       struct Options {
         bool json = false, quick = false;
       };

@@ -5,7 +5,7 @@
 //   cablelab fit --generate OUT.csv --pulleys AX,AY,BX,BY --k K --preload P
 //                [--noise-fy N] [--noise-angle-deg D] [--seed S] [--grid NXxNY]
 //                [--depth MIN,MAX] [--along MIN,MAX]
-#include <charconv>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -17,6 +17,8 @@
 
 #include "app/command.h"
 #include "engine/core/error.h"
+#include "engine/core/file_input.h"
+#include "engine/core/parse.h"
 #include "engine/membrane/membrane_data.h"
 #include "engine/membrane/membrane_fit.h"
 #include "engine/membrane/membrane_plot.h"
@@ -47,84 +49,56 @@ struct FitOptions {
   std::string along = "0.1,0.9";
 };
 
-double parseDouble(const std::string& text, const std::string& flag, const std::string& field) {
-  double value = 0.0;
-  const char* end = text.data() + text.size();
-  const auto [stop, error] = std::from_chars(text.data(), end, value);
-  if (text.empty() || error != std::errc() || stop != end || !std::isfinite(value))
-    throw InputError(flag, field, "expected a finite number (got \"" + text + "\")");
-  return value;
-}
-
-/// "a,b,c" -> exactly `count` finite numbers.
-std::vector<double> parseList(const std::string& text, size_t count, const std::string& flag,
-                              const std::string& field, const std::string& shape) {
-  std::vector<double> values;
-  size_t start = 0;
-  while (true) {
-    const size_t comma = text.find(',', start);
-    const std::string item = text.substr(start, comma == std::string::npos ? comma : comma - start);
-    values.push_back(parseDouble(item, flag, field));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  if (values.size() != count)
-    throw InputError(flag, field,
-                     "expected " + shape + " (" + std::to_string(count) + " numbers, got " +
-                         std::to_string(values.size()) + ")");
-  return values;
+double parseDouble(const std::string& text, const std::string& flag) {
+  return parseNumber(text, kCommandLine, flag);
 }
 
 MembraneGeometry parsePulleys(const std::string& text) {
-  if (text.empty()) throw InputError("--pulleys", "pulleys", "required: --pulleys AX,AY,BX,BY (m)");
-  const auto v = parseList(text, 4, "--pulleys", "pulleys", "AX,AY,BX,BY");
+  if (text.empty())
+    throw InputError(kCommandLine, "--pulleys", "is required: --pulleys AX,AY,BX,BY (m)");
+  const auto v = parseNumberList(text, 4, kCommandLine, "--pulleys", "AX,AY,BX,BY");
   MembraneGeometry g{Vec2(v[0], v[1]), Vec2(v[2], v[3])};
-  validateMembraneGeometry(g, "--pulleys");
+  validateMembraneGeometry(g, kCommandLine, "--pulleys");
   return g;
-}
-
-std::ofstream openForWriting(const std::filesystem::path& path, const std::string& flag) {
-  std::ofstream out(path);
-  if (!out) throw InputError(path.string(), flag, "cannot open for writing");
-  return out;
 }
 
 int runGenerate(const FitOptions& o) {
   if (!o.data.empty())
-    throw InputError(o.data, "DATA", "give either DATA.csv (fit) or --generate OUT.csv, not both");
+    throw InputError(kCommandLine, "DATA",
+                     "give either DATA.csv (fit) or --generate OUT.csv, not both" + gotValue(o.data));
   MembraneSynthDef def;
   def.geometry = parsePulleys(o.pulleys);
-  if (o.k.empty()) throw InputError("--k", "k", "required with --generate (N/m)");
-  if (o.preload.empty()) throw InputError("--preload", "preload", "required with --generate (m)");
-  def.params.k = parseDouble(o.k, "--k", "k");
-  def.params.preload = parseDouble(o.preload, "--preload", "preload");
-  def.noiseFy = parseDouble(o.noiseFy, "--noise-fy", "noise_fy");
-  def.noiseAngleDeg = parseDouble(o.noiseAngleDeg, "--noise-angle-deg", "noise_angle_deg");
-  const double seed = parseDouble(o.seed, "--seed", "seed");
-  if (seed < 0 || seed != std::floor(seed) || seed > 9.007199254740992e15)
-    throw InputError("--seed", "seed", "must be a whole number >= 0");
-  def.seed = static_cast<std::uint64_t>(seed);
-  const size_t x = o.grid.find_first_of("xX");
-  if (x == std::string::npos) throw InputError("--grid", "grid", "expected NXxNY, e.g. 16x12");
-  const double nx = parseDouble(o.grid.substr(0, x), "--grid", "grid");
-  const double ny = parseDouble(o.grid.substr(x + 1), "--grid", "grid");
-  if (nx != std::floor(nx) || ny != std::floor(ny) || nx < 1 || ny < 1 || nx * ny > 1e6)
-    throw InputError("--grid", "grid", "NX and NY must be whole numbers >= 1, at most 1e6 points");
-  def.nx = static_cast<int>(nx);
-  def.ny = static_cast<int>(ny);
-  const auto depth = parseList(o.depth, 2, "--depth", "depth", "MIN,MAX");
-  const auto along = parseList(o.along, 2, "--along", "along", "MIN,MAX");
+  if (o.k.empty()) throw InputError(kCommandLine, "--k", "is required with --generate (N/m)");
+  if (o.preload.empty())
+    throw InputError(kCommandLine, "--preload", "is required with --generate (m)");
+  def.params.k = parseDouble(o.k, "--k");
+  def.params.preload = parseDouble(o.preload, "--preload");
+  def.noiseFy = parseDouble(o.noiseFy, "--noise-fy");
+  def.noiseAngleDeg = parseDouble(o.noiseAngleDeg, "--noise-angle-deg");
+  def.seed = static_cast<std::uint64_t>(
+      parseWholeNumber(o.seed, kCommandLine, "--seed", 0, 9007199254740992L));
+  const PixelSize grid = parsePixelSize(o.grid, kCommandLine, "--grid", 1, 1000000);
+  def.nx = grid.width;
+  def.ny = grid.height;
+  const auto depth = parseNumberList(o.depth, 2, kCommandLine, "--depth", "MIN,MAX");
+  const auto along = parseNumberList(o.along, 2, kCommandLine, "--along", "MIN,MAX");
   def.depthMin = depth[0];
   def.depthMax = depth[1];
   def.alongMin = along[0];
   def.alongMax = along[1];
-  validateMembraneSynth(def, "--generate");
+  try {
+    validateMembraneSynth(def, kCommandLine);
+  } catch (const InputError& e) {  // name the option the field came from
+    std::string option = "--" + e.field();
+    std::replace(option.begin(), option.end(), '_', '-');
+    throw InputError(kCommandLine, option, e.detail());
+  }
 
   const auto rows = generateMembraneData(def);
   {
-    std::ofstream out = openForWriting(o.generate, "--generate");
+    std::ofstream out = openOutputFile(o.generate, "--generate");
     writeMembraneCsv(out, rows);
-    if (!out.flush()) throw InputError(o.generate, "--generate", "write failed");
+    finishOutputFile(out, o.generate, "--generate");
   }
   // The generating parameters, with units: save this next to the CSV to document it.
   nlohmann::ordered_json j;
@@ -151,35 +125,25 @@ int runGenerate(const FitOptions& o) {
   return 0;
 }
 
-/// "WxH" -> pixel sizes, each in [200, 4096].
-std::pair<int, int> parsePlotSize(const std::string& text) {
-  const size_t x = text.find_first_of("xX");
-  if (x == std::string::npos)
-    throw InputError("--plot-size", "plot_size", "expected WxH, e.g. 800x600");
-  const double w = parseDouble(text.substr(0, x), "--plot-size", "plot_size");
-  const double h = parseDouble(text.substr(x + 1), "--plot-size", "plot_size");
-  if (w != std::floor(w) || h != std::floor(h) || w < 200 || h < 200 || w > 4096 || h > 4096)
-    throw InputError("--plot-size", "plot_size", "W and H must be whole numbers in 200..4096 (px)");
-  return {static_cast<int>(w), static_cast<int>(h)};
-}
-
 int runFit(const FitOptions& o) {
   if (o.data.empty())
-    throw InputError("fit", "DATA",
-                     "required: cablelab fit DATA.csv --pulleys ... (or --generate OUT.csv)");
+    throw InputError(kCommandLine, "DATA",
+                     "is required: cablelab fit DATA.csv --pulleys ... (or --generate OUT.csv)");
   for (const auto& [value, flag] : {std::pair{o.k, "--k"}, std::pair{o.preload, "--preload"}})
-    if (!value.empty()) throw InputError(flag, "generate", "only with --generate");
+    if (!value.empty()) throw InputError(kCommandLine, flag, "only with --generate" + gotValue(value));
   const MembraneGeometry g = parsePulleys(o.pulleys);
   MembraneFitOptions options;
   options.source = o.data;
   if (!o.sigmaFy.empty()) {
-    options.sigmaFy = parseDouble(o.sigmaFy, "--sigma-fy", "sigma_fy");
-    if (options.sigmaFy <= 0) throw InputError("--sigma-fy", "sigma_fy", "must be positive (N)");
+    options.sigmaFy = parseDouble(o.sigmaFy, "--sigma-fy");
+    if (options.sigmaFy <= 0)
+      throw InputError(kCommandLine, "--sigma-fy", "must be positive (N)" + gotValue(options.sigmaFy));
   }
   if (!o.sigmaAngleDeg.empty()) {
-    options.sigmaAngleDeg = parseDouble(o.sigmaAngleDeg, "--sigma-angle-deg", "sigma_angle_deg");
+    options.sigmaAngleDeg = parseDouble(o.sigmaAngleDeg, "--sigma-angle-deg");
     if (options.sigmaAngleDeg <= 0)
-      throw InputError("--sigma-angle-deg", "sigma_angle_deg", "must be positive (degrees)");
+      throw InputError(kCommandLine, "--sigma-angle-deg",
+                       "must be positive (degrees)" + gotValue(options.sigmaAngleDeg));
   }
 
   const auto rows = loadMembraneCsv(o.data, g);
@@ -209,23 +173,28 @@ int runFit(const FitOptions& o) {
   j["fit_us"] = fitUs;
 
   if (!o.plots.empty()) {
-    const auto [width, height] = parsePlotSize(o.plotSize);
+    const auto [width, height] = parsePixelSize(o.plotSize, kCommandLine, "--plot-size", 200, 4096);
     const std::filesystem::path dir(o.plots);
     std::error_code error;
     std::filesystem::create_directories(dir, error);
-    if (error) throw InputError(o.plots, "--plots", "cannot create directory: " + error.message());
+    if (error)
+      throw InputError(kCommandLine, "--plots",
+                       "cannot create the folder: " + error.message() + gotValue(o.plots));
     const MembranePlotData plot = makeMembranePlotData(g, fit.params, rows);
-    std::ofstream quiver = openForWriting(dir / "quiver.csv", "--plots");
+    const std::string quiverCsv = (dir / "quiver.csv").string();
+    const std::string scatterCsv = (dir / "scatter.csv").string();
+    std::ofstream quiver = openOutputFile(quiverCsv, "--plots");
     writeQuiverCsv(quiver, plot);
-    std::ofstream scatter = openForWriting(dir / "scatter.csv", "--plots");
+    finishOutputFile(quiver, quiverCsv, "--plots");
+    std::ofstream scatter = openOutputFile(scatterCsv, "--plots");
     writeScatterCsv(scatter, plot);
-    if (!quiver.flush() || !scatter.flush()) throw InputError(o.plots, "--plots", "write failed");
+    finishOutputFile(scatter, scatterCsv, "--plots");
     j["plots"] = {(dir / "quiver.csv").string(), (dir / "scatter.csv").string()};
 #ifdef CABLELAB_HAVE_OFFSCREEN
     try {
       ui::writeMembraneFigures(g, fit.params, plot, dir.string(), width, height);
     } catch (const std::exception& e) {
-      throw InputError(o.plots, "--plots", e.what());
+      throw InputError(kCommandLine, "--plots", e.what());
     }
     j["plots"].push_back((dir / "quiver.png").string());
     j["plots"].push_back((dir / "scatter.png").string());

@@ -27,11 +27,11 @@ const bool registered = registerCommand(
       sub.add_option("--png", o->png, "Draw both sets to this PNG file");
       return [o] {
         if (o->grid < 1 || o->grid > 1000)
-          throw InputError("--grid", "--grid", "must be an integer in [1, 1000]");
+          badOption("--grid", "must be a whole number in [1, 1000]" + gotValue(o->grid));
 #ifndef CABLELAB_HAVE_OFFSCREEN
-        if (!o->png.empty())
-          throw InputError("--png", "--png", "this build has no offscreen renderer");
+        if (!o->png.empty()) badOption("--png", "this build has no offscreen renderer");
 #endif
+        requireOutputFile(o->png, "--png");
         ReachOptions options;
         options.grid = o->grid;
         options.threads =
@@ -69,7 +69,7 @@ const bool registered = registerCommand(
           try {
             ui::writePlotPng(plot, o->png, 800, 900);
           } catch (const std::exception& e) {
-            throw InputError(o->png, "--png", e.what());
+            badOption("--png", std::string("cannot write the file: ") + e.what());
           }
         }
 #endif

@@ -11,6 +11,8 @@
 #include "app/command.h"
 #include "app/options.h"
 #include "engine/core/error.h"
+#include "engine/core/file_input.h"
+#include "engine/core/parse.h"
 #include "engine/dynamics/world.h"
 #include "engine/scenes/scene_registry.h"
 #include "ui/camera.h"
@@ -28,15 +30,6 @@ struct RecordOptions {
   double time = 5, fps = 30;
 };
 
-std::pair<int, int> parseSize(const std::string& text) {
-  int w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') ||
-      w < 16 || h < 16 || w > 4096 || h > 4096)
-    badOption("--size", "expected WxH with 16..4096 pixels per side (got " + text + ")");
-  return {w, h};
-}
-
 std::string timeNote(double t) {
   char buffer[48];
   std::snprintf(buffer, sizeof buffer, "t = %.2f s", t);
@@ -46,10 +39,10 @@ std::string timeNote(double t) {
 int record(const RecordOptions& o) {
   // GIF delays are whole centiseconds, and viewers slow frames under 2 cs down to 10 cs.
   if (!std::isfinite(o.fps) || o.fps < 1 || o.fps > 50)
-    badOption("--fps", "must be a number in [1, 50] frames per second (got " +
-                           shortNumber(o.fps) + ")");
+    badOption("--fps", "must be a number in [1, 50] frames per second" + gotValue(o.fps));
   requireFinite(o.time, "--time", 0, 3600);
-  const auto [width, height] = parseSize(o.size);
+  const auto [width, height] = parsePixelSize(o.size, kCommandLine, "--size", 16, 4096);
+  requireWritable(o.out, "--out");
   std::vector<std::pair<std::string, double>> overrides;
   for (const std::string& s : o.sets) overrides.push_back(parseSetting(s));
   World world(makeScene(o.scene, overrides), o.scene);
@@ -58,7 +51,7 @@ int record(const RecordOptions& o) {
   try {
     gif = std::make_unique<ui::GifWriter>(o.out, width, height, 1 / o.fps);
   } catch (const std::exception& e) {
-    badOption("--out", e.what());
+    badOption("--out", std::string("cannot write the file: ") + e.what());
   }
   ui::OffscreenContext context(width, height);
   const ui::Camera camera = ui::Camera::fit(world.scene().view, width, height);

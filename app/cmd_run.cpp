@@ -9,6 +9,7 @@
 #include "app/command.h"
 #include "app/options.h"
 #include "engine/core/error.h"
+#include "engine/core/file_input.h"
 #include "engine/scenes/scene_registry.h"
 #include "engine/dynamics/world.h"
 #ifdef CABLELAB_HAVE_OFFSCREEN
@@ -22,8 +23,8 @@ namespace {
 // cable.
 class CsvWriter {
  public:
-  CsvWriter(const std::string& path, const World& world) : out_(path) {
-    if (!out_) throw InputError(path, "--csv", "cannot write the file");
+  CsvWriter(const std::string& path, const World& world)
+      : path_(path), out_(openOutputFile(path, "--csv")) {
     out_ << "t";
     for (const BodyDef& b : world.scene().bodies)
       for (const char* c : {".x", ".y", ".theta", ".vx", ".vy", ".omega"})
@@ -53,8 +54,10 @@ class CsvWriter {
     }
     out_ << "\n";
   }
+  void finish() { finishOutputFile(out_, path_, "--csv"); }
 
  private:
+  std::string path_;
   std::ofstream out_;
 };
 
@@ -79,9 +82,9 @@ const bool registered = registerCommand(
       sub.add_option("--png", o->png, "Write a snapshot of the final state to this PNG file");
       return [o, dtOption, substepsOption] {
         if (dtOption->count() && !(o->dt > 0 && o->dt <= 1))
-          badOption("--dt", "must be in (0, 1] s");
+          badOption("--dt", "must be in (0, 1] s" + gotValue(o->dt));
         if (substepsOption->count() && (o->substeps < 1 || o->substeps > 1000))
-          badOption("--substeps", "must be 1..1000");
+          badOption("--substeps", "must be 1..1000" + gotValue(o->substeps));
         std::vector<std::pair<std::string, double>> overrides;
         for (const std::string& s : o->sets) overrides.push_back(parseSetting(s));
         World world(makeScene(o->scene, overrides), o->scene);
@@ -89,8 +92,13 @@ const bool registered = registerCommand(
         const int substeps = o->substeps > 0 ? o->substeps : world.scene().substeps;
         requireFinite(o->time, "--time", 0, 1e7);
         const long steps = std::lround(o->time / dt);
-        if (steps > 100000000) badOption("--time", "more than 1e8 steps; raise --dt");
+        if (steps > 100000000)
+          badOption("--time", "more than 1e8 steps; raise --dt" + gotValue(o->time));
 
+#ifndef CABLELAB_HAVE_OFFSCREEN
+        if (!o->png.empty()) badOption("--png", "this build has no offscreen renderer");
+#endif
+        requireOutputFile(o->png, "--png");
         std::unique_ptr<CsvWriter> csv;
         if (!o->csv.empty()) {
           csv = std::make_unique<CsvWriter>(o->csv, world);
@@ -107,10 +115,9 @@ const bool registered = registerCommand(
           progress.update(i + 1);
         }
         progress.done();
+        if (csv) csv->finish();
 #ifdef CABLELAB_HAVE_OFFSCREEN
         if (!o->png.empty()) ui::writeSnapshotPng(world, o->png, 800, 600);
-#else
-    if (!o->png.empty()) badOption("--png", "this build has no offscreen renderer");
 #endif
         nlohmann::json out = {{"scene", world.scene().name}, {"steps", steps},
                               {"time", world.time()},        {"dt", dt},

@@ -1,7 +1,9 @@
 // cablelab scenes: one line per built-in scene, with its --set parameters.
 #include <cstdio>
+#include <filesystem>
 
 #include "app/command.h"
+#include "engine/core/error.h"
 #include "engine/model/scene_json.h"
 #include "engine/scenes/scene_registry.h"
 
@@ -17,6 +19,9 @@ const bool registered =
       sub.add_option("--export", *exportDir,
                      "Write every built-in scene (default parameters) as DIR/NAME.json");
       return [verbose, exportDir] {
+        std::error_code error;
+        if (!exportDir->empty() && !std::filesystem::is_directory(*exportDir, error))
+          throw InputError(kCommandLine, "--export", "no such folder" + gotValue(*exportDir));
         if (!exportDir->empty())
           for (const SceneInfo& s : builtinScenes())
             saveSceneFile(makeScene(s.name), *exportDir + "/" + s.name + ".json");

@@ -5,27 +5,14 @@
 
 #include "app/command.h"
 #include "engine/core/error.h"
+#include "engine/core/file_input.h"
+#include "engine/core/parse.h"
 #include "engine/dynamics/world.h"
 #include "ui/offscreen.h"
 #include "ui/scene_catalog.h"
 
 namespace cablelab::app {
 namespace {
-
-struct Size {
-  int width = 800, height = 600;
-};
-
-Size parseSize(const std::string& text) {
-  Size size;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &size.width, &x, &size.height, &extra) != 3 ||
-      (x != 'x' && x != 'X') || size.width < 16 || size.height < 16 || size.width > 8192 ||
-      size.height > 8192)
-    throw InputError("--size", "size",
-                     "expected WxH with 16..8192 pixels per side (got \"" + text + "\")");
-  return size;
-}
 
 const bool registered = registerCommand(
     "snapshot", "Offscreen PNG of a scene after T seconds (OSMesa, no display needed)",
@@ -39,9 +26,10 @@ const bool registered = registerCommand(
       sub.add_option("--size", *size, "image size WxH in pixels (default 800x600)");
       sub.add_option("--time", *time, "seconds to simulate before the snapshot (default 0)");
       return [=]() {
-        const Size s = parseSize(*size);
+        const PixelSize s = parsePixelSize(*size, kCommandLine, "--size", 16, 8192);
         if (!std::isfinite(*time) || *time < 0)
-          throw InputError("--time", "time", "must be a finite number >= 0");
+          throw InputError(kCommandLine, "--time", "must be a finite number >= 0" + gotValue(*time));
+        requireWritable(*out, "--out");
         World world(ui::loadScene(*scene), *scene);
         const double dt = world.scene().dt;
         const long steps = std::lround(*time / dt);

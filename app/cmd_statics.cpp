@@ -1,4 +1,4 @@
-// `cablelab statics FILE.json [--solver auto|socp|newton]` (CONTRACT.md): the equilibrium of a
+// `cablelab statics FILE.json [--solver auto|socp|newton]` (docs/cli.md): the equilibrium of a
 // point held by cables, as one JSON object on stdout.
 #include <string>
 
@@ -20,8 +20,7 @@ struct StaticsArgs {
 int runStatics(const StaticsArgs& args) {
   // Validate the option before touching the file, so the message names the right culprit.
   if (args.solver != "auto" && args.solver != "socp" && args.solver != "newton")
-    throw InputError("--solver", "solver",
-                     "must be auto, socp or newton (got \"" + args.solver + "\")");
+    throw InputError(kCommandLine, "--solver", "must be auto, socp or newton" + gotValue(args.solver));
   const StaticsProblem problem = loadStaticsFile(args.file);
   StaticsResult result;
   if (args.solver == "socp") {

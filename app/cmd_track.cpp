@@ -3,11 +3,12 @@
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "app/command.h"
 #include "app/options.h"
 #include "engine/core/error.h"
+#include "engine/core/file_input.h"
+#include "engine/core/parse.h"
 #include "engine/hand/hand_tracking.h"
 #include "engine/scenes/scene_registry.h"
 #ifdef CABLELAB_HAVE_OFFSCREEN
@@ -16,25 +17,6 @@
 
 namespace cablelab::app {
 namespace {
-
-/// Parses "a,b[,c]" into exactly `count` finite numbers; throws InputError naming `option`.
-std::vector<double> parseNumbers(const std::string& text, int count, const std::string& option) {
-  std::vector<double> values;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    const auto v = parseFiniteNumber(item);
-    if (!v)
-      throw InputError(
-          option, option,
-          "'" + text + "' is not " + std::to_string(count) + " comma-separated numbers");
-    values.push_back(*v);
-  }
-  if (static_cast<int>(values.size()) != count || (!text.empty() && text.back() == ','))
-    throw InputError(option, option,
-                     "'" + text + "' is not " + std::to_string(count) + " comma-separated numbers");
-  return values;
-}
 
 const bool registered = registerCommand(
     "track", "Hand closes a pinch grasp, then the Jacobian controller tracks a target (fig. 4-5)",
@@ -56,14 +38,14 @@ const bool registered = registerCommand(
       return [o] {
         TrackOptions options;
         if (!o->target.empty() && !o->ramp.empty())
-          throw InputError("--ramp", "--ramp", "give either --target or --ramp, not both");
+          badOption("--ramp", "give either --target or --ramp, not both");
         if (!o->target.empty()) {
-          const auto v = parseNumbers(o->target, 2, "--target");
+          const auto v = parseNumberList(o->target, 2, kCommandLine, "--target", "X,Y");
           options.target = Vec2(v[0], v[1]);
         }
         if (!o->ramp.empty()) {
-          const auto v = parseNumbers(o->ramp, 3, "--ramp");
-          if (v[2] <= 0) throw InputError("--ramp", "--ramp", "SECONDS must be positive");
+          const auto v = parseNumberList(o->ramp, 3, kCommandLine, "--ramp", "X,Y,SECONDS");
+          if (v[2] <= 0) badOption("--ramp", "SECONDS must be positive" + gotValue(v[2]));
           options.target = Vec2(v[0], v[1]);
           options.rampTime = v[2];
         }
@@ -72,14 +54,11 @@ const bool registered = registerCommand(
         options.time = o->time;
         options.pid = o->pid;
 #ifndef CABLELAB_HAVE_OFFSCREEN
-        if (!o->png.empty())
-          throw InputError("--png", "--png", "this build has no offscreen renderer");
+        if (!o->png.empty()) badOption("--png", "this build has no offscreen renderer");
 #endif
+        requireOutputFile(o->png, "--png");
         std::unique_ptr<std::ofstream> csv;
-        if (!o->csv.empty()) {
-          csv = std::make_unique<std::ofstream>(o->csv);
-          if (!*csv) throw InputError(o->csv, "--csv", "cannot write the file");
-        }
+        if (!o->csv.empty()) csv = std::make_unique<std::ofstream>(openOutputFile(o->csv, "--csv"));
 
         Progress progress("track",
                           std::lround(options.time * 60.0));  // the hand scene's dt is 1/60 s
@@ -95,6 +74,7 @@ const bool registered = registerCommand(
                           s.target.y(), s.box.x(), s.box.y());
             *csv << line;
           }
+          finishOutputFile(*csv, o->csv, "--csv");
         }
 #ifdef CABLELAB_HAVE_OFFSCREEN
         if (!o->png.empty()) {
@@ -119,7 +99,7 @@ const bool registered = registerCommand(
           try {
             ui::writePlotPng(plot, o->png);
           } catch (const std::exception& e) {
-            throw InputError(o->png, "--png", e.what());
+            badOption("--png", std::string("cannot write the file: ") + e.what());
           }
         }
 #endif

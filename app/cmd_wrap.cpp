@@ -3,7 +3,6 @@
 #include <nlohmann/json.hpp>
 
 #include "app/command.h"
-#include "app/json_input.h"
 #include "engine/cable/wrap_io.h"
 
 namespace cablelab::app {
@@ -17,7 +16,7 @@ const bool registered = registerCommand(
                      "\"side\": \"left\"|\"right\"}")
           ->required();
       return [file] {
-        const WrapProblem problem = parseWrapJson(readJsonFile(*file), *file);
+        const WrapProblem problem = loadWrapFile(*file);
         printJson(wrapSolutionToJson(solveWrap(problem, *file)).dump());
         return 0;
       };

@@ -6,6 +6,7 @@
 
 #include "app/command.h"
 #include "engine/core/error.h"
+#include "engine/core/parse.h"
 
 namespace cablelab::app {
 
@@ -50,8 +51,10 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return cli.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::string what = e.what();
-    std::cerr << "cablelab: " << (what.empty() ? "bad command line" : what) << " (see --help)\n";
+    std::string help = "see cablelab --help";
+    for (const auto& [sub, run] : runners)
+      if (sub->parsed()) help = "see cablelab " + sub->get_name() + " --help";
+    std::cerr << commandLineError(e.what(), help).what() << "\n";
     return 2;
   }
   try {

@@ -1,4 +1,4 @@
-// Small helpers shared by the subcommands: value checks, medians, progress on stderr.
+// Small helpers shared by the subcommands: value checks, output files, medians, progress.
 #pragma once
 
 #include <algorithm>
@@ -9,24 +9,25 @@
 #include <vector>
 
 #include "engine/core/error.h"
+#include "engine/core/file_input.h"
 
 namespace cablelab::app {
 
-inline std::string shortNumber(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
-/// A bad command-line value: "command line: --dt: must be in (0, 1] s".
+/// A bad command-line value: "command line: --dt: must be in (0, 1] s (got 0)".
 [[noreturn]] inline void badOption(const std::string& option, const std::string& what) {
-  throw InputError("command line", option, what);
+  throw InputError(kCommandLine, option, what);
 }
 
 /// Throws unless lo <= v <= hi and finite.
 inline void requireFinite(double v, const std::string& option, double lo, double hi) {
   if (!std::isfinite(v) || v < lo || v > hi)
-    badOption(option, "must be a number in [" + shortNumber(lo) + ", " + shortNumber(hi) + "]");
+    badOption(option, "must be a number in [" + formatNumber(lo) + ", " + formatNumber(hi) + "]" +
+                          gotValue(v));
+}
+
+/// Fails at once, before a long run, if an output file given by `option` cannot be written.
+inline void requireOutputFile(const std::string& path, const std::string& option) {
+  if (!path.empty()) requireWritable(path, option);
 }
 
 inline double median(std::vector<double> v) {

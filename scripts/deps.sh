@@ -6,6 +6,7 @@ CABLELAB_PACKAGES=(
   libgtest-dev libbenchmark-dev libmujoco-dev
   libsdl2-dev libimgui-dev libstb-dev libosmesa6-dev libgif-dev
   xvfb xauth
+  python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib
 )
 
 cablelab_install_deps() {

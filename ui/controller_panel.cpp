@@ -10,6 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/core/error.h"
+#include "engine/core/file_input.h"
+#include "engine/core/json_reader.h"
 #include "engine/hand/hand_tracking.h"
 #include "ui/colormap.h"
 
@@ -458,23 +460,14 @@ bool loadFitIntoBand(Sandbox& sandbox, const std::string& path, std::string& mes
 }
 
 MembraneParams loadFitParameters(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "file", "cannot open");
-  nlohmann::json j;
-  try {
-    in >> j;
-  } catch (const std::exception& e) {
-    throw InputError(path, "json", std::string("not valid JSON: ") + e.what());
-  }
+  const nlohmann::json j = readJsonFile(path);
+  JsonReader r(j, path);
+  r.allowOtherKeys();  // the rest of `cablelab fit`'s output
   MembraneParams p;
-  for (const auto& [key, value] : {std::pair{"k", &p.k}, std::pair{"preload", &p.preload}}) {
-    if (!j.is_object() || !j.contains(key) || !j[key].is_number())
-      throw InputError(path, key, "missing or not a number (expected `cablelab fit` output)");
-    *value = j[key].get<double>();
-    if (!std::isfinite(*value)) throw InputError(path, key, "not finite");
-  }
-  if (p.k <= 0) throw InputError(path, "k", "must be positive (N/m)");
-  if (p.preload < 0) throw InputError(path, "preload", "must be >= 0 (m)");
+  p.k = r.requiredNumber("k");
+  p.preload = r.requiredNumber("preload");
+  if (p.k <= 0) r.fail("k", "must be positive (N/m)" + gotValue(p.k));
+  if (p.preload < 0) r.fail("preload", "must be >= 0 (m)" + gotValue(p.preload));
   return p;
 }
 

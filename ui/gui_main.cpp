@@ -3,19 +3,21 @@
 //
 //   cablelab-gui [SCENE] [--frames N] [--screenshot F.png] [--size WxH] [--open F]
 //                [--test-input]
+#include <CLI/CLI.hpp>
 #include <GL/gl.h>
 #include <imgui.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <iostream>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "engine/core/error.h"
+#include "engine/core/file_input.h"
+#include "engine/core/parse.h"
 #include "ui/image.h"
 #include "ui/input.h"
 #include "ui/input_script.h"
@@ -27,18 +29,6 @@
 
 namespace {
 
-constexpr const char* kUsage =
-    "usage: cablelab-gui [SCENE] [--frames N] [--screenshot F.png] [--size WxH] [--open F]\n"
-    "                    [--test-input]\n"
-    "  SCENE           built-in scene name or scene JSON file (default: hand)\n"
-    "  --frames N      quit after N frames (one scene time step per frame) and print\n"
-    "                  {\"frames\": N, \"fps\": f} (fps from the median frame time)\n"
-    "  --screenshot F  save the last frame as PNG\n"
-    "  --size WxH      window size (default 1280x720)\n"
-    "  --open F        after 10 frames, open F as if chosen in the Scene menu (for tests)\n"
-    "  --test-input    drive the mouse and keys with synthetic SDL events, check the result\n"
-    "                  (with --screenshot: the script's last frame)\n";
-
 struct Options {
   std::string scene;
   int frames = 0;
@@ -48,43 +38,39 @@ struct Options {
   bool testInput = false;
 };
 
+/// The options, or nullopt after --help. Bad values are InputError ("command line: --size: ...").
 std::optional<Options> parse(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::runtime_error(a + ": missing value");
-      return argv[++i];
-    };
-    if (a == "--help" || a == "-h") {
-      std::cout << kUsage;
-      return std::nullopt;
-    } else if (a == "--frames") {
-      const std::string v = value();
-      char* end = nullptr;
-      const long n = std::strtol(v.c_str(), &end, 10);
-      if (*end || n < 0 || n > 100000000) throw std::runtime_error("--frames: bad count " + v);
-      o.frames = static_cast<int>(n);
-    } else if (a == "--screenshot") {
-      o.screenshot = value();
-    } else if (a == "--size") {
-      const std::string v = value();
-      char x = 0, extra = 0;
-      if (std::sscanf(v.c_str(), "%d%c%d%c", &o.width, &x, &o.height, &extra) != 3 || x != 'x' ||
-          o.width < 320 || o.height < 240)
-        throw std::runtime_error("--size: expected WxH, at least 320x240 (got " + v + ")");
-    } else if (a == "--open") {
-      o.openLater = value();
-    } else if (a == "--test-input") {
-      o.testInput = true;
-    } else if (!a.empty() && a[0] == '-') {
-      throw std::runtime_error("unknown option " + a);
-    } else if (o.scene.empty()) {
-      o.scene = a;
-    } else {
-      throw std::runtime_error("more than one scene given: " + o.scene + ", " + a);
-    }
+  std::string frames, size;
+  CLI::App cli{"cablelab-gui: the interactive sandbox (SDL2 + Dear ImGui)", "cablelab-gui"};
+  cli.add_option("scene", o.scene, "built-in scene name or scene JSON file (default: hand)");
+  cli.add_option("--frames", frames,
+                 "quit after N frames (one scene time step per frame) and print "
+                 "{\"frames\": N, \"fps\": f} (fps from the median frame time)");
+  cli.add_option("--screenshot", o.screenshot, "save the last frame as PNG");
+  cli.add_option("--size", size, "window size WxH (default 1280x720)");
+  cli.add_option("--open", o.openLater,
+                 "after 10 frames, open F as if chosen in the Scene menu (for tests)");
+  cli.add_flag("--test-input", o.testInput,
+               "drive the mouse and keys with synthetic SDL events, check the result (with "
+               "--screenshot: the script's last frame)");
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    cli.exit(e);
+    return std::nullopt;
+  } catch (const CLI::ParseError& e) {
+    throw cablelab::commandLineError(e.what(), "see cablelab-gui --help");
   }
+  if (!frames.empty())
+    o.frames = static_cast<int>(cablelab::parseWholeNumber(frames, cablelab::kCommandLine,
+                                                           "--frames", 0, 100000000));
+  if (!size.empty()) {
+    const auto s = cablelab::parsePixelSize(size, cablelab::kCommandLine, "--size", 240, 16384);
+    o.width = s.width;
+    o.height = s.height;
+  }
+  if (!o.screenshot.empty()) cablelab::requireWritable(o.screenshot, "--screenshot");
   return o;
 }
 
@@ -164,6 +150,9 @@ int main(int argc, char** argv) {
     const auto options = parse(argc, argv);
     if (!options) return 0;
     return run(*options);
+  } catch (const cablelab::InputError& e) {
+    std::cerr << e.what() << "\n";
+    return 2;
   } catch (const std::exception& e) {
     std::cerr << "cablelab-gui: " << e.what() << "\n";
     return 2;

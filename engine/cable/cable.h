@@ -4,7 +4,7 @@
 //   wrap-point selection and the guards ......... Cable::updatePath()   (cable.cpp)
 //   length, J = d length / dq, J-dot-v ........... cableKinematics()    (cable_kinematics.cpp)
 //
-// Generalized coordinates are every body's (x, y, theta) in the world frame (NOTES.md); the
+// Generalized coordinates are every body's (x, y, theta) in the world frame (docs/model.md); the
 // world itself is body -1 and never moves. A wrap point is a point fixed on a body; its world
 // position is x_b + R(theta_b) r.
 //
@@ -86,7 +86,7 @@ void appendLengthHessianTranslation(std::span<const WrapPoint> path,
 /// World position of a point fixed on a body.
 Vec2 worldPoint(std::span<const BodyState> bodies, int body, const Vec2& local);
 
-/// Fills p.world for every point, then length, J, J-dot-v (NOTES.md formula).
+/// Fills p.world for every point, then length, J, J-dot-v (docs/model.md#cable-geometry).
 CableKinematics cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodies);
 /// The same into `k`, reusing its Jacobian's storage (the solver calls this every Newton step).
 void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodies,

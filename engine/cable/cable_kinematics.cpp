@@ -1,4 +1,5 @@
-// Length, Jacobian and J-dot-v of a cable path (thesis section 2.3 with the NOTES.md correction).
+// Length, Jacobian and J-dot-v of a cable path (thesis section 2.3 as corrected in
+// docs/model.md#cable-geometry).
 //
 // Segment d = p_{i+1} - p_i, u = d / |d|, w = d'(t):
 //   d|d|/dt     = u . w

@@ -4,46 +4,47 @@
 #include <cmath>
 
 #include "engine/core/error.h"
+#include "engine/core/file_input.h"
+#include "engine/core/json_reader.h"
 #include "engine/cable/wrap.h"
 
 namespace cablelab {
 
-namespace {
-
 using nlohmann::json;
+
+namespace {
 
 // Coordinates beyond this (m) would overflow squared lengths; like the statics input's bound.
 constexpr double kMaxCoordinate = 1e9;
 
-double number(const json& v, const std::string& file, const std::string& field) {
-  if (!v.is_number()) throw InputError(file, field, "must be a number");
-  const double d = v.get<double>();
-  if (!std::isfinite(d)) throw InputError(file, field, "must be finite");
-  if (std::abs(d) > kMaxCoordinate) throw InputError(file, field, "must be within +/-1e9 m");
-  return d;
-}
-
-Vec2 vec2(const json& v, const std::string& file, const std::string& field) {
-  if (!v.is_array() || v.size() != 2) throw InputError(file, field, "must be [x, y]");
-  return Vec2(number(v[0], file, field + "[0]"), number(v[1], file, field + "[1]"));
+Vec2 bounded(const Vec2& v, const std::string& source, const std::string& field) {
+  for (int i = 0; i < 2; ++i)
+    if (std::abs(v[i]) > kMaxCoordinate)
+      throw InputError(source, field + "[" + std::to_string(i) + "]",
+                       "must be within +/-1e9 m" + gotValue(v[i]));
+  return v;
 }
 
 }  // namespace
 
 WrapProblem parseWrapJson(const json& in, const std::string& file) {
-  if (!in.is_object()) throw InputError(file, "(json)", "must be an object");
-  for (const char* key : {"A", "B", "polygon", "side"})
-    if (!in.contains(key)) throw InputError(file, key, "is required");
   WrapProblem p;
-  p.a = vec2(in["A"], file, "A");
-  p.b = vec2(in["B"], file, "B");
-  if (!in["polygon"].is_array() || in["polygon"].size() < 3)
-    throw InputError(file, "polygon", "needs at least 3 vertices");
-  for (size_t i = 0; i < in["polygon"].size(); ++i)
-    p.polygon.push_back(vec2(in["polygon"][i], file, "polygon[" + std::to_string(i) + "]"));
-  if (!in["side"].is_string() || (in["side"] != "left" && in["side"] != "right"))
-    throw InputError(file, "side", "must be \"left\" or \"right\"");
-  p.side = in["side"] == "left" ? WrapSide::Left : WrapSide::Right;
+  std::string side;
+  {
+    JsonReader r(in, file);
+    r.onlyKeys({"A", "B", "polygon", "side"});
+    p.a = bounded(r.requiredVec2("A"), file, "A");
+    p.b = bounded(r.requiredVec2("B"), file, "B");
+    const json& polygon = r.requiredList("polygon");
+    if (polygon.size() < 3)
+      r.fail("polygon", "needs at least 3 vertices" + gotValue(static_cast<double>(polygon.size())));
+    p.polygon = r.points("polygon");
+    for (size_t i = 0; i < p.polygon.size(); ++i)
+      bounded(p.polygon[i], file, "polygon[" + std::to_string(i) + "]");
+    side = r.requiredString("side");
+    if (side != "left" && side != "right") r.fail("side", "must be left or right" + gotValue(side));
+  }
+  p.side = side == "left" ? WrapSide::Left : WrapSide::Right;
 
   // Accept either orientation; indices in the output refer to the input order.
   p.order.resize(p.polygon.size());
@@ -59,13 +60,11 @@ WrapProblem parseWrapJson(const json& in, const std::string& file) {
 }
 
 WrapProblem parseWrapText(const std::string& text, const std::string& source) {
-  json in;
-  try {
-    in = json::parse(text);
-  } catch (const json::exception& e) {
-    throw InputError(source, "(json)", std::string("not valid JSON: ") + e.what());
-  }
-  return parseWrapJson(in, source);
+  return parseWrapJson(parseJsonText(text, source), source);
+}
+
+WrapProblem loadWrapFile(const std::string& path) {
+  return parseWrapText(readInputFile(path), path);
 }
 
 WrapSolution solveWrap(const WrapProblem& p, const std::string& file) {

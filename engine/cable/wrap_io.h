@@ -1,4 +1,4 @@
-// JSON in and out for `cablelab wrap` (CONTRACT.md), shared by the CLI and the fuzzer.
+// JSON in and out for `cablelab wrap` (docs/cli.md), shared by the CLI and the fuzzer.
 //
 // Input:  {"A": [x, y], "B": [x, y], "polygon": [[x, y], ...], "side": "left" | "right"}
 //         (a convex polygon in either orientation).
@@ -28,10 +28,13 @@ struct WrapSolution {
   std::vector<int> contacts;  ///< input vertex indices, path order
 };
 
-/// Validates a parsed document; throws InputError(source, field, what) naming the field.
+/// Validates a parsed document; throws InputError(source, field, what) naming the field, also
+/// for unknown keys.
 WrapProblem parseWrapJson(const nlohmann::json& in, const std::string& source);
 /// Parses text first (bad JSON is an InputError "(json)").
 WrapProblem parseWrapText(const std::string& text, const std::string& source);
+/// Reads the file (engine/core/file_input.h), then parseWrapText.
+WrapProblem loadWrapFile(const std::string& path);
 
 /// The taut path; throws InputError when A or B lies inside the polygon.
 WrapSolution solveWrap(const WrapProblem& problem, const std::string& source);

@@ -104,7 +104,9 @@ void World::setCableParameters(int i, double restLength, double stiffness, doubl
   const std::string field = "cables[" + std::to_string(i) + "]";
   auto check = [&](double v, const char* name, bool positiveOnly) {
     if (!std::isfinite(v) || v < 0 || (positiveOnly && v == 0))
-      throw InputError("parameters", field + "." + name, "must be a finite number >= 0");
+      throw InputError("live edit", field + "." + name,
+                       std::string(positiveOnly ? "must be positive" : "must be >= 0") +
+                           gotValue(v));
   };
   check(restLength, "rest_length", true);
   check(stiffness, "stiffness", false);

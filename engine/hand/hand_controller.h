@@ -3,7 +3,7 @@
 //   db/dq_u = db/dp_ij * dp_ij/dq_u                 (2 x 6: statics sensitivity x fingertip FK)
 //   dq_u    = -J+ (k_p e + k_d db/dt + k_i sum e dt) per outer update, J+ = J^T (J J^T + l^2 I)^-1
 // with e = b - b_des the manipuland's error. Equation (4.4) gives a joint *rate* from a 2-vector
-// and omits the inverse (NOTES.md): q_dot = -J+ (k_p' e + k_d b_dot). There k_d multiplies a
+// and omits the inverse (docs/model.md#controller): q_dot = -J+ (k_p' e + k_d b_dot). There k_d multiplies a
 // velocity to give a velocity, so it is dimensionless; k_p' is a rate (1/s). Here the rate is
 // integrated over one outer period T (0.053 s):
 //   dq = -J+ (k_p e + k_d db + k_i T sum e)      per update,

@@ -2,15 +2,15 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <istream>
 #include <ostream>
 #include <sstream>
 
 #include "engine/core/error.h"
+#include "engine/core/file_input.h"
+#include "engine/core/parse.h"
 
 namespace cablelab {
 namespace {
@@ -34,37 +34,33 @@ std::vector<std::string> splitCommas(const std::string& line) {
 }
 
 std::string rowField(int row, const std::string& column) {
-  return "row " + std::to_string(row) + (column.empty() ? "" : ": " + column);
+  return "row " + std::to_string(row) + (column.empty() ? "" : ", " + column);
 }
 
-double parseNumber(const std::string& text, int row, const std::string& column,
-                   const std::string& source) {
-  const char* begin = text.data();
-  const char* end = begin + text.size();
-  if (begin != end && *begin == '+') ++begin;  // from_chars rejects a leading plus
-  double value = 0.0;
-  const auto [stop, error] = std::from_chars(begin, end, value);
-  if (text.empty() || error != std::errc() || stop != end)
-    throw InputError(source, rowField(row, column), "not a number (\"" + text + "\")");
-  if (!std::isfinite(value))
-    throw InputError(source, rowField(row, column), "must be finite (got " + text + ")");
-  return value;
+double parseField(const std::string& text, int row, const std::string& column,
+                  const std::string& source) {
+  const auto value = parseFiniteNumber(text);
+  if (!value)
+    throw InputError(source, rowField(row, column), "must be a finite number" + gotValue(text));
+  return *value;
 }
 
 }  // namespace
 
-void validateMembraneGeometry(const MembraneGeometry& g, const std::string& source) {
-  if (!isFinite(g.a) || !isFinite(g.b))
-    throw InputError(source, "pulleys", "coordinates must be finite");
+void validateMembraneGeometry(const MembraneGeometry& g, const std::string& source,
+                              const std::string& field) {
+  if (!isFinite(g.a) || !isFinite(g.b)) throw InputError(source, field, "coordinates must be finite");
   const double span = (g.b - g.a).norm();
   const double scale = std::max({1.0, g.a.norm(), g.b.norm()});
   if (span <= 1e-12 * scale)
-    throw InputError(source, "pulleys", "pulleys A and B coincide: the band has no direction");
+    throw InputError(source, field, "pulleys A and B coincide: the band has no direction");
 }
 
 void validateMembranePoint(const MembraneGeometry& g, const Vec2& p, int row,
                            const std::string& source) {
-  if (!isFinite(p)) throw InputError(source, rowField(row, "x"), "must be finite");
+  if (!isFinite(p))
+    throw InputError(source, rowField(row, "x"),
+                     "must be finite (got [" + formatNumber(p.x()) + ", " + formatNumber(p.y()) + "])");
   const double span = (g.b - g.a).norm();
   // A point on a pulley has no unit vector u_i; one between them has u1 + u2 = 0.
   for (const auto& [pulley, name] : {std::pair{g.a, "A"}, std::pair{g.b, "B"}})
@@ -112,11 +108,11 @@ std::vector<MembraneSample> parseMembraneCsv(std::istream& in, const MembraneGeo
     const auto fields = splitCommas(line);
     if (fields.size() != header.size())
       throw InputError(source, rowField(row, ""),
-                       "expected " + std::to_string(header.size()) + " fields, got " +
-                           std::to_string(fields.size()));
+                       "expected " + std::to_string(header.size()) + " fields" +
+                           gotValue(static_cast<double>(fields.size())));
     std::array<double, 4> v{};
     for (size_t c = 0; c < kColumns.size(); ++c)
-      v[c] = parseNumber(fields[index[c]], row, kColumns[c], source);
+      v[c] = parseField(fields[index[c]], row, kColumns[c], source);
     MembraneSample sample{Vec2(v[0], v[1]), v[2], v[3]};
     validateMembranePoint(g, sample.p, row, source);
     rows.push_back(sample);
@@ -130,8 +126,7 @@ std::vector<MembraneSample> parseMembraneCsv(std::istream& in, const MembraneGeo
 }
 
 std::vector<MembraneSample> loadMembraneCsv(const std::string& path, const MembraneGeometry& g) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "file", "cannot open for reading");
+  std::istringstream in(readInputFile(path));
   return parseMembraneCsv(in, g, path);
 }
 

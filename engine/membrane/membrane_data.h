@@ -38,7 +38,8 @@ inline constexpr int kMinMembraneRows = 3;
 inline constexpr double kMembraneOnLineTolerance = 1e-9;
 
 /// Throws InputError(source, "pulleys", ...) if A or B is not finite or they coincide.
-void validateMembraneGeometry(const MembraneGeometry& g, const std::string& source);
+void validateMembraneGeometry(const MembraneGeometry& g, const std::string& source,
+                              const std::string& field = "pulleys");
 
 /// Throws InputError(source, "row N: x", ...) if the point is not finite, sits on a pulley or
 /// on the segment between them; `row` is 1-based.

@@ -87,8 +87,8 @@ MembraneFitResult fitMembrane(const MembraneGeometry& g, const std::vector<Membr
   const int n = static_cast<int>(rows.size());
   if (n < kMinMembraneRows)
     throw InputError(options.source, "rows",
-                     "need at least " + std::to_string(kMinMembraneRows) + " measurements (got " +
-                         std::to_string(n) + ")");
+                     "need at least " + std::to_string(kMinMembraneRows) + " measurements" +
+                         gotValue(static_cast<double>(n)));
 
   std::vector<RowGeometry> geometry(n);
   double stretchMin = INFINITY, stretchMax = -INFINITY;
@@ -170,8 +170,8 @@ MembraneFitResult fitMembrane(const MembraneGeometry& g, const std::vector<Membr
         "or values too large?)");
   if (!(x[0] > 0.0) || !std::isfinite(x[1]))
     throw InputError(options.source, "fy",
-                     "best fit has stiffness k = " + std::to_string(x[0]) +
-                         " <= 0: the measured forces do not pull towards the band (sign of fy?)");
+                     "best fit has stiffness k <= 0: the measured forces do not pull towards the "
+                     "band (sign of fy?)" + gotValue(x[0]));
 
   result.params = {x[0], x[1]};
   result.covariance = info.inverse();

@@ -6,7 +6,7 @@
 //   F(p)       = -T(p) (u1 + u2),  u_i = (p - P_i) / |p - P_i|   (N, force of the band on p)
 //   E(p)       = k/2 * max(0, stretch(p) + preload)^2  (J), and F = -dE/dp
 //
-// This follows docs NOTES.md, not the printed thesis: no factor 1/2 in F, and the preload
+// This follows docs/model.md#membranes, not the printed thesis: no factor 1/2 in F, and the preload
 // enters with a plus sign (preload >= 0 is how far the band is already stretched when straight).
 //
 // Angles: the force direction is reported as atan2(F_y, F_x) in degrees, counter-clockwise from

@@ -29,25 +29,23 @@ class Checker {
   // +/-kMaxMagnitude, far beyond anything physical yet safe in float products.
   static constexpr double kMaxMagnitude = 1e12;
   void finite(double v, const std::string& field) const {
-    if (!std::isfinite(v)) fail(field, "must be a finite number");
-    if (std::abs(v) > kMaxMagnitude) {
-      char got[32];
-      std::snprintf(got, sizeof got, "%.6g", v);
-      fail(field, std::string("must be within +/-1e12 (got ") + got + ")");
-    }
+    if (!std::isfinite(v)) fail(field, "must be a finite number" + gotValue(v));
+    if (std::abs(v) > kMaxMagnitude) fail(field, "must be within +/-1e12" + gotValue(v));
   }
   void finite(const Vec2& v, const std::string& field) const {
-    if (!isFinite(v)) fail(field, "must be finite numbers");
+    if (!isFinite(v))
+      fail(field, "must be finite numbers (got [" + formatNumber(v.x()) + ", " +
+                      formatNumber(v.y()) + "])");
     finite(v.x(), field);
     finite(v.y(), field);
   }
   void nonNegative(double v, const std::string& field) const {
     finite(v, field);
-    if (v < 0) fail(field, "must be >= 0 (got " + std::to_string(v) + ")");
+    if (v < 0) fail(field, "must be >= 0" + gotValue(v));
   }
   void positive(double v, const std::string& field) const {
     finite(v, field);
-    if (v <= 0) fail(field, "must be positive (got " + std::to_string(v) + ")");
+    if (v <= 0) fail(field, "must be positive" + gotValue(v));
   }
 
  private:
@@ -64,7 +62,7 @@ void validateScene(const SceneDef& scene, const std::string& source) {
   Checker check(source);
   check.finite(scene.gravity, "gravity");
   check.positive(scene.dt, "dt");
-  if (scene.substeps < 1 || scene.substeps > 1000) check.fail("substeps", "must be 1..1000");
+  if (scene.substeps < 1 || scene.substeps > 1000) check.fail("substeps", "must be 1..1000" + gotValue(scene.substeps));
   check.finite(scene.view.center, "view.center");
   check.positive(scene.view.height, "view.height");
 
@@ -73,9 +71,9 @@ void validateScene(const SceneDef& scene, const std::string& source) {
     const BodyDef& b = scene.bodies[i];
     const std::string f = at("bodies", i);
     if (b.name.empty()) check.fail(f + ".name", "must not be empty");
-    if (b.name == "world") check.fail(f + ".name", "'world' is reserved for the fixed frame");
+    if (b.name == "world") check.fail(f + ".name", "is reserved for the fixed frame" + gotValue(b.name));
     if (!names.insert(b.name).second)
-      check.fail(f + ".name", "duplicate body name '" + b.name + "'");
+      check.fail(f + ".name", "duplicate body name" + gotValue(b.name));
     check.finite(b.position, f + ".position");
     check.finite(b.angle, f + ".angle");
     check.finite(b.velocity, f + ".velocity");
@@ -94,7 +92,8 @@ void validateScene(const SceneDef& scene, const std::string& source) {
         check.finite(sh.center, fs + ".center");
       } else {
         if (sh.vertices.size() < 3 || sh.vertices.size() > 8)
-          check.fail(fs + ".vertices", "a polygon needs 3 to 8 vertices");
+          check.fail(fs + ".vertices", "a polygon needs 3 to 8 vertices" +
+                                           gotValue(static_cast<double>(sh.vertices.size())));
         for (size_t v = 0; v < sh.vertices.size(); ++v)
           check.finite(sh.vertices[v], fs + at(".vertices", v));
         if (!isConvexCCW(sh.vertices))
@@ -104,14 +103,14 @@ void validateScene(const SceneDef& scene, const std::string& source) {
   }
 
   auto bodyRef = [&](const std::string& name, const std::string& field) {
-    if (findBodyIndex(scene, name) == -2) check.fail(field, "unknown body '" + name + "'");
+    if (findBodyIndex(scene, name) == -2) check.fail(field, "unknown body" + gotValue(name));
   };
   std::set<std::string> jointNames;
   for (size_t i = 0; i < scene.joints.size(); ++i) {
     const JointDef& j = scene.joints[i];
     const std::string f = at("joints", i);
     if (!j.name.empty() && !jointNames.insert(j.name).second)
-      check.fail(f + ".name", "duplicate joint name '" + j.name + "'");
+      check.fail(f + ".name", "duplicate joint name" + gotValue(j.name));
     bodyRef(j.bodyA, f + ".body_a");
     bodyRef(j.bodyB, f + ".body_b");
     if (j.bodyB == "world") check.fail(f + ".body_b", "must be a body, not the world");
@@ -123,7 +122,8 @@ void validateScene(const SceneDef& scene, const std::string& source) {
     check.finite(j.lower, f + ".limits");
     check.finite(j.upper, f + ".limits");
     if (j.enableLimit && j.lower > j.upper)
-      check.fail(f + ".limits", "lower limit above upper limit");
+      check.fail(f + ".limits", "lower limit above upper limit (got [" + formatNumber(j.lower) +
+                                    ", " + formatNumber(j.upper) + "])");
     check.nonNegative(j.servo.kp, f + ".servo.kp");
     check.nonNegative(j.servo.kd, f + ".servo.kd");
     check.finite(j.servo.target, f + ".servo.target");
@@ -136,13 +136,13 @@ void validateScene(const SceneDef& scene, const std::string& source) {
     const std::string f = at("cables", i);
     if (c.name.empty()) check.fail(f + ".name", "must not be empty");
     if (!cableNames.insert(c.name).second)
-      check.fail(f + ".name", "duplicate cable name '" + c.name + "'");
+      check.fail(f + ".name", "duplicate cable name" + gotValue(c.name));
     bodyRef(c.start.body, f + ".start.body");
     bodyRef(c.end.body, f + ".end.body");
     check.finite(c.start.point, f + ".start.point");
     check.finite(c.end.point, f + ".end.point");
     check.finite(c.restLength, f + ".rest_length");
-    if (c.restLength == 0) check.fail(f + ".rest_length", "zero-length cable");
+    if (c.restLength == 0) check.fail(f + ".rest_length", "zero-length cable" + gotValue(0.0));
     check.nonNegative(c.stiffness, f + ".stiffness");
     check.nonNegative(c.preload, f + ".preload");
     check.nonNegative(c.damping, f + ".damping");

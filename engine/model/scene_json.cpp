@@ -1,112 +1,23 @@
 #include "engine/model/scene_json.h"
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
-#include <set>
-#include <sstream>
 
 #include "engine/core/error.h"
+#include "engine/core/file_input.h"
+#include "engine/core/json_reader.h"
 
 namespace cablelab {
 
 namespace {
 
 using nlohmann::json;
+using Reader = JsonReader;
 
-// Walks a JSON object, reading typed fields and remembering the path for error messages.
-class Reader {
- public:
-  Reader(const json& j, std::string source, std::string path)
-      : j_(j), source_(std::move(source)), path_(std::move(path)) {
-    if (!j_.is_object()) fail("", "must be an object");
-  }
-  ~Reader() noexcept(false) {
-    if (std::uncaught_exceptions() > 0) return;
-    for (const auto& [key, value] : j_.items())
-      if (!used_.count(key)) fail("." + key, "unknown key");
-  }
-
-  [[noreturn]] void fail(const std::string& sub, const std::string& what) const {
-    const bool top = path_.empty() && !sub.empty() && sub[0] == '.';
-    throw InputError(source_, top ? sub.substr(1) : path_ + sub, what);
-  }
-  std::string field(const std::string& key) const {
-    return path_.empty() ? key : path_ + "." + key;
-  }
-  bool has(const std::string& key) {
-    used_.insert(key);
-    return j_.contains(key);
-  }
-  double number(const std::string& key, double fallback) {
-    if (!has(key)) return fallback;
-    return toNumber(j_.at(key), field(key));
-  }
-  int integer(const std::string& key, int fallback) {
-    const double v = number(key, fallback);
-    if (v != std::floor(v) || std::abs(v) > 1e9) fail("." + key, "must be a whole number");
-    return static_cast<int>(v);
-  }
-  bool boolean(const std::string& key, bool fallback) {
-    if (!has(key)) return fallback;
-    if (!j_.at(key).is_boolean()) fail("." + key, "must be true or false");
-    return j_.at(key).get<bool>();
-  }
-  std::string string(const std::string& key, const std::string& fallback) {
-    if (!has(key)) return fallback;
-    if (!j_.at(key).is_string()) fail("." + key, "must be a string");
-    return j_.at(key).get<std::string>();
-  }
-  std::string required(const std::string& key) {
-    if (!has(key)) fail("." + key, "is required");
-    return string(key, "");
-  }
-  Vec2 vec2(const std::string& key, const Vec2& fallback) {
-    if (!has(key)) return fallback;
-    return toVec2(j_.at(key), field(key));
-  }
-  const json& list(const std::string& key) {
-    static const json empty = json::array();
-    if (!has(key)) return empty;
-    if (!j_.at(key).is_array()) fail("." + key, "must be a list");
-    return j_.at(key);
-  }
-  Reader child(const std::string& key) {
-    has(key);
-    return Reader(j_.at(key), source_, field(key));
-  }
-  const std::string& source() const { return source_; }
-
-  double toNumber(const json& v, const std::string& f) const {
-    if (!v.is_number()) throw InputError(source_, f, "must be a number");
-    const double d = v.get<double>();
-    if (!std::isfinite(d)) throw InputError(source_, f, "must be finite");
-    return d;
-  }
-  Vec2 toVec2(const json& v, const std::string& f) const {
-    if (!v.is_array() || v.size() != 2)
-      throw InputError(source_, f, "must be a list of 2 numbers [x, y]");
-    return Vec2(toNumber(v[0], f + "[0]"), toNumber(v[1], f + "[1]"));
-  }
-  std::vector<Vec2> polygon(const std::string& key) {
-    std::vector<Vec2> out;
-    const json& l = list(key);
-    for (size_t i = 0; i < l.size(); ++i)
-      out.push_back(toVec2(l[i], field(key) + "[" + std::to_string(i) + "]"));
-    return out;
-  }
-
- private:
-  const json& j_;
-  std::string source_, path_;
-  std::set<std::string> used_;
-};
-
-std::string item(const std::string& list, size_t i) {
-  return list + "[" + std::to_string(i) + "]";
-}
-
-ShapeDef readShape(Reader r) {
+ShapeDef readShape(Reader&& r) {
   ShapeDef s;
-  const std::string type = r.required("type");
+  const std::string type = r.requiredString("type");
   s.friction = r.number("friction", s.friction);
   s.restitution = r.number("restitution", s.restitution);
   s.sensor = r.boolean("sensor", false);
@@ -117,23 +28,25 @@ ShapeDef readShape(Reader r) {
   } else if (type == "box") {
     s.kind = ShapeDef::Kind::Polygon;
     const Vec2 half = r.vec2("half_size", Vec2(0.1, 0.1));
-    if (half.x() <= 0 || half.y() <= 0) r.fail(".half_size", "must be positive");
+    if (half.x() <= 0 || half.y() <= 0)
+      r.fail("half_size", "must be positive (got [" + formatNumber(half.x()) + ", " +
+                              formatNumber(half.y()) + "])");
     const Vec2 c = r.vec2("center", Vec2::Zero());
     const double angle = r.number("angle", 0);
     for (const Vec2& corner : {Vec2(-1, -1), Vec2(1, -1), Vec2(1, 1), Vec2(-1, 1)})
       s.vertices.push_back(c + rotate(corner.cwiseProduct(half), angle));
   } else if (type == "polygon") {
     s.kind = ShapeDef::Kind::Polygon;
-    s.vertices = r.polygon("vertices");
+    s.vertices = r.points("vertices");
   } else {
-    r.fail(".type", "unknown shape type '" + type + "' (circle, box, polygon)");
+    r.fail("type", "must be circle, box or polygon" + gotValue(type));
   }
   return s;
 }
 
-BodyDef readBody(Reader r) {
+BodyDef readBody(Reader&& r) {
   BodyDef b;
-  b.name = r.required("name");
+  b.name = r.requiredString("name");
   const std::string type = r.string("type", "dynamic");
   if (type == "dynamic")
     b.type = BodyType::Dynamic;
@@ -142,7 +55,7 @@ BodyDef readBody(Reader r) {
   else if (type == "kinematic")
     b.type = BodyType::Kinematic;
   else
-    r.fail(".type", "unknown body type '" + type + "' (dynamic, static, kinematic)");
+    r.fail("type", "must be dynamic, static or kinematic" + gotValue(type));
   b.position = r.vec2("position", b.position);
   b.angle = r.number("angle", 0);
   b.velocity = r.vec2("velocity", b.velocity);
@@ -154,13 +67,13 @@ BodyDef readBody(Reader r) {
   b.angularDamping = r.number("angular_damping", 0);
   const json& shapes = r.list("shapes");
   for (size_t i = 0; i < shapes.size(); ++i)
-    b.shapes.push_back(readShape(Reader(shapes[i], r.source(), r.field(item("shapes", i)))));
+    b.shapes.push_back(readShape(r.item("shapes", i)));
   return b;
 }
 
-JointDef readJoint(Reader r) {
+JointDef readJoint(Reader&& r) {
   JointDef j;
-  const std::string type = r.required("type");
+  const std::string type = r.requiredString("type");
   if (type == "revolute")
     j.kind = JointDef::Kind::Revolute;
   else if (type == "prismatic")
@@ -168,10 +81,10 @@ JointDef readJoint(Reader r) {
   else if (type == "weld")
     j.kind = JointDef::Kind::Weld;
   else
-    r.fail(".type", "unknown joint type '" + type + "' (revolute, prismatic, weld)");
+    r.fail("type", "must be revolute, prismatic or weld" + gotValue(type));
   j.name = r.string("name", "");
   j.bodyA = r.string("body_a", "world");
-  j.bodyB = r.required("body_b");
+  j.bodyB = r.requiredString("body_b");
   j.anchor = r.vec2("anchor", j.anchor);
   j.axis = r.vec2("axis", j.axis);
   if (r.has("limits")) {
@@ -199,26 +112,26 @@ WrapSide readSide(Reader& r, WrapSide fallback) {
   if (side == "left") return WrapSide::Left;
   if (side == "right") return WrapSide::Right;
   if (side == "threaded") return WrapSide::Threaded;
-  r.fail(".side", "must be left, right or threaded (got '" + side + "')");
+  r.fail("side", "must be left, right or threaded" + gotValue(side));
 }
 
-AnchorDef readAnchor(Reader r) {
+AnchorDef readAnchor(Reader&& r) {
   AnchorDef a;
   a.body = r.string("body", "world");
   a.point = r.vec2("point", Vec2::Zero());
   return a;
 }
 
-CableDef readCable(Reader r) {
+CableDef readCable(Reader&& r) {
   CableDef c;
-  c.name = r.required("name");
-  if (!r.has("start")) r.fail(".start", "is required");
-  if (!r.has("end")) r.fail(".end", "is required");
+  c.name = r.requiredString("name");
+  if (!r.has("start")) r.fail("start", "is required");
+  if (!r.has("end")) r.fail("end", "is required");
   c.start = readAnchor(r.child("start"));
   c.end = readAnchor(r.child("end"));
   const json& pulleys = r.list("pulleys");
   for (size_t i = 0; i < pulleys.size(); ++i) {
-    Reader p(pulleys[i], r.source(), r.field(item("pulleys", i)));
+    Reader p = r.item("pulleys", i);
     PulleyDef pd;
     const std::string type = p.string("type", "point");
     pd.body = p.string("body", "world");
@@ -228,15 +141,16 @@ CableDef readCable(Reader r) {
       pd.side = readSide(p, WrapSide::Threaded);
     } else if (type == "polygon") {
       pd.kind = PulleyDef::Kind::Polygon;
-      pd.vertices = p.polygon("vertices");
+      pd.vertices = p.points("vertices");
       pd.side = readSide(p, WrapSide::Left);
     } else {
-      p.fail(".type", "unknown pulley type '" + type + "' (point, polygon)");
+      p.fail("type", "must be point or polygon" + gotValue(type));
     }
     c.pulleys.push_back(pd);
   }
   c.restLength = r.number("rest_length", -1);
-  if (c.restLength < 0 && r.has("rest_length")) r.fail(".rest_length", "must be positive");
+  if (c.restLength < 0 && r.has("rest_length"))
+    r.fail("rest_length", "must be positive" + gotValue(c.restLength));
   c.stiffness = r.number("stiffness", 0);
   c.preload = r.number("preload", 0);
   c.damping = r.number("damping", 0);
@@ -272,14 +186,16 @@ SceneDef sceneFromJson(const json& j, const std::string& source) {
       s.view.height = v.number("height", s.view.height);
     }
     const json& bodies = r.list("bodies");
+    // An empty object would run as an empty world: surely not what the author meant.
+    if (bodies.empty()) r.fail("bodies", "must list at least one body (the scene has none)");
     for (size_t i = 0; i < bodies.size(); ++i)
-      s.bodies.push_back(readBody(Reader(bodies[i], source, item("bodies", i))));
+      s.bodies.push_back(readBody(r.item("bodies", i)));
     const json& joints = r.list("joints");
     for (size_t i = 0; i < joints.size(); ++i)
-      s.joints.push_back(readJoint(Reader(joints[i], source, item("joints", i))));
+      s.joints.push_back(readJoint(r.item("joints", i)));
     const json& cables = r.list("cables");
     for (size_t i = 0; i < cables.size(); ++i)
-      s.cables.push_back(readCable(Reader(cables[i], source, item("cables", i))));
+      s.cables.push_back(readCable(r.item("cables", i)));
   }
   validateScene(s, source);
   return s;
@@ -368,21 +284,14 @@ json sceneToJson(const SceneDef& s) {
 }
 
 SceneDef loadSceneFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "(file)", "cannot open the scene file");
-  json j;
-  try {
-    j = json::parse(in);
-  } catch (const json::exception& e) {
-    throw InputError(path, "(json)", std::string("not valid JSON: ") + e.what());
-  }
-  return sceneFromJson(j, path);
+  return sceneFromJson(readJsonFile(path), path);
 }
 
 void saveSceneFile(const SceneDef& scene, const std::string& path) {
   std::ofstream out(path);
-  if (!out) throw InputError(path, "(file)", "cannot write the scene file");
+  if (!out) throw InputError(path, "(file)", std::string("cannot write: ") + std::strerror(errno));
   out << sceneToJson(scene).dump(2) << "\n";
+  if (!out.flush()) throw InputError(path, "(file)", std::string("write failed: ") + std::strerror(errno));
 }
 
 }  // namespace cablelab

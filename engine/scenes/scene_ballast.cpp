@@ -1,5 +1,5 @@
 // Thesis section 2.4.2: a point touching a taut cable that runs over a fixed pulley to a ballast.
-// Analytic result (NOTES.md): at t = 0 the ballast accelerates towards the pulley at
+// Analytic result (docs/model.md#dynamics): at t = 0 the ballast accelerates towards the pulley at
 // 2 v0y^2 / l and the point not at all, whatever the masses.
 #include "engine/scenes/scene_registry.h"
 

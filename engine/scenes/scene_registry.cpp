@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "engine/core/error.h"
+#include "engine/core/parse.h"
 #include "engine/model/scene_json.h"
 
 namespace cablelab {
@@ -58,25 +59,12 @@ const SceneInfo* findBuiltinScene(const std::string& name) {
   return nullptr;
 }
 
-std::optional<double> parseFiniteNumber(const std::string& text) {
-  size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(text, &used);
-  } catch (...) {
-    return std::nullopt;
-  }
-  if (used == 0 || used != text.size() || !std::isfinite(v)) return std::nullopt;
-  return v;
-}
-
 std::pair<std::string, double> parseSetting(const std::string& text) {
   const auto eq = text.find('=');
-  if (eq == std::string::npos || eq == 0) throw InputError("--set", text, "expected NAME=VALUE");
-  const std::string name = text.substr(0, eq), value = text.substr(eq + 1);
-  const auto v = parseFiniteNumber(value);
-  if (!v) throw InputError("--set", name, "value '" + value + "' is not a finite number");
-  return {name, *v};
+  if (eq == std::string::npos || eq == 0)
+    throw InputError(kCommandLine, "--set", "must be NAME=VALUE" + gotValue(text));
+  const std::string name = text.substr(0, eq);
+  return {name, parseNumber(text.substr(eq + 1), kCommandLine, "--set " + name)};
 }
 
 SceneDef makeScene(const std::string& nameOrPath,
@@ -88,30 +76,33 @@ SceneDef makeScene(const std::string& nameOrPath,
       if (!params.count(name)) {
         std::string known;
         for (const SceneParam& p : info->params) known += (known.empty() ? "" : ", ") + p.name;
-        throw InputError("--set", name,
-                         "unknown parameter of scene '" + info->name + "' (known: " + known + ")");
+        throw InputError(kCommandLine, "--set " + name,
+                         "unknown parameter of scene " + info->name + " (known: " + known + ")");
       }
       const auto range = std::find_if(info->params.begin(), info->params.end(),
                                       [&key = name](const SceneParam& p) { return p.name == key; })
                              ->range;  // clang 14: no capture of a structured binding
       if (range == SceneParam::Range::Positive && value <= 0)
-        throw InputError("--set", name, "must be positive");
+        throw InputError(kCommandLine, "--set " + name, "must be positive" + gotValue(value));
       if (range == SceneParam::Range::NonNegative && value < 0)
-        throw InputError("--set", name, "must be >= 0");
+        throw InputError(kCommandLine, "--set " + name, "must be >= 0" + gotValue(value));
       params[name] = value;
     }
     SceneDef scene = info->build(params);
     validateScene(scene, "scene '" + info->name + "'");
     return scene;
   }
-  if (!std::filesystem::exists(nameOrPath)) {
+  // Something that looks like a path is read as a file, so that a missing one says so.
+  const bool path = nameOrPath.find('/') != std::string::npos ||
+                    std::filesystem::path(nameOrPath).extension() == ".json";
+  if (!path && !std::filesystem::exists(nameOrPath)) {
     std::string known;
     for (const SceneInfo& s : builtinScenes()) known += (known.empty() ? "" : ", ") + s.name;
-    throw InputError(nameOrPath, "(scene)",
-                     "no such built-in scene or file (built-in: " + known + ")");
+    throw InputError(kCommandLine, "SCENE",
+                     "no such built-in scene or file; built-in: " + known + gotValue(nameOrPath));
   }
   if (!overrides.empty())
-    throw InputError("--set", overrides.front().first,
+    throw InputError(kCommandLine, "--set " + overrides.front().first,
                      "scene files take no parameters; edit the file");
   return loadSceneFile(nameOrPath);
 }

@@ -39,9 +39,6 @@ const SceneInfo* findBuiltinScene(const std::string& name);
 SceneDef makeScene(const std::string& nameOrPath,
                    const std::vector<std::pair<std::string, double>>& overrides = {});
 
-/// The whole of `text` as one finite number, or nullopt ("1.5" yes; "1.5x", "", "nan" no).
-std::optional<double> parseFiniteNumber(const std::string& text);
-
 /// Parses "NAME=VALUE" (for --set); throws InputError naming the argument.
 std::pair<std::string, double> parseSetting(const std::string& text);
 

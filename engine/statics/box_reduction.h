@@ -1,4 +1,4 @@
-// Box-to-point reduction of thesis figure 4-2 (NOTES.md "Statics and control").
+// Box-to-point reduction of thesis figure 4-2 (docs/model.md#box-reduction).
 //
 // A box that translates but does not rotate touches each cable at known corners. The cable
 // runs fingertip a -> corner cA -> (along the box) -> corner cB -> fingertip b, with corners at

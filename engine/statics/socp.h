@@ -1,4 +1,5 @@
-// Interior-point SOCP for the statics problem (thesis section 4.2 with NOTES.md's slack form).
+// Interior-point SOCP for the statics problem (thesis section 4.2 in the slack form of
+// docs/model.md#statics).
 //
 // The conic program, in the variables x = (p, then per cable i: l_ia, l_ib, t_i):
 //   minimise   sum_i k_i / 2 t_i^2

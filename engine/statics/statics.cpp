@@ -19,13 +19,7 @@ const char* toString(StaticsMethod method) {
 
 namespace {
 
-std::string describe(double v) {
-  if (std::isnan(v)) return "NaN";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+std::string describe(double v) { return formatNumber(v); }
 
 void requireFinite(const Vec2& v, const std::string& source, const std::string& field) {
   if (!isFinite(v))

@@ -1,11 +1,11 @@
-// Statics of a point held by cables (thesis section 4.2, NOTES.md "Statics and control").
+// Statics of a point held by cables (thesis section 4.2, docs/model.md#statics).
 //
 // A point p in the plane is held by N cables; cable i runs a_i -> p -> b_i with stiffness k_i and
 // rest length L_i. Its length is l_i(p) = |p - a_i| + |p - b_i| and its tension
 // T_i = k_i max(0, l_i - L_i) (a cable cannot push). The equilibrium minimises the elastic energy
 //   E(p) = sum_i k_i / 2 max(0, l_i(p) - L_i)^2,
 // which is convex. E has a kink at every fingertip point (a_i or b_i) of a taut cable: the
-// minimiser may sit exactly there, the fingertip absorbing the net force (NOTES.md), and it need
+// minimiser may sit exactly there, the fingertip absorbing the net force (docs/model.md#statics), and it need
 // not be unique (one taut cable with p on its own a-b segment, or every cable slack).
 //
 // Where to find things:

@@ -1,4 +1,4 @@
-// JSON in and out for the statics problem (CONTRACT.md, `cablelab statics`).
+// JSON in and out for the statics problem (docs/cli.md, `cablelab statics`).
 //
 // Input:  {"cables": [{"a": [x, y], "b": [x, y], "k": k, "L": L}, ...], "p0": [x, y]}
 //         ("p0" optional; unknown keys are rejected so that a typo is not silently ignored).

@@ -1,4 +1,4 @@
-// cablelab track / reach from the command line (CONTRACT.md).
+// cablelab track / reach from the command line (docs/cli.md).
 #include <gtest/gtest.h>
 
 #include "tests/support/engine_test_support.h"

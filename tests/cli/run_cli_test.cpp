@@ -1,4 +1,4 @@
-// CLI tests for `cablelab scenes`, `run` and `wrap` (CONTRACT.md): formats, columns, exit codes.
+// CLI tests for `cablelab scenes`, `run` and `wrap` (docs/cli.md): formats, columns, exit codes.
 #include <gtest/gtest.h>
 
 #include <fstream>

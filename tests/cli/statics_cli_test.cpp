@@ -1,4 +1,4 @@
-// CLI tests for `cablelab statics` (CONTRACT.md): output keys, exit codes, error messages.
+// CLI tests for `cablelab statics` (docs/cli.md): output keys, exit codes, error messages.
 #include <gtest/gtest.h>
 
 #include "tests/support/engine_test_support.h"

@@ -32,15 +32,15 @@ struct CommandResult {
   std::string out, err;
 };
 
-/// Runs `cablelab ARGS` (shell-quoted by the caller), from `workingDir` if given; captures
+/// Runs `PROGRAM ARGS` (shell-quoted by the caller), from `workingDir` if given; captures
 /// stdout and stderr.
-inline CommandResult runCli(const std::string& args, const std::string& workingDir = "") {
+inline CommandResult runProgram(const std::string& program, const std::string& args,
+                                const std::string& workingDir = "") {
   char errFile[] = "/tmp/cablelab-test-XXXXXX";
   const int fd = mkstemp(errFile);
   if (fd >= 0) close(fd);
   const std::string cd = workingDir.empty() ? "" : "cd '" + workingDir + "' && ";
-  const std::string cmd =
-      cd + "'" + std::string(CABLELAB_CLI) + "' " + args + " 2>" + std::string(errFile);
+  const std::string cmd = cd + "'" + program + "' " + args + " 2>" + std::string(errFile);
   CommandResult r;
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;
@@ -55,6 +55,11 @@ inline CommandResult runCli(const std::string& args, const std::string& workingD
   }
   std::remove(errFile);
   return r;
+}
+
+/// Runs `cablelab ARGS` (see runProgram).
+inline CommandResult runCli(const std::string& args, const std::string& workingDir = "") {
+  return runProgram(CABLELAB_CLI, args, workingDir);
 }
 
 inline std::string sourcePath(const std::string& relative) {

@@ -66,18 +66,18 @@ TEST(MembraneData, NamesTheProblem) {
   EXPECT_EQ(errorOf(header + "0,-0.1,5,90\n0.1,-0.1,5,80\n"),
             "test.csv: rows: need at least 3 measurements to fit k and preload (got 2)");
   EXPECT_EQ(errorOf(header + good + "0,-0.1,nan,90\n"),
-            "test.csv: row 4: fy: must be finite (got nan)");
+            "test.csv: row 4, fy: must be a finite number (got \"nan\")");
   EXPECT_EQ(errorOf(header + good + "0,-0.1,5,inf\n"),
-            "test.csv: row 4: angle_deg: must be finite (got inf)");
+            "test.csv: row 4, angle_deg: must be a finite number (got \"inf\")");
   EXPECT_EQ(errorOf(header + "0,-0.1,5,abc\n" + good),
-            "test.csv: row 1: angle_deg: not a number (\"abc\")");
-  EXPECT_EQ(errorOf(header + "0,-0.1,,90\n" + good), "test.csv: row 1: fy: not a number (\"\")");
-  EXPECT_EQ(errorOf(header + "0,-0.1,5\n" + good), "test.csv: row 1: expected 4 fields, got 3");
+            "test.csv: row 1, angle_deg: must be a finite number (got \"abc\")");
+  EXPECT_EQ(errorOf(header + "0,-0.1,,90\n" + good), "test.csv: row 1, fy: must be a finite number (got \"\")");
+  EXPECT_EQ(errorOf(header + "0,-0.1,5\n" + good), "test.csv: row 1: expected 4 fields (got 3)");
   EXPECT_EQ(errorOf(header + good + "0.05,0,5,90\n"),
-            "test.csv: row 4: y: point lies on the band between the pulleys: force direction "
+            "test.csv: row 4, y: point lies on the band between the pulleys: force direction "
             "undefined");
   EXPECT_EQ(errorOf(header + good + "0.2,0,5,90\n"),
-            "test.csv: row 4: x: point coincides with pulley B");
+            "test.csv: row 4, x: point coincides with pulley B");
   // On the pulley line but outside the pulleys the force is defined: accepted.
   EXPECT_EQ(errorOf(header + good + "0.3,0,-20,180\n"), "");
 }

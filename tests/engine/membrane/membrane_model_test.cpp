@@ -47,7 +47,7 @@ TEST(MembraneModel, PointBelowIsPushedUpAndAboveDown) {
   EXPECT_NEAR(below.x(), 0.0, 1e-12);
   EXPECT_NEAR(membraneForceAngleDeg(g, Vec2(0.0, -0.1)), 90.0, 1e-12);
   EXPECT_NEAR(membraneForceAngleDeg(g, Vec2(0.0, 0.1)), -90.0, 1e-12);
-  // No factor 1/2 (NOTES.md): |F| = 2 T sin(theta) at the midpoint.
+  // No factor 1/2 (docs/model.md#membranes): |F| = 2 T sin(theta) at the midpoint.
   const double stretch = 2.0 * std::hypot(0.2, 0.1) - 0.4;
   const double tension = 25.0 * (stretch + 0.8);
   EXPECT_NEAR(below.y(), tension * 2.0 * 0.1 / std::hypot(0.2, 0.1), 1e-12);

@@ -36,7 +36,7 @@ TEST(SceneJson, SetOverridesAParameterAndRejectsUnknownOnes) {
     makeScene("ballast", {{"length", 1}});
     FAIL() << "unknown parameter accepted";
   } catch (const InputError& e) {
-    EXPECT_EQ(e.field(), "length");
+    EXPECT_EQ(e.field(), "--set length");
   }
   EXPECT_THROW(makeScene("ballast", {{"m_point", -1}}), InputError);
   EXPECT_THROW(parseSetting("l=abc"), InputError);

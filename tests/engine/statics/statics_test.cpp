@@ -1,5 +1,5 @@
 // Tests for engine/statics.{h,cpp}, statics_newton, statics_sensitivity, box_reduction,
-// statics_io: the model, the default path against the SOCP, and the NOTES.md corner cases.
+// statics_io: the model, the default path against the SOCP, and the corner cases of docs/model.md#statics.
 #include "engine/statics/statics.h"
 
 #include <gtest/gtest.h>
@@ -145,7 +145,7 @@ TEST(Statics, DefaultPathAgreesWithSocpOnRandomInstances) {
 }
 
 TEST(Statics, PlainNewtonStallsOnAFingertipMinimiser) {
-  // NOTES.md: the kink makes plain Newton crawl; the default path must not.
+  // docs/model.md#statics: the kink makes plain Newton crawl; the default path must not.
   std::mt19937_64 rng(5);
   int plainFailures = 0;
   for (int i = 0; i < 40; ++i) {

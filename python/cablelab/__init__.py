@@ -1,0 +1,65 @@
+"""cablelab: cable-driven soft robots on Box2D, scripted from Python with numpy.
+
+The same engine as the `cablelab` command-line tool, in-process (no process start per run):
+
+    import cablelab
+    w = cablelab.World.load("pulley")          # a built-in scene or a scene JSON file
+    for _ in range(120): w.step()              # the scene's dt and sub-steps
+    print(w.cable_tensions(), w.body_states()) # N; one row x y theta vx vy omega per body
+
+Units: metres, kilograms, seconds, radians, newtons (angles in degrees only where a name
+says _deg). Arrays are numpy float64.
+
+Simulation   World (load, from_dict, step, run, state as arrays, forces, servos, cables)
+Tools        statics, wrap, fit, membrane_data, membrane_model, scenes
+The hand     HandModel, ControllerParams, HandController, hand_joints, place_hand,
+             track, reach (the GIL is released while they run)
+Pictures     render (numpy RGBA image), snapshot (PNG); offscreen, no display needed
+             (HAS_RENDERER is False in a build without the UI)
+Errors       InputError (a ValueError; str(e) is the CLI's one-line message, with
+             e.source and e.field), SimulationError (a RuntimeError)
+"""
+
+from . import _core
+from ._core import (
+    HAS_RENDERER,
+    HAND_BOX,
+    HAND_CABLES,
+    HAND_JOINT_NAMES,
+    PID_KI,
+    ControllerParams,
+    HandController,
+    HandModel,
+    InputError,
+    SimulationError,
+    World,
+    fit,
+    hand_joints,
+    membrane_data,
+    membrane_model,
+    place_hand,
+    reach,
+    render,
+    scenes,
+    snapshot,
+    statics,
+    track,
+    wrap,
+)
+
+__all__ = [
+    "World", "statics", "wrap", "fit", "membrane_data", "membrane_model", "scenes",
+    "HandModel", "ControllerParams", "HandController", "hand_joints", "place_hand",
+    "track", "reach", "render", "snapshot", "InputError", "SimulationError",
+    "HAND_JOINT_NAMES", "HAND_BOX", "HAND_CABLES", "PID_KI", "HAS_RENDERER",
+]
+
+# Show the public names as cablelab.X (not cablelab._core.X) in help() and reprs.
+for _name in __all__:
+    _obj = globals()[_name]
+    if hasattr(_obj, "__module__") and not isinstance(_obj, (str, tuple, float, bool)):
+        try:
+            _obj.__module__ = "cablelab"
+        except (AttributeError, TypeError):
+            pass
+del _name, _obj

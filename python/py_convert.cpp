@@ -1,0 +1,128 @@
+// Python <-> JSON and numpy helpers (python/bindings.h).
+#include <cmath>
+#include <cstdio>
+
+#include "engine/core/error.h"
+#include "python/bindings.h"
+
+namespace cablelab::python {
+
+namespace {
+
+std::string typeName(py::handle value) {
+  return py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>();
+}
+
+std::string numberText(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+}  // namespace
+
+nlohmann::json toJson(py::handle value, const std::string& source, const std::string& field) {
+  const std::string here = field.empty() ? "(value)" : field;
+  if (value.is_none()) return nullptr;
+  if (PyBool_Check(value.ptr()) || typeName(value) == "bool_") return value.attr("__bool__")().cast<bool>();
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::isinstance<py::dict>(value)) {
+    nlohmann::json out = nlohmann::json::object();
+    for (auto [key, item] : value.cast<py::dict>()) {
+      if (!py::isinstance<py::str>(key))
+        throw InputError(source, here, "keys must be strings (got " + typeName(key) + ")");
+      const std::string name = key.cast<std::string>();
+      out[name] = toJson(item, source, field.empty() ? name : field + "." + name);
+    }
+    return out;
+  }
+  if (py::isinstance<py::array>(value)) return toJson(value.attr("tolist")(), source, field);
+  if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+    nlohmann::json out = nlohmann::json::array();
+    size_t i = 0;
+    for (py::handle item : value)
+      out.push_back(toJson(item, source, here + "[" + std::to_string(i++) + "]"));
+    return out;
+  }
+  // Integers (also numpy's) stay integers; every other number becomes a double.
+  if (PyIndex_Check(value.ptr())) return py::int_(value.cast<py::object>()).cast<long long>();
+  if (PyFloat_Check(value.ptr()) || PyNumber_Check(value.ptr())) {
+    const double d = py::float_(value.cast<py::object>()).cast<double>();
+    if (!std::isfinite(d)) throw InputError(source, here, "must be finite (got " + numberText(d) + ")");
+    return d;
+  }
+  throw InputError(source, here, "cannot be read as JSON (got a " + typeName(value) + ")");
+}
+
+py::object fromJson(const nlohmann::json& j) {
+  switch (j.type()) {
+    case nlohmann::json::value_t::null: return py::none();
+    case nlohmann::json::value_t::boolean: return py::bool_(j.get<bool>());
+    case nlohmann::json::value_t::number_integer: return py::int_(j.get<long long>());
+    case nlohmann::json::value_t::number_unsigned: return py::int_(j.get<unsigned long long>());
+    case nlohmann::json::value_t::number_float: return py::float_(j.get<double>());
+    case nlohmann::json::value_t::string: return py::str(j.get<std::string>());
+    case nlohmann::json::value_t::array: {
+      py::list out;
+      for (const auto& item : j) out.append(fromJson(item));
+      return out;
+    }
+    case nlohmann::json::value_t::object: {
+      py::dict out;
+      for (const auto& [key, item] : j.items()) out[py::str(key)] = fromJson(item);
+      return out;
+    }
+    default: return py::none();
+  }
+}
+
+std::string pathString(py::handle value, const std::string& source, const std::string& field) {
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::hasattr(value, "__fspath__")) {
+    py::object path = py::module_::import("os").attr("fspath")(value);
+    if (py::isinstance<py::str>(path)) return path.cast<std::string>();
+  }
+  throw InputError(source, field, "must be a str or a path (got a " + typeName(value) + ")");
+}
+
+std::vector<double> toNumbers(py::handle value, size_t count, const std::string& source,
+                              const std::string& field) {
+  const std::string shape = count == 2 ? "[x, y]" : std::to_string(count) + " numbers";
+  if (py::isinstance<py::str>(value) || !py::isinstance<py::sequence>(value)) {
+    if (!py::isinstance<py::array>(value))
+      throw InputError(source, field, "must be " + shape + " (got a " + typeName(value) + ")");
+  }
+  py::array_t<double, py::array::forcecast> a;
+  try {
+    a = py::array_t<double, py::array::forcecast>::ensure(value);
+  } catch (const py::error_already_set&) {
+  }
+  if (!a || a.ndim() != 1 || static_cast<size_t>(a.size()) != count)
+    throw InputError(source, field, "must be " + shape);
+  std::vector<double> out(count);
+  for (size_t i = 0; i < count; ++i) {
+    out[i] = a.at(i);
+    if (!std::isfinite(out[i]))
+      throw InputError(source, field + "[" + std::to_string(i) + "]",
+                       "must be finite (got " + numberText(out[i]) + ")");
+  }
+  return out;
+}
+
+Vec2 toVec2(py::handle value, const std::string& source, const std::string& field) {
+  const auto v = toNumbers(value, 2, source, field);
+  return {v[0], v[1]};
+}
+
+py::array_t<double> newArray(std::vector<py::ssize_t> shape) {
+  return py::array_t<double>(shape);
+}
+
+py::array_t<double> pointsArray(const std::vector<Vec2>& points) {
+  py::array_t<double> out = newArray({static_cast<py::ssize_t>(points.size()), 2});
+  double* d = out.mutable_data();
+  for (const Vec2& p : points) *d++ = p.x(), *d++ = p.y();
+  return out;
+}
+
+}  // namespace cablelab::python

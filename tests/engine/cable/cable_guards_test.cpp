@@ -1,0 +1,187 @@
+// The join/leave guard rules documented in engine/cable/cable.h, one scene per rule.
+//
+// Each scene is a cable from A = (-1, 0) to B = (1, 0) in the world frame with one pulley on a
+// body that the test moves by hand (no dynamics): walking from A to B the cable's left is +y, so
+// a Left pulley is wrapped once it has crossed the straight cable upwards (the cable then bends
+// over it). The rules are the ones cable.h states; if a rule changes, this test changes with it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "engine/cable/cable.h"
+
+namespace cablelab {
+namespace {
+
+constexpr double kTight = 1e-12;
+
+SceneDef sceneWith(std::vector<PulleyDef> pulleys, Vec2 start = Vec2(-1, 0),
+                   const std::string& startBody = "world") {
+  SceneDef s;
+  s.bodies.resize(2);
+  s.bodies[0].name = "p";  // carries the pulley
+  s.bodies[1].name = "a";  // may carry the start anchor
+  CableDef c;
+  c.name = "cable";
+  c.start = {startBody, start};
+  c.end = {"world", Vec2(1, 0)};
+  c.pulleys = std::move(pulleys);
+  s.cables.push_back(c);
+  return s;
+}
+
+PulleyDef pointPulley(WrapSide side = WrapSide::Left) {
+  PulleyDef p;
+  p.kind = PulleyDef::Kind::Point;
+  p.body = "p";
+  p.side = side;
+  return p;
+}
+
+// A square of half-size h centred on body p's origin.
+PulleyDef squarePulley(double h) {
+  PulleyDef p;
+  p.kind = PulleyDef::Kind::Polygon;
+  p.body = "p";
+  p.vertices = {Vec2(-h, -h), Vec2(h, -h), Vec2(h, h), Vec2(-h, h)};
+  p.side = WrapSide::Left;
+  return p;
+}
+
+// Moves the pulley's body (and the start-anchor body) and re-selects the wrap points.
+struct Rig {
+  explicit Rig(const SceneDef& s) : scene(s), cable(scene, 0, "test"), bodies(2) {}
+  void at(Vec2 pulley, Vec2 anchorBody = Vec2::Zero()) {
+    bodies[0].position = pulley;
+    bodies[1].position = anchorBody;
+    cable.update(bodies, &warnings);
+  }
+  SceneDef scene;
+  Cable cable;
+  std::vector<BodyState> bodies;
+  std::vector<std::string> warnings;
+};
+
+double bentLength(Vec2 p) { return (p - Vec2(-1, 0)).norm() + (Vec2(1, 0) - p).norm(); }
+
+TEST(CableGuards, AtCreationEveryPulleyTheSegmentCutsJoins) {
+  Rig point(sceneWith({pointPulley()}));
+  point.at(Vec2(0, 0.1));  // on the wrap side, between A and B: joins as if it had just crossed
+  EXPECT_EQ(point.cable.wraps(), 1);
+  EXPECT_NEAR(point.cable.length(), bentLength(Vec2(0, 0.1)), kTight);
+
+  Rig square(sceneWith({squarePulley(0.1)}));
+  square.at(Vec2(0, 0.05));  // the straight segment cuts the square
+  EXPECT_TRUE(square.cable.engaged(0));
+  EXPECT_EQ(square.cable.wraps(), 2);  // over the two upper corners
+  EXPECT_NEAR(square.cable.length(), 2 * std::hypot(0.9, 0.15) + 0.2, kTight);
+}
+
+TEST(CableGuards, APointPulleyJoinsWhenItCrossesTheSegmentFromOutside) {
+  Rig rig(sceneWith({pointPulley()}));
+  rig.at(Vec2(0, -0.2));  // below: the non-wrap side
+  EXPECT_EQ(rig.cable.wraps(), 0);
+  EXPECT_NEAR(rig.cable.length(), 2, kTight);
+  rig.at(Vec2(0, -0.01));
+  EXPECT_EQ(rig.cable.wraps(), 0);
+  rig.at(Vec2(0.2, 0.01));  // crossed: joins
+  EXPECT_EQ(rig.cable.wraps(), 1);
+  EXPECT_EQ(rig.cable.path()[1].pulley, 0);
+  EXPECT_NEAR(rig.cable.length(), bentLength(Vec2(0.2, 0.01)), kTight);
+}
+
+TEST(CableGuards, APointPulleyComingFromTheWrapSideIsPassed) {
+  Rig rig(sceneWith({pointPulley()}));
+  rig.at(Vec2(1.5, 0.3));  // wrap side, beyond the segment's end: left out
+  EXPECT_EQ(rig.cable.wraps(), 0);
+  rig.at(Vec2(0.5, 0.3));  // now above the segment, but it came from the wrap side: still out
+  EXPECT_EQ(rig.cable.wraps(), 0);
+  EXPECT_NEAR(rig.cable.length(), 2, kTight);
+  rig.at(Vec2(0.5, -0.1));  // back below (outside) ...
+  EXPECT_EQ(rig.cable.wraps(), 0);
+  rig.at(Vec2(0.5, 0.05));  // ... and across from there: joins
+  EXPECT_EQ(rig.cable.wraps(), 1);
+}
+
+TEST(CableGuards, APointPulleyOnTheWrapSideBeyondTheEndsIsLeftOut) {
+  Rig rig(sceneWith({pointPulley()}));
+  rig.at(Vec2(-1.5, 0.2));  // beyond A, even at creation
+  EXPECT_EQ(rig.cable.wraps(), 0);
+  rig.at(Vec2(1.2, 0.2));  // beyond B
+  EXPECT_EQ(rig.cable.wraps(), 0);
+  EXPECT_NEAR(rig.cable.length(), 2, kTight);
+}
+
+TEST(CableGuards, APointPulleyLeavesWhenTheTurnAtItGoesTheWrongWay) {
+  Rig rig(sceneWith({pointPulley()}));
+  rig.at(Vec2(0, 0.1));
+  ASSERT_EQ(rig.cable.wraps(), 1);
+  rig.at(Vec2(0, 0.001));  // still bends over it
+  EXPECT_EQ(rig.cable.wraps(), 1);
+  rig.at(Vec2(0, -0.001));  // the turn would go the wrong way: leaves
+  EXPECT_EQ(rig.cable.wraps(), 0);
+  EXPECT_NEAR(rig.cable.length(), 2, kTight);
+  EXPECT_FALSE(rig.cable.engaged(0));
+}
+
+TEST(CableGuards, AThreadedPulleyNeverLeaves) {
+  Rig rig(sceneWith({pointPulley(WrapSide::Threaded)}));
+  for (const Vec2& p : {Vec2(0, 0.3), Vec2(0, -0.3), Vec2(3, 1)}) {
+    rig.at(p);
+    EXPECT_EQ(rig.cable.wraps(), 1) << p.transpose();
+    EXPECT_NEAR(rig.cable.length(), bentLength(p), kTight) << p.transpose();
+  }
+}
+
+TEST(CableGuards, APolygonJoinsFromOutsideAndLeavesWhenItsChainIsEmpty) {
+  Rig rig(sceneWith({squarePulley(0.1)}));
+  rig.at(Vec2(0, -0.3));  // entirely below the cable
+  EXPECT_FALSE(rig.cable.engaged(0));
+  rig.at(Vec2(0, -0.05));  // the upper edge crossed the segment: joins
+  EXPECT_TRUE(rig.cable.engaged(0));
+  EXPECT_EQ(rig.cable.wraps(), 2);
+  EXPECT_NEAR(rig.cable.length(), 2 * std::hypot(0.9, 0.05) + 0.2, kTight);
+  rig.at(Vec2(0, -0.11));  // no vertex on the wrap side any more: the hull chain is empty
+  EXPECT_FALSE(rig.cable.engaged(0));
+  EXPECT_EQ(rig.cable.wraps(), 0);
+  EXPECT_NEAR(rig.cable.length(), 2, kTight);
+}
+
+TEST(CableGuards, APolygonComingFromTheWrapSideIsPassed) {
+  Rig rig(sceneWith({squarePulley(0.1)}));
+  rig.at(Vec2(1.5, 0.3));  // above, beyond B
+  rig.at(Vec2(0.5, 0.05));  // cuts the segment, but came from the wrap side
+  EXPECT_FALSE(rig.cable.engaged(0));
+  EXPECT_NEAR(rig.cable.length(), 2, kTight);
+}
+
+TEST(CableGuards, ATerminalInsideAPolygonMakesItLeaveWithAWarning) {
+  // The start anchor rides on body "a"; carry it into the square's interior.
+  Rig rig(sceneWith({squarePulley(0.2)}, Vec2(-1, 0), "a"));
+  rig.at(Vec2(0, 0.1));
+  ASSERT_TRUE(rig.cable.engaged(0));
+  EXPECT_TRUE(rig.warnings.empty());
+  rig.at(Vec2(0, 0.1), Vec2(1.0, 0.1));  // anchor now at (0, 0.1): inside the square
+  EXPECT_FALSE(rig.cable.engaged(0));
+  EXPECT_EQ(rig.cable.wraps(), 0);
+  ASSERT_FALSE(rig.warnings.empty());
+  EXPECT_NE(rig.warnings.back().find("inside its hull"), std::string::npos) << rig.warnings.back();
+  EXPECT_TRUE(std::isfinite(rig.cable.length()));
+}
+
+TEST(CableGuards, CoincidentWrapPointsAreMergedAndLeftOutOfTheJacobian) {
+  // A threaded pulley exactly on the start anchor: the first segment has zero length.
+  Rig rig(sceneWith({pointPulley(WrapSide::Threaded)}));
+  rig.at(Vec2(-1, 0));
+  const CableKinematics& k = rig.cable.kinematics();
+  EXPECT_EQ(k.zeroLengthSegments, 1);
+  EXPECT_NEAR(k.length, 2, kTight);
+  for (const BodyJacobian& j : k.jacobian) EXPECT_TRUE(j.d.allFinite());
+  ASSERT_EQ(rig.warnings.size(), 1u);
+  EXPECT_NE(rig.warnings[0].find("zero-length segment"), std::string::npos) << rig.warnings[0];
+  rig.at(Vec2(-1, 0));  // said once, not every step
+  EXPECT_EQ(rig.warnings.size(), 1u);
+}
+
+}  // namespace
+}  // namespace cablelab

@@ -1,0 +1,142 @@
+# Bad input raises cablelab.InputError naming the field; nothing crashes the interpreter.
+import math
+
+import numpy as np
+import pytest
+
+import cablelab
+
+
+def message(fn, *args, **kwargs):
+    with pytest.raises(cablelab.InputError) as e:
+        fn(*args, **kwargs)
+    assert isinstance(e.value, ValueError)
+    return str(e.value)
+
+
+def test_input_error_has_source_and_field():
+    with pytest.raises(cablelab.InputError) as e:
+        cablelab.World.from_dict({"bodies": [{"name": "b", "mass": -1.0,
+                                              "shapes": [{"type": "circle", "radius": 1}]}]})
+    assert e.value.source == "dict" and e.value.field == "bodies[0].mass"
+    assert str(e.value).startswith("dict: bodies[0].mass: ")
+
+
+@pytest.mark.parametrize("scene,field", [
+    ({"bodies": [{"name": "b", "position": [math.nan, 0], "shapes": [{"type": "circle"}]}]}, "bodies[0].position[0]"),
+    ({"bodies": [{"name": "b", "position": np.array([0.0, np.inf]), "shapes": [{"type": "circle"}]}]}, "bodies[0].position[1]"),
+    ({"bodies": [{"name": "b", "shapes": [{"type": "circle"}], "colour": "red"}]}, "bodies[0]"),
+    ({"bodies": {1, 2}}, "bodies"),
+    ({"bodies": [{"name": 3}]}, "bodies[0].name"),
+])
+def test_bad_dict_names_the_field(scene, field):
+    assert field in message(cablelab.World.from_dict, scene)
+
+
+def test_from_dict_accepts_numpy_values():
+    w = cablelab.World.from_dict({"gravity": np.array([0.0, -1.0]), "dt": np.float64(0.01),
+                                  "substeps": np.int64(2),
+                                  "bodies": [{"name": "b", "position": np.zeros(2),
+                                              "shapes": [{"type": "circle", "radius": 0.5}]}]})
+    assert w.substeps == 2 and w.gravity == [0.0, -1.0]
+
+
+@pytest.mark.parametrize("kwargs,field", [
+    ({"dt": 0}, "dt"), ({"dt": -1e-3}, "dt"), ({"dt": 2}, "dt"), ({"dt": math.nan}, "dt"),
+    ({"substeps": 0}, "substeps"), ({"substeps": 1001}, "substeps"), ({"substeps": 1.5}, "substeps"),
+])
+def test_bad_step_arguments(kwargs, field):
+    w = cablelab.World.load("pulley")
+    assert f"step: {field}: " in message(w.step, **kwargs)
+    assert w.step_count == 0
+
+
+def test_bad_run_arguments():
+    w = cablelab.World.load("pulley")
+    message(w.run)
+    message(w.run, 1.0, steps=3)
+    message(w.run, -1.0)
+    message(w.run, steps=-1)
+    message(w.run, 1e9, dt=1e-3)
+
+
+@pytest.mark.parametrize("call", [
+    lambda w: w.body_state(7),
+    lambda w: w.body_state(-1),
+    lambda w: w.body_state("nobody"),
+    lambda w: w.set_body_state(0, [0, 0, 0]),
+    lambda w: w.set_body_state(0, [0, 0, 0, 0, math.nan, 0]),
+    lambda w: w.set_body_state(0, [1e30, 0, 0, 0, 0, 0]),
+    lambda w: w.set_body_states(np.zeros((5, 6))),
+    lambda w: w.apply_force(0, (math.inf, 0)),
+    lambda w: w.apply_force(0, "up"),
+    lambda w: w.cable_path(3),
+    lambda w: w.set_servo_target("no_joint", 0.1),
+    lambda w: w.set_servo_targets([1.0]),
+    lambda w: w.set_cable_parameters("cable", stiffness=-1),
+    lambda w: setattr(w, "gravity", (0, math.nan)),
+])
+def test_bad_world_calls_raise(call):
+    w = cablelab.World.load("pulley")
+    message(call, w)
+    w.step()  # still usable
+
+
+def test_unknown_scene_lists_the_builtins():
+    text = message(cablelab.World.load, "no_such_scene")
+    assert "pulley" in text and text.startswith("no_such_scene: (scene): ")
+
+
+def test_bad_scene_parameter_values():
+    assert "must be positive" in message(cablelab.World.load, "pulley", m_left=-1)
+    assert "must be a number" in message(cablelab.World.load, "pulley", m_left="heavy")
+    assert "must be finite" in message(cablelab.World.load, "pulley", m_left=math.inf)
+
+
+@pytest.mark.parametrize("args,kwargs", [
+    ([[]], {}),
+    ([[{"a": [0, 0], "b": [1, 0], "k": -1, "L": 1}]], {}),
+    ([[{"a": [0, 0], "b": [1, 0], "k": 1, "L": 1}]], {"solver": "magic"}),
+    ([np.array([[0, 0, 1, 0, 1, np.nan]])], {}),
+    ([np.zeros((2, 5))], {}),
+    ([[{"a": [0, 0], "b": [1, 0], "k": 1, "L": 1}]], {"p0": [0, math.nan]}),
+    (["/no/such/file.json"], {}),
+])
+def test_bad_statics(args, kwargs):
+    message(cablelab.statics, *args, **kwargs)
+
+
+def test_bad_wrap_fit_and_membrane():
+    square = [[-1, -1], [1, -1], [1, 1], [-1, 1]]
+    message(cablelab.wrap, [0, 0], [3, 0], square, "left")  # A inside the polygon
+    message(cablelab.wrap, [-3, 0], [3, 0], square, "up")
+    message(cablelab.wrap, [-3, 0], [3, 0], [[0, 0], [1, 1]], "left")
+    message(cablelab.fit, np.zeros((5, 3)), (-0.2, 0, 0.2, 0))
+    message(cablelab.fit, np.array([[0, -0.1, np.nan, 90]] * 5), (-0.2, 0, 0.2, 0))
+    message(cablelab.fit, "/no/such.csv", (-0.2, 0, 0.2, 0))
+    message(cablelab.fit, np.zeros((5, 4)), (0, 0, 0, 0))
+    message(cablelab.membrane_data, 10, 0.1, (-0.2, 0, 0.2, 0), grid=(0, 3))
+    message(cablelab.membrane_model, (-0.2, 0, 0.2, 0), 10, 0.1, np.array([[0.0, 0.0]]))
+
+
+def test_bad_hand_calls():
+    message(cablelab.track, target=(1, 1), ramp=(1, 1, 2))
+    message(cablelab.track, ramp=(1, 1, 0))
+    message(cablelab.track, target=(1e3, 0))
+    message(cablelab.track, time=-1)
+    message(cablelab.reach, grid=0)
+    message(cablelab.hand_joints, cablelab.World.load("pulley"))
+    message(cablelab.HandModel, stifness=3)
+    message(cablelab.HandController().predict, [0, 0, 0])
+
+
+def test_bad_render_calls(tmp_path):
+    w = cablelab.World.load("pulley")
+    message(cablelab.render, w, (8, 8))
+    message(cablelab.render, w, (100.5, 100))
+    message(cablelab.snapshot, w, tmp_path / "no_dir" / "x.png", (64, 64))
+
+
+def test_simulation_error_is_a_runtime_error():
+    assert issubclass(cablelab.SimulationError, RuntimeError)
+    assert issubclass(cablelab.InputError, ValueError)

@@ -1,0 +1,227 @@
+# World from Python: stepping, state arrays, forces, servos, cables, dict round trips, threads.
+import math
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import cablelab
+
+
+def free_body_scene(n=1, gravity=(0.0, 0.0)):
+    """n unit-mass discs in a row, no cables, no joints."""
+    return {"name": "free", "gravity": list(gravity), "dt": 0.01, "substeps": 1,
+            "bodies": [{"name": f"b{i}", "position": [3.0 * i, 0.0], "mass": 1.0,
+                        "shapes": [{"type": "circle", "radius": 0.5}]} for i in range(n)]}
+
+
+def test_module_is_the_build():
+    assert "/python/cablelab/" in cablelab._core.__file__
+
+
+def test_defaults_are_the_scenes_dt_and_substeps():
+    a, b = cablelab.World.load("hand"), cablelab.World.load("hand")
+    for _ in range(10):
+        a.step()
+        b.step(dt=a.dt, substeps=a.substeps)
+    assert a.time == pytest.approx(10 * a.dt, rel=1e-12)
+    assert np.array_equal(a.body_states(), b.body_states())
+    assert a.step_count == 10
+
+
+def test_run_equals_python_loop():
+    a, b = cablelab.World.load("hexagon"), cablelab.World.load("hexagon")
+    a.run(steps=50)
+    for _ in range(50):
+        b.step()
+    assert np.array_equal(a.body_states(), b.body_states())
+    assert a.run(time=0) is None
+
+
+def test_body_states_layout_and_out_argument():
+    w = cablelab.World.from_dict(free_body_scene(3))
+    s = w.body_states()
+    assert s.shape == (3, 6) and s.dtype == np.float64
+    assert np.array_equal(s[:, 0], [0, 3, 6])
+    out = np.full((3, 6), np.nan)
+    assert w.body_states(out=out) is out
+    assert np.array_equal(out, s)
+    with pytest.raises(cablelab.InputError):
+        w.body_states(out=np.zeros((2, 6)))
+
+
+def test_set_body_state_round_trip_at_float_precision():
+    w = cablelab.World.from_dict(free_body_scene(2))
+    state = [1.25, -0.5, 0.3, 2.0, -1.0, 0.7]
+    w.set_body_state("b1", state)
+    assert np.array_equal(w.body_state(1), np.float32(state).astype(np.float64))  # Box2D keeps floats
+    states = w.body_states()
+    states[0, :2] = (-4.0, 2.0)
+    w.set_body_states(states)
+    assert np.array_equal(w.body_states(), states)
+
+
+def test_free_flight_under_gravity_is_ballistic():
+    w = cablelab.World.from_dict(free_body_scene(1, gravity=(0.0, -9.81)))
+    w.set_body_state(0, [0, 0, 0, 1.0, 5.0, 0])
+    w.run(steps=100)
+    t = w.time
+    x, y, _, vx, vy, _ = w.body_state(0)
+    # semi-implicit Euler: v exact, y off by g h t / 2
+    assert vy == pytest.approx(5.0 - 9.81 * t, abs=1e-5)
+    assert y == pytest.approx(5.0 * t - 0.5 * 9.81 * t * t - 0.5 * 9.81 * 0.01 * t, abs=1e-4)
+    assert x == pytest.approx(t, abs=1e-5)
+
+
+def test_apply_force_lasts_one_step_and_makes_torque_off_centre():
+    w = cablelab.World.from_dict(free_body_scene(1))
+    w.apply_force(0, (2.0, 0.0))
+    w.step()
+    w.step()  # no force this time
+    assert w.body_state(0)[3] == pytest.approx(2.0 * 0.01, rel=1e-6)  # F/m h, once
+    w2 = cablelab.World.from_dict(free_body_scene(1))
+    w2.apply_force("b0", (0.0, 1.0), point=(0.5, 0.0))
+    w2.step()
+    inertia = 0.5 * 1.0 * 0.5 ** 2  # disc
+    assert w2.body_state(0)[5] == pytest.approx(0.5 * 1.0 / inertia * 0.01, rel=1e-5)
+
+
+def test_pulley_conserves_length_and_energy():
+    w = cablelab.World.load("pulley")
+    l0, e0 = w.cable_lengths()[0], w.energy()
+    rec = w.run(2.0, record=True)
+    assert np.abs(rec["cables"][:, 0, 0] - l0).max() < 1e-3
+    v = w.body_states()[:, 3:5]
+    kinetic = 0.5 * (w.to_dict()["bodies"][0]["mass"] * v[0] @ v[0] + w.to_dict()["bodies"][1]["mass"] * v[1] @ v[1])
+    assert kinetic > 10
+    assert abs(w.energy() - e0) < 0.02 * kinetic  # first-order integrator: O(h) drift
+
+
+def test_cable_paths_are_wraps_plus_anchors():
+    w = cablelab.World.load("hexagon")
+    w.run(1.0)
+    for i, path in enumerate(w.cable_paths()):
+        assert path.shape == (int(w.cable_wraps()[i]) + 2, 2)
+        length = np.linalg.norm(np.diff(path, axis=0), axis=1).sum()
+        assert length == pytest.approx(w.cable_lengths()[i], rel=1e-12)
+    assert np.array_equal(w.cable_path("cable" if "cable" in w.cable_names else 0), w.cable_paths()[0])
+
+
+def test_cable_parameters_are_live():
+    w = cablelab.World.load("pulley")  # one rigid cable
+    w.run(0.5)
+    before = w.cable_parameters("cable")
+    assert before["stiffness"] == 0 and w.cable_tensions()[0] > 0
+    rest = before["rest_length"] + 0.5
+    w.set_cable_parameters("cable", rest_length=rest)  # 0.5 m of slack: both bodies fall freely
+    assert w.cable_parameters("cable") == dict(before, rest_length=rest)
+    w.run(0.1)
+    assert w.cable_tensions()[0] == 0 and w.cable_lengths()[0] < rest
+    w.run(1.0)  # taut again at the new rest length
+    assert w.cable_tensions()[0] > 0
+    assert w.cable_lengths()[0] == pytest.approx(rest, abs=1e-3)
+    with pytest.raises(cablelab.InputError):
+        w.set_cable_parameters("cable", rest_length=-1)
+    assert w.cable_parameters("cable")["rest_length"] == rest
+
+
+def test_run_record_has_the_joints():
+    a, b = cablelab.World.load("hand"), cablelab.World.load("hand")
+    rec = a.run(steps=20, record=True)
+    b.run(steps=20)
+    assert rec["joints"].shape == (21, len(a.joint_names), 2)
+    assert np.array_equal(rec["joints"][-1, :, 0], b.joint_values())
+    assert np.array_equal(rec["joints"][-1, :, 1], b.joint_speeds())
+    assert rec["joint_names"] == a.joint_names
+
+
+def test_hand_joints_and_servo_targets():
+    w = cablelab.World.load("hand")
+    assert w.joint_names[:6] == list(cablelab.HAND_JOINT_NAMES)
+    assert np.abs(w.joint_values()[:6]).max() < 1e-6  # the pinch pose is q = 0
+    target = w.servo_targets()
+    target[1] = 0.1  # top slide, m
+    w.set_servo_targets(target)
+    w.run(1.0)
+    assert w.servo_targets()[1] == 0.1
+    assert w.joint_values()[1] == pytest.approx(0.1, abs=0.02)
+    w.set_servo_target("top_slide", 0.0)
+    assert w.servo_targets()[1] == 0.0
+
+
+def test_to_dict_round_trip_gives_the_same_trajectory():
+    a = cablelab.World.load("hand")
+    b = cablelab.World.from_dict(a.to_dict())
+    a.run(steps=30)
+    b.run(steps=30)
+    assert np.array_equal(a.body_states(), b.body_states())
+
+
+def test_to_dict_current_continues_from_the_present_state():
+    a = cablelab.World.load("pulley")
+    a.run(0.5)
+    b = cablelab.World.from_dict(a.to_dict(current=True))
+    assert np.allclose(b.body_states(), a.body_states(), atol=1e-6)
+    a.run(0.5)
+    b.run(0.5)
+    assert np.allclose(b.body_states(), a.body_states(), atol=1e-3)
+
+
+def test_gravity_is_assignable():
+    w = cablelab.World.from_dict(free_body_scene(1))
+    w.gravity = (0.0, -2.0)
+    assert w.gravity == [0.0, -2.0]
+    w.step()
+    assert w.body_state(0)[4] == pytest.approx(-0.02, rel=1e-6)
+
+
+def test_scenes_lists_every_builtin_scene():
+    names = [s["name"] for s in cablelab.scenes()]
+    assert {"ballast", "hand", "hexagon", "membrane", "pulley"} <= set(names)
+    for s in cablelab.scenes():
+        cablelab.World.load(s["name"], **{k: v["default"] for k, v in s["params"].items()})
+
+
+def test_run_releases_the_gil():
+    w = cablelab.World.load("hand")
+    ticks = []
+    stop = threading.Event()
+
+    def count():
+        while not stop.is_set():
+            ticks.append(1)
+            time.sleep(0.001)
+
+    t = threading.Thread(target=count)
+    t.start()
+    start = time.perf_counter()
+    w.run(steps=6000)
+    elapsed = time.perf_counter() - start
+    stop.set()
+    t.join()
+    assert elapsed > 0.05
+    assert len(ticks) > 10  # the other thread ran while run() was in C++
+
+
+def test_a_world_busy_in_run_refuses_other_threads():
+    w = cablelab.World.load("hand")
+    errors = []
+    started = threading.Event()
+
+    def poke():
+        started.wait()
+        for _ in range(2000):
+            try:
+                w.body_states()
+            except RuntimeError as e:
+                errors.append(str(e))
+                return
+            time.sleep(0.0005)
+
+    t = threading.Thread(target=poke)
+    t.start()
+    started.set()
+    w.run(steps=20000)
+    t.join()
+    assert errors and "another thread" in errors[0]
