@@ -491,7 +491,7 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
   // Such an island iterates on J0 W instead (a quasi-Newton step: it still converges to the
   // end-of-step lengths, only more slowly).
   bool redundant = false;
-  if (m > 1) {
+  if (m > 1 && (ws.compliance.array() == 0).any()) {  // elastic rows alone: K is definite
     ws.redundancy.compute(ws.JW0);
     redundant = rankDeficient(ws.redundancy);
   }
@@ -515,7 +515,7 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
                                                : ws.phi1[r] - ws.target[r]) /
                  h;
     LcpSolution& sol = ws.lcpSolution;
-    solveLcp(ws.K, ws.b, ws.lcp, sol);
+    solveLcp(ws.K, ws.b, ws.lcp, sol, redundant);
     const double change = (sol.x - ws.P).lpNorm<Eigen::Infinity>();
     ws.P = sol.x;
     stats.solverIterations += sol.iterations;

@@ -171,7 +171,7 @@ LcpSolution solveLcp(const Eigen::MatrixXd& K, const Eigen::VectorXd& b) {
 }
 
 void solveLcp(const Eigen::MatrixXd& Kin, const Eigen::VectorXd& b, LcpWorkspace& work,
-              LcpSolution& sol) {
+              LcpSolution& sol, bool redundant) {
   const int n = static_cast<int>(b.size());
   // A row that touches only immovable bodies has K_ii = 0: regularise so it stays solvable.
   Eigen::MatrixXd& K = work.K;
@@ -183,7 +183,7 @@ void solveLcp(const Eigen::MatrixXd& Kin, const Eigen::VectorXd& b, LcpWorkspace
   sol.iterations = 0;
   sol.residual = 0;
   sol.rankDeficient = false;
-  const Eigen::VectorXd& bUsed = consistentTargets(K, b, work, sol);
+  const Eigen::VectorXd& bUsed = redundant ? consistentTargets(K, b, work, sol) : b;
   if (sol.rankDeficient)
     lawsonHanson(K, bUsed, work, sol);
   else

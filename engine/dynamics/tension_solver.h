@@ -31,7 +31,8 @@ struct LcpSolution {
 /// Redundant cables make K singular (more taut cables than the bodies have freedoms, e.g. 28
 /// rigid cables on one ring: rank 2 or 3). Then the tensions are not unique, and targets that
 /// do not quite agree (float rounding of Box2D's poses, length corrections) have no exact
-/// solution. A rank-deficient K (an LDLT pivot below kRankTolerance of the largest) is solved
+/// solution. For such redundant cables (solveLcp with `redundant`), a rank-deficient K (an LDLT
+/// pivot below kRankTolerance of the largest) is solved
 /// with b replaced by its projection onto the range of K (the least-squares part: the smallest
 /// violation instead of an unbounded impulse) and K + eps I, eps tiny: of all tension
 /// distributions that hold the bodies, the minimum-norm one, the limit of giving every cable
@@ -53,8 +54,10 @@ struct LcpWorkspace {
   std::vector<int> idx;
 };
 
-/// The same solve, writing into `sol` and using `work` for every temporary.
+/// The same solve, writing into `sol` and using `work` for every temporary. With
+/// `redundant` (the cable solver's islands whose J0 W is singular), a rank-deficient K takes the
+/// minimum-norm path described above; otherwise the exact principal pivoting always.
 void solveLcp(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, LcpWorkspace& work,
-              LcpSolution& sol);
+              LcpSolution& sol, bool redundant = false);
 
 }  // namespace cablelab
