@@ -13,11 +13,7 @@ std::string typeName(py::handle value) {
   return py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>();
 }
 
-std::string numberText(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
+std::string numberText(double v) { return formatNumber(v); }  // the one format (error.h)
 
 }  // namespace
 

@@ -14,6 +14,7 @@
 #include "engine/core/json_reader.h"
 #include "engine/hand/hand_tracking.h"
 #include "ui/colormap.h"
+#include "ui/panels.h"
 
 namespace cablelab::ui {
 namespace {
@@ -30,11 +31,43 @@ struct PlotLine {
   const char* label;
   int series;
   ImU32 colour;
+  bool dashed = false;  ///< targets are dashed
 };
 
+/// Grows `range` (a stable plot range: it never shrinks until the history is cleared) to a nice
+/// number holding every |value| of the plotted series.
+float stableRange(const TimeHistory& h, std::initializer_list<PlotLine> lines, float range) {
+  for (const PlotLine& l : lines)
+    for (int k = 0; k < h.count; ++k) {
+      const float v = std::abs(h.values[l.series][k]);
+      if (std::isfinite(v) && v > range) range = static_cast<float>(niceCeil(v));
+    }
+  return range;
+}
+
+void dashedPolyline(ImDrawList* draw, const std::vector<ImVec2>& run, ImU32 colour) {
+  float phase = 0;
+  for (size_t k = 1; k < run.size(); ++k) {
+    const ImVec2 a = run[k - 1], b = run[k];
+    const float len = std::hypot(b.x - a.x, b.y - a.y);
+    if (len <= 0) continue;
+    for (float s = -std::fmod(phase, 10.0f); s < len; s += 10) {
+      const float s0 = std::max(s, 0.0f), s1 = std::min(s + 6, len);
+      if (s1 > s0)
+        draw->AddLine(ImVec2(a.x + (b.x - a.x) * s0 / len, a.y + (b.y - a.y) * s0 / len),
+                      ImVec2(a.x + (b.x - a.x) * s1 / len, a.y + (b.y - a.y) * s1 / len), colour,
+                      1.5f);
+    }
+    phase += len;
+  }
+}
+
+/// Series of `h` against time over [lo, hi] (a fixed range from the caller: the plot does not
+/// jump as samples come and go), with a legend line above.
 void timePlot(const char* id, const TimeHistory& h, std::initializer_list<PlotLine> lines,
-              const char* unit, float height) {
+              const char* unit, float height, float lo, float hi) {
   const float width = ImGui::GetContentRegionAvail().x;
+  const float lh = ImGui::GetTextLineHeight();
   const ImVec2 p0 = ImGui::GetCursorScreenPos();
   ImGui::InvisibleButton(id, ImVec2(width, height));
   ImDrawList* draw = ImGui::GetWindowDrawList();
@@ -48,34 +81,37 @@ void timePlot(const char* id, const TimeHistory& h, std::initializer_list<PlotLi
   const int first = (h.head - h.count + TimeHistory::kLength) % TimeHistory::kLength;
   auto at = [&](int k) { return (first + k) % TimeHistory::kLength; };
   const float t0 = h.t[at(0)], t1 = std::max(h.t[at(h.count - 1)], t0 + 1e-3f);
-  float hi = 0;
-  for (const PlotLine& l : lines)
-    for (int k = 0; k < h.count; ++k)
-      if (std::isfinite(h.values[l.series][at(k)])) hi = std::max(hi, h.values[l.series][at(k)]);
-  hi = static_cast<float>(niceCeil(std::max(hi, 1e-6f)));
-  const float left = p0.x + 4, right = p1.x - 4, top = p0.y + 16, bottom = p1.y - 14;
+  hi = std::max(hi, lo + 1e-6f);
+  const float left = p0.x + 4, right = p1.x - 4, top = p0.y + lh + 3, bottom = p1.y - lh - 1;
   auto map = [&](float t, float v) {
-    return ImVec2(left + (t - t0) / (t1 - t0) * (right - left), bottom - v / hi * (bottom - top));
+    return ImVec2(left + (t - t0) / (t1 - t0) * (right - left),
+                  bottom - (v - lo) / (hi - lo) * (bottom - top));
   };
-  draw->AddLine(ImVec2(left, bottom), ImVec2(right, bottom), IM_COL32(190, 190, 190, 255));
+  const float zero = map(t0, std::clamp(0.0f, lo, hi)).y;
+  draw->AddLine(ImVec2(left, zero), ImVec2(right, zero), IM_COL32(190, 190, 190, 255));
   std::vector<ImVec2> run;
-  for (const PlotLine& l : lines) {
+  auto flush = [&](const PlotLine& l) {
+    if (run.size() >= 2) {
+      if (l.dashed)
+        dashedPolyline(draw, run, l.colour);
+      else
+        draw->AddPolyline(run.data(), static_cast<int>(run.size()), l.colour, 0, 1.5f);
+    }
     run.clear();
+  };
+  for (const PlotLine& l : lines) {
     for (int k = 0; k < h.count; ++k) {
       const float v = h.values[l.series][at(k)];
       if (!std::isfinite(v)) {
-        if (run.size() >= 2)
-          draw->AddPolyline(run.data(), static_cast<int>(run.size()), l.colour, 0, 1.5f);
-        run.clear();
+        flush(l);
         continue;
       }
-      run.push_back(map(h.t[at(k)], std::clamp(v, 0.0f, hi)));
+      run.push_back(map(h.t[at(k)], std::clamp(v, lo, hi)));
     }
-    if (run.size() >= 2)
-      draw->AddPolyline(run.data(), static_cast<int>(run.size()), l.colour, 0, 1.5f);
+    flush(l);
   }
   char text[96];
-  std::snprintf(text, sizeof text, "0 .. %g %s", hi, unit);
+  std::snprintf(text, sizeof text, "%g .. %g %s", lo, hi, unit);
   draw->AddText(ImVec2(p0.x + 4, p0.y + 1), IM_COL32(90, 90, 90, 255), text);
   float x = p0.x + 8 + ImGui::CalcTextSize(text).x;
   for (const PlotLine& l : lines) {
@@ -132,6 +168,16 @@ void startPinched(HandControlState& h, double now) {
 
 void handBeforeStep(Sandbox& sandbox, World& world, HandControlState& h) {
   const double t = world.time();
+  if (h.rampStart >= 0 && sandbox.target && h.rampLast &&
+      (*sandbox.target - *h.rampLast).norm() > 1e-12)
+    h.rampStart = -1;      // the user moved the target (a click): the ramp gives way
+  if (h.rampStart >= 0) {  // as runTracking's ramp: linear from the start point to the goal
+    const double u = std::clamp((t - h.rampStart) / std::max(h.rampSeconds, 1e-9), 0.0, 1.0);
+    sandbox.target = h.rampFrom + u * (h.rampTo - h.rampFrom);
+    h.rampLast = sandbox.target;
+  } else {
+    h.rampLast.reset();
+  }
   // The closing ramp keeps running under the controller's offsets after the grasp, as in
   // runTracking(), so the squeeze finishes as planned.
   HandJoints nominal = HandJoints::Zero();
@@ -165,47 +211,92 @@ void handAfterStep(const Sandbox& sandbox, const World& world, HandControlState&
     h.nextUpdate = h.controlStart;
     h.phase = HandControlState::Phase::Grasped;
   }
+  // Grasp loss: a membrane off the box (fewer than two wrap points on it) or slack.
+  if (h.graspTime >= 0 && h.lostTime < 0) {
+    const Cable& top = world.cable(h.cables[0]);
+    const Cable& bottom = world.cable(h.cables[1]);
+    const bool holds = grasped(world, h) && top.tension() > 1e-6 && bottom.tension() > 1e-6;
+    if (holds) {
+      h.offSince = -1;
+    } else {
+      if (h.offSince < 0) h.offSince = t;
+      if (t - h.offSince >= kGraspLossSeconds) {
+        h.lostTime = h.offSince;
+        h.lostWhy = top.wraps() < 2 || top.tension() <= 1e-6 ? "top membrane let go"
+                                                             : "bottom membrane let go";
+      }
+    }
+  }
   const Vec2 box = world.body(h.box).position;
   const float error = sandbox.target ? static_cast<float>((box - *sandbox.target).norm())
                                      : std::numeric_limits<float>::quiet_NaN();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float tx = sandbox.target ? static_cast<float>(sandbox.target->x()) : nan;
+  const float ty = sandbox.target ? static_cast<float>(sandbox.target->y()) : nan;
   h.history.push(static_cast<float>(t),
                  {static_cast<float>(world.cable(h.cables[0]).tension()),
-                  static_cast<float>(world.cable(h.cables[1]).tension()), error});
+                  static_cast<float>(world.cable(h.cables[1]).tension()), error,
+                  static_cast<float>(box.x()), static_cast<float>(box.y()), tx, ty});
 }
 
 void handPanel(Sandbox& sandbox, HandControlState& h) {
   World* world = sandbox.world();
   ImGui::TextUnformatted("Jacobian controller (thesis 4.3)");
 
-  // Target: sliders and click-to-set (the overlay cross).
+  // Target: sliders and click-to-set (the overlay cross), or a ramp as `track --ramp`.
   bool hasTarget = sandbox.target.has_value();
-  if (ImGui::Checkbox("target", &hasTarget))
+  if (ImGui::Checkbox("target", &hasTarget)) {
     sandbox.target = hasTarget ? std::optional<Vec2>(world->body(h.box).position) : std::nullopt;
+    h.rampStart = -1;
+  }
+  tooltip("A constant target for the box (click empty space in the view to move it).");
   if (sandbox.target) {
     float xy[2] = {static_cast<float>(sandbox.target->x()),
                    static_cast<float>(sandbox.target->y())};
     ImGui::SameLine();
     ImGui::SetNextItemWidth(-1);
-    if (ImGui::SliderFloat2("##target", xy, -kTargetRange, kTargetRange, "%.3f m"))
+    if (ImGui::SliderFloat2("##target", xy, -kTargetRange, kTargetRange, "%.3f m")) {
       sandbox.target = Vec2(xy[0], xy[1]);
-  } else {
-    ImGui::SameLine();
-    ImGui::TextDisabled("(or click empty space)");
+      h.rampStart = -1;
+    }
+    tooltip("Target x and y (m).");
   }
+  float ramp[3] = {static_cast<float>(h.rampTo.x()), static_cast<float>(h.rampTo.y()),
+                   static_cast<float>(h.rampSeconds)};
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize("Ramp__").x);
+  if (ImGui::DragFloat3("##ramp", ramp, 0.005f, -kTargetRange, kTargetRange, "%.3f")) {
+    h.rampTo = Vec2(ramp[0], ramp[1]);
+    h.rampSeconds = std::clamp(static_cast<double>(ramp[2]), 0.05, 60.0);
+  }
+  tooltip("Ramp goal x, y (m) and its duration (s), as `cablelab track --ramp X,Y,SECONDS`.");
+  ImGui::SameLine();
+  if (ImGui::SmallButton("Ramp")) {
+    h.rampFrom = sandbox.target.value_or(world->body(h.box).position);
+    h.rampStart = world->time();
+  }
+  tooltip("Move the target from where it is to the goal in a straight line over the duration.");
+  if (h.rampStart >= 0) ImGui::TextDisabled("ramp from %.2f s", h.rampStart);
 
   // Gains.
   bool changed = false;
   ImGui::Checkbox("outer loop on", &h.enabled);
+  tooltip("Run the Jacobian outer loop (else the servos hold the last joint targets).");
   ImGui::SameLine();
   changed |= ImGui::Checkbox("PID", &h.pid);
+  tooltip("Add the integral term k_i (the `track --pid` controller).");
   ImGui::PushItemWidth(120);
   changed |= ImGui::InputDouble("k_p (per update)", &h.params.kp, 0.01, 0.1, "%.3f");
+  tooltip("Proportional gain of the outer loop, per update.");
   changed |= ImGui::InputDouble("k_d", &h.params.kd, 0.01, 0.1, "%.3f");
+  tooltip("Derivative gain of the outer loop.");
   if (!h.pid) ImGui::BeginDisabled();
   changed |= ImGui::InputDouble("k_i (1/s)", &h.ki, 0.01, 0.1, "%.3f");
+  tooltip("Integral gain (with PID on).");
   if (!h.pid) ImGui::EndDisabled();
   ImGui::PopItemWidth();
-  if (ImGui::SmallButton("thesis gains (k_p 0.1, k_d 0.58)")) {
+  const bool thesis = ImGui::SmallButton("thesis gains (k_p 0.1, k_d 0.58)");
+  tooltip("Back to the gains of thesis section 4.3.");
+  if (thesis) {
     const HandControllerParams d;
     h.params.kp = d.kp, h.params.kd = d.kd, h.ki = kHandPidKi;
     changed = true;
@@ -218,20 +309,34 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
   }
 
   // Grasp sequence.
-  if (ImGui::Button("Start grasp")) {
+  ImGui::TextUnformatted("start pose:");
+  ImGui::SameLine();
+  const bool grasp = ImGui::Button("open (grasp)");
+  tooltip(
+      "As `cablelab track`: reset, swing the fingers open, close them over 1 s, grasp, then "
+      "control the box.");
+  ImGui::SameLine();
+  const bool pinch = ImGui::Button("pinch");
+  tooltip("Reset to the pinch pose, the box already between the membranes.");
+  if (grasp) {
     startHandGrasp(sandbox);
     return;  // `h` belonged to the old world
   }
-  ImGui::SameLine();
-  if (ImGui::Button("Reset hand")) {
+  if (pinch) {
     sandbox.reset();
     return;
   }
   const double t = world->time();
-  const char* phase = h.phase == HandControlState::Phase::Closing   ? "closing"
-                      : h.phase == HandControlState::Phase::Grasped ? "grasped"
-                                                                    : "pinch pose";
-  if (h.graspTime < 0)
+  const std::string state = handGraspState(sandbox);
+  const char* phase = state.c_str();
+  if (h.lostTime >= 0) {
+    ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(200, 0, 20, 255));
+    ImGui::TextWrapped("GRASP LOST at %.2f s: %s", h.lostTime, h.lostWhy.c_str());
+    ImGui::PopStyleColor();
+    tooltip(
+        "A membrane stopped wrapping the box (or went slack) for more than 0.1 s after the "
+        "grasp. Reset hand or Start grasp to try again.");
+  } else if (h.graspTime < 0)
     ImGui::Text("%s, waiting for both membranes", phase);
   else if (t < h.controlStart)
     ImGui::Text("%s at %.2f s, control from %.2f s", phase, h.graspTime, h.controlStart);
@@ -248,10 +353,43 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
   else
     ImGui::TextDisabled("statics: no face-on wrap");
 
+  const float lh = ImGui::GetTextLineHeight();
+  const ImVec2 plotTop = ImGui::GetCursorScreenPos();
+  const float tensionTop = static_cast<float>(sandbox.tensionScale);
   timePlot("##tensions", h.history,
            {{"top", 0, IM_COL32(200, 60, 30, 255)}, {"bottom", 1, IM_COL32(40, 90, 200, 255)}},
-           "N tension", 80);
-  timePlot("##error", h.history, {{"|box - target|", 2, IM_COL32(170, 20, 120, 255)}}, "m", 70);
+           "N tension", 6 * lh, 0, tensionTop);
+  tooltip("Membrane tensions; the range is the colour bar's.");
+  h.errorRange = stableRange(h.history, {{"", 2, 0}}, h.errorRange);
+  timePlot("##error", h.history, {{"|box - target|", 2, IM_COL32(170, 20, 120, 255)}}, "m", 5 * lh,
+           0, h.errorRange);
+  tooltip("Tracking error; the range only grows (Reset starts it again).");
+  h.xyRange = stableRange(h.history, {{"", 3, 0}, {"", 4, 0}, {"", 5, 0}, {"", 6, 0}}, h.xyRange);
+  timePlot("##xy", h.history,
+           {{"x", 3, IM_COL32(200, 90, 0, 255)},
+            {"y", 4, IM_COL32(0, 130, 90, 255)},
+            {"x target", 5, IM_COL32(200, 90, 0, 255), true},
+            {"y target", 6, IM_COL32(0, 130, 90, 255), true}},
+           "m", 7 * lh, -h.xyRange, h.xyRange);
+  tooltip("Box x and y against time, the targets dashed (thesis figure 4-5).");
+  const ImVec2 plotBottom = ImGui::GetCursorScreenPos();
+  h.plotRect = {plotTop.x, plotTop.y, ImGui::GetContentRegionAvail().x, plotBottom.y - plotTop.y};
+  if (ImGui::SmallButton("Export CSV")) {
+    const std::string name = "cablelab-hand-plots.csv";
+    try {
+      writeHandHistoryCsv(h, name);
+      sandbox.message = "saved " + name;
+    } catch (const std::exception& e) {
+      sandbox.error = e.what();
+    }
+  }
+  tooltip("The plotted history (last 15 s) as CSV in the working directory.");
+  ImGui::SameLine();
+  if (ImGui::SmallButton("Export PNG")) {
+    sandbox.pngRequest = h.plotRect;
+    sandbox.pngRequestPath = "cablelab-hand-plots.png";
+  }
+  tooltip("The three plots as a PNG in the working directory.");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -346,6 +484,38 @@ void HandControlState::rebuildController() {
   controller = std::make_unique<HandController>(model, p);
 }
 
+void writeHandHistoryCsv(const HandControlState& h, const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(path + ": cannot write the CSV");
+  out << "t,top_tension,bottom_tension,error,x,y,target_x,target_y\n";
+  const int first =
+      (h.history.head - h.history.count + TimeHistory::kLength) % TimeHistory::kLength;
+  char line[256];
+  for (int k = 0; k < h.history.count; ++k) {
+    const int i = (first + k) % TimeHistory::kLength;
+    int n = std::snprintf(line, sizeof line, "%.9g", h.history.t[i]);
+    for (const auto& series : h.history.values)
+      n += std::snprintf(line + n, sizeof line - n, ",%.9g", series[i]);
+    out << line << "\n";
+  }
+  if (!out) throw std::runtime_error(path + ": write failed");
+}
+
+std::string handGraspState(const Sandbox& sandbox) {
+  const HandControlState* h = sandbox.controller ? sandbox.controller->hand.get() : nullptr;
+  if (!h) return "";
+  if (h->lostTime >= 0) return "grasp lost";
+  switch (h->phase) {
+    case HandControlState::Phase::Closing:
+      return "closing";
+    case HandControlState::Phase::Grasped:
+      return "grasped";
+    case HandControlState::Phase::Pinched:
+      return "pinch pose";
+  }
+  return "";
+}
+
 bool startHandGrasp(Sandbox& sandbox) {
   sandbox.reset();  // a fresh world; controllerOpened() keeps the gains
   HandControlState* h = sandbox.controller ? sandbox.controller->hand.get() : nullptr;
@@ -389,12 +559,13 @@ void drawControllerPanel(Sandbox& sandbox) {
   ControllerState* c = sandbox.controller.get();
   if (c && c->hand && sandbox.world()) return handPanel(sandbox, *c->hand);
   if (c && c->membrane && sandbox.world()) return membranePanel(sandbox, *c->membrane);
+  ImGui::TextDisabled("no controller in this scene");
   if (sandbox.target)
-    ImGui::Text("target (%.3f, %.3f) m", sandbox.target->x(), sandbox.target->y());
+    ImGui::Text("marked point (%.3f, %.3f) m", sandbox.target->x(), sandbox.target->y());
   else
-    ImGui::TextDisabled("click empty space to set a target");
-  if (sandbox.target && ImGui::Button("Clear target")) sandbox.target.reset();
-  ImGui::TextDisabled("no controller for this scene");
+    ImGui::TextDisabled("Ctrl + click marks a point");
+  if (sandbox.target && ImGui::Button("Clear mark")) sandbox.target.reset();
+  tooltip("Remove the marked point.");
 }
 
 void controllerBeforeStep(Sandbox& sandbox, World& world) {
@@ -416,6 +587,7 @@ void controllerOverlay(const Sandbox& sandbox, Overlay& overlay) {
       overlay.targets.push_back({h->prediction.box, "", kPredictionColour});
       overlay.texts.push_back(
           {h->prediction.box + Vec2(0.03, -0.09), "statics", kPredictionColour});
+      overlay.keys.push_back({Overlay::Key::Marker::Cross, "statics model's box", kPredictionColour});
     }
     return;
   }
@@ -431,6 +603,7 @@ void controllerOverlay(const Sandbox& sandbox, Overlay& overlay) {
     char text[96];
     std::snprintf(text, sizeof text, "model F %.3g N", n.force.norm());
     overlay.arrows.push_back({n.p, n.p + metresPerNewton * n.force, text, kForceColour});
+    overlay.keys.push_back({Overlay::Key::Marker::Arrow, "membrane model force", kForceColour});
   }
 }
 

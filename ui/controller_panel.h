@@ -2,12 +2,13 @@
 // they can be wired in without touching the rest of the sandbox.
 //
 //   hand      the statics-based Jacobian controller of thesis section 4.3
-//             (engine/hand/hand_controller.h) runs live: the target is `sandbox.target` (click empty
-//             space, or the sliders), gains k_p, k_d, k_i and the PID toggle are editable, the
-//             grasp sequence (open pose -> closing ramp -> grasp -> control, as `cablelab track`)
-//             can be started and reset; membrane tensions and tracking error are plotted against
-//             time; the overlay shows the target and the statics model's box prediction.
-//   membrane  the chapter 3 model force F = -T (u1 + u2) (engine/membrane/membrane_model.h) is drawn at
+//             (engine/hand/hand_controller.h) runs live: the target is `sandbox.target` (click
+//             empty space, or the sliders), gains k_p, k_d, k_i and the PID toggle are editable,
+//             the grasp sequence (open pose -> closing ramp -> grasp -> control, as `cablelab
+//             track`) can be started and reset; membrane tensions and tracking error are plotted
+//             against time; the overlay shows the target and the statics model's box prediction.
+//   membrane  the chapter 3 model force F = -T (u1 + u2) (engine/membrane/membrane_model.h) is
+//   drawn at
 //             the finger point, and k and preload fitted by `cablelab fit` (its JSON output) can
 //             be loaded into the band.
 //
@@ -23,10 +24,10 @@
 #include <string>
 #include <vector>
 
+#include "engine/dynamics/world.h"
 #include "engine/hand/hand_controller.h"
 #include "engine/hand/hand_model.h"
 #include "engine/membrane/membrane_model.h"
-#include "engine/dynamics/world.h"
 #include "ui/overlay.h"
 #include "ui/sandbox.h"
 
@@ -56,8 +57,13 @@ struct HandControlState {
   double sequenceStart = 0;  ///< s, world time the grasp sequence began
   double closeTime = 1.0;    ///< s, open pose -> pinch pose ramp
   double graspTime = -1;     ///< s, both membranes wrap the box; -1 not yet
-  double controlStart = 0;   ///< s, the outer loop starts here
-  double nextUpdate = 0;     ///< s, next outer-loop tick
+  /// Grasp loss: after the grasp, a membrane stopped wrapping the box (or went slack) for
+  /// longer than kGraspLossSeconds; the world time it happened, -1 while held.
+  double lostTime = -1;
+  double offSince = -1;  ///< s, when a membrane last let go of the box; -1 both hold it
+  std::string lostWhy;
+  double controlStart = 0;  ///< s, the outer loop starts here
+  double nextUpdate = 0;    ///< s, next outer-loop tick
   int updates = 0;
   HandJoints open = HandJoints::Zero();
   HandJoints offset = HandJoints::Zero();  ///< controller's accumulated joint-target change
@@ -67,8 +73,16 @@ struct HandControlState {
   std::array<int, 2> cables{-1, -1};
   BoxPrediction prediction;    ///< the statics model at the last outer tick
   double predictionTime = -1;  ///< s
-  TimeHistory history{3};      ///< top tension, bottom tension (N), |box - target| (m)
-  double lastSample = -1;      ///< s
+  /// top tension, bottom tension (N), |box - target|, box x, box y, target x, target y (m)
+  TimeHistory history{7};
+  float errorRange = 0.05f, xyRange = 0.2f;  ///< stable plot ranges (m), grow only
+  // A ramp target as `cablelab track --ramp X,Y,SECONDS`: from the box to `rampTo` over
+  // `rampSeconds`, starting at world time `rampStart` (-1: a constant target).
+  double rampStart = -1, rampSeconds = 2;
+  Vec2 rampFrom = Vec2::Zero(), rampTo = Vec2(0.1, 0.1);
+  std::optional<Vec2> rampLast;  ///< the target the ramp set last (a different one: a click)
+  PanelRect plotRect;            ///< screen rectangle of the plots (for the PNG export)
+  double lastSample = -1;        ///< s
 
   void rebuildController();
 };
@@ -85,6 +99,17 @@ struct ControllerState {
   std::unique_ptr<HandControlState> hand;
   std::unique_ptr<MembraneViewState> membrane;
 };
+
+/// Writes the hand's plot history as CSV (t, both tensions, error, x, y, target x, target y);
+/// throws std::runtime_error naming the path.
+void writeHandHistoryCsv(const HandControlState& h, const std::string& path);
+
+/// A membrane must be off the box this long (s) before the grasp counts as lost.
+inline constexpr double kGraspLossSeconds = 0.1;
+
+/// The hand's grasp state as the panel shows it: "pinch pose", "closing", "grasped",
+/// "grasp lost"; "" when the scene is not the hand.
+std::string handGraspState(const Sandbox& sandbox);
 
 /// Sets up the state for the sandbox's current world (after open() or reset()).
 void controllerOpened(Sandbox& sandbox);

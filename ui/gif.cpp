@@ -29,7 +29,8 @@ GifWriter::GifWriter(const std::string& path, int width, int height, double fram
   // Opened here rather than by EGifOpenFileName, which creates files readable by their owner
   // only (0600): the umask decides, as for every other output.
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
-  if (fd < 0) throw std::runtime_error(path + ": cannot write the GIF (" + std::strerror(errno) + ")");
+  if (fd < 0)
+    throw std::runtime_error(path + ": cannot write the GIF (" + std::strerror(errno) + ")");
   int error = 0;
   gif_ = EGifOpenFileHandle(fd, &error);  // owns fd from here on, closed by EGifCloseFile
   if (!gif_) {

@@ -2,14 +2,15 @@
 // `cablelab gui` execs this program; it links libGL and never libOSMesa (see README.md).
 //
 //   cablelab-gui [SCENE] [--frames N] [--screenshot F.png] [--size WxH] [--open F]
-//                [--test-input]
-#include <CLI/CLI.hpp>
+//                [--record F.gif] [--ui-scale S] [--script NAME] [--test-input]
 #include <GL/gl.h>
 #include <imgui.h>
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -22,8 +23,10 @@
 #include "ui/input.h"
 #include "ui/input_script.h"
 #include "ui/panels.h"
+#include "ui/recorder.h"
 #include "ui/renderer.h"
 #include "ui/sandbox.h"
+#include "ui/scenario_script.h"
 #include "ui/scene_catalog.h"
 #include "ui/window.h"
 
@@ -33,9 +36,12 @@ struct Options {
   std::string scene;
   int frames = 0;
   std::string screenshot;
-  int width = 1280, height = 720;
+  int width = 0, height = 0;  ///< 0: fitted to the display
   std::string openLater;
+  std::string record;
+  float uiScale = 0;  ///< 0: from the display
   bool testInput = false;
+  std::string script, scriptOut = "authored.json";
 };
 
 /// The options, or nullopt after --help. Bad values are InputError ("command line: --size: ...").
@@ -48,7 +54,14 @@ std::optional<Options> parse(int argc, char** argv) {
                  "quit after N frames (one scene time step per frame) and print "
                  "{\"frames\": N, \"fps\": f} (fps from the median frame time)");
   cli.add_option("--screenshot", o.screenshot, "save the last frame as PNG");
-  cli.add_option("--size", size, "window size WxH (default 1280x720)");
+  cli.add_option("--size", size, "window size WxH (default: fitted to the display)");
+  cli.add_option("--record", o.record, "record the world view as an animated GIF from frame 1");
+  std::string uiScale, script;
+  cli.add_option("--ui-scale", uiScale, "text and panel scale, 0.5..4 (default: from the display)");
+  cli.add_option("--script", script,
+                 "run an acceptance scenario (describe, reset-scale, rigid-drag, drop-box, author) "
+                 "with synthetic events and print its JSON report");
+  cli.add_option("--script-out", o.scriptOut, "the scene file the author scenario saves");
   cli.add_option("--open", o.openLater,
                  "after 10 frames, open F as if chosen in the Scene menu (for tests)");
   cli.add_flag("--test-input", o.testInput,
@@ -63,16 +76,32 @@ std::optional<Options> parse(int argc, char** argv) {
     throw cablelab::commandLineError(e.what(), "see cablelab-gui --help");
   }
   if (!frames.empty())
-    o.frames = static_cast<int>(cablelab::parseWholeNumber(frames, cablelab::kCommandLine,
-                                                           "--frames", 0, 100000000));
+    o.frames = static_cast<int>(
+        cablelab::parseWholeNumber(frames, cablelab::kCommandLine, "--frames", 0, 100000000));
   if (!size.empty()) {
     const auto s = cablelab::parsePixelSize(size, cablelab::kCommandLine, "--size", 240, 16384);
     o.width = s.width;
     o.height = s.height;
   }
   if (!o.screenshot.empty()) cablelab::requireWritable(o.screenshot, "--screenshot");
+  if (!uiScale.empty()) {
+    const auto v = cablelab::parseFiniteNumber(uiScale);
+    if (!v || *v < 0.5 || *v > 4)
+      throw cablelab::InputError(cablelab::kCommandLine, "--ui-scale",
+                                 "must be a number in [0.5, 4] (got " + uiScale + ")");
+    o.uiScale = static_cast<float>(*v);
+  }
+  if (!script.empty()) {
+    const auto& names = cablelab::ui::ScenarioScript::names();
+    if (std::find(names.begin(), names.end(), script) == names.end())
+      throw cablelab::InputError(cablelab::kCommandLine, "--script",
+                                 "unknown scenario (got " + script + ")");
+    o.script = script;
+  }
   return o;
 }
+
+cablelab::ui::PanelRect recordArea;  // the window rectangle the recording crops (px)
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0;
@@ -80,13 +109,48 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+/// A file name in the working directory that does not exist yet: cablelab-SCENE-N.EXT.
+std::string freshName(const std::string& scene, const char* extension) {
+  std::string base = std::filesystem::path(scene).stem().string();
+  if (base.empty()) base = "scene";
+  for (int n = 1;; ++n) {
+    const std::string name = "cablelab-" + base + "-" + std::to_string(n) + extension;
+    if (!std::filesystem::exists(name)) return name;
+  }
+}
+
+/// Starts or stops the GIF recording of the world view (the free area between the panels).
+void toggleRecording(cablelab::ui::Sandbox& sandbox, cablelab::ui::Recorder& recorder,
+                     const std::string& path) {
+  using namespace cablelab::ui;
+  if (recorder.recording()) {
+    sandbox.message = recorder.stop();
+    std::cerr << "cablelab-gui: " << sandbox.message << "\n";
+    return;
+  }
+  const PanelRect free = sandbox.freeArea();
+  const int w = std::max(16, static_cast<int>(free.width)),
+            h = std::max(16, static_cast<int>(free.height));
+  try {
+    recorder.start(path.empty() ? freshName(sandbox.sceneName, ".gif") : path, w, h,
+                   sandbox.recordFps, sandbox.world() ? sandbox.world()->time() : 0);
+    recordArea = {free.x, free.y, static_cast<float>(w), static_cast<float>(h)};
+    sandbox.message = "recording " + recorder.path();
+  } catch (const std::exception& e) {
+    sandbox.error = e.what();
+  }
+}
+
 int run(const Options& options) {
   using namespace cablelab::ui;
   using Clock = std::chrono::steady_clock;
-  const bool scripted = options.frames > 0 || options.testInput;
+  const bool scripted = options.frames > 0 || options.testInput || !options.script.empty();
   Window window("cablelab sandbox", options.width, options.height, !scripted);
   Sandbox sandbox(window.width(), window.height());
+  sandbox.uiScale = options.uiScale > 0 ? options.uiScale : window.suggestedUiScale();
+  window.setUiScale(sandbox.uiScale);
   PanelState panelState;
+  Recorder recorder;
 
   const std::string first = options.scene.empty() ? defaultSceneName() : options.scene;
   if (!sandbox.open(first)) {
@@ -94,21 +158,27 @@ int run(const Options& options) {
     if (first != defaultSceneName()) sandbox.open(defaultSceneName());
     sandbox.error = error;
   }
+  bool startRecording = !options.record.empty();
 
   std::optional<InputScript> script;
   if (options.testInput) script.emplace(window.id());
+  std::optional<ScenarioScript> scenario;
+  if (!options.script.empty()) scenario.emplace(options.script, window.id(), options.scriptOut);
   std::vector<double> frameSeconds;
   Image capture;
   auto last = Clock::now();
   for (int frame = 0;; ++frame) {
     if (options.frames > 0 && frame >= options.frames) break;
     if (script && !script->beforeFrame(sandbox, frame)) break;
+    if (scenario && !scenario->beforeFrame(sandbox, frame)) break;
     if (!window.pollEvents([&](const SDL_Event& e) { handleEvent(sandbox, e); })) break;
     if (!options.openLater.empty() && frame == 10) sandbox.open(options.openLater);
     sandbox.advance(sandbox.lastFrameSeconds, scripted);
+    if (!ImGui::IsAnyItemActive()) window.setUiScale(sandbox.uiScale);  // not mid-drag
 
     window.beginFrame();
     drawPanels(sandbox, panelState);
+    if (sandbox.fitPending) sandbox.fitView();  // needs this frame's panel layout
     if (const cablelab::World* world = sandbox.world()) {
       drawWorld(*world, sandbox.camera, sandbox.overlay(), sandbox.renderOptions(),
                 ImGui::GetBackgroundDrawList());
@@ -116,13 +186,49 @@ int run(const Options& options) {
       glClearColor(0.97f, 0.97f, 0.95f, 1);
       glClear(GL_COLOR_BUFFER_BIT);
     }
+    // The panels of the first frame decide the recorded area.
+    if (startRecording && frame > 0) {
+      toggleRecording(sandbox, recorder, options.record);
+      startRecording = false;
+    } else if (sandbox.recordToggleRequested) {
+      toggleRecording(sandbox, recorder, "");
+    }
+    sandbox.recordToggleRequested = false;
+    const double now = sandbox.world() ? sandbox.world()->time() : 0;
+    const bool recordNow = recorder.due(now);
+    const bool screenshot = sandbox.screenshotRequested || sandbox.pngRequest.has_value();
+    sandbox.screenshotRequested = false;
     // The script ends at an unknown frame: capture every one of its frames.
-    const bool lastFrame = (options.frames > 0 && frame + 1 == options.frames) || script;
-    window.endFrame(lastFrame && !options.screenshot.empty() ? &capture : nullptr);
+    const bool lastFrame =
+        (options.frames > 0 && frame + 1 == options.frames) || script || scenario;
+    const bool keep = lastFrame && !options.screenshot.empty();
+    window.endFrame(keep || recordNow || screenshot ? &capture : nullptr);
+    if (recordNow)
+      recorder.add(cropped(capture, static_cast<int>(recordArea.x), static_cast<int>(recordArea.y),
+                           recorder.width(), recorder.height()),
+                   now);
+    if (screenshot) {
+      const std::optional<PanelRect> part = sandbox.pngRequest;
+      const std::string name = part ? sandbox.pngRequestPath : freshName(sandbox.sceneName, ".png");
+      sandbox.pngRequest.reset();
+      try {
+        if (part)
+          writePng(cropped(capture, static_cast<int>(part->x), static_cast<int>(part->y),
+                           static_cast<int>(part->width), static_cast<int>(part->height)),
+                   name);
+        else
+          writePng(capture, name);
+        sandbox.message = "saved " + name;
+      } catch (const std::exception& e) {
+        sandbox.error = e.what();
+      }
+    }
+    sandbox.recording = recorder.recording();
+    sandbox.recordedFrames = recorder.frames();
 
-    const auto now = Clock::now();
-    sandbox.lastFrameSeconds = std::chrono::duration<double>(now - last).count();
-    last = now;
+    const auto now2 = Clock::now();
+    sandbox.lastFrameSeconds = std::chrono::duration<double>(now2 - last).count();
+    last = now2;
     if (frame > 0) frameSeconds.push_back(sandbox.lastFrameSeconds);  // the first is a warm-up
     if (!frameSeconds.empty()) {  // the status line shows the median of the last 60 frames
       const size_t n = std::min<size_t>(frameSeconds.size(), 60);
@@ -130,15 +236,27 @@ int run(const Options& options) {
       sandbox.fps = m > 0 ? 1 / m : 0;
     }
   }
+  if (recorder.recording()) std::cerr << "cablelab-gui: " << recorder.stop() << "\n";
 
   if (!options.screenshot.empty() && !capture.rgba.empty()) writePng(capture, options.screenshot);
+  if (scenario) {
+    std::cout << scenario->report() << std::endl;
+    return 0;
+  }
   if (script) {
     std::cout << script->report() << std::endl;
     return script->passed() ? 0 : 1;
   }
   if (options.frames > 0) {
     const double m = median(frameSeconds);
-    std::printf("{\"frames\": %d, \"fps\": %.17g}\n", options.frames, m > 0 ? 1 / m : 0.0);
+    // The view, so that a test can draw the same picture offscreen.
+    const Camera& c = sandbox.camera;
+    const PanelRect f = sandbox.freeArea();
+    std::printf(
+        "{\"frames\": %d, \"fps\": %.17g, \"camera\": [%.17g, %.17g, %.17g], "
+        "\"free\": [%g, %g, %g, %g], \"tension_scale\": %.17g}\n",
+        options.frames, m > 0 ? 1 / m : 0.0, c.center.x(), c.center.y(), c.metresPerPixel, f.x, f.y,
+        f.width, f.height, sandbox.tensionScale);
   }
   return 0;
 }

@@ -66,4 +66,20 @@ void flipRows(Image& image) {
                      image.rgba.begin() + (image.height - 1 - y) * stride);
 }
 
+Image cropped(const Image& image, int x, int y, int w, int h) {
+  x = std::clamp(x, 0, image.width);
+  y = std::clamp(y, 0, image.height);
+  w = std::clamp(w, 0, image.width - x);
+  h = std::clamp(h, 0, image.height - y);
+  Image out;
+  out.width = w;
+  out.height = h;
+  out.rgba.resize(static_cast<size_t>(w) * h * 4);
+  if (w == 0) return out;
+  for (int row = 0; row < h; ++row)
+    std::copy_n(image.pixel(x, y + row), static_cast<size_t>(w) * 4,
+                &out.rgba[static_cast<size_t>(row) * w * 4]);
+  return out;
+}
+
 }  // namespace cablelab::ui

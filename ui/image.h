@@ -26,6 +26,9 @@ void writePng(const Image& image, const std::string& path);
 /// Reads any PNG as 8-bit RGBA; throws std::runtime_error naming `path` on failure.
 Image readPng(const std::string& path);
 
+/// The w x h rectangle of `image` at (x, y) (top-left origin), clamped to the image.
+Image cropped(const Image& image, int x, int y, int w, int h);
+
 /// Reverses the row order in place (OpenGL reads rows bottom first).
 void flipRows(Image& image);
 

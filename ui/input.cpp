@@ -2,18 +2,42 @@
 
 #include <imgui.h>
 
+#include <iterator>
+
+#include "ui/authoring.h"
+
 namespace cablelab::ui {
 
 const char* const kShortcuts[][2] = {{"space", "play / pause"},
                                      {"s", "single step (pauses)"},
                                      {"r", "reset the scene"},
+                                     {"[ / ]", "slower / faster (0.1x .. 4x)"},
+                                     {"f", "camera follows the selected body"},
+                                     {"F12", "screenshot (PNG in the working directory)"},
+                                     {"F9", "start / stop recording a GIF"},
                                      {"h, F1", "this help"},
                                      {"+ / -", "zoom in / out"},
                                      {"wheel", "zoom about the cursor"},
-                                     {"left drag", "drag a dynamic body"},
-                                     {"left click", "set the controller target (empty space)"},
+                                     {"left click", "select a body or a cable"},
+                                     {"left drag", "drag a body (force-limited; paused: pose)"},
+                                     {"click empty space", "set the target (hand scene)"},
+                                     {"Ctrl + click", "set a target anywhere"},
                                      {"right drag", "pan"},
+                                     {"Ctrl+Z / Ctrl+Y", "undo / redo a scene edit"},
+                                     {"Delete", "delete the selected body"},
+                                     {"drop a .json file", "open it as a scene"},
                                      {nullptr, nullptr}};
+
+double stepSpeed(double speed, int direction) {
+  if (direction > 0) {
+    for (double s : kSpeeds)
+      if (s > speed + 1e-9) return s;
+    return kSpeeds[std::size(kSpeeds) - 1];
+  }
+  for (int k = static_cast<int>(std::size(kSpeeds)) - 1; k >= 0; --k)
+    if (kSpeeds[k] < speed - 1e-9) return kSpeeds[k];
+  return kSpeeds[0];
+}
 
 namespace {
 
@@ -23,30 +47,50 @@ bool overPanel(const Sandbox& sandbox, const Vec2& mouse) {
   return ImGui::IsAnyItemActive();  // a slider or text field owns the mouse
 }
 
+void leftDown(Sandbox& sandbox, World& world, const Vec2& mouse, const Vec2& point) {
+  if (authoringClick(sandbox, point, false)) return;
+  const int body = sandbox.bodyAt(point, true);
+  const bool ctrl = (SDL_GetModState() & KMOD_CTRL) != 0;
+  if (ctrl) {
+    sandbox.target = point;
+    return;
+  }
+  if (body >= 0) {
+    sandbox.selectedBody = body;
+    if (world.scene().bodies[body].type == BodyType::Dynamic) {
+      const BodyState& s = world.body(body);
+      sandbox.gesture = {Gesture::Kind::DragBody, mouse, rotate(point - s.position, -s.angle)};
+      sandbox.beginDrag(body, point);
+    }
+    return;
+  }
+  const int cable = sandbox.cableAt(point, 6 * sandbox.camera.metresPerPixel);
+  if (cable >= 0) {
+    sandbox.selectedCable = cable;
+    const Cable& c = world.cable(cable);
+    sandbox.cableEdit = {c.restLength(), c.stiffness(), c.preload(), c.damping()};
+    return;
+  }
+  if (sandbox.hasController())
+    sandbox.target = point;
+  else
+    sandbox.selectedBody = -1;
+}
+
 void mouseDown(Sandbox& sandbox, const SDL_MouseButtonEvent& e) {
   const Vec2 mouse(e.x, e.y);
   World* world = sandbox.world();
   if (!world || overPanel(sandbox, mouse)) return;
   const Vec2 point = sandbox.camera.toWorld(mouse);
-  if (e.button == SDL_BUTTON_LEFT) {
-    const int body = sandbox.bodyAt(point);
-    if (body >= 0) {
-      const BodyState& s = world->body(body);
-      sandbox.gesture = {Gesture::Kind::DragBody, mouse, rotate(point - s.position, -s.angle)};
-      sandbox.selectedBody = body;
-      world->beginDrag(body, point);
-    } else {
-      sandbox.target = point;
-    }
-  } else if (e.button == SDL_BUTTON_RIGHT) {
+  if (e.button == SDL_BUTTON_LEFT)
+    leftDown(sandbox, *world, mouse, point);
+  else if (e.button == SDL_BUTTON_RIGHT && !authoringClick(sandbox, point, true))
     sandbox.gesture = {Gesture::Kind::Pan, mouse, Vec2::Zero()};
-  }
 }
 
 void mouseUp(Sandbox& sandbox, const SDL_MouseButtonEvent& e) {
-  World* world = sandbox.world();
   if (sandbox.gesture.kind == Gesture::Kind::DragBody && e.button == SDL_BUTTON_LEFT) {
-    if (world) world->endDrag();
+    sandbox.endDrag();
     sandbox.gesture = {};
   } else if (sandbox.gesture.kind == Gesture::Kind::Pan && e.button == SDL_BUTTON_RIGHT) {
     sandbox.gesture = {};
@@ -55,11 +99,11 @@ void mouseUp(Sandbox& sandbox, const SDL_MouseButtonEvent& e) {
 
 void mouseMotion(Sandbox& sandbox, const SDL_MouseMotionEvent& e) {
   const Vec2 mouse(e.x, e.y);
-  World* world = sandbox.world();
-  if (sandbox.gesture.kind == Gesture::Kind::DragBody && world) {
-    world->dragTo(sandbox.camera.toWorld(mouse));
+  if (sandbox.gesture.kind == Gesture::Kind::DragBody && sandbox.world()) {
+    sandbox.dragTo(sandbox.camera.toWorld(mouse));
   } else if (sandbox.gesture.kind == Gesture::Kind::Pan) {
     sandbox.camera.panPixels(mouse - sandbox.gesture.lastMouse);
+    sandbox.follow = false;
   }
   sandbox.gesture.lastMouse = mouse;
 }
@@ -71,6 +115,22 @@ void key(Sandbox& sandbox, const SDL_KeyboardEvent& e) {
     case SDLK_SPACE:
       sandbox.paused = !sandbox.paused;
       break;
+    case SDLK_z:
+      if (SDL_GetModState() & KMOD_CTRL)
+        (SDL_GetModState() & KMOD_SHIFT) ? redoEdit(sandbox) : undoEdit(sandbox);
+      break;
+    case SDLK_y:
+      if (SDL_GetModState() & KMOD_CTRL) redoEdit(sandbox);
+      break;
+    case SDLK_DELETE:
+      if (sandbox.selectedBody >= 0 && sandbox.world()) {
+        const BodyState& b = sandbox.world()->body(sandbox.selectedBody);
+        const Authoring::Tool tool = sandbox.authoring->tool;
+        sandbox.authoring->tool = Authoring::Tool::Delete;
+        authoringClick(sandbox, b.position, false);
+        sandbox.authoring->tool = tool;
+      }
+      break;
     case SDLK_s:
       sandbox.paused = true;
       ++sandbox.pendingSteps;
@@ -81,6 +141,21 @@ void key(Sandbox& sandbox, const SDL_KeyboardEvent& e) {
     case SDLK_h:
     case SDLK_F1:
       sandbox.showHelp = !sandbox.showHelp;
+      break;
+    case SDLK_f:
+      sandbox.follow = !sandbox.follow && sandbox.selectedBody >= 0;
+      break;
+    case SDLK_LEFTBRACKET:
+      sandbox.speed = stepSpeed(sandbox.speed, -1);
+      break;
+    case SDLK_RIGHTBRACKET:
+      sandbox.speed = stepSpeed(sandbox.speed, +1);
+      break;
+    case SDLK_F12:
+      sandbox.screenshotRequested = true;
+      break;
+    case SDLK_F9:
+      sandbox.recordToggleRequested = true;
       break;
     case SDLK_PLUS:
     case SDLK_EQUALS:
@@ -122,6 +197,12 @@ void handleEvent(Sandbox& sandbox, const SDL_Event& event) {
     }
     case SDL_KEYDOWN:
       if (!event.key.repeat || event.key.keysym.sym == SDLK_s) key(sandbox, event.key);
+      break;
+    case SDL_DROPFILE:
+      if (event.drop.file) {
+        sandbox.open(event.drop.file);
+        SDL_free(event.drop.file);
+      }
       break;
     case SDL_WINDOWEVENT:
       if (event.window.event == SDL_WINDOWEVENT_SIZE_CHANGED)

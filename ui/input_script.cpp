@@ -13,8 +13,9 @@ constexpr int kPress = 3, kMoveFrames = 30, kRelease = 90, kClick = 95, kCheck =
               kEnd = 102;
 
 bool inFreeArea(const Sandbox& sandbox, const Vec2& s) {
-  return s.x() > kLeftWidth + 20 && s.x() < sandbox.camera.width - kRightWidth - 20 && s.y() > 50 &&
-         s.y() < sandbox.camera.height - kStatusHeight - 20;
+  const PanelRect f = sandbox.freeArea();
+  return s.x() > f.x + 20 && s.x() < f.x + f.width - 20 && s.y() > f.y + 20 &&
+         s.y() < f.y + f.height - 20;
 }
 
 }  // namespace
@@ -80,34 +81,41 @@ bool InputScript::beforeFrame(Sandbox& sandbox, int frame) {
     bodyName_ = world->scene().bodies[body_].name;
     start_ = world->body(body_).position;
     from_ = sandbox.camera.toScreen(start_);
-    const Vec2 centre(0.5 * (kLeftWidth + sandbox.camera.width - kRightWidth),
-                      0.5 * sandbox.camera.height);
+    const PanelRect f = sandbox.freeArea();
+    const Vec2 centre(f.x + 0.5 * f.width, f.y + 0.5 * f.height);
     const Vec2 toward = centre - from_;
     to_ = from_ + Vec2(toward.x() >= 0 ? 90 : -90, toward.y() >= 0 ? 60 : -60);
     goal_ = sandbox.camera.toWorld(to_);
     push(SDL_MOUSEMOTION, from_);
     push(SDL_MOUSEBUTTONDOWN, from_);
   } else if (frame > kPress && frame <= kPress + kMoveFrames) {
-    dragSeen_ = dragSeen_ || world->draggedBody() == body_;
+    dragSeen_ = dragSeen_ || sandbox.drag.body == body_;
     push(SDL_MOUSEMOTION, from_ + (to_ - from_) * (frame - kPress) / double(kMoveFrames));
   } else if (frame == kRelease) {
-    dragSeen_ = dragSeen_ && world->draggedBody() == body_;
+    dragSeen_ = dragSeen_ && sandbox.drag.body == body_;
     end_ = world->body(body_).position;
     push(SDL_MOUSEBUTTONUP, to_);
   } else if (frame == kClick) {
     // An empty point of the free area: scan a coarse grid for one with no body under it.
+    // Ctrl + click sets a target in any scene (a plain click only where a controller uses it).
     bool found = false;
+    const PanelRect f = sandbox.freeArea();
     for (int gy = 0; gy < 8 && !found; ++gy)
       for (int gx = 0; gx < 8 && !found; ++gx) {
-        const Vec2 s(
-            kLeftWidth + 40 + gx * 0.125 * (sandbox.camera.width - kLeftWidth - kRightWidth - 80),
-            80 + gy * 0.125 * (sandbox.camera.height - 160));
-        if (sandbox.bodyAt(sandbox.camera.toWorld(s)) < 0) click_ = s, found = true;
+        const Vec2 s(f.x + 40 + gx * 0.125 * (f.width - 80),
+                     f.y + 40 + gy * 0.125 * (f.height - 80));
+        const Vec2 w = sandbox.camera.toWorld(s);
+        if (sandbox.bodyAt(w, true) < 0 &&
+            sandbox.cableAt(w, 10 * sandbox.camera.metresPerPixel) < 0)
+          click_ = s, found = true;
       }
+    sandbox.target.reset();
+    SDL_SetModState(KMOD_LCTRL);
     push(SDL_MOUSEMOTION, click_);
     push(SDL_MOUSEBUTTONDOWN, click_);
     push(SDL_MOUSEBUTTONUP, click_);
   } else if (frame == kCheck) {
+    SDL_SetModState(KMOD_NONE);
     targetSet_ = sandbox.target.has_value();
     if (targetSet_) targetError_ = (*sandbox.target - sandbox.camera.toWorld(click_)).norm();
   } else if (frame == kKeys) {

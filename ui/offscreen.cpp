@@ -2,6 +2,7 @@
 
 #include "ui/camera.h"
 #include "ui/offscreen_context.h"
+#include "ui/tension_scale.h"
 
 namespace cablelab::ui {
 
@@ -9,6 +10,15 @@ Image renderSnapshot(const World& world, int width, int height, const Overlay& o
                      const RenderOptions& options) {
   OffscreenContext context(width, height);
   const Camera camera = Camera::fit(world.scene().view, width, height);
+  // The scene's own colour scale, as in the sandbox and in recordings (ui/tension_scale.h).
+  RenderOptions o = options;
+  if (o.tensionScale <= 0) o.tensionScale = expectedTensionScale(world.scene());
+  return context.render([&](ImDrawList* text) { drawWorld(world, camera, overlay, o, text); });
+}
+
+Image renderSnapshot(const World& world, const Camera& camera, const Overlay& overlay,
+                     const RenderOptions& options) {
+  OffscreenContext context(camera.width, camera.height);
   return context.render(
       [&](ImDrawList* text) { drawWorld(world, camera, overlay, options, text); });
 }

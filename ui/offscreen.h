@@ -8,15 +8,21 @@
 #include <string>
 
 #include "engine/dynamics/world.h"
+#include "ui/camera.h"
 #include "ui/image.h"
 #include "ui/overlay.h"
 #include "ui/renderer.h"
 
 namespace cablelab::ui {
 
-/// Renders `world` at width x height with the scene's default view (scene().view).
+/// Renders `world` at width x height with the scene's default view (scene().view); with no
+/// tension scale in `options`, the scene's expected one (ui/tension_scale.h).
 /// Throws std::runtime_error with a clear message on failure (bad size, no OSMesa).
 Image renderSnapshot(const World& world, int width, int height, const Overlay& overlay = {},
+                     const RenderOptions& options = {});
+
+/// Renders `world` seen by `camera` (its width x height).
+Image renderSnapshot(const World& world, const Camera& camera, const Overlay& overlay = {},
                      const RenderOptions& options = {});
 
 /// Renders `world` (see renderSnapshot) and writes it to `path` as PNG.

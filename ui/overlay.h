@@ -34,11 +34,23 @@ struct Overlay {
     Colour colour{0.1f, 0.1f, 0.1f, 1.0f};
   };
 
+  /// One line of the marker key: a sample of `marker` in `colour`, then `label`.
+  struct Key {
+    enum class Marker { Cross, Arrow, DashedCross };
+    Marker marker = Marker::Cross;
+    std::string label;
+    Colour colour{0.2f, 0.2f, 0.2f, 1.0f};
+  };
+
   std::vector<Target> targets;
   std::vector<Arrow> arrows;
   std::vector<Text> texts;
   /// Lines of text in the top-left corner of the viewport (screen space).
   std::vector<std::string> notes;
+  /// Keys of the overlay's markers, shown in the marker legend with the renderer's own.
+  std::vector<Key> keys;
+  /// A warning banner across the top of the viewport (a guard fired, a cable overstretched).
+  std::string banner;
 };
 
 }  // namespace cablelab::ui

@@ -4,41 +4,79 @@
 
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
 #include <string>
 
+#include "ui/authoring.h"
 #include "ui/controller_panel.h"
 #include "ui/input.h"
+#include "ui/panel_sections.h"
 #include "ui/scene_catalog.h"
 
 namespace cablelab::ui {
 namespace {
-
-constexpr ImGuiWindowFlags kFixed =
-    ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse;
-
-/// A titled separator (ImGui 1.86 has no SeparatorText).
-void section(const char* title) {
-  ImGui::Spacing();
-  ImGui::Separator();
-  ImGui::TextDisabled("%s", title);
-}
 
 void record(Sandbox& sandbox) {
   const ImVec2 p = ImGui::GetWindowPos(), s = ImGui::GetWindowSize();
   sandbox.panels.push_back({p.x, p.y, s.x, s.y});
 }
 
+void copyPath(std::array<char, 512>& field, const std::string& text) {
+  field.fill('\0');
+  std::copy_n(text.begin(), std::min(text.size(), field.size() - 1), field.begin());
+}
+
+void sceneMenu(Sandbox& sandbox, PanelState& state) {
+  if (!ImGui::BeginMenu("Scene")) return;
+  for (const SceneEntry& entry : builtinSceneList()) {
+    if (ImGui::MenuItem(entry.name.c_str(), nullptr, entry.name == sandbox.sceneName))
+      sandbox.open(entry.name);
+    tooltip(entry.description.c_str());
+  }
+  ImGui::Separator();
+  if (ImGui::BeginMenu("Bundled scene files")) {
+    const auto files = bundledSceneFiles();
+    if (files.empty()) ImGui::TextDisabled("assets/scenes not found");
+    for (const std::string& f : files) {
+      const std::string name = std::filesystem::path(f).filename().string();
+      if (ImGui::MenuItem(name.c_str(), nullptr, f == sandbox.sceneName)) sandbox.open(f);
+      tooltip(f.c_str());
+    }
+    ImGui::EndMenu();
+  }
+  if (ImGui::MenuItem("Open file...")) state.showOpen = true;
+  tooltip("Open a scene JSON file by path (or drop the file on the window).");
+  if (ImGui::MenuItem("Save scene as...")) {
+    state.showSave = true;
+    if (state.savePath[0] == '\0')
+      copyPath(state.savePath,
+               (sandbox.scene.name.empty() ? "scene" : sandbox.scene.name) + std::string(".json"));
+  }
+  tooltip("Write the current scene (as edited) as scene JSON that `cablelab run` loads.");
+  ImGui::EndMenu();
+}
+
+void viewMenu(Sandbox& sandbox, PanelState& state) {
+  if (!ImGui::BeginMenu("View")) return;
+  ImGui::MenuItem("labels", nullptr, &sandbox.draw.labels);
+  ImGui::MenuItem("grid", nullptr, &sandbox.draw.grid);
+  ImGui::MenuItem("wrap points", nullptr, &sandbox.draw.wrapPoints);
+  ImGui::MenuItem("tensions", nullptr, &sandbox.draw.tensions);
+  ImGui::MenuItem("forces", nullptr, &sandbox.draw.forces);
+  ImGui::MenuItem("marker key", nullptr, &sandbox.draw.markerLegend);
+  ImGui::Separator();
+  if (ImGui::MenuItem("projector mode", nullptr, &sandbox.projector))
+    sandbox.uiScale = sandbox.projector ? 2 : 1;
+  tooltip("Large fonts and thick lines for a lecture hall.");
+  if (ImGui::MenuItem("collapse both panels")) state.collapseLeft = state.collapseRight = true;
+  ImGui::EndMenu();
+}
+
 float menuBar(Sandbox& sandbox, PanelState& state) {
   float height = 0;
   if (ImGui::BeginMainMenuBar()) {
-    if (ImGui::BeginMenu("Scene")) {
-      for (const SceneEntry& entry : builtinSceneList())
-        if (ImGui::MenuItem(entry.name.c_str(), nullptr, entry.name == sandbox.sceneName))
-          sandbox.open(entry.name);
-      ImGui::Separator();
-      if (ImGui::MenuItem("Open file...")) state.showOpen = true;
-      ImGui::EndMenu();
-    }
+    sceneMenu(sandbox, state);
+    viewMenu(sandbox, state);
     if (ImGui::BeginMenu("Help")) {
       ImGui::MenuItem("Shortcuts", "h", &sandbox.showHelp);
       ImGui::EndMenu();
@@ -51,154 +89,70 @@ float menuBar(Sandbox& sandbox, PanelState& state) {
   return height;
 }
 
-void simulationPanel(Sandbox& sandbox, float top) {
-  const float height = sandbox.camera.height - top - kStatusHeight;
-  ImGui::SetNextWindowPos(ImVec2(0, top));
-  ImGui::SetNextWindowSize(ImVec2(kLeftWidth, height));
-  ImGui::Begin("Simulation", nullptr, kFixed);
+/// Default widths for the window size and UI scale; on a narrow window the Inspector starts
+/// collapsed and the Simulation panel takes at most a third of the width.
+void layoutFor(Sandbox& sandbox, PanelState& state) {
+  if (state.layoutScale == sandbox.uiScale) return;
+  const float s = sandbox.uiScale, w = static_cast<float>(sandbox.camera.width);
+  state.leftWidth = std::min(kLeftWidth * s, std::max(0.34f * w, 200.0f));
+  state.rightWidth = std::min(kRightWidth * s, 0.4f * w);
+  if (state.layoutScale == 0 && w < kNarrowWindow * s) state.collapseRight = true;
+  state.layoutScale = s;
+}
+
+/// A side panel pinned to the left or right edge: its height fills the space between the menu
+/// and the status line, the user resizes its width and collapses it.
+bool beginSidePanel(Sandbox& sandbox, PanelState& state, const char* name, bool left, float top) {
+  const float w = static_cast<float>(sandbox.camera.width);
+  const float height = sandbox.camera.height - top - kStatusHeight * sandbox.uiScale;
+  float& width = left ? state.leftWidth : state.rightWidth;
+  width = std::clamp(width, 160.0f, std::max(160.0f, 0.6f * w));
+  ImGui::SetNextWindowPos(ImVec2(left ? 0 : w - width, top), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(width, height), ImGuiCond_Always);
+  bool& collapse = left ? state.collapseLeft : state.collapseRight;
+  if (collapse) ImGui::SetNextWindowCollapsed(true, ImGuiCond_Always);
+  collapse = false;
+  const bool open = ImGui::Begin(name, nullptr, ImGuiWindowFlags_NoMove);
   record(sandbox);
-  if (ImGui::Button(sandbox.paused ? "Play" : "Pause", ImVec2(80, 0)))
-    sandbox.paused = !sandbox.paused;
-  ImGui::SameLine();
-  if (ImGui::Button("Step", ImVec2(80, 0))) {
-    sandbox.paused = true;
-    ++sandbox.pendingSteps;
+  // The user's resize shows up as this frame's size: keep it for the next frame.
+  if (open) width = ImGui::GetWindowSize().x;
+  return open;
+}
+
+void simulationPanel(Sandbox& sandbox, PanelState& state, float top) {
+  if (beginSidePanel(sandbox, state, "Simulation", true, top)) {
+    runPanel(sandbox);
+    if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) scenePanel(sandbox);
+    if (ImGui::CollapsingHeader("Controller", ImGuiTreeNodeFlags_DefaultOpen))
+      drawControllerPanel(sandbox);
+    if (ImGui::CollapsingHeader("Build")) authoringPanel(sandbox);
+    tooltip("Add bodies, pulleys and cables by clicks; undo, redo; save as scene JSON.");
+    if (ImGui::CollapsingHeader("View")) viewPanel(sandbox);
+    if (ImGui::CollapsingHeader("Integration")) integrationPanel(sandbox);
   }
-  ImGui::SameLine();
-  if (ImGui::Button("Reset", ImVec2(80, 0))) sandbox.reset();
-  if (const World* world = sandbox.world())
-    ImGui::Text("t = %.3f s   steps %ld", world->time(), world->stepCount());
-
-  section("Integration");
-  double dtMs = sandbox.dt * 1000;
-  if (ImGui::InputDouble("dt (ms)", &dtMs, 1, 5, "%.3f") && dtMs > 0.01 && dtMs <= 100)
-    sandbox.dt = dtMs / 1000;
-  if (ImGui::SliderInt("substeps", &sandbox.substeps, 1, 64))
-    sandbox.substeps = std::max(1, sandbox.substeps);
-  float g[2] = {static_cast<float>(sandbox.gravity.x()), static_cast<float>(sandbox.gravity.y())};
-  if (ImGui::DragFloat2("gravity", g, 0.05f, -50, 50, "%.2f")) sandbox.gravity = Vec2(g[0], g[1]);
-  if (ImGui::Button("g = 0")) sandbox.gravity = Vec2::Zero();
-  ImGui::SameLine();
-  if (ImGui::Button("g = -9.81")) sandbox.gravity = Vec2(0, -9.81);
-
-  section("View");
-  float zoom = static_cast<float>(1.0 / sandbox.camera.metresPerPixel);
-  if (ImGui::DragFloat("px per m", &zoom, 1.0f, 1.0f, 100000.0f, "%.0f") && zoom > 0)
-    sandbox.camera.metresPerPixel = 1.0 / zoom;
-  if (ImGui::Button("Fit scene view"))
-    sandbox.camera = Camera::fit(sandbox.scene.view, sandbox.camera.width, sandbox.camera.height);
-
-  section("Controller");
-  drawControllerPanel(sandbox);
   ImGui::End();
 }
 
-void cableInspector(Sandbox& sandbox, World& world) {
-  if (world.cableCount() == 0) {
-    ImGui::TextDisabled("no cables");
-    return;
-  }
-  if (ImGui::BeginListBox("cables", ImVec2(-1, 4.5f * ImGui::GetTextLineHeightWithSpacing()))) {
-    for (int i = 0; i < world.cableCount(); ++i) {
-      const Cable& c = world.cable(i);
-      const std::string label = c.name() + "  " + std::to_string(c.tension()).substr(0, 7) + " N";
-      if (ImGui::Selectable(label.c_str(), i == sandbox.selectedCable)) {
-        sandbox.selectedCable = i;
-        const Cable& s = world.cable(i);
-        sandbox.cableEdit = {s.restLength(), s.stiffness(), s.preload(), s.damping()};
-      }
-    }
-    ImGui::EndListBox();
-  }
-  const int i = std::clamp(sandbox.selectedCable, 0, world.cableCount() - 1);
-  const Cable& cable = world.cable(i);
-  ImGui::Text("%s: %s", cable.name().c_str(), cable.elastic() ? "elastic" : "rigid");
-  ImGui::Text("tension %.4g N %s", cable.tension(), cable.slack() ? "(slack)" : "");
-  ImGui::Text("length %.5f m", cable.length());
-  bool changed = false;
-  auto& e = sandbox.cableEdit;
-  ImGui::PushItemWidth(150);
-  changed |= ImGui::InputDouble("rest length (m)", &e.restLength, 0.01, 0.1, "%.4f",
-                                ImGuiInputTextFlags_EnterReturnsTrue);
-  changed |= ImGui::InputDouble("stiffness (N/m)", &e.stiffness, 10, 100, "%.2f",
-                                ImGuiInputTextFlags_EnterReturnsTrue);
-  changed |= ImGui::InputDouble("preload (m)", &e.preload, 0.001, 0.01, "%.4f",
-                                ImGuiInputTextFlags_EnterReturnsTrue);
-  changed |= ImGui::InputDouble("damping (N s/m)", &e.damping, 0.1, 1, "%.3f",
-                                ImGuiInputTextFlags_EnterReturnsTrue);
-  ImGui::PopItemWidth();
-  if (changed) sandbox.applyCableEdit();
-
-  if (i < static_cast<int>(sandbox.tensionHistory.size())) {
-    const auto& h = sandbox.tensionHistory[i];
-    ImGui::PlotLines("##tension", h.data(), static_cast<int>(h.size()), sandbox.historyHead,
-                     "tension (N), last 600 steps", 0.0f, static_cast<float>(sandbox.tensionScale),
-                     ImVec2(ImGui::GetContentRegionAvail().x, 90));
-  }
-  ImGui::Text("wrap points (%d)", cable.wraps());
-  if (ImGui::BeginTable("path", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY,
-                        ImVec2(-1, 8 * ImGui::GetTextLineHeightWithSpacing()))) {
-    ImGui::TableSetupColumn("kind");
-    ImGui::TableSetupColumn("x (m)");
-    ImGui::TableSetupColumn("y (m)");
-    ImGui::TableHeadersRow();
-    for (const WrapPoint& p : cable.path()) {
-      ImGui::TableNextRow();
-      ImGui::TableNextColumn();
-      if (p.kind == WrapPoint::Kind::Anchor)
-        ImGui::TextUnformatted("anchor");
-      else if (p.kind == WrapPoint::Kind::Point)
-        ImGui::Text("pulley %d", p.pulley);
-      else
-        ImGui::Text("pulley %d v%d", p.pulley, p.vertex);
-      ImGui::TableNextColumn();
-      ImGui::Text("%.4f", p.world.x());
-      ImGui::TableNextColumn();
-      ImGui::Text("%.4f", p.world.y());
-    }
-    ImGui::EndTable();
-  }
-}
-
-void inspectorPanel(Sandbox& sandbox, float top) {
-  const float height = sandbox.camera.height - top - kStatusHeight;
-  ImGui::SetNextWindowPos(ImVec2(sandbox.camera.width - kRightWidth, top));
-  ImGui::SetNextWindowSize(ImVec2(kRightWidth, height));
-  ImGui::Begin("Inspector", nullptr, kFixed);
-  record(sandbox);
-  if (World* world = sandbox.world()) {
-    cableInspector(sandbox, *world);
-    const int b = sandbox.selectedBody;
-    if (b >= 0 && b < world->bodyCount()) {
-      section("Body");
-      const BodyState& s = world->body(b);
-      ImGui::Text("%s", world->scene().bodies[b].name.c_str());
-      ImGui::Text("x %.4f  y %.4f  theta %.4f", s.position.x(), s.position.y(), s.angle);
-      ImGui::Text("vx %.3f  vy %.3f  omega %.3f", s.velocity.x(), s.velocity.y(),
-                  s.angularVelocity);
-    }
-    if (!world->warnings().empty()) {
-      section("Engine warnings");
-      const auto& w = world->warnings();
-      for (size_t k = w.size() > 5 ? w.size() - 5 : 0; k < w.size(); ++k)
-        ImGui::TextWrapped("%s", w[k].c_str());
-    }
-  }
+void inspectorPanel(Sandbox& sandbox, PanelState& state, float top) {
+  if (beginSidePanel(sandbox, state, "Inspector", false, top)) inspectorContents(sandbox);
   ImGui::End();
 }
 
 void statusLine(Sandbox& sandbox) {
-  ImGui::SetNextWindowPos(ImVec2(0, sandbox.camera.height - kStatusHeight));
-  ImGui::SetNextWindowSize(ImVec2(static_cast<float>(sandbox.camera.width), kStatusHeight));
+  const float h = kStatusHeight * sandbox.uiScale;
+  ImGui::SetNextWindowPos(ImVec2(0, sandbox.camera.height - h));
+  ImGui::SetNextWindowSize(ImVec2(static_cast<float>(sandbox.camera.width), h));
   ImGui::Begin("##status", nullptr,
-               kFixed | ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoScrollbar |
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoScrollbar |
                    ImGuiWindowFlags_NoSavedSettings);
   record(sandbox);
   if (const World* world = sandbox.world()) {
     const StepStats& s = world->lastStepStats();
-    ImGui::Text("%s  t %.3f s   step %.1f us (cables %.1f us)   %.0f fps   wrap points %d   %s",
-                sandbox.paused ? "PAUSED" : "running", world->time(), s.stepMicros, s.cableMicros,
-                sandbox.fps, s.wrapPoints, "h: help");
+    ImGui::Text("%s %.2gx  t %.3f s   step %.1f us (cables %.1f us)   %.0f fps   wraps %d   %s",
+                sandbox.paused ? "PAUSED" : "running", sandbox.speed, world->time(), s.stepMicros,
+                s.cableMicros, sandbox.fps, s.wrapPoints,
+                sandbox.message.empty() ? "h: help" : sandbox.message.c_str());
   } else {
     ImGui::TextUnformatted("no scene loaded");
   }
@@ -228,15 +182,20 @@ void helpOverlay(Sandbox& sandbox) {
 
 void openDialog(Sandbox& sandbox, PanelState& state) {
   if (!state.showOpen) return;
-  ImGui::SetNextWindowPos(ImVec2(0.5f * sandbox.camera.width, 120), ImGuiCond_Always,
-                          ImVec2(0.5f, 0));
-  ImGui::SetNextWindowSize(ImVec2(520, 0));
+  ImGui::SetNextWindowPos(ImVec2(0.5f * sandbox.camera.width, 0.15f * sandbox.camera.height),
+                          ImGuiCond_Always, ImVec2(0.5f, 0));
+  ImGui::SetNextWindowSize(
+      ImVec2(std::min(520.0f * sandbox.uiScale, sandbox.camera.width - 20.0f), 0));
   ImGui::Begin("Open scene file", &state.showOpen, ImGuiWindowFlags_NoCollapse);
   record(sandbox);
+  ImGui::TextUnformatted("Bundled scenes (assets/scenes):");
+  for (const std::string& f : bundledSceneFiles())
+    if (ImGui::Selectable(f.c_str())) copyPath(state.openPath, f);
   ImGui::TextUnformatted("Path of a scene JSON file (or a built-in scene name):");
   ImGui::SetNextItemWidth(-1);
   const bool enter = ImGui::InputText("##path", state.openPath.data(), state.openPath.size(),
                                       ImGuiInputTextFlags_EnterReturnsTrue);
+  tooltip("A file, relative to the working directory, or a built-in name such as hexagon.");
   if ((ImGui::Button("Open") || enter) && state.openPath[0] != '\0')
     if (sandbox.open(state.openPath.data())) state.showOpen = false;
   ImGui::SameLine();
@@ -244,11 +203,38 @@ void openDialog(Sandbox& sandbox, PanelState& state) {
   ImGui::End();
 }
 
+void saveDialog(Sandbox& sandbox, PanelState& state) {
+  if (!state.showSave) return;
+  ImGui::SetNextWindowPos(ImVec2(0.5f * sandbox.camera.width, 0.15f * sandbox.camera.height),
+                          ImGuiCond_Always, ImVec2(0.5f, 0));
+  ImGui::SetNextWindowSize(
+      ImVec2(std::min(520.0f * sandbox.uiScale, sandbox.camera.width - 20.0f), 0));
+  ImGui::Begin("Save scene", &state.showSave, ImGuiWindowFlags_NoCollapse);
+  record(sandbox);
+  ImGui::TextUnformatted("Scene JSON file to write (`cablelab run FILE` runs it):");
+  ImGui::SetNextItemWidth(-1);
+  const bool enter = ImGui::InputText("##save", state.savePath.data(), state.savePath.size(),
+                                      ImGuiInputTextFlags_EnterReturnsTrue);
+  if ((ImGui::Button("Save") || enter) && state.savePath[0] != '\0') {
+    try {
+      saveScene(sandbox, state.savePath.data());
+      sandbox.message = std::string("saved ") + state.savePath.data();
+      state.showSave = false;
+    } catch (const std::exception& e) {
+      sandbox.error = e.what();
+    }
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel")) state.showSave = false;
+  ImGui::End();
+}
+
 void errorBanner(Sandbox& sandbox) {
   if (sandbox.error.empty()) return;
-  ImGui::SetNextWindowPos(ImVec2(0.5f * sandbox.camera.width, 40), ImGuiCond_Always,
-                          ImVec2(0.5f, 0));
-  ImGui::SetNextWindowSize(ImVec2(std::min(600.0f, sandbox.camera.width - 40.0f), 0));
+  ImGui::SetNextWindowPos(ImVec2(0.5f * sandbox.camera.width, 40 * sandbox.uiScale),
+                          ImGuiCond_Always, ImVec2(0.5f, 0));
+  ImGui::SetNextWindowSize(
+      ImVec2(std::min(600.0f * sandbox.uiScale, sandbox.camera.width - 40.0f), 0));
   ImGui::PushStyleColor(ImGuiCol_WindowBg, IM_COL32(255, 228, 228, 245));
   ImGui::Begin("Error", nullptr, ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoResize);
   record(sandbox);
@@ -264,12 +250,14 @@ void errorBanner(Sandbox& sandbox) {
 
 void drawPanels(Sandbox& sandbox, PanelState& state) {
   sandbox.panels.clear();
+  layoutFor(sandbox, state);
   const float top = menuBar(sandbox, state);
-  simulationPanel(sandbox, top);
-  inspectorPanel(sandbox, top);
+  simulationPanel(sandbox, state, top);
+  inspectorPanel(sandbox, state, top);
   statusLine(sandbox);
   helpOverlay(sandbox);
   openDialog(sandbox, state);
+  saveDialog(sandbox, state);
   errorBanner(sandbox);
 }
 

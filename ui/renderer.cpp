@@ -54,11 +54,13 @@ void vertex(const Vec2& p) {
 /// Draws the stateless pieces in world coordinates; every size in pixels goes through `px`.
 class Painter {
  public:
-  Painter(const Camera& camera, ImDrawList* text) : cam_(camera), text_(text) {}
-  double px(double pixels) const { return pixels * cam_.metresPerPixel; }
+  Painter(const Camera& camera, ImDrawList* text, float scale)
+      : cam_(camera), text_(text), scale_(scale) {}
+  /// Metres of `pixels` screen pixels at the current line scale.
+  double px(double pixels) const { return pixels * scale_ * cam_.metresPerPixel; }
 
   void line(const Vec2& a, const Vec2& b, const Colour& c, float width) const {
-    glLineWidth(width);
+    glLineWidth(width * scale_);
     colour(c);
     glBegin(GL_LINES);
     vertex(a);
@@ -72,7 +74,7 @@ class Painter {
     const double length = (b - a).norm();
     if (length <= 0) return;
     const Vec2 u = (b - a) / length;
-    glLineWidth(width);
+    glLineWidth(width * scale_);
     colour(c);
     glBegin(GL_LINES);
     double s = -std::fmod(phase, period);
@@ -96,7 +98,7 @@ class Painter {
       for (const Vec2& p : points) vertex(p);
       glEnd();
     }
-    glLineWidth(width);
+    glLineWidth(width * scale_);
     colour(outline);
     glBegin(GL_LINE_LOOP);
     for (const Vec2& p : points) vertex(p);
@@ -142,20 +144,58 @@ class Painter {
     line(to, to - head * rotate(u, -0.45), c, width);
   }
 
+  /// Queues a label at `world` + `offsetPx` (preferred place); placeLabels() draws them all.
   void label(const Vec2& world, const std::string& s, const Colour& c,
              Vec2 offsetPx = {6, -16}) const {
     if (!text_ || s.empty()) return;
-    const Vec2 p = cam_.toScreen(world) + offsetPx;
-    text_->AddText(ImVec2(static_cast<float>(p.x()), static_cast<float>(p.y())), toImU32(c),
-                   s.c_str());
+    labels_.push_back({cam_.toScreen(world), offsetPx, s, c});
+  }
+
+  /// Draws the queued labels, each at the first of its candidate places that overlaps neither
+  /// an earlier label nor the viewport's edge (the least-overlapping one if none is free).
+  void placeLabels() const {
+    if (!text_) return;
+    std::vector<ImVec4> placed;  // x0, y0, x1, y1
+    for (const Label& l : labels_) {
+      const ImVec2 size = ImGui::CalcTextSize(l.text.c_str());
+      const double w = size.x, h = size.y, g = 4 * scale_;
+      const Vec2 candidates[] = {l.offset,           {g, g},           {g, -h - g},
+                                 {-w - g, g},        {-w - g, -h - g}, {-0.5 * w, g},
+                                 {-0.5 * w, -h - g}, {g, -0.5 * h}};
+      double best = 1e300;
+      ImVec4 bestRect;
+      for (const Vec2& offset : candidates) {
+        const Vec2 p = l.anchor + offset;
+        const ImVec4 r(static_cast<float>(p.x()), static_cast<float>(p.y()),
+                       static_cast<float>(p.x() + w), static_cast<float>(p.y() + h));
+        double overlap = 0;
+        for (const ImVec4& q : placed)
+          overlap += std::max(0.0f, std::min(r.z, q.z) - std::max(r.x, q.x)) *
+                     std::max(0.0f, std::min(r.w, q.w) - std::max(r.y, q.y));
+        if (r.x < 0 || r.y < 0 || r.z > cam_.width || r.w > cam_.height) overlap += 0.5 * w * h;
+        if (overlap < best) best = overlap, bestRect = r;
+        if (overlap <= 0) break;
+      }
+      placed.push_back(bestRect);
+      text_->AddText(ImVec2(bestRect.x, bestRect.y), toImU32(l.colour), l.text.c_str());
+    }
+    labels_.clear();
   }
 
   const Camera& camera() const { return cam_; }
   ImDrawList* text() const { return text_; }
+  float scale() const { return scale_; }
 
  private:
+  struct Label {
+    Vec2 anchor, offset;  ///< px
+    std::string text;
+    Colour colour;
+  };
   const Camera& cam_;
   ImDrawList* text_;
+  float scale_;
+  mutable std::vector<Label> labels_;
 };
 
 Vec2 bodyPoint(const World& world, int body, const Vec2& local) {
@@ -267,19 +307,32 @@ void drawJoints(const World& world, const Painter& paint) {
   }
 }
 
+/// The arrow length per newton of the force arrows: the colour bar's top tension is a tenth
+/// of the view's height.
+double metresPerNewton(const Camera& cam, double scale) {
+  return 0.1 * cam.height * cam.metresPerPixel / std::max(scale, 1e-9);
+}
+
 void drawCables(const World& world, const RenderOptions& options, double scale,
                 const Painter& paint) {
+  constexpr Colour kPlain{0.25f, 0.25f, 0.3f, 1};
+  constexpr Colour kStretch{0.9f, 0.0f, 0.1f, 0.35f};
   for (int i = 0; i < world.cableCount(); ++i) {
     const Cable& cable = world.cable(i);
     const auto& path = cable.path();
     const bool selected = i == options.selectedCable;
     const float width = selected ? 4.5f : 3.0f;
+    const bool stretched = options.overstretch && overstretched(cable);
+    if (stretched)  // a wide red halo under the cable
+      for (size_t k = 1; k < path.size(); ++k)
+        paint.line(path[k - 1].world, path[k].world, kStretch, 12.0f);
     double phase = 0;
+    const Colour c = options.tensions ? tensionColour(cable.tension() / scale) : kPlain;
     for (size_t k = 1; k < path.size(); ++k) {
       if (cable.slack())
         paint.dashed(path[k - 1].world, path[k].world, kSlack, width - 1, phase);
       else
-        paint.line(path[k - 1].world, path[k].world, tensionColour(cable.tension() / scale), width);
+        paint.line(path[k - 1].world, path[k].world, c, width);
     }
     if (options.wrapPoints)
       for (const WrapPoint& p : path) {
@@ -289,7 +342,24 @@ void drawCables(const World& world, const RenderOptions& options, double scale,
         else
           paint.square(p.world, 3, dark);
       }
-    if (selected && !path.empty()) paint.label(path.front().world, cable.name(), kSlack);
+    if (options.forces && path.size() >= 2 && !cable.slack() && cable.tension() > 0) {
+      // The cable pulls each end body along its first (last) segment.
+      const double l = cable.tension() * metresPerNewton(paint.camera(), scale);
+      const Colour arrow{0.55f, 0.1f, 0.6f, 1};
+      for (int end = 0; end < 2; ++end) {
+        const Vec2 a = end == 0 ? path[0].world : path.back().world;
+        const Vec2 b = end == 0 ? path[1].world : path[path.size() - 2].world;
+        if ((b - a).norm() > 1e-12) paint.arrow(a, a + l * (b - a).normalized(), arrow, 2.0f);
+      }
+    }
+    if (stretched && !path.empty()) {
+      char text[96];
+      std::snprintf(text, sizeof text, "%s overstretched +%.3f m", cable.name().c_str(),
+                    cable.length() - cable.restLength());
+      paint.label(path[path.size() / 2].world, text, {0.8f, 0.0f, 0.1f, 1});
+    } else if (selected && !path.empty()) {
+      paint.label(path.front().world, cable.name(), kSlack);
+    }
   }
 }
 
@@ -314,6 +384,229 @@ std::string format(const char* fmt, double value) {
   return buffer;
 }
 
+/// The free screen rectangle (px) the screen-space pieces are placed in.
+struct Frame {
+  float x, y, w, h;
+  float lineHeight;  ///< of the text font (px)
+};
+
+void quad(float x0, float y0, float x1, float y1) {
+  glBegin(GL_QUADS);
+  glVertex2f(x0, y0);
+  glVertex2f(x1, y0);
+  glVertex2f(x1, y1);
+  glVertex2f(x0, y1);
+  glEnd();
+}
+
+void drawScaleBar(const Camera& cam, const Frame& f, ImDrawList* text) {
+  const double step = gridStep(cam);
+  const float length = static_cast<float>(step / cam.metresPerPixel);
+  const float x0 = f.x + 16, y0 = f.y + f.h - 18;
+  glLineWidth(2.0f);
+  glColor4f(0.15f, 0.15f, 0.15f, 1);
+  glBegin(GL_LINES);
+  glVertex2f(x0, y0);
+  glVertex2f(x0 + length, y0);
+  glVertex2f(x0, y0 - 5);
+  glVertex2f(x0, y0 + 5);
+  glVertex2f(x0 + length, y0 - 5);
+  glVertex2f(x0 + length, y0 + 5);
+  glEnd();
+  if (text)
+    text->AddText(ImVec2(x0 + length + 6, y0 - 0.5f * f.lineHeight), IM_COL32(40, 40, 40, 255),
+                  (format("%g", step) + " m").c_str());
+}
+
+/// A horizontal colour bar in the bottom-right corner, where scenes are seldom drawn.
+void drawTensionBar(double scale, const Frame& f, ImDrawList* text) {
+  const float lh = f.lineHeight, barH = std::max(10.0f, 0.7f * lh);
+  const float barW = std::clamp(0.3f * f.w, 90.0f, 12 * lh);
+  const float slackW = text ? ImGui::CalcTextSize("slack").x + 34 : 80;
+  const float x0 = f.x + f.w - barW - 24, y0 = f.y + f.h - 1.6f * lh - barH;
+  glColor4f(kBackground[0], kBackground[1], kBackground[2], 0.85f);
+  quad(x0 - slackW - 8, y0 - 1.5f * lh, x0 + barW + 20, y0 + barH + 1.5f * lh);
+  glBegin(GL_QUADS);
+  const int n = 32;
+  for (int k = 0; k < n; ++k) {
+    const float a = static_cast<float>(k) / n, b = static_cast<float>(k + 1) / n;
+    colour(tensionColour(a));
+    glVertex2f(x0 + barW * a, y0 + barH);
+    glVertex2f(x0 + barW * a, y0);
+    colour(tensionColour(b));
+    glVertex2f(x0 + barW * b, y0);
+    glVertex2f(x0 + barW * b, y0 + barH);
+  }
+  glEnd();
+  glLineWidth(1.0f);
+  glColor4f(0.2f, 0.2f, 0.2f, 1);
+  glBegin(GL_LINE_LOOP);
+  glVertex2f(x0, y0);
+  glVertex2f(x0 + barW, y0);
+  glVertex2f(x0 + barW, y0 + barH);
+  glVertex2f(x0, y0 + barH);
+  glEnd();
+  glBegin(GL_LINES);
+  for (int k = 0; k <= 4; ++k) {
+    glVertex2f(x0 + barW * k / 4.0f, y0 + barH);
+    glVertex2f(x0 + barW * k / 4.0f, y0 + barH + 3);
+  }
+  // Slack sample, left of the bar: a dashed grey stroke.
+  glColor4f(kSlack[0], kSlack[1], kSlack[2], 1);
+  for (int k = 0; k < 3; ++k) {
+    glVertex2f(x0 - slackW + 8.0f * k, y0 + 0.5f * barH);
+    glVertex2f(x0 - slackW + 5 + 8.0f * k, y0 + 0.5f * barH);
+  }
+  glEnd();
+  if (!text) return;
+  const ImU32 ink = IM_COL32(40, 40, 40, 255);
+  text->AddText(ImVec2(x0, y0 - 1.25f * lh), ink, "tension (N)");
+  text->AddText(ImVec2(x0 - slackW + 28, y0 + 0.5f * (barH - lh)), ink, "slack");
+  for (int k = 0; k <= 4; k += 2) {
+    const std::string label = format("%.3g", scale * k / 4);
+    const float w = ImGui::CalcTextSize(label.c_str()).x;
+    text->AddText(ImVec2(x0 + barW * k / 4.0f - 0.5f * w, y0 + barH + 4), ink, label.c_str());
+  }
+}
+
+/// One row of the marker key: which sample to draw, its colour, its text.
+struct KeyRow {
+  enum class Sample {
+    Anchor,
+    WrapPoint,
+    PointPulley,
+    PulleyInUse,
+    PulleyIdle,
+    Cross,
+    Arrow,
+    DashedCross,
+    Stretch
+  };
+  Sample sample;
+  Colour colour;
+  std::string label;
+};
+
+void drawSample(const KeyRow& row, float cx, float cy, float s) {
+  const Colour& c = row.colour;
+  auto disc = [&](float r, const Colour& fill) {
+    colour(fill);
+    glBegin(GL_TRIANGLE_FAN);
+    for (int k = 0; k < 20; ++k)
+      glVertex2f(cx + r * std::cos(2 * kPi * k / 20), cy + r * std::sin(2 * kPi * k / 20));
+    glEnd();
+  };
+  auto segment = [&](float x0, float y0, float x1, float y1, float width) {
+    glLineWidth(width * s);
+    colour(c);
+    glBegin(GL_LINES);
+    glVertex2f(x0, y0);
+    glVertex2f(x1, y1);
+    glEnd();
+  };
+  const float h = 8 * s;
+  switch (row.sample) {
+    case KeyRow::Sample::Anchor:
+      disc(3.5f * s, c);
+      break;
+    case KeyRow::Sample::WrapPoint:
+      colour(c);
+      quad(cx - 3 * s, cy - 3 * s, cx + 3 * s, cy + 3 * s);
+      break;
+    case KeyRow::Sample::PointPulley:
+      disc(6 * s, c);
+      disc(3.5f * s, {1, 1, 1, 1});
+      break;
+    case KeyRow::Sample::PulleyInUse:
+    case KeyRow::Sample::PulleyIdle:
+      segment(cx - h, cy, cx + h, cy, 2.5f);
+      break;
+    case KeyRow::Sample::Stretch:
+      segment(cx - h, cy, cx + h, cy, 10.0f);
+      break;
+    case KeyRow::Sample::Arrow:
+      segment(cx - h, cy, cx + h, cy, 2);
+      segment(cx + h, cy, cx + h - 0.6f * h, cy - 0.4f * h, 2);
+      segment(cx + h, cy, cx + h - 0.6f * h, cy + 0.4f * h, 2);
+      break;
+    case KeyRow::Sample::Cross:
+    case KeyRow::Sample::DashedCross:
+      segment(cx - 0.8f * h, cy - 0.8f * h, cx + 0.8f * h, cy + 0.8f * h, 2.5f);
+      segment(cx - 0.8f * h, cy + 0.8f * h, cx + 0.8f * h, cy - 0.8f * h, 2.5f);
+      break;
+  }
+}
+
+/// The key of every marker on screen, top-right of the free area.
+void drawMarkerKey(const World& world, const Overlay& overlay, const RenderOptions& options,
+                   const Frame& f, ImDrawList* text) {
+  if (!text) return;
+  std::vector<KeyRow> rows;
+  bool point = false, polygon = false, stretched = false;
+  for (const CableDef& c : world.scene().cables)
+    for (const PulleyDef& p : c.pulleys)
+      (p.kind == PulleyDef::Kind::Point ? point : polygon) = true;
+  for (int i = 0; i < world.cableCount(); ++i) stretched |= overstretched(world.cable(i));
+  const Colour dark{0.15f, 0.15f, 0.15f, 1};
+  if (options.wrapPoints && world.cableCount() > 0) {
+    rows.push_back({KeyRow::Sample::Anchor, dark, "cable end"});
+    rows.push_back({KeyRow::Sample::WrapPoint, dark, "wrap point"});
+  }
+  if (point) rows.push_back({KeyRow::Sample::PointPulley, kPulley, "point pulley"});
+  if (polygon) {
+    rows.push_back({KeyRow::Sample::PulleyInUse, kPulley, "pulley, cable on it"});
+    rows.push_back({KeyRow::Sample::PulleyIdle, kPulleyIdle, "pulley, cable off it"});
+  }
+  bool revolute = false;
+  for (const JointDef& j : world.scene().joints) revolute |= j.kind == JointDef::Kind::Revolute;
+  if (revolute) rows.push_back({KeyRow::Sample::PointPulley, kJoint, "revolute joint"});
+  if (options.forces && world.cableCount() > 0)
+    rows.push_back({KeyRow::Sample::Arrow, {0.55f, 0.1f, 0.6f, 1}, "cable force"});
+  if (options.overstretch && stretched)
+    rows.push_back({KeyRow::Sample::Stretch, {0.9f, 0.0f, 0.1f, 0.35f}, "overstretched cable"});
+  for (const Overlay::Key& k : overlay.keys) {
+    const KeyRow::Sample sample =
+        k.marker == Overlay::Key::Marker::Arrow ? KeyRow::Sample::Arrow : KeyRow::Sample::Cross;
+    rows.push_back({sample, k.colour, k.label});
+  }
+  if (rows.empty()) return;
+  const float lh = f.lineHeight, s = options.lineScale, sampleW = 24 * s;
+  float width = 0;
+  for (const KeyRow& r : rows) width = std::max(width, ImGui::CalcTextSize(r.label.c_str()).x);
+  // The key gives way on a small view: it would hide the scene (the View toggle brings it back
+  // once the window is larger).
+  if (width + sampleW + 16 > 0.4f * f.w) return;
+  const float x1 = f.x + f.w - 8, x0 = x1 - width - sampleW - 16, y0 = f.y + 8 + options.keyTop;
+  const float rowH = std::max(lh + 2, 16 * s);
+  glColor4f(kBackground[0], kBackground[1], kBackground[2], 0.85f);
+  quad(x0, y0, x1, y0 + rows.size() * rowH + 8);
+  for (size_t k = 0; k < rows.size(); ++k) {
+    const float cy = y0 + 4 + (k + 0.5f) * rowH;
+    drawSample(rows[k], x0 + 6 + 0.5f * sampleW, cy, s);
+    text->AddText(ImVec2(x0 + 10 + sampleW, cy - 0.5f * lh), IM_COL32(40, 40, 40, 255),
+                  rows[k].label.c_str());
+  }
+}
+
+/// A pale yellow strip across the top of the free area.
+void drawBanner(const std::string& banner, const Frame& f, ImDrawList* text) {
+  if (banner.empty() || !text) return;
+  const ImVec2 size = ImGui::CalcTextSize(banner.c_str(), nullptr, false, f.w - 40);
+  const float w = size.x + 20, x0 = f.x + 0.5f * (f.w - w), y0 = f.y + 6;
+  glColor4f(1.0f, 0.91f, 0.55f, 0.95f);
+  quad(x0, y0, x0 + w, y0 + size.y + 10);
+  glLineWidth(1.5f);
+  glColor4f(0.7f, 0.45f, 0.0f, 1);
+  glBegin(GL_LINE_LOOP);
+  glVertex2f(x0, y0);
+  glVertex2f(x0 + w, y0);
+  glVertex2f(x0 + w, y0 + size.y + 10);
+  glVertex2f(x0, y0 + size.y + 10);
+  glEnd();
+  text->AddText(nullptr, 0, ImVec2(x0 + 10, y0 + 5), IM_COL32(90, 50, 0, 255), banner.c_str(),
+                nullptr, f.w - 40);
+}
+
 /// Screen-space pieces: the orthographic matrix is switched to pixels (y down).
 void drawScreenSpace(const World& world, const Overlay& overlay, const RenderOptions& options,
                      double scale, const Camera& cam, ImDrawList* text) {
@@ -321,89 +614,25 @@ void drawScreenSpace(const World& world, const Overlay& overlay, const RenderOpt
   glLoadIdentity();
   glOrtho(0, cam.width, cam.height, 0, -1, 1);
   const bool whole = options.freeWidth <= 0 || options.freeHeight <= 0;
-  const float fx = whole ? 0.0f : options.freeX, fy = whole ? 0.0f : options.freeY;
-  const float fw = whole ? cam.width : options.freeWidth;
-  const float fh = whole ? cam.height : options.freeHeight;
-  const ImU32 ink = IM_COL32(40, 40, 40, 255);
-
+  Frame f{whole ? 0.0f : options.freeX, whole ? 0.0f : options.freeY,
+          whole ? cam.width : options.freeWidth, whole ? cam.height : options.freeHeight,
+          text ? ImGui::GetTextLineHeight() : 13.0f};
   if (text)
     for (size_t i = 0; i < overlay.notes.size(); ++i)
-      text->AddText(ImVec2(fx + 8, fy + 8 + 15.0f * i), ink, overlay.notes[i].c_str());
-
-  if (options.grid) {
-    const double step = gridStep(cam);
-    const float length = static_cast<float>(step / cam.metresPerPixel);
-    const float x0 = fx + 16, y0 = fy + fh - 18;
-    glLineWidth(2.0f);
-    glColor4f(0.15f, 0.15f, 0.15f, 1);
-    glBegin(GL_LINES);
-    glVertex2f(x0, y0);
-    glVertex2f(x0 + length, y0);
-    glVertex2f(x0, y0 - 5);
-    glVertex2f(x0, y0 + 5);
-    glVertex2f(x0 + length, y0 - 5);
-    glVertex2f(x0 + length, y0 + 5);
-    glEnd();
-    if (text)
-      text->AddText(ImVec2(x0 + length + 6, y0 - 7), ink, (format("%g", step) + " m").c_str());
-  }
-
-  if (options.legend && world.cableCount() > 0) {
-    // A horizontal colour bar in the bottom-right corner, where scenes are seldom drawn.
-    const float barW = std::clamp(0.3f * fw, 90.0f, 160.0f), barH = 10;
-    const float x0 = fx + fw - barW - 24, y0 = fy + fh - 32;
-    glColor4f(kBackground[0], kBackground[1], kBackground[2], 0.85f);
-    glBegin(GL_QUADS);
-    glVertex2f(x0 - 84, y0 - 22);
-    glVertex2f(x0 + barW + 20, y0 - 22);
-    glVertex2f(x0 + barW + 20, y0 + barH + 22);
-    glVertex2f(x0 - 84, y0 + barH + 22);
-    glEnd();
-    glBegin(GL_QUADS);
-    const int n = 32;
-    for (int k = 0; k < n; ++k) {
-      const float a = static_cast<float>(k) / n, b = static_cast<float>(k + 1) / n;
-      colour(tensionColour(a));
-      glVertex2f(x0 + barW * a, y0 + barH);
-      glVertex2f(x0 + barW * a, y0);
-      colour(tensionColour(b));
-      glVertex2f(x0 + barW * b, y0);
-      glVertex2f(x0 + barW * b, y0 + barH);
-    }
-    glEnd();
-    glLineWidth(1.0f);
-    glColor4f(0.2f, 0.2f, 0.2f, 1);
-    glBegin(GL_LINE_LOOP);
-    glVertex2f(x0, y0);
-    glVertex2f(x0 + barW, y0);
-    glVertex2f(x0 + barW, y0 + barH);
-    glVertex2f(x0, y0 + barH);
-    glEnd();
-    glBegin(GL_LINES);
-    for (int k = 0; k <= 4; ++k) {
-      glVertex2f(x0 + barW * k / 4.0f, y0 + barH);
-      glVertex2f(x0 + barW * k / 4.0f, y0 + barH + 3);
-    }
-    // Slack sample, left of the bar: a dashed grey stroke.
-    glColor4f(kSlack[0], kSlack[1], kSlack[2], 1);
-    for (int k = 0; k < 3; ++k) {
-      glVertex2f(x0 - 76 + 8.0f * k, y0 + 0.5f * barH);
-      glVertex2f(x0 - 71 + 8.0f * k, y0 + 0.5f * barH);
-    }
-    glEnd();
-    if (text) {
-      text->AddText(ImVec2(x0, y0 - 17), ink, "tension (N)");
-      text->AddText(ImVec2(x0 - 48, y0 + 0.5f * barH - 7), ink, "slack");
-      for (int k = 0; k <= 4; k += 2) {
-        const std::string label = format("%.3g", scale * k / 4);
-        text->AddText(ImVec2(x0 + barW * k / 4.0f - 3.5f * label.size(), y0 + barH + 4), ink,
-                      label.c_str());
-      }
-    }
-  }
+      text->AddText(ImVec2(f.x + 8, f.y + 8 + (f.lineHeight + 2) * i), IM_COL32(40, 40, 40, 255),
+                    overlay.notes[i].c_str());
+  if (options.grid) drawScaleBar(cam, f, text);
+  if (options.legend && world.cableCount() > 0) drawTensionBar(scale, f, text);
+  if (options.markerLegend) drawMarkerKey(world, overlay, options, f, text);
+  drawBanner(overlay.banner, f, text);
 }
 
 }  // namespace
+
+bool overstretched(const Cable& cable) {
+  const double over = cable.length() - cable.restLength();
+  return cable.elastic() ? over > kOverstretchElastic * cable.restLength() : over > kOverstretch;
+}
 
 double tensionScaleFor(const World& world, const RenderOptions& options) {
   if (options.tensionScale > 0) return options.tensionScale;
@@ -432,7 +661,7 @@ void drawWorld(const World& world, const Camera& camera, const Overlay& overlay,
   glLoadIdentity();
   glOrtho(camera.left(), camera.right(), camera.bottom(), camera.top(), -1, 1);
 
-  const Painter paint(camera, text);
+  const Painter paint(camera, text, std::max(options.lineScale, 0.25f));
   const double scale = tensionScaleFor(world, options);
   if (options.grid) drawGrid(paint);
   drawBodies(world, options, paint);
@@ -440,6 +669,7 @@ void drawWorld(const World& world, const Camera& camera, const Overlay& overlay,
   drawJoints(world, paint);
   drawCables(world, options, scale, paint);
   drawOverlay(overlay, paint);
+  paint.placeLabels();
   drawScreenSpace(world, overlay, options, scale, camera, text);
   glDisable(GL_LINE_SMOOTH);
 }

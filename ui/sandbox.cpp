@@ -5,46 +5,102 @@
 #include <iostream>
 
 #include "engine/core/error.h"
+#include "ui/authoring.h"
 #include "ui/colormap.h"
 #include "ui/controller_panel.h"
 #include "ui/scene_catalog.h"
+#include "ui/tension_scale.h"
 
 namespace cablelab::ui {
+namespace {
+
+constexpr double kBannerSeconds = 6;  // a guard's banner stays this long (wall time)
+constexpr double kPi = 3.14159265358979323846;
+
+}  // namespace
 
 Sandbox::Sandbox(int width, int height) {
   camera.width = width;
   camera.height = height;
+  draw.markerLegend = true;
+  authoring = std::make_unique<Authoring>();
 }
 
 Sandbox::~Sandbox() = default;
 
+bool Sandbox::adopt(SceneDef def, const std::string& name, bool fitCamera) {
+  auto fresh = std::make_unique<World>(def, name);
+  scene = std::move(def);
+  sceneName = name;
+  dt = scene.dt;
+  substeps = scene.substeps;
+  gravity = scene.gravity;
+  world_ = std::move(fresh);
+  if (fitCamera) {
+    camera = Camera::fit(scene.view, camera.width, camera.height);
+    fitPending = true;
+  }
+  target.reset();
+  gesture = {};
+  drag = {};
+  selectedCable = world_->cableCount() > 0 ? 0 : -1;
+  selectedBody = -1;
+  follow = false;
+  tensionHistory.assign(world_->cableCount(), std::vector<float>(kHistory, 0.0f));
+  historyHead = 0;
+  sceneTensionScale = expectedTensionScale(scene);
+  tensionScale = sceneTensionScale;
+  accumulator_ = 0;
+  warningsSeen = 0;
+  banner.clear();
+  loadCableEdit();
+  controller.reset();
+  controllerOpened(*this);
+  error.clear();
+  return true;
+}
+
 bool Sandbox::open(const std::string& nameOrPath) {
   try {
-    SceneDef def = loadScene(nameOrPath);
-    auto fresh = std::make_unique<World>(def, nameOrPath);
-    scene = std::move(def);
-    sceneName = nameOrPath;
-    dt = scene.dt;
-    substeps = scene.substeps;
-    gravity = scene.gravity;
-    world_ = std::move(fresh);
-    camera = Camera::fit(scene.view, camera.width, camera.height);
-    target.reset();
-    gesture = {};
-    selectedCable = world_->cableCount() > 0 ? 0 : -1;
-    selectedBody = -1;
-    tensionHistory.assign(world_->cableCount(), std::vector<float>(kHistory, 0.0f));
-    historyHead = 0;
-    tensionScale = 1;
-    accumulator_ = 0;
-    loadCableEdit();
-    controller.reset();
-    controllerOpened(*this);
-    error.clear();
+    adopt(loadScene(nameOrPath), nameOrPath, true);
+    const Authoring::Tool tool = authoring->tool;
+    authoring = std::make_unique<Authoring>();
+    authoring->tool = tool;
+    parameters.clear();
+    for (const SceneParameter& p : sceneParameters(nameOrPath))
+      parameters.emplace_back(p.name, p.value);
     return true;
   } catch (const std::exception& e) {
     error = e.what();
     std::cerr << "cablelab-gui: cannot open " << nameOrPath << ": " << e.what() << "\n";
+    return false;
+  }
+}
+
+bool Sandbox::rebuild(const std::vector<std::pair<std::string, double>>& values) {
+  try {
+    const Camera keep = camera;
+    adopt(loadScene(sceneName, values), sceneName, false);
+    camera = keep;
+    parameters = values;
+    return true;
+  } catch (const std::exception& e) {
+    error = e.what();
+    std::cerr << "cablelab-gui: " << e.what() << "\n";
+    return false;
+  }
+}
+
+bool Sandbox::replaceScene(const SceneDef& def) {
+  try {
+    validateScene(def, "edited scene");
+    // An edited scene is no longer the built-in one: its --set sliders no longer apply.
+    const std::string base = def.name.empty() ? "scene" : def.name;
+    adopt(def, base.rfind("edited-", 0) == 0 ? base : "edited-" + base, false);
+    parameters.clear();
+    return true;
+  } catch (const std::exception& e) {
+    error = e.what();
     return false;
   }
 }
@@ -58,9 +114,13 @@ void Sandbox::reset() {
     def.gravity = gravity;
     world_ = std::make_unique<World>(def, sceneName);
     gesture = {};
+    drag = {};
     for (auto& h : tensionHistory) std::fill(h.begin(), h.end(), 0.0f);
     historyHead = 0;
+    tensionScale = sceneTensionScale;
     accumulator_ = 0;
+    warningsSeen = 0;
+    banner.clear();
     loadCableEdit();
     controllerOpened(*this);
   } catch (const std::exception& e) {
@@ -70,6 +130,7 @@ void Sandbox::reset() {
 }
 
 void Sandbox::advance(double frameSeconds, bool fixedStep) {
+  clock += frameSeconds;
   if (!world_) return;
   int steps = 0;
   if (paused) {
@@ -79,7 +140,7 @@ void Sandbox::advance(double frameSeconds, bool fixedStep) {
   } else if (fixedStep) {
     steps = 1;
   } else {
-    accumulator_ = std::min(accumulator_ + frameSeconds, 8 * dt);
+    accumulator_ = std::min(accumulator_ + speed * frameSeconds, 8 * dt);
     steps = static_cast<int>(accumulator_ / dt);
     accumulator_ -= steps * dt;
   }
@@ -87,6 +148,7 @@ void Sandbox::advance(double frameSeconds, bool fixedStep) {
     if (world_->gravity() != gravity) world_->setGravity(gravity);
     for (int i = 0; i < steps; ++i) {
       controllerBeforeStep(*this, *world_);
+      applyDrag();
       world_->step(dt, substeps);
       afterStep();
     }
@@ -95,6 +157,21 @@ void Sandbox::advance(double frameSeconds, bool fixedStep) {
     error = std::string("simulation stopped: ") + e.what();
     std::cerr << "cablelab-gui: " << error << "\n";
   }
+  checkWarnings();
+  if (follow && selectedBody >= 0 && selectedBody < world_->bodyCount())
+    camera.center = centreFor(world_->body(selectedBody).position);
+}
+
+void Sandbox::checkWarnings() {
+  const auto& w = world_->warnings();
+  if (w.size() > warningsSeen) {
+    banner = "guard: " + w.back();
+    if (w.size() > warningsSeen + 1)
+      banner += "  (+" + std::to_string(w.size() - warningsSeen - 1) + " more, see Inspector)";
+    bannerUntil = clock + kBannerSeconds;
+    warningsSeen = w.size();
+  }
+  if (clock > bannerUntil) banner.clear();
 }
 
 void Sandbox::afterStep() {
@@ -102,16 +179,67 @@ void Sandbox::afterStep() {
   for (int i = 0; i < world_->cableCount() && i < static_cast<int>(tensionHistory.size()); ++i) {
     const double t = world_->cable(i).tension();
     tensionHistory[i][historyHead] = std::isfinite(t) ? static_cast<float>(t) : 0.0f;
-    if (std::isfinite(t) && t > tensionScale) tensionScale = niceCeil(t);
+    if (!tensionScaleLocked && std::isfinite(t) && t > tensionScale) tensionScale = niceCeil(t);
   }
   historyHead = (historyHead + 1) % kHistory;
 }
 
-int Sandbox::bodyAt(const Vec2& point) const {
+double Sandbox::dragLimit(int body) const {
+  if (!world_ || body < 0 || body >= world_->bodyCount()) return 0;
+  const double g = std::max(9.81, world_->gravity().norm());
+  return dragWeights * world_->scene().bodies[body].mass * g;
+}
+
+void Sandbox::applyDrag() {
+  if (drag.body < 0 || drag.body >= world_->bodyCount()) return;
+  const BodyState& s = world_->body(drag.body);
+  const Vec2 r = rotate(drag.grabLocal, s.angle);
+  const Vec2 point = s.position + r;
+  const Vec2 velocity = s.velocity + s.angularVelocity * Vec2(-r.y(), r.x());
+  const double m = world_->scene().bodies[drag.body].mass;
+  const double omega = 2 * kPi * drag.hz;
+  Vec2 force =
+      m * (omega * omega * (drag.target - point) - 2 * drag.dampingRatio * omega * velocity);
+  const double limit = dragLimit(drag.body);
+  drag.limited = force.norm() > limit;
+  if (drag.limited) force *= limit / force.norm();
+  drag.force = force;
+  world_->applyForce(drag.body, force, point);
+}
+
+void Sandbox::beginDrag(int body, const Vec2& worldPoint) {
+  if (!world_ || body < 0 || body >= world_->bodyCount()) return;
+  const BodyState& s = world_->body(body);
+  drag = {};
+  drag.body = body;
+  drag.target = worldPoint;
+  drag.grabLocal = rotate(worldPoint - s.position, -s.angle);
+}
+
+void Sandbox::dragTo(const Vec2& worldPoint) {
+  if (!world_ || drag.body < 0) return;
+  drag.target = worldPoint;
+  if (!paused) return;
+  // Paused: pose the body, grabbed point on the mouse, at rest.
+  const BodyState& s = world_->body(drag.body);
+  world_->setBodyTransform(drag.body, worldPoint - rotate(drag.grabLocal, s.angle), s.angle);
+  world_->setBodyVelocity(drag.body, Vec2::Zero(), 0);
+  world_->refreshCables();
+}
+
+void Sandbox::endDrag() {
+  drag = {};
+}
+
+bool Sandbox::hasController() const {
+  return controller && controller->hand;
+}
+
+int Sandbox::bodyAt(const Vec2& point, bool anyType) const {
   if (!world_) return -1;
   for (int i = world_->bodyCount() - 1; i >= 0; --i) {
     const BodyDef& def = world_->scene().bodies[i];
-    if (def.type != BodyType::Dynamic) continue;
+    if (!anyType && def.type != BodyType::Dynamic) continue;
     const BodyState& s = world_->body(i);
     const Vec2 local = rotate(point - s.position, -s.angle);
     for (const ShapeDef& shape : def.shapes) {
@@ -129,6 +257,23 @@ int Sandbox::bodyAt(const Vec2& point) const {
     }
   }
   return -1;
+}
+
+int Sandbox::cableAt(const Vec2& point, double tolerance) const {
+  if (!world_) return -1;
+  int best = -1;
+  double bestDistance = tolerance;
+  for (int i = 0; i < world_->cableCount(); ++i) {
+    const auto& path = world_->cable(i).path();
+    for (size_t k = 1; k < path.size(); ++k) {
+      const Vec2 a = path[k - 1].world, d = path[k].world - a;
+      const double len2 = d.squaredNorm();
+      const double u = len2 > 0 ? std::clamp((point - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+      const double distance = (a + u * d - point).norm();
+      if (distance <= bestDistance) bestDistance = distance, best = i;
+    }
+  }
+  return best;
 }
 
 void Sandbox::resize(int width, int height) {
@@ -157,23 +302,31 @@ bool Sandbox::applyCableEdit() {
 
 Overlay Sandbox::overlay() const {
   Overlay o;
-  if (target) o.targets.push_back({*target, "target", {0.85f, 0.1f, 0.55f, 1.0f}});
-  if (world_ && world_->draggedBody() >= 0) {
-    const BodyState& s = world_->body(world_->draggedBody());
-    o.arrows.push_back({s.position + rotate(gesture.grabLocal, s.angle),
-                        world_->dragTarget(),
-                        "",
-                        {0.2f, 0.2f, 0.2f, 1.0f}});
+  constexpr Colour kTarget{0.85f, 0.1f, 0.55f, 1.0f};
+  if (target) {
+    o.targets.push_back({*target, "target", kTarget});
+    o.keys.push_back({Overlay::Key::Marker::Cross, "controller target", kTarget});
+  }
+  if (world_ && drag.body >= 0 && drag.body < world_->bodyCount()) {
+    const BodyState& s = world_->body(drag.body);
+    const Colour c = drag.limited ? Colour{0.85f, 0.1f, 0.1f, 1} : Colour{0.2f, 0.2f, 0.2f, 1};
+    char text[64];
+    std::snprintf(text, sizeof text, "%.3g N%s", drag.force.norm(), drag.limited ? " (limit)" : "");
+    o.arrows.push_back(
+        {s.position + rotate(drag.grabLocal, s.angle), drag.target, paused ? "pose" : text, c});
+    o.keys.push_back({Overlay::Key::Marker::Arrow,
+                      paused         ? "pose (paused)"
+                      : drag.limited ? "drag, at its force limit"
+                                     : "drag",
+                      c});
   }
   controllerOverlay(*this, o);
+  authoringOverlay(*this, o);
+  o.banner = banner;
   return o;
 }
 
-RenderOptions Sandbox::renderOptions() const {
-  RenderOptions options;
-  options.tensionScale = tensionScale;
-  options.selectedCable = selectedCable;
-  options.selectedBody = selectedBody;
+PanelRect Sandbox::freeArea() const {
   // The free area between the side panels (see panels.cpp for their layout).
   float left = 0, right = static_cast<float>(camera.width), top = 0;
   float bottom = static_cast<float>(camera.height);
@@ -187,10 +340,58 @@ RenderOptions Sandbox::renderOptions() const {
     else if (p.y + p.height >= camera.height - 1 && p.width > 0.5f * camera.width)
       bottom = std::min(bottom, p.y);
   }
-  options.freeX = left;
-  options.freeY = top;
-  options.freeWidth = std::max(right - left, 0.0f);
-  options.freeHeight = std::max(bottom - top, 0.0f);
+  return {left, top, std::max(right - left, 0.0f), std::max(bottom - top, 0.0f)};
+}
+
+Vec2 Sandbox::centreFor(const Vec2& p) const {
+  const PanelRect f = freeArea();
+  if (f.width < 1 || f.height < 1) return p;
+  const double dx = f.x + 0.5 * f.width - 0.5 * camera.width;
+  const double dy = f.y + 0.5 * f.height - 0.5 * camera.height;
+  return p - Vec2(dx * camera.metresPerPixel, -dy * camera.metresPerPixel);
+}
+
+void Sandbox::fitView() {
+  fitPending = false;
+  const PanelRect f = freeArea();
+  if (!world_ || f.width < 40 || f.height < 40) return;
+  const double aspect = f.width / f.height;
+  const Vec2 half(0.5 * scene.view.height * aspect, 0.5 * scene.view.height);
+  Vec2 lo = scene.view.center - half, hi = scene.view.center + half;
+  auto include = [&](const Vec2& p, double margin) {
+    lo = lo.cwiseMin(p - Vec2(margin, margin));
+    hi = hi.cwiseMax(p + Vec2(margin, margin));
+  };
+  const double margin = 0.04 * scene.view.height;
+  for (int i = 0; i < world_->bodyCount(); ++i) {
+    if (scene.bodies[i].type != BodyType::Dynamic) continue;  // grounds may be very wide
+    const BodyState& s = world_->body(i);
+    for (const ShapeDef& shape : scene.bodies[i].shapes) {
+      if (shape.kind == ShapeDef::Kind::Circle)
+        include(s.position + rotate(shape.center, s.angle), shape.radius + margin);
+      for (const Vec2& v : shape.vertices) include(s.position + rotate(v, s.angle), margin);
+    }
+  }
+  for (int i = 0; i < world_->cableCount(); ++i)
+    for (const WrapPoint& p : world_->cable(i).path()) include(p.world, margin);
+  camera.metresPerPixel = std::max((hi.x() - lo.x()) / f.width, (hi.y() - lo.y()) / f.height);
+  camera.center = centreFor(0.5 * (lo + hi));
+}
+
+RenderOptions Sandbox::renderOptions() const {
+  RenderOptions options = draw;
+  options.tensionScale = tensionScale;
+  options.selectedCable = selectedCable;
+  options.selectedBody = selectedBody;
+  options.lineScale = projector ? 2.0f : 1.0f;
+  const PanelRect free = freeArea();
+  options.freeX = free.x;
+  options.freeY = free.y;
+  options.freeWidth = free.width;
+  options.freeHeight = free.height;
+  for (const PanelRect& p : panels)  // a collapsed side panel's title bar, top right
+    if (p.height < 0.25f * camera.height && p.y <= free.y + 1 && p.x + p.width >= camera.width - 1)
+      options.keyTop = std::max(options.keyTop, p.y + p.height - free.y);
   return options;
 }
 

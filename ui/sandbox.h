@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/dynamics/world.h"
@@ -18,6 +19,7 @@
 namespace cablelab::ui {
 
 struct ControllerState;  // ui/controller_panel.h
+struct Authoring;        // ui/authoring.h
 
 /// Screen rectangle of a UI panel (px); the scene under it does not take mouse input.
 struct PanelRect {
@@ -35,6 +37,20 @@ struct Gesture {
   Vec2 grabLocal = Vec2::Zero();  ///< DragBody: grabbed point in the body frame (m)
 };
 
+/// The mouse drag: a spring-damper force from the grabbed point to the mouse, applied before
+/// each step (so the cable solver sees it and a rigid cable resists it), clamped to a number
+/// of the body's weights, like the max force of Box2D's mouse joint. While paused a drag poses
+/// the body instead (it follows the mouse exactly, at rest).
+struct Drag {
+  int body = -1;                  ///< -1: no drag
+  Vec2 target = Vec2::Zero();     ///< mouse point (m)
+  Vec2 grabLocal = Vec2::Zero();  ///< grabbed point, body frame (m)
+  double hz = 5;                  ///< spring frequency (1/s)
+  double dampingRatio = 0.7;
+  Vec2 force = Vec2::Zero();  ///< last applied force (N)
+  bool limited = false;       ///< the last force hit the limit
+};
+
 class Sandbox {
  public:
   Sandbox(int width, int height);
@@ -43,42 +59,74 @@ class Sandbox {
   /// Loads a built-in scene or a scene file. On failure keeps the current scene, stores the
   /// message in `error`, prints it on stderr and returns false.
   bool open(const std::string& nameOrPath);
-  /// Rebuilds the world from the loaded scene with the current dt, substeps and gravity.
+  /// Reopens the current built-in scene with `parameters` (the Scene panel's sliders).
+  bool rebuild(const std::vector<std::pair<std::string, double>>& parameters);
+  /// Replaces the scene by `def` (authoring) keeping the camera; false + `error` if invalid.
+  bool replaceScene(const SceneDef& def);
+  /// Rebuilds the world from the loaded scene with the current dt, substeps and gravity; the
+  /// tension scale goes back to the scene's.
   void reset();
   /// Advances the simulation for one displayed frame: one step of `dt` when `fixedStep`, else
-  /// as many steps as `frameSeconds` of wall time holds (at most 8). Pending single steps run
-  /// even when paused. A SimulationError pauses and is shown as `error`.
+  /// as many steps as `speed` x `frameSeconds` of wall time holds (at most 8). Pending single
+  /// steps run even when paused. A SimulationError pauses and is shown as `error`.
   void advance(double frameSeconds, bool fixedStep);
-  /// Dynamic body under a world point, -1 if none (the top-most shape wins).
-  int bodyAt(const Vec2& world) const;
+  /// Dynamic body under a world point, -1 if none (the top-most shape wins); with `anyType`
+  /// static and kinematic bodies count too.
+  int bodyAt(const Vec2& world, bool anyType = false) const;
+  /// The cable nearest to a world point within `tolerance` (m), -1 if none.
+  int cableAt(const Vec2& world, double tolerance) const;
   /// Resizes the viewport, keeping the view centre and scale.
   void resize(int width, int height);
   /// Applies the live cable edits in `cableEdit` to the selected cable; false + `error` if
   /// the engine rejects them.
   bool applyCableEdit();
   /// Overlay for this frame: the controller target, the drag spring and the controller's
-  /// drawings (controllerOverlay).
+  /// drawings (controllerOverlay), the marker keys and the guard banner.
   Overlay overlay() const;
   /// Renderer options for this frame (selection, legend scale, free screen area).
   RenderOptions renderOptions() const;
+  /// The world view's free rectangle (px) between the panels.
+  PanelRect freeArea() const;
+  /// Fits the camera to the free area: the scene's view, grown to hold every dynamic body,
+  /// cable and pulley (so nothing starts cut off), centred in the area between the panels.
+  void fitView();
+  /// The camera centre that puts world point `p` at the free area's centre (current scale).
+  Vec2 centreFor(const Vec2& p) const;
+  bool fitPending = false;  ///< fit the view once the panels have been laid out
+
+  // Drag (see Drag).
+  void beginDrag(int body, const Vec2& worldPoint);
+  void dragTo(const Vec2& worldPoint);
+  void endDrag();
+  /// The drag force limit (N) for `body`: dragWeights times its weight (at least 9.81 m/s^2).
+  double dragLimit(int body) const;
+  /// Whether an empty-space click sets the target (a controller uses it).
+  bool hasController() const;
 
   World* world() { return world_.get(); }
   const World* world() const { return world_.get(); }
 
   // Scene and settings (edited by the panels).
-  std::string sceneName;  ///< built-in name or file path
-  SceneDef scene;         ///< as loaded (reset rebuilds from it)
+  std::string sceneName;                                   ///< built-in name or file path
+  SceneDef scene;                                          ///< as loaded (reset rebuilds from it)
+  std::vector<std::pair<std::string, double>> parameters;  ///< built-in scene's --set values
   bool paused = false;
   int pendingSteps = 0;    ///< single steps requested while paused
   double dt = 1.0 / 60.0;  ///< s
   int substeps = 1;
+  double speed = 1;               ///< simulated seconds per wall second (0.1 .. 4)
   Vec2 gravity = Vec2(0, -9.81);  ///< m/s^2
   Camera camera;
+  bool follow = false;  ///< the camera keeps the selected body at the view centre
   bool showHelp = false;
   std::string error;           ///< last error, shown until dismissed
-  std::optional<Vec2> target;  ///< controller target (m), set by clicking empty space
+  std::string message;         ///< last notice (saved a file, recording), shown in the status
+  std::optional<Vec2> target;  ///< controller target (m)
   Gesture gesture;
+  Drag drag;
+  double dragWeights = 3;         ///< drag force limit in body weights
   std::vector<PanelRect> panels;  ///< this frame's panel rectangles
+  RenderOptions draw;             ///< draw toggles (labels, grid, wrap points, ...)
 
   // Inspector.
   int selectedCable = 0;
@@ -90,17 +138,48 @@ class Sandbox {
   static constexpr int kHistory = 600;
   std::vector<std::vector<float>> tensionHistory;
   int historyHead = 0;
-  double tensionScale = 1;  ///< legend maximum, grows with the largest tension
+  /// Legend maximum (N): the scene's expected tension scale (ui/tension_scale.h), fixed while
+  /// `tensionScaleLocked`, else it grows with the largest tension; reset with the scene.
+  double tensionScale = 1;
+  double sceneTensionScale = 1;
+  bool tensionScaleLocked = true;
+
+  // Guard banner: the newest engine warning, shown for a few seconds after it appears.
+  std::string banner;
+  double bannerUntil = -1;  ///< wall-clock seconds of the sandbox (`clock`)
+  double clock = 0;         ///< wall seconds since start (advance() adds frameSeconds)
+  size_t warningsSeen = 0;
+
+  // UI scale and projector mode (fonts, line widths); the window applies them between frames.
+  float uiScale = 1;
+  bool projector = false;
+
+  // Requests for the platform (handled by gui_main between frames).
+  bool screenshotRequested = false;
+  bool recordToggleRequested = false;
+  std::optional<PanelRect> pngRequest;  ///< a window rectangle to save as PNG (plot export)
+  std::string pngRequestPath;
+  bool recording = false;  ///< set by the platform
+  int recordedFrames = 0;  ///< set by the platform
+  double recordFps = 30;
 
   /// The current scene's controller or view (ui/controller_panel.h); rebuilt by open/reset.
   std::unique_ptr<ControllerState> controller;
+  /// The scene editor (ui/authoring.h): tool, sizes, undo and redo; open() clears its history.
+  std::unique_ptr<Authoring> authoring;
+
+  // What the Scene panel showed last (for the scripted checks).
+  std::string shownTitle, shownDescription;
 
   // Status.
   double lastFrameSeconds = 0;
   double fps = 0;
 
  private:
+  bool adopt(SceneDef def, const std::string& name, bool fitCamera);
   void afterStep();
+  void applyDrag();
+  void checkWarnings();
   void loadCableEdit();
   std::unique_ptr<World> world_;
   double accumulator_ = 0;

@@ -5,6 +5,8 @@
 #include <backends/imgui_impl_sdl.h>
 #include <imgui.h>
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace cablelab::ui {
@@ -16,6 +18,12 @@ Window::Window(const std::string& title, int width, int height, bool vsync) {
   SDL_GL_SetAttribute(SDL_GL_CONTEXT_MINOR_VERSION, 1);
   SDL_GL_SetAttribute(SDL_GL_DOUBLEBUFFER, 1);
   SDL_GL_SetAttribute(SDL_GL_DEPTH_SIZE, 0);
+  if (width <= 0 || height <= 0) {  // fit the display the window opens on
+    SDL_Rect usable{0, 0, 1280, 720};
+    if (SDL_GetDisplayUsableBounds(0, &usable) != 0) SDL_GetDisplayBounds(0, &usable);
+    width = std::max(std::min(640, usable.w), static_cast<int>(0.9 * usable.w));
+    height = std::max(std::min(480, usable.h), static_cast<int>(0.9 * usable.h));
+  }
   window_ = SDL_CreateWindow(title.c_str(), SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, width,
                              height, SDL_WINDOW_OPENGL | SDL_WINDOW_RESIZABLE);
   if (!window_) {
@@ -40,6 +48,29 @@ Window::Window(const std::string& title, int width, int height, bool vsync) {
   ImGui::StyleColorsLight();
   ImGui_ImplSDL2_InitForOpenGL(window_, gl_);
   ImGui_ImplOpenGL2_Init();
+}
+
+void Window::setUiScale(float scale) {
+  scale = std::clamp(scale, 0.5f, 4.0f);
+  if (scale == uiScale_) return;
+  uiScale_ = scale;
+  ImGuiIO& io = ImGui::GetIO();
+  io.Fonts->Clear();
+  ImFontConfig font;
+  font.SizePixels = std::round(13.0f * scale);
+  io.Fonts->AddFontDefault(&font);
+  ImGui_ImplOpenGL2_DestroyFontsTexture();
+  ImGui_ImplOpenGL2_CreateFontsTexture();
+  ImGuiStyle style;
+  ImGui::StyleColorsLight(&style);
+  style.ScaleAllSizes(scale);
+  ImGui::GetStyle() = style;
+}
+
+float Window::suggestedUiScale() const {
+  SDL_Rect bounds{0, 0, 1280, 720};
+  if (SDL_GetDisplayBounds(SDL_GetWindowDisplayIndex(window_), &bounds) != 0) return 1;
+  return std::clamp(std::round(bounds.h / 1080.0f * 4) / 4, 1.0f, 3.0f);
 }
 
 Window::~Window() {

@@ -17,9 +17,15 @@ namespace cablelab::ui {
 
 class Window {
  public:
-  /// Opens a width x height window with a GL context and an ImGui context;
-  /// throws std::runtime_error with SDL's message on failure. `vsync` false: frames uncapped.
+  /// Opens a width x height window with a GL context and an ImGui context; width or height 0:
+  /// fitted to the display (90% of its usable area, at least 640x480 where the display allows).
+  /// Throws std::runtime_error with SDL's message on failure. `vsync` false: frames uncapped.
   Window(const std::string& title, int width, int height, bool vsync);
+
+  /// Rebuilds the font (13 px times `scale`) and the style sizes; call between frames.
+  void setUiScale(float scale);
+  /// A UI scale suited to the display: 1 up to 1080 rows, more on larger displays.
+  float suggestedUiScale() const;
   ~Window();
   Window(const Window&) = delete;
   Window& operator=(const Window&) = delete;
@@ -43,6 +49,7 @@ class Window {
   SDL_GLContext gl_ = nullptr;
   int width_ = 0, height_ = 0;
   bool closed_ = false;
+  float uiScale_ = 1;
 };
 
 }  // namespace cablelab::ui

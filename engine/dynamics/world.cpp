@@ -70,6 +70,14 @@ void World::setBodyTransform(int i, const Vec2& position, double angle) {
   b2_->readBodies(bodies_);
 }
 
+void World::refreshCables() {
+  b2_->readBodies(bodies_);
+  for (Cable& c : cables_) {
+    c.update(bodies_, &warnings_);
+    c.refresh(bodies_);
+  }
+}
+
 void World::setBodyVelocity(int i, const Vec2& velocity, double angularVelocity) {
   b2_->setVelocity(i, velocity, angularVelocity);
   b2_->readBodies(bodies_);

@@ -77,6 +77,9 @@ class World {
   int findBody(std::string_view name) const;  ///< -1 if unknown
   void setBodyTransform(int i, const Vec2& position, double angle);
   void setBodyVelocity(int i, const Vec2& velocity, double angularVelocity);
+  /// Recomputes every cable's path and length from the current poses (after setBodyTransform
+  /// while paused, so that what is drawn matches the posed bodies); step() does this itself.
+  void refreshCables();
   /// Adds a force (N) at a world point for the next step only.
   void applyForce(int i, const Vec2& force, const Vec2& worldPoint);
 

@@ -84,7 +84,9 @@ def test_bad_world_calls_raise(call):
 
 def test_unknown_scene_lists_the_builtins():
     text = message(cablelab.World.load, "no_such_scene")
-    assert "pulley" in text and text.startswith("no_such_scene: (scene): ")
+    # The one style (docs/cli.md): SOURCE: FIELD: what is wrong (got VALUE).
+    assert "pulley" in text and text.startswith("command line: SCENE: no such built-in scene")
+    assert text.endswith('(got "no_such_scene")')
 
 
 def test_bad_scene_parameter_values():

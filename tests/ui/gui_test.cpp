@@ -5,8 +5,10 @@
 
 #include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "tests/ui/test_support.h"
+#include "ui/gif.h"
 #include "ui/offscreen.h"
 #include "ui/panels.h"
 
@@ -47,6 +49,24 @@ std::vector<bool> occupancy(const ui::Image& image, int x0, int y0, int x1, int 
   return cells;
 }
 
+/// The offscreen picture of `world` as the sandbox drew it: its camera, free area and tension
+/// scale from the `--frames` JSON report, the first cable selected, the marker key on.
+ui::Image offscreenLike(const World& world, const std::string& report) {
+  const auto j = nlohmann::json::parse(report);
+  ui::Camera camera;
+  camera.center = Vec2(j["camera"][0], j["camera"][1]);
+  camera.metresPerPixel = j["camera"][2];
+  camera.width = 1280;
+  camera.height = 720;
+  ui::RenderOptions options;
+  options.markerLegend = true;
+  options.selectedCable = world.cableCount() > 0 ? 0 : -1;
+  options.tensionScale = j["tension_scale"];
+  options.freeX = j["free"][0], options.freeY = j["free"][1];
+  options.freeWidth = j["free"][2], options.freeHeight = j["free"][3];
+  return ui::renderSnapshot(world, camera, {}, options);
+}
+
 /// Compares the scene area between the panels of a sandbox screenshot with an offscreen render,
 /// leaving out the bottom strip where the legend and the scale bar sit (placed relative to the
 /// free area, so they move with the panels).
@@ -70,9 +90,9 @@ void expectSameLayout(const ui::Image& gui, const ui::Image& offscreen, const st
 TEST(Gui, FramesScreenshotAndLayoutMatchTheOffscreenRenderer) {
   REQUIRE_XVFB();
   const std::string shot = (outputDir("gui") / "hexagon.png").string();
-  const RunResult r = run(
-      kXvfb + kCli + " gui hexagon --frames " + std::to_string(kFrames) + " --screenshot " + shot,
-      "gui_frames");
+  const RunResult r = run(kXvfb + kCli + " gui hexagon --size 1280x720 --frames " +
+                              std::to_string(kFrames) + " --screenshot " + shot,
+                          "gui_frames");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.out.find("\"frames\": 60"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"fps\": "), std::string::npos) << r.out;
@@ -83,7 +103,7 @@ TEST(Gui, FramesScreenshotAndLayoutMatchTheOffscreenRenderer) {
   // The same scene after the same number of steps, offscreen at the window's size.
   auto world = std::make_unique<World>(ui::loadScene("hexagon"), "hexagon");
   for (int i = 0; i < kFrames; ++i) world->step(world->scene().dt, world->scene().substeps);
-  const ui::Image offscreen = ui::renderSnapshot(*world, 1280, 720);
+  const ui::Image offscreen = offscreenLike(*world, r.out);
   ui::writePng(offscreen, outputDir("gui") / "hexagon-offscreen.png");
 
   expectSameLayout(gui, offscreen, shot, outputDir("gui") / "hexagon-offscreen.png");
@@ -93,9 +113,9 @@ TEST(Gui, HandSceneRunsTheControllerWithLivePlots) {
   REQUIRE_XVFB();
   constexpr int kHandFrames = 120;
   const std::string shot = (outputDir("gui") / "hand.png").string();
-  const RunResult r = run(
-      kXvfb + kCli + " gui hand --frames " + std::to_string(kHandFrames) + " --screenshot " + shot,
-      "gui_hand");
+  const RunResult r = run(kXvfb + kCli + " gui hand --size 1280x720 --frames " +
+                              std::to_string(kHandFrames) + " --screenshot " + shot,
+                          "gui_hand");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.out.find("\"frames\": 120"), std::string::npos) << r.out;
   const ui::Image gui = ui::readPng(shot);
@@ -106,7 +126,7 @@ TEST(Gui, HandSceneRunsTheControllerWithLivePlots) {
   // pinch: its joint offsets move the fingers by less than a layout cell).
   auto world = std::make_unique<World>(ui::loadScene("hand"), "hand");
   for (int i = 0; i < kHandFrames; ++i) world->step(world->scene().dt, world->scene().substeps);
-  const ui::Image offscreen = ui::renderSnapshot(*world, 1280, 720);
+  const ui::Image offscreen = offscreenLike(*world, r.out);
   ui::writePng(offscreen, outputDir("gui") / "hand-offscreen.png");
   expectSameLayout(gui, offscreen, shot, outputDir("gui") / "hand-offscreen.png");
 
@@ -127,7 +147,7 @@ TEST(Gui, HandSceneRunsTheControllerWithLivePlots) {
 
 TEST(Gui, SyntheticMouseDragsABodyAndClickSetsTheTarget) {
   REQUIRE_XVFB();
-  const RunResult r = run(kXvfb + kCli + " gui hexagon --test-input", "gui_input");
+  const RunResult r = run(kXvfb + kCli + " gui hexagon --size 1280x720 --test-input", "gui_input");
   EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("\"test_input\": true"), std::string::npos) << r.out;
 }
@@ -137,9 +157,9 @@ TEST(Gui, BadSceneFileShowsTheErrorAndKeepsRunning) {
   const std::string bad = (outputDir("gui") / "bad-scene.json").string();
   std::ofstream(bad) << "{\"bodies\": [ this is not json";
   const std::string shot = (outputDir("gui") / "bad-scene.png").string();
-  const RunResult r =
-      run(kXvfb + kCli + " gui hexagon --frames 30 --open " + bad + " --screenshot " + shot,
-          "gui_bad_scene");
+  const RunResult r = run(kXvfb + kCli + " gui hexagon --size 1280x720 --frames 30 --open " + bad +
+                              " --screenshot " + shot,
+                          "gui_bad_scene");
   EXPECT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find(bad), std::string::npos) << "stderr should name the file: " << r.err;
   EXPECT_NE(r.out.find("\"frames\": 30"), std::string::npos) << r.out;
@@ -157,6 +177,130 @@ TEST(Gui, BadSceneFileShowsTheErrorAndKeepsRunning) {
   const RunResult first = run(kXvfb + kCli + " gui " + bad + " --frames 5", "gui_bad_first");
   EXPECT_EQ(first.exitCode, 0) << first.err;
   EXPECT_NE(first.err.find(bad), std::string::npos) << first.err;
+}
+
+}  // namespace
+}  // namespace cablelab::test
+
+namespace cablelab::test {
+namespace {
+
+/// Runs the sandbox's acceptance scenario NAME on SCENE and returns its JSON report.
+nlohmann::json scenario(const std::string& scene, const std::string& name,
+                        const std::string& extra = "") {
+  const RunResult r =
+      run(kXvfb + kCli + " gui " + scene + " --size 1280x720 --script " + name + " " + extra,
+          "gui_script_" + name);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  try {
+    return nlohmann::json::parse(r.out);
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "no JSON report: " << r.out << r.err;
+    return nlohmann::json::object();
+  }
+}
+
+TEST(GuiAcceptance, EachSceneShowsItsDescription) {
+  REQUIRE_XVFB();
+  for (const auto& entry : ui::builtinSceneList()) {
+    const auto j = scenario(entry.name, "describe");
+    const std::string shown = j.value("description", ""), full = j.value("scene_description", "");
+    ASSERT_FALSE(full.empty()) << entry.name << " has no description";
+    EXPECT_EQ(j.value("title", ""), entry.name);
+    // The panel shows the whole description, or its beginning and " ..." (the rest in a tooltip).
+    const std::string head =
+        shown.size() > 4 && shown.ends_with(" ...") ? shown.substr(0, shown.size() - 4) : shown;
+    EXPECT_GE(head.size(), 20u) << entry.name << ": " << shown;
+    EXPECT_EQ(full.substr(0, head.size()), head) << entry.name;
+  }
+}
+
+TEST(GuiAcceptance, TensionScaleDoesNotChangeAcrossReset) {
+  REQUIRE_XVFB();
+  const auto j = scenario("hexagon", "reset-scale");
+  const double expected = j.value("expected", -1.0);
+  EXPECT_GT(expected, 0);
+  EXPECT_EQ(j.value("before", 0.0), expected);
+  EXPECT_EQ(j.value("after_drag", 0.0), expected);
+  EXPECT_EQ(j.value("after_reset", 0.0), expected);
+  EXPECT_GT(j.value("largest_tension", 0.0), 0.0) << j.dump();
+  EXPECT_LT(j.value("time_after_reset", 1.0), 0.2) << "the reset did not happen: " << j.dump();
+}
+
+TEST(GuiAcceptance, DragCannotStretchARigidCable) {
+  REQUIRE_XVFB();
+  for (const char* scene : {"hexagon", "pulley"}) {
+    const auto j = scenario(scene, "rigid-drag");
+    ASSERT_TRUE(j.contains("largest_stretch")) << scene << ": " << j.dump();
+    std::cout << scene << ": " << j.dump() << "\n";
+    EXPECT_LT(j["largest_stretch"].get<double>(), 0.01) << scene;
+    // The mouse did pull as hard as it may: the cable held against the limit.
+    EXPECT_GT(j["frames_at_limit"].get<double>(), 10) << scene;
+    EXPECT_LE(j["largest_drag_force"].get<double>(), j["drag_limit"].get<double>() * (1 + 1e-9));
+  }
+}
+
+TEST(GuiAcceptance, DroppedBoxShowsTheGraspLostState) {
+  REQUIRE_XVFB();
+  const auto j = scenario("hand", "drop-box");
+  EXPECT_EQ(j.value("state_before", ""), "pinch pose") << j.dump();
+  EXPECT_EQ(j.value("state_after", ""), "grasp lost") << j.dump();
+}
+
+TEST(GuiAcceptance, AuthoredSceneRunsInTheCli) {
+  REQUIRE_XVFB();
+  const std::string file = (outputDir("gui") / "authored.json").string();
+  std::filesystem::remove(file);
+  const auto j = scenario("hexagon", "author", "--script-out " + file);
+  EXPECT_EQ(j.value("error", "?"), "") << j.dump();
+  EXPECT_EQ(j.value("bodies", 0), 3) << j.dump();  // ground, box, pulley
+  EXPECT_EQ(j.value("cables", 0), 1) << j.dump();
+  EXPECT_EQ(j.value("pulleys", 0), 1) << j.dump();
+  const std::string csv = (outputDir("gui") / "authored.csv").string();
+  const RunResult r = run(kCli + " run " + file + " --time 1 --csv " + csv, "run_authored");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  // The box hangs from the cable over the pulley: it may swing, but it does not fall away.
+  std::ifstream in(csv);
+  std::string header, line, last;
+  std::getline(in, header);
+  while (std::getline(in, line)) last = line;
+  EXPECT_NE(header.find("box1.y"), std::string::npos) << header;
+  EXPECT_NE(header.find("cable1.tension"), std::string::npos) << header;
+  EXPECT_FALSE(last.empty());
+}
+
+TEST(GuiAcceptance, SmallWindowStillShowsTheWorldView) {
+  REQUIRE_XVFB();
+  const std::string shot = (outputDir("gui") / "hexagon-640.png").string();
+  const RunResult r = run(
+      kXvfb + kCli + " gui hexagon --size 640x480 --frames 30 --screenshot " + shot, "gui_small");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const double x = j["free"][0], y = j["free"][1], w = j["free"][2], h = j["free"][3];
+  EXPECT_GE(w, 0.5 * 640) << r.out;
+  EXPECT_GE(h, 0.7 * 480) << r.out;
+  const ui::Image image = ui::readPng(shot);
+  ASSERT_EQ(image.width, 640);
+  const auto cells = occupancy(image, static_cast<int>(x), static_cast<int>(y),
+                               static_cast<int>(x + w), static_cast<int>(y + h));
+  EXPECT_GT(std::count(cells.begin(), cells.end(), true), 10) << "no scene drawn in " << shot;
+}
+
+TEST(GuiAcceptance, RecordButtonWritesOneFramePerThirtiethOfASimulatedSecond) {
+  REQUIRE_XVFB();
+  const std::string gif = (outputDir("gui") / "recorded.gif").string();
+  const RunResult r =
+      run(kXvfb + kCli + " gui hexagon --size 1280x720 --frames 61 --record " + gif, "gui_record");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const ui::GifAnimation a = ui::readGif(gif);
+  // 60 steps of 1/60 s after the first frame: 2 s / 2 = 30 frames at 30 fps (one either way
+  // for where the first one falls).
+  EXPECT_GE(a.frames.size(), 29u);
+  EXPECT_LE(a.frames.size(), 31u);
+  ASSERT_FALSE(a.frames.empty());
+  EXPECT_EQ(a.frames[0].width, static_cast<int>(j["free"][2].get<double>()));
+  ui::writePng(a.frames.back(), outputDir("gui") / "recorded-last.png");
 }
 
 }  // namespace

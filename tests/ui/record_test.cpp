@@ -17,7 +17,8 @@ ui::Image bands(int width, int height, int k) {
   image.width = width;
   image.height = height;
   image.rgba.assign(static_cast<size_t>(width) * height * 4, 255);
-  static const std::uint8_t kColours[4][3] = {{250, 20, 20}, {20, 200, 40}, {30, 40, 220}, {5, 5, 5}};
+  static const std::uint8_t kColours[4][3] = {
+      {250, 20, 20}, {20, 200, 40}, {30, 40, 220}, {5, 5, 5}};
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const int band = ((x + 3 * k) / 10 + y / 12) % 4;
@@ -84,12 +85,16 @@ TEST(RecordCli, HexagonForTwoSecondsHasSixtyDifferentFrames) {
 TEST(RecordCli, BadArgumentsExitTwoWithOneLine) {
   const std::string out = (outputDir("record") / "bad.gif").string();
   const std::string o = " --out " + out;
-  const std::vector<std::string> bad = {
-      "hexagon" + o + " --fps 0 --time 0.1",     "hexagon" + o + " --fps 200 --time 0.1",
-      "hexagon" + o + " --time -1",              "hexagon" + o + " --size 10 --time 0.1",
-      "hexagon" + o + " --size 0x100 --time 0.1", "nosuchscene" + o,
-      "hexagon --out /nonexistent/dir/clip.gif", "hexagon" + o + " --set nosuch=1",
-      "hexagon" + o + " --fps abc",              "hexagon --time 0.1"};
+  const std::vector<std::string> bad = {"hexagon" + o + " --fps 0 --time 0.1",
+                                        "hexagon" + o + " --fps 200 --time 0.1",
+                                        "hexagon" + o + " --time -1",
+                                        "hexagon" + o + " --size 10 --time 0.1",
+                                        "hexagon" + o + " --size 0x100 --time 0.1",
+                                        "nosuchscene" + o,
+                                        "hexagon --out /nonexistent/dir/clip.gif",
+                                        "hexagon" + o + " --set nosuch=1",
+                                        "hexagon" + o + " --fps abc",
+                                        "hexagon --time 0.1"};
   for (const std::string& args : bad) {
     const RunResult r = run(kCli + " record " + args, "record_bad");
     EXPECT_EQ(r.exitCode, 2) << args << ": " << r.err;

@@ -1,0 +1,181 @@
+// The Inspector panel's contents: cables, the selected body, engine warnings.
+#include <imgui.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+
+#include "ui/authoring.h"
+#include "ui/panel_sections.h"
+#include "ui/renderer.h"
+
+namespace cablelab::ui {
+namespace {
+
+void cableList(Sandbox& sandbox, const World& world) {
+  if (!ImGui::BeginListBox("##cables", ImVec2(-1, 4.5f * ImGui::GetTextLineHeightWithSpacing())))
+    return;
+  for (int i = 0; i < world.cableCount(); ++i) {
+    const Cable& c = world.cable(i);
+    char label[160];
+    std::snprintf(label, sizeof label, "%s  %.4g N%s", c.name().c_str(), c.tension(),
+                  overstretched(c) ? "  OVERSTRETCHED" : "");
+    if (ImGui::Selectable(label, i == sandbox.selectedCable)) {
+      sandbox.selectedCable = i;
+      sandbox.cableEdit = {c.restLength(), c.stiffness(), c.preload(), c.damping()};
+    }
+  }
+  ImGui::EndListBox();
+  tooltip("Every cable and its tension; click one (or click it in the view) to inspect it.");
+}
+
+void cableEdits(Sandbox& sandbox) {
+  bool changed = false;
+  auto& e = sandbox.cableEdit;
+  ImGui::PushItemWidth(ImGui::GetFontSize() * 9);
+  changed |= ImGui::InputDouble("rest length (m)", &e.restLength, 0.01, 0.1, "%.4f",
+                                ImGuiInputTextFlags_EnterReturnsTrue);
+  tooltip("Rest length L; Enter applies it live.");
+  changed |= ImGui::InputDouble("stiffness (N/m)", &e.stiffness, 10, 100, "%.2f",
+                                ImGuiInputTextFlags_EnterReturnsTrue);
+  tooltip("0: a rigid cable (tension from the constraint); > 0: an elastic band.");
+  changed |= ImGui::InputDouble("preload (m)", &e.preload, 0.001, 0.01, "%.4f",
+                                ImGuiInputTextFlags_EnterReturnsTrue);
+  tooltip("Pre-stretch of an elastic cable.");
+  changed |= ImGui::InputDouble("damping (N s/m)", &e.damping, 0.1, 1, "%.3f",
+                                ImGuiInputTextFlags_EnterReturnsTrue);
+  tooltip("Damping of an elastic cable, times its length rate.");
+  ImGui::PopItemWidth();
+  if (changed) sandbox.applyCableEdit();
+}
+
+void wrapTable(const Cable& cable) {
+  ImGui::Text("wrap points (%d)", cable.wraps());
+  if (!ImGui::BeginTable("path", 3, ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY,
+                         ImVec2(-1, 8 * ImGui::GetTextLineHeightWithSpacing())))
+    return;
+  ImGui::TableSetupColumn("kind");
+  ImGui::TableSetupColumn("x (m)");
+  ImGui::TableSetupColumn("y (m)");
+  ImGui::TableHeadersRow();
+  for (const WrapPoint& p : cable.path()) {
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    if (p.kind == WrapPoint::Kind::Anchor)
+      ImGui::TextUnformatted("anchor");
+    else if (p.kind == WrapPoint::Kind::Point)
+      ImGui::Text("pulley %d", p.pulley);
+    else
+      ImGui::Text("pulley %d v%d", p.pulley, p.vertex);
+    ImGui::TableNextColumn();
+    ImGui::Text("%.4f", p.world.x());
+    ImGui::TableNextColumn();
+    ImGui::Text("%.4f", p.world.y());
+  }
+  ImGui::EndTable();
+}
+
+void cableInspector(Sandbox& sandbox, const World& world) {
+  if (world.cableCount() == 0) {
+    ImGui::TextDisabled("no cables");
+    return;
+  }
+  cableList(sandbox, world);
+  const int i = std::clamp(sandbox.selectedCable, 0, world.cableCount() - 1);
+  const Cable& cable = world.cable(i);
+  ImGui::Text("%s: %s", cable.name().c_str(), cable.elastic() ? "elastic" : "rigid");
+  ImGui::Text("tension %.4g N %s", cable.tension(), cable.slack() ? "(slack)" : "");
+  ImGui::Text("length %.5f m (rest %.5f)", cable.length(), cable.restLength());
+  if (overstretched(cable))
+    ImGui::TextColored(ImVec4(0.8f, 0.0f, 0.1f, 1), "overstretched by %.4f m",
+                       cable.length() - cable.restLength());
+  cableEdits(sandbox);
+  if (i < static_cast<int>(sandbox.tensionHistory.size())) {
+    const auto& h = sandbox.tensionHistory[i];
+    char overlay[64];
+    std::snprintf(overlay, sizeof overlay, "tension 0..%.4g N, last 600 steps",
+                  sandbox.tensionScale);
+    ImGui::PlotLines("##tension", h.data(), static_cast<int>(h.size()), sandbox.historyHead,
+                     overlay, 0.0f, static_cast<float>(sandbox.tensionScale),
+                     ImVec2(ImGui::GetContentRegionAvail().x, 5 * ImGui::GetFontSize()));
+    tooltip("Tension of the selected cable; the range is the colour bar's (View section).");
+  }
+  wrapTable(cable);
+}
+
+/// Edits of the selected body's definition (an authoring edit: the scene restarts, undo works).
+void bodyEdits(Sandbox& sandbox, int b) {
+  if (b >= static_cast<int>(sandbox.scene.bodies.size())) return;
+  const BodyDef& def = sandbox.scene.bodies[b];
+  double mass = def.mass, x = def.position.x(), y = def.position.y();
+  bool isStatic = def.type == BodyType::Static;
+  ImGui::PushItemWidth(ImGui::GetFontSize() * 7);
+  const bool m =
+      ImGui::InputDouble("mass (kg)", &mass, 0, 0, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue);
+  tooltip("Edit the body's mass (Enter applies it; the scene restarts; Ctrl+Z undoes it).");
+  const bool px =
+      ImGui::InputDouble("start x (m)", &x, 0, 0, "%.4f", ImGuiInputTextFlags_EnterReturnsTrue);
+  tooltip("The body's starting position, x.");
+  const bool py =
+      ImGui::InputDouble("start y (m)", &y, 0, 0, "%.4f", ImGuiInputTextFlags_EnterReturnsTrue);
+  tooltip("The body's starting position, y.");
+  ImGui::PopItemWidth();
+  const bool st = ImGui::Checkbox("static", &isStatic);
+  tooltip("A static body does not move.");
+  ImGui::SameLine();
+  const bool del = ImGui::SmallButton("Delete body");
+  tooltip("Remove the body with its cables and joints (Delete key; Ctrl+Z undoes it).");
+  if (del) {
+    SceneDef next = sandbox.scene;
+    const std::string name = def.name;
+    next.bodies.erase(next.bodies.begin() + b);
+    std::erase_if(next.cables, [&](const CableDef& c) {
+      return c.start.body == name || c.end.body == name ||
+             std::any_of(c.pulleys.begin(), c.pulleys.end(),
+                         [&](const PulleyDef& p) { return p.body == name; });
+    });
+    std::erase_if(next.joints,
+                  [&](const JointDef& j) { return j.bodyA == name || j.bodyB == name; });
+    applyEdit(sandbox, std::move(next));
+    return;
+  }
+  if (!(m || px || py || st)) return;
+  SceneDef next = sandbox.scene;
+  next.bodies[b].mass = mass;
+  next.bodies[b].position = Vec2(x, y);
+  if (st) next.bodies[b].type = isStatic ? BodyType::Static : BodyType::Dynamic;
+  if (applyEdit(sandbox, std::move(next))) sandbox.selectedBody = b;
+}
+
+}  // namespace
+
+void inspectorContents(Sandbox& sandbox) {
+  World* world = sandbox.world();
+  if (!world) return;
+  cableInspector(sandbox, *world);
+  const int b = sandbox.selectedBody;
+  if (b >= 0 && b < world->bodyCount()) {
+    section("Body");
+    const BodyState& s = world->body(b);
+    const BodyDef& def = world->scene().bodies[b];
+    ImGui::Text("%s (%s, %.4g kg)", def.name.c_str(),
+                def.type == BodyType::Dynamic     ? "dynamic"
+                : def.type == BodyType::Kinematic ? "kinematic"
+                                                  : "static",
+                def.mass);
+    ImGui::Text("x %.4f  y %.4f  theta %.4f", s.position.x(), s.position.y(), s.angle);
+    ImGui::Text("vx %.3f  vy %.3f  omega %.3f", s.velocity.x(), s.velocity.y(), s.angularVelocity);
+    if (sandbox.drag.body == b)
+      ImGui::Text("drag %.4g N of %.4g N%s", sandbox.drag.force.norm(), sandbox.dragLimit(b),
+                  sandbox.drag.limited ? " (at the limit)" : "");
+    bodyEdits(sandbox, b);
+  }
+  if (!world->warnings().empty()) {
+    section("Engine warnings (guards)");
+    const auto& w = world->warnings();
+    for (size_t k = w.size() > 5 ? w.size() - 5 : 0; k < w.size(); ++k)
+      ImGui::TextWrapped("%s", w[k].c_str());
+  }
+}
+
+}  // namespace cablelab::ui

@@ -1,0 +1,271 @@
+#include "ui/scenario_script.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "ui/authoring.h"
+#include "ui/controller_panel.h"
+#include "ui/tension_scale.h"
+
+namespace cablelab::ui {
+namespace {
+
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c == '\n' ? ' ' : c;
+  }
+  return out + "\"";
+}
+
+std::string number(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.17g", std::isfinite(v) ? v : -1.0);
+  return b;
+}
+
+/// The body at the end of a rigid cable that the mouse can grab, -1 if none.
+int rigidCableBody(const World& world, int* cable) {
+  for (int i = 0; i < world.cableCount(); ++i) {
+    if (world.cable(i).elastic()) continue;
+    for (const std::string& name :
+         {world.cable(i).def().end.body, world.cable(i).def().start.body}) {
+      const int b = world.findBody(name);
+      if (b >= 0 && world.scene().bodies[b].type == BodyType::Dynamic) {
+        *cable = i;
+        return b;
+      }
+    }
+  }
+  return -1;
+}
+
+/// The world point in the free area's fraction (fx, fy) from its top-left corner, as pixels.
+Vec2 freePoint(const Sandbox& sandbox, double fx, double fy) {
+  const PanelRect f = sandbox.freeArea();
+  return Vec2(f.x + fx * f.width, f.y + fy * f.height);
+}
+
+}  // namespace
+
+const std::vector<std::string>& ScenarioScript::names() {
+  static const std::vector<std::string> n = {"describe", "reset-scale", "rigid-drag", "drop-box",
+                                             "author"};
+  return n;
+}
+
+ScenarioScript::ScenarioScript(std::string name, Uint32 windowId, std::string out)
+    : name_(std::move(name)), out_(std::move(out)), windowId_(windowId) {}
+
+void ScenarioScript::mouse(Uint32 type, const Vec2& screen, Uint8 button) {
+  SDL_Event e{};
+  e.type = type;
+  const int x = static_cast<int>(std::lround(screen.x())),
+            y = static_cast<int>(std::lround(screen.y()));
+  if (type == SDL_MOUSEMOTION) {
+    e.motion.windowID = windowId_;
+    e.motion.x = x, e.motion.y = y;
+  } else {
+    e.button.windowID = windowId_;
+    e.button.button = button;
+    e.button.state = type == SDL_MOUSEBUTTONDOWN ? SDL_PRESSED : SDL_RELEASED;
+    e.button.clicks = 1;
+    e.button.x = x, e.button.y = y;
+  }
+  SDL_PushEvent(&e);
+}
+
+void ScenarioScript::key(SDL_Keycode k) {
+  for (Uint32 type : {SDL_KEYDOWN, SDL_KEYUP}) {
+    SDL_Event e{};
+    e.type = type;
+    e.key.windowID = windowId_;
+    e.key.state = type == SDL_KEYDOWN ? SDL_PRESSED : SDL_RELEASED;
+    e.key.keysym.sym = k;
+    e.key.keysym.scancode = SDL_GetScancodeFromKey(k);
+    SDL_PushEvent(&e);
+  }
+}
+
+bool ScenarioScript::beforeFrame(Sandbox& sandbox, int frame) {
+  if (!sandbox.world()) {
+    report_ = "{\"scenario\": " + quoted(name_) + ", \"failure\": \"no scene\"}";
+    return false;
+  }
+  if (name_ == "describe") return describe(sandbox, frame);
+  if (name_ == "reset-scale") return resetScale(sandbox, frame);
+  if (name_ == "rigid-drag") return rigidDrag(sandbox, frame);
+  if (name_ == "drop-box") return dropBox(sandbox, frame);
+  if (name_ == "author") return author(sandbox, frame);
+  report_ = "{\"scenario\": " + quoted(name_) + ", \"failure\": \"unknown scenario\"}";
+  return false;
+}
+
+bool ScenarioScript::describe(Sandbox& sandbox, int frame) {
+  if (frame < 3) return true;  // the panel has been drawn
+  report_ = "{\"scenario\": \"describe\", \"title\": " + quoted(sandbox.shownTitle) +
+            ", \"description\": " + quoted(sandbox.shownDescription) +
+            ", \"scene_description\": " + quoted(sandbox.scene.description) + "}";
+  return false;
+}
+
+bool ScenarioScript::resetScale(Sandbox& sandbox, int frame) {
+  World& world = *sandbox.world();
+  if (frame == 2) {
+    figures_[0] = sandbox.tensionScale;
+    int cable = -1;
+    body_ = rigidCableBody(world, &cable);
+    if (body_ < 0) body_ = sandbox.bodyAt(world.body(0).position);
+    if (body_ >= 0) {
+      from_ = sandbox.camera.toScreen(world.body(body_).position);
+      to_ = from_ + Vec2(0, 250);  // pull down hard: the tension rises
+      mouse(SDL_MOUSEMOTION, from_);
+      mouse(SDL_MOUSEBUTTONDOWN, from_);
+    }
+  } else if (frame > 2 && frame <= 40) {
+    mouse(SDL_MOUSEMOTION, from_ + (to_ - from_) * std::min(1.0, (frame - 2) / 20.0));
+    for (int i = 0; i < world.cableCount(); ++i)
+      largest_ = std::max(largest_, world.cable(i).tension());
+  } else if (frame == 41) {
+    mouse(SDL_MOUSEBUTTONUP, to_);
+    figures_[1] = sandbox.tensionScale;
+  } else if (frame == 45) {
+    key(SDLK_r);
+  } else if (frame == 50) {
+    figures_[2] = sandbox.tensionScale;
+    report_ = "{\"scenario\": \"reset-scale\", \"before\": " + number(figures_[0]) +
+              ", \"after_drag\": " + number(figures_[1]) +
+              ", \"after_reset\": " + number(figures_[2]) +
+              ", \"expected\": " + number(expectedTensionScale(sandbox.scene)) +
+              ", \"largest_tension\": " + number(largest_) +
+              ", \"time_after_reset\": " + number(world.time()) + "}";
+    return false;
+  }
+  return true;
+}
+
+bool ScenarioScript::rigidDrag(Sandbox& sandbox, int frame) {
+  World& world = *sandbox.world();
+  if (frame == 2) {
+    body_ = rigidCableBody(world, &cable_);
+    if (body_ < 0) {
+      report_ = "{\"scenario\": \"rigid-drag\", \"failure\": \"no body on a rigid cable\"}";
+      return false;
+    }
+    // Away from the cable's other end: the drag pulls the cable taut and tries to stretch it.
+    const Vec2 p = world.body(body_).position;
+    const Vec2 anchor = world.cable(cable_).path().front().world;
+    const Vec2 away = (p - anchor).normalized();
+    from_ = sandbox.camera.toScreen(p);
+    to_ = sandbox.camera.toScreen(p + 3.0 * away);
+    mouse(SDL_MOUSEMOTION, from_);
+    mouse(SDL_MOUSEBUTTONDOWN, from_);
+  } else if (frame > 2 && frame <= 150) {
+    mouse(SDL_MOUSEMOTION, from_ + (to_ - from_) * std::min(1.0, (frame - 2) / 30.0));
+    for (int i = 0; i < world.cableCount(); ++i) {
+      const Cable& c = world.cable(i);
+      if (!c.elastic() && !c.slack()) largest_ = std::max(largest_, c.length() - c.restLength());
+    }
+    figures_[0] = std::max(figures_[0], sandbox.drag.force.norm());
+    figures_[1] += sandbox.drag.limited ? 1 : 0;
+  } else if (frame == 151) {
+    mouse(SDL_MOUSEBUTTONUP, to_);
+    report_ =
+        "{\"scenario\": \"rigid-drag\", \"body\": " + quoted(world.scene().bodies[body_].name) +
+        ", \"largest_stretch\": " + number(largest_) +
+        ", \"largest_drag_force\": " + number(figures_[0]) +
+        ", \"drag_limit\": " + number(sandbox.dragLimit(body_)) +
+        ", \"frames_at_limit\": " + number(figures_[1]) + "}";
+    return false;
+  }
+  return true;
+}
+
+bool ScenarioScript::dropBox(Sandbox& sandbox, int frame) {
+  World& world = *sandbox.world();
+  const int box = world.findBody("box");
+  if (box < 0) {
+    report_ = "{\"scenario\": \"drop-box\", \"failure\": \"no body called box\"}";
+    return false;
+  }
+  if (frame == 2) {
+    sandbox.dragWeights = 20;  // strong enough to pull the box out of the membranes
+    figures_[0] = 0;
+    from_ = sandbox.camera.toScreen(world.body(box).position);
+    to_ = sandbox.camera.toScreen(world.body(box).position + Vec2(1.5, 0.0));
+    mouse(SDL_MOUSEMOTION, from_);
+    mouse(SDL_MOUSEBUTTONDOWN, from_);
+    report_ = std::string("{\"scenario\": \"drop-box\", \"state_before\": ") +
+              quoted(handGraspState(sandbox)) + "}";
+  } else if (frame > 2 && frame <= 120) {
+    mouse(SDL_MOUSEMOTION, from_ + (to_ - from_) * std::min(1.0, (frame - 2) / 60.0));
+  } else if (frame == 121) {
+    mouse(SDL_MOUSEBUTTONUP, to_);
+  } else if (frame == 180) {
+    report_.pop_back();
+    report_ += ", \"state_after\": " + quoted(handGraspState(sandbox)) + ", \"box\": [" +
+               number(world.body(box).position.x()) + ", " + number(world.body(box).position.y()) +
+               "]}";
+    return false;
+  }
+  return true;
+}
+
+bool ScenarioScript::author(Sandbox& sandbox, int frame) {
+  // New scene, then: a box (dynamic) low in the middle, a point pulley above it, a cable from
+  // a world anchor left-up, over the pulley, down to the box.
+  Authoring& a = *sandbox.authoring;
+  auto click = [&](double fx, double fy) {
+    const Vec2 p = freePoint(sandbox, fx, fy);
+    mouse(SDL_MOUSEMOTION, p);
+    mouse(SDL_MOUSEBUTTONDOWN, p);
+    mouse(SDL_MOUSEBUTTONUP, p);
+  };
+  switch (frame) {
+    case 2:
+      newScene(sandbox);
+      sandbox.paused = true;
+      break;
+    case 5:
+      a.tool = Authoring::Tool::Box;
+      click(0.6, 0.6);
+      break;
+    case 8:
+      a.tool = Authoring::Tool::PointPulley;
+      click(0.6, 0.25);
+      break;
+    case 11:
+      a.tool = Authoring::Tool::Cable;
+      click(0.25, 0.25);
+      break;  // start: world anchor
+    case 13:
+      click(0.6, 0.25);
+      break;  // over the pulley
+    case 15:
+      click(0.6, 0.6);
+      break;  // end: on the box
+    case 18: {
+      a.tool = Authoring::Tool::None;
+      std::string error;
+      try {
+        saveScene(sandbox, out_);
+      } catch (const std::exception& e) {
+        error = e.what();
+      }
+      const SceneDef& s = sandbox.scene;
+      report_ = "{\"scenario\": \"author\", \"bodies\": " + number(s.bodies.size()) +
+                ", \"cables\": " + number(s.cables.size()) +
+                ", \"pulleys\": " + number(s.cables.empty() ? 0 : s.cables.front().pulleys.size()) +
+                ", \"undo\": " + number(a.undo.size()) + ", \"file\": " + quoted(out_) +
+                ", \"error\": " + quoted(error + sandbox.error) + "}";
+      return false;
+    }
+    default:
+      break;
+  }
+  return true;
+}
+
+}  // namespace cablelab::ui

@@ -1,0 +1,58 @@
+// ScenarioScript: the sandbox's acceptance scenarios (`cablelab-gui --script NAME`), driven by
+// synthetic SDL events through the normal event path, like InputScript. Each reports one JSON
+// object on stdout with what it measured; the tests in tests/ui/gui_test.cpp judge the figures.
+//
+//   describe     one frame; reports the title and description the Scene panel showed
+//   reset-scale  drags a body hard (raising the tensions), presses r; reports the tension
+//                scale before, after the drag and after the reset, and the scene's expected one
+//   rigid-drag   drags the body at the end of a rigid cable 3 m away from the cable for 2 s;
+//                reports the largest stretch (length - rest length) of any taut rigid cable
+//   drop-box     the hand: drags the box out of the membranes and lets go; reports the grasp
+//                state the controller panel shows
+//   author       builds a scene by clicks (a box, a pulley, a cable anchor -> pulley -> box),
+//                saves it to --script-out; reports the counts and the file
+//
+// Needs: an SDL video subsystem (the sandbox's Window), a Sandbox with a loaded scene.
+#pragma once
+
+#include <SDL.h>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "ui/sandbox.h"
+
+namespace cablelab::ui {
+
+class ScenarioScript {
+ public:
+  /// The scenario names above.
+  static const std::vector<std::string>& names();
+
+  /// `out`: the file the author scenario saves.
+  ScenarioScript(std::string name, Uint32 windowId, std::string out);
+
+  /// Called once per frame before events are polled; false when the scenario has finished.
+  bool beforeFrame(Sandbox& sandbox, int frame);
+  /// One JSON object with the scenario's figures.
+  std::string report() const { return report_; }
+
+ private:
+  void mouse(Uint32 type, const Vec2& screen, Uint8 button = SDL_BUTTON_LEFT);
+  void key(SDL_Keycode key);
+  bool describe(Sandbox& sandbox, int frame);
+  bool resetScale(Sandbox& sandbox, int frame);
+  bool rigidDrag(Sandbox& sandbox, int frame);
+  bool dropBox(Sandbox& sandbox, int frame);
+  bool author(Sandbox& sandbox, int frame);
+
+  std::string name_, out_, report_ = "{}";
+  Uint32 windowId_;
+  int body_ = -1, cable_ = -1;
+  Vec2 from_ = Vec2::Zero(), to_ = Vec2::Zero();  ///< px
+  double figures_[4] = {0, 0, 0, 0};
+  double largest_ = 0;
+};
+
+}  // namespace cablelab::ui

@@ -1,0 +1,15 @@
+// Scene guide: what the Scene panel says about a scene beyond its own description: a line or
+// two of "what to try" for the built-in scenes, written for a lecture or a first session.
+//
+// Needs: nothing (plain strings). Scene files carry only their JSON `description`; a built-in
+// scene without an entry here gets the generic hints.
+#pragma once
+
+#include <string>
+
+namespace cablelab::ui {
+
+/// "What to try" for the built-in scene `name` (several short lines separated by '\n').
+std::string whatToTry(const std::string& name);
+
+}  // namespace cablelab::ui

@@ -1,0 +1,226 @@
+// The Simulation panel's sections: Scene, Run, Integration, View (ui/panel_sections.h).
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "ui/input.h"
+#include "ui/panel_sections.h"
+#include "ui/scene_catalog.h"
+#include "ui/scene_guide.h"
+
+namespace cablelab::ui {
+
+namespace {
+
+void parameterSliders(Sandbox& sandbox) {
+  const auto params = sceneParameters(sandbox.sceneName);
+  if (params.empty()) {
+    ImGui::TextDisabled("a scene file: no parameters (edit the JSON)");
+    return;
+  }
+  bool apply = false;
+  auto values = sandbox.parameters;
+  for (const SceneParameter& p : params) {
+    auto it =
+        std::find_if(values.begin(), values.end(), [&](auto& v) { return v.first == p.name; });
+    if (it == values.end()) it = values.insert(values.end(), {p.name, p.value});
+    float v = static_cast<float>(it->second);
+    ImGui::SetNextItemWidth(-ImGui::CalcTextSize("m_ballast_").x);
+    const ImGuiSliderFlags flags = p.logarithmic ? ImGuiSliderFlags_Logarithmic : 0;
+    if (ImGui::SliderFloat(p.name.c_str(), &v, static_cast<float>(p.lo), static_cast<float>(p.hi),
+                           "%.4g", flags))
+      it->second = v;
+    apply |= ImGui::IsItemDeactivatedAfterEdit();
+    const std::string tip = p.description + "\nDefault " + std::to_string(p.value) +
+                            ". Release the slider to rebuild the scene (Ctrl+click to type).";
+    tooltip(tip.c_str());
+  }
+  if (apply) sandbox.rebuild(values);
+  if (ImGui::SmallButton("Defaults")) {
+    values.clear();
+    for (const SceneParameter& p : params) values.emplace_back(p.name, p.value);
+    sandbox.rebuild(values);
+  }
+  tooltip("Rebuild the scene with every parameter at its default.");
+}
+
+}  // namespace
+
+void scenePanel(Sandbox& sandbox) {
+  const std::string title = sandbox.scene.name.empty() ? sandbox.sceneName : sandbox.scene.name;
+  ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(20, 60, 140, 255));
+  ImGui::TextUnformatted(title.c_str());
+  ImGui::PopStyleColor();
+  // A long description shows its first sentence; the whole text is in the tooltip.
+  const std::string& d = sandbox.scene.description;
+  const size_t stop =
+      d.find(": ") != std::string::npos && d.find(": ") < 90 ? d.find(": ") : d.find(". ");
+  const bool longText = d.size() > 140;
+  const std::string shown = longText ? d.substr(0, std::min(stop, size_t{120})) + " ..." : d;
+  ImGui::PushTextWrapPos(0);
+  if (!d.empty()) ImGui::TextUnformatted(shown.c_str());
+  ImGui::PopTextWrapPos();
+  if (longText) tooltip(d.c_str());
+  sandbox.shownTitle = title;
+  sandbox.shownDescription = shown;
+  if (ImGui::TreeNode("What to try")) {
+    ImGui::PushTextWrapPos(0);
+    ImGui::TextUnformatted(whatToTry(sandbox.sceneName).c_str());
+    ImGui::PopTextWrapPos();
+    ImGui::TreePop();
+  }
+  if (ImGui::TreeNode("Parameters (--set)")) {
+    parameterSliders(sandbox);
+    ImGui::TreePop();
+  }
+}
+
+void runPanel(Sandbox& sandbox) {
+  const float w = ImGui::GetFontSize() * 4.5f;
+  if (ImGui::Button(sandbox.paused ? "Play" : "Pause", ImVec2(w, 0)))
+    sandbox.paused = !sandbox.paused;
+  tooltip("Run or pause the simulation (space).");
+  ImGui::SameLine();
+  if (ImGui::Button("Step", ImVec2(w, 0))) {
+    sandbox.paused = true;
+    ++sandbox.pendingSteps;
+  }
+  tooltip("Pause and advance one time step (s).");
+  ImGui::SameLine();
+  if (ImGui::Button("Reset", ImVec2(w, 0))) sandbox.reset();
+  tooltip("Rebuild the scene from its start (r); the tension scale goes back to the scene's.");
+  // Speed: a slider over the steps, plus the step buttons.
+  float speed = static_cast<float>(sandbox.speed);
+  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+  if (ImGui::SliderFloat("speed", &speed, 0.1f, 4.0f, "%.2fx", ImGuiSliderFlags_Logarithmic))
+    sandbox.speed = std::clamp(static_cast<double>(speed), 0.1, 4.0);
+  tooltip("Simulated seconds per wall second: 0.1x is slow motion, 4x fast forward ([ and ]).");
+  ImGui::SameLine();
+  if (ImGui::SmallButton("-")) sandbox.speed = stepSpeed(sandbox.speed, -1);
+  tooltip("Slower ([).");
+  ImGui::SameLine();
+  if (ImGui::SmallButton("+")) sandbox.speed = stepSpeed(sandbox.speed, +1);
+  tooltip("Faster (]).");
+  ImGui::SameLine();
+  if (ImGui::SmallButton("1x")) sandbox.speed = 1;
+  tooltip("Real time.");
+
+  if (ImGui::Button("Screenshot")) sandbox.screenshotRequested = true;
+  tooltip("Save the window as a PNG in the working directory (F12).");
+  ImGui::SameLine();
+  const bool recording = sandbox.recording;
+  if (recording) ImGui::PushStyleColor(ImGuiCol_Button, IM_COL32(220, 70, 60, 255));
+  char label[64];
+  std::snprintf(label, sizeof label, recording ? "Stop (%d frames)###rec" : "Record GIF###rec",
+                sandbox.recordedFrames);
+  if (ImGui::Button(label)) sandbox.recordToggleRequested = true;
+  if (recording) ImGui::PopStyleColor();
+  tooltip(
+      "Record the world view as an animated GIF (F9), one frame per 1/fps s of simulated "
+      "time: it plays at the simulation's own speed. Saved in the working directory.");
+  ImGui::SameLine();
+  float fps = static_cast<float>(sandbox.recordFps);
+  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 3.5f);
+  if (recording) ImGui::BeginDisabled();
+  if (ImGui::DragFloat("fps", &fps, 0.5f, 5, 50, "%.0f"))
+    sandbox.recordFps = std::clamp(static_cast<double>(fps), 5.0, 50.0);
+  if (recording) ImGui::EndDisabled();
+  tooltip("GIF frames per simulated second (5..50).");
+}
+
+void integrationPanel(Sandbox& sandbox) {
+  double dtMs = sandbox.dt * 1000;
+  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+  if (ImGui::InputDouble("dt (ms)", &dtMs, 1, 5, "%.3f") && dtMs > 0.01 && dtMs <= 100)
+    sandbox.dt = dtMs / 1000;
+  tooltip("Time step of one World::step (takes effect at once; Reset keeps it).");
+  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+  if (ImGui::SliderInt("substeps", &sandbox.substeps, 1, 64))
+    sandbox.substeps = std::max(1, sandbox.substeps);
+  tooltip("Box2D sub-steps per time step: more is stiffer and slower.");
+  float g[2] = {static_cast<float>(sandbox.gravity.x()), static_cast<float>(sandbox.gravity.y())};
+  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+  if (ImGui::DragFloat2("gravity", g, 0.05f, -50, 50, "%.2f")) sandbox.gravity = Vec2(g[0], g[1]);
+  tooltip("Gravity (m/s^2), x and y.");
+  if (ImGui::Button("g = 0")) sandbox.gravity = Vec2::Zero();
+  tooltip("Switch gravity off.");
+  ImGui::SameLine();
+  if (ImGui::Button("g = -9.81")) sandbox.gravity = Vec2(0, -9.81);
+  tooltip("Earth gravity, downwards.");
+}
+
+namespace {
+
+void drawToggles(Sandbox& sandbox) {
+  RenderOptions& d = sandbox.draw;
+  struct Toggle {
+    const char* label;
+    bool* value;
+    const char* tip;
+  };
+  const Toggle toggles[] = {
+      {"labels", &d.labels, "Body names."},
+      {"grid", &d.grid, "Grid lines and the scale bar."},
+      {"wrap points", &d.wrapPoints, "Squares where a cable touches a pulley, discs at its ends."},
+      {"tensions", &d.tensions, "Colour the cables by tension (else one plain colour)."},
+      {"forces", &d.forces, "Arrows of the cable forces at the cable ends."},
+      {"legend", &d.legend, "The tension colour bar."},
+      {"marker key", &d.markerLegend, "The key of every marker drawn."},
+      {"overstretch", &d.overstretch,
+       "Mark cables longer than they should be (rigid: > 1 cm over rest)."},
+  };
+  int k = 0;
+  for (const Toggle& t : toggles) {
+    if (k++ % 2) ImGui::SameLine(ImGui::GetContentRegionAvail().x * 0.5f + ImGui::GetCursorPosX());
+    ImGui::Checkbox(t.label, t.value);
+    tooltip(t.tip);
+  }
+}
+
+}  // namespace
+
+void viewPanel(Sandbox& sandbox) {
+  float zoom = static_cast<float>(1.0 / sandbox.camera.metresPerPixel);
+  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+  if (ImGui::DragFloat("px per m", &zoom, 1.0f, 1.0f, 100000.0f, "%.0f") && zoom > 0)
+    sandbox.camera.metresPerPixel = 1.0 / zoom;
+  tooltip("Zoom: screen pixels per metre (the wheel zooms about the cursor).");
+  if (ImGui::Button("Fit scene view")) sandbox.fitView();
+  tooltip("Back to the scene's own view, grown to show every body and cable.");
+  ImGui::SameLine();
+  if (sandbox.selectedBody < 0) ImGui::BeginDisabled();
+  ImGui::Checkbox("follow", &sandbox.follow);
+  if (sandbox.selectedBody < 0) ImGui::EndDisabled();
+  tooltip("The camera keeps the selected body in the middle of the view (f).");
+  drawToggles(sandbox);
+
+  ImGui::Checkbox("lock tension scale", &sandbox.tensionScaleLocked);
+  tooltip(
+      "Locked: the colour bar keeps the scene's expected range, so a colour always means "
+      "the same tension. Unlocked: it grows with the largest tension seen. Reset restores "
+      "the scene's range.");
+  float top = static_cast<float>(sandbox.tensionScale);
+  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+  if (ImGui::DragFloat("scale max (N)", &top, std::max(top * 0.01f, 0.01f), 0.01f, 1e7f, "%.4g"))
+    sandbox.tensionScale = std::max(static_cast<double>(top), 1e-3);
+  tooltip("Tension at the red end of the colour bar.");
+
+  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+  float drag = static_cast<float>(sandbox.dragWeights);
+  if (ImGui::SliderFloat("drag limit", &drag, 0.5f, 20.0f, "%.1f weights"))
+    sandbox.dragWeights = drag;
+  tooltip(
+      "The mouse pulls with at most this many times the body's weight (at least 9.81 "
+      "m/s^2), so a cable can hold against it.");
+  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+  ImGui::SliderFloat("UI scale", &sandbox.uiScale, 0.75f, 3.0f, "%.2f");
+  tooltip("Size of the text and the panels.");
+  ImGui::SameLine();
+  if (ImGui::Checkbox("projector", &sandbox.projector)) sandbox.uiScale = sandbox.projector ? 2 : 1;
+  tooltip("Projector mode: large fonts and thick lines for a lecture hall.");
+}
+
+}  // namespace cablelab::ui
