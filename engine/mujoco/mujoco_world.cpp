@@ -122,10 +122,9 @@ std::string sceneToMjcf(const SceneDef& scene) {
       << "<compiler angle=\"radian\"/>\n"
       << "<option timestep=\"" << number(scene.dt) << "\" gravity=\"" << xz(scene.gravity)
       << "\"/>\n"
-      // Room for every tendon limit and a contact or two per body (the default 500 is full at
-      // a few hundred cables).
-      << "<size njmax=\"" << 500 + 2 * scene.cables.size() + 4 * scene.bodies.size()
-      << "\" nconmax=\"" << 100 + 2 * scene.bodies.size() << "\"/>\n"
+      // Room for every tendon limit (the default 500 is full at a few hundred cables). MuJoCo
+      // 2.2.2 allocates njmax x nv doubles, so no more than that plus a margin for contacts.
+      << "<size njmax=\"" << 500 + scene.cables.size() << "\" nconmax=\"200\"/>\n"
       << "<worldbody>\n"
       << sitesOn("world");
   for (size_t b = 0; b < scene.bodies.size(); ++b) {
