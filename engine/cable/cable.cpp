@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "engine/core/error.h"
 #include "engine/cable/wrap.h"
@@ -122,6 +123,7 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
       const Vec2 b = entryPoint(nodes[n + 1], chains);
       if (!wrapChain(a, b, p.world, p.side, chains[nodes[n] - 1])) {
         p.engaged = false;
+        p.dropped = true;
         if (warnings)
           warnings->push_back("cable '" + def_->name + "': pulley " + std::to_string(nodes[n] - 1) +
                               " left the path: a neighbouring point lies inside its hull");
@@ -148,11 +150,37 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
   return true;
 }
 
-void Cable::update(std::span<const BodyState> bodies, std::vector<std::string>* warnings) {
-  placePulleys(bodies);
+// Every wrap change is meant to happen on the old path (docs/cables.md); one that was not (a
+// guard acting, a crossing found late) and moved the length by more than kLengthJump says so.
+void Cable::reportLengthJump(double before, std::vector<std::string>* warnings) const {
+  if (firstUpdate_ || !warnings || std::abs(kin_.length - before) <= kLengthJump) return;
+  bool same = signature_.size() == path_.size();
+  for (size_t i = 0; same && i < path_.size(); ++i)
+    same = signature_[i].first == path_[i].pulley && signature_[i].second == path_[i].vertex;
+  if (same) return;
+  char jump[64];
+  std::snprintf(jump, sizeof jump, "%.6g m", kin_.length - before);
+  warnings->push_back("cable '" + def_->name + "': a wrap change moved the length by " + jump +
+                      " (not on the old path: a guard acted or a crossing was found late)");
+}
+
+void Cable::update(std::span<const BodyState> select, std::span<const BodyState> bodies,
+                   std::vector<std::string>* warnings) {
+  placePulleys(select);
   if (path_.empty()) path_.resize(2);
-  path_.front().world = worldPoint(bodies, startBody_, def_->start.point);
-  path_.back().world = worldPoint(bodies, endBody_, def_->end.point);
+  path_.front().world = worldPoint(select, startBody_, def_->start.point);
+  path_.back().world = worldPoint(select, endBody_, def_->end.point);
+
+  // The path before re-selection, for the length-jump check below.
+  double before = 0;
+  signature_.clear();
+  for (size_t i = 0; i < path_.size(); ++i) {
+    signature_.push_back({path_[i].pulley, path_[i].vertex});
+    if (i > 0)
+      before += (worldPoint(bodies, path_[i].body, path_[i].local) -
+                 worldPoint(bodies, path_[i - 1].body, path_[i - 1].local))
+                    .norm();
+  }
 
   // Settle the engaged set: leaves first, then joins, until nothing changes.
   const int count = static_cast<int>(pulleys_.size());
@@ -205,10 +233,19 @@ void Cable::update(std::span<const BodyState> bodies, std::vector<std::string>* 
         const double t = ab.squaredNorm() > 0 ? (p.world[0] - a).dot(ab) / ab.squaredNorm() : -1;
         cuts = t > 0 && t < 1 && (firstUpdate_ ? depth >= 0 : depth > 0);
       }
-      const bool crossed = firstUpdate_ || p.previousDepth <= 0;
+      bool crossed = firstUpdate_ || p.previousDepth <= 0;
       p.previousDepth = depth;
+      // A polygon a guard dropped rejoins once a taut path round it exists again.
+      if (p.dropped && cuts && !crossed) {
+        crossed = wrapChain(a, b, p.world, p.side, rejoinChain_);
+        if (crossed && warnings)
+          warnings->push_back("cable '" + def_->name + "': pulley " + std::to_string(j) +
+                              " rejoined the path (a guard had dropped it)");
+      }
+      if (!cuts && depth <= 0) p.dropped = false;
       if (cuts && crossed) {
         p.engaged = true;
+        p.dropped = false;
         changed = true;
       }
     }
@@ -216,6 +253,7 @@ void Cable::update(std::span<const BodyState> bodies, std::vector<std::string>* 
   }
 
   cableKinematics(path_, bodies, kin_);
+  reportLengthJump(before, warnings);
   if (warnings && kin_.zeroLengthSegments > 0 && !reportedZeroLength_)
     warnings->push_back("cable '" + def_->name + "': " + std::to_string(kin_.zeroLengthSegments) +
                         " zero-length segment(s) (coincident points) left out of the Jacobian");

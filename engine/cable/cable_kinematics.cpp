@@ -142,4 +142,39 @@ void appendLengthHessianTranslation(std::span<const WrapPoint> path,
   }
 }
 
+void lengthDiscreteGradient(std::span<WrapPoint> path, std::span<const BodyState> q0,
+                            std::span<const BodyState> q1, std::vector<BodyJacobian>& gradient) {
+  gradient.clear();
+  // d(point)/d(x, y, theta) over the step: [I | sinc(dtheta / 2) perp(r_mid)].
+  auto chord = [&](const WrapPoint& p, Vec2& at0, Vec2& at1, Vec2& turn) {
+    at0 = worldPoint(q0, p.body, p.local);
+    at1 = worldPoint(q1, p.body, p.local);
+    turn = Vec2::Zero();
+    if (p.body < 0) return;
+    const double dtheta = q1[p.body].angle - q0[p.body].angle;
+    const double half = 0.5 * dtheta;
+    const double sinc = std::abs(half) < 1e-8 ? 1.0 - half * half / 6 : std::sin(half) / half;
+    turn = sinc * perp(rotate(p.local, q0[p.body].angle + half));
+  };
+  Vec2 a0, a1, ta;
+  if (path.empty()) return;
+  chord(path[0], a0, a1, ta);
+  path[0].world = a1;
+  for (size_t i = 0; i + 1 < path.size(); ++i) {
+    Vec2 b0, b1, tb;
+    chord(path[i + 1], b0, b1, tb);
+    path[i + 1].world = b1;
+    const Vec2 d0 = b0 - a0, d1 = b1 - a1;
+    const double sum = d0.norm() + d1.norm();
+    if (sum >= 2 * kZeroLength && path[i].body != path[i + 1].body) {
+      const Vec2 u = (d0 + d1) / sum;
+      addJacobian(gradient, path[i + 1].body, Vec3(u.x(), u.y(), u.dot(tb)));
+      addJacobian(gradient, path[i].body, -Vec3(u.x(), u.y(), u.dot(ta)));
+    }
+    a0 = b0, a1 = b1, ta = tb;
+  }
+  std::sort(gradient.begin(), gradient.end(),
+            [](const BodyJacobian& a, const BodyJacobian& b) { return a.body < b.body; });
+}
+
 }  // namespace cablelab
