@@ -3,6 +3,8 @@
 // statics_bench.h, hand_controller.h, hand_reach.h) and is shared with tests/bench/.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <vector>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -16,6 +18,11 @@
 #include "engine/hand/hand_reach.h"
 #include "engine/scenes/scene_registry.h"
 #include "engine/statics/statics_bench.h"
+#include "engine/dynamics/world.h"
+#include "engine/scenes/scale_scenes.h"
+#ifdef CABLELAB_HAVE_MUJOCO
+#include "engine/mujoco/mujoco_world.h"
+#endif
 
 namespace cablelab::app {
 namespace {
@@ -44,6 +51,46 @@ nlohmann::json machine() {
 
 void stage(const char* what) {
   std::fprintf(stderr, "bench: %s\n", what);
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+// Issue 11's scale cases, stepped by cablelab and by MuJoCo from the same SceneDef
+// (engine/scenes/scale_scenes.h; the files in tests/data/bench/ are these scenes), in
+// alternating rounds of individually timed steps. Medians per step (us).
+struct ScaleTiming {
+  double cablelab = 0, cable = 0, mujoco = 0;
+};
+
+ScaleTiming measureScaleCase(const SceneDef& scene, int steps, int rounds) {
+  using Clock = std::chrono::steady_clock;
+  World world(scene, scene.name);
+  std::vector<double> ours, cable, theirs;
+  for (int i = 0; i < 5; ++i) world.step(scene.dt, scene.substeps);
+#ifdef CABLELAB_HAVE_MUJOCO
+  MujocoWorld mujoco(scene);
+  for (int i = 0; i < 5; ++i) mujoco.step();
+#endif
+  for (int round = 0; round < rounds; ++round) {
+    for (int i = 0; i < steps; ++i) {
+      const auto t0 = Clock::now();
+      world.step(scene.dt, scene.substeps);
+      ours.push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
+      cable.push_back(world.lastStepStats().cableMicros);
+    }
+#ifdef CABLELAB_HAVE_MUJOCO
+    for (int i = 0; i < steps; ++i) {
+      const auto t0 = Clock::now();
+      mujoco.step();
+      theirs.push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
+    }
+#endif
+  }
+  return {median(ours), median(cable), median(theirs)};
 }
 
 const bool registered = registerCommand(
@@ -91,6 +138,35 @@ const bool registered = registerCommand(
                                {"wrap_points_mean", t.withCables.meanWrapPoints}};
         }
         out["scenes"] = scenes;
+
+        // 1b. Scale: cablelab against MuJoCo on the same worlds, and how the cable cost grows.
+        stage("scale: Atwood machines and the 64-pulley cable, cablelab and MuJoCo");
+        nlohmann::json scaleTable = nlohmann::json::object(), ratios = nlohmann::json::object();
+        std::vector<std::pair<double, double>> growth;  // (cables, cable us), Atwood cases
+        for (const ScaleCase& c : scaleCases()) {
+          const int cables = static_cast<int>(c.scene.cables.size());
+          const int steps = std::max(quick ? 5 : 20, (quick ? 2000 : 8000) / (cables + 4));
+          const ScaleTiming t = measureScaleCase(c.scene, steps, 3);
+          scaleTable[c.name] = {{"cablelab_us", t.cablelab}, {"cable_us", t.cable},
+                           {"cables", cables}, {"steps", 3 * steps}};
+#ifdef CABLELAB_HAVE_MUJOCO
+          scaleTable[c.name]["mujoco_us"] = t.mujoco;
+          ratios[c.name] = t.cablelab / t.mujoco;
+#else
+          ratios[c.name] = nullptr;
+#endif
+          if (c.name.rfind("atwood_", 0) == 0 && cables >= 16) growth.push_back({cables, t.cable});
+        }
+        out["scale"] = scaleTable;
+        out["mujoco_ratio"] = ratios;  // cablelab step / MuJoCo step, per case; < 1: faster
+        // Least-squares slope of log(cable us) against log(N), N = 16 .. 1024.
+        double sx = 0, sy = 0, sxx = 0, sxy = 0;
+        for (const auto& [n, us] : growth) {
+          const double x = std::log(n), y = std::log(us);
+          sx += x, sy += y, sxx += x * x, sxy += x * y;
+        }
+        const double k = static_cast<double>(growth.size());
+        out["cable_overhead_exponent"] = (k * sxy - sx * sy) / (k * sxx - sx * sx);
 
         // 2. Statics solvers, cold start, seeded random instances.
         const int instances = quick ? 150 : 1000;
@@ -155,6 +231,13 @@ const bool registered = registerCommand(
         row("controller update", out["controller_update_us"], "us");
         row(quick ? "reach sweep 50x50 (scaled from 20x20)" : "reach sweep 50x50",
             out["reach_sweep_s"], "s");
+        std::printf("  scale (step us: cablelab / MuJoCo / ratio; cable us):\n");
+        for (const auto& [name, c] : scaleTable.items())
+          std::printf("    %-12s %10.1f %10.1f %8.3f %10.1f\n", name.c_str(),
+                      c["cablelab_us"].get<double>(), c.value("mujoco_us", 0.0),
+                      ratios[name].is_null() ? 0.0 : ratios[name].get<double>(),
+                      c["cable_us"].get<double>());
+        row("cable cost growth exponent (N = 16..1024)", out["cable_overhead_exponent"], "");
         std::printf("  per scene (step us: Box2D alone / with cables / overhead):\n");
         for (const auto& [name, s] : scenes.items())
           std::printf("    %-10s %9.2f %9.2f %8.1f %%\n", name.c_str(),

@@ -1,12 +1,14 @@
 // cablelab reach: figure 4-4, the box positions the Jacobian controller reaches versus the range
 // of the fingertips themselves.
 #include <cstdio>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <thread>
 
 #include "app/command.h"
 #include "app/options.h"
 #include "engine/core/error.h"
+#include "engine/core/file_input.h"
 #include "engine/hand/hand_reach.h"
 #ifdef CABLELAB_HAVE_OFFSCREEN
 #include "ui/plot.h"
@@ -15,70 +17,134 @@
 namespace cablelab::app {
 namespace {
 
+/// Grid points as x or y coordinates.
+std::vector<double> coordinates(const std::vector<Vec2>& points, int axis) {
+  std::vector<double> v;
+  for (const Vec2& p : points) v.push_back(p[axis]);
+  return v;
+}
+
+#ifdef CABLELAB_HAVE_OFFSCREEN
+/// Figure 4-4: the quasi-static prediction (lightest, largest markers first), the simulated set
+/// on it, and the fingertips' range on top.
+void writeReachPng(const std::string& path, const ReachResult& r, int grid, double ratio) {
+  char title[200];
+  std::snprintf(title, sizeof title,
+                "Reachable box positions (%d x %d targets, %s): object / fingertip area = %.2f",
+                grid, grid, r.model == ReachModel::Simulation ? "simulated" : "quasi-static",
+                ratio);
+  ui::Plot plot(title, "x (m)", "y (m)");
+  plot.equalAspect = true;
+  // One marker per grid point (disjoint sets): the plot's draw list has 16-bit indices, and
+  // overlaid sets on a 50 x 50 grid exceed them.
+  const bool simulated = r.model == ReachModel::Simulation;
+  std::vector<Vec2> predicted, beyond, tips, missed;
+  for (const ReachTarget& t : r.targets) {
+    const bool reached = simulated ? t.simulated : t.quasiStatic;
+    if (t.fingertip) (reached || !simulated ? tips : missed).push_back(t.point);
+    else if (reached) beyond.push_back(t.point);
+    else if (t.quasiStatic) predicted.push_back(t.point);
+  }
+  char label[120];
+  using Style = ui::PlotSeries::Style;
+  auto add = [&](const std::vector<Vec2>& points, ui::Colour colour) {
+    plot.series.push_back({label, coordinates(points, 0), coordinates(points, 1), Style::Markers,
+                           colour});
+  };
+  if (simulated) {
+    std::snprintf(label, sizeof label, "quasi-static prediction only (set %.2f m^2)",
+                  r.quasiStaticArea);
+    add(predicted, ui::Colour{0.8f, 0.85f, 0.9f, 1.0f});
+  }
+  std::snprintf(label, sizeof label, "box reached beyond the fingertips (set %.2f m^2)",
+                r.objectArea);
+  add(beyond, ui::Colour{0.95f, 0.55f, 0.15f, 1.0f});
+  std::snprintf(label, sizeof label, "fingertips, rigid pinch (%.2f m^2)%s", r.fingertipArea,
+                simulated ? ", box reached" : "");
+  add(tips, ui::Colour{0.1f, 0.2f, 0.55f, 1.0f});
+  if (simulated) {
+    std::snprintf(label, sizeof label, "fingertips, not reached in simulation (%zu)",
+                  missed.size());
+    add(missed, ui::Colour{0.85f, 0.1f, 0.1f, 1.0f});
+  }
+  plot.xRange = std::array<double, 2>{r.lower.x(), r.upper.x()};
+  plot.yRange = std::array<double, 2>{r.lower.y(), r.upper.y()};
+  try {
+    ui::writePlotPng(plot, path, 800, 900);
+  } catch (const std::exception& e) {
+    badOption("--png", std::string("cannot write the file: ") + e.what());
+  }
+}
+#endif
+
 const bool registered = registerCommand(
     "reach", "Box positions the hand's controller reaches vs the fingertips' range (fig. 4-4)",
     [](CLI::App& sub) {
       struct Options {
         int grid = 50;
-        std::string png;
+        std::string model = "simulation", csv, png;
+        bool pd = false;
       };
       auto o = std::make_shared<Options>();
       sub.add_option("--grid", o->grid, "N: try an N x N grid of targets")->capture_default_str();
-      sub.add_option("--png", o->png, "Draw both sets to this PNG file");
+      sub.add_option("--model", o->model,
+                     "simulation: every target is a full dynamic run of `track --target X,Y "
+                     "--pid`; quasi-static: the statics model stands in for the hand")
+          ->capture_default_str();
+      sub.add_flag("--pd", o->pd, "Simulate the PD law (no integral term) instead of PID");
+      sub.add_option("--csv", o->csv,
+                     "Write x,y,object_reached,fingertip_reachable per target to this CSV file");
+      sub.add_option("--png", o->png, "Draw the sets to this PNG file");
       return [o] {
         if (o->grid < 1 || o->grid > 1000)
           badOption("--grid", "must be a whole number in [1, 1000]" + gotValue(o->grid));
+        if (o->model != "simulation" && o->model != "quasi-static")
+          badOption("--model", "must be simulation or quasi-static (got " + o->model + ")");
 #ifndef CABLELAB_HAVE_OFFSCREEN
         if (!o->png.empty()) badOption("--png", "this build has no offscreen renderer");
 #endif
         requireOutputFile(o->png, "--png");
+        std::unique_ptr<std::ofstream> csv;
+        if (!o->csv.empty()) csv = std::make_unique<std::ofstream>(openOutputFile(o->csv, "--csv"));
         ReachOptions options;
         options.grid = o->grid;
-        options.threads =
-            static_cast<int>(std::max(1u, std::min(2u, std::thread::hardware_concurrency())));
+        options.model = o->model == "simulation" ? ReachModel::Simulation : ReachModel::QuasiStatic;
+        options.pid = !o->pd;
         Progress progress("reach", static_cast<long>(o->grid) * o->grid);
         const ReachResult r =
             runReach(options, HandModel{}, [&](long done, long) { progress.update(done); });
         progress.done();
         const double ratio = r.fingertipArea > 0 ? r.objectArea / r.fingertipArea : 0.0;
-#ifdef CABLELAB_HAVE_OFFSCREEN
-        if (!o->png.empty()) {
-          // Figure 4-4: the controller's reach (light, drawn first) under the fingertips' (dark).
-          auto coordinates = [](const std::vector<Vec2>& points, int axis) {
-            std::vector<double> v;
-            for (const Vec2& p : points) v.push_back(p[axis]);
-            return v;
-          };
-          char title[160];
-          std::snprintf(title, sizeof title,
-                        "Reachable box positions (%d x %d targets): object / fingertip area = %.2f",
-                        o->grid, o->grid, ratio);
-          ui::Plot plot(title, "x (m)", "y (m)");
-          plot.equalAspect = true;
-          char label[96];
-          std::snprintf(label, sizeof label, "box, Jacobian controller (%.2f m^2)", r.objectArea);
-          plot.series.push_back({label, coordinates(r.objectPoints, 0),
-                                 coordinates(r.objectPoints, 1), ui::PlotSeries::Style::Markers,
-                                 ui::Colour{0.55f, 0.78f, 0.95f, 1.0f}});
-          std::snprintf(label, sizeof label, "fingertips, rigid pinch (%.2f m^2)", r.fingertipArea);
-          plot.series.push_back({label, coordinates(r.fingertipPoints, 0),
-                                 coordinates(r.fingertipPoints, 1), ui::PlotSeries::Style::Markers,
-                                 ui::Colour{0.1f, 0.2f, 0.55f, 1.0f}});
-          plot.xRange = std::array<double, 2>{r.lower.x(), r.upper.x()};
-          plot.yRange = std::array<double, 2>{r.lower.y(), r.upper.y()};
-          try {
-            ui::writePlotPng(plot, o->png, 800, 900);
-          } catch (const std::exception& e) {
-            badOption("--png", std::string("cannot write the file: ") + e.what());
+        if (csv) {
+          const bool simulated = r.model == ReachModel::Simulation;
+          *csv << "x,y,object_reached,fingertip_reachable\n";
+          char line[120];
+          for (const ReachTarget& t : r.targets) {
+            std::snprintf(line, sizeof line, "%.17g,%.17g,%d,%d\n", t.point.x(), t.point.y(),
+                          int(simulated ? t.simulated : t.quasiStatic), int(t.fingertip));
+            *csv << line;
           }
+          finishOutputFile(*csv, o->csv, "--csv");
         }
+#ifdef CABLELAB_HAVE_OFFSCREEN
+        if (!o->png.empty()) writeReachPng(o->png, r, o->grid, ratio);
 #endif
+        int beyond = 0;
+        for (const ReachTarget& t : r.targets)
+          beyond += (r.model == ReachModel::Simulation ? t.simulated : t.quasiStatic) && !t.fingertip;
         printJson(nlohmann::json{{"object_area", r.objectArea},
                                  {"fingertip_area", r.fingertipArea},
                                  {"ratio", ratio},
                                  {"points", r.points},
+                                 {"model", o->model},
+                                 {"law", o->pd ? "PD" : "PID"},
                                  {"object_points", r.objectPoints.size()},
                                  {"fingertip_points", r.fingertipPoints.size()},
+                                 {"beyond_fingertips", beyond},
+                                 {"quasi_static_area", r.quasiStaticArea},
+                                 {"quasi_static_points", r.quasiStaticPoints.size()},
+                                 {"threads", r.threads},
+                                 {"simulated_s", r.simulatedSeconds},
                                  {"seconds", r.seconds}}
                       .dump());
         return 0;

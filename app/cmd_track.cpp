@@ -9,6 +9,7 @@
 #include "engine/core/error.h"
 #include "engine/core/file_input.h"
 #include "engine/core/parse.h"
+#include "engine/hand/hand_kinematics.h"
 #include "engine/hand/hand_tracking.h"
 #include "engine/scenes/scene_registry.h"
 #ifdef CABLELAB_HAVE_OFFSCREEN
@@ -18,23 +19,76 @@
 namespace cablelab::app {
 namespace {
 
+#ifdef CABLELAB_HAVE_OFFSCREEN
+/// Figure 4-5: target (dashed) and the box's x and y against time, for the chosen law and, as a
+/// thin line, the other one (PD next to PID shows the offset PD leaves and PID removes).
+void writeTrackPng(const std::string& path, const TrackOptions& options, const TrackResult& r,
+                   const TrackResult& other) {
+  auto series = [](const TrackResult& run, auto pick) {
+    std::vector<double> v;
+    for (const TrackSample& s : run.samples) v.push_back(pick(s));
+    return v;
+  };
+  const std::vector<double> t = series(r, [](const TrackSample& s) { return s.t; });
+  const std::vector<double> to = series(other, [](const TrackSample& s) { return s.t; });
+  const char* law = options.pid ? "PID" : "PD";
+  const char* otherLaw = options.pid ? "PD" : "PID";
+  char title[200];
+  std::snprintf(title, sizeof title,
+                "Box position, %s: %s final error %.3g mm, %s %.3g mm (start %.0f mm off)",
+                options.rampTime > 0 ? "ramp" : "constant target", law, 1e3 * r.finalError,
+                otherLaw, 1e3 * other.finalError, 1e3 * r.startError);
+  ui::Plot plot(title, "time (s)", "position (m)");
+  const ui::Colour blue{0.12f, 0.38f, 0.75f, 1.0f}, red{0.85f, 0.25f, 0.15f, 1.0f};
+  const ui::Colour paleBlue{0.55f, 0.7f, 0.95f, 1.0f}, paleRed{0.95f, 0.65f, 0.55f, 1.0f};
+  using Style = ui::PlotSeries::Style;
+  plot.series.push_back({"target x", t, series(r, [](const TrackSample& s) { return s.target.x(); }),
+                         Style::Dashed, blue});
+  plot.series.push_back({"target y", t, series(r, [](const TrackSample& s) { return s.target.y(); }),
+                         Style::Dashed, red});
+  plot.series.push_back({std::string("box x, ") + otherLaw, to,
+                         series(other, [](const TrackSample& s) { return s.box.x(); }),
+                         Style::Line, paleBlue});
+  plot.series.push_back({std::string("box y, ") + otherLaw, to,
+                         series(other, [](const TrackSample& s) { return s.box.y(); }),
+                         Style::Line, paleRed});
+  plot.series.push_back({std::string("box x, ") + law, t,
+                         series(r, [](const TrackSample& s) { return s.box.x(); }), Style::Line,
+                         blue});
+  plot.series.push_back({std::string("box y, ") + law, t,
+                         series(r, [](const TrackSample& s) { return s.box.y(); }), Style::Line,
+                         red});
+  plot.xRange = std::array<double, 2>{0.0, options.time};
+  try {
+    ui::writePlotPng(plot, path);
+  } catch (const std::exception& e) {
+    badOption("--png", std::string("cannot write the file: ") + e.what());
+  }
+}
+#endif
+
 const bool registered = registerCommand(
     "track", "Hand closes a pinch grasp, then the Jacobian controller tracks a target (fig. 4-5)",
     [](CLI::App& sub) {
       struct Options {
-        std::string target, ramp, csv, png;
+        std::string target, ramp, start, csv, png;
         double time = 15;
         bool pid = false;
       };
       auto o = std::make_shared<Options>();
       sub.add_option("--target", o->target, "Constant target box centre X,Y (m); default 0,0");
       sub.add_option("--ramp", o->ramp,
-                     "Linear ramp from (0,0) at grasp time to X,Y over SECONDS: X,Y,SECONDS");
+                     "Linear ramp from the start at control time to X,Y over SECONDS: X,Y,SECONDS");
+      sub.add_option("--start", o->start,
+                     "Box centre X,Y (m) the hand grasps it at; default 0,0, or 0.1,0.1 when the "
+                     "target is within 5 cm of 0,0");
       sub.add_option("--time", o->time, "Simulated time (s)")->capture_default_str();
       sub.add_flag("--pid", o->pid,
                    "Add the integral term to the outer loop (removes the steady offset)");
       sub.add_option("--csv", o->csv, "Write t,target_x,target_y,x,y per step to this CSV file");
-      sub.add_option("--png", o->png, "Plot target (dashed) and response (solid) to this PNG file");
+      sub.add_option("--png", o->png,
+                     "Plot target (dashed) and response (solid; the other law, PD or PID, pale) "
+                     "to this PNG file");
       return [o] {
         TrackOptions options;
         if (!o->target.empty() && !o->ramp.empty())
@@ -50,6 +104,12 @@ const bool registered = registerCommand(
           options.rampTime = v[2];
         }
         requireFinite(options.target.norm(), o->ramp.empty() ? "--target" : "--ramp", 0, 100);
+        if (!o->start.empty()) {
+          const auto v = parseNumberList(o->start, 2, kCommandLine, "--start", "X,Y");
+          options.start = Vec2(v[0], v[1]);
+          if (!pinchWithinLimits(HandModel{}, *options.start))
+            badOption("--start", "the fingers cannot pinch the box there (got " + o->start + ")");
+        }
         requireFinite(o->time, "--time", 0, 1e5);
         options.time = o->time;
         options.pid = o->pid;
@@ -60,10 +120,17 @@ const bool registered = registerCommand(
         std::unique_ptr<std::ofstream> csv;
         if (!o->csv.empty()) csv = std::make_unique<std::ofstream>(openOutputFile(o->csv, "--csv"));
 
-        Progress progress("track",
-                          std::lround(options.time * 60.0));  // the hand scene's dt is 1/60 s
+        const long steps = std::lround(options.time * 60.0);  // the hand scene's dt is 1/60 s
+        Progress progress("track", o->png.empty() ? steps : 2 * steps);
         const TrackResult r =
             runTracking(options, HandModel{}, [&](long done, long) { progress.update(done); });
+        TrackResult other;
+        if (!o->png.empty()) {
+          TrackOptions swapped = options;
+          swapped.pid = !options.pid;
+          other = runTracking(swapped, HandModel{},
+                              [&](long done, long) { progress.update(steps + done); });
+        }
         progress.done();
 
         if (csv) {
@@ -77,34 +144,20 @@ const bool registered = registerCommand(
           finishOutputFile(*csv, o->csv, "--csv");
         }
 #ifdef CABLELAB_HAVE_OFFSCREEN
-        if (!o->png.empty()) {
-          // Figure 4-5: target (dashed) and response (solid), x and y against time.
-          std::vector<double> t, tx, ty, bx, by;
-          for (const TrackSample& s : r.samples) {
-            t.push_back(s.t), tx.push_back(s.target.x()), ty.push_back(s.target.y());
-            bx.push_back(s.box.x()), by.push_back(s.box.y());
-          }
-          char title[160];
-          std::snprintf(title, sizeof title,
-                        "Box position, %s%s: final error %.3g mm, grasp at %.2f s",
-                        options.rampTime > 0 ? "ramp" : "constant target",
-                        options.pid ? ", PID" : ", PD", 1e3 * r.finalError, r.graspTime);
-          ui::Plot plot(title, "time (s)", "position (m)");
-          const ui::Colour blue{0.12f, 0.38f, 0.75f, 1.0f}, red{0.85f, 0.25f, 0.15f, 1.0f};
-          plot.series.push_back({"target x", t, tx, ui::PlotSeries::Style::Dashed, blue});
-          plot.series.push_back({"box x", t, bx, ui::PlotSeries::Style::Line, blue});
-          plot.series.push_back({"target y", t, ty, ui::PlotSeries::Style::Dashed, red});
-          plot.series.push_back({"box y", t, by, ui::PlotSeries::Style::Line, red});
-          plot.xRange = std::array<double, 2>{0.0, options.time};
-          try {
-            ui::writePlotPng(plot, o->png);
-          } catch (const std::exception& e) {
-            badOption("--png", std::string("cannot write the file: ") + e.what());
-          }
-        }
+        if (!o->png.empty()) writeTrackPng(o->png, options, r, other);
 #endif
-        printJson(nlohmann::json{
-            {"final_error", r.finalError}, {"rms_error", r.rmsError}, {"grasp_time", r.graspTime}}
+        nlohmann::json events = nlohmann::json::array();
+        for (const GraspEvent& e : r.events) events.push_back({{"t", e.t}, {"what", e.what}});
+        printJson(nlohmann::json{{"final_error", r.finalError},
+                                 {"rms_error", r.rmsError},
+                                 {"grasp_time", r.graspTime},
+                                 {"start_error", r.startError},
+                                 {"grasp_held", r.graspHeld},
+                                 {"losses", r.losses},
+                                 {"start", {r.start.x(), r.start.y()}},
+                                 {"final_box", {r.samples.back().box.x(), r.samples.back().box.y()}},
+                                 {"max_tension", r.maxTension},
+                                 {"events", events}}
                       .dump());
         return 0;
       };

@@ -41,7 +41,18 @@ nlohmann::json toJson(py::handle value, const std::string& source, const std::st
     return out;
   }
   // Integers (also numpy's) stay integers; every other number becomes a double.
-  if (PyIndex_Check(value.ptr())) return py::int_(value.cast<py::object>()).cast<long long>();
+  if (PyIndex_Check(value.ptr())) {
+    const py::int_ i(py::reinterpret_borrow<py::object>(value));
+    int overflow = 0;
+    const long long v = PyLong_AsLongLongAndOverflow(i.ptr(), &overflow);
+    if (!overflow) return v;
+    const double d = PyLong_AsDouble(i.ptr());  // beyond 64 bits: a double, as JSON reads it
+    if (d == -1.0 && PyErr_Occurred()) {
+      PyErr_Clear();
+      throw InputError(source, here, "is too large a number");
+    }
+    return d;
+  }
   if (PyFloat_Check(value.ptr()) || PyNumber_Check(value.ptr())) {
     const double d = py::float_(value.cast<py::object>()).cast<double>();
     if (!std::isfinite(d)) throw InputError(source, here, "must be finite (got " + numberText(d) + ")");

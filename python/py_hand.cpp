@@ -81,6 +81,20 @@ py::dict trackCall(py::handle target, py::handle ramp, double time, bool pid,
   out["final_error"] = r.finalError;
   out["rms_error"] = r.rmsError;
   out["grasp_time"] = r.graspTime;
+  out["start_error"] = r.startError;
+  out["grasp_held"] = r.graspHeld;
+  out["losses"] = r.losses;
+  out["start"] = std::vector<double>{r.start.x(), r.start.y()};
+  out["final_box"] = std::vector<double>{r.samples.back().box.x(), r.samples.back().box.y()};
+  out["max_tension"] = r.maxTension;
+  py::list events;
+  for (const GraspEvent& e : r.events) {
+    py::dict d;
+    d["t"] = e.t;
+    d["what"] = e.what;
+    events.append(d);
+  }
+  out["events"] = events;
   out["t"] = t;
   out["target"] = tg;
   out["box"] = box;
@@ -185,8 +199,12 @@ HandModel(stiffness=300) changes one from the default.)doc");
       .def_readwrite("kd", &HandControllerParams::kd, "dimensionless, on the box's change over one period")
       .def_readwrite("ki", &HandControllerParams::ki, "per update per second (1/s); > 0 for PID")
       .def_readwrite("lambda_", &HandControllerParams::lambda, "pseudo-inverse damping")
-      .def_readwrite("max_error", &HandControllerParams::maxError, "error saturation (m)")
-      .def_readwrite("integral_zone", &HandControllerParams::integralZone, "integral collects within this (m)")
+      .def_readwrite("lag_share", &HandControllerParams::lagShare,
+                     "share of the membranes' room the moving box may lag by (sets the speed limit)")
+      .def_readwrite("wrap_margin", &HandControllerParams::wrapMargin,
+                     "the reference stops this far before the face-on wrap is lost (m)")
+      .def_readwrite("lead_limit", &HandControllerParams::leadLimit,
+                     "the reference slows once the box is this far off the reference model (m)")
       .def_readwrite("distal_weight", &HandControllerParams::distalWeight, "joint-space weight of the distal joints")
       .def_readwrite("face_on_gain", &HandControllerParams::faceOnGain, "null-space pull to face-on paddles, per update");
   params.def("__repr__", [](py::handle self) { return fieldsRepr(self, "ControllerParams"); });

@@ -509,6 +509,18 @@ step only (call it before every step for a lasting load).)doc");
         "cable_path(cable) -> ndarray (k, 2): the cable's current path in world coordinates (m), "
         "start anchor, the k - 2 wrap points in order, end anchor.");
   c.def(
+      "wrap_points",
+      [](const PyWorld& self, py::handle cable) {
+        PyWorld::Busy busy(self);
+        const Cable& c = self.world->cable(self.cableIndex(cable, "wrap_points"));
+        std::vector<Vec2> points;
+        for (size_t i = 1; i + 1 < c.path().size(); ++i) points.push_back(c.path()[i].world);
+        return pointsArray(points);
+      },
+      "cable"_a,
+      "wrap_points(cable) -> ndarray (wraps, 2): the pulley points the cable wraps now, in path "
+      "order, world coordinates (m); cable_path() adds the two anchors.");
+  c.def(
       "cable_paths",
       [](const PyWorld& self) {
         py::list out;

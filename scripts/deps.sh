@@ -3,7 +3,7 @@
 CABLELAB_PACKAGES=(
   cmake g++ make pkg-config
   libbox2d-dev libeigen3-dev nlohmann-json3-dev libcli11-dev libpng-dev
-  libgtest-dev libbenchmark-dev
+  libgtest-dev libbenchmark-dev libmujoco-dev
   libsdl2-dev libimgui-dev libstb-dev libosmesa6-dev libgif-dev
   xvfb xauth
   python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib

@@ -284,7 +284,7 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
   ImGui::SameLine();
   changed |= ImGui::Checkbox("PID", &h.pid);
   tooltip("Add the integral term k_i (the `track --pid` controller).");
-  ImGui::PushItemWidth(120);
+  ImGui::PushItemWidth(ImGui::GetFontSize() * 7);
   changed |= ImGui::InputDouble("k_p (per update)", &h.params.kp, 0.01, 0.1, "%.3f");
   tooltip("Proportional gain of the outer loop, per update.");
   changed |= ImGui::InputDouble("k_d", &h.params.kd, 0.01, 0.1, "%.3f");

@@ -11,7 +11,7 @@
 namespace cablelab::ui {
 namespace {
 
-std::string quoted(const std::string& s) {
+std::string jsonQuoted(const std::string& s) {
   std::string out = "\"";
   for (char c : s) {
     if (c == '"' || c == '\\') out += '\\';
@@ -91,7 +91,7 @@ void ScenarioScript::key(SDL_Keycode k) {
 
 bool ScenarioScript::beforeFrame(Sandbox& sandbox, int frame) {
   if (!sandbox.world()) {
-    report_ = "{\"scenario\": " + quoted(name_) + ", \"failure\": \"no scene\"}";
+    report_ = "{\"scenario\": " + jsonQuoted(name_) + ", \"failure\": \"no scene\"}";
     return false;
   }
   if (name_ == "describe") return describe(sandbox, frame);
@@ -99,15 +99,15 @@ bool ScenarioScript::beforeFrame(Sandbox& sandbox, int frame) {
   if (name_ == "rigid-drag") return rigidDrag(sandbox, frame);
   if (name_ == "drop-box") return dropBox(sandbox, frame);
   if (name_ == "author") return author(sandbox, frame);
-  report_ = "{\"scenario\": " + quoted(name_) + ", \"failure\": \"unknown scenario\"}";
+  report_ = "{\"scenario\": " + jsonQuoted(name_) + ", \"failure\": \"unknown scenario\"}";
   return false;
 }
 
 bool ScenarioScript::describe(Sandbox& sandbox, int frame) {
   if (frame < 3) return true;  // the panel has been drawn
-  report_ = "{\"scenario\": \"describe\", \"title\": " + quoted(sandbox.shownTitle) +
-            ", \"description\": " + quoted(sandbox.shownDescription) +
-            ", \"scene_description\": " + quoted(sandbox.scene.description) + "}";
+  report_ = "{\"scenario\": \"describe\", \"title\": " + jsonQuoted(sandbox.shownTitle) +
+            ", \"description\": " + jsonQuoted(sandbox.shownDescription) +
+            ", \"scene_description\": " + jsonQuoted(sandbox.scene.description) + "}";
   return false;
 }
 
@@ -173,7 +173,7 @@ bool ScenarioScript::rigidDrag(Sandbox& sandbox, int frame) {
   } else if (frame == 151) {
     mouse(SDL_MOUSEBUTTONUP, to_);
     report_ =
-        "{\"scenario\": \"rigid-drag\", \"body\": " + quoted(world.scene().bodies[body_].name) +
+        "{\"scenario\": \"rigid-drag\", \"body\": " + jsonQuoted(world.scene().bodies[body_].name) +
         ", \"largest_stretch\": " + number(largest_) +
         ", \"largest_drag_force\": " + number(figures_[0]) +
         ", \"drag_limit\": " + number(sandbox.dragLimit(body_)) +
@@ -198,14 +198,14 @@ bool ScenarioScript::dropBox(Sandbox& sandbox, int frame) {
     mouse(SDL_MOUSEMOTION, from_);
     mouse(SDL_MOUSEBUTTONDOWN, from_);
     report_ = std::string("{\"scenario\": \"drop-box\", \"state_before\": ") +
-              quoted(handGraspState(sandbox)) + "}";
+              jsonQuoted(handGraspState(sandbox)) + "}";
   } else if (frame > 2 && frame <= 120) {
     mouse(SDL_MOUSEMOTION, from_ + (to_ - from_) * std::min(1.0, (frame - 2) / 60.0));
   } else if (frame == 121) {
     mouse(SDL_MOUSEBUTTONUP, to_);
   } else if (frame == 180) {
     report_.pop_back();
-    report_ += ", \"state_after\": " + quoted(handGraspState(sandbox)) + ", \"box\": [" +
+    report_ += ", \"state_after\": " + jsonQuoted(handGraspState(sandbox)) + ", \"box\": [" +
                number(world.body(box).position.x()) + ", " + number(world.body(box).position.y()) +
                "]}";
     return false;
@@ -258,8 +258,8 @@ bool ScenarioScript::author(Sandbox& sandbox, int frame) {
       report_ = "{\"scenario\": \"author\", \"bodies\": " + number(s.bodies.size()) +
                 ", \"cables\": " + number(s.cables.size()) +
                 ", \"pulleys\": " + number(s.cables.empty() ? 0 : s.cables.front().pulleys.size()) +
-                ", \"undo\": " + number(a.undo.size()) + ", \"file\": " + quoted(out_) +
-                ", \"error\": " + quoted(error + sandbox.error) + "}";
+                ", \"undo\": " + number(a.undo.size()) + ", \"file\": " + jsonQuoted(out_) +
+                ", \"error\": " + jsonQuoted(error + sandbox.error) + "}";
       return false;
     }
     default:

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "engine/cable/circle_wrap.h"
 #include "engine/cable/wrap.h"
@@ -192,6 +193,8 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
       const Vec2 b = entryPoint(nodes[n + 1], chains);
       if (!wrapChain(a, b, p.world, p.side, chains[nodes[n] - 1])) {
         p.engaged = false;
+        p.dropped = true;
+        p.dropped = true;
         if (warnings)
           warnings->push_back("cable '" + def_->name + "': pulley " + std::to_string(nodes[n] - 1) +
                               " left the path: a neighbouring point lies inside its hull");
@@ -259,7 +262,7 @@ bool Cable::leaveRound() {
 
 // Join: a disengaged pulley that crossed its host segment from the non-wrap side (an auto
 // pulley: from either side, and it wraps on the side it came from). Returns true if one joined.
-bool Cable::joinRound() {
+bool Cable::joinRound(std::vector<std::string>* warnings) {
   size_t host = 0;  // path index of the last point before pulley j
   for (size_t j = 0; j < pulleys_.size(); ++j) {
     PulleyState& p = pulleys_[j];
@@ -302,10 +305,19 @@ bool Cable::joinRound() {
       const double t = len > 0 ? (p.world[0] - a).dot(ab) / (len * len) : -1;
       cuts = t > 0 && t < 1 && (firstUpdate_ ? depth >= 0 : depth > 0);
     }
-    const bool crossed = firstUpdate_ || p.previousDepth <= 0;
+    bool crossed = firstUpdate_ || p.previousDepth <= 0;
     p.previousDepth = depth;
+    // A polygon a guard dropped rejoins once a taut path round it exists again.
+    if (p.dropped && cuts && !crossed) {
+      crossed = wrapChain(a, b, p.world, p.side, rejoinChain_);
+      if (crossed && warnings)
+        warnings->push_back("cable '" + def_->name + "': pulley " + std::to_string(j) +
+                            " rejoined the path (a guard had dropped it)");
+    }
+    if (!cuts && depth <= 0) p.dropped = false;
     if (cuts && crossed) {
       p.engaged = true;
+      p.dropped = false;
       // A circle joins at zero wrap; at the start its wrap is the one it was wound with.
       p.arc = firstUpdate_ ? p.initialArc() : 0.0;
       return true;
@@ -373,37 +385,65 @@ void Cable::refresh(std::span<const BodyState> bodies) {
   for (Span& s : spans_) cableKinematics(s.path, bodies, s.kin);
 }
 
-void Cable::update(std::span<const BodyState> bodies, std::vector<std::string>* warnings) {
-  placePulleys(bodies);
+// Every wrap change is meant to happen on the old path (docs/cables.md); one that was not (a
+// guard acting, a crossing found late) and moved the length by more than kLengthJump says so.
+void Cable::reportLengthJump(std::span<const BodyState> bodies,
+                             std::vector<std::string>* warnings) {
+  if (firstUpdate_ || !warnings) return;
+  bool same = previousPath_.size() == path_.size();
+  for (size_t i = 0; same && i < path_.size(); ++i)
+    same = previousPath_[i].pulley == path_[i].pulley && previousPath_[i].vertex == path_[i].vertex;
+  if (same) return;
+  cableKinematics(previousPath_, bodies, previousKin_);
+  if (std::abs(kin_.length - previousKin_.length) <= kLengthJump) return;
+  char jump[64];
+  std::snprintf(jump, sizeof jump, "%.6g m", kin_.length - previousKin_.length);
+  warnings->push_back("cable '" + def_->name + "': a wrap change moved the length by " + jump +
+                      " (not on the old path: a guard acted or a crossing was found late)");
+}
+
+void Cable::update(std::span<const BodyState> select, std::span<const BodyState> bodies,
+                   std::vector<std::string>* warnings) {
+  placePulleys(select);
   if (path_.empty()) path_ = {start_, end_};
+  previousPath_ = path_;
   // The terminals where they are now (a polygon's chain is built against them).
-  start_.world = path_.front().world = worldPoint(bodies, start_.body, start_.local);
-  end_.world = path_.back().world = worldPoint(bodies, end_.body, end_.local);
+  start_.world = path_.front().world = worldPoint(select, start_.body, start_.local);
+  end_.world = path_.back().world = worldPoint(select, end_.body, end_.local);
   if (start_.radius == 0) path_.front().tangentOut = start_.tangentOut = start_.world;
   if (end_.radius == 0) path_.back().tangentIn = end_.tangentIn = end_.world;
-  // Settle the engaged set: leaves first, then joins, until nothing changes.
+  // Settle the engaged set on `select`: leaves first, then joins, until nothing changes.
+  // Circles need the path's tangent points and arcs to decide; points and polygons do not.
+  const bool curved = start_.radius != 0 || end_.radius != 0 ||
+                      std::any_of(pulleys_.begin(), pulleys_.end(),
+                                  [](const PulleyState& p) { return p.circle; });
   const int count = static_cast<int>(pulleys_.size());
   for (int round = 0; round < 2 * count + 2; ++round) {
     if (!buildPath(warnings)) continue;
-    cableKinematics(path_, bodies, kin_);  // tangent points and arcs of this path
-    if (firstUpdate_) {
-      placeDrumMarks(bodies);
-      cableKinematics(path_, bodies, kin_);
+    if (curved) {
+      cableKinematics(path_, select, kin_);
+      if (firstUpdate_) {
+        placeDrumMarks(select);
+        cableKinematics(path_, select, kin_);
+      }
+      storeArcs();
     }
-    storeArcs();
     if (leaveRound()) continue;
-    if (!joinRound()) break;
+    if (!joinRound(warnings)) break;
   }
+  // Drum ends that ran out of cable, or that the cable wraps again.
+  const bool drumChanged = updateDrumEnd(start_, true, select) | updateDrumEnd(end_, false, select);
+  if (drumChanged) buildPath(warnings);
+  // Length, J and J-dot-v on `bodies`.
+  if (!curved || drumChanged || select.data() != bodies.data()) {
+    cableKinematics(path_, bodies, kin_);
+    if (curved) storeArcs();
+  }
+  reportLengthJump(bodies, warnings);
   if (warnings && kin_.zeroLengthSegments > 0 && !reportedZeroLength_)
     warnings->push_back("cable '" + def_->name + "': " + std::to_string(kin_.zeroLengthSegments) +
                         " zero-length segment(s) (coincident points) left out of the Jacobian");
   reportedZeroLength_ = kin_.zeroLengthSegments > 0;
-  // Drum ends that ran out of cable, or that the cable wraps again.
-  const bool drumChanged = updateDrumEnd(start_, true, bodies) | updateDrumEnd(end_, false, bodies);
-  if (drumChanged && buildPath(warnings)) {
-    cableKinematics(path_, bodies, kin_);
-    storeArcs();
-  }
   if (firstUpdate_ && params_.restLength < 0) params_.restLength = kin_.length;
   updateSpans(bodies);
   firstUpdate_ = false;

@@ -16,18 +16,23 @@
 //  * An engaged pulley LEAVES when the path no longer bends around it: a point pulley when the
 //    turn at it is straight or the wrong way; a polygon when its hull chain is empty.
 //  * A terminal inside a polygon pulley's hull (a neighbouring pulley inside it) has no taut path:
-//    the polygon leaves the path and a warning says so.
+//    the polygon is DROPPED (it leaves the path) and a warning says so. A dropped polygon that
+//    still cuts its segment REJOINS as soon as a taut path round it exists again (warning); one
+//    that clears the segment is an ordinary disengaged pulley again.
 //  * Consecutive coincident wrap points (a zero-length segment, < 1e-12 m) are merged: the
 //    segment is left out of J and J-dot-v, never divided by, and a warning says so.
+//  * Any wrap change that moves the length by more than kLengthJump (1 mm) names the jump in a
+//    warning: it did not happen on the old path (a guard acted, or a crossing was found late).
 //  At creation every pulley that the straight segment cuts joins (as if it had just crossed).
-//  Joins and leaves only happen where the new point lies on the current path, up to one step of
-//  motion, so length and J stay continuous (theorem 1) up to that: a pulley detected d metres
-//  past the segment adds a length jump of order d^2 / segment length, and a taut cable then
-//  does work T times that jump. It is second order in the step (tests bound it).
+//  The World locates every join and leave inside the step (nextEvent(), docs/cables.md) and
+//  selects the wrap set a moment after it, so the new point lies on the old path and length and
+//  J stay continuous (theorem 1); these rules then only decide what that moment's set is.
 #pragma once
 
+#include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/model/scene.h"
@@ -103,6 +108,23 @@ CableKinematics cableKinematics(std::span<WrapPoint> path, std::span<const BodyS
 void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodies,
                      CableKinematics& k);
 
+/// The discrete gradient of a path's length between two states (docs/cables.md, "Energy"):
+/// a row G with G (q1 - q0) = length(q1) - length(q0) exactly, which tends to J as q1 -> q0.
+/// Each segment contributes along (d0 + d1) / (|d0| + |d1|); a turn dtheta of a body moves its
+/// point by sinc(dtheta / 2) dtheta perp(r_mid). A path with circles (arcs) takes the
+/// gradient at the midpoint pose plus Gonzalez's correction along (q1 - q0). `path`'s world
+/// points are left at q1. Returns length(q1) (m).
+double lengthDiscreteGradient(std::span<WrapPoint> path, std::span<const BodyState> q0,
+                              std::span<const BodyState> q1, std::vector<BodyJacobian>& gradient);
+
+/// A wrap change inside a sub-step (docs/cables.md, "Events").
+struct WrapEvent {
+  enum class Kind { Join, Leave, Vertex };
+  double time = 0;  ///< s into the sub-step
+  int pulley = -1;  ///< index into CableDef::pulleys
+  Kind kind = Kind::Join;
+};
+
 /// A cable's parameters as they are now: the scene's values until World::setCableParameters
 /// edits them (the scene itself is never edited).
 struct CableParameters {
@@ -129,7 +151,17 @@ class Cable {
 
   /// Re-selects the wrap points (guards above), then recomputes length, J and J-dot-v.
   /// Appends a line to `warnings` when a guard had to repair the geometry.
-  void update(std::span<const BodyState> bodies, std::vector<std::string>* warnings = nullptr);
+  void update(std::span<const BodyState> bodies, std::vector<std::string>* warnings = nullptr) {
+    update(bodies, bodies, warnings);
+  }
+  /// The same with the wrap points selected on `select` (the bodies a moment later, so that a
+  /// point exactly on a segment and moving onto its wrap side counts as crossed) and length, J and
+  /// J-dot-v worked out on `bodies`.
+  void update(std::span<const BodyState> select, std::span<const BodyState> bodies,
+              std::vector<std::string>* warnings);
+  /// The first wrap change in (0, h] if every body moves as `motion` says over the sub-step
+  /// (start pose, and the velocity it moves with); nullopt if none.
+  std::optional<WrapEvent> nextEvent(std::span<const BodyState> motion, double h) const;
 
   /// The authored definition (geometry and initial parameters); parameters() has the live ones.
   const CableDef& def() const { return *def_; }
@@ -195,6 +227,7 @@ class Cable {
     bool engaged = false;
     double previousDepth = 0;  ///< wrap-side depth at the last update (guard memory)
     double previousLeft = 0;   ///< auto: signed distance left of the host segment (guard memory)
+    bool dropped = false;      ///< left by a guard (terminal inside the hull): may rejoin
     double signedRadius() const { return side == WrapSide::Right ? -radius : radius; }
     /// The wrap branch at the start: the turns it was wound with, else within (0, 2 pi).
     double initialArc() const { return turns > 0 ? 2 * M_PI * turns : M_PI; }
@@ -211,7 +244,7 @@ class Cable {
   Vec2 entryPoint(int node, const std::vector<std::vector<int>>& chains) const;
   Vec2 exitPoint(int node, const std::vector<std::vector<int>>& chains) const;
   bool leaveRound();
-  bool joinRound();
+  bool joinRound(std::vector<std::string>* warnings);
   void storeArcs();
   void placeDrumMarks(std::span<const BodyState> bodies);
   void updateSpans(std::span<const BodyState> bodies);
@@ -234,6 +267,12 @@ class Cable {
   std::vector<WrapPoint> path_;
   std::vector<int> nodes_;                ///< buildPath scratch: engaged chain nodes
   std::vector<std::vector<int>> chains_;  ///< buildPath scratch: polygon vertex chains
+  void reportLengthJump(std::span<const BodyState> bodies, std::vector<std::string>* warnings);
+  /// Wrap changes that move the length by more than this say so in a warning (m).
+  static constexpr double kLengthJump = 1e-3;
+  std::vector<WrapPoint> previousPath_;  ///< the path before update (length-jump check)
+  CableKinematics previousKin_;          ///< scratch of the length-jump check
+  std::vector<int> rejoinChain_;         ///< scratch of the rejoin test
   CableKinematics kin_;
   std::vector<Span> spans_;      ///< empty: one span, the whole path
   std::vector<SpanLink> links_;  ///< spans_.size() - 1

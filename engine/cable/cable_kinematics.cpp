@@ -200,4 +200,83 @@ void appendLengthHessianTranslation(std::span<const WrapPoint> path,
   }
 }
 
+namespace {
+
+// Gonzalez's discrete gradient for a path with arcs: G = J(q_mid) + c (q1 - q0), with c chosen
+// so that G (q1 - q0) = L(q1) - L(q0) exactly (the metric: metres and radians alike).
+double curvedDiscreteGradient(std::span<WrapPoint> path, std::span<const BodyState> q0,
+                              std::span<const BodyState> q1, std::vector<BodyJacobian>& gradient) {
+  std::vector<WrapPoint> scratch(path.begin(), path.end());
+  CableKinematics k;
+  cableKinematics(scratch, q0, k);
+  const double length0 = k.length;
+  std::vector<BodyState> mid(q0.begin(), q0.end());
+  for (size_t b = 0; b < mid.size(); ++b) {
+    mid[b].position = 0.5 * (q0[b].position + q1[b].position);
+    mid[b].angle = 0.5 * (q0[b].angle + q1[b].angle);
+  }
+  scratch.assign(path.begin(), path.end());
+  cableKinematics(scratch, mid, k);
+  gradient = k.jacobian;
+  cableKinematics(path, q1, k);  // leaves path at q1
+  auto delta = [&](int b) {
+    return Vec3(q1[b].position.x() - q0[b].position.x(), q1[b].position.y() - q0[b].position.y(),
+                q1[b].angle - q0[b].angle);
+  };
+  double predicted = 0, norm2 = 0;
+  for (const BodyJacobian& e : gradient) {
+    const Vec3 d = delta(e.body);
+    predicted += e.d.dot(d);
+    norm2 += d.squaredNorm();
+  }
+  if (norm2 > 1e-300) {
+    const double c = (k.length - length0 - predicted) / norm2;
+    for (BodyJacobian& e : gradient) e.d += c * delta(e.body);
+  }
+  return k.length;
+}
+
+}  // namespace
+
+double lengthDiscreteGradient(std::span<WrapPoint> path, std::span<const BodyState> q0,
+                              std::span<const BodyState> q1, std::vector<BodyJacobian>& gradient) {
+  if (std::any_of(path.begin(), path.end(),
+                  [](const WrapPoint& w) { return w.kind == WrapPoint::Kind::Circle; }))
+    return curvedDiscreteGradient(path, q0, q1, gradient);
+  gradient.clear();
+  // d(point)/d(x, y, theta) over the step: [I | sinc(dtheta / 2) perp(r_mid)].
+  auto chord = [&](const WrapPoint& p, Vec2& at0, Vec2& at1, Vec2& turn) {
+    at0 = worldPoint(q0, p.body, p.local);
+    at1 = worldPoint(q1, p.body, p.local);
+    turn = Vec2::Zero();
+    if (p.body < 0) return;
+    const double dtheta = q1[p.body].angle - q0[p.body].angle;
+    const double half = 0.5 * dtheta;
+    const double sinc = std::abs(half) < 1e-8 ? 1.0 - half * half / 6 : std::sin(half) / half;
+    turn = sinc * perp(rotate(p.local, q0[p.body].angle + half));
+  };
+  Vec2 a0, a1, ta;
+  if (path.empty()) return 0;
+  double length1 = 0;
+  chord(path[0], a0, a1, ta);
+  path[0].world = a1;
+  for (size_t i = 0; i + 1 < path.size(); ++i) {
+    Vec2 b0, b1, tb;
+    chord(path[i + 1], b0, b1, tb);
+    path[i + 1].world = b1;
+    const Vec2 d0 = b0 - a0, d1 = b1 - a1;
+    const double sum = d0.norm() + d1.norm();
+    length1 += d1.norm();
+    if (sum >= 2 * kZeroLength && path[i].body != path[i + 1].body) {
+      const Vec2 u = (d0 + d1) / sum;
+      addJacobian(gradient, path[i + 1].body, Vec3(u.x(), u.y(), u.dot(tb)));
+      addJacobian(gradient, path[i].body, -Vec3(u.x(), u.y(), u.dot(ta)));
+    }
+    a0 = b0, a1 = b1, ta = tb;
+  }
+  std::sort(gradient.begin(), gradient.end(),
+            [](const BodyJacobian& a, const BodyJacobian& b) { return a.body < b.body; });
+  return length1;
+}
+
 }  // namespace cablelab

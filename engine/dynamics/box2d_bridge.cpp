@@ -180,6 +180,24 @@ void Box2DBridge::step(double h) {
   impl_->world.Step(static_cast<float>(h), kVelocityIterations, kPositionIterations);
 }
 
+void Box2DBridge::addVelocities(std::span<const Vec3> dv) {
+  for (size_t b = 0; b < dv.size(); ++b) {
+    if (dv[b].isZero()) continue;
+    b2Body* body = impl_->bodies[b];
+    body->SetLinearVelocity(body->GetLinearVelocity() + toB2(dv[b].head<2>()));
+    body->SetAngularVelocity(body->GetAngularVelocity() + static_cast<float>(dv[b].z()));
+  }
+}
+
+void Box2DBridge::markTouching(std::vector<char>& touching) const {
+  for (const b2Contact* c = impl_->world.GetContactList(); c; c = c->GetNext()) {
+    if (!c->IsTouching() || c->GetFixtureA()->IsSensor() || c->GetFixtureB()->IsSensor()) continue;
+    for (const b2Body* body : {c->GetFixtureA()->GetBody(), c->GetFixtureB()->GetBody()})
+      for (size_t i = 0; i < impl_->bodies.size() && i < touching.size(); ++i)
+        if (impl_->bodies[i] == body) touching[i] = 1;
+  }
+}
+
 JointCoordinate Box2DBridge::jointCoordinate(int joint) const {
   const b2Joint* j = impl_->joints[joint];
   JointCoordinate q;

@@ -46,6 +46,10 @@ class Box2DBridge {
   void applyLoads(std::span<const Vec3> loads);
   /// One Box2D step of h seconds (fixed velocity and position iterations).
   void step(double h);
+  /// Adds (dvx, dvy, domega) per body to the velocities Box2D holds; zeros are skipped.
+  void addVelocities(std::span<const Vec3> dv);
+  /// Sets touching[b] = 1 for every body in a touching, non-sensor contact.
+  void markTouching(std::vector<char>& touching) const;
 
   JointCoordinate jointCoordinate(int joint) const;
   Vec2 anchorA(int joint) const;

@@ -23,13 +23,18 @@ bool moves(const BodyState& b) {
   return b.invMass > 0 || b.invInertia > 0;
 }
 
-// Generalized coordinates of the bodies the cables move: 3 per moving body.
+// Generalized coordinates of the bodies one island's cables move: 3 per moving body.
 struct DofMap {
-  std::vector<int> ofBody;  // body -> first dof, -1 if the body does not move
+  std::vector<int> ofBody;  // body -> first dof, -1 if the body does not move (in this island)
   std::vector<int> body;    // dof / 3 -> body
   int size() const { return 3 * static_cast<int>(body.size()); }
   void reset(size_t bodies) {
     ofBody.assign(bodies, -1);
+    body.clear();
+  }
+  // Forgets this island's bodies only: the cost is the island's, not the world's.
+  void clear() {
+    for (int b : body) ofBody[b] = -1;
     body.clear();
   }
   int add(int b) {
@@ -46,6 +51,7 @@ struct DofMap {
 struct JointRow {
   std::array<int, 2> dof{-1, -1};
   std::array<Vec3, 2> coeff{Vec3::Zero(), Vec3::Zero()};
+  double bias = 0;  // the row's rate from bodies that are not dofs (kinematic: prescribed motion)
 
   // This row times the dense column x.
   double dot(const Eigen::Ref<const Eigen::VectorXd>& x) const {
@@ -61,7 +67,16 @@ struct JointRow {
 // The buffers of the stages. They live as long as the World so that a sub-step does not
 // allocate: after the first step every size has been seen and Eigen reuses the storage.
 struct CableSolverWorkspace {
+  // Islands: cables and the moving bodies they (and the joints) connect, solved one by one.
+  std::vector<int> parent;                   // union-find over bodies
+  std::vector<int> islandOfRoot;             // root body -> island, -1: none
+  std::vector<std::vector<int>> islandRows;  // cables of each island, in cable order
+  std::vector<std::vector<int>> islandJoints;  // joints of each island, in joint order
+  int islands = 0;
+  std::vector<int> jointIndex;  // the island's joints (indices into the input's joints)
+
   DofMap dofs;
+  std::vector<int> cablesWithRows;  // every cable that pulls on a moving body, in cable order
   // One LCP row per cable span (wheels that grip a cable split it, docs/wheels.md); a row over
   // several spans is a cable sliding on capstans between them: its constraint is their summed
   // length and span k pulls with weight k times the row's impulse (the e^(mu theta) ratios).
@@ -71,7 +86,7 @@ struct CableSolverWorkspace {
     size_t weights = 0;       // offset of span first's weight in rowWeights
     double weight(const std::vector<double>& w, int k) const { return w[weights + k - first]; }
   };
-  std::vector<Row> rows;
+  std::vector<Row> rows;  // this island's
   std::vector<double> rowWeights;
   Eigen::VectorXd invM;          // M^-1 diagonal over the dofs
   Eigen::VectorXd vStar, vFree;  // predicted velocities (stage 2)
@@ -97,12 +112,13 @@ struct CableSolverWorkspace {
   // Joint rows and the Schur complement S = C M'^-1 C^T.
   std::vector<JointRow> joints;
   Eigen::MatrixXd MinvCt, S, CW, schurCW, correction;
-  Eigen::VectorXd Cv, schurCv, velocityCorrection;
+  Eigen::VectorXd Cv, schurCv, velocityCorrection;  // Cv includes each row's bias
   Eigen::LDLT<Eigen::MatrixXd> schur;
 
   // Newton on the end-of-step lengths.
   Eigen::VectorXd target, compliance, damped, P, phi1, b, WP, v1;
   Eigen::MatrixXd JW, K, JW0;
+  Eigen::LDLT<Eigen::MatrixXd> redundancy;  // of J0 W: are there redundant cables?
   std::vector<BodyState> predicted;
   std::vector<WrapPoint> path;
   CableKinematics kin;
@@ -203,7 +219,7 @@ void CableSolverWorkspace::projectOntoJoints() {
   W -= correction;
 
   Cv.resize(c);
-  for (int r = 0; r < c; ++r) Cv[r] = joints[r].dot(vStar);
+  for (int r = 0; r < c; ++r) Cv[r] = joints[r].dot(vStar) + joints[r].bias;
   schurCv = schur.solve(Cv);
   velocityCorrection.noalias() = MinvCt * schurCv;
   vStar -= velocityCorrection;
@@ -213,35 +229,104 @@ namespace {
 
 using Workspace = CableSolverWorkspace;
 
-// 1. One row per span of every cable that can pull on something that moves, and the dofs of
-// the bodies it moves plus those jointed to them (they move with them). False if no cable pulls
-// on anything.
-bool buildRows(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables) {
+// Calls f(body) for every body a span of the cable pulls on that moves.
+template <class F>
+void forMovingBodies(const Cable& cable, const CableSolveInput& in, F&& f) {
+  for (int k = 0; k < cable.spanCount(); ++k)
+    for (const auto& e : cable.spanKinematics(k).jacobian)
+      if (moves(in.bodies[e.body])) f(e.body);
+}
+
+int findRoot(std::vector<int>& parent, int b) {
+  while (parent[b] != b) b = parent[b] = parent[parent[b]];
+  return b;
+}
+
+void unite(std::vector<int>& parent, int a, int b) {
+  a = findRoot(parent, a), b = findRoot(parent, b);
+  if (a != b) parent[std::max(a, b)] = std::min(a, b);
+}
+
+// 1a. Islands: a cable that pulls on something that moves gets a row; cables sharing a moving
+// body, and moving bodies jointed together, are one island. Islands share no moving body, so
+// each is solved on its own (a kinematic or static body in several islands moves as prescribed
+// whatever the tensions). Returns the number of islands.
+int findIslands(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables) {
+  const int bodies = static_cast<int>(in.bodies.size());
+  ws.parent.resize(bodies);
+  for (int b = 0; b < bodies; ++b) ws.parent[b] = b;
+  ws.cablesWithRows.clear();
+  for (size_t i = 0; i < cables.size(); ++i) {
+    int first = -1;
+    forMovingBodies(cables[i], in, [&](int body) {
+      if (first >= 0) unite(ws.parent, first, body);
+      first = body;
+    });
+    if (first >= 0)
+      ws.cablesWithRows.push_back(static_cast<int>(i));
+    else
+      cables[i].setTension(0);
+  }
+  for (const JointFrame& j : in.joints)
+    if (j.bodyA >= 0 && j.bodyB >= 0 && moves(in.bodies[j.bodyA]) && moves(in.bodies[j.bodyB]))
+      unite(ws.parent, j.bodyA, j.bodyB);
+  ws.islandOfRoot.assign(bodies, -1);
+  for (auto& rows : ws.islandRows) rows.clear();
+  for (auto& joints : ws.islandJoints) joints.clear();
+  ws.islands = 0;
+  for (int row : ws.cablesWithRows) {
+    int body = -1;
+    forMovingBodies(cables[row], in, [&](int b) { body = b; });
+    int& island = ws.islandOfRoot[findRoot(ws.parent, body)];
+    if (island < 0) island = ws.islands++;
+    if (static_cast<int>(ws.islandRows.size()) < ws.islands) {
+      ws.islandRows.resize(ws.islands);
+      ws.islandJoints.resize(ws.islands);
+    }
+    ws.islandRows[island].push_back(row);
+  }
+  for (size_t j = 0; j < in.joints.size(); ++j) {
+    const JointFrame& f = in.joints[j];
+    const int body = f.bodyB >= 0 && moves(in.bodies[f.bodyB])   ? f.bodyB
+                     : f.bodyA >= 0 && moves(in.bodies[f.bodyA]) ? f.bodyA
+                                                                 : -1;
+    if (body < 0) continue;
+    const int island = ws.islandOfRoot[findRoot(ws.parent, body)];
+    if (island >= 0) ws.islandJoints[island].push_back(static_cast<int>(j));
+  }
+  return ws.islands;
+}
+
+// 1b. One island's rows (one per span of its cables), and the dofs of the bodies it moves: its
+// cables' moving bodies in cable order, then those jointed to them (breadth first: they move with
+// them).
+void buildRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
+               int island) {
+  ws.dofs.clear();
   ws.rows.clear();
   ws.rowWeights.clear();
-  ws.dofs.reset(in.bodies.size());
-  for (size_t i = 0; i < cables.size(); ++i) {
-    bool pulls = false;
-    for (int k = 0; k < cables[i].spanCount(); ++k)
-      for (const auto& e : cables[i].spanKinematics(k).jacobian)
-        if (moves(in.bodies[e.body])) {
-          ws.dofs.add(e.body);
-          pulls = true;
-        }
-    if (!pulls) {
-      cables[i].setTension(0);
-      continue;
-    }
-    for (int k = 0; k < cables[i].spanCount(); ++k) {
-      ws.rows.push_back({static_cast<int>(i), k, k, ws.rowWeights.size()});
+  ws.jointIndex = ws.islandJoints[island];
+  for (int cable : ws.islandRows[island]) {
+    forMovingBodies(cables[cable], in, [&](int body) { ws.dofs.add(body); });
+    for (int k = 0; k < cables[cable].spanCount(); ++k) {
+      ws.rows.push_back({cable, k, k, ws.rowWeights.size()});
       ws.rowWeights.push_back(1.0);
     }
   }
-  if (ws.rows.empty()) return false;
-  for (size_t k = 0; k < ws.dofs.body.size(); ++k)  // breadth first
+  for (size_t k = 0; k < ws.dofs.body.size(); ++k)
     for (int other : in.jointNeighbours[ws.dofs.body[k]])
       if (moves(in.bodies[other])) ws.dofs.add(other);
-  return true;
+}
+
+// Bodies that are not dofs (kinematic, static) at the end of the step: Box2D moves them with
+// their prescribed velocity. Dofs are overwritten island by island in Newton.
+void predictPrescribed(Workspace& ws, const CableSolveInput& in) {
+  ws.predicted.assign(in.bodies.begin(), in.bodies.end());
+  for (BodyState& p : ws.predicted)
+    if (!moves(p)) {
+      p.position += in.h * p.velocity;
+      p.angle += in.h * p.angularVelocity;
+    }
 }
 
 // 2. M^-1, the predicted velocity v* (gravity and loads, no cables) and J at the start of the
@@ -312,25 +397,32 @@ void inverseMass(Workspace& ws, double h, std::span<const Cable> cables) {
 void jointRows(Workspace& ws, const CableSolveInput& in) {
   const DofMap& dofs = ws.dofs;
   ws.joints.clear();
-  for (const JointFrame& joint : in.joints) {
+  for (int j : ws.jointIndex) {
+    const JointFrame& joint = in.joints[j];
     const int a = joint.bodyA, b = joint.bodyB;
     const int da = a >= 0 ? dofs.ofBody[a] : -1, db = b >= 0 ? dofs.ofBody[b] : -1;
     if (da < 0 && db < 0) continue;
     const Vec2 rA = a >= 0 ? Vec2(joint.anchor - in.bodies[a].position) : Vec2::Zero();
     const Vec2 rB = b >= 0 ? Vec2(joint.anchor - in.bodies[b].position) : Vec2::Zero();
+    // A body that is not a dof enters through its prescribed velocity (the row's bias).
+    auto velocity = [&](int body, int dof) {
+      if (body < 0 || dof >= 0) return Vec3(Vec3::Zero());
+      const BodyState& s = in.bodies[body];
+      return Vec3(s.velocity.x(), s.velocity.y(), s.angularVelocity);
+    };
+    const Vec3 vA = velocity(a, da), vB = velocity(b, db);
+    auto push = [&](const Vec3& cb, const Vec3& ca) {
+      JointRow row;
+      row.dof = {db, da};
+      row.coeff = {cb, ca};
+      row.bias = cb.dot(vB) + ca.dot(vA);
+      ws.joints.push_back(row);
+    };
     // A row on the relative velocity of the anchor point along direction t.
     auto pointRow = [&](const Vec2& t) {
-      JointRow row;
-      row.dof = {db, da};
-      row.coeff = {Vec3(t.x(), t.y(), t.dot(perp(rB))), -Vec3(t.x(), t.y(), t.dot(perp(rA)))};
-      ws.joints.push_back(row);
+      push(Vec3(t.x(), t.y(), t.dot(perp(rB))), -Vec3(t.x(), t.y(), t.dot(perp(rA))));
     };
-    auto angleRow = [&] {
-      JointRow row;
-      row.dof = {db, da};
-      row.coeff = {Vec3(0, 0, 1), Vec3(0, 0, -1)};
-      ws.joints.push_back(row);
-    };
+    auto angleRow = [&] { push(Vec3(0, 0, 1), Vec3(0, 0, -1)); };
     switch (joint.kind) {
       case JointDef::Kind::Revolute:
         pointRow(Vec2(1, 0));
@@ -425,14 +517,23 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
   ws.P.setZero(m);
   ws.phi1.resize(m);
   ws.JW.resize(m, m);
-  ws.predicted.assign(in.bodies.begin(), in.bodies.end());
   // J0 W from the start-of-step Jacobians (positive semidefinite), for the guard below.
   ws.JW0.setZero(m, m);
   for (int r = 0; r < m; ++r)
     for (int k = ws.rows[r].first; k <= ws.rows[r].last; ++k)
       addJacobianTimesW(ws, cables[ws.rows[r].cable].spanKinematics(k).jacobian, ws.JW0.row(r));
+  // Redundant cables (J0 W singular): J1 W is then singular too, but not symmetric, and its
+  // symmetric part indefinite, so the minimum-norm solve (tension_solver.h) would be ill posed.
+  // Such an island iterates on J0 W instead (a quasi-Newton step: it still converges to the
+  // end-of-step lengths, only more slowly).
+  bool redundant = false;
+  if (m > 1 && (ws.compliance.array() == 0).any()) {  // elastic rows alone: K is definite
+    ws.redundancy.compute(ws.JW0);
+    redundant = rankDeficient(ws.redundancy);
+  }
   for (int iteration = 0; iteration < kNewtonIterations; ++iteration) {
     linearise(ws, in, cables);
+    if (redundant) ws.JW = ws.JW0;
     // Guard (degenerate geometry): far from the start pose the end-of-step linearisation can lose
     // positive definiteness (a wrap point the predicted motion carries past its neighbour turns a
     // row's J1 against its J0: K_ii <= 0), and the LCP then answers with impulses of 1e6 N s.
@@ -450,7 +551,7 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
                                                : ws.phi1[r] - ws.target[r]) /
                  h;
     LcpSolution& sol = ws.lcpSolution;
-    solveLcp(ws.K, ws.b, ws.lcp, sol);
+    solveLcp(ws.K, ws.b, ws.lcp, sol, redundant);
     const double change = (sol.x - ws.P).lpNorm<Eigen::Infinity>();
     ws.P = sol.x;
     stats.solverIterations += sol.iterations;
@@ -516,16 +617,23 @@ CableSolver::~CableSolver() = default;
 void CableSolver::solve(const CableSolveInput& in, std::span<Cable> cables, std::span<Vec3> loads,
                         StepStats& stats) {
   CableSolverWorkspace& ws = *ws_;
-  if (!buildRows(ws, in, cables)) return;
-  for (bool again = true; again;) {
-    predictVelocities(ws, in, cables, loads);
-    inverseMass(ws, in.h, cables);
-    projectOntoJoints(ws, in);
-    lengthTargets(ws, in.h, cables);
-    newtonOnLengths(ws, in, cables, stats);
-    again = mergeSlidingSpans(ws, cables);
+  const int islands = findIslands(ws, in, cables);
+  if (islands == 0) return;
+  if (ws.dofs.ofBody.size() != in.bodies.size()) ws.dofs.reset(in.bodies.size());
+  predictPrescribed(ws, in);
+  for (int island = 0; island < islands; ++island) {
+    buildRows(ws, in, cables, island);
+    for (bool again = true; again;) {
+      predictVelocities(ws, in, cables, loads);
+      inverseMass(ws, in.h, cables);
+      projectOntoJoints(ws, in);
+      lengthTargets(ws, in.h, cables);
+      newtonOnLengths(ws, in, cables, stats);
+      again = mergeSlidingSpans(ws, cables);
+    }
+    applyForces(ws, in.h, cables, loads);
   }
-  applyForces(ws, in.h, cables, loads);
+  ws.dofs.clear();
 }
 
 }  // namespace cablelab

@@ -2,7 +2,9 @@
 //
 // Box2D integrates v1 = v0 + h M^-1 F and q1 = q0 + h v1. The solver picks the cable forces so
 // that the cable lengths at the END of the sub-step are right (a SHAKE-like position-level
-// condition, docs/model.md), in named stages:
+// condition, docs/model.md). Cables and the moving bodies they connect (through cables or
+// joints) form islands, solved one after the other, so the cost grows with the islands' sizes,
+// not with the square of the world's. Per island, in named stages:
 //   1. buildRows            one row per cable span that pulls on a moving body; the dofs
 //                           it moves (wheels that grip a cable split it in spans)
 //   2. predictVelocities    v* (gravity and loads, no cables) and J^T at the start of the step

@@ -13,70 +13,82 @@ namespace {
 void solveSingle(double k, double b, LcpSolution& sol) {
   sol.x.resize(1);
   sol.iterations = 0;
+  sol.rankDeficient = false;
   const double x = b > 0 ? b / k : 0.0;
   const double w = k * x - b;
   sol.x[0] = std::max(0.0, x);
   sol.residual = std::abs(std::min(sol.x[0] * k, w));
 }
 
-}  // namespace
 
-LcpSolution solveLcp(const Eigen::MatrixXd& K, const Eigen::VectorXd& b) {
-  LcpWorkspace work;
-  LcpSolution sol;
-  solveLcp(K, b, work, sol);
-  return sol;
+// The equal compliance that makes a singular K definite, relative to its largest diagonal: small
+// enough that the impulses are the minimum-norm ones to 1e-6, large enough that the active-set
+// solves stay well conditioned. The targets are consistent (projected), so it never amplifies.
+constexpr double kMinimumNormRegularisation = 1e-6;
+
+// Redundant rows (K singular): b's part outside the range of K asks for what no impulse can do,
+// and would come back as an unbounded impulse. Keep its projection onto the range (K K^+ b, by a
+// complete orthogonal decomposition), which every principal sub-problem can meet, and make K
+// definite by a tiny equal regularisation: the LCP's solution then tends to the minimum-norm one
+// (docs/model.md, "Redundant cables"). Returns the b to solve with (b itself if K is regular).
+const Eigen::VectorXd& consistentTargets(Eigen::MatrixXd& K, const Eigen::VectorXd& b,
+                                         LcpWorkspace& work, LcpSolution& sol) {
+  work.ldlt.compute(K);
+  if (!rankDeficient(work.ldlt)) return b;
+  sol.rankDeficient = true;
+  // K = J1 W is symmetric only up to the change of J over the step; the LDLT solves read its
+  // lower triangle. Make it exactly symmetric so that the problem is the convex program that
+  // Lawson and Hanson's method needs.
+  work.Ks = K.transpose();
+  K = 0.5 * (K + work.Ks);
+  work.symmetric = true;
+  work.cod.setThreshold(kRankTolerance);
+  work.cod.compute(K);
+  work.bs = work.cod.solve(b);
+  work.projected.noalias() = K * work.bs;
+  K.diagonal().array() += kMinimumNormRegularisation * K.diagonal().maxCoeff();
+  return work.projected;
 }
 
-void solveLcp(const Eigen::MatrixXd& Kin, const Eigen::VectorXd& b, LcpWorkspace& work,
-              LcpSolution& sol) {
-  const int n = static_cast<int>(b.size());
-  // A row that touches only immovable bodies has K_ii = 0: regularise so it stays solvable.
-  Eigen::MatrixXd& K = work.K;
-  K = Kin;
-  for (int i = 0; i < n; ++i) K(i, i) += 1e-12 * (1 + K(i, i));
-  if (n == 1 && K(0, 0) > std::numeric_limits<double>::min())
-    return solveSingle(K(0, 0), b[0], sol);
+// x_S = K_SS^-1 b_S on the rows flagged in `set`, 0 elsewhere.
+void solveOnSet(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, const std::vector<char>& set,
+                LcpWorkspace& work, Eigen::VectorXd& x) {
+  std::vector<int>& idx = work.idx;
+  idx.clear();
+  for (int i = 0; i < static_cast<int>(set.size()); ++i)
+    if (set[i]) idx.push_back(i);
+  x.setZero(b.size());
+  if (idx.empty()) return;
+  const int m = static_cast<int>(idx.size());
+  work.Ks.resize(m, m);
+  work.bs.resize(m);
+  for (int r = 0; r < m; ++r) {
+    work.bs[r] = b[idx[r]];
+    for (int c = 0; c < m; ++c) work.Ks(r, c) = K(idx[r], idx[c]);
+  }
+  if (work.symmetric) {
+    work.ldlt.compute(work.Ks);
+    work.xs = work.ldlt.solve(work.bs);
+  } else {
+    work.lu.compute(work.Ks);
+    work.xs = work.lu.solve(work.bs);
+  }
+  for (int r = 0; r < m; ++r) x[idx[r]] = work.xs[r];
+}
 
-  // A cable sliding on a capstan pulls with e^(mu theta) times the tension its constraint row
-  // carries: K is then not symmetric (docs/wheels.md) and needs LU instead of LDLT.
-  const bool symmetric = (K - K.transpose()).lpNorm<Eigen::Infinity>() <=
-                         1e-12 * K.lpNorm<Eigen::Infinity>();
-  sol.x.setZero(n);
-  sol.iterations = 0;
-  sol.residual = 0;
+// Principal pivoting from the rows with b > 0: drop the most negative impulse, else add the most
+// violated slack row. A few changes for these sizes when K is definite.
+void principalPivoting(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, LcpWorkspace& work,
+                       LcpSolution& sol) {
+  const int n = static_cast<int>(b.size());
   std::vector<char>& active = work.active;
   active.resize(n);
   for (int i = 0; i < n; ++i) active[i] = b[i] > 0;
   Eigen::VectorXd& w = work.w;
-  w.resize(n);
-  std::vector<int>& idx = work.idx;
   for (const int maxIterations = 4 * n + 10; sol.iterations < maxIterations; ++sol.iterations) {
-    idx.clear();
-    for (int i = 0; i < n; ++i)
-      if (active[i]) idx.push_back(i);
-    sol.x.setZero();
-    if (!idx.empty()) {
-      const int m = static_cast<int>(idx.size());
-      work.Ks.resize(m, m);
-      work.bs.resize(m);
-      for (int r = 0; r < m; ++r) {
-        work.bs[r] = b[idx[r]];
-        for (int c = 0; c < m; ++c) work.Ks(r, c) = K(idx[r], idx[c]);
-      }
-      work.xs.resize(m);
-      if (symmetric) {
-        work.ldlt.compute(work.Ks);
-        work.xs = work.ldlt.solve(work.bs);
-      } else {
-        work.lu.compute(work.Ks);
-        work.xs = work.lu.solve(work.bs);
-      }
-      for (int r = 0; r < m; ++r) sol.x[idx[r]] = work.xs[r];
-    }
+    solveOnSet(K, b, active, work, sol.x);
     w.noalias() = K * sol.x;
     w -= b;
-    // Drop the most negative impulse; else add the most violated slack row; else done.
     int worst = -1;
     double worstValue = 0;
     for (int i = 0; i < n; ++i)
@@ -90,6 +102,113 @@ void solveLcp(const Eigen::MatrixXd& Kin, const Eigen::VectorXd& b, LcpWorkspace
     if (worst < 0) break;
     active[worst] = true;
   }
+}
+
+// Lawson and Hanson's active-set method (the NNLS algorithm, on the normal equations): adds the
+// row that most wants to pull, then steps back along the segment to the new sub-solution until
+// every impulse is >= 0. Finite for a definite K even when many rows are nearly dependent, where
+// plain principal pivoting can cycle (40 spokes on one ring).
+void lawsonHanson(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, LcpWorkspace& work,
+                  LcpSolution& sol) {
+  const int n = static_cast<int>(b.size());
+  std::vector<char>& passive = work.active;
+  Eigen::VectorXd &x = sol.x, &s = work.step, &g = work.w;
+  // Warm start: the rows with b > 0, less those the sub-solution gives a negative impulse, while
+  // that is a feasible point (x >= 0); else from x = 0.
+  passive.resize(n);
+  for (int i = 0; i < n; ++i) passive[i] = b[i] > 0;
+  bool feasible = false;
+  for (int round = 0; round < 4 && !feasible; ++round, ++sol.iterations) {
+    solveOnSet(K, b, passive, work, x);
+    feasible = true;
+    for (int i = 0; i < n; ++i)
+      if (passive[i] && x[i] < 0) passive[i] = 0, feasible = false;
+  }
+  if (!feasible) {
+    passive.assign(n, 0);
+    x.setZero(n);
+  }
+  // A row whose impulse would grow by less than this (N s) is done.
+  double scale = 0;
+  for (int i = 0; i < n; ++i) scale = std::max(scale, std::abs(b[i]) / K(i, i));
+  const double tolerance = 1e-7 * scale;  // the regularisation makes x exact to about 1e-6
+  std::vector<char>& blocked = work.blocked;  // added, and dropped again at once: not now
+  blocked.assign(n, 0);
+  for (const int maxIterations = 10 * n + 10; sol.iterations < maxIterations;) {
+    g.noalias() = K * x;
+    g = b - g;  // -(K x - b): positive where a row wants more pull
+    int best = -1;
+    for (int i = 0; i < n; ++i)
+      if (!passive[i] && !blocked[i] && g[i] / K(i, i) > tolerance &&
+          (best < 0 || g[i] / K(i, i) > g[best] / K(best, best)))
+        best = i;
+    if (best < 0) break;
+    passive[best] = 1;
+    for (; sol.iterations < maxIterations; ++sol.iterations) {
+      solveOnSet(K, b, passive, work, s);
+      double alpha = 1;
+      for (int i = 0; i < n; ++i)
+        if (passive[i] && s[i] <= 0) alpha = std::min(alpha, x[i] / (x[i] - s[i]));
+      x += alpha * (s - x);
+      if (alpha >= 1) break;
+      for (int i = 0; i < n; ++i)
+        if (passive[i] && x[i] <= 1e-15 * (1 + x.lpNorm<Eigen::Infinity>())) passive[i] = 0, x[i] = 0;
+    }
+    if (passive[best])
+      blocked.assign(n, 0);  // progress: every row may be tried again
+    else
+      blocked[best] = 1;
+  }
+}
+
+// Symmetric to rounding (no temporary: this runs every sub-step).
+bool isSymmetric(const Eigen::MatrixXd& K) {
+  const double tolerance = 1e-12 * K.cwiseAbs().maxCoeff();
+  for (int c = 0; c < K.cols(); ++c)
+    for (int r = c + 1; r < K.rows(); ++r)
+      if (std::abs(K(r, c) - K(c, r)) > tolerance) return false;
+  return true;
+}
+
+}  // namespace
+
+bool rankDeficient(const Eigen::LDLT<Eigen::MatrixXd>& ldlt) {
+  const auto d = ldlt.vectorD();
+  const double largest = d.cwiseAbs().maxCoeff();
+  return !(d.minCoeff() > kRankTolerance * largest);
+}
+
+LcpSolution solveLcp(const Eigen::MatrixXd& K, const Eigen::VectorXd& b) {
+  LcpWorkspace work;
+  LcpSolution sol;
+  solveLcp(K, b, work, sol);
+  return sol;
+}
+
+void solveLcp(const Eigen::MatrixXd& Kin, const Eigen::VectorXd& b, LcpWorkspace& work,
+              LcpSolution& sol, bool redundant) {
+  const int n = static_cast<int>(b.size());
+  // A row that touches only immovable bodies has K_ii = 0: regularise so it stays solvable.
+  Eigen::MatrixXd& K = work.K;
+  K = Kin;
+  for (int i = 0; i < n; ++i) K(i, i) += 1e-12 * (1 + K(i, i));
+  if (n == 1 && K(0, 0) > std::numeric_limits<double>::min()) return solveSingle(K(0, 0), b[0], sol);
+
+  sol.x.setZero(n);
+  sol.iterations = 0;
+  sol.residual = 0;
+  sol.rankDeficient = false;
+  // A cable sliding on a capstan pulls with e^(mu theta) times the tension its constraint row
+  // carries: K is then not symmetric (docs/wheels.md) and needs LU instead of LDLT.
+  work.symmetric = isSymmetric(K);
+  const Eigen::VectorXd& bUsed = redundant ? consistentTargets(K, b, work, sol) : b;
+  if (sol.rankDeficient)
+    lawsonHanson(K, bUsed, work, sol);
+  else
+    principalPivoting(K, b, work, sol);
+  Eigen::VectorXd& w = work.w;
+  w.noalias() = Kin * sol.x;  // the residual against the targets as given
+  w -= b;
   for (int i = 0; i < n; ++i) {
     sol.x[i] = std::max(0.0, sol.x[i]);
     sol.residual = std::max(sol.residual, std::abs(std::min(sol.x[i] * K(i, i), w[i])));

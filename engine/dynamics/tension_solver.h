@@ -11,32 +11,56 @@
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <Eigen/Core>
+#include <Eigen/QR>
 #include <vector>
 
 namespace cablelab {
 
+/// Pivots of an active set's LDLT below this share of the largest make it rank-deficient.
+constexpr double kRankTolerance = 1e-9;
+
 struct LcpSolution {
   Eigen::VectorXd x;    ///< the impulses P (N s), >= 0
   int iterations = 0;   ///< active-set changes
+  bool rankDeficient = false;  ///< K was singular: least-squares targets, minimum-norm x
   double residual = 0;  ///< max_i |min(x_i K_ii, w_i)| (m/s)
 };
 
 /// Solves w = K x - b >= 0, x >= 0, x . w = 0 exactly for a symmetric positive (semi)definite K
 /// by principal pivoting on the active set (converges in a few changes for these sizes).
+///
+/// Redundant cables make K singular (more taut cables than the bodies have freedoms, e.g. 28
+/// rigid cables on one ring: rank 2 or 3). Then the tensions are not unique, and targets that
+/// do not quite agree (float rounding of Box2D's poses, length corrections) have no exact
+/// solution. For such redundant cables (solveLcp with `redundant`), a rank-deficient K (an LDLT
+/// pivot below kRankTolerance of the largest) is solved
+/// with b replaced by its projection onto the range of K (the least-squares part: the smallest
+/// violation instead of an unbounded impulse) and K + eps I, eps tiny: of all tension
+/// distributions that hold the bodies, the minimum-norm one, the limit of giving every cable
+/// the same vanishing compliance (docs/model.md, "Redundant cables"). That problem is solved by
+/// Lawson and Hanson's active-set method, which cannot cycle on nearly dependent rows.
 LcpSolution solveLcp(const Eigen::MatrixXd& K, const Eigen::VectorXd& b);
+
+/// Whether the (pivoted) LDLT of a positive semidefinite matrix has a pivot below kRankTolerance
+/// of the largest: the matrix is singular up to rounding (redundant rows).
+bool rankDeficient(const Eigen::LDLT<Eigen::MatrixXd>& ldlt);
 
 /// solveLcp's buffers: reused across calls, the solve does not allocate once the sizes settle.
 struct LcpWorkspace {
   Eigen::MatrixXd K, Ks;
-  Eigen::VectorXd bs, xs, w;
+  Eigen::VectorXd bs, xs, w, projected, step;
   Eigen::LDLT<Eigen::MatrixXd> ldlt;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu;  ///< for a non-symmetric K (sliding capstans)
-  std::vector<char> active;
+  bool symmetric = true;                    ///< K is (LDLT), else LU
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;  ///< rank-deficient active sets
+  std::vector<char> active, blocked;
   std::vector<int> idx;
 };
 
-/// The same solve, writing into `sol` and using `work` for every temporary.
+/// The same solve, writing into `sol` and using `work` for every temporary. With
+/// `redundant` (the cable solver's islands whose J0 W is singular), a rank-deficient K takes the
+/// minimum-norm path described above; otherwise the exact principal pivoting always.
 void solveLcp(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, LcpWorkspace& work,
-              LcpSolution& sol);
+              LcpSolution& sol, bool redundant = false);
 
 }  // namespace cablelab

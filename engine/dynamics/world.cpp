@@ -5,14 +5,23 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "engine/core/error.h"
 #include "engine/dynamics/box2d_bridge.h"
 #include "engine/dynamics/cable_solver.h"
+#include "engine/dynamics/midpoint_solver.h"
 
 namespace cablelab {
 
 namespace {
+
+// Wrap events (docs/cables.md, "Events"), as shares of the sub-step.
+constexpr double kSelectAhead = 1e-6;   // the look-ahead of the wrap selection
+constexpr double kMinEventStep = 1e-4;  // events closer than this are taken at this time
+constexpr int kMaxEventsPerSubstep = 16;
+constexpr double kMaxOmegaDt = 0.3;
+constexpr double kFloorLength = 0.01;  // m: closest a body comes to a threaded pulley  // longest midpoint step over the fastest transverse mode
 
 SceneDef validated(SceneDef scene, const std::string& source) {
   validateScene(scene, source);
@@ -25,6 +34,7 @@ World::World(SceneDef scene, const std::string& source)
     : scene_(validated(std::move(scene), source)),
       b2_(std::make_unique<Box2DBridge>(scene_)),
       solver_(std::make_unique<CableSolver>()),
+      midpoint_(std::make_unique<MidpointSolver>()),
       gravity_(scene_.gravity) {
   jointNeighbours_.assign(scene_.bodies.size(), {});
   for (const JointDef& jd : scene_.joints) {
@@ -193,32 +203,119 @@ void World::checkFinite() const {
                             std::to_string(time_) + " s");
 }
 
+// The wrap set at the start of a step is the one of the moment after (kSelectAhead of the
+// sub-step later at the current velocities): a point exactly on a segment and moving onto its
+// wrap side is in, one leaving is out (docs/cables.md, "Events").
+void World::selectWraps(double h) {
+  motion_ = bodies_;
+  const double ahead = kSelectAhead * h;
+  for (BodyState& b : motion_) {
+    b.position += ahead * b.velocity;
+    b.angle += ahead * b.angularVelocity;
+  }
+  for (Cable& c : cables_) c.update(motion_, bodies_, &warnings_);
+}
+
+// Every body over the next dt as Box2D will move it with the loads in forces_ (symplectic
+// Euler: the end-of-step velocity carries the pose), to locate wrap events on.
+void World::predictMotion(double dt) {
+  motion_ = bodies_;
+  for (size_t b = 0; b < bodies_.size(); ++b) {
+    BodyState& m = motion_[b];
+    if (m.invMass > 0) m.velocity += dt * (gravity_ + m.invMass * forces_[b].head<2>());
+    m.angularVelocity += dt * m.invInertia * forces_[b].z();
+  }
+}
+
+// The user's loads, the servos, then the cable tensions for a Box2D step of dt.
+void World::solveForces(double dt) {
+  forces_ = pendingForces_;
+  applyServos();
+  kicks_.assign(bodies_.size(), Vec3::Zero());
+  excluded_.assign(bodies_.size(), 0);
+  for (const auto& [a, b] : jointBodies_)
+    for (int body : {a, b})
+      if (body >= 0) excluded_[body] = 1;
+  b2_->markTouching(excluded_);
+  midpointUsed_ = false;
+  if (midpoint_->applies(bodies_, cables_, excluded_, dt)) {
+    const int iterations = midpoint_->solve(bodies_, cables_, gravity_, dt, forces_, kicks_);
+    if (iterations >= 0) {
+      stats_.solverIterations += iterations;
+      ++stats_.midpointSolves;
+      midpointUsed_ = true;
+      return;
+    }
+    ++stats_.midpointFallbacks;  // Newton did not settle: the main solve takes the step
+    forces_ = pendingForces_;
+    applyServos();
+  }
+  b2_->jointFrames(scene_.joints, jointBodies_, jointFrames_);
+  solver_->solve({dt, gravity_, bodies_, jointFrames_, jointNeighbours_}, cables_, forces_, stats_);
+}
+
+// One Box2D step of `left` seconds or less: cut at the first wrap event if `locate`, so the
+// change happens where the new point lies on the old path (theorem 1). Returns the time taken.
+double World::advance(double left, double h, bool locate) {
+  using Clock = std::chrono::steady_clock;
+  const auto c0 = Clock::now();
+  b2_->readBodies(bodies_);
+  selectWraps(h);
+  solveForces(left);
+  double dt = left;
+  // Resolve a fast catch: a midpoint step no longer than kMaxOmegaDt over the cables' fastest
+  // transverse mode, so that J v after it is off by little (docs/cables.md, "Energy").
+  if (locate && midpointUsed_) {
+    const double omega = midpoint_->transverseMode(bodies_, cables_);
+    if (omega * left > kMaxOmegaDt) {
+      dt = std::max(kMaxOmegaDt / omega, kMinEventStep * h);
+      if (dt < left) {
+        solveForces(dt);
+        ++stats_.refinements;
+      } else {
+        dt = left;
+      }
+    }
+  }
+  if (locate) {
+    predictMotion(dt);
+    std::optional<double> first;
+    for (const Cable& c : cables_)
+      if (auto e = c.nextEvent(motion_, first ? *first : dt)) first = e->time;
+    if (first && *first < dt) {
+      const double cut = std::max(*first, kMinEventStep * h);
+      if (cut < dt) {
+        dt = cut;
+        solveForces(dt);
+        ++stats_.events;
+      }
+    }
+  }
+  stats_.cableMicros += std::chrono::duration<double, std::micro>(Clock::now() - c0).count();
+  // Box2D: integrates with those forces, then contacts, friction and joints; then the second
+  // half of a midpoint step's velocity change (midpoint_solver.h).
+  b2_->applyLoads(forces_);
+  b2_->step(dt);
+  b2_->addVelocities(kicks_);
+  b2_->readBodies(bodies_);
+  time_ += dt;
+  // A servo with a speed drives its joint at that rate: the target moves.
+  for (size_t j = 0; j < scene_.joints.size(); ++j)
+    servoTargets_[j] += scene_.joints[j].servo.speed * dt;
+  return dt;
+}
+
 void World::step(double dt, int substeps) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
-  double cableSeconds = 0;
   stats_ = {};
   const double h = dt / std::max(1, substeps);
   if (pendingForces_.size() != bodies_.size()) pendingForces_.assign(bodies_.size(), Vec3::Zero());
   for (int s = 0; s < std::max(1, substeps); ++s) {
-    // Loads: the user's applyForce() and the servos.
-    b2_->readBodies(bodies_);
-    forces_ = pendingForces_;
-    applyServos();
-    // Cables: wrap points and kinematics at the start of the sub-step, then the tensions.
-    const auto c0 = Clock::now();
-    for (Cable& c : cables_) c.update(bodies_, &warnings_);
-    b2_->jointFrames(scene_.joints, jointBodies_, jointFrames_);
-    solver_->solve({h, gravity_, bodies_, jointFrames_, jointNeighbours_}, cables_, forces_, stats_);
-    cableSeconds += std::chrono::duration<double>(Clock::now() - c0).count();
-    // Box2D: integrates with those forces, then contacts, friction and joints.
-    b2_->applyLoads(forces_);
-    b2_->step(h);
-    b2_->readBodies(bodies_);
-    time_ += h;
-    // A servo with a speed drives its joint at that rate: the target moves.
-    for (size_t j = 0; j < scene_.joints.size(); ++j)
-      servoTargets_[j] += scene_.joints[j].servo.speed * h;
+    // Wrap events cut the sub-step; a bounded number per sub-step bounds the cost.
+    double left = h;
+    for (int steps = 0; left > 1e-9 * h; ++steps)
+      left -= advance(left, h, steps < kMaxEventsPerSubstep);
   }
   pendingForces_.assign(bodies_.size(), Vec3::Zero());
   // Lengths reported (and energy) belong to the end-of-step state; the wrap points are
@@ -226,7 +323,6 @@ void World::step(double dt, int substeps) {
   for (Cable& c : cables_) c.refresh(bodies_);
   ++steps_;
   for (const Cable& c : cables_) stats_.wrapPoints += c.wraps();
-  stats_.cableMicros = cableSeconds * 1e6;
   stats_.stepMicros = std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
   checkFinite();
 }

@@ -33,6 +33,7 @@ namespace cablelab {
 
 class Box2DBridge;
 class CableSolver;
+class MidpointSolver;
 struct JointFrame;
 
 /// Per-joint state read back from Box2D.
@@ -53,6 +54,10 @@ struct StepStats {
   int solverIterations = 0;        ///< LCP active-set iterations, summed over sub-steps
   double residual = 0;             ///< largest complementarity residual of the tension solve
   int linearisationFallbacks = 0;  ///< cable rows solved on the start-of-step Jacobian (guard)
+  int events = 0;                  ///< Box2D steps cut short at a wrap event
+  int midpointSolves = 0;          ///< cable solves by the energy-consistent midpoint rule
+  int midpointFallbacks = 0;       ///< of those tried, not converged (the main solve was used)
+  int refinements = 0;             ///< Box2D steps shortened to resolve a fast catch
 };
 
 class World {
@@ -117,10 +122,19 @@ class World {
  private:
   void applyServos();
   void checkFinite() const;
+  void selectWraps(double h);
+  void predictMotion(double dt);
+  void solveForces(double dt);
+  double advance(double left, double h, bool locate);
 
   const SceneDef scene_;                         ///< the model: never edited after construction
   std::unique_ptr<Box2DBridge> b2_;              ///< bodies, joints, contacts
   std::unique_ptr<CableSolver> solver_;          ///< tensions, one solve per sub-step
+  std::unique_ptr<MidpointSolver> midpoint_;     ///< the energy-consistent solve, where it applies
+  std::vector<BodyState> motion_;    ///< look-ahead or predicted body states (wrap events)
+  std::vector<char> excluded_;       ///< bodies the midpoint solve leaves alone (joints, contacts)
+  std::vector<Vec3> kicks_;          ///< velocity added after Box2D's step (midpoint solve)
+  bool midpointUsed_ = false;        ///< the last solveForces() was a midpoint one
   std::vector<BodyState> bodies_;                ///< read back from Box2D
   std::vector<Vec3> forces_;         ///< (fx, fy, torque) per body for the current sub-step
   std::vector<Vec3> pendingForces_;  ///< applyForce() loads for the next step

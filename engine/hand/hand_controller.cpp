@@ -3,14 +3,34 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "engine/statics/box_reduction.h"
 #include "engine/statics/statics_sensitivity.h"
 
 namespace cablelab {
 
+namespace {
+/// Ramp-following lag of the critically damped inner servos (s): 2 / omega.
+double servoLag(const HandModel& m) {
+  return 2 / std::sqrt(m.servoKp);
+}
+constexpr double kMaxSpeed = 2.0;          // m/s: a bound on the speed limit itself
+constexpr double kFeedbackHeadroom = 2.0;  // the update may move the box this many reference steps
+constexpr double kLimitMargin = 1e-9;      // rad or m: a joint this close to a limit is at it
+constexpr int kLimitPasses = 3;            // re-solves of J+ after taking joints out
+}  // namespace
+
 HandController::HandController(HandModel model, HandControllerParams params)
     : model_(std::move(model)), params_(params) {}
+
+void HandController::reset() {
+  integral_.setZero();
+  previousError_.setZero();
+  referenceVelocity_.setZero();
+  started_ = hasSteering_ = false;
+  status_ = {};
+}
 
 StaticsProblem HandController::staticsProblem(const HandJoints& q, const Vec2& guess) const {
   const FingertipPoints tips = fingertipPoints(model_, q);
@@ -42,55 +62,217 @@ BoxPrediction HandController::predict(const HandJoints& q, const Vec2& guess) co
   if (s.kind != StaticsSensitivity::Kind::Smooth) return out;
   // The shift of figure 4-2 is a constant offset, so d p / d(shifted) = d p / d(fingertips).
   out.jacobian = s.dp * fingertipJacobian(model_, q);
-  out.valid = wrapsFaceOn(model_, fingertipPoints(model_, q), eq.p);
+  out.stiffness = staticsDerivatives(problem, eq.p).hessian;
+  out.smooth = true;
+  out.margin = faceOnMargin(model_, fingertipPoints(model_, q), eq.p);
+  out.valid = out.margin > 0;
   return out;
+}
+
+double HandController::ellipseNorm(const Vec2& lag) const {
+  const double along = params_.lagShare * (model_.paddleHalfWidth - model_.boxHalfSize);
+  const double across =
+      params_.lagShare * (model_.boxHalfSize - model_.baseY + model_.paddleOffset);
+  return std::hypot(lag.x() / along, lag.y() / across);
+}
+
+double HandController::speedLimit(const Eigen::Matrix2d& K, const Vec2& d) const {
+  const double c = model_.boxMass * model_.boxDamping;  // N s/m: the table's drag
+  if (K.determinant() <= 1e-12 * K.squaredNorm() || d.norm() == 0) return 0;
+  const Vec2 u = d.normalized();
+  const Vec2 lag = c * K.inverse() * u + servoLag(model_) * u;  // m per (m/s)
+  return std::min(kMaxSpeed, 1 / ellipseNorm(lag));
+}
+
+double HandController::accelerationLimit(const Eigen::Matrix2d& K, const Vec2& d) const {
+  // Change speed no faster than the box's own velocity decays under the table's drag (time
+  // 2 m / c), twice over: the membranes' sideways mode (damping ratio about 0.5) is not rung.
+  const double decay = 2 * model_.boxMass / (model_.boxMass * model_.boxDamping);
+  return speedLimit(K, d) / (2 * decay);
+}
+
+void HandController::advanceReference(const Vec2& box, const Vec2& target) {
+  const double T = params_.period;
+  const Vec2 toGo = target - reference_;
+  const double distance = toGo.norm();
+  Vec2 desired = Vec2::Zero();
+  if (distance > 0) {
+    const Vec2 d = toGo / distance;
+    const double a = accelerationLimit(stiffness_, d);
+    // Cruise at the membranes' speed, brake in time to stop at the target, never overshoot.
+    double v = std::min({speedLimit(stiffness_, d), std::sqrt(2 * a * distance), distance / T});
+    // Slow down as the box falls behind its model, or the commanded equilibrium behind the
+    // reference (the joints at their limits cannot deliver it): the reference waits at the
+    // boundary of the reachable set.
+    const Vec2 equilibrium = commandedPrediction_.smooth ? commandedPrediction_.box : reference_;
+    const double behind = std::max((modelBox_ - box).norm(), (equilibrium - reference_).norm());
+    v *= std::clamp((params_.leadLimit - behind) / (0.5 * params_.leadLimit), 0.0, 1.0);
+    // Nor past where the membranes stop wrapping the box face-on (the box would slide out):
+    // brake to stop `wrapMargin` short of it.
+    const double room = commandedPrediction_.smooth ? commandedPrediction_.margin - params_.wrapMargin : 0;
+    v = std::min(v, std::sqrt(2 * a * std::max(0.0, room)));
+    desired = v * d;
+  }
+  Vec2 dv = desired - referenceVelocity_;
+  const double aMax = accelerationLimit(stiffness_, dv);
+  if (dv.norm() > aMax * T) dv *= aMax * T / dv.norm();
+  referenceVelocity_ += dv;
+  // Never step past the target (the last step of a stop lands on it).
+  if ((referenceVelocity_ * T).norm() >= distance)
+    reference_ = target, referenceVelocity_ = toGo / T;
+  else
+    reference_ += referenceVelocity_ * T;
+  if (reference_ == target && dv.norm() == 0) referenceVelocity_.setZero();
+  status_.speedLimit = distance > 0 ? speedLimit(stiffness_, toGo) : 0;
+}
+
+void HandController::advanceServos(const HandJoints& commanded) {
+  // The servo targets ramped from the previous command to this one over the last period.
+  constexpr int kSubsteps = 8;
+  const double decay = 1 - std::exp(-params_.period / kSubsteps / servoLag(model_));
+  for (int i = 1; i <= kSubsteps; ++i)
+    servoJoints_ += (previousCommanded_ + (commanded - previousCommanded_) * (double(i) / kSubsteps) -
+                     servoJoints_) * decay;
+  previousCommanded_ = commanded;
+}
+
+void HandController::advanceModel(const Vec2& from) {
+  // One period: the servo targets ramp linearly from the previous reference to the new one (the
+  // grasp sequence spreads every update over the period), the servos follow with lag tau_s, the
+  // box with its mass, the table's drag and the membranes' stiffness. Implicit Euler.
+  constexpr int kSubsteps = 8;
+  const double h = params_.period / kSubsteps, tau = servoLag(model_);
+  const double c = model_.boxMass * model_.boxDamping;
+  for (int i = 1; i <= kSubsteps; ++i) {
+    const Vec2 r = from + (reference_ - from) * (double(i) / kSubsteps);
+    servoReference_ += (r - servoReference_) * (1 - std::exp(-h / tau));
+    // Implicit in the velocity: stable however stiff the pinch (K grows near a fingertip).
+    const Eigen::Matrix2d A =
+        (model_.boxMass + h * c) * Eigen::Matrix2d::Identity() + h * h * stiffness_;
+    modelVelocity_ = A.ldlt().solve(model_.boxMass * modelVelocity_ +
+                                    h * stiffness_ * (servoReference_ - modelBox_));
+    modelBox_ += h * modelVelocity_;
+  }
+}
+
+Eigen::Matrix<double, 2, 6> HandController::gapJacobian(const HandJoints& commanded,
+                                                        Vec2& gap) const {
+  // gap = D_top - D_bottom - (0, 2 baseY), D a finger's distal joint (the paddle's origin).
+  Eigen::Matrix<double, 2, 6> G = Eigen::Matrix<double, 2, 6>::Zero();
+  const FingerPose top = fingerPose(model_, commanded, 0),
+                   bottom = fingerPose(model_, commanded, 1);
+  gap = top.paddle - bottom.paddle - Vec2(0, 2 * model_.baseY);
+  for (int f = 0; f < 2; ++f) {
+    const FingerPose& pose = f == 0 ? top : bottom;
+    const double sign = f == 0 ? 1.0 : -1.0;
+    G.col(3 * f + kProximal) = sign * perp(pose.paddle - pose.link);
+    G.col(3 * f + kSlide) = sign * Vec2(std::cos(pose.linkAngle), std::sin(pose.linkAngle));
+  }
+  return G;
+}
+
+HandJoints HandController::nullSpaceTask(const HandJoints& commanded,
+                                         const HandJoints& winv) const {
+  // h(q) = sum tilt^2 (paddles face-on), on the commanded targets, not the measured joints: the
+  // servos lag under load and a task on the measured joints would wind up.
+  HandJoints gradient = HandJoints::Zero();
+  for (int f = 0; f < 2; ++f) {
+    const double tilt = commanded[3 * f + kProximal] + commanded[3 * f + kDistal];
+    gradient[3 * f + kProximal] = tilt;
+    gradient[3 * f + kDistal] = tilt;
+  }
+  return -params_.faceOnGain * winv.asDiagonal() * gradient;
 }
 
 HandJoints HandController::update(const HandJoints& q, const Vec2& box, const Vec2& target,
                                   const HandJoints& commanded) {
-  // The box's change over the last period (zero on the first update).
-  const Vec2 change = hasPrevious_ ? Vec2(box - previousBox_) : Vec2::Zero();
-  previousBox_ = box;
-  hasPrevious_ = true;
   last_ = predict(q, box);
-  // Outside the model's validity (a membrane no longer wraps a face, or the statics is not
-  // smooth there): keep steering with the last valid Jacobian; the null-space task below brings
-  // the grasp back to the pinch geometry.
-  if (last_.valid) steering_ = last_.jacobian, hasSteering_ = true;
+  // The loop steers the equilibrium the fingers settle to: the commanded joints plus the servos'
+  // static droop under the membranes' load (the measured joints minus the commanded ones as the
+  // servos' ramp lag would have them). The servos' and the box's lags behind it are physics the
+  // reference model expects, not errors.
+  if (!started_) servoJoints_ = previousCommanded_ = commanded;
+  advanceServos(commanded);
+  commandedPrediction_ = predict(commanded + (q - servoJoints_), started_ ? reference_ : box);
+  const BoxPrediction& p = commandedPrediction_;
+  // The reduction's Jacobian steers wherever the statics is smooth, also with a paddle tilted
+  // beyond face-on (the equilibrium still follows the box there to a centimetre or so; a stale
+  // Jacobian does not). Where it is not smooth: the last one; the null-space task brings the
+  // grasp back to the pinch geometry.
+  if (p.smooth) steering_ = p.jacobian, stiffness_ = p.stiffness, hasSteering_ = true;
   if (!hasSteering_) return HandJoints::Zero();
-  Vec2 error = box - target;
-  // Conditional integration (anti-windup): the integral only collects the small residual offset
-  // near the target, never the large transient of the grasp or of a ramp the box lags behind.
-  if (error.norm() < params_.integralZone) integral_ += error * params_.period;
-  if (error.norm() > params_.maxError) error *= params_.maxError / error.norm();
-  const Vec2 command = params_.kp * error + params_.kd * change + params_.ki * integral_;
+  const double T = params_.period;
+  const bool first = !started_;
+  if (first) {
+    reference_ = servoReference_ = modelBox_ = box;
+    referenceVelocity_.setZero(), modelVelocity_.setZero();
+    started_ = true;
+  }
+  const Vec2 previousReference = reference_;
+  advanceReference(box, target);
+  advanceModel(previousReference);
+  // Feedback in three parts (docs/controller.md). k_p acts on the commanded equilibrium's
+  // departure from the reference: it corrects the linearisation and never feeds the box's own lag
+  // back (fed back through the rate law, that lag integrates into an overshoot). k_d acts on the
+  // box's departure from the reference model: it damps the box's sway on the membranes. The
+  // integral collects the box's offset from the target once the reference rests there: the
+  // statics model's own error, which PD leaves.
+  // Once the reference rests on the target the lag has gone and k_p acts on the box itself.
+  const bool resting = reference_ == target;
+  const Vec2 modelError =
+      resting ? Vec2(box - target) : p.smooth ? Vec2(p.box - reference_) : Vec2::Zero();
+  const Vec2 error = box - modelBox_;
+  const Vec2 change = first ? Vec2::Zero() : Vec2(error - previousError_);
+  previousError_ = error;
+
+  // The box displacement asked of this update: feedforward plus feedback, rate-limited.
+  Vec2 want = (reference_ - previousReference) - params_.kp * modelError - params_.kd * change -
+              params_.ki * T * integral_;
+  const double cap = kFeedbackHeadroom * T * speedLimit(stiffness_, want);
+  status_ = {reference_, modelBox_, error, integral_, status_.speedLimit, false, 0};
+  if (want.norm() > cap) want *= cap / want.norm(), status_.rateLimited = true;
+
+  // Weighted damped pseudo-inverse of the box task stacked with the paddles' gap: the gap is held
+  // at the pinch's (0, 2 baseY) as a task of its own, not in the null space, so that when joints
+  // saturate the fingers cannot spread apart and let the box out. Joints the update would push
+  // through a limit drop out.
   const BoxJacobian& J = steering_;
+  Eigen::Matrix<double, 4, 6> A;
+  Vec2 gap;
+  A.topRows<2>() = J;
+  A.bottomRows<2>() = gapJacobian(commanded, gap);
+  Eigen::Vector4d task;
+  task << want, -params_.faceOnGain * gap;
   HandJoints winv = HandJoints::Ones();
   winv[kDistal] = winv[3 + kDistal] = 1.0 / params_.distalWeight;
-  const Eigen::Matrix<double, 6, 2> JWt = winv.asDiagonal() * J.transpose();
-  const Eigen::Matrix2d JWJt =
-      J * JWt + params_.lambda * params_.lambda * Eigen::Matrix2d::Identity();
-  const Eigen::Matrix<double, 6, 2> pinv = JWt * JWJt.inverse();
-  // Secondary task: h(q) = sum tilt^2 + |D_top - D_bottom - (0, 2 baseY)|^2 (paddles face-on, the
-  // pinch's squeeze kept), descended in the null space of the primary task.
-  HandJoints gradient = HandJoints::Zero();
-  // On the commanded targets, not the measured joints: the servos lag under load and a task on
-  // the measured joints would wind up.
-  const FingerPose top = fingerPose(model_, commanded, 0),
-                   bottom = fingerPose(model_, commanded, 1);
-  const Vec2 gap = top.paddle - bottom.paddle - Vec2(0, 2 * model_.baseY);
-  for (int f = 0; f < 2; ++f) {
-    const FingerPose& pose = f == 0 ? top : bottom;
-    const double sign = f == 0 ? 1.0 : -1.0;
-    const double tilt = commanded[3 * f + kProximal] + commanded[3 * f + kDistal];
-    gradient[3 * f + kProximal] = tilt + sign * gap.dot(perp(pose.paddle - pose.link));
-    gradient[3 * f + kSlide] =
-        sign * gap.dot(Vec2(std::cos(pose.linkAngle), std::sin(pose.linkAngle)));
-    gradient[3 * f + kDistal] = tilt;
+  HandJoints dq = HandJoints::Zero(), primary = HandJoints::Zero();
+  for (int pass = 0; pass < kLimitPasses; ++pass) {
+    const Eigen::Matrix<double, 6, 4> AWt = winv.asDiagonal() * A.transpose();
+    const Eigen::Matrix4d AWAt =
+        A * AWt + params_.lambda * params_.lambda * Eigen::Matrix4d::Identity();
+    const Eigen::Matrix<double, 6, 4> pinv = AWt * AWAt.inverse();
+    const Eigen::Matrix<double, 6, 6> nullspace =
+        Eigen::Matrix<double, 6, 6>::Identity() - pinv * A;
+    primary = pinv * task;
+    dq = primary + nullspace * nullSpaceTask(commanded, winv);
+    bool blocked = false;
+    for (int j = 0; j < 6; ++j) {
+      const bool atUpper = commanded[j] >= model_.upper[j] - kLimitMargin && dq[j] > 0;
+      const bool atLower = commanded[j] <= model_.lower[j] + kLimitMargin && dq[j] < 0;
+      if (winv[j] > 0 && (atUpper || atLower)) winv[j] = 0, blocked = true;
+    }
+    if (!blocked) break;
   }
-  const HandJoints faceOn = -params_.faceOnGain * winv.asDiagonal() * gradient;
-  const Eigen::Matrix<double, 6, 6> nullspace = Eigen::Matrix<double, 6, 6>::Identity() - pinv * J;
-  return -pinv * command + nullspace * faceOn;
+  status_.jointsAtLimit = static_cast<int>((winv.array() == 0).count());
+  // Anti-windup: collect the error only once the reference rests on the target and the update
+  // is not saturated (the requested motion is what the joints deliver).
+  const HandJoints clipped = model_.clamp(commanded + dq) - (commanded + dq);
+  const Vec2 delivered = J * (primary + clipped);  // the box part of the stacked task
+  const bool saturated =
+      status_.rateLimited || (delivered - want).norm() > 0.2 * want.norm() + 1e-9;
+  if (!saturated && resting) integral_ += (box - target) * T;
+  status_.integral = integral_;
+  return dq;
 }
 
 double measureControllerUpdateMicros(int repeats) {

@@ -1,25 +1,37 @@
 // The statics-based Jacobian controller of thesis section 4.3 (outer loop).
 //
 //   db/dq_u = db/dp_ij * dp_ij/dq_u                 (2 x 6: statics sensitivity x fingertip FK)
-//   dq_u    = -J+ (k_p e + k_d db/dt + k_i sum e dt) per outer update, J+ = J^T (J J^T + l^2 I)^-1
-// with e = b - b_des the manipuland's error. Equation (4.4) gives a joint *rate* from a 2-vector
-// and omits the inverse (docs/model.md#controller): q_dot = -J+ (k_p' e + k_d b_dot). There k_d multiplies a
-// velocity to give a velocity, so it is dimensionless; k_p' is a rate (1/s). Here the rate is
-// integrated over one outer period T (0.053 s):
-//   dq = -J+ (k_p e + k_d db + k_i T sum e)      per update,
-// with db = b_k - b_(k-1) the box's change over the last period (a derivative averaged over T,
-// which filters the membranes' fast ripple out of the box velocity). So k_p = 0.1 is the share
-// of the error removed per update (dimensionless; k_p' = k_p / T = 1.9 1/s), k_d = 0.58 is the
-// thesis's dimensionless gain as it stands, and k_i is per update per second (1/s). (The first
-// implementation multiplied the instantaneous box velocity by k_d in seconds, i.e. a derivative
-// gain k_d / T = 11 times the thesis's: the loop went unstable and k_d was set to 0.)
-// The box prediction comes from the real statics (solveStatics + staticsSensitivity) on the
-// box-to-point reduction (box_reduction.h). The new targets go to the inner PD servos.
-// Beyond the thesis (the six joints are redundant for a 2-vector task): the pseudo-inverse is
-// weighted (W = diag(1, 1, w_d, 1, 1, w_d)), J+ = W^-1 J^T (J W^-1 J^T + l^2 I)^-1, and the null
-// space turns each paddle back towards face-on (theta_p + theta_d -> 0) and keeps the paddles' gap
-// at the pinch's, which keeps both membranes wrapping the box face-on, the configuration the
-// box-to-point reduction assumes.
+//   dq_u    = A+ (dr - k_p e - k_d de - k_i T sum e_box, gap task)  per outer update (period T),
+//   A+      = W^-1 A^T (A W^-1 A^T + l^2 I)^-1,  A = [db/dq_u; d gap/dq_u]   (4 x 6)
+// Equation (4.4) of the thesis is a joint *rate* from a 2-vector, q_dot = -J+ (k_p' e + k_d b_dot)
+// (docs/model.md#controller); integrated over one period it is a law of this form, k_p the share
+// of the error removed per update (dimensionless, k_p' = k_p / T), k_d dimensionless on the
+// error's change over one period, k_i per update per second (1/s).
+//
+// What keeps the grasp (beyond the thesis):
+//  * The box follows a reference r, not the target. r moves towards the target no faster than
+//    the membranes can carry the box: at velocity v the box lags by (c K^-1 + tau_s) v, with c
+//    the table's drag (box mass x damping), K the box's stiffness (the statics Hessian) and tau_s
+//    the servos' ramp lag; that lag must stay within `lagShare` of the membranes' room (along
+//    and across the paddles). It speeds up and brakes over twice the box's velocity decay time,
+//    so a target jump becomes a smooth ramp. r waits while the box falls behind the reference
+//    model or the commanded equilibrium behind r (joints at their limits), and brakes to stop
+//    `wrapMargin` before the membranes would stop wrapping the box face-on: a target outside the
+//    reachable set leaves the box at the boundary, still held.
+//  * A reference model (servo lag, then the box's mass, drag and K) says where the box should be;
+//    its own lag is expected, not fed back. k_p acts on the equilibrium of the commanded joints
+//    (plus the servos' static droop) against r while r moves, on the box against the target once
+//    r rests there; k_d on the box's departure from the reference model.
+//  * The feedforward dr moves the statics equilibrium with r.
+//  * Joints at a limit that the update would push further are taken out of A+ (their weight
+//    zeroed) so the others take over.
+//  * The integral collects the box's error only once r rests on the target and the update is
+//    not saturated (by the rate limit or by joint limits): no wind-up during the ramp or against
+//    a limit, and an offset of any size within the reachable set is removed.
+//  * The paddles' gap is held at the pinch's as a task stacked with the box's (so saturated
+//    joints cannot spread the fingers), and the null space turns each paddle back towards face-on
+//    (theta_p + theta_d -> 0): both membranes keep wrapping the box face-on, the configuration
+//    the box-to-point reduction (box_reduction.h) assumes.
 #pragma once
 
 #include <Eigen/Core>
@@ -33,20 +45,25 @@ namespace cablelab {
 struct HandControllerParams {
   double period = 0.053;  ///< outer-loop period (s)
   double kp = 0.1;        ///< per update, dimensionless (thesis k_p)
-  double kd = 0.58;       ///< dimensionless, on the box's change over one period (thesis k_d)
+  double kd = 0.58;       ///< dimensionless, on the error's change over one period (thesis k_d)
   double ki = 0.0;        ///< per update per second (1/s); > 0 for PID
   double lambda = 0.05;   ///< pseudo-inverse damping (m per rad or m per m)
-  double maxError = 0.2;  ///< the error fed to the law is saturated at this length (m): the
-                          ///< Jacobian is a local model, one update must not leave its validity
-  double integralZone = 0.02;  ///< the integral collects the error only while |e| is below this (m)
+  /// Share of the membranes' room the box may lag by while it moves: along the paddles the box
+  /// has paddleHalfWidth - boxHalfSize before a corner reaches the paddle's end, across them the
+  /// indentation of the pinch (boxHalfSize - baseY + paddleOffset).
+  double lagShare = 0.2;
+  double wrapMargin = 0.005;   ///< the reference stops this far (m) before the membranes would
+                               ///< stop wrapping the box face-on (it brakes in time)
+  double leadLimit = 0.03;     ///< the reference slows once the box is this far off the
+                               ///< reference model (m): it waits at the reachable set's boundary
   double distalWeight = 4.0;   ///< joint-space weight of the distal joints in the pseudo-inverse
                                ///< (> 1: prefer moving the fingers to tilting the paddles)
-  double faceOnGain =
-      0.3;  ///< per update: null-space pull back to face-on paddles and the pinch gap
+  double faceOnGain = 0.3;     ///< per update: null-space pull back to face-on paddles and the
+                               ///< pinch gap
 };
 
 /// The integral gain `--pid` uses (1/s per update).
-inline constexpr double kHandPidKi = 0.1;
+inline constexpr double kHandPidKi = 1.0;
 
 /// db/dq_u (m/rad, m/m), 2 x 6.
 using BoxJacobian = Eigen::Matrix<double, 2, 6>;
@@ -55,7 +72,21 @@ using BoxJacobian = Eigen::Matrix<double, 2, 6>;
 struct BoxPrediction {
   Vec2 box = Vec2::Zero();  ///< equilibrium box centre (m)
   BoxJacobian jacobian = BoxJacobian::Zero();
-  bool valid = false;  ///< solver converged and both membranes wrap the box face-on
+  Eigen::Matrix2d stiffness = Eigen::Matrix2d::Zero();  ///< d2E/db2 at the equilibrium (N/m)
+  bool smooth = false;  ///< solver converged and the equilibrium is smooth (jacobian exists)
+  bool valid = false;   ///< smooth and both membranes wrap the box face-on
+  double margin = 0;    ///< faceOnMargin() at the equilibrium (m)
+};
+
+/// What the last update did (for diagnostics and tests).
+struct ControllerStatus {
+  Vec2 reference = Vec2::Zero();  ///< r (m)
+  Vec2 expected = Vec2::Zero();   ///< where the box model, driven by r, has the box (m)
+  Vec2 error = Vec2::Zero();      ///< b - expected (m)
+  Vec2 integral = Vec2::Zero();   ///< sum e dt (m s)
+  double speedLimit = 0;          ///< the reference's speed limit along its motion (m/s)
+  bool rateLimited = false;       ///< the update was scaled down to the rate limit
+  int jointsAtLimit = 0;          ///< joints taken out of J+ at their limits
 };
 
 class HandController {
@@ -64,38 +95,61 @@ class HandController {
 
   const HandModel& model() const { return model_; }
   const HandControllerParams& params() const { return params_; }
+  /// New gains from the next update on (the reference, model and integral are kept).
+  void setParams(const HandControllerParams& params) { params_ = params; }
 
   /// The statics problem of the box-to-point reduction at joints q (warm start `guess`): the two
   /// membranes as point cables, fingertips shifted by the box corners they wrap.
   StaticsProblem staticsProblem(const HandJoints& q, const Vec2& guess) const;
 
-  /// Equilibrium box centre and db/dq_u at joints q, warm-started at `guess`.
+  /// Equilibrium box centre, db/dq_u and the box stiffness at joints q, warm-started at `guess`.
   BoxPrediction predict(const HandJoints& q, const Vec2& guess) const;
 
-  /// Clears the integral and derivative memory.
-  void reset() {
-    integral_.setZero();
-    hasPrevious_ = hasSteering_ = false;
-  }
+  /// Clears the integral, the derivative memory and the reference (the next update starts the
+  /// reference at the box).
+  void reset();
 
   /// One outer-loop update from the measured joints q and box centre, the target and the joint
   /// targets currently commanded; returns the joint-target increment (rad, m). Call it once per
-  /// period: the derivative term uses the box centre of the previous call.
+  /// period.
   HandJoints update(const HandJoints& q, const Vec2& box, const Vec2& target,
                     const HandJoints& commanded);
 
-  /// The last update's prediction (for diagnostics).
+  /// The last update's prediction and status (for diagnostics).
   const BoxPrediction& lastPrediction() const { return last_; }
+  const ControllerStatus& status() const { return status_; }
+
+  /// Box speed (m/s) the membranes can follow along direction `d` with box stiffness K: the
+  /// lag (c K^-1 + tau_s) v, with c the table's drag and tau_s the servos' ramp lag, kept
+  /// within the lag ellipse (lagShare of the room along and across the paddles).
+  double speedLimit(const Eigen::Matrix2d& stiffness, const Vec2& d) const;
+  /// Acceleration (m/s^2) along `d`: the speed limit reached over twice the box's velocity decay
+  /// time under the table's drag (2 m / c).
+  double accelerationLimit(const Eigen::Matrix2d& stiffness, const Vec2& d) const;
 
  private:
+  void advanceReference(const Vec2& box, const Vec2& target);
+  void advanceModel(const Vec2& from);
+  void advanceServos(const HandJoints& commanded);
+  double ellipseNorm(const Vec2& lag) const;
+  HandJoints nullSpaceTask(const HandJoints& commanded, const HandJoints& winv) const;
+  Eigen::Matrix<double, 2, 6> gapJacobian(const HandJoints& commanded, Vec2& gap) const;
+
   HandModel model_;
   HandControllerParams params_;
   Vec2 integral_ = Vec2::Zero();
-  Vec2 previousBox_ = Vec2::Zero();
-  bool hasPrevious_ = false;
+  Vec2 previousError_ = Vec2::Zero();
+  Vec2 reference_ = Vec2::Zero(), referenceVelocity_ = Vec2::Zero();
+  // The reference model: the pinch's equilibrium follows r through the servos (first-order lag
+  // tau_s), the box follows the equilibrium (mass, the table's drag, stiffness K).
+  Vec2 servoReference_ = Vec2::Zero(), modelBox_ = Vec2::Zero(), modelVelocity_ = Vec2::Zero();
+  bool started_ = false;
   BoxJacobian steering_ = BoxJacobian::Zero();  ///< the last valid prediction's Jacobian
+  Eigen::Matrix2d stiffness_ = Eigen::Matrix2d::Zero();
   bool hasSteering_ = false;
-  BoxPrediction last_;
+  BoxPrediction last_, commandedPrediction_;
+  HandJoints servoJoints_ = HandJoints::Zero(), previousCommanded_ = HandJoints::Zero();
+  ControllerStatus status_;
 };
 
 /// Median wall time of one HandController::update at the pinch pose (us), over `repeats` calls.

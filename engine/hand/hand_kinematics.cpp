@@ -1,5 +1,8 @@
 #include "engine/hand/hand_kinematics.h"
 
+#include <cmath>
+#include <limits>
+
 namespace cablelab {
 
 HandJoints HandModel::clamp(const HandJoints& q) const {
@@ -27,6 +30,25 @@ FingerPose fingerPose(const HandModel& m, const HandJoints& q, int finger) {
   pose.paddle = pose.slider;
   pose.paddleAngle = tp + q[3 * finger + kDistal];
   return pose;
+}
+
+HandJoints pinchJoints(const HandModel& m, const Vec2& g) {
+  HandJoints q;
+  for (int f = 0; f < 2; ++f) {
+    const Vec2 d = g + Vec2(0, HandModel::side(f) * m.baseY) - m.base(f);
+    const double tp = std::atan2(d.y(), d.x());
+    q[3 * f + kProximal] = tp;
+    q[3 * f + kSlide] = d.norm() - m.linkLength;
+    q[3 * f + kDistal] = -tp;
+  }
+  return q;
+}
+
+bool pinchWithinLimits(const HandModel& m, const Vec2& g) {
+  const HandJoints q = pinchJoints(m, g);
+  for (int j = 0; j < 6; ++j)
+    if (q[j] < m.lower[j] || q[j] > m.upper[j]) return false;
+  return true;
 }
 
 Vec2 paddleCorner(const HandModel& m, int finger, int corner) {
@@ -63,20 +85,23 @@ FingertipJacobian fingertipJacobian(const HandModel& m, const HandJoints& q) {
   return J;
 }
 
-bool wrapsFaceOn(const HandModel& m, const FingertipPoints& tips, const Vec2& p) {
+double faceOnMargin(const HandModel& m, const FingertipPoints& tips, const Vec2& p) {
   const double h = m.boxHalfSize;
+  double margin = std::numeric_limits<double>::infinity();
   for (int f = 0; f < 2; ++f) {
     const double s = HandModel::side(f);
     const Vec2 a = tips.segment<2>(4 * f), b = tips.segment<2>(4 * f + 2);
     // Each corner must sit beside the box and between its faces, on the wrapped face's side.
-    if (a.x() >= p.x() - h || b.x() <= p.x() + h) return false;
+    margin = std::min({margin, (p.x() - h) - a.x(), b.x() - (p.x() + h)});
     for (const Vec2& t : {a, b}) {
-      const double depth =
-          s * (t.y() - p.y());  // height of the corner above the centre, towards the face
-      if (depth >= h || depth <= -h) return false;
+      const double depth = s * (t.y() - p.y());  // the corner's height above the centre
+      margin = std::min({margin, h - depth, depth + h});
     }
   }
-  return true;
+  return margin;
 }
 
+bool wrapsFaceOn(const HandModel& m, const FingertipPoints& tips, const Vec2& p) {
+  return faceOnMargin(m, tips, p) > 0;
+}
 }  // namespace cablelab

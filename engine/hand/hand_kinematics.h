@@ -26,6 +26,13 @@ struct FingerPose {
 /// base, the slider and the paddle at the distal joint.
 FingerPose fingerPose(const HandModel& m, const HandJoints& q, int finger);
 
+/// The rigid pinch centred at box position g: both paddles face-on (horizontal) with their centres
+/// at g +/- (0, baseY), as at q = 0 about the origin. Not clamped to the joint limits.
+HandJoints pinchJoints(const HandModel& m, const Vec2& g);
+
+/// Whether pinchJoints(m, g) is within every joint limit (the fingertips' own reach).
+bool pinchWithinLimits(const HandModel& m, const Vec2& g);
+
 /// Membrane corner in the paddle frame: corner 0 (left, cable start) or 1 (right, cable end).
 Vec2 paddleCorner(const HandModel& m, int finger, int corner);
 
@@ -38,5 +45,9 @@ FingertipJacobian fingertipJacobian(const HandModel& m, const HandJoints& q);
 /// Whether both membranes wrap the box at centre p face-on (each fingertip beside its face's
 /// corner, below/above it), the configuration the reduction assumes.
 bool wrapsFaceOn(const HandModel& m, const FingertipPoints& tips, const Vec2& p);
+
+/// How far (m) the box at p is from no longer wrapping face-on: the smallest slack of the
+/// conditions wrapsFaceOn() checks (negative when one fails).
+double faceOnMargin(const HandModel& m, const FingertipPoints& tips, const Vec2& p);
 
 }  // namespace cablelab

@@ -1,13 +1,17 @@
 // The figure 4-4 experiment: which box positions the Jacobian controller reaches, against the
 // range of the fingertips themselves.
 //
-// Both sets live on one N x N grid over a window round the hand's workspace (cell area known):
+// Every set lives on one N x N grid over a window round the hand's workspace (cell area known):
 //  * fingertip set: grid points g where both fingers can hold the pinch rigidly, paddles face-on
-//    (horizontal) with their centres at g +/- (0, baseY), within every joint limit (analytic);
-//  * object set: grid points the controller drives the box to (|error| < tolerance, membranes
-//    wrapping face-on), quasi-statically: the fingers sit at the commanded joints and the box at
-//    the statics equilibrium after every outer-loop update (no dynamics, so no k_d term; error
-//    saturated at 10 cm), starting from the pinch pose. Runs on `threads` threads.
+//    (horizontal) with their centres at g +/- (0, baseY), within every joint limit (analytic,
+//    pinchWithinLimits);
+//  * simulated object set (the default model): grid points where the full dynamic run of
+//    `cablelab track --target g --pid` (hand_tracking.h) ends within the tolerance with the grasp
+//    held. A run stops early once it has settled within the tolerance, lost the box, or stopped
+//    getting closer; the runs share out over `threads` threads;
+//  * quasi-static object set: the fingers sit at the commanded joints and the box at the statics
+//    equilibrium after every outer-loop update (no dynamics, so no k_d term), starting from the
+//    pinch pose; the statics model's own prediction of the set.
 #pragma once
 
 #include <functional>
@@ -17,20 +21,41 @@
 
 namespace cablelab {
 
+enum class ReachModel { Simulation, QuasiStatic };
+
 struct ReachOptions {
   int grid = 50;  ///< N: N x N targets
-  int threads = 2;
-  int maxUpdates = 600;      ///< outer-loop updates per target
+  int threads = 0;  ///< 0: one per hardware thread
+  ReachModel model = ReachModel::Simulation;
+  bool pid = true;           ///< the integral term (as `track --pid`); false: PD
+  double time = 15;          ///< s simulated per target at most
+  int maxUpdates = 600;      ///< quasi-static outer-loop updates per target
   double tolerance = 0.005;  ///< m
 };
 
+/// One grid target's outcome.
+struct ReachTarget {
+  Vec2 point = Vec2::Zero();
+  bool fingertip = false;    ///< in the fingertip set
+  bool quasiStatic = false;  ///< in the quasi-static object set
+  bool simulated = false;    ///< in the simulated object set (simulation model only)
+  double error = 0;          ///< simulation: final |box - target| (m)
+  bool graspHeld = false;    ///< simulation: the grasp was never lost
+  double simulatedTime = 0;  ///< s of simulation before the run stopped
+};
+
 struct ReachResult {
-  double objectArea = 0;                            ///< m^2
-  double fingertipArea = 0;                         ///< m^2
-  int points = 0;                                   ///< targets tried (N^2)
-  std::vector<Vec2> objectPoints, fingertipPoints;  ///< the grid points in each set (m)
+  ReachModel model = ReachModel::Simulation;
+  double objectArea = 0;     ///< m^2, the chosen model's object set
+  double fingertipArea = 0;  ///< m^2
+  double quasiStaticArea = 0;  ///< m^2
+  int points = 0;              ///< targets tried (N^2)
+  std::vector<ReachTarget> targets;  ///< N^2, row by row from the window's lower left
+  std::vector<Vec2> objectPoints, fingertipPoints, quasiStaticPoints;  ///< the sets (m)
   Vec2 lower = Vec2::Zero(), upper = Vec2::Zero();  ///< grid window (m)
   double seconds = 0;                               ///< wall time
+  double simulatedSeconds = 0;                      ///< summed over the runs
+  int threads = 1;
 };
 
 /// `progress(done, total)` is called from the calling thread about every 0.1 s.
@@ -39,5 +64,8 @@ ReachResult runReach(const ReachOptions& options, const HandModel& model = {},
 
 /// Whether both fingers can hold a rigid pinch centred at g (see above).
 bool fingertipsReach(const HandModel& model, const Vec2& g);
+
+/// The quasi-static sweep's verdict for one target.
+bool quasiStaticReach(const HandModel& model, const Vec2& target, const ReachOptions& options);
 
 }  // namespace cablelab

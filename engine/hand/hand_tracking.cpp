@@ -9,32 +9,36 @@
 namespace cablelab {
 
 namespace {
-constexpr double kSqueezeSettle = 0.5;  // s after the closing ramp before the outer loop starts
+constexpr double kStartOffsetMin = 0.05;  // m: the default start is at least this off the target
 }  // namespace
 
-HandJoints readHandJoints(const World& world) {
-  HandJoints q;
-  for (int j = 0; j < 6; ++j) q[j] = world.joint(world.findJoint(kHandJointNames[j])).value;
-  return q;
+Vec2 defaultStart(const Vec2& target) {
+  return target.norm() < kStartOffsetMin ? Vec2(0.1, 0.1) : Vec2::Zero();
 }
 
-void placeHand(World& world, const HandModel& model, const HandJoints& q) {
-  const char* fingers[2] = {"top", "bottom"};
-  for (int f = 0; f < 2; ++f) {
-    const FingerPose pose = fingerPose(model, q, f);
-    const std::string name = fingers[f];
-    const std::pair<std::string, std::pair<Vec2, double>> bodies[3] = {
-        {name + "_link", {pose.link, pose.linkAngle}},
-        {name + "_slider", {pose.slider, pose.sliderAngle}},
-        {name + "_paddle", {pose.paddle, pose.paddleAngle}}};
-    for (const auto& [body, placement] : bodies) {
-      const int i = world.findBody(body);
-      world.setBodyTransform(i, placement.first, placement.second);
-      world.setBodyVelocity(i, Vec2::Zero(), 0);
-    }
+namespace {
+
+/// Decides when a run's outcome is clear (EarlyStop).
+class StopWatch {
+ public:
+  explicit StopWatch(const EarlyStop& o) : o_(o) {}
+  /// After a controlled step at time t with error e; `resting`: the target no longer moves.
+  bool done(double t, double e, bool resting, bool& reached) {
+    if (!o_.enabled) return false;
+    if (first_) inside_ = bestTime_ = t, first_ = false;
+    if (e >= o_.tolerance || !resting) inside_ = t;
+    if (t - inside_ >= o_.settledFor) return reached = true;
+    if (e < best_ - std::max(o_.progress, o_.share * best_)) best_ = e, bestTime_ = t;
+    return t - bestTime_ >= o_.stallFor;
   }
-  for (int j = 0; j < 6; ++j) world.setServoTarget(world.findJoint(kHandJointNames[j]), q[j]);
-}
+
+ private:
+  EarlyStop o_;
+  double inside_ = 0, best_ = 1e300, bestTime_ = 0;
+  bool first_ = true;
+};
+
+}  // namespace
 
 TrackResult runTracking(const TrackOptions& o, const HandModel& model,
                         const std::function<void(long, long)>& onStep) {
@@ -42,63 +46,77 @@ TrackResult runTracking(const TrackOptions& o, const HandModel& model,
   const double dt = world.scene().dt;
   const int substeps = world.scene().substeps;
   const long steps = std::lround(o.time / dt);
-  const int box = world.findBody(kHandBoxName);
-  const int cables[2] = {world.findCable(kHandCableNames[0]), world.findCable(kHandCableNames[1])};
 
   HandControllerParams params = o.controller;
   if (o.pid) params.ki = kHandPidKi;
-
-  HandController controller(model, params);
-
-  const HandJoints open = model.openPose();
-  placeHand(world, model, open);
-  HandJoints offset = HandJoints::Zero();  // the controller's accumulated joint-target change
-  auto targetAt = [&](double t, double graspTime) -> Vec2 {
-    if (o.rampTime <= 0) return o.target;
-    if (graspTime < 0) return Vec2::Zero();
-    return o.target * std::clamp((t - graspTime) / o.rampTime, 0.0, 1.0);
-  };
+  HandGrasp grasp(model, params, o.grasp);
+  grasp.attach(world);
+  const int box = grasp.boxBody();
 
   TrackResult result;
+  result.start = o.start.value_or(defaultStart(o.target));
+  grasp.begin(world, result.start);
+  size_t nextChange = 0;
+  Vec2 current = o.target;  // the constant target, or the latest change
+  auto targetAt = [&](double t) -> Vec2 {
+    while (nextChange < o.changes.size() && t >= o.changes[nextChange].t - 1e-9)
+      current = o.changes[nextChange++].target;
+    if (o.rampTime <= 0 || nextChange > 0) return current;
+    const double t0 = grasp.controlStart();
+    if (!std::isfinite(t0)) return result.start;
+    return result.start + (o.target - result.start) * std::clamp((t - t0) / o.rampTime, 0.0, 1.0);
+  };
+  auto maxTension = [&] {
+    return std::max(world.cable(grasp.membrane(0)).tension(),
+                    world.cable(grasp.membrane(1)).tension());
+  };
+
   result.samples.reserve(steps + 1);
-  result.samples.push_back({0, targetAt(0, -1), world.body(box).position});
-  double nextUpdate = -1, sumSquares = 0;
+  result.samples.push_back({0, targetAt(0), world.body(box).position, maxTension(), world.body(box).position});
+  StopWatch watch(o.stop);
+  double sumSquares = 0;
   long controlledSteps = 0;
+  bool started = false;
   for (long s = 0; s < steps; ++s) {
     const double t = world.time();
-    // Closing ramp from the open pose to the pinch pose, plus the controller's offsets.
-    const HandJoints nominal = open * std::max(0.0, 1 - t / o.closeTime);
-    if (result.graspTime >= 0 && t >= nextUpdate - 1e-9) {
-      const BodyState& b = world.body(box);
-      offset += controller.update(readHandJoints(world), b.position, targetAt(t, result.graspTime),
-                                  model.clamp(nominal + offset));
-      nextUpdate += params.period;
+    const Vec2 target = targetAt(t);
+    if (!started && grasp.controlling(t)) {
+      started = true;
+      result.startError = (world.body(box).position - target).norm();
+      result.startTension = maxTension();
     }
-    const HandJoints commanded = model.clamp(nominal + offset);
-    offset = commanded - nominal;  // no wind-up against the limits
-    for (int j = 0; j < 6; ++j) world.setServoTarget(j, commanded[j]);
-
+    grasp.beforeStep(world, target);
     world.step(dt, substeps);
-    if (result.graspTime < 0 && world.cable(cables[0]).wraps() >= 2 &&
-        world.cable(cables[1]).wraps() >= 2) {
-      result.graspTime = world.time();
-      // Control begins once the closing ramp has finished and the squeeze has settled a little
-      // (before that the membranes barely press and the statics model is ill-conditioned).
-      nextUpdate = std::max(world.time(), o.closeTime + kSqueezeSettle);
-    }
-    const Vec2 target = targetAt(world.time(), result.graspTime);
+    grasp.afterStep(world);
+    const Vec2 now = targetAt(world.time());
     const Vec2 position = world.body(box).position;
-    result.samples.push_back({world.time(), target, position});
-    if (result.graspTime >= 0) {
-      sumSquares += (position - target).squaredNorm();
-      ++controlledSteps;
-    }
+    result.samples.push_back({world.time(), now, position, maxTension(),
+                              started ? grasp.controller().status().expected : position});
     if (onStep) onStep(s + 1, steps);
+    if (!started) continue;
+    result.maxTension = std::max(result.maxTension, result.samples.back().tension);
+    const double e = (position - now).norm();
+    sumSquares += e * e;
+    ++controlledSteps;
+    const bool resting = (o.rampTime <= 0 || world.time() >= grasp.controlStart() + o.rampTime) &&
+                         nextChange == o.changes.size() &&
+                         (grasp.controller().status().reference - now).norm() < 1e-9;
+    bool reached = false;
+    if (!grasp.held() || watch.done(world.time(), e, resting, reached)) {
+      result.stoppedEarly = o.stop.enabled && s + 1 < steps;
+      if (o.stop.enabled) break;
+    }
   }
   const TrackSample& last = result.samples.back();
   result.finalError = (last.box - last.target).norm();
   result.rmsError =
       controlledSteps > 0 ? std::sqrt(sumSquares / controlledSteps) : result.finalError;
+  result.graspTime = grasp.graspTime();
+  result.graspHeld = grasp.graspTime() >= 0 && grasp.held();
+  result.losses = grasp.losses();
+  result.reached = result.graspHeld && result.finalError < o.stop.tolerance;
+  result.finalJoints = readHandJoints(world);
+  result.events = grasp.events();
   return result;
 }
 

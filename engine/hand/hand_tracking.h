@@ -1,56 +1,84 @@
-// The figure 4-5 experiment: the hand starts open, closes into a pinch grasp, then the Jacobian
-// controller (outer loop, every 0.053 s) drives the box to a constant or ramped target while the
-// World simulates fingers, membranes and box (inner PD servos at every sub-step).
-//
-// Start sequence: the hand scene is built at the pinch pose; the fingers are placed at
-// HandModel::openPose() (membranes clear of the box) and their servo targets ramp to the pinch
-// pose over `closeTime`. grasp_time is the first step at which both membranes wrap the box (two
-// wrap points each); control begins at the next outer-loop tick. The closing ramp keeps running
-// underneath the controller's accumulated joint offsets, so the squeeze finishes as planned.
+// The figure 4-5 experiment: the hand starts open about the start point, closes into a pinch
+// grasp (hand_grasp.h), then the Jacobian controller (outer loop, every 0.053 s) drives the box
+// to a constant or ramped target while the World simulates fingers, membranes and box (inner PD
+// servos at every sub-step). The same run, stopped early once its outcome is clear, is one
+// target of the simulated reach sweep (hand_reach.h).
 #pragma once
 
 #include <functional>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "engine/hand/hand_controller.h"
+#include "engine/hand/hand_grasp.h"
 #include "engine/hand/hand_model.h"
 
 namespace cablelab {
 
+/// The target switches to `target` at time `t` (s): a step the controller must ride out.
+struct TargetChange {
+  double t = 0;
+  Vec2 target = Vec2::Zero();
+};
+
+/// When a run may stop before `time` (the reach sweep; `track` runs to the end).
+struct EarlyStop {
+  bool enabled = false;
+  double tolerance = 0.005;  ///< m: settled = within this of a target that no longer moves
+  double settledFor = 1.0;   ///< s within the tolerance before stopping as reached
+  double stallFor = 3.0;     ///< s without getting closer by `progress` or by `share` of the
+                             ///< error before stopping as failed
+  double progress = 0.0005;  ///< m
+  double share = 0.05;
+};
+
 struct TrackOptions {
-  Vec2 target = Vec2::Zero();       ///< final target box centre (m)
-  double rampTime = 0;              ///< s; > 0: the target moves linearly from (0, 0) to `target`
-                                    ///< over this long, starting at grasp time; 0: constant target
-  double time = 15;                 ///< simulated time (s)
-  bool pid = false;                 ///< add the integral term (k_i = kHandPidKi)
-  double closeTime = 1.0;           ///< s to swing from the open pose to the pinch pose
+  Vec2 target = Vec2::Zero();     ///< final target box centre (m)
+  std::optional<Vec2> start;      ///< box position where the hand grasps it; default
+                                  ///< defaultStart(target)
+  double rampTime = 0;            ///< s; > 0: the target moves linearly from the start to
+                                  ///< `target` over this long, starting at grasp time
+  std::vector<TargetChange> changes;  ///< later target steps, in time order
+  double time = 15;               ///< simulated time (s)
+  bool pid = false;               ///< add the integral term (k_i = kHandPidKi)
+  GraspOptions grasp;
   HandControllerParams controller;  ///< outer-loop gains (`pid` sets ki = kHandPidKi)
+  EarlyStop stop;
 };
 
 struct TrackSample {
   double t = 0;                ///< s
   Vec2 target = Vec2::Zero();  ///< m
   Vec2 box = Vec2::Zero();     ///< m
+  double tension = 0;          ///< the larger membrane tension (N)
+  Vec2 reference = Vec2::Zero();  ///< the controller's reference r (m); the box before control
 };
 
 struct TrackResult {
-  double finalError = 0;             ///< |box - target| at the end (m)
-  double rmsError = 0;               ///< RMS of |box - target| over the steps after the grasp (m)
-  double graspTime = -1;             ///< s; -1 if the membranes never both wrapped the box
+  double finalError = 0;   ///< |box - target| at the end (m)
+  double rmsError = 0;     ///< RMS of |box - target| over the steps after control began (m)
+  double graspTime = -1;   ///< s; -1 if the membranes never both wrapped the box
+  double startError = 0;   ///< |box - target| when control began (m)
+  bool graspHeld = false;  ///< the grasp closed and was never lost afterwards
+  int losses = 0;          ///< times the box was lost (each followed by a re-grasp attempt)
+  double startTension = 0;  ///< the larger membrane tension when control began (N): the squeeze
+  double maxTension = 0;    ///< the larger membrane tension's maximum after control began (N)
+  bool stoppedEarly = false;
+  bool reached = false;    ///< ended within the early-stop tolerance (any run)
+  Vec2 start = Vec2::Zero();       ///< where the grasp closed about (m)
+  HandJoints finalJoints = HandJoints::Zero();
+  std::vector<GraspEvent> events;
   std::vector<TrackSample> samples;  ///< one per step, t = 0 first
 };
+
+/// The default start: the pinch at the origin, or (0.1, 0.1) m when the target is within 5 cm
+/// of it, so that the box never starts on the target.
+Vec2 defaultStart(const Vec2& target);
 
 /// Runs the experiment; `onStep(done, total)` is called after every step (may be empty).
 /// Throws SimulationError if the simulation blows up.
 TrackResult runTracking(const TrackOptions& options, const HandModel& model = {},
                         const std::function<void(long, long)>& onStep = {});
-
-/// Joint values of the hand scene's actuated joints, in HandJoints order.
-class World;
-HandJoints readHandJoints(const World& world);
-
-/// Moves the finger bodies of a hand-scene World to joints q (teleport, velocities zeroed) and
-/// sets the servo targets to q.
-void placeHand(World& world, const HandModel& model, const HandJoints& q);
 
 }  // namespace cablelab

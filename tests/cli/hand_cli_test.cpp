@@ -3,7 +3,12 @@
 
 #include "tests/support/engine_test_support.h"
 
+#include <unistd.h>
+
 #include <array>
+#include <cmath>
+#include <filesystem>
+#include <vector>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -20,8 +25,9 @@ CliRun run(const std::string& args) {
   return {r.exitCode, r.out};
 }
 
-// Measured (15 s): constant target 0.023 mm (PD) and 0.007 mm (PID); ramp 1.0 mm (PD) and
-// 0.7 mm (PID). The simulation is deterministic; the bounds are the acceptance goals.
+// Measured (15 s, from the default start 157 mm off): constant target 0.08 mm (PD) and 0.10 mm
+// (PID); ramp 1.0 mm (PD and PID). The simulation is deterministic; the bounds are the
+// acceptance goals.
 constexpr double kConstantTolerance = 1e-3;  // m
 constexpr double kRampTolerance = 1e-2;      // m
 
@@ -31,6 +37,20 @@ TEST(TrackCli, ConstantTargetFromOpenPose) {
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_LT(j["final_error"].get<double>(), kConstantTolerance);
   EXPECT_GT(j["grasp_time"].get<double>(), 0);
+  EXPECT_GE(j["start_error"].get<double>(), 0.05);  // the box does not start on the target
+  EXPECT_TRUE(j["grasp_held"].get<bool>());
+}
+
+TEST(TrackCli, StartPlacesTheGrasp) {
+  const CliRun r = run("track --target 0.2,0.3 --start -0.1,0.2 --time 3");
+  ASSERT_EQ(r.code, 0);
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["start"][0].get<double>(), -0.1, 1e-12);
+  EXPECT_NEAR(j["start"][1].get<double>(), 0.2, 1e-12);
+  // The box is grasped where it was placed: it starts about |(0.3, 0.1)| off the target.
+  EXPECT_NEAR(j["start_error"].get<double>(), std::hypot(0.3, 0.1), 0.03);
+  EXPECT_EQ(run("track --start 9,9").code, 2);
+  EXPECT_EQ(run("track --start 1").code, 2);
 }
 
 TEST(TrackCli, RampTarget) {
@@ -60,17 +80,58 @@ TEST(TrackCli, BadValuesExitTwo) {
   EXPECT_EQ(run("track --help").code, 0);
 }
 
-TEST(ReachCli, ControllerReachesMoreThanTheFingertips) {
-  const CliRun r = run("reach --grid 20");
+// The simulated sweep (every target a full run of the hand) reaches more than the fingertips;
+// a sample of the targets it counts beyond the fingertips, re-run one by one through `track`,
+// are reached there too.
+TEST(ReachCli, SimulatedReachExceedsTheFingertipsAndTrackAgrees) {
+  const std::string csv = (std::filesystem::temp_directory_path() /
+                           ("cablelab_reach20_" + std::to_string(getpid()) + ".csv"))
+                              .string();
+  const CliRun r = run("reach --grid 20 --csv " + csv);
   ASSERT_EQ(r.code, 0);
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_GT(j["ratio"].get<double>(), 1.0);
   EXPECT_EQ(j["points"].get<int>(), 400);
+  EXPECT_EQ(j["model"].get<std::string>(), "simulation");
+  std::FILE* f = std::fopen(csv.c_str(), "r");
+  ASSERT_NE(f, nullptr);
+  char header[128];
+  ASSERT_NE(std::fgets(header, sizeof header, f), nullptr);
+  EXPECT_STREQ(header, "x,y,object_reached,fingertip_reachable\n");
+  std::vector<std::array<double, 2>> beyond;
+  double x, y;
+  int reached, tip, rows = 0, counted = 0;
+  while (std::fscanf(f, "%lf,%lf,%d,%d", &x, &y, &reached, &tip) == 4) {
+    ++rows, counted += reached;
+    if (reached && !tip) beyond.push_back({x, y});
+  }
+  std::fclose(f);
+  EXPECT_EQ(rows, 400);
+  EXPECT_EQ(counted, j["object_points"].get<int>());
+  ASSERT_GE(beyond.size(), 3u);
+  for (size_t k = 0; k < beyond.size(); k += beyond.size() / 3) {  // three spread samples
+    char target[96];
+    std::snprintf(target, sizeof target, "%.17g,%.17g", beyond[k][0], beyond[k][1]);
+    const CliRun t = run(std::string("track --pid --target ") + target);
+    ASSERT_EQ(t.code, 0);
+    const auto tj = nlohmann::json::parse(t.out);
+    EXPECT_LT(tj["final_error"].get<double>(), 0.005) << target;
+    EXPECT_TRUE(tj["grasp_held"].get<bool>()) << target;
+  }
+}
+
+TEST(ReachCli, QuasiStaticModel) {
+  const CliRun r = run("reach --grid 12 --model quasi-static");
+  ASSERT_EQ(r.code, 0);
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["model"].get<std::string>(), "quasi-static");
+  EXPECT_DOUBLE_EQ(j["object_area"].get<double>(), j["quasi_static_area"].get<double>());
 }
 
 TEST(ReachCli, BadValuesExitTwo) {
   EXPECT_EQ(run("reach --grid 0").code, 2);
   EXPECT_EQ(run("reach --grid abc").code, 2);
+  EXPECT_EQ(run("reach --model statics").code, 2);
   EXPECT_EQ(run("reach --help").code, 0);
 }
 

@@ -16,6 +16,7 @@ set(allowed_statics core statics)
 set(allowed_membrane core membrane)
 set(allowed_hand core model cable dynamics statics hand)
 set(allowed_scenes core model cable dynamics statics hand scenes)
+set(allowed_mujoco core model mujoco)
 
 set(violations "")
 file(GLOB_RECURSE sources RELATIVE ${ROOT} ${ROOT}/engine/*.h ${ROOT}/engine/*.cpp ${ROOT}/ui/*.h

@@ -1,4 +1,5 @@
 # Bad input raises cablelab.InputError naming the field; nothing crashes the interpreter.
+import json
 import math
 
 import numpy as np
@@ -28,6 +29,7 @@ def test_input_error_has_source_and_field():
     ({"bodies": [{"name": "b", "shapes": [{"type": "circle"}], "colour": "red"}]}, "bodies[0]"),
     ({"bodies": {1, 2}}, "bodies"),
     ({"bodies": [{"name": 3}]}, "bodies[0].name"),
+    ({"dt": 10**400}, "dt"),
 ])
 def test_bad_dict_names_the_field(scene, field):
     assert field in message(cablelab.World.from_dict, scene)
@@ -142,3 +144,48 @@ def test_bad_render_calls(tmp_path):
 def test_simulation_error_is_a_runtime_error():
     assert issubclass(cablelab.SimulationError, RuntimeError)
     assert issubclass(cablelab.InputError, ValueError)
+
+
+def mutations(scene, rng, count):
+    """Copies of scene with one leaf replaced by a bad or odd value, or one key removed."""
+    leaves = []
+
+    def walk(node, path):
+        items = node.items() if isinstance(node, dict) else enumerate(node) if isinstance(node, list) else []
+        for k, v in items:
+            leaves.append(path + [k])
+            walk(v, path + [k])
+
+    walk(scene, [])
+    odd = [math.nan, -1.0, 0.0, 1e300, -1e300, 1e-300, "x", None, [], {}, [1.0], True, 10**20]
+    for _ in range(count):
+        d = json.loads(json.dumps(scene))
+        path = leaves[rng.integers(len(leaves))]
+        parent = d
+        for k in path[:-1]:
+            parent = parent[k]
+        if rng.random() < 0.2 and isinstance(parent, dict):
+            del parent[path[-1]]
+        else:
+            parent[path[-1]] = odd[rng.integers(len(odd))]
+        yield d
+
+
+@pytest.mark.parametrize("scene", ["hand", "hexagon", "pulley", "membrane", "ballast"])
+def test_mutated_scenes_load_or_raise_input_error(scene):
+    rng = np.random.default_rng(15)
+    base = cablelab.World.load(scene).to_dict()
+    loaded = refused = 0
+    for d in mutations(base, rng, 60):
+        try:
+            w = cablelab.World.from_dict(d)
+        except cablelab.InputError:
+            refused += 1
+            continue
+        loaded += 1
+        try:
+            w.run(steps=5)
+        except cablelab.SimulationError:
+            continue
+        assert np.isfinite(w.body_states()).all()  # a run that succeeds never gives NaN
+    assert refused > 0 and loaded + refused == 60

@@ -106,6 +106,7 @@ def test_cable_paths_are_wraps_plus_anchors():
         length = np.linalg.norm(np.diff(path, axis=0), axis=1).sum()
         assert length == pytest.approx(w.cable_lengths()[i], rel=1e-12)
     assert np.array_equal(w.cable_path("cable" if "cable" in w.cable_names else 0), w.cable_paths()[0])
+    assert np.array_equal(w.wrap_points(0), w.cable_paths()[0][1:-1])
 
 
 def test_cable_parameters_are_live():
@@ -225,3 +226,18 @@ def test_a_world_busy_in_run_refuses_other_threads():
     w.run(steps=20000)
     t.join()
     assert errors and "another thread" in errors[0]
+
+
+def test_ctrl_c_interrupts_a_long_run():
+    import os
+    import signal
+    w = cablelab.World.load("pulley")
+    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    start = time.perf_counter()
+    with pytest.raises(KeyboardInterrupt):
+        w.run(steps=10**8)
+    timer.join()
+    assert time.perf_counter() - start < 30
+    assert 0 < w.step_count < 10**8
+    w.step()  # the World is usable afterwards

@@ -67,6 +67,45 @@ TEST(CableKinematics, JacobianAndJdotVMatchFiniteDifferences) {
   }
 }
 
+TEST(CableKinematics, DiscreteGradientGivesTheExactLengthChange) {
+  // G (q1 - q0) = length(q1) - length(q0) to rounding, for any step (large turns included), and
+  // G tends to J as the step shrinks.
+  test::Random rng(8);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<BodyState> q0(3), q1;
+    for (BodyState& b : q0) {
+      b.position = rng.point(-2, 2);
+      b.angle = rng.uniform(-3, 3);
+      b.velocity = rng.point(-3, 3);
+      b.angularVelocity = rng.uniform(-6, 6);
+    }
+    std::vector<WrapPoint> path = {{WrapPoint::Kind::Anchor, 0, rng.point(-0.3, 0.3)}};
+    for (int v = 0; v < 2; ++v)
+      path.push_back({WrapPoint::Kind::Vertex, 1, rng.point(-0.5, 0.5), Vec2::Zero(), 0, v});
+    path.push_back({WrapPoint::Kind::Point, 2, rng.point(-0.3, 0.3), Vec2::Zero(), 1});
+    path.push_back({WrapPoint::Kind::Anchor, -1, rng.point(-3, 3)});
+    const double step = trial < 100 ? 0.3 : 1e-7;
+    q1 = advance(q0, step);
+    std::vector<BodyJacobian> g;
+    lengthDiscreteGradient(path, q0, q1, g);
+    double change = 0;
+    for (const auto& e : g) {
+      const Vec3 dq(q1[e.body].position.x() - q0[e.body].position.x(),
+                    q1[e.body].position.y() - q0[e.body].position.y(),
+                    q1[e.body].angle - q0[e.body].angle);
+      change += e.d.dot(dq);
+    }
+    const double exact = lengthOf(path, q1) - lengthOf(path, q0);
+    EXPECT_NEAR(change, exact, 1e-12 * std::max(1.0, lengthOf(path, q0))) << "trial " << trial;
+    if (step < 1e-3) {
+      const CableKinematics k = cableKinematics(path, q0);
+      ASSERT_EQ(k.jacobian.size(), g.size());
+      for (size_t i = 0; i < g.size(); ++i)
+        EXPECT_LT((k.jacobian[i].d - g[i].d).norm(), 1e-5) << "trial " << trial;
+    }
+  }
+}
+
 TEST(CableKinematics, CoincidentPointsAreLeftOutNotNaN) {
   std::vector<BodyState> bodies(1);
   bodies[0].position = Vec2(1, 0);

@@ -167,6 +167,41 @@ TEST(CircleWrap, JacobianAndJdotVMatchFiniteDifferences) {
   EXPECT_GE(checked, 400);
 }
 
+// The midpoint solve's discrete gradient on paths with arcs: G (q1 - q0) = length(q1) -
+// length(q0) to rounding for a sub-step's motion, and G -> J as the step shrinks.
+TEST(CircleWrap, DiscreteGradientGivesTheExactLengthChange) {
+  test::Random rng(11);
+  int checked = 0;
+  for (int trial = 0; trial < 2000 && checked < 200; ++trial) {
+    RandomPath rp = randomPath(rng, trial % 2 == 1);
+    if (!wellSeparated(rp.path, rp.bodies)) continue;
+    const auto& q0 = rp.bodies;
+    const double step = checked < 100 ? 0.02 : 1e-7;
+    const std::vector<BodyState> q1 = advance(q0, step);
+    std::vector<WrapPoint> path = rp.path;
+    std::vector<BodyJacobian> g;
+    const double length1 = lengthDiscreteGradient(path, q0, q1, g);
+    std::vector<WrapPoint> copy0 = rp.path, copy1 = rp.path;
+    const double exact0 = cableKinematics(copy0, q0).length;
+    const double exact1 = cableKinematics(copy1, q1).length;
+    EXPECT_NEAR(length1, exact1, 1e-12 * exact1) << "trial " << trial;
+    double change = 0;
+    for (const auto& e : g)
+      change += e.d.dot(Vec3(q1[e.body].position.x() - q0[e.body].position.x(),
+                             q1[e.body].position.y() - q0[e.body].position.y(),
+                             q1[e.body].angle - q0[e.body].angle));
+    EXPECT_NEAR(change, exact1 - exact0, 1e-12 * exact0) << "trial " << trial;
+    if (step < 1e-3) {
+      const CableKinematics k = cableKinematics(copy0, q0);
+      ASSERT_EQ(k.jacobian.size(), g.size());
+      for (size_t i = 0; i < g.size(); ++i)
+        EXPECT_LT((k.jacobian[i].d - g[i].d).norm(), 1e-5) << "trial " << trial;
+    }
+    ++checked;
+  }
+  EXPECT_GE(checked, 200);
+}
+
 TEST(CircleWrap, DrumStoresRadiusTimesAngleTurned) {
   // A fixed point held by a cable wound counter-clockwise (rho < 0) onto a drum: turning the
   // drum counter-clockwise by dtheta winds r dtheta more onto it, for many turns, smoothly.

@@ -267,27 +267,25 @@ TEST(World, StiffMembraneOnALightBodyKeepsItsEnergyAtSixtyHertz) {
 }
 
 TEST(World, StiffMembraneCatchesADroppedLightBody) {
-  // The same band (damped) catches a 10 g point dropped 5 cm onto its middle: it bounces like a
-  // trampoline and never goes through. Between wrap changes the energy never grows; at a join the
-  // point is already up to one step past the band, which adds T * (length jump) (cable.h).
+  // The same band (damped) catches a 10 g point dropped 5 cm onto its middle and never lets it
+  // through. The join is located inside the step (docs/cables.md), so the energy never grows, at
+  // the join either; the band's transverse mode (omega h ~ 7) is not resolved at 60 Hz and the
+  // backward-Euler solve damps it, so the point is held where it lands.
   World world(makeScene("membrane", {{"k", 1e4}, {"mass", 0.01}, {"damping", 1}, {"x0", 0}}));
-  double impact = 0, lowest = 0, previous = world.energy();
+  double lowest = 0, previous = world.energy();
   int joins = 0, previousWraps = world.cable(0).wraps();
   for (int s = 0; s < 600; ++s) {
     world.step(kDt, 1);
     const double e = world.energy();
-    if (world.cable(0).wraps() == previousWraps) {
-      EXPECT_LE(e, previous + 1e-6) << "step " << s;
-    }
+    EXPECT_LE(e, previous + 1e-6) << "step " << s;
     joins += world.cable(0).wraps() > previousWraps;
     previous = e;
     previousWraps = world.cable(0).wraps();
-    impact = std::max(impact, world.body(0).velocity.norm());
     lowest = std::min(lowest, world.body(0).position.y());
   }
-  EXPECT_GT(joins, 1);
-  EXPECT_GT(lowest, -0.01);                                // caught within 1 cm
-  EXPECT_LT(world.body(0).velocity.norm(), 0.5 * impact);  // the bounces die down
+  EXPECT_GE(joins, 1);
+  EXPECT_GT(lowest, -0.01);  // caught within 1 cm
+  EXPECT_LT(world.body(0).velocity.norm(), 1e-3);
   EXPECT_LT(std::abs(world.body(0).position.y()), 0.01);
 }
 

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
+#include <cmath>
+
 #include "engine/hand/hand_kinematics.h"
 
 namespace cablelab {
@@ -61,6 +64,50 @@ TEST(HandController, UpdateMovesTheBoxTowardsTheTarget) {
     box = controller.predict(q, box).box;
   }
   EXPECT_LT((box - target).norm(), 1e-3);
+}
+
+}  // namespace
+}  // namespace cablelab
+
+namespace cablelab {
+namespace {
+
+TEST(HandController, SpeedLimitPutsTheLagOnTheMembranesRoom) {
+  // At the limit the expected lag (c K^-1 + tau_s) v sits on the ellipse with half axes
+  // lagShare x (room along the paddles, room across them).
+  HandModel m;
+  HandController controller(m);
+  const BoxPrediction p = controller.predict(HandJoints::Zero(), Vec2::Zero());
+  ASSERT_TRUE(p.valid);
+  const double c = m.boxMass * m.boxDamping, tau = 2 / std::sqrt(m.servoKp);
+  const double along = controller.params().lagShare * (m.paddleHalfWidth - m.boxHalfSize);
+  const double across =
+      controller.params().lagShare * (m.boxHalfSize - m.baseY + m.paddleOffset);
+  for (double angle : {0.0, 0.4, 1.2, M_PI / 2, 2.5}) {
+    const Vec2 d(std::cos(angle), std::sin(angle));
+    const double v = controller.speedLimit(p.stiffness, d);
+    ASSERT_GT(v, 0);
+    const Vec2 lag = (c * p.stiffness.inverse() * d + tau * d) * v;
+    EXPECT_NEAR(std::hypot(lag.x() / along, lag.y() / across), 1.0, 1e-12) << angle;
+  }
+}
+
+TEST(HandController, JointsAtALimitDropOutAndTheOthersTakeOver) {
+  // Slides at their upper limit, target further out along x: the slides are not pushed, the box
+  // still moves towards the target (the proximal and distal joints do it).
+  HandModel m;
+  HandController controller(m);
+  HandJoints q = HandJoints::Zero();
+  q[kSlide] = m.upper[kSlide], q[3 + kSlide] = m.upper[3 + kSlide];
+  const Vec2 box = controller.predict(q, Vec2::Zero()).box;
+  const Vec2 target = box + Vec2(0.3, 0.2);
+  HandJoints dq = HandJoints::Zero();
+  for (int u = 0; u < 5; ++u) dq = controller.update(q, box, target, q);
+  EXPECT_LE(dq[kSlide], 0);
+  EXPECT_LE(dq[3 + kSlide], 0);
+  EXPECT_GE(controller.status().jointsAtLimit, 2);
+  const Vec2 moved = controller.predict(m.clamp(q + dq), box).box - box;
+  EXPECT_GT(moved.dot(target - box), 0);
 }
 
 }  // namespace

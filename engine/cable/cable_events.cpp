@@ -1,0 +1,97 @@
+// The next wrap change of a cable inside a sub-step (docs/cables.md, "Events").
+//
+// Every change of the wrap set is a sign change of one signed distance along the sub-step's
+// motion: a disengaged pulley's point (or a polygon vertex) crossing the segment it would sit on,
+// a polygon's next vertex crossing the segment leaving its chain, or the turn at a wrap point
+// straightening. Located in time, the change can be made where the new point lies on the old
+// path, which is what theorem 1 needs for the velocities not to jump.
+#include <algorithm>
+
+#include "engine/cable/cable.h"
+#include "engine/cable/crossing.h"
+
+namespace cablelab {
+
+namespace {
+
+void keepEarliest(std::optional<WrapEvent>& best, double time, int pulley, WrapEvent::Kind kind) {
+  if (!best || time < best->time) best = WrapEvent{time, pulley, kind};
+}
+
+}  // namespace
+
+std::optional<WrapEvent> Cable::nextEvent(std::span<const BodyState> motion, double h) const {
+  std::optional<WrapEvent> best;
+  if (path_.size() < 2) return best;
+  const int count = static_cast<int>(pulleys_.size());
+  auto moving = [&](const WrapPoint& w) { return MovingPoint::on(motion, w.body, w.local); };
+  // Where the cable touches a path point: a circle's tangent point (fixed on its body for the
+  // sub-step, a first-order guess), else the point itself.
+  auto contact = [&](const WrapPoint& w, const Vec2& world) {
+    if (w.kind != WrapPoint::Kind::Circle) return moving(w);
+    if (w.body < 0) return MovingPoint::on(motion, -1, world);
+    const BodyState& b = motion[w.body];
+    return MovingPoint::on(motion, w.body, rotate(Vec2(world - b.position), -b.angle));
+  };
+
+  // Joins: a point that would enter the path between path_[i] and path_[i + 1].
+  for (size_t i = 0; i + 1 < path_.size(); ++i) {
+    const WrapPoint& a = path_[i];
+    const WrapPoint& b = path_[i + 1];
+    const MovingPoint ma = contact(a, a.tangentOut), mb = contact(b, b.tangentIn);
+    // A circle joins when it comes within its radius of the segment; an auto pulley from
+    // either side.
+    auto tryPoint = [&](int j, const Vec2& local, WrapEvent::Kind kind) {
+      const PulleyState& p = pulleys_[j];
+      const MovingPoint mp = MovingPoint::on(motion, p.body, local);
+      const double reach = p.circle ? p.radius : 0.0;
+      for (const WrapSide side : {WrapSide::Left, WrapSide::Right}) {
+        if (!p.autoSide && side != p.side) continue;
+        const double horizon = best ? best->time : h;
+        if (auto c = pointCrossesSegment(ma, mb, mp, side, horizon, reach))
+          keepEarliest(best, c->time, j, kind);
+      }
+    };
+    // Disengaged pulleys ordered between the segment's ends.
+    const int lo = a.pulley;  // -1 at the start anchor
+    const int hi = b.pulley < 0 ? count : b.pulley;
+    for (int j = lo + 1; j < hi; ++j) {
+      const PulleyState& p = pulleys_[j];
+      if (p.engaged || p.side == WrapSide::Threaded) continue;
+      for (const Vec2& v : p.local) tryPoint(j, v, WrapEvent::Kind::Join);
+    }
+    // A polygon's vertices not in its chain, against the segments entering and leaving it.
+    for (const WrapPoint* end : {&a, &b}) {
+      if (end->kind != WrapPoint::Kind::Vertex) continue;
+      if (a.kind == WrapPoint::Kind::Vertex && b.kind == WrapPoint::Kind::Vertex &&
+          a.pulley == b.pulley)
+        break;  // an edge of the chain: the convex polygon stays on its inner side
+      const PulleyState& p = pulleys_[end->pulley];
+      for (int v = 0; v < static_cast<int>(p.local.size()); ++v) {
+        const bool inChain = std::any_of(path_.begin(), path_.end(), [&](const WrapPoint& w) {
+          return w.pulley == end->pulley && w.vertex == v;
+        });
+        if (!inChain) tryPoint(end->pulley, p.local[v], WrapEvent::Kind::Vertex);
+      }
+    }
+  }
+  // Leaves: the turn at a wrap point straightens.
+  for (size_t i = 1; i + 1 < path_.size(); ++i) {
+    const WrapPoint& w = path_[i];
+    if (pulleys_[w.pulley].side == WrapSide::Threaded) continue;
+    const double horizon = best ? best->time : h;
+    // A circle leaves when its arc reaches 0; the straight-line test below sees that only on
+    // the last turn (wound further, the line between the neighbours says nothing).
+    if (w.kind == WrapPoint::Kind::Circle && w.arc > M_PI) continue;
+    const double reach = w.kind == WrapPoint::Kind::Circle ? std::abs(w.radius) : 0.0;
+    if (auto t = turnStraightens(contact(path_[i - 1], path_[i - 1].tangentOut), moving(w),
+                                 contact(path_[i + 1], path_[i + 1].tangentIn),
+                                 pulleys_[w.pulley].side, horizon, reach))
+      keepEarliest(best, *t, w.pulley,
+                   w.kind == WrapPoint::Kind::Vertex ? WrapEvent::Kind::Vertex
+                                                     : WrapEvent::Kind::Leave);
+  }
+  return best;
+}
+
+}  // namespace cablelab

@@ -1,0 +1,330 @@
+// Implicit midpoint cable solve with discrete gradients (rationale in midpoint_solver.h).
+#include "engine/dynamics/midpoint_solver.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cablelab {
+
+namespace {
+
+// The rigid-cable targets of the main solve (world.cpp): float rounding below the slop is left
+// alone, a share of a larger error is fixed per step.
+constexpr double kLengthSlop = 1e-5;
+constexpr double kBaumgarte = 0.2;
+constexpr int kIterations = 40;
+// Floors (docs/cables.md): a segment shorter than kFloorWatch gets a row keeping it at least
+// kFloorLength long, so a body that reaches its pulley stops there (an inelastic stop).
+constexpr double kFloorWatch = 0.5;    // m
+constexpr double kFloorLength = 0.01;  // m
+constexpr double kPositionTolerance = 1e-12;  // m: end-of-step pose settled
+
+bool moves(const BodyState& b) {
+  return b.invMass > 0 || b.invInertia > 0;
+}
+
+// Discrete gradient of V = k/2 max(0, phi)^2 between phi0 and phi1, and its phi1-derivative.
+struct SpringSecant {
+  double tension, slope;
+};
+SpringSecant springSecant(double k, double phi0, double phi1) {
+  const double d = phi1 - phi0;
+  if (std::abs(d) <= 1e-12 * (1e-9 + std::abs(phi0) + std::abs(phi1))) {
+    const double mid = 0.5 * (phi0 + phi1);
+    return {k * std::max(0.0, mid), mid > 0 ? 0.5 * k : 0.0};
+  }
+  const double v0 = phi0 > 0 ? phi0 * phi0 : 0.0, v1 = phi1 > 0 ? phi1 * phi1 : 0.0;
+  const double tension = 0.5 * k * (v1 - v0) / d;
+  const double dv1 = phi1 > 0 ? 2 * phi1 : 0.0;
+  return {tension, 0.5 * k * (dv1 * d - (v1 - v0)) / (d * d)};
+}
+
+// The fastest the axial mode of an elastic cable can get on its current path (rad/s):
+// sqrt(k J M^-1 J^T) with J at its largest, each segment adding a unit vector (and its lever
+// arm) at both ends. Bounded rather than taken at J now, since J of a point that just joined is
+// zero (theorem 1) and grows within steps.
+double elasticMode(const Cable& c, std::span<const BodyState> bodies) {
+  double bound = 0;
+  const auto& path = c.path();
+  for (size_t i = 0; i < path.size(); ++i) {
+    const int body = path[i].body;
+    if (body < 0) continue;
+    const double segments = (i > 0) + (i + 1 < path.size());
+    const BodyState& b = bodies[body];
+    bound += (b.invMass + b.invInertia * path[i].local.squaredNorm()) * segments * segments;
+  }
+  return std::sqrt(c.parameters().stiffness * bound);
+}
+
+// The rigid-cable length target at the end of the step (as in the main solve).
+double rigidTarget(double phi) {
+  return phi < -kLengthSlop  ? 0.0
+         : phi > kLengthSlop ? phi - kBaumgarte * (phi - kLengthSlop)
+                             : phi;
+}
+
+}  // namespace
+
+bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const Cable> cables,
+                             std::span<const char> excluded, double h) {
+  bool wanted = false, any = false;
+  for (const Cable& c : cables) {
+    bool pulls = false;
+    for (const auto& e : c.kinematics().jacobian)
+      if (moves(bodies[e.body])) {
+        if (excluded[e.body]) return false;
+        pulls = true;
+      }
+    if (!pulls) continue;
+    any = true;
+    const auto& path = c.path();
+    // Wheels that grip the cable (spans) are left to the main solve (docs/wheels.md).
+    if (c.spanCount() > 1) return false;
+    for (size_t i = 1; i + 1 < path.size(); ++i)
+      wanted |= path[i].body >= 0 && moves(bodies[path[i].body]);
+    for (size_t i = 0; i + 1 < path.size(); ++i)
+      wanted |= path[i].body != path[i + 1].body &&
+                (path[i + 1].world - path[i].world).norm() < kFloorWatch;
+    if (c.elastic()) {
+      if (elasticMode(c, bodies) * h > kMaxElasticOmegaH) return false;
+      wanted = true;
+    }
+  }
+  return any && wanted;
+}
+
+// q1 = q0 + h v_b, the midpoint pose, and each row's discrete gradient and end-of-step stretch.
+void MidpointSolver::evaluate(std::span<const BodyState> bodies, std::span<const Cable> cables,
+                              double h) {
+  midpoint_.assign(bodies.begin(), bodies.end());
+  for (size_t k = 0; k < bodyOfDof_.size(); ++k) {
+    const BodyState& s = bodies[bodyOfDof_[k]];
+    BodyState& p = predicted_[bodyOfDof_[k]];
+    p.position = s.position + h * vb_.segment<2>(3 * k);
+    p.angle = s.angle + h * vb_[3 * k + 2];
+    midpoint_[bodyOfDof_[k]].position = 0.5 * (s.position + p.position);
+    midpoint_[bodyOfDof_[k]].angle = 0.5 * (s.angle + p.angle);
+  }
+  for (size_t r = 0; r < rows_.size(); ++r) {
+    const Cable& c = cables[rows_[r]];
+    if (const int seg = segment_[r]; seg >= 0) {  // a floor: kFloorLength - |segment|
+      path_.assign(c.path().begin() + seg, c.path().begin() + seg + 2);
+      lengthDiscreteGradient(path_, bodies, predicted_, gradients_[r]);
+      for (auto& e : gradients_[r]) e.d = -e.d;
+      phi1_[r] = kFloorLength - (path_[1].world - path_[0].world).norm();
+      continue;
+    }
+    path_.assign(c.path().begin(), c.path().end());
+    const double length1 = lengthDiscreteGradient(path_, bodies, predicted_, gradients_[r]);
+    phi1_[r] = phi0_[r] + length1 - c.length();
+  }
+}
+
+double MidpointSolver::transverseMode(std::span<const BodyState> bodies,
+                                      std::span<const Cable> cables) const {
+  double fastest = 0;
+  for (size_t r = 0; r < rows_.size(); ++r) {
+    if (segment_[r] >= 0) continue;
+    const Cable& c = cables[rows_[r]];
+    const auto& path = c.path();
+    double invMass = 0, curvature = 0;
+    for (size_t i = 0; i < path.size(); ++i) {
+      if (path[i].body >= 0) invMass = std::max(invMass, bodies[path[i].body].invMass);
+      if (i + 1 < path.size())
+        curvature += 1.0 / std::max((path[i + 1].world - path[i].world).norm(), 1e-9);
+    }
+    fastest = std::max(fastest, std::sqrt(c.tension() * curvature * invMass));
+  }
+  return fastest;
+}
+
+int MidpointSolver::solve(std::span<const BodyState> bodies, std::span<Cable> cables,
+                          const Vec2& gravity, double h, std::span<Vec3> forces,
+                          std::span<Vec3> kicks) {
+  if (!buildRows(bodies, cables, gravity, h, forces)) return 0;
+  for (int iteration = 0; iteration < kIterations; ++iteration)
+    if (newtonStep(bodies, cables, h)) {
+      finish(bodies, cables, h, forces, kicks);
+      return iteration + 1;
+    }
+  return -1;
+}
+
+// Rows and dofs as in the main solve; v* moves the bodies half-way in velocity (the position
+// step of the midpoint rule), vFree is what Box2D alone would reach.
+bool MidpointSolver::buildRows(std::span<const BodyState> bodies, std::span<Cable> cables,
+                               const Vec2& gravity, double h, std::span<const Vec3> forces) {
+  rows_.clear();
+  dofOfBody_.assign(bodies.size(), -1);
+  bodyOfDof_.clear();
+  for (size_t i = 0; i < cables.size(); ++i) {
+    bool pulls = false;
+    for (const auto& e : cables[i].kinematics().jacobian)
+      if (moves(bodies[e.body])) {
+        pulls = true;
+        if (dofOfBody_[e.body] < 0) {
+          dofOfBody_[e.body] = 3 * static_cast<int>(bodyOfDof_.size());
+          bodyOfDof_.push_back(e.body);
+        }
+      }
+    if (pulls)
+      rows_.push_back(static_cast<int>(i));
+    else
+      cables[i].setTension(0);
+  }
+  segment_.assign(rows_.size(), -1);
+  const size_t cableRows = rows_.size();
+  for (size_t r = 0; r < cableRows; ++r) {
+    const auto& path = cables[rows_[r]].path();
+    for (size_t i = 0; i + 1 < path.size(); ++i) {
+      const int a = path[i].body, b = path[i + 1].body;
+      const bool moving = (a >= 0 && dofOfBody_[a] >= 0) || (b >= 0 && dofOfBody_[b] >= 0);
+      const bool straight = path[i].radius == 0 && path[i + 1].radius == 0;  // not an arc's
+      if (a != b && moving && straight &&
+          (path[i + 1].world - path[i].world).norm() < kFloorWatch) {
+        rows_.push_back(rows_[r]);
+        segment_.push_back(static_cast<int>(i));
+      }
+    }
+  }
+  const int m = static_cast<int>(rows_.size()), n = 3 * static_cast<int>(bodyOfDof_.size());
+  if (m == 0) return false;
+  invM_.resize(n);
+  vStar_.resize(n);
+  vFree_.resize(n);
+  for (size_t k = 0; k < bodyOfDof_.size(); ++k) {
+    const int body = bodyOfDof_[k];
+    const BodyState& s = bodies[body];
+    const Vec3 im(s.invMass, s.invMass, s.invInertia);
+    Vec3 accel = im.cwiseProduct(forces[body]);
+    if (s.invMass > 0) accel.head<2>() += gravity;
+    const Vec3 v(s.velocity.x(), s.velocity.y(), s.angularVelocity);
+    invM_.segment<3>(3 * k) = im;
+    vStar_.segment<3>(3 * k) = v + 0.5 * h * accel;
+    vFree_.segment<3>(3 * k) = v + h * accel;
+  }
+  phi0_.resize(m);
+  phi1_.resize(m);
+  gradients_.resize(m);
+  for (int r = 0; r < m; ++r) {
+    const auto& path = cables[rows_[r]].path();
+    const int seg = segment_[r];
+    phi0_[r] = seg < 0 ? cables[rows_[r]].stretch()
+                       : kFloorLength - (path[seg + 1].world - path[seg].world).norm();
+  }
+  P_.setZero(m);
+  vb_ = vStar_;
+  predicted_.assign(bodies.begin(), bodies.end());
+  K_.resize(m, m);
+  b_.resize(m);
+  return true;
+}
+
+// A = M + h/4 sum_r P_r H_r: the discrete gradient turns with q1 at half J's rate. H_r is the
+// length's Hessian in (x, y, theta) at the midpoint pose: per segment B_i^T (I - u u^T) / |d| B_j
+// with B = [I | perp(r)] of each end, and u . (-r) on a turning end's theta-theta entry.
+void MidpointSolver::buildIterationMatrix(std::span<const Cable> cables, double h) {
+  const int n = static_cast<int>(invM_.size());
+  A_.setZero(n, n);
+  for (int d = 0; d < n; ++d) A_(d, d) = invM_[d] > 0 ? 1.0 / invM_[d] : 1.0;
+  for (size_t r = 0; r < rows_.size(); ++r) {
+    if (P_[r] <= 0 || segment_[r] >= 0) continue;  // floors: their (negative) Hessian left out
+    const double scale = 0.25 * h * P_[r];
+    path_.assign(cables[rows_[r]].path().begin(), cables[rows_[r]].path().end());
+    for (WrapPoint& w : path_) w.world = worldPoint(midpoint_, w.body, w.local);
+    for (size_t i = 0; i + 1 < path_.size(); ++i) {
+      const WrapPoint* ends[2] = {&path_[i], &path_[i + 1]};
+      if (ends[0]->body == ends[1]->body) continue;
+      const Vec2 d = ends[1]->world - ends[0]->world;
+      const double len = d.norm();
+      if (len < 1e-12) continue;
+      const Vec2 u = d / len;
+      const Eigen::Matrix2d hs = (Eigen::Matrix2d::Identity() - u * u.transpose()) / len;
+      Eigen::Matrix<double, 2, 3> B[2];
+      int dof[2];
+      for (int e = 0; e < 2; ++e) {
+        const int body = ends[e]->body;
+        dof[e] = body >= 0 ? dofOfBody_[body] : -1;
+        const Vec2 arm = body >= 0 ? Vec2(ends[e]->world - midpoint_[body].position) : Vec2::Zero();
+        B[e] << 1, 0, perp(arm).x(), 0, 1, perp(arm).y();
+        if (e == 0) B[e] = -B[e];
+        if (dof[e] >= 0) A_(dof[e] + 2, dof[e] + 2) += scale * (e == 0 ? 1 : -1) * u.dot(arm);
+      }
+      for (int e = 0; e < 2; ++e)
+        for (int f = 0; f < 2; ++f)
+          if (dof[e] >= 0 && dof[f] >= 0)
+            A_.block<3, 3>(dof[e], dof[f]) += scale * B[e].transpose() * hs * B[f];
+    }
+  }
+  for (int d = 0; d < n; ++d)
+    if (invM_[d] == 0) {
+      A_.row(d).setZero();
+      A_.col(d).setZero();
+      A_(d, d) = 1;
+    }
+  ldlt_.compute(A_);
+}
+
+// One Newton step on (v_b, P): A dv + G^T dP / 2 = -R, R = M (v_b - v*) + G^T P / 2, with the
+// rows' conditions linearised in P (an LCP: rigid cables may go slack). True once settled.
+bool MidpointSolver::newtonStep(std::span<const BodyState> bodies, std::span<const Cable> cables,
+                                double h) {
+  const int m = static_cast<int>(rows_.size()), n = static_cast<int>(invM_.size());
+  evaluate(bodies, cables, h);
+  buildIterationMatrix(cables, h);
+  Gt_.setZero(n, m);
+  for (int r = 0; r < m; ++r)
+    for (const auto& e : gradients_[r])
+      if (const int d = dofOfBody_[e.body]; d >= 0) Gt_.block<3, 1>(d, r) = e.d;
+  for (int d = 0; d < n; ++d)
+    if (invM_[d] == 0) Gt_.row(d).setZero();
+  AinvGt_ = ldlt_.solve(Gt_);
+  residual_.resize(n);
+  for (int d = 0; d < n; ++d) residual_[d] = invM_[d] > 0 ? (vb_[d] - vStar_[d]) / invM_[d] : 0;
+  residual_.noalias() += 0.5 * Gt_ * P_;
+  AinvR_ = ldlt_.solve(residual_);
+  K_.noalias() = 0.5 * Gt_.transpose() * AinvGt_;
+  GAinvR_.noalias() = Gt_.transpose() * AinvR_;
+  for (int r = 0; r < m; ++r) {
+    const Cable& c = cables[rows_[r]];
+    const double kp = K_.row(r).dot(P_) - GAinvR_[r];
+    if (!c.elastic() || segment_[r] >= 0) {
+      b_[r] = kp + (phi1_[r] - rigidTarget(phi0_[r])) / h;
+      continue;
+    }
+    // P / h = the secant tension (+ damping) at the new phi1, linearised.
+    const double k = c.parameters().stiffness, damp = c.parameters().damping;
+    const SpringSecant sec = springSecant(k, phi0_[r], phi1_[r]);
+    const double tension = sec.tension + damp * (phi1_[r] - phi0_[r]) / h;
+    const double slope = std::max(sec.slope + damp / h, 1e-12 * (k + damp / h));
+    K_(r, r) += 1.0 / (slope * h * h);
+    b_[r] = kp + tension / (slope * h);
+  }
+  solveLcp(K_, b_, lcp_, solution_);
+  dP_ = solution_.x - P_;
+  dv_ = -(AinvR_ + 0.5 * AinvGt_ * dP_);
+  P_ = solution_.x;
+  vb_ += dv_;
+  return h * dv_.lpNorm<Eigen::Infinity>() <= kPositionTolerance &&
+         dP_.lpNorm<Eigen::Infinity>() <= 1e-9 * (1e-9 + P_.lpNorm<Eigen::Infinity>());
+}
+
+// Tensions, the force that gives Box2D the velocity v_b, and the second half after its step.
+void MidpointSolver::finish(std::span<const BodyState> bodies, std::span<Cable> cables, double h,
+                            std::span<Vec3> forces, std::span<Vec3> kicks) {
+  for (size_t r = 0; r < rows_.size(); ++r)
+    if (segment_[r] < 0) cables[rows_[r]].setTension(P_[r] / h);
+  for (size_t k = 0; k < bodyOfDof_.size(); ++k) {
+    const int body = bodyOfDof_[k];
+    const BodyState& s = bodies[body];
+    const Vec3 v0(s.velocity.x(), s.velocity.y(), s.angularVelocity);
+    for (int c = 0; c < 3; ++c) {
+      const int d = 3 * static_cast<int>(k) + c;
+      if (invM_[d] == 0) continue;
+      forces[body][c] += (vb_[d] - vFree_[d]) / (h * invM_[d]);
+      kicks[body][c] = vb_[d] - v0[c];
+    }
+  }
+}
+
+}  // namespace cablelab

@@ -1,0 +1,85 @@
+#include "engine/scenes/scale_scenes.h"
+
+#include <algorithm>
+
+namespace cablelab {
+
+namespace {
+
+constexpr double kDiscRadius = 0.1;
+constexpr double kDiscMass = 1.0;
+
+BodyDef disc(const std::string& name, const Vec2& position, const Vec2& velocity) {
+  BodyDef b;
+  b.name = name;
+  b.position = position;
+  b.velocity = velocity;
+  b.mass = kDiscMass;
+  b.inertia = 0.5 * kDiscMass * kDiscRadius * kDiscRadius;  // explicit: MuJoCo gets the same
+  ShapeDef s;
+  s.kind = ShapeDef::Kind::Circle;
+  s.radius = kDiscRadius;
+  b.shapes = {s};
+  return b;
+}
+
+PulleyDef threaded(const std::string& body, const Vec2& point) {
+  PulleyDef p;
+  p.body = body;
+  p.point = point;
+  p.side = WrapSide::Threaded;
+  return p;
+}
+
+}  // namespace
+
+SceneDef makeAtwoodMachines(int n) {
+  SceneDef s;
+  s.name = "atwood_" + std::to_string(n);
+  s.description = std::to_string(n) + " independent Atwood machines (equal masses, swinging)";
+  s.view = {Vec2(std::min(n, 4) - 1.0, 1.0), 4.0};
+  const Vec2 swing(0.2, 0);
+  for (int k = 0; k < n; ++k) {
+    const double x = 2.0 * k;
+    const std::string id = std::to_string(k);
+    s.bodies.push_back(disc("left" + id, Vec2(x - 0.25, 0), swing));
+    s.bodies.push_back(disc("right" + id, Vec2(x + 0.25, 0), swing));
+    CableDef c;
+    c.name = "cable" + id;
+    c.start = {"left" + id, Vec2(0, kDiscRadius)};
+    c.pulleys = {threaded("world", Vec2(x - 0.25, 2)), threaded("world", Vec2(x + 0.25, 2))};
+    c.end = {"right" + id, Vec2(0, kDiscRadius)};
+    s.cables.push_back(c);
+  }
+  return s;
+}
+
+SceneDef makePulleyChain(int pulleys) {
+  const int discs = pulleys / 2;
+  SceneDef s;
+  s.name = "pulleys_" + std::to_string(pulleys);
+  s.description = "one cable over " + std::to_string(pulleys) + " point pulleys, " +
+                  std::to_string(discs) + " hanging discs";
+  s.view = {Vec2(0.5 * discs, 1.0), 0.6 * discs + 2};
+  CableDef c;
+  c.name = "cable";
+  c.start = {"world", Vec2(0, 2.5)};
+  for (int i = 0; i < discs; ++i) {
+    const std::string name = "disc" + std::to_string(i);
+    s.bodies.push_back(disc(name, Vec2(i + 0.5, 0), Vec2(0, i % 2 ? -0.1 : 0.1)));
+    c.pulleys.push_back(threaded("world", Vec2(i, 2)));
+    c.pulleys.push_back(threaded(name, Vec2(0, kDiscRadius)));
+  }
+  c.end = {"world", Vec2(discs, 2)};
+  s.cables.push_back(c);
+  return s;
+}
+
+std::vector<ScaleCase> scaleCases() {
+  std::vector<ScaleCase> cases;
+  for (int n : {1, 16, 256, 1024}) cases.push_back({"atwood_" + std::to_string(n), makeAtwoodMachines(n)});
+  cases.push_back({"pulleys_64", makePulleyChain(64)});
+  return cases;
+}
+
+}  // namespace cablelab

@@ -1,0 +1,144 @@
+// Redundant rigid cables (issue 11, item 3): more taut cables than the body has freedoms. The
+// tensions are then not unique; the solver picks the minimum-norm distribution (tension_solver.h)
+// and never answers conflicting targets with an unbounded impulse.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include <Eigen/Dense>
+
+#include "engine/dynamics/world.h"
+
+namespace cablelab {
+namespace {
+
+constexpr double kDt = 1.0 / 60.0;
+constexpr double kRingMass = 5.0, kRingRadius = 0.5, kAnchorRadius = 1.5;
+
+// A 5 kg ring at the origin held by `cables` radial rigid spokes to anchors 1 m further out,
+// evenly spread from 30 degrees (so 3 spokes are two upper ones and one below).
+SceneDef ring(int cables, double restLength = -1) {
+  SceneDef s;
+  s.name = "ring";
+  BodyDef b;
+  b.name = "ring";
+  b.mass = kRingMass;
+  b.inertia = kRingMass * kRingRadius * kRingRadius;
+  ShapeDef shape;
+  shape.radius = kRingRadius;
+  shape.sensor = true;
+  b.shapes = {shape};
+  s.bodies = {b};
+  for (int k = 0; k < cables; ++k) {
+    const double angle = std::numbers::pi / 6 + 2 * std::numbers::pi * k / cables;
+    const Vec2 u(std::cos(angle), std::sin(angle));
+    CableDef c;
+    c.name = "spoke" + std::to_string(k);
+    c.start = {"ring", kRingRadius * u};
+    c.end = {"world", kAnchorRadius * u};
+    c.restLength = restLength;
+    s.cables.push_back(c);
+  }
+  return s;
+}
+
+Vec2 spokeDirection(const World& world, int k) {
+  const Vec2 a = world.cable(k).path().front().world, b = world.cable(k).path().back().world;
+  return (b - a).normalized();
+}
+
+// The minimum-norm tensions that hold the weight: T_k = max(0, u_k . lambda), lambda solving
+// sum over the taut spokes of u_k u_k^T lambda = m g (found by a small active-set loop).
+std::vector<double> minimumNormTensions(const World& world) {
+  const int n = world.cableCount();
+  std::vector<bool> taut(n, true);
+  Vec2 lambda = Vec2::Zero();
+  for (int pass = 0; pass < n; ++pass) {
+    Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
+    for (int k = 0; k < n; ++k)
+      if (taut[k]) A += spokeDirection(world, k) * spokeDirection(world, k).transpose();
+    lambda = A.ldlt().solve(-kRingMass * world.gravity());
+    bool changed = false;
+    for (int k = 0; k < n; ++k)
+      if (taut[k] && spokeDirection(world, k).dot(lambda) < 0) taut[k] = false, changed = true;
+    if (!changed) break;
+  }
+  std::vector<double> t(n);
+  for (int k = 0; k < n; ++k) t[k] = taut[k] ? std::max(0.0, spokeDirection(world, k).dot(lambda)) : 0;
+  return t;
+}
+
+TEST(RedundantCables, ARingOnManyRigidCablesStaysStillWithMinimumNormTensions) {
+  for (int cables : {3, 28, 40, 100}) {
+    World world(ring(cables));
+    double drift = 0, turn = 0;
+    for (int s = 0; s < 600; ++s) {  // 10 s
+      world.step(kDt);
+      drift = std::max(drift, world.body(0).position.norm());
+      turn = std::max(turn, std::abs(world.body(0).angle));
+    }
+    EXPECT_LT(drift, 1e-3) << cables << " cables";
+    EXPECT_LT(turn, 1e-3) << cables << " cables";
+    // The tensions hold the weight (force balance)...
+    Vec2 pull = Vec2::Zero();
+    double largest = 0;
+    for (int k = 0; k < cables; ++k) {
+      pull += world.cable(k).tension() * spokeDirection(world, k);
+      largest = std::max(largest, world.cable(k).tension());
+    }
+    const Vec2 weight = kRingMass * world.gravity();
+    EXPECT_LT((pull + weight).norm(), 0.01 * weight.norm()) << cables << " cables";
+    // ... and are the minimum-norm ones.
+    const std::vector<double> expected = minimumNormTensions(world);
+    for (int k = 0; k < cables; ++k)
+      EXPECT_NEAR(world.cable(k).tension(), expected[k], 0.01 * largest)
+          << cables << " cables, spoke " << k;
+  }
+}
+
+TEST(RedundantCables, IdenticalCablesShareTheLoadEqually) {
+  // A 2 kg weight hung by 1..6 identical cables from one point: K has rank 1.
+  for (int cables = 1; cables <= 6; ++cables) {
+    SceneDef s;
+    BodyDef b;
+    b.name = "weight";
+    b.mass = 2;
+    b.position = Vec2(0, -1);
+    b.shapes = {ShapeDef{}};
+    s.bodies = {b};
+    for (int k = 0; k < cables; ++k) {
+      CableDef c;
+      c.name = "c" + std::to_string(k);
+      c.start = {"world", Vec2(0, 0)};
+      c.end = {"weight", Vec2(0, 0)};
+      s.cables.push_back(c);
+    }
+    World world(s);
+    for (int i = 0; i < 120; ++i) world.step(kDt);
+    EXPECT_NEAR(world.body(0).position.y(), -1, 1e-4);
+    for (int k = 0; k < cables; ++k)
+      EXPECT_NEAR(world.cable(k).tension(), 2 * 9.81 / cables, 0.01 * 9.81) << cables;
+  }
+}
+
+TEST(RedundantCables, ConflictingTargetsNeverThrowTheBody) {
+  // Every spoke 1 mm too short for the pose: no pose satisfies all of them (the ring cannot move
+  // towards every anchor at once), so the targets conflict on a rank-2 K. The least-squares
+  // answer leaves the ring where it is, at bounded tension.
+  for (int cables : {28, 40}) {
+    World world(ring(cables, kAnchorRadius - kRingRadius - 1e-3));
+    double drift = 0, largest = 0;
+    for (int s = 0; s < 600; ++s) {
+      world.step(kDt);
+      drift = std::max(drift, world.body(0).position.norm());
+      for (int k = 0; k < cables; ++k) largest = std::max(largest, world.cable(k).tension());
+    }
+    EXPECT_LT(drift, 1e-3) << cables << " cables";
+    EXPECT_LT(std::abs(world.body(0).angle), 1e-2) << cables << " cables";
+    EXPECT_LT(largest, 10 * kRingMass * 9.81) << cables << " cables";
+  }
+}
+
+}  // namespace
+}  // namespace cablelab
