@@ -68,9 +68,9 @@ std::optional<WrapEvent> Cable::nextEvent(std::span<const BodyState> motion, dou
     const double horizon = best ? best->time : h;
     if (auto t = turnStraightens(moving(path_[i - 1]), moving(w), moving(path_[i + 1]),
                                  pulleys_[w.pulley].side, horizon))
-      keepEarliest(best, *t, w.pulley,
-                   w.kind == WrapPoint::Kind::Vertex ? WrapEvent::Kind::Vertex
-                                                     : WrapEvent::Kind::Leave);
+      keepEarliest(
+          best, *t, w.pulley,
+          w.kind == WrapPoint::Kind::Vertex ? WrapEvent::Kind::Vertex : WrapEvent::Kind::Leave);
   }
   return best;
 }

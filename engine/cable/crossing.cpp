@@ -45,12 +45,9 @@ std::optional<Crossing> pointCrossesSegment(const MovingPoint& a, const MovingPo
 std::optional<double> turnStraightens(const MovingPoint& a, const MovingPoint& p,
                                       const MovingPoint& b, WrapSide side, double h) {
   const MovingPoint pts[] = {a, b, p};
-  auto straightening = [&](double t) {
-    return -wrapSideDistance(a.at(t), b.at(t), p.at(t), side);
-  };
+  auto straightening = [&](double t) { return -wrapSideDistance(a.at(t), b.at(t), p.at(t), side); };
   return firstRise(
-      straightening, [](double) { return true; }, h, crossingSamples(pts, h),
-      crossingTolerance(h));
+      straightening, [](double) { return true; }, h, crossingSamples(pts, h), crossingTolerance(h));
 }
 
 }  // namespace cablelab

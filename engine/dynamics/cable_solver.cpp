@@ -68,9 +68,9 @@ struct JointRow {
 // allocate: after the first step every size has been seen and Eigen reuses the storage.
 struct CableSolverWorkspace {
   // Islands: cables and the moving bodies they (and the joints) connect, solved one by one.
-  std::vector<int> parent;                   // union-find over bodies
-  std::vector<int> islandOfRoot;             // root body -> island, -1: none
-  std::vector<std::vector<int>> islandRows;  // cables of each island, in cable order
+  std::vector<int> parent;                     // union-find over bodies
+  std::vector<int> islandOfRoot;               // root body -> island, -1: none
+  std::vector<std::vector<int>> islandRows;    // cables of each island, in cable order
   std::vector<std::vector<int>> islandJoints;  // joints of each island, in joint order
   int islands = 0;
   std::vector<int> jointIndex;  // the island's joints (indices into the input's joints)
@@ -448,7 +448,8 @@ void jacobianTimesW(const Workspace& ws, const std::vector<BodyJacobian>& jacobi
                     Eigen::Ref<Eigen::RowVectorXd, 0, Eigen::InnerStride<>> out) {
   out.setZero();
   for (const auto& e : jacobian)
-    if (const int d = ws.dofs.ofBody[e.body]; d >= 0) out += e.d.transpose() * ws.W.middleRows<3>(d);
+    if (const int d = ws.dofs.ofBody[e.body]; d >= 0)
+      out += e.d.transpose() * ws.W.middleRows<3>(d);
 }
 
 // The end-of-step state for impulses P (Box2D integrates q1 = q0 + h v1), then each row's
@@ -485,7 +486,8 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
   ws.JW.resize(m, m);
   // J0 W from the start-of-step Jacobians (positive semidefinite), for the guard below.
   ws.JW0.setZero(m, m);
-  for (int r = 0; r < m; ++r) jacobianTimesW(ws, cables[ws.rows[r]].kinematics().jacobian, ws.JW0.row(r));
+  for (int r = 0; r < m; ++r)
+    jacobianTimesW(ws, cables[ws.rows[r]].kinematics().jacobian, ws.JW0.row(r));
   // Redundant cables (J0 W singular): J1 W is then singular too, but not symmetric, and its
   // symmetric part indefinite, so the minimum-norm solve (tension_solver.h) would be ill posed.
   // Such an island iterates on J0 W instead (a quasi-Newton step: it still converges to the
@@ -511,9 +513,9 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
     ws.K.diagonal() += ws.compliance;
     ws.b.noalias() = ws.JW * ws.P;
     for (int r = 0; r < m; ++r)
-      ws.b[r] += (cables[ws.rows[r]].elastic() ? ws.phi1[r] - ws.damped[r]
-                                               : ws.phi1[r] - ws.target[r]) /
-                 h;
+      ws.b[r] +=
+          (cables[ws.rows[r]].elastic() ? ws.phi1[r] - ws.damped[r] : ws.phi1[r] - ws.target[r]) /
+          h;
     LcpSolution& sol = ws.lcpSolution;
     solveLcp(ws.K, ws.b, ws.lcp, sol, redundant);
     const double change = (sol.x - ws.P).lpNorm<Eigen::Infinity>();
