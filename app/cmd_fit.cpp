@@ -64,8 +64,9 @@ MembraneGeometry parsePulleys(const std::string& text) {
 
 int runGenerate(const FitOptions& o) {
   if (!o.data.empty())
-    throw InputError(kCommandLine, "DATA",
-                     "give either DATA.csv (fit) or --generate OUT.csv, not both" + gotValue(o.data));
+    throw InputError(
+        kCommandLine, "DATA",
+        "give either DATA.csv (fit) or --generate OUT.csv, not both" + gotValue(o.data));
   MembraneSynthDef def;
   def.geometry = parsePulleys(o.pulleys);
   if (o.k.empty()) throw InputError(kCommandLine, "--k", "is required with --generate (N/m)");
@@ -130,14 +131,16 @@ int runFit(const FitOptions& o) {
     throw InputError(kCommandLine, "DATA",
                      "is required: cablelab fit DATA.csv --pulleys ... (or --generate OUT.csv)");
   for (const auto& [value, flag] : {std::pair{o.k, "--k"}, std::pair{o.preload, "--preload"}})
-    if (!value.empty()) throw InputError(kCommandLine, flag, "only with --generate" + gotValue(value));
+    if (!value.empty())
+      throw InputError(kCommandLine, flag, "only with --generate" + gotValue(value));
   const MembraneGeometry g = parsePulleys(o.pulleys);
   MembraneFitOptions options;
   options.source = o.data;
   if (!o.sigmaFy.empty()) {
     options.sigmaFy = parseDouble(o.sigmaFy, "--sigma-fy");
     if (options.sigmaFy <= 0)
-      throw InputError(kCommandLine, "--sigma-fy", "must be positive (N)" + gotValue(options.sigmaFy));
+      throw InputError(kCommandLine, "--sigma-fy",
+                       "must be positive (N)" + gotValue(options.sigmaFy));
   }
   if (!o.sigmaAngleDeg.empty()) {
     options.sigmaAngleDeg = parseDouble(o.sigmaAngleDeg, "--sigma-angle-deg");

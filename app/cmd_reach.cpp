@@ -41,15 +41,18 @@ void writeReachPng(const std::string& path, const ReachResult& r, int grid, doub
   std::vector<Vec2> predicted, beyond, tips, missed;
   for (const ReachTarget& t : r.targets) {
     const bool reached = simulated ? t.simulated : t.quasiStatic;
-    if (t.fingertip) (reached || !simulated ? tips : missed).push_back(t.point);
-    else if (reached) beyond.push_back(t.point);
-    else if (t.quasiStatic) predicted.push_back(t.point);
+    if (t.fingertip)
+      (reached || !simulated ? tips : missed).push_back(t.point);
+    else if (reached)
+      beyond.push_back(t.point);
+    else if (t.quasiStatic)
+      predicted.push_back(t.point);
   }
   char label[120];
   using Style = ui::PlotSeries::Style;
   auto add = [&](const std::vector<Vec2>& points, ui::Colour colour) {
-    plot.series.push_back({label, coordinates(points, 0), coordinates(points, 1), Style::Markers,
-                           colour});
+    plot.series.push_back(
+        {label, coordinates(points, 0), coordinates(points, 1), Style::Markers, colour});
   };
   if (simulated) {
     std::snprintf(label, sizeof label, "quasi-static prediction only (set %.2f m^2)",
@@ -131,7 +134,8 @@ const bool registered = registerCommand(
 #endif
         int beyond = 0;
         for (const ReachTarget& t : r.targets)
-          beyond += (r.model == ReachModel::Simulation ? t.simulated : t.quasiStatic) && !t.fingertip;
+          beyond +=
+              (r.model == ReachModel::Simulation ? t.simulated : t.quasiStatic) && !t.fingertip;
         printJson(nlohmann::json{{"object_area", r.objectArea},
                                  {"fingertip_area", r.fingertipArea},
                                  {"ratio", ratio},

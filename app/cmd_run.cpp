@@ -10,8 +10,8 @@
 #include "app/options.h"
 #include "engine/core/error.h"
 #include "engine/core/file_input.h"
-#include "engine/scenes/scene_registry.h"
 #include "engine/dynamics/world.h"
+#include "engine/scenes/scene_registry.h"
 #ifdef CABLELAB_HAVE_OFFSCREEN
 #include "ui/offscreen.h"
 #endif

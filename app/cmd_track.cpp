@@ -42,16 +42,18 @@ void writeTrackPng(const std::string& path, const TrackOptions& options, const T
   const ui::Colour blue{0.12f, 0.38f, 0.75f, 1.0f}, red{0.85f, 0.25f, 0.15f, 1.0f};
   const ui::Colour paleBlue{0.55f, 0.7f, 0.95f, 1.0f}, paleRed{0.95f, 0.65f, 0.55f, 1.0f};
   using Style = ui::PlotSeries::Style;
-  plot.series.push_back({"target x", t, series(r, [](const TrackSample& s) { return s.target.x(); }),
+  plot.series.push_back({"target x", t,
+                         series(r, [](const TrackSample& s) { return s.target.x(); }),
                          Style::Dashed, blue});
-  plot.series.push_back({"target y", t, series(r, [](const TrackSample& s) { return s.target.y(); }),
+  plot.series.push_back({"target y", t,
+                         series(r, [](const TrackSample& s) { return s.target.y(); }),
                          Style::Dashed, red});
   plot.series.push_back({std::string("box x, ") + otherLaw, to,
-                         series(other, [](const TrackSample& s) { return s.box.x(); }),
-                         Style::Line, paleBlue});
+                         series(other, [](const TrackSample& s) { return s.box.x(); }), Style::Line,
+                         paleBlue});
   plot.series.push_back({std::string("box y, ") + otherLaw, to,
-                         series(other, [](const TrackSample& s) { return s.box.y(); }),
-                         Style::Line, paleRed});
+                         series(other, [](const TrackSample& s) { return s.box.y(); }), Style::Line,
+                         paleRed});
   plot.series.push_back({std::string("box x, ") + law, t,
                          series(r, [](const TrackSample& s) { return s.box.x(); }), Style::Line,
                          blue});
@@ -148,17 +150,18 @@ const bool registered = registerCommand(
 #endif
         nlohmann::json events = nlohmann::json::array();
         for (const GraspEvent& e : r.events) events.push_back({{"t", e.t}, {"what", e.what}});
-        printJson(nlohmann::json{{"final_error", r.finalError},
-                                 {"rms_error", r.rmsError},
-                                 {"grasp_time", r.graspTime},
-                                 {"start_error", r.startError},
-                                 {"grasp_held", r.graspHeld},
-                                 {"losses", r.losses},
-                                 {"start", {r.start.x(), r.start.y()}},
-                                 {"final_box", {r.samples.back().box.x(), r.samples.back().box.y()}},
-                                 {"max_tension", r.maxTension},
-                                 {"events", events}}
-                      .dump());
+        printJson(nlohmann::json{
+            {"final_error", r.finalError},
+            {"rms_error", r.rmsError},
+            {"grasp_time", r.graspTime},
+            {"start_error", r.startError},
+            {"grasp_held", r.graspHeld},
+            {"losses", r.losses},
+            {"start", {r.start.x(), r.start.y()}},
+            {"final_box", {r.samples.back().box.x(), r.samples.back().box.y()}},
+            {"max_tension", r.maxTension},
+            {"events",
+             events}}.dump());
         return 0;
       };
     });

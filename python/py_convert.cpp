@@ -13,14 +13,17 @@ std::string typeName(py::handle value) {
   return py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>();
 }
 
-std::string numberText(double v) { return formatNumber(v); }  // the one format (error.h)
+std::string numberText(double v) {
+  return formatNumber(v);
+}  // the one format (error.h)
 
 }  // namespace
 
 nlohmann::json toJson(py::handle value, const std::string& source, const std::string& field) {
   const std::string here = field.empty() ? "(value)" : field;
   if (value.is_none()) return nullptr;
-  if (PyBool_Check(value.ptr()) || typeName(value) == "bool_") return value.attr("__bool__")().cast<bool>();
+  if (PyBool_Check(value.ptr()) || typeName(value) == "bool_")
+    return value.attr("__bool__")().cast<bool>();
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
   if (py::isinstance<py::dict>(value)) {
     nlohmann::json out = nlohmann::json::object();
@@ -55,7 +58,8 @@ nlohmann::json toJson(py::handle value, const std::string& source, const std::st
   }
   if (PyFloat_Check(value.ptr()) || PyNumber_Check(value.ptr())) {
     const double d = py::float_(value.cast<py::object>()).cast<double>();
-    if (!std::isfinite(d)) throw InputError(source, here, "must be finite (got " + numberText(d) + ")");
+    if (!std::isfinite(d))
+      throw InputError(source, here, "must be finite (got " + numberText(d) + ")");
     return d;
   }
   throw InputError(source, here, "cannot be read as JSON (got a " + typeName(value) + ")");
@@ -63,12 +67,18 @@ nlohmann::json toJson(py::handle value, const std::string& source, const std::st
 
 py::object fromJson(const nlohmann::json& j) {
   switch (j.type()) {
-    case nlohmann::json::value_t::null: return py::none();
-    case nlohmann::json::value_t::boolean: return py::bool_(j.get<bool>());
-    case nlohmann::json::value_t::number_integer: return py::int_(j.get<long long>());
-    case nlohmann::json::value_t::number_unsigned: return py::int_(j.get<unsigned long long>());
-    case nlohmann::json::value_t::number_float: return py::float_(j.get<double>());
-    case nlohmann::json::value_t::string: return py::str(j.get<std::string>());
+    case nlohmann::json::value_t::null:
+      return py::none();
+    case nlohmann::json::value_t::boolean:
+      return py::bool_(j.get<bool>());
+    case nlohmann::json::value_t::number_integer:
+      return py::int_(j.get<long long>());
+    case nlohmann::json::value_t::number_unsigned:
+      return py::int_(j.get<unsigned long long>());
+    case nlohmann::json::value_t::number_float:
+      return py::float_(j.get<double>());
+    case nlohmann::json::value_t::string:
+      return py::str(j.get<std::string>());
     case nlohmann::json::value_t::array: {
       py::list out;
       for (const auto& item : j) out.append(fromJson(item));
@@ -79,7 +89,8 @@ py::object fromJson(const nlohmann::json& j) {
       for (const auto& [key, item] : j.items()) out[py::str(key)] = fromJson(item);
       return out;
     }
-    default: return py::none();
+    default:
+      return py::none();
   }
 }
 

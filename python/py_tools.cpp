@@ -20,7 +20,9 @@ namespace cablelab::python {
 
 namespace {
 
-bool isPath(py::handle v) { return py::isinstance<py::str>(v) || py::hasattr(v, "__fspath__"); }
+bool isPath(py::handle v) {
+  return py::isinstance<py::str>(v) || py::hasattr(v, "__fspath__");
+}
 
 /// cables as a list of {"a", "b", "k", "L"} dicts, an (N, 6) array of ax ay bx by k L, or a
 /// whole problem dict {"cables": ..., "p0": ...}: the statics input JSON.
@@ -28,7 +30,8 @@ nlohmann::json staticsJson(py::handle cables, py::handle p0) {
   nlohmann::json j;
   if (py::isinstance<py::dict>(cables)) {
     j = toJson(cables, "statics");
-  } else if (py::isinstance<py::array>(cables) && py::array(py::reinterpret_borrow<py::object>(cables)).ndim() == 2) {
+  } else if (py::isinstance<py::array>(cables) &&
+             py::array(py::reinterpret_borrow<py::object>(cables)).ndim() == 2) {
     auto a = py::array_t<double, py::array::forcecast | py::array::c_style>::ensure(cables);
     if (!a || a.shape(1) != 6)
       throw InputError("statics", "cables", "an array must be (N, 6): ax ay bx by k L per cable");
@@ -78,7 +81,8 @@ py::dict staticsCall(py::handle cables, const std::string& solver, py::handle p0
 
 py::dict wrapCall(py::handle a, py::handle b, py::handle polygon, py::handle side) {
   nlohmann::json j = nlohmann::json::object();  // None leaves a key out: "B: is required"
-  const std::pair<const char*, py::handle> fields[] = {{"A", a}, {"B", b}, {"polygon", polygon}, {"side", side}};
+  const std::pair<const char*, py::handle> fields[] = {
+      {"A", a}, {"B", b}, {"polygon", polygon}, {"side", side}};
   for (const auto& [key, value] : fields)
     if (!value.is_none()) j[key] = toJson(value, "wrap", key);
   const WrapSolution s = solveWrap(parseWrapJson(j, "wrap"), "wrap");
@@ -95,7 +99,8 @@ MembraneGeometry pulleysOf(py::handle pulleys) {
   if (a && a.size() == 4 && !py::isinstance<py::str>(pulleys))
     v = toNumbers(a.attr("reshape")(4), 4, "--pulleys", "pulleys");
   else
-    throw InputError("--pulleys", "pulleys", "must be AX, AY, BX, BY (m): 4 numbers or [[AX, AY], [BX, BY]]");
+    throw InputError("--pulleys", "pulleys",
+                     "must be AX, AY, BX, BY (m): 4 numbers or [[AX, AY], [BX, BY]]");
   MembraneGeometry g{Vec2(v[0], v[1]), Vec2(v[2], v[3])};
   validateMembraneGeometry(g, "--pulleys");
   return g;
@@ -105,7 +110,8 @@ std::vector<MembraneSample> membraneRows(py::handle data, const MembraneGeometry
   if (isPath(data)) return loadMembraneCsv(pathString(data, "fit", "data"), g);
   auto a = py::array_t<double, py::array::forcecast | py::array::c_style>::ensure(data);
   if (!a || a.ndim() != 2 || a.shape(1) != 4)
-    throw InputError("data", "(array)", "must be an (n, 4) array: x, y (m), fy (N), angle_deg per row, or a CSV path");
+    throw InputError("data", "(array)",
+                     "must be an (n, 4) array: x, y (m), fy (N), angle_deg per row, or a CSV path");
   // Through the CSV reader, so an array is checked exactly as a file is (same messages).
   std::ostringstream csv;
   csv << "x,y,fy,angle_deg\n";
@@ -169,7 +175,8 @@ py::dict fitCall(py::handle data, py::handle pulleys, py::handle sigmaFy, py::ha
 py::array_t<double> samplesArray(const std::vector<MembraneSample>& rows) {
   py::array_t<double> a = newArray({static_cast<py::ssize_t>(rows.size()), 4});
   double* d = a.mutable_data();
-  for (const MembraneSample& s : rows) *d++ = s.p.x(), *d++ = s.p.y(), *d++ = s.fy, *d++ = s.angleDeg;
+  for (const MembraneSample& s : rows)
+    *d++ = s.p.x(), *d++ = s.p.y(), *d++ = s.fy, *d++ = s.angleDeg;
   return a;
 }
 
@@ -183,7 +190,8 @@ py::array_t<double> membraneDataCall(double k, double preload, py::handle pulley
   if (seed < 0) throw InputError("--seed", "seed", "must be a whole number >= 0");
   def.seed = static_cast<std::uint64_t>(seed);
   const auto g = toNumbers(grid, 2, "--grid", "grid");
-  if (g[0] != std::floor(g[0]) || g[1] != std::floor(g[1]) || g[0] < 1 || g[1] < 1 || g[0] * g[1] > 1e6)
+  if (g[0] != std::floor(g[0]) || g[1] != std::floor(g[1]) || g[0] < 1 || g[1] < 1 ||
+      g[0] * g[1] > 1e6)
     throw InputError("--grid", "grid", "NX and NY must be whole numbers >= 1, at most 1e6 points");
   def.nx = static_cast<int>(g[0]), def.ny = static_cast<int>(g[1]);
   const auto d = toNumbers(depth, 2, "--depth", "depth");
@@ -267,8 +275,9 @@ fy (N), angle_deg (degrees). pulleys: AX, AY, BX, BY (m). sigma_*: noise levels 
 degrees), estimated when None. Returns the CLI's keys (k N/m, preload m, rms_fy N,
 rms_angle_deg, k_stderr, preload_stderr, ...) plus covariance (2 x 2 of k, preload).)doc");
   m.def("membrane_data", &membraneDataCall, "k"_a, "preload"_a, "pulleys"_a, py::kw_only(),
-        "noise_fy"_a = 0.05, "noise_angle_deg"_a = 1.0, "seed"_a = 1, "grid"_a = py::make_tuple(16, 12),
-        "depth"_a = py::make_tuple(0.05, 0.35), "along"_a = py::make_tuple(0.1, 0.9),
+        "noise_fy"_a = 0.05, "noise_angle_deg"_a = 1.0, "seed"_a = 1,
+        "grid"_a = py::make_tuple(16, 12), "depth"_a = py::make_tuple(0.05, 0.35),
+        "along"_a = py::make_tuple(0.1, 0.9),
         R"doc(membrane_data(k, preload, pulleys, *, noise_fy=0.05, noise_angle_deg=1, seed=1,
               grid=(16, 12), depth=(0.05, 0.35), along=(0.1, 0.9)) -> ndarray (n, 4)
 

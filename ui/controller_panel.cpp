@@ -587,7 +587,8 @@ void controllerOverlay(const Sandbox& sandbox, Overlay& overlay) {
       overlay.targets.push_back({h->prediction.box, "", kPredictionColour});
       overlay.texts.push_back(
           {h->prediction.box + Vec2(0.03, -0.09), "statics", kPredictionColour});
-      overlay.keys.push_back({Overlay::Key::Marker::Cross, "statics model's box", kPredictionColour});
+      overlay.keys.push_back(
+          {Overlay::Key::Marker::Cross, "statics model's box", kPredictionColour});
     }
     return;
   }

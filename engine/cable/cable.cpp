@@ -39,7 +39,8 @@ Cable::Cable(const SceneDef& scene, int index, const std::string& source)
       params_{def_->restLength, def_->stiffness, def_->preload, def_->damping} {
   auto resolve = [&](const std::string& name, const std::string& field) {
     const int b = findBodyIndex(scene, name);
-    if (b == -2) throw InputError(source, cableField(index, field), "unknown body" + gotValue(name));
+    if (b == -2)
+      throw InputError(source, cableField(index, field), "unknown body" + gotValue(name));
     return b;
   };
   startBody_ = resolve(def_->start.body, ".start.body");

@@ -51,8 +51,7 @@ std::optional<double> turnStraightens(const MovingPoint& a, const MovingPoint& p
     return -(wrapSideDistance(a.at(t), b.at(t), p.at(t), side) + reach);
   };
   return firstRise(
-      straightening, [](double) { return true; }, h, crossingSamples(pts, h),
-      crossingTolerance(h));
+      straightening, [](double) { return true; }, h, crossingSamples(pts, h), crossingTolerance(h));
 }
 
 }  // namespace cablelab

@@ -41,8 +41,7 @@ int crossingSamples(std::span<const MovingPoint> points, double h);
 /// `tolerance` (s) by regula falsi. g is sampled at `samples` equal intervals first, so two
 /// crossings closer than h / samples may be missed. nullopt: no such rise.
 template <class G, class Accept>
-std::optional<double> firstRise(G&& g, Accept&& accept, double h, int samples,
-                                double tolerance) {
+std::optional<double> firstRise(G&& g, Accept&& accept, double h, int samples, double tolerance) {
   double t0 = 0, g0 = g(0.0);
   for (int i = 1; i <= samples; ++i) {
     const double t1 = h * i / samples, g1 = g(t1);

@@ -32,8 +32,8 @@ struct PixelSize {
 };
 
 /// "WxH" (or "WXH"), each side a whole number in [minSide, maxSide].
-PixelSize parsePixelSize(std::string_view text, const std::string& source,
-                         const std::string& field, int minSide, int maxSide);
+PixelSize parsePixelSize(std::string_view text, const std::string& source, const std::string& field,
+                         int minSide, int maxSide);
 
 class InputError;
 

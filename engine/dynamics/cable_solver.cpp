@@ -68,9 +68,9 @@ struct JointRow {
 // allocate: after the first step every size has been seen and Eigen reuses the storage.
 struct CableSolverWorkspace {
   // Islands: cables and the moving bodies they (and the joints) connect, solved one by one.
-  std::vector<int> parent;                   // union-find over bodies
-  std::vector<int> islandOfRoot;             // root body -> island, -1: none
-  std::vector<std::vector<int>> islandRows;  // cables of each island, in cable order
+  std::vector<int> parent;                     // union-find over bodies
+  std::vector<int> islandOfRoot;               // root body -> island, -1: none
+  std::vector<std::vector<int>> islandRows;    // cables of each island, in cable order
   std::vector<std::vector<int>> islandJoints;  // joints of each island, in joint order
   int islands = 0;
   std::vector<int> jointIndex;  // the island's joints (indices into the input's joints)
@@ -476,7 +476,8 @@ void lengthTargets(Workspace& ws, double h, std::span<const Cable> cables) {
 void addJacobianTimesW(const Workspace& ws, const std::vector<BodyJacobian>& jacobian,
                        Eigen::Ref<Eigen::RowVectorXd, 0, Eigen::InnerStride<>> out) {
   for (const auto& e : jacobian)
-    if (const int d = ws.dofs.ofBody[e.body]; d >= 0) out += e.d.transpose() * ws.W.middleRows<3>(d);
+    if (const int d = ws.dofs.ofBody[e.body]; d >= 0)
+      out += e.d.transpose() * ws.W.middleRows<3>(d);
 }
 
 // The end-of-step state for impulses P (Box2D integrates q1 = q0 + h v1), then each row's

@@ -30,11 +30,11 @@ namespace cablelab {
 
 /// What one solve reads: the sub-step, the bodies now, and the joints among them.
 struct CableSolveInput {
-  double h = 0;                                      ///< sub-step (s)
-  Vec2 gravity = Vec2::Zero();                       ///< m/s^2
-  std::span<const BodyState> bodies;                 ///< start of the sub-step
-  std::span<const JointFrame> joints;                ///< every joint, indexed as the scene's
-  std::span<const std::vector<int>> jointNeighbours; ///< bodies jointed to each body
+  double h = 0;                                       ///< sub-step (s)
+  Vec2 gravity = Vec2::Zero();                        ///< m/s^2
+  std::span<const BodyState> bodies;                  ///< start of the sub-step
+  std::span<const JointFrame> joints;                 ///< every joint, indexed as the scene's
+  std::span<const std::vector<int>> jointNeighbours;  ///< bodies jointed to each body
 };
 
 struct CableSolverWorkspace;  // the stages' buffers (cable_solver.cpp)

@@ -15,8 +15,8 @@ constexpr double kBaumgarte = 0.2;
 constexpr int kIterations = 40;
 // Floors (docs/cables.md): a segment shorter than kFloorWatch gets a row keeping it at least
 // kFloorLength long, so a body that reaches its pulley stops there (an inelastic stop).
-constexpr double kFloorWatch = 0.5;    // m
-constexpr double kFloorLength = 0.01;  // m
+constexpr double kFloorWatch = 0.5;           // m
+constexpr double kFloorLength = 0.01;         // m
 constexpr double kPositionTolerance = 1e-12;  // m: end-of-step pose settled
 
 bool moves(const BodyState& b) {

@@ -20,7 +20,6 @@ void solveSingle(double k, double b, LcpSolution& sol) {
   sol.residual = std::abs(std::min(sol.x[0] * k, w));
 }
 
-
 // The equal compliance that makes a singular K definite, relative to its largest diagonal: small
 // enough that the impulses are the minimum-norm ones to 1e-6, large enough that the active-set
 // solves stay well conditioned. The targets are consistent (projected), so it never amplifies.
@@ -131,7 +130,7 @@ void lawsonHanson(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, LcpWorkspa
   // A row whose impulse would grow by less than this (N s) is done.
   double scale = 0;
   for (int i = 0; i < n; ++i) scale = std::max(scale, std::abs(b[i]) / K(i, i));
-  const double tolerance = 1e-7 * scale;  // the regularisation makes x exact to about 1e-6
+  const double tolerance = 1e-7 * scale;      // the regularisation makes x exact to about 1e-6
   std::vector<char>& blocked = work.blocked;  // added, and dropped again at once: not now
   blocked.assign(n, 0);
   for (const int maxIterations = 10 * n + 10; sol.iterations < maxIterations;) {
@@ -152,7 +151,8 @@ void lawsonHanson(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, LcpWorkspa
       x += alpha * (s - x);
       if (alpha >= 1) break;
       for (int i = 0; i < n; ++i)
-        if (passive[i] && x[i] <= 1e-15 * (1 + x.lpNorm<Eigen::Infinity>())) passive[i] = 0, x[i] = 0;
+        if (passive[i] && x[i] <= 1e-15 * (1 + x.lpNorm<Eigen::Infinity>()))
+          passive[i] = 0, x[i] = 0;
     }
     if (passive[best])
       blocked.assign(n, 0);  // progress: every row may be tried again
@@ -192,7 +192,8 @@ void solveLcp(const Eigen::MatrixXd& Kin, const Eigen::VectorXd& b, LcpWorkspace
   Eigen::MatrixXd& K = work.K;
   K = Kin;
   for (int i = 0; i < n; ++i) K(i, i) += 1e-12 * (1 + K(i, i));
-  if (n == 1 && K(0, 0) > std::numeric_limits<double>::min()) return solveSingle(K(0, 0), b[0], sol);
+  if (n == 1 && K(0, 0) > std::numeric_limits<double>::min())
+    return solveSingle(K(0, 0), b[0], sol);
 
   sol.x.setZero(n);
   sol.iterations = 0;

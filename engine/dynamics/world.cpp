@@ -21,7 +21,8 @@ constexpr double kSelectAhead = 1e-6;   // the look-ahead of the wrap selection
 constexpr double kMinEventStep = 1e-4;  // events closer than this are taken at this time
 constexpr int kMaxEventsPerSubstep = 16;
 constexpr double kMaxOmegaDt = 0.3;
-constexpr double kFloorLength = 0.01;  // m: closest a body comes to a threaded pulley  // longest midpoint step over the fastest transverse mode
+constexpr double kFloorLength = 0.01;  // m: closest a body comes to a threaded pulley  // longest
+                                       // midpoint step over the fastest transverse mode
 
 SceneDef validated(SceneDef scene, const std::string& source) {
   validateScene(scene, source);
@@ -122,9 +123,9 @@ void World::setCableParameters(int i, double restLength, double stiffness, doubl
   const std::string field = "cables[" + std::to_string(i) + "]";
   auto check = [&](double v, const char* name, bool positiveOnly) {
     if (!std::isfinite(v) || v < 0 || (positiveOnly && v == 0))
-      throw InputError("live edit", field + "." + name,
-                       std::string(positiveOnly ? "must be positive" : "must be >= 0") +
-                           gotValue(v));
+      throw InputError(
+          "live edit", field + "." + name,
+          std::string(positiveOnly ? "must be positive" : "must be >= 0") + gotValue(v));
   };
   check(restLength, "rest_length", true);
   check(stiffness, "stiffness", false);

@@ -127,15 +127,15 @@ class World {
   void solveForces(double dt);
   double advance(double left, double h, bool locate);
 
-  const SceneDef scene_;                         ///< the model: never edited after construction
-  std::unique_ptr<Box2DBridge> b2_;              ///< bodies, joints, contacts
-  std::unique_ptr<CableSolver> solver_;          ///< tensions, one solve per sub-step
-  std::unique_ptr<MidpointSolver> midpoint_;     ///< the energy-consistent solve, where it applies
-  std::vector<BodyState> motion_;    ///< look-ahead or predicted body states (wrap events)
+  const SceneDef scene_;                      ///< the model: never edited after construction
+  std::unique_ptr<Box2DBridge> b2_;           ///< bodies, joints, contacts
+  std::unique_ptr<CableSolver> solver_;       ///< tensions, one solve per sub-step
+  std::unique_ptr<MidpointSolver> midpoint_;  ///< the energy-consistent solve, where it applies
+  std::vector<BodyState> motion_;             ///< look-ahead or predicted body states (wrap events)
   std::vector<char> excluded_;       ///< bodies the midpoint solve leaves alone (joints, contacts)
   std::vector<Vec3> kicks_;          ///< velocity added after Box2D's step (midpoint solve)
   bool midpointUsed_ = false;        ///< the last solveForces() was a midpoint one
-  std::vector<BodyState> bodies_;                ///< read back from Box2D
+  std::vector<BodyState> bodies_;    ///< read back from Box2D
   std::vector<Vec3> forces_;         ///< (fx, fy, torque) per body for the current sub-step
   std::vector<Vec3> pendingForces_;  ///< applyForce() loads for the next step
   std::vector<Cable> cables_;

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <limits>
 
-#include "engine/hand/hand_kinematics.h"
 #include "engine/dynamics/world.h"
+#include "engine/hand/hand_kinematics.h"
 
 namespace cablelab {
 
@@ -21,7 +21,8 @@ Vec2 nearestPinch(const HandModel& m, const Vec2& g) {
   }
   const double rLow = m.linkLength + std::max(m.lower[kSlide], m.lower[3 + kSlide]);
   const double rHigh = m.linkLength + std::min(m.upper[kSlide], m.upper[3 + kSlide]);
-  const double angle = std::clamp(std::atan2(d.y(), d.x()), -angleLimit + margin, angleLimit - margin);
+  const double angle =
+      std::clamp(std::atan2(d.y(), d.x()), -angleLimit + margin, angleLimit - margin);
   const double r = std::clamp(d.norm(), rLow + margin, rHigh - margin);
   return Vec2(m.baseX, 0) + r * Vec2(std::cos(angle), std::sin(angle));
 }
@@ -72,8 +73,7 @@ void HandGrasp::setServos(World& world, const HandJoints& q) const {
   for (int j = 0; j < 6; ++j) world.setServoTarget(joints_[j], q[j]);
 }
 
-void HandGrasp::startRamp(double t, const HandJoints& from, const HandJoints& to,
-                          double duration) {
+void HandGrasp::startRamp(double t, const HandJoints& from, const HandJoints& to, double duration) {
   rampFrom_ = from;
   commanded_ = to;
   rampStart_ = t;
@@ -133,8 +133,8 @@ void HandGrasp::beforeStep(World& world, const std::optional<Vec2>& target) {
   if (controlling(t) && t >= nextUpdate_ - 1e-9) {
     const HandJoints from = commanded_;
     if (target) {
-      const HandJoints dq = controller_.update(joints(world), world.body(box_).position, *target,
-                                               commanded_);
+      const HandJoints dq =
+          controller_.update(joints(world), world.body(box_).position, *target, commanded_);
       ++updates_;
       // Spread over the period; no wind-up against the limits.
       startRamp(t, from, model_.clamp(commanded_ + dq), period);

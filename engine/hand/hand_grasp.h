@@ -61,7 +61,7 @@ class HandGrasp {
   void afterStep(const World& world);
 
   Phase phase() const { return phase_; }
-  double graspTime() const { return graspTime_; }      ///< s; -1 until the grasp first closes
+  double graspTime() const { return graspTime_; }        ///< s; -1 until the grasp first closes
   double controlStart() const { return controlStart_; }  ///< s; +inf until known
   bool controlling(double t) const { return phase_ == Phase::Control && t >= controlStart_ - 1e-9; }
   /// False once the box was lost after the grasp had closed (even if re-grasped since).

@@ -62,7 +62,8 @@ void validateScene(const SceneDef& scene, const std::string& source) {
   Checker check(source);
   check.finite(scene.gravity, "gravity");
   check.positive(scene.dt, "dt");
-  if (scene.substeps < 1 || scene.substeps > 1000) check.fail("substeps", "must be 1..1000" + gotValue(scene.substeps));
+  if (scene.substeps < 1 || scene.substeps > 1000)
+    check.fail("substeps", "must be 1..1000" + gotValue(scene.substeps));
   check.finite(scene.view.center, "view.center");
   check.positive(scene.view.height, "view.height");
 
@@ -71,7 +72,8 @@ void validateScene(const SceneDef& scene, const std::string& source) {
     const BodyDef& b = scene.bodies[i];
     const std::string f = at("bodies", i);
     if (b.name.empty()) check.fail(f + ".name", "must not be empty");
-    if (b.name == "world") check.fail(f + ".name", "is reserved for the fixed frame" + gotValue(b.name));
+    if (b.name == "world")
+      check.fail(f + ".name", "is reserved for the fixed frame" + gotValue(b.name));
     if (!names.insert(b.name).second)
       check.fail(f + ".name", "duplicate body name" + gotValue(b.name));
     check.finite(b.position, f + ".position");

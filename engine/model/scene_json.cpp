@@ -66,8 +66,7 @@ BodyDef readBody(Reader&& r) {
   b.linearDamping = r.number("linear_damping", 0);
   b.angularDamping = r.number("angular_damping", 0);
   const json& shapes = r.list("shapes");
-  for (size_t i = 0; i < shapes.size(); ++i)
-    b.shapes.push_back(readShape(r.item("shapes", i)));
+  for (size_t i = 0; i < shapes.size(); ++i) b.shapes.push_back(readShape(r.item("shapes", i)));
   return b;
 }
 
@@ -235,14 +234,11 @@ SceneDef sceneFromJson(const json& j, const std::string& source) {
     const json& bodies = r.list("bodies");
     // An empty object would run as an empty world: surely not what the author meant.
     if (bodies.empty()) r.fail("bodies", "must list at least one body (the scene has none)");
-    for (size_t i = 0; i < bodies.size(); ++i)
-      s.bodies.push_back(readBody(r.item("bodies", i)));
+    for (size_t i = 0; i < bodies.size(); ++i) s.bodies.push_back(readBody(r.item("bodies", i)));
     const json& joints = r.list("joints");
-    for (size_t i = 0; i < joints.size(); ++i)
-      s.joints.push_back(readJoint(r.item("joints", i)));
+    for (size_t i = 0; i < joints.size(); ++i) s.joints.push_back(readJoint(r.item("joints", i)));
     const json& cables = r.list("cables");
-    for (size_t i = 0; i < cables.size(); ++i)
-      s.cables.push_back(readCable(r.item("cables", i)));
+    for (size_t i = 0; i < cables.size(); ++i) s.cables.push_back(readCable(r.item("cables", i)));
   }
   validateScene(s, source);
   return s;
@@ -346,7 +342,8 @@ void saveSceneFile(const SceneDef& scene, const std::string& path) {
   std::ofstream out(path);
   if (!out) throw InputError(path, "(file)", std::string("cannot write: ") + std::strerror(errno));
   out << sceneToJson(scene).dump(2) << "\n";
-  if (!out.flush()) throw InputError(path, "(file)", std::string("write failed: ") + std::strerror(errno));
+  if (!out.flush())
+    throw InputError(path, "(file)", std::string("write failed: ") + std::strerror(errno));
 }
 
 }  // namespace cablelab

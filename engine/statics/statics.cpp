@@ -19,7 +19,9 @@ const char* toString(StaticsMethod method) {
 
 namespace {
 
-std::string describe(double v) { return formatNumber(v); }
+std::string describe(double v) {
+  return formatNumber(v);
+}
 
 void requireFinite(const Vec2& v, const std::string& source, const std::string& field) {
   if (!isFinite(v))

@@ -64,7 +64,9 @@ struct Rig {
   std::vector<std::string> warnings;
 };
 
-double bentLength(Vec2 p) { return (p - Vec2(-1, 0)).norm() + (Vec2(1, 0) - p).norm(); }
+double bentLength(Vec2 p) {
+  return (p - Vec2(-1, 0)).norm() + (Vec2(1, 0) - p).norm();
+}
 
 TEST(CableGuards, AtCreationEveryPulleyTheSegmentCutsJoins) {
   Rig point(sceneWith({pointPulley()}));
@@ -151,7 +153,7 @@ TEST(CableGuards, APolygonJoinsFromOutsideAndLeavesWhenItsChainIsEmpty) {
 
 TEST(CableGuards, APolygonComingFromTheWrapSideIsPassed) {
   Rig rig(sceneWith({squarePulley(0.1)}));
-  rig.at(Vec2(1.5, 0.3));  // above, beyond B
+  rig.at(Vec2(1.5, 0.3));   // above, beyond B
   rig.at(Vec2(0.5, 0.05));  // cuts the segment, but came from the wrap side
   EXPECT_FALSE(rig.cable.engaged(0));
   EXPECT_NEAR(rig.cable.length(), 2, kTight);

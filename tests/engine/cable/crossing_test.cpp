@@ -31,20 +31,20 @@ TEST(Crossing, PointOnALineMeetsAFixedSegmentWhenItsDistanceRunsOut) {
   // segment's right side is the wrap side of a Left pulley walking -x to +x... below it.
   const MovingPoint a = fixedAt(Vec2(-1, 0)), b = fixedAt(Vec2(1, 0));
   // Left: wrapped once the point is to the left of a->b, i.e. above (y > 0).
-  const auto c = pointCrossesSegment(a, b, movingFrom(Vec2(0.25, -0.3), Vec2(0, 50)),
-                                     WrapSide::Left, kH);
+  const auto c =
+      pointCrossesSegment(a, b, movingFrom(Vec2(0.25, -0.3), Vec2(0, 50)), WrapSide::Left, kH);
   ASSERT_TRUE(c.has_value());
   EXPECT_NEAR(c->time, 0.3 / 50, 2 * crossingTolerance(kH));
   EXPECT_NEAR(c->along, 0.625, 1e-9);
   // Coming from the wrap side it is no join: the cable passes it.
-  EXPECT_FALSE(pointCrossesSegment(a, b, movingFrom(Vec2(0, 0.3), Vec2(0, -50)), WrapSide::Left,
-                                   kH));
+  EXPECT_FALSE(
+      pointCrossesSegment(a, b, movingFrom(Vec2(0, 0.3), Vec2(0, -50)), WrapSide::Left, kH));
   // Too slow to arrive within the sub-step.
-  EXPECT_FALSE(pointCrossesSegment(a, b, movingFrom(Vec2(0, -0.3), Vec2(0, 1)), WrapSide::Left,
-                                   kH));
+  EXPECT_FALSE(
+      pointCrossesSegment(a, b, movingFrom(Vec2(0, -0.3), Vec2(0, 1)), WrapSide::Left, kH));
   // Crossing the line beyond the segment's end is no crossing of the segment.
-  EXPECT_FALSE(pointCrossesSegment(a, b, movingFrom(Vec2(1.5, -0.3), Vec2(0, 50)),
-                                   WrapSide::Left, kH));
+  EXPECT_FALSE(
+      pointCrossesSegment(a, b, movingFrom(Vec2(1.5, -0.3), Vec2(0, 50)), WrapSide::Left, kH));
 }
 
 TEST(Crossing, RandomLinearMotionsAgreeWithTheQuadratic) {
@@ -131,8 +131,8 @@ TEST(Crossing, MovingSegmentSweepsAcrossAFixedPoint) {
   b.local = Vec2(2, 0);
   b.angle = -0.5;
   b.angularVelocity = 60;
-  const auto c = pointCrossesSegment(fixedAt(Vec2::Zero()), b, fixedAt(Vec2(1, 0)),
-                                     WrapSide::Right, kH);
+  const auto c =
+      pointCrossesSegment(fixedAt(Vec2::Zero()), b, fixedAt(Vec2(1, 0)), WrapSide::Right, kH);
   ASSERT_TRUE(c.has_value());
   EXPECT_NEAR(c->time, 0.5 / 60, 1e-9 * kH);
   EXPECT_NEAR(c->along, 0.5, 1e-9);

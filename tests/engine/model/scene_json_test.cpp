@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include "engine/core/error.h"
-#include "engine/scenes/scene_registry.h"
 #include "engine/dynamics/world.h"
+#include "engine/scenes/scene_registry.h"
 #include "tests/support/engine_test_support.h"
 
 namespace cablelab {
