@@ -286,8 +286,8 @@ bool Cable::joinRound(std::vector<std::string>* warnings) {
       p.previousLeft = left;
       p.side = was <= 0 ? WrapSide::Left : WrapSide::Right;
       const bool within = t > 0 && t < 1;
-      const bool touches = p.polygon ? segmentCutsPolygon(a, b, p.world)
-                                     : within && std::abs(left) < p.radius;
+      const bool touches =
+          p.polygon ? segmentCutsPolygon(a, b, p.world) : within && std::abs(left) < p.radius;
       const bool crossed = within && !firstUpdate_ && (left > 0) != (was > 0);
       if (touches || crossed) {
         p.engaged = true;
@@ -415,9 +415,9 @@ void Cable::update(std::span<const BodyState> select, std::span<const BodyState>
   if (end_.radius == 0) path_.back().tangentIn = end_.tangentIn = end_.world;
   // Settle the engaged set on `select`: leaves first, then joins, until nothing changes.
   // Circles need the path's tangent points and arcs to decide; points and polygons do not.
-  const bool curved = start_.radius != 0 || end_.radius != 0 ||
-                      std::any_of(pulleys_.begin(), pulleys_.end(),
-                                  [](const PulleyState& p) { return p.circle; });
+  const bool curved =
+      start_.radius != 0 || end_.radius != 0 ||
+      std::any_of(pulleys_.begin(), pulleys_.end(), [](const PulleyState& p) { return p.circle; });
   const int count = static_cast<int>(pulleys_.size());
   for (int round = 0; round < 2 * count + 2; ++round) {
     if (!buildPath(warnings)) continue;

@@ -214,16 +214,16 @@ class Cable {
  private:
   struct PulleyState {
     int body = -1;
-    std::vector<Vec2> local;  ///< point or polygon vertices (a circle's centre), body frame
-    std::vector<Vec2> world;  ///< the same in the world frame, this update
+    std::vector<Vec2> local;         ///< point or polygon vertices (a circle's centre), body frame
+    std::vector<Vec2> world;         ///< the same in the world frame, this update
     WrapSide side = WrapSide::Left;  ///< resolved side (an auto pulley's while engaged)
     bool autoSide = false;           ///< "side": "auto": the side is chosen at each join
     bool polygon = false;
     bool circle = false;
-    double radius = 0;         ///< circle, m (unsigned)
-    bool grips = false;        ///< circle that the cable does not slide freely on
-    double turns = 0;          ///< turns wound at the start (0: from the geometry, < 1 turn)
-    double arc = 0;            ///< circle: wrap angle at the last update (branch reference)
+    double radius = 0;   ///< circle, m (unsigned)
+    bool grips = false;  ///< circle that the cable does not slide freely on
+    double turns = 0;    ///< turns wound at the start (0: from the geometry, < 1 turn)
+    double arc = 0;      ///< circle: wrap angle at the last update (branch reference)
     bool engaged = false;
     double previousDepth = 0;  ///< wrap-side depth at the last update (guard memory)
     double previousLeft = 0;   ///< auto: signed distance left of the host segment (guard memory)
@@ -274,8 +274,8 @@ class Cable {
   CableKinematics previousKin_;          ///< scratch of the length-jump check
   std::vector<int> rejoinChain_;         ///< scratch of the rejoin test
   CableKinematics kin_;
-  std::vector<Span> spans_;      ///< empty: one span, the whole path
-  std::vector<SpanLink> links_;  ///< spans_.size() - 1
+  std::vector<Span> spans_;        ///< empty: one span, the whole path
+  std::vector<SpanLink> links_;    ///< spans_.size() - 1
   std::vector<int> splitPulleys_;  ///< pulleys at the links, in path order (scratch + memory)
   double tension_ = 0;
   bool firstUpdate_ = true;

@@ -87,9 +87,9 @@ std::optional<WrapEvent> Cable::nextEvent(std::span<const BodyState> motion, dou
     if (auto t = turnStraightens(contact(path_[i - 1], path_[i - 1].tangentOut), moving(w),
                                  contact(path_[i + 1], path_[i + 1].tangentIn),
                                  pulleys_[w.pulley].side, horizon, reach))
-      keepEarliest(best, *t, w.pulley,
-                   w.kind == WrapPoint::Kind::Vertex ? WrapEvent::Kind::Vertex
-                                                     : WrapEvent::Kind::Leave);
+      keepEarliest(
+          best, *t, w.pulley,
+          w.kind == WrapPoint::Kind::Vertex ? WrapEvent::Kind::Vertex : WrapEvent::Kind::Leave);
   }
   return best;
 }

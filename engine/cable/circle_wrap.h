@@ -14,8 +14,8 @@ namespace cablelab {
 
 /// The straight piece of cable between two circles (centres c0 -> c1, signed radii rho0, rho1).
 struct CircleTangent {
-  Vec2 u = Vec2(1, 0);  ///< unit direction, from circle 0 to circle 1
-  double length = 0;    ///< m, tangent point to tangent point
+  Vec2 u = Vec2(1, 0);      ///< unit direction, from circle 0 to circle 1
+  double length = 0;        ///< m, tangent point to tangent point
   bool degenerate = false;  ///< the circles overlap (no tangent): length 0, u a limit direction
   Vec2 from(const Vec2& c0, double rho0) const { return c0 + rho0 * perp(u); }
   Vec2 to(const Vec2& c1, double rho1) const { return c1 + rho1 * perp(u); }

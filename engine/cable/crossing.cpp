@@ -44,8 +44,7 @@ std::optional<Crossing> pointCrossesSegment(const MovingPoint& a, const MovingPo
 }
 
 std::optional<double> turnStraightens(const MovingPoint& a, const MovingPoint& p,
-                                      const MovingPoint& b, WrapSide side, double h,
-                                      double reach) {
+                                      const MovingPoint& b, WrapSide side, double h, double reach) {
   const MovingPoint pts[] = {a, b, p};
   auto straightening = [&](double t) {
     return -(wrapSideDistance(a.at(t), b.at(t), p.at(t), side) + reach);

@@ -549,7 +549,7 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
     ws.b.noalias() = ws.JW * ws.P;
     for (int r = 0; r < m; ++r)
       ws.b[r] += (cables[ws.rows[r].cable].elastic() ? ws.phi1[r] - ws.damped[r]
-                                               : ws.phi1[r] - ws.target[r]) /
+                                                     : ws.phi1[r] - ws.target[r]) /
                  h;
     LcpSolution& sol = ws.lcpSolution;
     solveLcp(ws.K, ws.b, ws.lcp, sol, redundant);

@@ -9,8 +9,8 @@
 #pragma once
 
 #include <Eigen/Cholesky>
-#include <Eigen/LU>
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <Eigen/QR>
 #include <vector>
 

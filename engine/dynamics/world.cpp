@@ -174,9 +174,9 @@ void World::applyServos() {
     if (!servo.enabled) continue;
     const int j = static_cast<int>(i);
     const JointCoordinate q = b2_->jointCoordinate(j);
-    const double f = std::clamp(servo.kp * (servoTargets_[i] - q.value) +
-                                    servo.kd * (servo.speed - q.speed),
-                                -servo.maxForce, servo.maxForce);
+    const double f =
+        std::clamp(servo.kp * (servoTargets_[i] - q.value) + servo.kd * (servo.speed - q.speed),
+                   -servo.maxForce, servo.maxForce);
     const auto [a, b] = jointBodies_[i];
     Vec3 load = Vec3::Zero();
     if (scene_.joints[i].kind == JointDef::Kind::Revolute) {

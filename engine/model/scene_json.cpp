@@ -134,7 +134,8 @@ AnchorDef readAnchor(Reader&& r) {
   a.point = r.vec2("point", Vec2::Zero());
   if (r.has("radius")) {
     a.radius = r.number("radius", 0);
-    if (a.radius <= 0) r.fail("radius", "a drum's radius must be positive (got " + formatNumber(a.radius) + ")");
+    if (a.radius <= 0)
+      r.fail("radius", "a drum's radius must be positive (got " + formatNumber(a.radius) + ")");
     a.side = readSide(r, WrapSide::Left);
     a.turns = r.number("turns", a.turns);
   }
@@ -304,12 +305,9 @@ json sceneToJson(const SceneDef& s) {
   }
   j["cables"] = json::array();
   for (const CableDef& c : s.cables) {
-    json jc = {{"name", c.name},
-               {"start", anchorJson(c.start)},
-               {"end", anchorJson(c.end)},
-               {"pulleys", json::array()},
-               {"stiffness", c.stiffness},
-               {"preload", c.preload},
+    json jc = {{"name", c.name},           {"start", anchorJson(c.start)},
+               {"end", anchorJson(c.end)}, {"pulleys", json::array()},
+               {"stiffness", c.stiffness}, {"preload", c.preload},
                {"damping", c.damping}};
     if (c.restLength > 0) jc["rest_length"] = c.restLength;
     for (const PulleyDef& p : c.pulleys) {

@@ -52,7 +52,8 @@ TEST(CircleWrap, LengthMatchesTangentArcFormulaAndAFinePolygon) {
     const Vec2 b = c + rng.uniform(1.2 * r, 4) * rotate(Vec2(1, 0), rng.uniform(-M_PI, M_PI));
     const WrapSide side = rng.integer(0, 1) ? WrapSide::Left : WrapSide::Right;
     const double rho = side == WrapSide::Left ? r : -r;
-    std::vector<WrapPoint> path = {{WrapPoint::Kind::Anchor, -1, a}, circlePoint(-1, c, rho),
+    std::vector<WrapPoint> path = {{WrapPoint::Kind::Anchor, -1, a},
+                                   circlePoint(-1, c, rho),
                                    {WrapPoint::Kind::Anchor, -1, b}};
     // Start the arc on the wrapped branch [0, 2 pi): the textbook formula's.
     path[1].arc = M_PI;

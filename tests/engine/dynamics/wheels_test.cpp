@@ -64,8 +64,7 @@ TEST(Capstan, HoldsBelowTheEulerEytelweinRatioAndSlipsAtItAbove) {
     for (double factor : {1.01, 2.0}) {
       const double mLoad = factor * ratio * mHold;
       const double expected = -kG * (mLoad - mHold * ratio) / (mLoad + mHold * ratio);
-      EXPECT_NEAR(capstanAcceleration(mu, turns, mLoad, mHold), expected,
-                  0.01 * std::abs(expected))
+      EXPECT_NEAR(capstanAcceleration(mu, turns, mLoad, mHold), expected, 0.01 * std::abs(expected))
           << "load " << factor << " x ratio";
     }
     // The hold side heavier than ratio x the load: it slips the other way.
