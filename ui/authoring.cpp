@@ -307,10 +307,27 @@ bool authoringClick(Sandbox& sandbox, const Vec2& p, bool right) {
   return true;
 }
 
-void saveScene(const Sandbox& sandbox, const std::string& path) {
+SceneDef sceneToSave(const Sandbox& sandbox) {
   SceneDef def = sandbox.scene;
   def.dt = sandbox.dt, def.substeps = sandbox.substeps, def.gravity = sandbox.gravity;
-  saveSceneFile(def, path);
+  const World* world = sandbox.world();
+  if (!world || world->cableCount() != static_cast<int>(def.cables.size())) return def;
+  // Live cable edits (the inspector, a loaded fit) are World state: write them. The rest length
+  // only where it differs from the one the file gives (an unset one is the initial length).
+  const World fresh(def, sandbox.sceneName);
+  for (int i = 0; i < world->cableCount(); ++i) {
+    const Cable& live = world->cable(i);
+    CableDef& c = def.cables[i];
+    c.stiffness = live.stiffness();
+    c.preload = live.preload();
+    c.damping = live.damping();
+    if (live.restLength() != fresh.cable(i).restLength()) c.restLength = live.restLength();
+  }
+  return def;
+}
+
+void saveScene(const Sandbox& sandbox, const std::string& path) {
+  saveSceneFile(sceneToSave(sandbox), path);
 }
 
 void authoringPanel(Sandbox& sandbox) {
