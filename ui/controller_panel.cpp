@@ -205,22 +205,22 @@ void graspStatus(const Sandbox& sandbox, const HandControlState& h, double t) {
         "or went slack after the grasp closed. The hand stops, then grasps again about the box "
         "(at most twice).");
   } else if (g.phase() != HandGrasp::Phase::Control) {
-    ImGui::Text("%s, waiting for both membranes", state.c_str());
+    ImGui::TextWrapped("%s, waiting for both membranes", state.c_str());
   } else if (!g.controlling(t)) {
-    ImGui::Text("%s at %.2f s, control from %.2f s", state.c_str(), g.graspTime(),
-                g.controlStart());
+    ImGui::TextWrapped("%s at %.2f s, control from %.2f s", state.c_str(), g.graspTime(),
+                       g.controlStart());
   } else {
-    ImGui::Text("%s; %d updates%s%s", state.c_str(), g.updates(),
-                !h.enabled        ? " (loop off)"
-                : !sandbox.target ? " (no target)"
-                                  : "",
-                g.held() ? "" : " (re-grasped)");
+    ImGui::TextWrapped("%s; %d updates%s%s", state.c_str(), g.updates(),
+                       !h.enabled        ? " (loop off)"
+                       : !sandbox.target ? " (no target)"
+                                         : "",
+                       g.held() ? "" : " (re-grasped)");
   }
 }
 
 void handPanel(Sandbox& sandbox, HandControlState& h) {
   World* world = sandbox.world();
-  ImGui::TextUnformatted("Jacobian controller (thesis 4.3)");
+  ImGui::TextWrapped("Jacobian controller (thesis 4.3)");
 
   // Target: sliders and click-to-set (the overlay cross), or a ramp as `track --ramp`.
   bool hasTarget = sandbox.target.has_value();
@@ -242,7 +242,8 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
   }
   float ramp[3] = {static_cast<float>(h.rampTo.x()), static_cast<float>(h.rampTo.y()),
                    static_cast<float>(h.rampSeconds)};
-  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize("Ramp__").x);
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - buttonWidth("Ramp") -
+                          ImGui::GetStyle().ItemSpacing.x);
   if (ImGui::DragFloat3("##ramp", ramp, 0.005f, -kTargetRange, kTargetRange, "%.3f")) {
     h.rampTo = Vec2(ramp[0], ramp[1]);
     h.rampSeconds = std::clamp(static_cast<double>(ramp[2]), 0.05, 60.0);
@@ -260,12 +261,12 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
   bool changed = false;
   ImGui::Checkbox("outer loop on", &h.enabled);
   tooltip("Run the Jacobian outer loop (else the servos hold the last joint targets).");
-  ImGui::SameLine();
+  sameLineIfRoom(checkboxWidth("PID"));
   changed |= ImGui::Checkbox("PID", &h.pid);
   tooltip("Add the integral term k_i (the `track --pid` controller).");
-  ImGui::PushItemWidth(ImGui::GetFontSize() * 7);
-  changed |= ImGui::InputDouble("k_p (per update)", &h.params.kp, 0.01, 0.1, "%.3f");
-  tooltip("Proportional gain of the outer loop, per update.");
+  ImGui::PushItemWidth(fieldWidth("k_i (1/s)", ImGui::GetFontSize() * 7));
+  changed |= ImGui::InputDouble("k_p", &h.params.kp, 0.01, 0.1, "%.3f");
+  tooltip("Proportional gain of the outer loop, per update (dimensionless).");
   changed |= ImGui::InputDouble("k_d", &h.params.kd, 0.01, 0.1, "%.3f");
   tooltip("Derivative gain of the outer loop.");
   if (!h.pid) ImGui::BeginDisabled();
@@ -273,8 +274,8 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
   tooltip("Integral gain (with PID on).");
   if (!h.pid) ImGui::EndDisabled();
   ImGui::PopItemWidth();
-  const bool thesis = ImGui::SmallButton("thesis gains (k_p 0.1, k_d 0.58)");
-  tooltip("Back to the gains of thesis section 4.3.");
+  const bool thesis = ImGui::SmallButton("thesis gains");
+  tooltip("Back to the gains of thesis section 4.3: k_p 0.1, k_d 0.58 (k_i 1 with PID).");
   if (thesis) {
     const HandControllerParams d;
     h.params.kp = d.kp, h.params.kd = d.kd, h.ki = kHandPidKi;
@@ -289,12 +290,12 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
 
   // Grasp sequence.
   ImGui::TextUnformatted("start pose:");
-  ImGui::SameLine();
+  sameLineIfRoom(buttonWidth("open (grasp)"));
   const bool grasp = ImGui::Button("open (grasp)");
   tooltip(
       "As `cablelab track`: reset, the box at track's default start, swing the fingers open, "
       "close them over 1 s, grasp, then control the box.");
-  ImGui::SameLine();
+  sameLineIfRoom(buttonWidth("pinch"));
   const bool pinch = ImGui::Button("pinch");
   tooltip("Reset to the pinch pose, the box already between the membranes.");
   if (grasp) {
@@ -345,7 +346,7 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
     }
   }
   tooltip("The plotted history (last 15 s) as CSV in the working directory.");
-  ImGui::SameLine();
+  sameLineIfRoom(buttonWidth("Export PNG"));
   if (ImGui::SmallButton("Export PNG")) {
     sandbox.pngRequest = h.plotRect;
     sandbox.pngRequestPath = "cablelab-hand-plots.png";
@@ -400,23 +401,26 @@ MembraneNow membraneNow(const World& world, const MembraneViewState& m) {
 void membranePanel(Sandbox& sandbox, MembraneViewState& m) {
   World* world = sandbox.world();
   const MembraneNow n = membraneNow(*world, m);
-  ImGui::TextUnformatted("Membrane model (thesis ch. 3)");
+  ImGui::TextWrapped("Membrane model (thesis ch. 3)");
   const Cable& band = world->cable(m.band);
-  ImGui::Text("k %.4g N/m, preload %.4g m", band.stiffness(), band.preload());
+  ImGui::TextWrapped("k %.4g N/m, preload %.4g m", band.stiffness(), band.preload());
   if (n.valid) {
-    ImGui::Text("model F = (%.3f, %.3f) N", n.force.x(), n.force.y());
-    ImGui::Text("model T %.4g N, engine T %.4g N", membraneTension(n.g, n.params, n.p),
-                band.tension());
+    ImGui::TextWrapped("model F = (%.3f, %.3f) N", n.force.x(), n.force.y());
+    ImGui::TextWrapped("model T %.4g N, engine T %.4g N", membraneTension(n.g, n.params, n.p),
+                       band.tension());
   }
-  ImGui::TextUnformatted("fit JSON (cablelab fit output):");
+  ImGui::TextWrapped("fit JSON (cablelab fit output):");
   ImGui::SetNextItemWidth(-1);
   ImGui::InputText("##fitjson", m.path.data(), m.path.size());
-  if (ImGui::Button("Load k, preload into the band"))
+  if (ImGui::Button("Load k, preload"))
     m.messageIsError = !loadFitIntoBand(sandbox, m.path.data(), m.message);
+  tooltip("Load the fit's k and preload into the band (its rest length becomes |AB|).");
   if (!m.message.empty()) {
-    if (m.messageIsError)
-      ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1), "%s", m.message.c_str());
-    else
+    if (m.messageIsError) {
+      ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(204, 26, 26, 255));
+      ImGui::TextWrapped("%s", m.message.c_str());
+      ImGui::PopStyleColor();
+    } else
       ImGui::TextWrapped("%s", m.message.c_str());
   }
 }
