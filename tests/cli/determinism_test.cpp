@@ -1,6 +1,9 @@
 // Determinism: the same scene, seed and options give byte-identical output on two runs.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -17,8 +20,9 @@ std::string slurp(const std::string& path) {
 }
 
 void expectIdenticalRuns(const std::string& args, const std::string& tag) {
-  const std::string a = "/tmp/cablelab_determinism_" + tag + "_a.csv",
-                    b = "/tmp/cablelab_determinism_" + tag + "_b.csv";
+  // The pid keeps runs of the suite in parallel (several checkouts) off each other's files.
+  const std::string stem = "/tmp/cablelab_determinism_" + std::to_string(getpid()) + "_" + tag;
+  const std::string a = stem + "_a.csv", b = stem + "_b.csv";
   const auto r1 = cablelab::test::runCli(args + " --csv " + a);
   const auto r2 = cablelab::test::runCli(args + " --csv " + b);
   ASSERT_EQ(r1.exitCode, 0) << r1.err;
