@@ -17,6 +17,12 @@
 namespace cablelab::ui {
 namespace {
 
+// The side panels and the status line draw no background of their own: the window clears the
+// whole frame in the panels' colour and the world only inside the free area (gui_main.cpp). On
+// Xvfb's software GL the panels' background quads (textured and blended, half the window) cost
+// more than everything else in a frame.
+constexpr ImGuiWindowFlags kPanelBackground = ImGuiWindowFlags_NoBackground;
+
 void record(Sandbox& sandbox) {
   const ImVec2 p = ImGui::GetWindowPos(), s = ImGui::GetWindowSize();
   sandbox.panels.push_back({p.x, p.y, s.x, s.y});
@@ -113,10 +119,10 @@ bool beginSidePanel(Sandbox& sandbox, PanelState& state, const char* name, bool 
   bool& collapse = left ? state.collapseLeft : state.collapseRight;
   if (collapse) ImGui::SetNextWindowCollapsed(true, ImGuiCond_Always);
   collapse = false;
-  // Rows fit the width (ui/panels.h); a row that cannot (a large UI scale on a small window)
-  // can still be scrolled to.
-  const bool open =
-      ImGui::Begin(name, nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_HorizontalScrollbar);
+  // Rows fit the width (ui/panels.h; no horizontal scrolling: with it ImGui widens the work
+  // area to the widest row, and rows sized to the work area then keep the scrollbar). No
+  // background: the window clears the panels' area in their colour (gui_main.cpp).
+  const bool open = ImGui::Begin(name, nullptr, ImGuiWindowFlags_NoMove | kPanelBackground);
   record(sandbox);
   // The user's resize shows up as this frame's size: keep it for the next frame.
   if (open) width = ImGui::GetWindowSize().x;
@@ -159,7 +165,7 @@ void statusLine(Sandbox& sandbox) {
   ImGui::Begin("##status", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoScrollbar |
-                   ImGuiWindowFlags_NoSavedSettings);
+                   ImGuiWindowFlags_NoSavedSettings | kPanelBackground);
   record(sandbox);
   if (const World* world = sandbox.world()) {
     const StepStats& s = world->lastStepStats();
