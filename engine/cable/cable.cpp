@@ -310,7 +310,10 @@ bool Cable::joinRound(std::vector<std::string>* warnings) {
     p.previousDepth = depth;
     // A polygon a guard dropped rejoins once a taut path round it exists again.
     if (p.dropped && cuts && !crossed) {
-      crossed = wrapChain(a, b, p.world, p.side, rejoinChain_);
+      // Only where the drop is undone, not round the far side of a polygon that went through.
+      crossed =
+          wrapChain(a, b, p.world, p.side, rejoinChain_) &&
+          chainLength(a, b, p.world, rejoinChain_) - (b - a).norm() <= p.dropCut + kLengthJump;
       if (crossed && warnings)
         warnings->push_back("cable '" + def_->name + "': pulley " + std::to_string(j) +
                             " rejoined the path (a guard had dropped it)");
@@ -386,6 +389,12 @@ void Cable::refresh(std::span<const BodyState> bodies) {
   for (Span& s : spans_) cableKinematics(s.path, bodies, s.kin);
 }
 
+// The length the path before this update has on `bodies`.
+double Cable::previousLength(std::span<const BodyState> bodies) {
+  cableKinematics(previousPath_, bodies, previousKin_);
+  return previousKin_.length;
+}
+
 // Every wrap change is meant to happen on the old path (docs/cables.md); one that was not (a
 // guard acting, a crossing found late) and moved the length by more than kLengthJump says so.
 void Cable::reportLengthJump(std::span<const BodyState> bodies,
@@ -395,10 +404,10 @@ void Cable::reportLengthJump(std::span<const BodyState> bodies,
   for (size_t i = 0; same && i < path_.size(); ++i)
     same = previousPath_[i].pulley == path_[i].pulley && previousPath_[i].vertex == path_[i].vertex;
   if (same) return;
-  cableKinematics(previousPath_, bodies, previousKin_);
-  if (std::abs(kin_.length - previousKin_.length) <= kLengthJump) return;
+  const double before = previousLength(bodies);
+  if (std::abs(kin_.length - before) <= kLengthJump) return;
   char jump[64];
-  std::snprintf(jump, sizeof jump, "%.6g m", kin_.length - previousKin_.length);
+  std::snprintf(jump, sizeof jump, "%.6g m", kin_.length - before);
   warnings->push_back("cable '" + def_->name + "': a wrap change moved the length by " + jump +
                       " (not on the old path: a guard acted or a crossing was found late)");
 }
@@ -419,6 +428,8 @@ void Cable::update(std::span<const BodyState> select, std::span<const BodyState>
       start_.radius != 0 || end_.radius != 0 ||
       std::any_of(pulleys_.begin(), pulleys_.end(), [](const PulleyState& p) { return p.circle; });
   const int count = static_cast<int>(pulleys_.size());
+  droppedBefore_.resize(count);
+  for (int j = 0; j < count; ++j) droppedBefore_[j] = pulleys_[j].dropped;
   for (int round = 0; round < 2 * count + 2; ++round) {
     if (!buildPath(warnings)) continue;
     if (curved) {
@@ -440,6 +451,10 @@ void Cable::update(std::span<const BodyState> select, std::span<const BodyState>
     cableKinematics(path_, bodies, kin_);
     if (curved) storeArcs();
   }
+  // What a drop in this update took out is what a later rejoin may put back.
+  for (int j = 0; j < count; ++j)
+    if (pulleys_[j].dropped && !droppedBefore_[j])
+      pulleys_[j].dropCut = std::max(0.0, previousLength(bodies) - kin_.length);
   reportLengthJump(bodies, warnings);
   if (warnings && kin_.zeroLengthSegments > 0 && !reportedZeroLength_)
     warnings->push_back("cable '" + def_->name + "': " + std::to_string(kin_.zeroLengthSegments) +

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/dynamics/floors.h"
 #include "engine/dynamics/tension_solver.h"
 
 namespace cablelab {
@@ -80,10 +81,12 @@ struct CableSolverWorkspace {
   // One LCP row per cable span (wheels that grip a cable split it, docs/wheels.md); a row over
   // several spans is a cable sliding on capstans between them: its constraint is their summed
   // length and span k pulls with weight k times the row's impulse (the e^(mu theta) ratios).
+  // Floor rows (segment >= 0) follow the cables' rows.
   struct Row {
     int cable = 0;
     int first = 0, last = 0;  // spans
     size_t weights = 0;       // offset of span first's weight in rowWeights
+    int segment = -1;         // -1: the spans' length; i: a floor on the cable's segment i
     double weight(const std::vector<double>& w, int k) const { return w[weights + k - first]; }
   };
   std::vector<Row> rows;  // this island's
@@ -122,6 +125,7 @@ struct CableSolverWorkspace {
   std::vector<BodyState> predicted;
   std::vector<WrapPoint> path;
   CableKinematics kin;
+  std::vector<BodyJacobian> floorJacobian;  // scratch: a floor row's J
   LcpWorkspace lcp;
   LcpSolution lcpSolution;
 
@@ -297,9 +301,23 @@ int findIslands(Workspace& ws, const CableSolveInput& in, std::span<Cable> cable
   return ws.islands;
 }
 
+// Whether segment (p, q) could close to kFloorLength within the step, at the speed its ends have
+// now plus a step of gravity (twice that, and a floor length, for margin): only then does it get
+// a floor row. A hand's membranes have short end segments that never come close; rows cost.
+bool mayReachFloor(const CableSolveInput& in, const WrapPoint& p, const WrapPoint& q) {
+  auto speed = [&](const WrapPoint& w) {
+    if (w.body < 0) return 0.0;
+    const BodyState& b = in.bodies[w.body];
+    const Vec2 v = b.velocity + b.angularVelocity * perp(Vec2(w.world - b.position));
+    return v.norm() + (b.invMass > 0 ? in.h * in.gravity.norm() : 0.0);
+  };
+  const double length = (q.world - p.world).norm();
+  return length > 1e-9 && length < 2 * kFloorLength + 2 * in.h * (speed(p) + speed(q));
+}
+
 // 1b. One island's rows (one per span of its cables), and the dofs of the bodies it moves: its
 // cables' moving bodies in cable order, then those jointed to them (breadth first: they move with
-// them).
+// them). Then the floors.
 void buildRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
                int island) {
   ws.dofs.clear();
@@ -316,6 +334,54 @@ void buildRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
   for (size_t k = 0; k < ws.dofs.body.size(); ++k)
     for (int other : in.jointNeighbours[ws.dofs.body[k]])
       if (moves(in.bodies[other])) ws.dofs.add(other);
+  // Floors (floors.h): a short segment on a moving body gets a row of its own after the cables.
+  for (int cable : ws.islandRows[island]) {
+    const auto& path = cables[cable].path();
+    for (size_t i = 0; i + 1 < path.size(); ++i)
+      if (needsFloor(path, i, [&](int b) { return ws.dofs.ofBody[b] >= 0; }) &&
+          mayReachFloor(in, path[i], path[i + 1])) {
+        ws.rows.push_back({cable, 0, 0, ws.rowWeights.size(), static_cast<int>(i)});
+        ws.rowWeights.push_back(1.0);
+      }
+  }
+}
+
+// A floor row's constraint kFloorLength - u0 . (q - p) of segment (p, q) on `bodies`, and its J
+// (into ws.floorJacobian). u0 is the segment's direction at the start of the step: measured along
+// it, a body that would pass through its pulley within the step goes negative instead of
+// coming out the other side at a length that looks allowed.
+double floorRow(Workspace& ws, std::span<const BodyState> bodies, const Cable& cable, int segment) {
+  const WrapPoint* ends[2] = {&cable.path()[segment], &cable.path()[segment + 1]};
+  const Vec2 u0 = (ends[1]->world - ends[0]->world).normalized();
+  ws.floorJacobian.clear();
+  double along = 0;
+  for (int e = 0; e < 2; ++e) {
+    const double sign = e == 0 ? 1.0 : -1.0;  // d(kFloorLength - u0 . (q - p))
+    const WrapPoint& w = *ends[e];
+    const Vec2 x = worldPoint(bodies, w.body, w.local);
+    along -= sign * u0.dot(x);
+    if (w.body < 0) continue;
+    const Vec2 arm = x - bodies[w.body].position;
+    ws.floorJacobian.push_back({w.body, sign * Vec3(u0.x(), u0.y(), u0.dot(perp(arm)))});
+  }
+  return kFloorLength - along;
+}
+
+// Calls f(J, weight) for each Jacobian that row r's J at the start of the step sums: its
+// spans', or its floor's. The constraint is the plain sum; the weights are how hard each span
+// pulls (W's columns).
+template <class F>
+void forStartJacobians(Workspace& ws, std::span<const BodyState> bodies,
+                       std::span<const Cable> cables, int r, F&& f) {
+  const Workspace::Row& row = ws.rows[r];
+  const Cable& c = cables[row.cable];
+  if (row.segment >= 0) {
+    floorRow(ws, bodies, c, row.segment);
+    f(ws.floorJacobian, 1.0);
+    return;
+  }
+  for (int k = row.first; k <= row.last; ++k)
+    f(c.spanKinematics(k).jacobian, row.weight(ws.rowWeights, k));
 }
 
 // Bodies that are not dofs (kinematic, static) at the end of the step: Box2D moves them with
@@ -349,13 +415,11 @@ void predictVelocities(Workspace& ws, const CableSolveInput& in, std::span<const
     ws.vStar.segment<3>(3 * k) = v;
   }
   ws.W.setZero(n, m);
-  for (int r = 0; r < m; ++r) {
-    const Workspace::Row& row = ws.rows[r];
-    for (int k = row.first; k <= row.last; ++k)
-      for (const auto& e : cables[row.cable].spanKinematics(k).jacobian)
-        if (dofs.ofBody[e.body] >= 0)
-          ws.W.block<3, 1>(dofs.ofBody[e.body], r) += row.weight(ws.rowWeights, k) * e.d;
-  }
+  for (int r = 0; r < m; ++r)
+    forStartJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double weight) {
+      for (const auto& e : jacobian)
+        if (dofs.ofBody[e.body] >= 0) ws.W.block<3, 1>(dofs.ofBody[e.body], r) += weight * e.d;
+    });
   ws.vFree = ws.vStar;  // what Box2D would reach without cables and joints
 }
 
@@ -368,7 +432,8 @@ void inverseMass(Workspace& ws, double h, std::span<const Cable> cables) {
   ws.blocks.clear();
   ws.stiff = false;
   for (const Workspace::Row& row : ws.rows) {
-    if (row.first != 0) continue;  // once per cable
+    // Once per cable: not a floor, not a later span.
+    if (row.segment >= 0 || row.first != 0) continue;
     const Cable& c = cables[row.cable];
     const double tension =
         std::max(c.tension(), c.elastic() ? c.stiffness() * std::max(0.0, c.stretch()) : 0.0);
@@ -450,19 +515,28 @@ void projectOntoJoints(Workspace& ws, const CableSolveInput& in) {
 
 // 5. Position-level targets. Rigid: length at the end of the step = now (the error below the
 // slop is float rounding: fixing it would amplify it by 1/h^2), a slack cable may come taut, an
-// over-long one is shortened by a share of the excess. Elastic: T = k phi1 + b (phi1 - phi0)/h.
-void lengthTargets(Workspace& ws, double h, std::span<const Cable> cables) {
+// over-long one is shortened by a share of the excess per nominal sub-step (a step cut at an
+// event fixes its share of that: fixing it all would ask for a velocity of error / h). Elastic: T =
+// k phi1 + b (phi1 - phi0)/h.
+void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable> cables) {
+  // Floors are rigid rows on kFloorLength - |segment|: they only ever push.
+  const double beta = kBaumgarte * share;
   const int m = static_cast<int>(ws.rows.size());
   ws.target.resize(m);
   ws.compliance.setZero(m);
   ws.damped.setZero(m);
   for (int r = 0; r < m; ++r) {
-    const Cable& c = cables[ws.rows[r].cable];
+    const Workspace::Row& row = ws.rows[r];
+    const Cable& c = cables[row.cable];
+    const int seg = row.segment;
     double phi = 0;
-    for (int k = ws.rows[r].first; k <= ws.rows[r].last; ++k) phi += c.spanStretch(k);
-    if (!c.elastic()) {
+    if (seg >= 0)
+      phi = kFloorLength - (c.path()[seg + 1].world - c.path()[seg].world).norm();
+    else
+      for (int k = row.first; k <= row.last; ++k) phi += c.spanStretch(k);
+    if (!c.elastic() || seg >= 0) {
       ws.target[r] = phi < -kLengthSlop  ? 0.0
-                     : phi > kLengthSlop ? phi - kBaumgarte * (phi - kLengthSlop)
+                     : phi > kLengthSlop ? phi - beta * (phi - kLengthSlop)
                                          : phi;
     } else {
       const double stiffK = c.stiffness(), damp = c.damping();
@@ -497,8 +571,13 @@ void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
   for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
     const Workspace::Row& row = ws.rows[r];
     const Cable& c = cables[row.cable];
-    ws.phi1[r] = 0;
     ws.JW.row(r).setZero();
+    if (row.segment >= 0) {
+      ws.phi1[r] = floorRow(ws, ws.predicted, c, row.segment);
+      addJacobianTimesW(ws, ws.floorJacobian, ws.JW.row(r));
+      continue;
+    }
+    ws.phi1[r] = 0;
     for (int k = row.first; k <= row.last; ++k) {
       const std::span<const WrapPoint> span = c.spanPath(k);
       ws.path.assign(span.begin(), span.end());
@@ -521,8 +600,9 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
   // J0 W from the start-of-step Jacobians (positive semidefinite), for the guard below.
   ws.JW0.setZero(m, m);
   for (int r = 0; r < m; ++r)
-    for (int k = ws.rows[r].first; k <= ws.rows[r].last; ++k)
-      addJacobianTimesW(ws, cables[ws.rows[r].cable].spanKinematics(k).jacobian, ws.JW0.row(r));
+    forStartJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
+      addJacobianTimesW(ws, jacobian, ws.JW0.row(r));
+    });
   // Redundant cables (J0 W singular): J1 W is then singular too, but not symmetric, and its
   // symmetric part indefinite, so the minimum-norm solve (tension_solver.h) would be ill posed.
   // Such an island iterates on J0 W instead (a quasi-Newton step: it still converges to the
@@ -548,8 +628,9 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
     ws.K.diagonal() += ws.compliance;
     ws.b.noalias() = ws.JW * ws.P;
     for (int r = 0; r < m; ++r)
-      ws.b[r] += (cables[ws.rows[r].cable].elastic() ? ws.phi1[r] - ws.damped[r]
-                                                     : ws.phi1[r] - ws.target[r]) /
+      ws.b[r] += (cables[ws.rows[r].cable].elastic() && ws.rows[r].segment < 0
+                      ? ws.phi1[r] - ws.damped[r]
+                      : ws.phi1[r] - ws.target[r]) /
                  h;
     LcpSolution& sol = ws.lcpSolution;
     solveLcp(ws.K, ws.b, ws.lcp, sol, redundant);
@@ -567,6 +648,7 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
 void applyForces(Workspace& ws, double h, std::span<Cable> cables, std::span<Vec3> loads) {
   for (size_t r = 0; r < ws.rows.size(); ++r) {
     const Workspace::Row& row = ws.rows[r];
+    if (row.segment >= 0) continue;  // a floor pushes; it is no cable's tension
     for (int k = row.first; k <= row.last; ++k)
       cables[row.cable].setSpanTension(k, row.weight(ws.rowWeights, k) * ws.P[r] / h);
     for (int k = row.first; k < row.last; ++k) cables[row.cable].setSlipped(k, true);
@@ -588,7 +670,7 @@ bool mergeSlidingSpans(Workspace& ws, std::span<const Cable> cables) {
   for (size_t r = 0; r + 1 < ws.rows.size(); ++r) {
     Workspace::Row& a = ws.rows[r];
     const Workspace::Row& b = ws.rows[r + 1];
-    if (a.cable != b.cable || a.last + 1 != b.first) continue;
+    if (a.cable != b.cable || a.last + 1 != b.first || a.segment >= 0 || b.segment >= 0) continue;
     const SpanLink& link = cables[a.cable].link(a.last);
     if (link.grip != Grip::Capstan) continue;
     const double wa = a.weight(ws.rowWeights, a.last), wb = b.weight(ws.rowWeights, b.first);
@@ -628,7 +710,7 @@ void CableSolver::solve(const CableSolveInput& in, std::span<Cable> cables, std:
       predictVelocities(ws, in, cables, loads);
       inverseMass(ws, in.h, cables);
       projectOntoJoints(ws, in);
-      lengthTargets(ws, in.h, cables);
+      lengthTargets(ws, in.h, in.share, cables);
       newtonOnLengths(ws, in, cables, stats);
       again = mergeSlidingSpans(ws, cables);
     }

@@ -6,7 +6,8 @@
 // joints) form islands, solved one after the other, so the cost grows with the islands' sizes,
 // not with the square of the world's. Per island, in named stages:
 //   1. buildRows            one row per cable span that pulls on a moving body; the dofs
-//                           it moves (wheels that grip a cable split it in spans)
+//                           it moves (wheels that grip a cable split it in spans); a floor
+//                           row per short segment that may close up (floors.h)
 //   2. predictVelocities    v* (gravity and loads, no cables) and J^T at the start of the step
 //   3. inverseMass          W = M'^-1 J^T, M' with the taut cables' geometric stiffness
 //   4. projectOntoJoints    W and v* restricted to what Box2D's joints allow (Schur complement)
@@ -31,6 +32,9 @@ namespace cablelab {
 /// What one solve reads: the sub-step, the bodies now, and the joints among them.
 struct CableSolveInput {
   double h = 0;                                       ///< sub-step (s)
+  /// h over the nominal sub-step (<= 1): a step cut short at a wrap event fixes only this share
+  /// of a rigid cable's length error, so the correcting velocity does not grow as h shrinks.
+  double share = 1;
   Vec2 gravity = Vec2::Zero();                        ///< m/s^2
   std::span<const BodyState> bodies;                  ///< start of the sub-step
   std::span<const JointFrame> joints;                 ///< every joint, indexed as the scene's
