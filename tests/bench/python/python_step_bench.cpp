@@ -4,11 +4,12 @@
 //   * a Python loop `for _ in range(n): step()` over a cablelab.World (the module's own copy of
 //     the engine), against
 //   * the same n World::step calls in C++ on a World built here from the same scene,
-// in alternating pairs from the same state (both worlds advance alike), so that the two halves of
-// a pair see the same machine load. Times are this thread's CPU time. Counters: cpp_step_us and
-// python_step_us (medians over the pairs) and ratio (median of the per-pair ratios, Python / C++);
-// the benchmark's own time is the Python loop's. Also: reading all state of a 100-body world from
-// Python, body_states() (a new (100, 6) array) and body_states(out=) (into a buffer).
+// in alternating pairs from the same state (both worlds advance alike, and start afresh every 1000
+// steps), so that the two halves of a pair see the same machine load. Times are this thread's CPU
+// time. Counters: cpp_step_us and python_step_us (medians over the pairs) and ratio (median of the
+// per-pair ratios, Python / C++); the benchmark's own time is the Python loop's. Also: reading all
+// state of a 100-body world from Python, body_states() (a new (100, 6) array) and body_states(out=)
+// (into a buffer).
 //
 //   build/bin/cablelab_python_bench [--benchmark_filter=Step] [--benchmark_format=json]
 //
@@ -19,6 +20,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -78,21 +80,30 @@ py::dict& pythonSide() {
 
 constexpr int kStepsPerSample = 100;
 constexpr int kWarmup = 30;
+constexpr int kSamplesPerStart = 10;  // 1000 steps from a fresh start
 
 void BM_StepFromPython(benchmark::State& state, const std::string& scene) {
-  cablelab::SceneDef def = cablelab::makeScene(scene);
-  cablelab::World world(def, scene);
-  py::tuple made = pythonSide()["stepper"](scene);
-  py::object loop = made[1];
-  for (int i = 0; i < kWarmup; ++i) world.step(def.dt, def.substeps);
-  loop(kWarmup);
+  const cablelab::SceneDef def = cablelab::makeScene(scene);
+  std::unique_ptr<cablelab::World> world;
+  py::object loop;
+  // Both worlds start afresh every kSamplesPerStart samples (untimed), so that every sample steps
+  // the scene's first seconds (the pulley's masses would otherwise run far from the pulleys).
+  auto fresh = [&] {
+    world = std::make_unique<cablelab::World>(def, scene);
+    py::tuple made = pythonSide()["stepper"](scene);
+    loop = made[1];
+    for (int i = 0; i < kWarmup; ++i) world->step(def.dt, def.substeps);
+    loop(kWarmup);
+  };
+  long samples = 0;
   std::vector<double> cpp, python, ratio;
   bool pythonFirst = false;
   for (auto _ : state) {
+    if (samples++ % kSamplesPerStart == 0) fresh();
     double tc = 0, tp = 0;
     auto runCpp = [&] {
       const double t0 = threadSeconds();
-      for (int i = 0; i < kStepsPerSample; ++i) world.step(def.dt, def.substeps);
+      for (int i = 0; i < kStepsPerSample; ++i) world->step(def.dt, def.substeps);
       tc = threadSeconds() - t0;
     };
     auto runPython = [&] {
