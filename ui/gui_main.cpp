@@ -254,9 +254,10 @@ int run(const Options& options) {
     const PanelRect f = sandbox.freeArea();
     std::printf(
         "{\"frames\": %d, \"fps\": %.17g, \"camera\": [%.17g, %.17g, %.17g], "
-        "\"free\": [%g, %g, %g, %g], \"tension_scale\": %.17g}\n",
+        "\"free\": [%g, %g, %g, %g], \"tension_scale\": %.17g, \"overflow\": [%g, %g]}\n",
         options.frames, m > 0 ? 1 / m : 0.0, c.center.x(), c.center.y(), c.metresPerPixel, f.x, f.y,
-        f.width, f.height, sandbox.tensionScale);
+        f.width, f.height, sandbox.tensionScale, sandbox.panelOverflow[0],
+        sandbox.panelOverflow[1]);
   }
   return 0;
 }

@@ -32,7 +32,7 @@ void cableList(Sandbox& sandbox, const World& world) {
 void cableEdits(Sandbox& sandbox) {
   bool changed = false;
   auto& e = sandbox.cableEdit;
-  ImGui::PushItemWidth(ImGui::GetFontSize() * 9);
+  ImGui::PushItemWidth(fieldWidth("damping (N s/m)", ImGui::GetFontSize() * 9));
   changed |= ImGui::InputDouble("rest length (m)", &e.restLength, 0.01, 0.1, "%.4f",
                                 ImGuiInputTextFlags_EnterReturnsTrue);
   tooltip("Rest length L; Enter applies it live.");
@@ -109,7 +109,7 @@ void bodyEdits(Sandbox& sandbox, int b) {
   const BodyDef& def = sandbox.scene.bodies[b];
   double mass = def.mass, x = def.position.x(), y = def.position.y();
   bool isStatic = def.type == BodyType::Static;
-  ImGui::PushItemWidth(ImGui::GetFontSize() * 7);
+  ImGui::PushItemWidth(fieldWidth("start x (m)", ImGui::GetFontSize() * 7));
   const bool m =
       ImGui::InputDouble("mass (kg)", &mass, 0, 0, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue);
   tooltip("Edit the body's mass (Enter applies it; the scene restarts; Ctrl+Z undoes it).");
@@ -122,7 +122,7 @@ void bodyEdits(Sandbox& sandbox, int b) {
   ImGui::PopItemWidth();
   const bool st = ImGui::Checkbox("static", &isStatic);
   tooltip("A static body does not move.");
-  ImGui::SameLine();
+  sameLineIfRoom(buttonWidth("Delete body"));
   const bool del = ImGui::SmallButton("Delete body");
   tooltip("Remove the body with its cables and joints (Delete key; Ctrl+Z undoes it).");
   if (del) {

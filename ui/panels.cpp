@@ -1,6 +1,7 @@
 #include "ui/panels.h"
 
 #include <imgui.h>
+#include <imgui_internal.h>  // the window's widest row (ImGuiWindow::DC.CursorMaxPos)
 
 #include <algorithm>
 #include <cstring>
@@ -112,11 +113,20 @@ bool beginSidePanel(Sandbox& sandbox, PanelState& state, const char* name, bool 
   bool& collapse = left ? state.collapseLeft : state.collapseRight;
   if (collapse) ImGui::SetNextWindowCollapsed(true, ImGuiCond_Always);
   collapse = false;
-  const bool open = ImGui::Begin(name, nullptr, ImGuiWindowFlags_NoMove);
+  // Rows fit the width (ui/panels.h); a row that cannot (a large UI scale on a small window)
+  // can still be scrolled to.
+  const bool open =
+      ImGui::Begin(name, nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_HorizontalScrollbar);
   record(sandbox);
   // The user's resize shows up as this frame's size: keep it for the next frame.
   if (open) width = ImGui::GetWindowSize().x;
   return open;
+}
+
+/// How far (px) the current window's widest row reaches past its content area; 0 if none.
+float rowOverflow() {
+  const ImGuiWindow* w = ImGui::GetCurrentWindow();
+  return std::max(0.0f, w->DC.CursorMaxPos.x - w->WorkRect.Max.x);
 }
 
 void simulationPanel(Sandbox& sandbox, PanelState& state, float top) {
@@ -129,12 +139,16 @@ void simulationPanel(Sandbox& sandbox, PanelState& state, float top) {
     tooltip("Add bodies, pulleys and cables by clicks; undo, redo; save as scene JSON.");
     if (ImGui::CollapsingHeader("View")) viewPanel(sandbox);
     if (ImGui::CollapsingHeader("Integration")) integrationPanel(sandbox);
+    sandbox.panelOverflow[0] = rowOverflow();
   }
   ImGui::End();
 }
 
 void inspectorPanel(Sandbox& sandbox, PanelState& state, float top) {
-  if (beginSidePanel(sandbox, state, "Inspector", false, top)) inspectorContents(sandbox);
+  if (beginSidePanel(sandbox, state, "Inspector", false, top)) {
+    inspectorContents(sandbox);
+    sandbox.panelOverflow[1] = rowOverflow();
+  }
   ImGui::End();
 }
 

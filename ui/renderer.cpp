@@ -9,6 +9,7 @@
 #include <string>
 
 #include "ui/colormap.h"
+#include "ui/label_layout.h"
 
 namespace cablelab::ui {
 namespace {
@@ -151,35 +152,40 @@ class Painter {
     labels_.push_back({cam_.toScreen(world), offsetPx, s, c});
   }
 
-  /// Draws the queued labels, each at the first of its candidate places that overlaps neither
-  /// an earlier label nor the viewport's edge (the least-overlapping one if none is free).
-  void placeLabels() const {
+  /// A body's shape (world points) that labels keep off.
+  void obstacle(const std::vector<Vec2>& worldPoints) const {
     if (!text_) return;
-    std::vector<ImVec4> placed;  // x0, y0, x1, y1
+    LabelObstacle& o = obstacles_.emplace_back();
+    o.reserve(worldPoints.size());
+    for (const Vec2& p : worldPoints) o.push_back(cam_.toScreen(p));
+  }
+
+  /// Draws the queued labels where label_layout.h puts them inside `view` (px): off the bodies
+  /// and each other, a leader line to those placed away from their anchor.
+  void placeLabels(const LabelBox& view) const {
+    if (!text_) return;
+    std::vector<LabelRequest> requests;
+    requests.reserve(labels_.size());
     for (const Label& l : labels_) {
       const ImVec2 size = ImGui::CalcTextSize(l.text.c_str());
-      const double w = size.x, h = size.y, g = 4 * scale_;
-      const Vec2 candidates[] = {l.offset,           {g, g},           {g, -h - g},
-                                 {-w - g, g},        {-w - g, -h - g}, {-0.5 * w, g},
-                                 {-0.5 * w, -h - g}, {g, -0.5 * h}};
-      double best = 1e300;
-      ImVec4 bestRect;
-      for (const Vec2& offset : candidates) {
-        const Vec2 p = l.anchor + offset;
-        const ImVec4 r(static_cast<float>(p.x()), static_cast<float>(p.y()),
-                       static_cast<float>(p.x() + w), static_cast<float>(p.y() + h));
-        double overlap = 0;
-        for (const ImVec4& q : placed)
-          overlap += std::max(0.0f, std::min(r.z, q.z) - std::max(r.x, q.x)) *
-                     std::max(0.0f, std::min(r.w, q.w) - std::max(r.y, q.y));
-        if (r.x < 0 || r.y < 0 || r.z > cam_.width || r.w > cam_.height) overlap += 0.5 * w * h;
-        if (overlap < best) best = overlap, bestRect = r;
-        if (overlap <= 0) break;
+      requests.push_back({l.anchor, l.offset, size.x, size.y});
+    }
+    const auto placed = ui::placeLabels(requests, obstacles_, view, 4 * scale_);
+    for (size_t k = 0; k < labels_.size(); ++k) {
+      const LabelBox& b = placed[k].box;
+      const ImU32 colour = toImU32(labels_[k].colour);
+      if (placed[k].leader) {
+        const Vec2& a = labels_[k].anchor;
+        const ImVec2 near(static_cast<float>(std::clamp(a.x(), b.x0, b.x1)),
+                          static_cast<float>(std::clamp(a.y(), b.y0, b.y1)));
+        text_->AddLine(ImVec2(static_cast<float>(a.x()), static_cast<float>(a.y())), near,
+                       (colour & 0x00FFFFFF) | 0x99000000, scale_);
       }
-      placed.push_back(bestRect);
-      text_->AddText(ImVec2(bestRect.x, bestRect.y), toImU32(l.colour), l.text.c_str());
+      text_->AddText(ImVec2(static_cast<float>(b.x0), static_cast<float>(b.y0)), colour,
+                     labels_[k].text.c_str());
     }
     labels_.clear();
+    obstacles_.clear();
   }
 
   const Camera& camera() const { return cam_; }
@@ -196,6 +202,7 @@ class Painter {
   ImDrawList* text_;
   float scale_;
   mutable std::vector<Label> labels_;
+  mutable std::vector<LabelObstacle> obstacles_;
 };
 
 Vec2 bodyPoint(const World& world, int body, const Vec2& local) {
@@ -234,14 +241,17 @@ void drawBodies(const World& world, const RenderOptions& options, const Painter&
       if (shape.sensor) fill[3] = 0.35f;
       if (shape.kind == ShapeDef::Kind::Circle) {
         const Vec2 centre = bodyPoint(world, i, shape.center);
-        paint.polygon(paint.circlePoints(centre, shape.radius), &fill, outline, width);
+        const std::vector<Vec2> rim = paint.circlePoints(centre, shape.radius);
+        paint.polygon(rim, &fill, outline, width);
+        paint.obstacle(rim);
         // A radius shows the rotation.
-        const Vec2 rim = bodyPoint(world, i, shape.center + Vec2(shape.radius, 0));
-        paint.line(centre, rim, outline, 1.0f);
+        const Vec2 edge = bodyPoint(world, i, shape.center + Vec2(shape.radius, 0));
+        paint.line(centre, edge, outline, 1.0f);
       } else {
         std::vector<Vec2> points;
         for (const Vec2& v : shape.vertices) points.push_back(bodyPoint(world, i, v));
         paint.polygon(points, &fill, outline, width);
+        paint.obstacle(points);
       }
     }
     if (options.labels && !bodies[i].name.empty() && bodies[i].type != BodyType::Static)
@@ -669,7 +679,11 @@ void drawWorld(const World& world, const Camera& camera, const Overlay& overlay,
   drawJoints(world, paint);
   drawCables(world, options, scale, paint);
   drawOverlay(overlay, paint);
-  paint.placeLabels();
+  const bool free = options.freeWidth > 0 && options.freeHeight > 0;
+  paint.placeLabels(
+      free ? LabelBox{options.freeX, options.freeY, options.freeX + options.freeWidth,
+                      options.freeY + options.freeHeight}
+           : LabelBox{0, 0, static_cast<double>(camera.width), static_cast<double>(camera.height)});
   drawScreenSpace(world, overlay, options, scale, camera, text);
   glDisable(GL_LINE_SMOOTH);
 }

@@ -5,6 +5,7 @@
 // (ui/panels.h) and input (ui/input.h) are plain functions over a Sandbox.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -170,6 +171,10 @@ class Sandbox {
 
   // What the Scene panel showed last (for the scripted checks).
   std::string shownTitle, shownDescription;
+
+  /// How far (px) the widest row of the Simulation and the Inspector panel reached past the
+  /// panel's width in the last frame each was open (0: every row fits).
+  std::array<float, 2> panelOverflow{};
 
   // Status.
   double lastFrameSeconds = 0;

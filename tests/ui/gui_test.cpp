@@ -286,6 +286,19 @@ TEST(GuiAcceptance, SmallWindowStillShowsTheWorldView) {
   EXPECT_GT(std::count(cells.begin(), cells.end(), true), 10) << "no scene drawn in " << shot;
 }
 
+// At 640x480 every row of the Simulation panel fits its width (the panel's widest row, as ImGui
+// measured it, ends inside the panel) in the scenes with the most rows.
+TEST(GuiAcceptance, SmallWindowPanelRowsFit) {
+  REQUIRE_XVFB();
+  for (const char* scene : {"hand", "membrane", "hexagon"}) {
+    const RunResult r = run(kXvfb + kCli + " gui " + scene + " --size 640x480 --frames 5",
+                            std::string("gui_rows_") + scene);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["overflow"][0].get<double>(), 0) << scene << ": " << r.out;
+  }
+}
+
 TEST(GuiAcceptance, RecordButtonWritesOneFramePerThirtiethOfASimulatedSecond) {
   REQUIRE_XVFB();
   const std::string gif = (outputDir("gui") / "recorded.gif").string();
