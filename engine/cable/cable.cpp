@@ -185,6 +185,8 @@ void Cable::update(std::span<const BodyState> select, std::span<const BodyState>
 
   // Settle the engaged set: leaves first, then joins, until nothing changes.
   const int count = static_cast<int>(pulleys_.size());
+  droppedBefore_.resize(count);
+  for (int j = 0; j < count; ++j) droppedBefore_[j] = pulleys_[j].dropped;
   for (int round = 0; round < 2 * count + 2; ++round) {
     if (!buildPath(warnings)) continue;
     bool changed = false;
@@ -238,7 +240,10 @@ void Cable::update(std::span<const BodyState> select, std::span<const BodyState>
       p.previousDepth = depth;
       // A polygon a guard dropped rejoins once a taut path round it exists again.
       if (p.dropped && cuts && !crossed) {
-        crossed = wrapChain(a, b, p.world, p.side, rejoinChain_);
+        // Only where the drop is undone, not round the far side of a polygon that went through.
+        crossed = wrapChain(a, b, p.world, p.side, rejoinChain_) &&
+                  chainLength(a, b, p.world, rejoinChain_) - (b - a).norm() <=
+                      p.dropCut + kLengthJump;
         if (crossed && warnings)
           warnings->push_back("cable '" + def_->name + "': pulley " + std::to_string(j) +
                               " rejoined the path (a guard had dropped it)");
@@ -254,6 +259,10 @@ void Cable::update(std::span<const BodyState> select, std::span<const BodyState>
   }
 
   cableKinematics(path_, bodies, kin_);
+  // What a drop in this update took out is what a later rejoin may put back.
+  for (int j = 0; j < count; ++j)
+    if (pulleys_[j].dropped && !droppedBefore_[j])
+      pulleys_[j].dropCut = std::max(0.0, before - kin_.length);
   reportLengthJump(before, warnings);
   if (warnings && kin_.zeroLengthSegments > 0 && !reportedZeroLength_)
     warnings->push_back("cable '" + def_->name + "': " + std::to_string(kin_.zeroLengthSegments) +

@@ -17,8 +17,11 @@
 //    turn at it is straight or the wrong way; a polygon when its hull chain is empty.
 //  * A terminal inside a polygon pulley's hull (a neighbouring pulley inside it) has no taut path:
 //    the polygon is DROPPED (it leaves the path) and a warning says so. A dropped polygon that
-//    still cuts its segment REJOINS as soon as a taut path round it exists again (warning); one
-//    that clears the segment is an ordinary disengaged pulley again.
+//    still cuts its segment REJOINS as soon as a taut path round it exists again and that path is
+//    no longer than the straight segment by more than the drop took out (+ kLengthJump), with a
+//    warning: drop and rejoin together add no length. One that moved through the cable while
+//    dropped (its taut path would go round its far side, much longer) stays out; one that clears
+//    the segment is an ordinary disengaged pulley again.
 //  * Consecutive coincident wrap points (a zero-length segment, < 1e-12 m) are merged: the
 //    segment is left out of J and J-dot-v, never divided by, and a warning says so.
 //  * Any wrap change that moves the length by more than kLengthJump (1 mm) names the jump in a
@@ -179,6 +182,8 @@ class Cable {
     bool engaged = false;
     double previousDepth = 0;  ///< wrap-side depth at the last update (guard memory)
     bool dropped = false;      ///< left by a guard (terminal inside the hull): may rejoin
+    double dropCut = 0;        ///< length the drop took out of the path (m): the most a rejoin
+                               ///< may put back
   };
   void placePulleys(std::span<const BodyState> bodies);
   bool buildPath(std::vector<std::string>* warnings);
@@ -197,6 +202,7 @@ class Cable {
   static constexpr double kLengthJump = 1e-3;
   std::vector<std::pair<int, int>> signature_;  ///< (pulley, vertex) of the path before update
   std::vector<int> rejoinChain_;                ///< scratch of the rejoin test
+  std::vector<char> droppedBefore_;             ///< scratch: pulleys dropped before this update
   CableKinematics kin_;
   double tension_ = 0;
   bool firstUpdate_ = true;

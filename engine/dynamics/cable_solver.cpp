@@ -422,8 +422,10 @@ void projectOntoJoints(Workspace& ws, const CableSolveInput& in) {
 
 // 5. Position-level targets. Rigid: length at the end of the step = now (the error below the
 // slop is float rounding: fixing it would amplify it by 1/h^2), a slack cable may come taut, an
-// over-long one is shortened by a share of the excess. Elastic: T = k phi1 + b (phi1 - phi0)/h.
-void lengthTargets(Workspace& ws, double h, std::span<const Cable> cables) {
+// over-long one is shortened by a share of the excess per nominal sub-step (a step cut at an
+// event fixes its share of that: fixing it all would ask for a velocity of error / h). Elastic: T = k phi1 + b (phi1 - phi0)/h.
+void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable> cables) {
+  const double beta = kBaumgarte * share;
   const int m = static_cast<int>(ws.rows.size());
   ws.target.resize(m);
   ws.compliance.setZero(m);
@@ -433,7 +435,7 @@ void lengthTargets(Workspace& ws, double h, std::span<const Cable> cables) {
     const double phi = c.stretch();
     if (!c.elastic()) {
       ws.target[r] = phi < -kLengthSlop  ? 0.0
-                     : phi > kLengthSlop ? phi - kBaumgarte * (phi - kLengthSlop)
+                     : phi > kLengthSlop ? phi - beta * (phi - kLengthSlop)
                                          : phi;
     } else {
       const double stiffK = c.stiffness(), damp = c.damping();
@@ -558,7 +560,7 @@ void CableSolver::solve(const CableSolveInput& in, std::span<Cable> cables, std:
     predictVelocities(ws, in, cables, loads);
     inverseMass(ws, in.h, cables);
     projectOntoJoints(ws, in);
-    lengthTargets(ws, in.h, cables);
+    lengthTargets(ws, in.h, in.share, cables);
     newtonOnLengths(ws, in, cables, stats);
     applyForces(ws, in.h, cables, loads);
   }

@@ -29,6 +29,9 @@ namespace cablelab {
 /// What one solve reads: the sub-step, the bodies now, and the joints among them.
 struct CableSolveInput {
   double h = 0;                                       ///< sub-step (s)
+  /// h over the nominal sub-step (<= 1): a step cut short at a wrap event fixes only this share
+  /// of a rigid cable's length error, so the correcting velocity does not grow as h shrinks.
+  double share = 1;
   Vec2 gravity = Vec2::Zero();                        ///< m/s^2
   std::span<const BodyState> bodies;                  ///< start of the sub-step
   std::span<const JointFrame> joints;                 ///< every joint, indexed as the scene's

@@ -56,10 +56,11 @@ double elasticMode(const Cable& c, std::span<const BodyState> bodies) {
   return std::sqrt(c.parameters().stiffness * bound);
 }
 
-// The rigid-cable length target at the end of the step (as in the main solve).
-double rigidTarget(double phi) {
+// The rigid-cable length target at the end of the step (as in the main solve): `share` is the
+// step over the nominal sub-step, so a step cut at an event corrects only its share.
+double rigidTarget(double phi, double share) {
   return phi < -kLengthSlop  ? 0.0
-         : phi > kLengthSlop ? phi - kBaumgarte * (phi - kLengthSlop)
+         : phi > kLengthSlop ? phi - kBaumgarte * share * (phi - kLengthSlop)
                              : phi;
 }
 
@@ -140,8 +141,9 @@ double MidpointSolver::transverseMode(std::span<const BodyState> bodies,
 }
 
 int MidpointSolver::solve(std::span<const BodyState> bodies, std::span<Cable> cables,
-                          const Vec2& gravity, double h, std::span<Vec3> forces,
+                          const Vec2& gravity, double h, double share, std::span<Vec3> forces,
                           std::span<Vec3> kicks) {
+  share_ = share;
   if (!buildRows(bodies, cables, gravity, h, forces)) return 0;
   for (int iteration = 0; iteration < kIterations; ++iteration)
     if (newtonStep(bodies, cables, h)) {
@@ -288,7 +290,7 @@ bool MidpointSolver::newtonStep(std::span<const BodyState> bodies, std::span<con
     const Cable& c = cables[rows_[r]];
     const double kp = K_.row(r).dot(P_) - GAinvR_[r];
     if (!c.elastic() || segment_[r] >= 0) {
-      b_[r] = kp + (phi1_[r] - rigidTarget(phi0_[r])) / h;
+      b_[r] = kp + (phi1_[r] - rigidTarget(phi0_[r], share_)) / h;
       continue;
     }
     // P / h = the secant tension (+ damping) at the new phi1, linearised.

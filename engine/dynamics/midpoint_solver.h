@@ -49,9 +49,10 @@ class MidpointSolver {
 
   /// Sets the cables' tensions, adds the force Box2D needs over h to `forces` ((fx, fy, torque)
   /// per body) and the velocity each body must get after Box2D's step to `kicks`.
+  /// `share` is h over the nominal sub-step (CableSolveInput::share).
   /// Returns the iterations used, or -1 (nothing changed) if they did not converge.
   int solve(std::span<const BodyState> bodies, std::span<Cable> cables, const Vec2& gravity,
-            double h, std::span<Vec3> forces, std::span<Vec3> kicks);
+            double h, double share, std::span<Vec3> forces, std::span<Vec3> kicks);
 
   /// The fastest transverse mode of the last solve's cables (rad/s), from their tensions and
   /// segment curvatures over the lightest body they move: sqrt(T sum(1 / |d|) / m).
@@ -66,6 +67,7 @@ class MidpointSolver {
   void finish(std::span<const BodyState> bodies, std::span<Cable> cables, double h,
               std::span<Vec3> forces, std::span<Vec3> kicks);
 
+  double share_ = 1;            // this step over the nominal sub-step
   std::vector<int> rows_;       // cable of each row
   std::vector<int> segment_;    // -1: the cable's length; i: a floor on its segment i
   std::vector<int> dofOfBody_;  // body -> first dof, -1: not moved

@@ -227,8 +227,9 @@ void World::predictMotion(double dt) {
   }
 }
 
-// The user's loads, the servos, then the cable tensions for a Box2D step of dt.
-void World::solveForces(double dt) {
+// The user's loads, the servos, then the cable tensions for a Box2D step of dt (of a sub-step h).
+void World::solveForces(double dt, double h) {
+  const double share = std::min(1.0, dt / h);
   forces_ = pendingForces_;
   applyServos();
   kicks_.assign(bodies_.size(), Vec3::Zero());
@@ -239,7 +240,7 @@ void World::solveForces(double dt) {
   b2_->markTouching(excluded_);
   midpointUsed_ = false;
   if (midpoint_->applies(bodies_, cables_, excluded_, dt)) {
-    const int iterations = midpoint_->solve(bodies_, cables_, gravity_, dt, forces_, kicks_);
+    const int iterations = midpoint_->solve(bodies_, cables_, gravity_, dt, share, forces_, kicks_);
     if (iterations >= 0) {
       stats_.solverIterations += iterations;
       ++stats_.midpointSolves;
@@ -251,7 +252,8 @@ void World::solveForces(double dt) {
     applyServos();
   }
   b2_->jointFrames(scene_.joints, jointBodies_, jointFrames_);
-  solver_->solve({dt, gravity_, bodies_, jointFrames_, jointNeighbours_}, cables_, forces_, stats_);
+  solver_->solve({dt, share, gravity_, bodies_, jointFrames_, jointNeighbours_}, cables_, forces_,
+                 stats_);
 }
 
 // One Box2D step of `left` seconds or less: cut at the first wrap event if `locate`, so the
@@ -261,7 +263,7 @@ double World::advance(double left, double h, bool locate) {
   const auto c0 = Clock::now();
   b2_->readBodies(bodies_);
   selectWraps(h);
-  solveForces(left);
+  solveForces(left, h);
   double dt = left;
   // Resolve a fast catch: a midpoint step no longer than kMaxOmegaDt over the cables' fastest
   // transverse mode, so that J v after it is off by little (docs/cables.md, "Energy").
@@ -270,7 +272,7 @@ double World::advance(double left, double h, bool locate) {
     if (omega * left > kMaxOmegaDt) {
       dt = std::max(kMaxOmegaDt / omega, kMinEventStep * h);
       if (dt < left) {
-        solveForces(dt);
+        solveForces(dt, h);
         ++stats_.refinements;
       } else {
         dt = left;
@@ -286,7 +288,7 @@ double World::advance(double left, double h, bool locate) {
       const double cut = std::max(*first, kMinEventStep * h);
       if (cut < dt) {
         dt = cut;
-        solveForces(dt);
+        solveForces(dt, h);
         ++stats_.events;
       }
     }

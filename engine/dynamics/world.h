@@ -124,7 +124,7 @@ class World {
   void checkFinite() const;
   void selectWraps(double h);
   void predictMotion(double dt);
-  void solveForces(double dt);
+  void solveForces(double dt, double h);
   double advance(double left, double h, bool locate);
 
   const SceneDef scene_;                      ///< the model: never edited after construction
