@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/dynamics/floors.h"
 #include "engine/dynamics/tension_solver.h"
 
 namespace cablelab {
@@ -77,6 +78,7 @@ struct CableSolverWorkspace {
 
   DofMap dofs;
   std::vector<int> rows;         // cable of each LCP row (this island)
+  std::vector<int> segments;     // -1: the cable's length; i: a floor on its segment i
   Eigen::VectorXd invM;          // M^-1 diagonal over the dofs
   Eigen::VectorXd vStar, vFree;  // predicted velocities (stage 2)
   Eigen::MatrixXd W;             // M'^-1 J^T, then projected onto the joints (n x m)
@@ -111,6 +113,7 @@ struct CableSolverWorkspace {
   std::vector<BodyState> predicted;
   std::vector<WrapPoint> path;
   CableKinematics kin;
+  std::vector<BodyJacobian> floorJacobian;  // scratch: a floor row's J
   LcpWorkspace lcp;
   LcpSolution lcpSolution;
 
@@ -280,8 +283,22 @@ int findIslands(Workspace& ws, const CableSolveInput& in, std::span<Cable> cable
   return ws.islands;
 }
 
+// Whether segment (p, q) could close to kFloorLength within the step, at the speed its ends have
+// now plus a step of gravity (twice that, and a floor length, for margin): only then does it get
+// a floor row. A hand's membranes have short end segments that never come close; rows cost.
+bool mayReachFloor(const CableSolveInput& in, const WrapPoint& p, const WrapPoint& q) {
+  auto speed = [&](const WrapPoint& w) {
+    if (w.body < 0) return 0.0;
+    const BodyState& b = in.bodies[w.body];
+    const Vec2 v = b.velocity + b.angularVelocity * perp(Vec2(w.world - b.position));
+    return v.norm() + (b.invMass > 0 ? in.h * in.gravity.norm() : 0.0);
+  };
+  const double length = (q.world - p.world).norm();
+  return length > 1e-9 && length < 2 * kFloorLength + 2 * in.h * (speed(p) + speed(q));
+}
+
 // 1b. One island's rows, and the dofs of the bodies it moves: its cables' moving bodies in cable
-// order, then those jointed to them (breadth first: they move with them).
+// order, then those jointed to them (breadth first: they move with them). Then the floors.
 void buildRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
                int island) {
   ws.dofs.clear();
@@ -293,6 +310,48 @@ void buildRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
   for (size_t k = 0; k < ws.dofs.body.size(); ++k)
     for (int other : in.jointNeighbours[ws.dofs.body[k]])
       if (moves(in.bodies[other])) ws.dofs.add(other);
+  // Floors (floors.h): a short segment on a moving body gets a row of its own after the cables.
+  const size_t cableRows = ws.rows.size();
+  ws.segments.assign(cableRows, -1);
+  for (size_t r = 0; r < cableRows; ++r) {
+    const auto& path = cables[ws.rows[r]].path();
+    for (size_t i = 0; i + 1 < path.size(); ++i)
+      if (needsFloor(path, i, [&](int b) { return ws.dofs.ofBody[b] >= 0; }) &&
+          mayReachFloor(in, path[i], path[i + 1])) {
+        ws.rows.push_back(ws.rows[r]);
+        ws.segments.push_back(static_cast<int>(i));
+      }
+  }
+}
+
+// A floor row's constraint kFloorLength - u0 . (q - p) of segment (p, q) on `bodies`, and its J
+// (into ws.floorJacobian). u0 is the segment's direction at the start of the step: measured along
+// it, a body that would pass through its pulley within the step goes negative instead of
+// coming out the other side at a length that looks allowed.
+double floorRow(Workspace& ws, std::span<const BodyState> bodies, const Cable& cable, int segment) {
+  const WrapPoint* ends[2] = {&cable.path()[segment], &cable.path()[segment + 1]};
+  const Vec2 u0 = (ends[1]->world - ends[0]->world).normalized();
+  ws.floorJacobian.clear();
+  double along = 0;
+  for (int e = 0; e < 2; ++e) {
+    const double sign = e == 0 ? 1.0 : -1.0;  // d(kFloorLength - u0 . (q - p))
+    const WrapPoint& w = *ends[e];
+    const Vec2 x = worldPoint(bodies, w.body, w.local);
+    along -= sign * u0.dot(x);
+    if (w.body < 0) continue;
+    const Vec2 arm = x - bodies[w.body].position;
+    ws.floorJacobian.push_back({w.body, sign * Vec3(u0.x(), u0.y(), u0.dot(perp(arm)))});
+  }
+  return kFloorLength - along;
+}
+
+// Row r's J at the start of the step: the cable's, or its floor's.
+const std::vector<BodyJacobian>& startJacobian(Workspace& ws, std::span<const BodyState> bodies,
+                                               std::span<const Cable> cables, int r) {
+  const Cable& c = cables[ws.rows[r]];
+  if (ws.segments[r] < 0) return c.kinematics().jacobian;
+  floorRow(ws, bodies, c, ws.segments[r]);
+  return ws.floorJacobian;
 }
 
 // Bodies that are not dofs (kinematic, static) at the end of the step: Box2D moves them with
@@ -327,7 +386,7 @@ void predictVelocities(Workspace& ws, const CableSolveInput& in, std::span<const
   }
   ws.W.setZero(n, m);
   for (int r = 0; r < m; ++r)
-    for (const auto& e : cables[ws.rows[r]].kinematics().jacobian)
+    for (const auto& e : startJacobian(ws, in.bodies, cables, r))
       if (dofs.ofBody[e.body] >= 0) ws.W.block<3, 1>(dofs.ofBody[e.body], r) = e.d;
   ws.vFree = ws.vStar;  // what Box2D would reach without cables and joints
 }
@@ -340,8 +399,9 @@ void inverseMass(Workspace& ws, double h, std::span<const Cable> cables) {
   ws.taut.clear();
   ws.blocks.clear();
   ws.stiff = false;
-  for (int row : ws.rows) {
-    const Cable& c = cables[row];
+  for (size_t r = 0; r < ws.rows.size(); ++r) {
+    if (ws.segments[r] >= 0) continue;  // a floor: the cable's stiffness is counted once
+    const Cable& c = cables[ws.rows[r]];
     const double tension =
         std::max(c.tension(), c.elastic() ? c.stiffness() * std::max(0.0, c.stretch()) : 0.0);
     if (tension <= 0) continue;
@@ -425,6 +485,7 @@ void projectOntoJoints(Workspace& ws, const CableSolveInput& in) {
 // over-long one is shortened by a share of the excess per nominal sub-step (a step cut at an
 // event fixes its share of that: fixing it all would ask for a velocity of error / h). Elastic: T = k phi1 + b (phi1 - phi0)/h.
 void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable> cables) {
+  // Floors are rigid rows on kFloorLength - |segment|: they only ever push.
   const double beta = kBaumgarte * share;
   const int m = static_cast<int>(ws.rows.size());
   ws.target.resize(m);
@@ -432,8 +493,11 @@ void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable>
   ws.damped.setZero(m);
   for (int r = 0; r < m; ++r) {
     const Cable& c = cables[ws.rows[r]];
-    const double phi = c.stretch();
-    if (!c.elastic()) {
+    const int seg = ws.segments[r];
+    const double phi =
+        seg < 0 ? c.stretch()
+                : kFloorLength - (c.path()[seg + 1].world - c.path()[seg].world).norm();
+    if (!c.elastic() || seg >= 0) {
       ws.target[r] = phi < -kLengthSlop  ? 0.0
                      : phi > kLengthSlop ? phi - beta * (phi - kLengthSlop)
                                          : phi;
@@ -470,6 +534,11 @@ void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
   }
   for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
     const Cable& c = cables[ws.rows[r]];
+    if (ws.segments[r] >= 0) {
+      ws.phi1[r] = floorRow(ws, ws.predicted, c, ws.segments[r]);
+      jacobianTimesW(ws, ws.floorJacobian, ws.JW.row(r));
+      continue;
+    }
     ws.path.assign(c.path().begin(), c.path().end());
     cableKinematics(ws.path, ws.predicted, ws.kin);
     ws.phi1[r] = c.stretch() + ws.kin.length - c.length();
@@ -488,8 +557,7 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
   ws.JW.resize(m, m);
   // J0 W from the start-of-step Jacobians (positive semidefinite), for the guard below.
   ws.JW0.setZero(m, m);
-  for (int r = 0; r < m; ++r)
-    jacobianTimesW(ws, cables[ws.rows[r]].kinematics().jacobian, ws.JW0.row(r));
+  for (int r = 0; r < m; ++r) jacobianTimesW(ws, startJacobian(ws, in.bodies, cables, r), ws.JW0.row(r));
   // Redundant cables (J0 W singular): J1 W is then singular too, but not symmetric, and its
   // symmetric part indefinite, so the minimum-norm solve (tension_solver.h) would be ill posed.
   // Such an island iterates on J0 W instead (a quasi-Newton step: it still converges to the
@@ -515,9 +583,9 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
     ws.K.diagonal() += ws.compliance;
     ws.b.noalias() = ws.JW * ws.P;
     for (int r = 0; r < m; ++r)
-      ws.b[r] +=
-          (cables[ws.rows[r]].elastic() ? ws.phi1[r] - ws.damped[r] : ws.phi1[r] - ws.target[r]) /
-          h;
+      ws.b[r] += (cables[ws.rows[r]].elastic() && ws.segments[r] < 0 ? ws.phi1[r] - ws.damped[r]
+                                                                    : ws.phi1[r] - ws.target[r]) /
+                 h;
     LcpSolution& sol = ws.lcpSolution;
     solveLcp(ws.K, ws.b, ws.lcp, sol, redundant);
     const double change = (sol.x - ws.P).lpNorm<Eigen::Infinity>();
@@ -533,7 +601,7 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
 // geometric stiffness and joint reactions together): Box2D integrates v += h M^-1 F.
 void applyForces(Workspace& ws, double h, std::span<Cable> cables, std::span<Vec3> loads) {
   for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r)
-    cables[ws.rows[r]].setTension(ws.P[r] / h);
+    if (ws.segments[r] < 0) cables[ws.rows[r]].setTension(ws.P[r] / h);
   ws.WP.noalias() = ws.W * ws.P;
   for (size_t k = 0; k < ws.dofs.body.size(); ++k)
     for (int c = 0; c < 3; ++c) {

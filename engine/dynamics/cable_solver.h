@@ -5,7 +5,8 @@
 // condition, docs/model.md). Cables and the moving bodies they connect (through cables or
 // joints) form islands, solved one after the other, so the cost grows with the islands' sizes,
 // not with the square of the world's. Per island, in named stages:
-//   1. buildRows            one row per cable that pulls on a moving body; the dofs it moves
+//   1. buildRows            one row per cable that pulls on a moving body; the dofs it moves;
+//                           a floor row per short segment that may close up (floors.h)
 //   2. predictVelocities    v* (gravity and loads, no cables) and J^T at the start of the step
 //   3. inverseMass          W = M'^-1 J^T, M' with the taut cables' geometric stiffness
 //   4. projectOntoJoints    W and v* restricted to what Box2D's joints allow (Schur complement)

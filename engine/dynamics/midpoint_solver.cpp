@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/dynamics/floors.h"
+
 namespace cablelab {
 
 namespace {
@@ -13,10 +15,6 @@ namespace {
 constexpr double kLengthSlop = 1e-5;
 constexpr double kBaumgarte = 0.2;
 constexpr int kIterations = 40;
-// Floors (docs/cables.md): a segment shorter than kFloorWatch gets a row keeping it at least
-// kFloorLength long, so a body that reaches its pulley stops there (an inelastic stop).
-constexpr double kFloorWatch = 0.5;           // m
-constexpr double kFloorLength = 0.01;         // m
 constexpr double kPositionTolerance = 1e-12;  // m: end-of-step pose settled
 
 bool moves(const BodyState& b) {
@@ -179,14 +177,11 @@ bool MidpointSolver::buildRows(std::span<const BodyState> bodies, std::span<Cabl
   const size_t cableRows = rows_.size();
   for (size_t r = 0; r < cableRows; ++r) {
     const auto& path = cables[rows_[r]].path();
-    for (size_t i = 0; i + 1 < path.size(); ++i) {
-      const int a = path[i].body, b = path[i + 1].body;
-      const bool moving = (a >= 0 && dofOfBody_[a] >= 0) || (b >= 0 && dofOfBody_[b] >= 0);
-      if (a != b && moving && (path[i + 1].world - path[i].world).norm() < kFloorWatch) {
+    for (size_t i = 0; i + 1 < path.size(); ++i)
+      if (needsFloor(path, i, [&](int b) { return dofOfBody_[b] >= 0; })) {
         rows_.push_back(rows_[r]);
         segment_.push_back(static_cast<int>(i));
       }
-    }
   }
   const int m = static_cast<int>(rows_.size()), n = 3 * static_cast<int>(bodyOfDof_.size());
   if (m == 0) return false;

@@ -20,9 +20,7 @@ namespace {
 constexpr double kSelectAhead = 1e-6;   // the look-ahead of the wrap selection
 constexpr double kMinEventStep = 1e-4;  // events closer than this are taken at this time
 constexpr int kMaxEventsPerSubstep = 16;
-constexpr double kMaxOmegaDt = 0.3;
-constexpr double kFloorLength = 0.01;  // m: closest a body comes to a threaded pulley  // longest
-                                       // midpoint step over the fastest transverse mode
+constexpr double kMaxOmegaDt = 0.3;  // longest midpoint step over the fastest transverse mode
 
 SceneDef validated(SceneDef scene, const std::string& source) {
   validateScene(scene, source);
