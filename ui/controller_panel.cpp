@@ -98,15 +98,38 @@ void timePlot(const char* id, const TimeHistory& h, std::initializer_list<PlotLi
     }
     run.clear();
   };
+  // At most the lowest and the highest sample of each pixel column, in time order: the same
+  // picture as every sample with a fraction of the vertices (900 samples over ~250 px).
   for (const PlotLine& l : lines) {
+    int column = -1, firstIndex = 0, secondIndex = 0;
+    ImVec2 top, bottom;  // the column's smallest and largest screen y
+    int topIndex = 0, bottomIndex = 0;
+    auto emit = [&] {
+      if (column < 0) return;
+      firstIndex = std::min(topIndex, bottomIndex), secondIndex = std::max(topIndex, bottomIndex);
+      run.push_back(firstIndex == topIndex ? top : bottom);
+      if (secondIndex != firstIndex) run.push_back(secondIndex == topIndex ? top : bottom);
+      column = -1;
+    };
     for (int k = 0; k < h.count; ++k) {
       const float v = h.values[l.series][at(k)];
       if (!std::isfinite(v)) {
+        emit();
         flush(l);
         continue;
       }
-      run.push_back(map(h.t[at(k)], std::clamp(v, lo, hi)));
+      const ImVec2 p = map(h.t[at(k)], std::clamp(v, lo, hi));
+      const int c = static_cast<int>(std::floor(p.x));
+      if (c != column) {
+        emit();
+        column = c, top = bottom = p, topIndex = bottomIndex = k;
+      } else if (p.y < top.y) {
+        top = p, topIndex = k;
+      } else if (p.y > bottom.y) {
+        bottom = p, bottomIndex = k;
+      }
     }
+    emit();
     flush(l);
   }
   char text[96];

@@ -179,9 +179,16 @@ int run(const Options& options) {
     window.beginFrame();
     drawPanels(sandbox, panelState);
     if (sandbox.fitPending) sandbox.fitView();  // needs this frame's panel layout
+    // The panels' colour everywhere (they draw no background), then the world in the free
+    // area only (panels.cpp, kPanelBackground): a clear is a fill, the cheapest pixels.
+    const ImVec4 panel = ImGui::GetStyleColorVec4(ImGuiCol_WindowBg);
+    glDisable(GL_SCISSOR_TEST);
+    glClearColor(panel.x, panel.y, panel.z, 1);
+    glClear(GL_COLOR_BUFFER_BIT);
     if (const cablelab::World* world = sandbox.world()) {
-      drawWorld(*world, sandbox.camera, sandbox.overlay(), sandbox.renderOptions(),
-                ImGui::GetBackgroundDrawList());
+      RenderOptions options = sandbox.renderOptions();
+      options.clipToFree = true;
+      drawWorld(*world, sandbox.camera, sandbox.overlay(), options, ImGui::GetBackgroundDrawList());
     } else {
       glClearColor(0.97f, 0.97f, 0.95f, 1);
       glClear(GL_COLOR_BUFFER_BIT);

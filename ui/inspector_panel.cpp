@@ -30,21 +30,30 @@ void cableList(Sandbox& sandbox, const World& world) {
 }
 
 void cableEdits(Sandbox& sandbox) {
-  bool changed = false;
   auto& e = sandbox.cableEdit;
+  struct Field {
+    const char* label;
+    double* value;
+    double step, fastStep;
+    const char* format;
+    const char* tip;
+  };
+  const Field fields[] = {
+      {"rest length (m)", &e.restLength, 0.01, 0.1, "%.4f",
+       "Rest length L; Enter applies it live."},
+      {"stiffness (N/m)", &e.stiffness, 10, 100, "%.2f",
+       "0: a rigid cable (tension from the constraint); > 0: an elastic band."},
+      {"preload (m)", &e.preload, 0.001, 0.01, "%.4f", "Pre-stretch of an elastic cable."},
+      {"damping (N s/m)", &e.damping, 0.1, 1, "%.3f",
+       "Damping of an elastic cable, times its length rate."},
+  };
+  bool changed = false;
   ImGui::PushItemWidth(fieldWidth("damping (N s/m)", ImGui::GetFontSize() * 9));
-  changed |= ImGui::InputDouble("rest length (m)", &e.restLength, 0.01, 0.1, "%.4f",
-                                ImGuiInputTextFlags_EnterReturnsTrue);
-  tooltip("Rest length L; Enter applies it live.");
-  changed |= ImGui::InputDouble("stiffness (N/m)", &e.stiffness, 10, 100, "%.2f",
-                                ImGuiInputTextFlags_EnterReturnsTrue);
-  tooltip("0: a rigid cable (tension from the constraint); > 0: an elastic band.");
-  changed |= ImGui::InputDouble("preload (m)", &e.preload, 0.001, 0.01, "%.4f",
-                                ImGuiInputTextFlags_EnterReturnsTrue);
-  tooltip("Pre-stretch of an elastic cable.");
-  changed |= ImGui::InputDouble("damping (N s/m)", &e.damping, 0.1, 1, "%.3f",
-                                ImGuiInputTextFlags_EnterReturnsTrue);
-  tooltip("Damping of an elastic cable, times its length rate.");
+  for (const Field& f : fields) {
+    changed |= ImGui::InputDouble(f.label, f.value, f.step, f.fastStep, f.format,
+                                  ImGuiInputTextFlags_EnterReturnsTrue);
+    tooltip(f.tip);
+  }
   ImGui::PopItemWidth();
   if (changed) sandbox.applyCableEdit();
 }

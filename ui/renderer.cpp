@@ -223,10 +223,14 @@ void drawGrid(const Painter& paint) {
   const long j0 = static_cast<long>(std::floor(cam.bottom() / step));
   const long j1 = static_cast<long>(std::ceil(cam.top() / step));
   if (i1 - i0 > 2000 || j1 - j0 > 2000) return;
+  // Axis-aligned lines gain nothing from smoothing, and on a software rasteriser a smooth line
+  // is a textured quad: the grid, the longest lines, draws without it.
+  glDisable(GL_LINE_SMOOTH);
   for (long i = i0; i <= i1; ++i)
     paint.line({i * step, cam.bottom()}, {i * step, cam.top()}, i == 0 ? kGridAxis : kGridMinor, 1);
   for (long j = j0; j <= j1; ++j)
     paint.line({cam.left(), j * step}, {cam.right(), j * step}, j == 0 ? kGridAxis : kGridMinor, 1);
+  glEnable(GL_LINE_SMOOTH);
 }
 
 void drawBodies(const World& world, const RenderOptions& options, const Painter& paint) {
@@ -656,11 +660,19 @@ double tensionScaleFor(const World& world, const RenderOptions& options) {
 void drawWorld(const World& world, const Camera& camera, const Overlay& overlay,
                const RenderOptions& options, ImDrawList* text) {
   glClearColor(kBackground[0], kBackground[1], kBackground[2], kBackground[3]);
-  glClear(GL_COLOR_BUFFER_BIT);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
   glDisable(GL_TEXTURE_2D);
-  glDisable(GL_SCISSOR_TEST);
+  const bool clip = options.clipToFree && options.freeWidth > 0 && options.freeHeight > 0;
+  if (clip) {  // GL's window origin is the bottom left
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(static_cast<GLint>(options.freeX),
+              static_cast<GLint>(camera.height - options.freeY - options.freeHeight),
+              static_cast<GLsizei>(options.freeWidth), static_cast<GLsizei>(options.freeHeight));
+  } else {
+    glDisable(GL_SCISSOR_TEST);
+  }
+  glClear(GL_COLOR_BUFFER_BIT);
   glEnable(GL_BLEND);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   glEnable(GL_LINE_SMOOTH);
@@ -686,6 +698,7 @@ void drawWorld(const World& world, const Camera& camera, const Overlay& overlay,
            : LabelBox{0, 0, static_cast<double>(camera.width), static_cast<double>(camera.height)});
   drawScreenSpace(world, overlay, options, scale, camera, text);
   glDisable(GL_LINE_SMOOTH);
+  glDisable(GL_SCISSOR_TEST);
 }
 
 }  // namespace cablelab::ui

@@ -6,6 +6,7 @@
 
 #include "ui/authoring.h"
 #include "ui/controller_panel.h"
+#include "ui/synthetic_events.h"
 #include "ui/tension_scale.h"
 
 namespace cablelab::ui {
@@ -60,33 +61,11 @@ ScenarioScript::ScenarioScript(std::string name, Uint32 windowId, std::string ou
     : name_(std::move(name)), out_(std::move(out)), windowId_(windowId) {}
 
 void ScenarioScript::mouse(Uint32 type, const Vec2& screen, Uint8 button) {
-  SDL_Event e{};
-  e.type = type;
-  const int x = static_cast<int>(std::lround(screen.x())),
-            y = static_cast<int>(std::lround(screen.y()));
-  if (type == SDL_MOUSEMOTION) {
-    e.motion.windowID = windowId_;
-    e.motion.x = x, e.motion.y = y;
-  } else {
-    e.button.windowID = windowId_;
-    e.button.button = button;
-    e.button.state = type == SDL_MOUSEBUTTONDOWN ? SDL_PRESSED : SDL_RELEASED;
-    e.button.clicks = 1;
-    e.button.x = x, e.button.y = y;
-  }
-  SDL_PushEvent(&e);
+  pushMouseEvent(windowId_, type, screen, button);
 }
 
 void ScenarioScript::key(SDL_Keycode k) {
-  for (Uint32 type : {SDL_KEYDOWN, SDL_KEYUP}) {
-    SDL_Event e{};
-    e.type = type;
-    e.key.windowID = windowId_;
-    e.key.state = type == SDL_KEYDOWN ? SDL_PRESSED : SDL_RELEASED;
-    e.key.keysym.sym = k;
-    e.key.keysym.scancode = SDL_GetScancodeFromKey(k);
-    SDL_PushEvent(&e);
-  }
+  pushKeyPress(windowId_, k);
 }
 
 bool ScenarioScript::beforeFrame(Sandbox& sandbox, int frame) {
