@@ -193,3 +193,16 @@ def test_runs_release_the_gil(call):
     ticks, seconds = ticks_while(call)
     assert seconds > 0.2, "the run is too short to tell"
     assert ticks > 0.25 * seconds / 0.005
+
+
+def test_ctrl_c_stops_a_long_track():
+    import os
+    import signal
+    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    start = time.perf_counter()
+    with pytest.raises(KeyboardInterrupt):
+        cablelab.track(target=(0.2, 0.1), time=1e5)  # 6e6 steps: minutes
+    timer.join()
+    assert time.perf_counter() - start < 30
+    assert cablelab.track(target=(0.2, 0.1), time=0.5)["t"].shape == (31,)  # still usable
