@@ -30,11 +30,11 @@ std::optional<Vec2> optionVec2(py::handle v, const char* option) {
 }
 
 /// Calls back into Python about every 0.1 s from a run with the GIL released: progress(done,
-/// total) when given, and (if `interruptible`) raises KeyboardInterrupt out of the run on Ctrl-C.
+/// total) when given, and raises KeyboardInterrupt out of the run on Ctrl-C.
 class Progress {
  public:
-  Progress(py::handle callback, bool interruptible)
-      : callback_(py::reinterpret_borrow<py::object>(callback)), interruptible_(interruptible) {}
+  explicit Progress(py::handle callback)
+      : callback_(py::reinterpret_borrow<py::object>(callback)) {}
   ~Progress() {
     py::gil_scoped_acquire gil;
     callback_ = py::object();
@@ -43,15 +43,13 @@ class Progress {
     const auto now = std::chrono::steady_clock::now();
     if (done < total && now - last_ < std::chrono::milliseconds(100)) return;
     last_ = now;
-    if (callback_.is_none() && !interruptible_) return;
     py::gil_scoped_acquire gil;
-    if (interruptible_ && PyErr_CheckSignals() != 0) throw py::error_already_set();
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
     if (!callback_.is_none()) callback_(done, total);
   }
 
  private:
   py::object callback_;
-  bool interruptible_;
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
@@ -91,7 +89,7 @@ py::dict trackCall(py::handle target, py::handle ramp, py::handle start, double 
   options.grasp = grasp;
   TrackResult r;
   {
-    Progress onStep(progress, true);
+    Progress onStep(progress);
     py::gil_scoped_release release;
     r = runTracking(options, hand, std::ref(onStep));
   }
@@ -151,8 +149,8 @@ py::dict reachCall(int grid, const std::string& model, bool pd, py::handle threa
   const ReachOptions options = reachOptions(grid, model, pd, count);
   ReachResult r;
   {
-    // Not interruptible: the worker threads have no way to stop early.
-    Progress onProgress(progress, false);
+    // Ctrl-C stops the sweep once the runs under way have finished.
+    Progress onProgress(progress);
     py::gil_scoped_release release;
     r = runReach(options, hand, std::ref(onProgress));
   }
@@ -200,7 +198,8 @@ Figure 4-4, as `cablelab reach`: the box positions the controller reaches on a g
 window, against the fingertips' range. model "simulation": every target is a full run of
 track(target=..., pid=not pd), reached within 5 mm with the grasp held; "quasi-static":
 the statics model stands in for the hand. threads: default one per core.
-progress(done, total) about every 0.1 s. Runs with the GIL released (not interruptible).
+progress(done, total) about every 0.1 s. Runs with the GIL released; Ctrl-C stops it
+(KeyboardInterrupt) once the runs under way have finished.
 
 Returns the CLI's JSON fields (object_area, fingertip_area, quasi_static_area (m^2), ratio,
 points, model, law, object_points, fingertip_points, quasi_static_points, beyond_fingertips

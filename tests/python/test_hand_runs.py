@@ -206,3 +206,16 @@ def test_ctrl_c_stops_a_long_track():
     timer.join()
     assert time.perf_counter() - start < 30
     assert cablelab.track(target=(0.2, 0.1), time=0.5)["t"].shape == (31,)  # still usable
+
+
+def test_ctrl_c_stops_a_long_reach():
+    import os
+    import signal
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    start = time.perf_counter()
+    with pytest.raises(KeyboardInterrupt):
+        cablelab.reach(grid=50, threads=2)  # 2500 simulated runs: minutes
+    timer.join()
+    assert time.perf_counter() - start < 30
+    assert cablelab.reach(grid=2, model="quasi-static")["points"] == 4  # still usable

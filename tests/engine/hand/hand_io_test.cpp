@@ -8,6 +8,8 @@
 #include "engine/dynamics/world.h"
 #include "engine/hand/hand_grasp.h"
 
+#include <stdexcept>
+
 namespace cablelab {
 namespace {
 
@@ -80,6 +82,20 @@ TEST(HandIo, TrackSummaryHasTheResultsFields) {
   EXPECT_EQ(j["final_box"][0].get<double>(), r.samples.back().box.x());
   ASSERT_EQ(j["events"].size(), r.events.size());
   EXPECT_EQ(j["events"][0]["what"], r.events[0].what);
+}
+
+// A progress callback that throws (Ctrl-C from Python) stops the sweep: the workers finish the
+// runs under way, take no new targets, and the exception comes out of runReach.
+TEST(HandReach, AProgressThatThrowsStopsTheSweep) {
+  ReachOptions o = reachOptions(30, "simulation", false, 2);
+  int calls = 0;
+  EXPECT_THROW(runReach(o, HandModel{},
+                        [&](long, long) {
+                          ++calls;
+                          throw std::runtime_error("stop");
+                        }),
+               std::runtime_error);
+  EXPECT_EQ(calls, 1);
 }
 
 // A law that is the Jacobian controller (a second instance, fresh as the sequence's own after
