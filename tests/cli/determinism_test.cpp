@@ -1,12 +1,11 @@
 // Determinism: the same scene, seed and options give byte-identical output on two runs.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
+
+#include <unistd.h>
 
 #include "tests/support/engine_test_support.h"
 
@@ -20,9 +19,10 @@ std::string slurp(const std::string& path) {
 }
 
 void expectIdenticalRuns(const std::string& args, const std::string& tag) {
-  // The pid keeps runs of the suite in parallel (several checkouts) off each other's files.
-  const std::string stem = "/tmp/cablelab_determinism_" + std::to_string(getpid()) + "_" + tag;
-  const std::string a = stem + "_a.csv", b = stem + "_b.csv";
+  // The process id in the names: other checkouts on the machine run this test at the same time.
+  const std::string stem =
+      "/tmp/cablelab_determinism_" + tag + "_" + std::to_string(::getpid()) + "_";
+  const std::string a = stem + "a.csv", b = stem + "b.csv";
   const auto r1 = cablelab::test::runCli(args + " --csv " + a);
   const auto r2 = cablelab::test::runCli(args + " --csv " + b);
   ASSERT_EQ(r1.exitCode, 0) << r1.err;
