@@ -65,33 +65,45 @@ nlohmann::json toJson(py::handle value, const std::string& source, const std::st
   throw InputError(source, here, "cannot be read as JSON (got a " + typeName(value) + ")");
 }
 
-py::object fromJson(const nlohmann::json& j) {
+namespace {
+
+template <typename Json>
+py::object jsonToPython(const Json& j) {
   switch (j.type()) {
-    case nlohmann::json::value_t::null:
+    case nlohmann::detail::value_t::null:
       return py::none();
-    case nlohmann::json::value_t::boolean:
-      return py::bool_(j.get<bool>());
-    case nlohmann::json::value_t::number_integer:
-      return py::int_(j.get<long long>());
-    case nlohmann::json::value_t::number_unsigned:
-      return py::int_(j.get<unsigned long long>());
-    case nlohmann::json::value_t::number_float:
-      return py::float_(j.get<double>());
-    case nlohmann::json::value_t::string:
-      return py::str(j.get<std::string>());
-    case nlohmann::json::value_t::array: {
+    case nlohmann::detail::value_t::boolean:
+      return py::bool_(j.template get<bool>());
+    case nlohmann::detail::value_t::number_integer:
+      return py::int_(j.template get<long long>());
+    case nlohmann::detail::value_t::number_unsigned:
+      return py::int_(j.template get<unsigned long long>());
+    case nlohmann::detail::value_t::number_float:
+      return py::float_(j.template get<double>());
+    case nlohmann::detail::value_t::string:
+      return py::str(j.template get<std::string>());
+    case nlohmann::detail::value_t::array: {
       py::list out;
-      for (const auto& item : j) out.append(fromJson(item));
+      for (const auto& item : j) out.append(jsonToPython(item));
       return out;
     }
-    case nlohmann::json::value_t::object: {
+    case nlohmann::detail::value_t::object: {
       py::dict out;
-      for (const auto& [key, item] : j.items()) out[py::str(key)] = fromJson(item);
+      for (const auto& [key, item] : j.items()) out[py::str(key)] = jsonToPython(item);
       return out;
     }
     default:
       return py::none();
   }
+}
+
+}  // namespace
+
+py::object fromJson(const nlohmann::json& j) {
+  return jsonToPython(j);
+}
+py::object fromJson(const nlohmann::ordered_json& j) {
+  return jsonToPython(j);
 }
 
 std::string pathString(py::handle value, const std::string& source, const std::string& field) {

@@ -1,20 +1,13 @@
-// The two-finger hand of chapter 4: its model, the Jacobian controller, and the `track` and
-// `reach` experiments (engine/hand/), with the GIL released while they run.
-#include <algorithm>
-#include <cmath>
-#include <thread>
-
+// The two-finger hand of chapter 4: its model, the Jacobian controller's gains and statics model,
+// and the hand's joints in a World (engine/hand/). The experiments are in py_hand_runs.cpp, the
+// grasp sequence in py_grasp.cpp.
+#include "python/py_hand.h"
 #include "engine/core/error.h"
 #include "engine/hand/hand_controller.h"
+#include "engine/hand/hand_grasp.h"
 #include "engine/hand/hand_model.h"
-#include "engine/hand/hand_reach.h"
-#include "engine/hand/hand_tracking.h"
-#include "python/bindings.h"
-#include "python/py_world.h"
 
 namespace cablelab::python {
-
-namespace {
 
 HandJoints jointsOf(py::handle q, const std::string& source) {
   const auto v = toNumbers(q, 6, source, "q");
@@ -27,7 +20,6 @@ py::array_t<double> jointsArray(const HandJoints& q) {
   return py::array_t<double>(6, q.data());
 }
 
-/// "Name(field=value, ...)" over the class's data descriptors.
 std::string fieldsRepr(py::handle self, const char* name) {
   std::string out = std::string(name) + "(";
   bool first = true;
@@ -42,101 +34,12 @@ std::string fieldsRepr(py::handle self, const char* name) {
   return out + ")";
 }
 
-/// The hand scene's joints must be there (a World built from the hand scene).
 void requireHand(const PyWorld& w, const std::string& source) {
   for (const char* name : kHandJointNames)
     if (w.world->findJoint(name) < 0)
       throw InputError(source, "world",
                        std::string("is not the hand scene (no joint '") + name + "')");
 }
-
-py::dict trackCall(py::handle target, py::handle ramp, double time, bool pid,
-                   const HandModel& model, const HandControllerParams& controller) {
-  TrackOptions options;
-  if (!target.is_none() && !ramp.is_none())
-    throw InputError("--ramp", "--ramp", "give either --target or --ramp, not both");
-  if (!target.is_none()) options.target = toVec2(target, "--target", "--target");
-  if (!ramp.is_none()) {
-    const auto v = toNumbers(ramp, 3, "--ramp", "--ramp");
-    if (v[2] <= 0) throw InputError("--ramp", "--ramp", "SECONDS must be positive");
-    options.target = Vec2(v[0], v[1]);
-    options.rampTime = v[2];
-  }
-  if (!(options.target.norm() <= 100))
-    throw InputError("command line", ramp.is_none() ? "--target" : "--ramp",
-                     "must be a number in [0, 100]");
-  if (!std::isfinite(time) || time < 0 || time > 1e5)
-    throw InputError("command line", "--time", "must be a number in [0, 100000]");
-  options.time = time;
-  options.pid = pid;
-  options.controller = controller;
-  TrackResult r;
-  {
-    py::gil_scoped_release release;
-    r = runTracking(options, model);
-  }
-  const py::ssize_t n = static_cast<py::ssize_t>(r.samples.size());
-  py::array_t<double> t = newArray({n}), tg = newArray({n, 2}), box = newArray({n, 2});
-  for (py::ssize_t i = 0; i < n; ++i) {
-    const TrackSample& s = r.samples[i];
-    t.mutable_at(i) = s.t;
-    tg.mutable_at(i, 0) = s.target.x(), tg.mutable_at(i, 1) = s.target.y();
-    box.mutable_at(i, 0) = s.box.x(), box.mutable_at(i, 1) = s.box.y();
-  }
-  py::dict out;
-  out["final_error"] = r.finalError;
-  out["rms_error"] = r.rmsError;
-  out["grasp_time"] = r.graspTime;
-  out["start_error"] = r.startError;
-  out["grasp_held"] = r.graspHeld;
-  out["losses"] = r.losses;
-  out["start"] = std::vector<double>{r.start.x(), r.start.y()};
-  out["final_box"] = std::vector<double>{r.samples.back().box.x(), r.samples.back().box.y()};
-  out["max_tension"] = r.maxTension;
-  py::list events;
-  for (const GraspEvent& e : r.events) {
-    py::dict d;
-    d["t"] = e.t;
-    d["what"] = e.what;
-    events.append(d);
-  }
-  out["events"] = events;
-  out["t"] = t;
-  out["target"] = tg;
-  out["box"] = box;
-  return out;
-}
-
-py::dict reachCall(int grid, py::handle threads, const HandModel& model) {
-  if (grid < 1 || grid > 1000)
-    throw InputError("--grid", "--grid", "must be an integer in [1, 1000]");
-  ReachOptions options;
-  options.grid = grid;
-  options.threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  if (!threads.is_none()) {
-    options.threads = threads.cast<int>();
-    if (options.threads < 1 || options.threads > 256)
-      throw InputError("reach", "threads", "must be 1..256");
-  }
-  ReachResult r;
-  {
-    py::gil_scoped_release release;
-    r = runReach(options, model);
-  }
-  py::dict out;
-  out["object_area"] = r.objectArea;
-  out["fingertip_area"] = r.fingertipArea;
-  out["ratio"] = r.fingertipArea > 0 ? r.objectArea / r.fingertipArea : 0.0;
-  out["points"] = r.points;
-  out["object_points"] = pointsArray(r.objectPoints);
-  out["fingertip_points"] = pointsArray(r.fingertipPoints);
-  out["lower"] = std::vector<double>{r.lower.x(), r.lower.y()};
-  out["upper"] = std::vector<double>{r.upper.x(), r.upper.y()};
-  out["seconds"] = r.seconds;
-  return out;
-}
-
-}  // namespace
 
 void bindHand(py::module_& m) {
   using namespace pybind11::literals;
@@ -146,18 +49,7 @@ The two-finger hand of chapter 4: dimensions (m), masses (kg), membrane stiffnes
 damping (N s/m) and preload (m), servo gain, joint limits (rad, m). One model feeds the
 hand scene, the controller and the experiments. Fields are read/write attributes;
 HandModel(stiffness=300) changes one from the default.)doc");
-  model
-      .def(py::init([](const py::kwargs& kw) {
-        HandModel h;
-        py::object self = py::cast(h);
-        for (auto [k, v] : kw) {
-          const std::string key = k.cast<std::string>();
-          if (!py::hasattr(self, key.c_str()) || key.rfind("_", 0) == 0)
-            throw InputError("HandModel", key, "no such field");
-          self.attr(key.c_str()) = v;
-        }
-        return self.cast<HandModel>();
-      }))
+  model.def(py::init([](const py::kwargs& kw) { return fromFields<HandModel>("HandModel", kw); }))
       .def_readwrite("base_x", &HandModel::baseX, "x of both proximal joints (m)")
       .def_readwrite("base_y", &HandModel::baseY,
                      "|y| of the proximal joints and paddle centres at q = 0 (m)")
@@ -209,15 +101,7 @@ HandModel(stiffness=300) changes one from the default.)doc");
       "controller (thesis 4.3); read/write attributes.");
   params
       .def(py::init([](const py::kwargs& kw) {
-        HandControllerParams p;
-        py::object self = py::cast(p);
-        for (auto [k, v] : kw) {
-          const std::string key = k.cast<std::string>();
-          if (!py::hasattr(self, key.c_str()) || key.rfind("_", 0) == 0)
-            throw InputError("ControllerParams", key, "no such field");
-          self.attr(key.c_str()) = v;
-        }
-        return self.cast<HandControllerParams>();
+        return fromFields<HandControllerParams>("ControllerParams", kw);
       }))
       .def_readwrite("period", &HandControllerParams::period, "outer-loop period (s)")
       .def_readwrite("kp", &HandControllerParams::kp, "share of the error removed per update")
@@ -296,24 +180,8 @@ joint-target increment; predict() gives the statics model's box and db/dq.)doc")
       "world"_a, "q"_a, "model"_a = HandModel{},
       "place_hand(world, q, model=HandModel()): teleports the fingers to joints q (velocities "
       "zeroed) and sets the servo targets to q.");
-  m.def(
-      "track", &trackCall, py::kw_only(), "target"_a = py::none(), "ramp"_a = py::none(),
-      "time"_a = 15.0, "pid"_a = false, "model"_a = HandModel{},
-      "controller"_a = HandControllerParams{},
-      R"doc(track(*, target=None, ramp=None, time=15, pid=False, model=HandModel(), controller=ControllerParams()) -> dict
-
-Figure 4-5, as `cablelab track`: the hand closes a pinch grasp, then the Jacobian
-controller drives the box to target [x, y] (m), or along ramp (x, y, seconds) from (0, 0).
-Runs with the GIL released. Returns final_error, rms_error (m), grasp_time (s) and the
-samples: t (s), target and box ((n, 2), m).)doc");
-  m.def("reach", &reachCall, py::kw_only(), "grid"_a = 50, "threads"_a = py::none(),
-        "model"_a = HandModel{},
-        R"doc(reach(*, grid=50, threads=None, model=HandModel()) -> dict
-
-Figure 4-4, as `cablelab reach`: the box positions the controller reaches on a grid x grid
-window against the fingertips' range. threads: default all cores. Runs with the GIL
-released. Returns object_area, fingertip_area (m^2), ratio, points, object_points and
-fingertip_points ((n, 2), m), lower, upper (the window, m), seconds.)doc");
+  bindGrasp(m);
+  bindHandRuns(m);
 }
 
 }  // namespace cablelab::python

@@ -6,8 +6,10 @@
 
 #include "engine/cable/wrap_io.h"
 #include "engine/core/error.h"
+#include "engine/core/parse.h"
 #include "engine/membrane/membrane_data.h"
 #include "engine/membrane/membrane_fit.h"
+#include "engine/membrane/membrane_fit_io.h"
 #include "engine/membrane/membrane_synth.h"
 #include "engine/scenes/scene_registry.h"
 #include "engine/statics/socp.h"
@@ -93,17 +95,17 @@ py::dict wrapCall(py::handle a, py::handle b, py::handle polygon, py::handle sid
   return out;
 }
 
+/// --pulleys as the CLI's text ("AX,AY,BX,BY": its parser and messages), 4 numbers or
+/// [[AX, AY], [BX, BY]].
 MembraneGeometry pulleysOf(py::handle pulleys) {
-  std::vector<double> v;
+  if (py::isinstance<py::str>(pulleys))
+    return membranePulleys(
+        parseNumberList(pulleys.cast<std::string>(), 4, kCommandLine, "--pulleys", "AX,AY,BX,BY"));
   auto a = py::array_t<double, py::array::forcecast>::ensure(pulleys);
-  if (a && a.size() == 4 && !py::isinstance<py::str>(pulleys))
-    v = toNumbers(a.attr("reshape")(4), 4, "--pulleys", "pulleys");
-  else
-    throw InputError("--pulleys", "pulleys",
+  if (!a || a.size() != 4)
+    throw InputError(kCommandLine, "--pulleys",
                      "must be AX, AY, BX, BY (m): 4 numbers or [[AX, AY], [BX, BY]]");
-  MembraneGeometry g{Vec2(v[0], v[1]), Vec2(v[2], v[3])};
-  validateMembraneGeometry(g, "--pulleys");
-  return g;
+  return membranePulleys(toNumbers(a.attr("reshape")(4), 4, kCommandLine, "--pulleys"));
 }
 
 std::vector<MembraneSample> membraneRows(py::handle data, const MembraneGeometry& g) {
@@ -129,14 +131,9 @@ py::dict fitCall(py::handle data, py::handle pulleys, py::handle sigmaFy, py::ha
   const MembraneGeometry g = pulleysOf(pulleys);
   MembraneFitOptions options;
   options.source = isPath(data) ? pathString(data, "fit", "data") : "data";
-  auto sigma = [](py::handle v, const char* flag, const char* field) {
-    if (v.is_none()) return 0.0;
-    const double s = v.cast<double>();
-    if (!(s > 0) || !std::isfinite(s)) throw InputError(flag, field, "must be positive");
-    return s;
-  };
-  options.sigmaFy = sigma(sigmaFy, "--sigma-fy", "sigma_fy");
-  options.sigmaAngleDeg = sigma(sigmaAngle, "--sigma-angle-deg", "sigma_angle_deg");
+  if (!sigmaFy.is_none()) options.sigmaFy = membraneSigma(sigmaFy.cast<double>(), "--sigma-fy");
+  if (!sigmaAngle.is_none())
+    options.sigmaAngleDeg = membraneSigma(sigmaAngle.cast<double>(), "--sigma-angle-deg");
   const auto rows = membraneRows(data, g);
   const auto start = std::chrono::steady_clock::now();
   MembraneFitResult fit;
@@ -146,25 +143,7 @@ py::dict fitCall(py::handle data, py::handle pulleys, py::handle sigmaFy, py::ha
   }
   const double fitUs =
       std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
-  py::dict out;
-  out["k"] = fit.params.k;
-  out["preload"] = fit.params.preload;
-  out["rms_fy"] = fit.rmsFy;
-  out["rms_angle_deg"] = fit.rmsAngleDeg;
-  out["k_stderr"] = fit.kStderr;
-  out["preload_stderr"] = fit.preloadStderr;
-  out["k_preload_correlation"] =
-      fit.covariance(0, 1) / std::sqrt(fit.covariance(0, 0) * fit.covariance(1, 1));
-  out["sigma_fy"] = fit.sigmaFy;
-  out["sigma_angle_deg"] = fit.sigmaAngleDeg;
-  out["sigmas"] = (options.sigmaFy > 0 && options.sigmaAngleDeg > 0)   ? "given"
-                  : (options.sigmaFy > 0 || options.sigmaAngleDeg > 0) ? "partly estimated"
-                                                                       : "estimated";
-  out["chi2_per_dof"] = fit.chi2PerDof;
-  out["iterations"] = fit.iterations;
-  out["rounds"] = fit.rounds;
-  out["rows"] = fit.rows;
-  out["fit_us"] = fitUs;
+  py::dict out = fromJson(membraneFitJson(fit, options, fitUs));
   py::array_t<double> cov = newArray({2, 2});
   for (int r = 0; r < 2; ++r)
     for (int c = 0; c < 2; ++c) cov.mutable_at(r, c) = fit.covariance(r, c);

@@ -323,14 +323,11 @@ void setServoTargets(PyWorld& self, py::handle targets) {
 py::dict stepStats(const PyWorld& self) {
   PyWorld::Busy busy(self);
   const StepStats& s = self.world->lastStepStats();
-  py::dict d;
-  d["step_us"] = s.stepMicros;
-  d["cable_us"] = s.cableMicros;
-  d["wrap_points"] = s.wrapPoints;
-  d["solver_iterations"] = s.solverIterations;
-  d["residual"] = s.residual;
-  d["linearisation_fallbacks"] = s.linearisationFallbacks;
-  return d;
+  using namespace pybind11::literals;
+  return py::dict("step_us"_a = s.stepMicros, "cable_us"_a = s.cableMicros,
+                  "wrap_points"_a = s.wrapPoints, "solver_iterations"_a = s.solverIterations,
+                  "residual"_a = s.residual,
+                  "linearisation_fallbacks"_a = s.linearisationFallbacks);
 }
 
 }  // namespace

@@ -70,6 +70,12 @@ std::optional<double> firstRise(G&& g, Accept&& accept, double h, int samples, d
   return std::nullopt;
 }
 
+/// True when p's signed distance from the line a-b cannot change sign in [0, h]: it starts
+/// farther from zero than the points' speeds can carry it. Most points of a resting cable are
+/// far from any event, and this spares them the sampling (each sample turns three points);
+/// false says nothing.
+bool sideCannotChange(const MovingPoint& a, const MovingPoint& b, const MovingPoint& p, double h);
+
 /// A crossing of a segment: when, and where along it (0 at a, 1 at b).
 struct Crossing {
   double time = 0;   ///< s into the sub-step

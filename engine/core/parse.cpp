@@ -27,6 +27,14 @@ double parseNumber(std::string_view text, const std::string& source, const std::
   return *v;
 }
 
+void requireInRange(double v, const std::string& source, const std::string& field, double lo,
+                    double hi) {
+  if (!std::isfinite(v) || v < lo || v > hi)
+    throw InputError(
+        source, field,
+        "must be a number in [" + formatNumber(lo) + ", " + formatNumber(hi) + "]" + gotValue(v));
+}
+
 long parseWholeNumber(std::string_view text, const std::string& source, const std::string& field,
                       long lo, long hi) {
   const auto v = parseFiniteNumber(text);

@@ -35,6 +35,11 @@ struct PixelSize {
 PixelSize parsePixelSize(std::string_view text, const std::string& source, const std::string& field,
                          int minSide, int maxSide);
 
+/// Throws InputError(source, field, "must be a number in [lo, hi] (got v)") unless v is finite
+/// and lo <= v <= hi.
+void requireInRange(double v, const std::string& source, const std::string& field, double lo,
+                    double hi);
+
 class InputError;
 
 /// A command-line parser's message (CLI11's, as in "Could not convert: --time = abc") as the

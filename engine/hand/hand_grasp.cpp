@@ -110,7 +110,7 @@ void HandGrasp::beginPinched(const World& world) {
   events_.push_back({t, "pinched"});
 }
 
-void HandGrasp::beforeStep(World& world, const std::optional<Vec2>& target) {
+void HandGrasp::beforeStep(World& world, const std::optional<Vec2>& target, const GraspLaw& law) {
   const double t = world.time();
   const double period = controller_.params().period;
   if (phase_ == Phase::Lost && t >= phaseStart_ + options_.stopTime) {
@@ -132,9 +132,11 @@ void HandGrasp::beforeStep(World& world, const std::optional<Vec2>& target) {
   }
   if (controlling(t) && t >= nextUpdate_ - 1e-9) {
     const HandJoints from = commanded_;
-    if (target) {
+    if (law || target) {
+      const HandJoints q = joints(world);
+      const Vec2 box = world.body(box_).position;
       const HandJoints dq =
-          controller_.update(joints(world), world.body(box_).position, *target, commanded_);
+          law ? law(q, box, commanded_) : controller_.update(q, box, *target, commanded_);
       ++updates_;
       // Spread over the period; no wind-up against the limits.
       startRamp(t, from, model_.clamp(commanded_ + dq), period);

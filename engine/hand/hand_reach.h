@@ -58,7 +58,8 @@ struct ReachResult {
   int threads = 1;
 };
 
-/// `progress(done, total)` is called from the calling thread about every 0.1 s.
+/// `progress(done, total)` is called from the calling thread about every 0.1 s. If it throws, the
+/// sweep stops (the runs under way finish first) and the exception propagates.
 ReachResult runReach(const ReachOptions& options, const HandModel& model = {},
                      const std::function<void(long, long)>& progress = {});
 
