@@ -180,7 +180,9 @@ the hand holds. track() is this loop with the controller and a fixed target.)doc
   c.def_property_readonly(
       "held", [](const PyGrasp& g) { return g.grasp.held(); },
       "False once the box was lost after the grasp closed");
-  c.def_property_readonly("losses", [](const PyGrasp& g) { return g.grasp.losses(); });
+  c.def_property_readonly(
+      "losses", [](const PyGrasp& g) { return g.grasp.losses(); },
+      "times the box was lost after the grasp had closed");
   c.def_property_readonly(
       "updates", [](const PyGrasp& g) { return g.grasp.updates(); }, "outer-loop updates so far");
   c.def_property_readonly(
@@ -198,8 +200,9 @@ the hand holds. track() is this loop with the controller and a fixed target.)doc
   c.def_property_readonly(
       "controller", [](PyGrasp& g) -> HandController& { return g.grasp.controller(); },
       py::return_value_policy::reference_internal,
-      "the sequence's HandController (its status after each update)");
-  c.def_property_readonly("world", [](const PyGrasp& g) { return g.object; });
+      "the sequence's HandController (status() after each update)");
+  c.def_property_readonly(
+      "world", [](const PyGrasp& g) { return g.object; }, "the World the sequence steps");
   c.def(
       "joints",
       [](const PyGrasp& g) {

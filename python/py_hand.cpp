@@ -159,7 +159,20 @@ joint-target increment; predict() gives the statics model's box and db/dq.)doc")
           "q"_a, "guess"_a = py::make_tuple(0.0, 0.0),
           "predict(q, guess=(0, 0)) -> {box (m), jacobian (2 x 6, db/dq), valid}: the statics "
           "model's equilibrium box centre at joints q, warm-started at guess.")
-      .def("reset", &HandController::reset, "reset(): clears the integral and derivative memory.");
+      .def("reset", &HandController::reset, "reset(): clears the integral and derivative memory.")
+      .def(
+          "status",
+          [](const HandController& c) {
+            const ControllerStatus& s = c.status();
+            auto vec = [](const Vec2& v) { return py::array_t<double>(2, v.data()); };
+            return py::dict("reference"_a = vec(s.reference), "expected"_a = vec(s.expected),
+                            "error"_a = vec(s.error), "integral"_a = vec(s.integral),
+                            "speed_limit"_a = s.speedLimit, "rate_limited"_a = s.rateLimited,
+                            "joints_at_limit"_a = s.jointsAtLimit);
+          },
+          "status() -> dict: what the last update did: reference r, expected (where the box "
+          "model, driven by r, has the box), error (box - expected), integral (m s), "
+          "speed_limit (m/s), rate_limited, joints_at_limit.");
 
   m.def(
       "hand_joints",

@@ -135,6 +135,8 @@ class World {
   std::vector<char> excluded_;       ///< bodies the midpoint solve leaves alone (joints, contacts)
   std::vector<Vec3> kicks_;          ///< velocity added after Box2D's step (midpoint solve)
   bool midpointUsed_ = false;        ///< the last solveForces() was a midpoint one
+  int cutCable_ = -1;                ///< the last Box2D step ended at this cable's event...
+  WrapEvent cutEvent_;               ///< ...this one (-1: it ran to its end)
   std::vector<BodyState> bodies_;    ///< read back from Box2D
   std::vector<Vec3> forces_;         ///< (fx, fy, torque) per body for the current sub-step
   std::vector<Vec3> pendingForces_;  ///< applyForce() loads for the next step

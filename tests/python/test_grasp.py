@@ -119,3 +119,12 @@ def test_grasp_keeps_its_world_alive():
     for _ in range(10):
         g.step(TARGET)
     assert g.world.time == pytest.approx(10 * g.world.dt)
+
+
+def test_controller_status_follows_the_reference_to_the_target():
+    g, path = run_grasp(6)
+    s = g.controller.status()
+    # the reference has come to rest on the target, and the box model is close to the box
+    assert np.array_equal(s["reference"], TARGET)
+    assert np.linalg.norm(s["expected"] - path[-1]) < 0.02
+    assert s["joints_at_limit"] == 0 and not s["rate_limited"]
