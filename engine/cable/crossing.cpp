@@ -42,8 +42,8 @@ bool sideCannotChange(const MovingPoint& a, const MovingPoint& b, const MovingPo
   const double sa = speedBound(a), sb = speedBound(b), sp = speedBound(p);
   const double length = d0.norm(), shortest = length - h * (sa + sb);
   if (!(shortest > 0)) return false;
-  const double reach = pa0.norm() + h * (sp + sa);
-  const double rate = sp + sa + (sa + sb) * reach / shortest;
+  const double arm = pa0.norm() + h * (sp + sa);
+  const double rate = sp + sa + (sa + sb) * arm / shortest;
   return std::abs(cross(d0, pa0)) / length > 1.01 * h * rate + 1e-12 + reach;
 }
 
