@@ -290,6 +290,13 @@ void drawPulleys(const World& world, const Painter& paint) {
         const std::vector<Vec2> points = pulleyPolygon(world, pulley);
         paint.polygon(points, nullptr, colour, 2.5f);
         for (const Vec2& p : points) paint.disc(p, paint.px(2.5), colour);
+      } else if (pulley.kind == PulleyDef::Kind::Circle) {
+        // A rim and a spoke: the spoke shows a wheel turning.
+        const int body = findBodyIndex(world.scene(), pulley.body);
+        const Vec2 c = bodyPoint(world, body, pulley.point);
+        paint.polygon(paint.circlePoints(c, pulley.radius), nullptr, colour, 2.5f);
+        paint.line(c, bodyPoint(world, body, pulley.point + Vec2(0, pulley.radius)), colour, 2.0f);
+        paint.disc(c, paint.px(2.5), colour);
       } else {
         const Vec2 p = bodyPoint(world, findBodyIndex(world.scene(), pulley.body), pulley.point);
         const Colour white{1, 1, 1, 1};
@@ -321,6 +328,32 @@ void drawJoints(const World& world, const Painter& paint) {
   }
 }
 
+/// The cable lying on a circle: from the tangent point round by the wrap angle (an interior
+/// circle), or the turns wound on a drum (a path's end), drawn as one turn a little outside the
+/// rim per extra turn, up to three.
+void drawCableArc(const WrapPoint& p, bool atStart, bool atEnd, const Colour& colour, float width,
+                  const Painter& paint) {
+  const double r = std::abs(p.radius), s = p.radius > 0 ? -1.0 : 1.0;  // s: angle's sense
+  const Vec2 t = atStart ? p.tangentOut : p.tangentIn;
+  const double from = std::atan2(t.y() - p.world.y(), t.x() - p.world.x());
+  // A path's start on a drum: the wound part runs backwards from where the cable leaves.
+  const double sense = atStart ? -s : s;
+  const double arc = std::max(0.0, p.arc);
+  const int loops = std::min(3, static_cast<int>(arc / (2 * M_PI)));
+  for (int loop = 0; loop <= loops; ++loop) {
+    const double span = loop < loops ? 2 * M_PI : arc - 2 * M_PI * loops;
+    const double radius = r + (atStart || atEnd ? paint.px(2.5) * loop : 0.0);
+    const int n = std::max(2, static_cast<int>(48 * span / (2 * M_PI)) + 1);
+    Vec2 previous = p.world + radius * Vec2(std::cos(from), std::sin(from));
+    for (int i = 1; i <= n; ++i) {
+      const double a = from + sense * span * i / n;
+      const Vec2 next = p.world + radius * Vec2(std::cos(a), std::sin(a));
+      paint.line(previous, next, colour, width);
+      previous = next;
+    }
+  }
+}
+
 /// The arrow length per newton of the force arrows: the colour bar's top tension is a tenth
 /// of the view's height.
 double metresPerNewton(const Camera& cam, double scale) {
@@ -341,13 +374,23 @@ void drawCables(const World& world, const RenderOptions& options, double scale,
       for (size_t k = 1; k < path.size(); ++k)
         paint.line(path[k - 1].world, path[k].world, kStretch, 12.0f);
     double phase = 0;
-    const Colour c = options.tensions ? tensionColour(cable.tension() / scale) : kPlain;
+    // Straight pieces run between tangent points; each carries its span's tension.
     for (size_t k = 1; k < path.size(); ++k) {
-      if (cable.slack())
-        paint.dashed(path[k - 1].world, path[k].world, kSlack, width - 1, phase);
+      const Vec2 from = path[k - 1].radius == 0 ? path[k - 1].world : path[k - 1].tangentOut;
+      const Vec2 to = path[k].radius == 0 ? path[k].world : path[k].tangentIn;
+      const double tension = cable.segmentTension(k - 1);
+      if (tension <= 0)
+        paint.dashed(from, to, kSlack, width - 1, phase);
       else
-        paint.line(path[k - 1].world, path[k].world, c, width);
+        paint.line(from, to, options.tensions ? tensionColour(tension / scale) : kPlain, width);
     }
+    for (size_t k = 0; k < path.size(); ++k)
+      if (path[k].radius != 0)
+        drawCableArc(path[k], k == 0, k + 1 == path.size(),
+                     options.tensions
+                         ? tensionColour(cable.segmentTension(k == 0 ? 0 : k - 1) / scale)
+                         : kPlain,
+                     width, paint);
     if (options.wrapPoints)
       for (const WrapPoint& p : path) {
         const Colour dark{0.15f, 0.15f, 0.15f, 1};

@@ -5,13 +5,15 @@
 // condition, docs/model.md). Cables and the moving bodies they connect (through cables or
 // joints) form islands, solved one after the other, so the cost grows with the islands' sizes,
 // not with the square of the world's. Per island, in named stages:
-//   1. buildRows            one row per cable that pulls on a moving body; the dofs it moves;
-//                           a floor row per short segment that may close up (floors.h)
+//   1. buildRows            one row per cable span that pulls on a moving body; the dofs
+//                           it moves (wheels that grip a cable split it in spans); a floor
+//                           row per short segment that may close up (floors.h)
 //   2. predictVelocities    v* (gravity and loads, no cables) and J^T at the start of the step
 //   3. inverseMass          W = M'^-1 J^T, M' with the taut cables' geometric stiffness
 //   4. projectOntoJoints    W and v* restricted to what Box2D's joints allow (Schur complement)
 //   5. lengthTargets        rigid: the end-of-step length; elastic: the implicit spring-damper
 //   6. newtonOnLengths      Newton on the end-of-step lengths, one LCP per iteration
+//   6b. mergeSlidingSpans   capstans past e^(mu theta): merge their spans, run 2-6 again
 //   7. applyForces          the force that gives the solved end-of-step velocity
 // Private to engine/dynamics.
 #pragma once

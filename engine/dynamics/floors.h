@@ -20,7 +20,8 @@ inline constexpr double kFloorLength = 0.01;  ///< m: the closest two points of 
 template <class Moved>
 bool needsFloor(std::span<const WrapPoint> path, size_t i, Moved moved) {
   const int a = path[i].body, b = path[i + 1].body;
-  return a != b && ((a >= 0 && moved(a)) || (b >= 0 && moved(b))) &&
+  const bool straight = path[i].radius == 0 && path[i + 1].radius == 0;  // not touching an arc
+  return a != b && straight && ((a >= 0 && moved(a)) || (b >= 0 && moved(b))) &&
          (path[i + 1].world - path[i].world).norm() < kFloorWatch;
 }
 

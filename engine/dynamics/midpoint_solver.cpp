@@ -77,6 +77,8 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
     if (!pulls) continue;
     any = true;
     const auto& path = c.path();
+    // Wheels that grip the cable (spans) are left to the main solve (docs/wheels.md).
+    if (c.spanCount() > 1) return false;
     for (size_t i = 1; i + 1 < path.size(); ++i)
       wanted |= path[i].body >= 0 && moves(bodies[path[i].body]);
     for (size_t i = 0; i + 1 < path.size(); ++i)
@@ -112,10 +114,7 @@ void MidpointSolver::evaluate(std::span<const BodyState> bodies, std::span<const
       continue;
     }
     path_.assign(c.path().begin(), c.path().end());
-    lengthDiscreteGradient(path_, bodies, predicted_, gradients_[r]);
-    double length1 = 0;
-    for (size_t i = 0; i + 1 < path_.size(); ++i)
-      length1 += (path_[i + 1].world - path_[i].world).norm();
+    const double length1 = lengthDiscreteGradient(path_, bodies, predicted_, gradients_[r]);
     phi1_[r] = phi0_[r] + length1 - c.length();
   }
 }

@@ -40,6 +40,7 @@ const Eigen::VectorXd& consistentTargets(Eigen::MatrixXd& K, const Eigen::Vector
   // Lawson and Hanson's method needs.
   work.Ks = K.transpose();
   K = 0.5 * (K + work.Ks);
+  work.symmetric = true;
   work.cod.setThreshold(kRankTolerance);
   work.cod.compute(K);
   work.bs = work.cod.solve(b);
@@ -64,8 +65,13 @@ void solveOnSet(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, const std::v
     work.bs[r] = b[idx[r]];
     for (int c = 0; c < m; ++c) work.Ks(r, c) = K(idx[r], idx[c]);
   }
-  work.ldlt.compute(work.Ks);
-  work.xs = work.ldlt.solve(work.bs);
+  if (work.symmetric) {
+    work.ldlt.compute(work.Ks);
+    work.xs = work.ldlt.solve(work.bs);
+  } else {
+    work.lu.compute(work.Ks);
+    work.xs = work.lu.solve(work.bs);
+  }
   for (int r = 0; r < m; ++r) x[idx[r]] = work.xs[r];
 }
 
@@ -155,6 +161,15 @@ void lawsonHanson(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, LcpWorkspa
   }
 }
 
+// Symmetric to rounding (no temporary: this runs every sub-step).
+bool isSymmetric(const Eigen::MatrixXd& K) {
+  const double tolerance = 1e-12 * K.cwiseAbs().maxCoeff();
+  for (int c = 0; c < K.cols(); ++c)
+    for (int r = c + 1; r < K.rows(); ++r)
+      if (std::abs(K(r, c) - K(c, r)) > tolerance) return false;
+  return true;
+}
+
 }  // namespace
 
 bool rankDeficient(const Eigen::LDLT<Eigen::MatrixXd>& ldlt) {
@@ -184,6 +199,9 @@ void solveLcp(const Eigen::MatrixXd& Kin, const Eigen::VectorXd& b, LcpWorkspace
   sol.iterations = 0;
   sol.residual = 0;
   sol.rankDeficient = false;
+  // A cable sliding on a capstan pulls with e^(mu theta) times the tension its constraint row
+  // carries: K is then not symmetric (docs/wheels.md) and needs LU instead of LDLT.
+  work.symmetric = isSymmetric(K);
   const Eigen::VectorXd& bUsed = redundant ? consistentTargets(K, b, work, sol) : b;
   if (sol.rankDeficient)
     lawsonHanson(K, bUsed, work, sol);

@@ -10,6 +10,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <Eigen/QR>
 #include <vector>
 
@@ -49,6 +50,8 @@ struct LcpWorkspace {
   Eigen::MatrixXd K, Ks;
   Eigen::VectorXd bs, xs, w, projected, step;
   Eigen::LDLT<Eigen::MatrixXd> ldlt;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu;  ///< for a non-symmetric K (sliding capstans)
+  bool symmetric = true;                    ///< K is (LDLT), else LU
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;  ///< rank-deficient active sets
   std::vector<char> active, blocked;
   std::vector<int> idx;

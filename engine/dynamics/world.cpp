@@ -177,8 +177,9 @@ void World::applyServos() {
     if (!servo.enabled) continue;
     const int j = static_cast<int>(i);
     const JointCoordinate q = b2_->jointCoordinate(j);
-    const double f = std::clamp(servo.kp * (servoTargets_[i] - q.value) - servo.kd * q.speed,
-                                -servo.maxForce, servo.maxForce);
+    const double f =
+        std::clamp(servo.kp * (servoTargets_[i] - q.value) + servo.kd * (servo.speed - q.speed),
+                   -servo.maxForce, servo.maxForce);
     const auto [a, b] = jointBodies_[i];
     Vec3 load = Vec3::Zero();
     if (scene_.joints[i].kind == JointDef::Kind::Revolute) {
@@ -317,6 +318,9 @@ double World::advance(double left, double h, bool locate) {
   b2_->addVelocities(kicks_);
   b2_->readBodies(bodies_);
   time_ += dt;
+  // A servo with a speed drives its joint at that rate: the target moves.
+  for (size_t j = 0; j < scene_.joints.size(); ++j)
+    servoTargets_[j] += scene_.joints[j].servo.speed * dt;
   return dt;
 }
 
