@@ -59,7 +59,8 @@ std::optional<Options> parse(int argc, char** argv) {
   std::string uiScale, script;
   cli.add_option("--ui-scale", uiScale, "text and panel scale, 0.5..4 (default: from the display)");
   cli.add_option("--script", script,
-                 "run an acceptance scenario (describe, reset-scale, rigid-drag, drop-box, author) "
+                 "run an acceptance scenario (describe, reset-scale, rigid-drag, drop-box, author, "
+                 "capstan-slip) "
                  "with synthetic events and print its JSON report");
   cli.add_option("--script-out", o.scriptOut, "the scene file the author scenario saves");
   cli.add_option("--open", o.openLater,

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "ui/authoring.h"
+#include "ui/cable_spans.h"
 #include "ui/panel_sections.h"
 #include "ui/renderer.h"
 
@@ -74,6 +75,8 @@ void wrapTable(const Cable& cable) {
       ImGui::TextUnformatted("anchor");
     else if (p.kind == WrapPoint::Kind::Point)
       ImGui::Text("pulley %d", p.pulley);
+    else if (p.kind == WrapPoint::Kind::Circle)
+      ImGui::Text("circle %d", p.pulley);
     else
       ImGui::Text("pulley %d v%d", p.pulley, p.vertex);
     ImGui::TableNextColumn();
@@ -84,8 +87,40 @@ void wrapTable(const Cable& cable) {
   ImGui::EndTable();
 }
 
+/// Per-span tensions of a cable split by gripping wheels, and each wheel's tension ratio.
+void spanSection(Sandbox& sandbox, const Cable& cable) {
+  SpanTable table = spanTable(cable);
+  if (table.spans.empty()) {
+    sandbox.shownSpans = {};
+    return;
+  }
+  ImGui::Text("spans (%d)", cable.spanCount());
+  tooltip(
+      "Each span between gripping wheels carries its own tension (docs/wheels.md). A capstan "
+      "holds while the tension ratio is below e^(mu theta) and slips at that ratio.");
+  if (ImGui::BeginTable("spans", 3, ImGuiTableFlags_RowBg)) {
+    ImGui::TableSetupColumn("span");
+    ImGui::TableSetupColumn("tension (N)");
+    ImGui::TableSetupColumn("length (m)");
+    ImGui::TableHeadersRow();
+    for (const SpanRow& row : table.spans) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::Text("%d", row.span);
+      ImGui::TableNextColumn();
+      ImGui::Text("%.4g%s", row.tension, row.tension <= 0 ? " slack" : "");
+      ImGui::TableNextColumn();
+      ImGui::Text("%.4f", row.length);
+    }
+    ImGui::EndTable();
+  }
+  for (const WheelRow& w : table.wheels) ImGui::TextWrapped("%s", w.text.c_str());
+  sandbox.shownSpans = std::move(table);
+}
+
 void cableInspector(Sandbox& sandbox, const World& world) {
   if (world.cableCount() == 0) {
+    sandbox.shownSpans = {};
     ImGui::TextDisabled("no cables");
     return;
   }
@@ -98,6 +133,7 @@ void cableInspector(Sandbox& sandbox, const World& world) {
   if (overstretched(cable))
     ImGui::TextColored(ImVec4(0.8f, 0.0f, 0.1f, 1), "overstretched by %.4f m",
                        cable.length() - cable.restLength());
+  spanSection(sandbox, cable);
   cableEdits(sandbox);
   if (i < static_cast<int>(sandbox.tensionHistory.size())) {
     const auto& h = sandbox.tensionHistory[i];
