@@ -14,7 +14,8 @@
 //    segment's line: it must cross the segment from outside. A pulley coming from the wrap side,
 //    or sitting on the wrap side beyond the segment's ends, is left out (the cable passes it).
 //  * An engaged pulley LEAVES when the path no longer bends around it: a point pulley when the
-//    turn at it is straight or the wrong way; a polygon when its hull chain is empty.
+//    turn at it goes the wrong way (a straight turn keeps it: it changes neither length nor J);
+//    a circle when its arc goes below zero; a polygon when its hull chain is empty.
 //  * A terminal inside a polygon pulley's hull (a neighbouring pulley inside it) has no taut path:
 //    the polygon is DROPPED (it leaves the path) and a warning says so. A dropped polygon that
 //    still cuts its segment REJOINS as soon as a taut path round it exists again and that path is
