@@ -132,10 +132,13 @@ const bool registered = registerCommand(
           const SceneTiming t =
               info.name == "hand" ? h
                                   : measureScene(makeScene(info.name), 30, quick ? 1000 : 5000, 4);
+          nlohmann::json spans = nlohmann::json::object();
+          for (const auto& [cable, tensions] : t.withCables.spanTensions) spans[cable] = tensions;
           scenes[info.name] = {{"box2d_step_us", t.withoutCables.stepMicros},
                                {"cable_step_us", t.withCables.stepMicros},
                                {"cable_overhead", t.overhead},
-                               {"wrap_points_mean", t.withCables.meanWrapPoints}};
+                               {"wrap_points_mean", t.withCables.meanWrapPoints},
+                               {"span_tensions_n", spans}};
         }
         out["scenes"] = scenes;
 

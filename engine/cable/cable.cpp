@@ -408,6 +408,16 @@ void Cable::reportLengthJump(std::span<const BodyState> bodies,
   if (std::abs(kin_.length - before) <= kLengthJump) return;
   char jump[64];
   std::snprintf(jump, sizeof jump, "%.6g m", kin_.length - before);
+  // A polygon whose chain emptied with a jump was hooked: the cable bent round it further than a
+  // hull chain between its neighbours can hold (it swung round beyond an end anchor).
+  for (size_t j = 0; j < pulleys_.size(); ++j)
+    if (pulleys_[j].polygon && engagedBefore_[j] && !pulleys_[j].engaged && !pulleys_[j].dropped) {
+      warnings->push_back("cable '" + def_->name + "': pulley " + std::to_string(j) +
+                          " released while the cable still hooks round it (it turned beyond " +
+                          "what a taut path between its neighbours can wrap, e.g. past an end " +
+                          "anchor): the length moved by " + jump);
+      return;
+    }
   warnings->push_back("cable '" + def_->name + "': a wrap change moved the length by " + jump +
                       " (not on the old path: a guard acted or a crossing was found late)");
 }
@@ -429,7 +439,11 @@ void Cable::update(std::span<const BodyState> select, std::span<const BodyState>
       std::any_of(pulleys_.begin(), pulleys_.end(), [](const PulleyState& p) { return p.circle; });
   const int count = static_cast<int>(pulleys_.size());
   droppedBefore_.resize(count);
-  for (int j = 0; j < count; ++j) droppedBefore_[j] = pulleys_[j].dropped;
+  engagedBefore_.resize(count);
+  for (int j = 0; j < count; ++j) {
+    droppedBefore_[j] = pulleys_[j].dropped;
+    engagedBefore_[j] = pulleys_[j].engaged;
+  }
   for (int round = 0; round < 2 * count + 2; ++round) {
     if (!buildPath(warnings)) continue;
     if (curved) {

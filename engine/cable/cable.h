@@ -14,7 +14,8 @@
 //    segment's line: it must cross the segment from outside. A pulley coming from the wrap side,
 //    or sitting on the wrap side beyond the segment's ends, is left out (the cable passes it).
 //  * An engaged pulley LEAVES when the path no longer bends around it: a point pulley when the
-//    turn at it is straight or the wrong way; a polygon when its hull chain is empty.
+//    turn at it goes the wrong way (a straight turn keeps it: it changes neither length nor J);
+//    a circle when its arc goes below zero; a polygon when its hull chain is empty.
 //  * A terminal inside a polygon pulley's hull (a neighbouring pulley inside it) has no taut path:
 //    the polygon is DROPPED (it leaves the path) and a warning says so. A dropped polygon that
 //    still cuts its segment REJOINS as soon as a taut path round it exists again and that path is
@@ -26,6 +27,10 @@
 //    segment is left out of J and J-dot-v, never divided by, and a warning says so.
 //  * Any wrap change that moves the length by more than kLengthJump (1 mm) names the jump in a
 //    warning: it did not happen on the old path (a guard acted, or a crossing was found late).
+//    A polygon whose chain empties with such a jump was HOOKED: the cable bent round it further
+//    than a hull chain between its neighbours holds (a polygon swung round past an end anchor,
+//    a wrap of more than half a turn there). It is RELEASED, and the warning says so: wrapping
+//    it on is not modelled.
 //  At creation every pulley that the straight segment cuts joins (as if it had just crossed).
 //  The World locates every join and leave inside the step (nextEvent(), docs/cables.md) and
 //  selects the wrap set a moment after it, so the new point lies on the old path and length and
@@ -280,6 +285,7 @@ class Cable {
   CableKinematics previousKin_;          ///< scratch of the length-jump check
   std::vector<int> rejoinChain_;         ///< scratch of the rejoin test
   std::vector<char> droppedBefore_;      ///< scratch: pulleys dropped before this update
+  std::vector<char> engagedBefore_;      ///< scratch: pulleys engaged before this update
   CableKinematics kin_;
   std::vector<Span> spans_;        ///< empty: one span, the whole path
   std::vector<SpanLink> links_;    ///< spans_.size() - 1

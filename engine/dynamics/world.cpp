@@ -55,7 +55,8 @@ World::World(SceneDef scene, const std::string& source)
     cables_[i].update(bodies_, &warnings_);
     if (cables_[i].length() < 1e-9)
       throw InputError(source, "cables[" + std::to_string(i) + "]",
-                       "zero-length cable: its ends coincide at the initial pose");
+                       "must not have zero length: its ends coincide at the initial pose (got " +
+                           formatNumber(cables_[i].length()) + " m)");
   }
 }
 

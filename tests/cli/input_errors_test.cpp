@@ -98,6 +98,16 @@ TEST(InputErrors, AnEmptySceneIsBadInput) {
                  file(name) + ": bodies: must list at least one body (the scene has none)"});
 }
 
+TEST(InputErrors, NoCablesAndCoincidentEndsSayWhatIsWrong) {
+  expectError({"statics " + data("bad/statics_no_cables.json"),
+               data("bad/statics_no_cables.json") +
+                   ": cables: must list at least one cable (the problem has none)"});
+  expectError({"run " + data("bad/scene_coincident_cable_ends.json"),
+               data("bad/scene_coincident_cable_ends.json") +
+                   ": cables[0]: must not have zero length: its ends coincide at the initial pose "
+                   "(got 0 m)"});
+}
+
 TEST(InputErrors, WrapRejectsUnknownKeysLikeEveryOtherInput) {
   expectError({"wrap " + file("wrap_unknown_key.json"),
                file("wrap_unknown_key.json") + ": colour: unknown key"});

@@ -180,8 +180,9 @@ TEST(Wheel, FrictionlessPostAndWindingDrumKeepTheirEnergy) {
 namespace cablelab {
 namespace {
 
-// A 0.1 kg puck carrying an "auto" circle thrown at a rope loaded by 5 kg (60 Hz, 1 sub-step).
-SceneDef puckScene(double speed, bool fromBelow) {
+// A 0.1 kg puck carrying an "auto" circle (or a 0.1 m square, `square`) thrown at a rope
+// loaded by 5 kg (60 Hz, 1 sub-step).
+SceneDef puckScene(double speed, bool fromBelow, bool square = false) {
   SceneDef s;
   s.name = "puck";
   BodyDef puck;
@@ -207,6 +208,11 @@ SceneDef puckScene(double speed, bool fromBelow) {
   catcher.kind = PulleyDef::Kind::Circle;
   catcher.body = "puck";
   catcher.radius = 0.05;
+  if (square) {
+    catcher.kind = PulleyDef::Kind::Polygon;
+    catcher.vertices = {{-0.05, -0.05}, {0.05, -0.05}, {0.05, 0.05}, {-0.05, 0.05}};
+    catcher.radius = 0;
+  }
   catcher.side = WrapSide::Auto;
   PulleyDef over;
   over.point = Vec2(2, 0);
@@ -220,30 +226,34 @@ SceneDef puckScene(double speed, bool fromBelow) {
 // The acceptance test of "side": "auto": caught from either side at any speed (the join is
 // located inside the step), never through the rope, and the catch keeps the energy (theorem 1).
 TEST(AutoSide, APuckThrownFromEitherSideIsCaughtAndNeverPassesThrough) {
-  for (bool fromBelow : {true, false})
-    for (double speed : {5.0, 15.0, 50.0}) {
-      World w(puckScene(speed, fromBelow), "puck");
-      const double e0 = w.energy();
-      const double sign = fromBelow ? 1 : -1;
-      bool caught = false;
-      double worstEnergy = 0, worstStretch = 0;
-      for (int i = 0; i < 60; ++i) {
-        w.step(kDt);
-        caught |= w.cable(0).engaged(0);
-        // The catch (the first third of a second): the weight is still far from its pulley.
-        if (i < 20) worstEnergy = std::max(worstEnergy, std::abs(w.energy() - e0) / e0);
-        worstStretch = std::max(worstStretch, w.cable(0).stretch());
-        // Once past the rope's line, the puck is wrapped, on the side it came from.
-        if (sign * w.body(0).position.y() > 0.05) {
-          ASSERT_TRUE(w.cable(0).engaged(0)) << "passed through at " << speed << " m/s, step " << i;
-          EXPECT_EQ(w.cable(0).wrapSide(0), fromBelow ? WrapSide::Left : WrapSide::Right);
+  for (bool square : {false, true})
+    for (bool fromBelow : {true, false})
+      for (double speed : {5.0, 15.0, 50.0}) {
+        SCOPED_TRACE(square ? "square" : "circle");
+        World w(puckScene(speed, fromBelow, square), "puck");
+        const double e0 = w.energy();
+        const double sign = fromBelow ? 1 : -1;
+        bool caught = false;
+        double worstEnergy = 0, worstStretch = 0;
+        for (int i = 0; i < 60; ++i) {
+          w.step(kDt);
+          caught |= w.cable(0).engaged(0);
+          // The catch (the first third of a second): the weight is still far from its pulley.
+          if (i < 20) worstEnergy = std::max(worstEnergy, std::abs(w.energy() - e0) / e0);
+          worstStretch = std::max(worstStretch, w.cable(0).stretch());
+          // Once past the rope's line, the puck is wrapped, on the side it came from.
+          if (sign * w.body(0).position.y() > 0.05) {
+            ASSERT_TRUE(w.cable(0).engaged(0))
+                << "passed through at " << speed << " m/s, step " << i;
+            EXPECT_EQ(w.cable(0).wrapSide(0), fromBelow ? WrapSide::Left : WrapSide::Right);
+          }
         }
+        EXPECT_TRUE(caught) << speed << " m/s " << (fromBelow ? "from below" : "from above");
+        EXPECT_LT(worstEnergy, 0.01)
+            << speed << " m/s " << (fromBelow ? "from below" : "from above");
+        EXPECT_LT(worstStretch, 1e-3) << speed << " m/s";
+        EXPECT_GT(w.body(1).position.y(), -3 + 1e-3) << "the weight was pulled up";
       }
-      EXPECT_TRUE(caught) << speed << " m/s " << (fromBelow ? "from below" : "from above");
-      EXPECT_LT(worstEnergy, 0.01) << speed << " m/s " << (fromBelow ? "from below" : "from above");
-      EXPECT_LT(worstStretch, 1e-3) << speed << " m/s";
-      EXPECT_GT(w.body(1).position.y(), -3 + 1e-3) << "the weight was pulled up";
-    }
 }
 
 }  // namespace
