@@ -31,7 +31,7 @@ namespace cablelab {
 
 /// What one solve reads: the sub-step, the bodies now, and the joints among them.
 struct CableSolveInput {
-  double h = 0;                                       ///< sub-step (s)
+  double h = 0;  ///< sub-step (s)
   /// h over the nominal sub-step (<= 1): a step cut short at a wrap event fixes only this share
   /// of a rigid cable's length error, so the correcting velocity does not grow as h shrinks.
   double share = 1;

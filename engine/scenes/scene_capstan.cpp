@@ -4,6 +4,7 @@
 // leaves the drum along the tangent where the wrap ends and runs over a small pulley to `hold`.
 #include <cmath>
 
+#include "engine/scenes/scene_parts.h"
 #include "engine/scenes/scene_registry.h"
 
 namespace cablelab {
@@ -24,28 +25,10 @@ SceneDef makeCapstanScene(const SceneParams& p) {
       "--set m_load=6 (slips), mu=0 (no friction), turns=1.75";
   s.view = {Vec2(redirect.x() * 0.5, y - 1.0), 5.0};
 
-  ShapeDef box;
-  box.kind = ShapeDef::Kind::Polygon;
-  box.vertices = {Vec2(-0.1, -0.1), Vec2(0.1, -0.1), Vec2(0.1, 0.1), Vec2(-0.1, 0.1)};
-  BodyDef drum;
-  drum.name = "drum";
+  BodyDef drum = wheelBody("drum", centre, r);
   drum.type = BodyType::Static;
-  drum.position = centre;
-  ShapeDef disc;
-  disc.radius = r;
-  disc.sensor = true;
-  drum.shapes = {disc};
-  BodyDef load;
-  load.name = "load";
-  load.position = Vec2(-r, y - 1.5);
-  load.mass = p.at("m_load");
-  load.shapes = {box};
-  BodyDef hold;
-  hold.name = "hold";
-  hold.position = redirect + Vec2(0, -1.5);
-  hold.mass = p.at("m_hold");
-  hold.shapes = {box};
-  s.bodies = {drum, load, hold};
+  s.bodies = {drum, boxBody("load", Vec2(-r, y - 1.5), p.at("m_load"), 0.1),
+              boxBody("hold", redirect + Vec2(0, -1.5), p.at("m_hold"), 0.1)};
 
   CableDef rope;
   rope.name = "rope";

@@ -1,24 +1,9 @@
 // An Atwood machine over a massive wheel the cable does not slip on: the wheel turns with the
 // cable, a = g (m1 - m2) / (m1 + m2 + I / r^2) and |v| = r |omega| (docs/wheels.md).
+#include "engine/scenes/scene_parts.h"
 #include "engine/scenes/scene_registry.h"
 
 namespace cablelab {
-
-namespace {
-
-BodyDef hangingBox(const std::string& name, const Vec2& position, double mass) {
-  ShapeDef box;
-  box.kind = ShapeDef::Kind::Polygon;
-  box.vertices = {Vec2(-0.08, -0.08), Vec2(0.08, -0.08), Vec2(0.08, 0.08), Vec2(-0.08, 0.08)};
-  BodyDef b;
-  b.name = name;
-  b.position = position;
-  b.mass = mass;
-  b.shapes = {box};
-  return b;
-}
-
-}  // namespace
 
 SceneDef makeWheelScene(const SceneParams& p) {
   const double r = p.at("r"), y = 4.0;
@@ -29,17 +14,11 @@ SceneDef makeWheelScene(const SceneParams& p) {
       "or drag a box and watch the wheel's spoke turn";
   s.view = {Vec2(0, 1.5), 7.0};
 
-  BodyDef wheel;
-  wheel.name = "wheel";
-  wheel.position = Vec2(0, y);
+  BodyDef wheel = wheelBody("wheel", Vec2(0, y), r);  // the boxes hang below it
   wheel.mass = 1.0;
   wheel.inertia = p.at("I");
-  ShapeDef disc;
-  disc.radius = r;
-  disc.sensor = true;  // the boxes hang below it; the cable is what touches it
-  wheel.shapes = {disc};
-  s.bodies = {wheel, hangingBox("left", Vec2(-r, y - 1.0), p.at("m1")),
-              hangingBox("right", Vec2(r, y - 4.5), p.at("m2"))};
+  s.bodies = {wheel, boxBody("left", Vec2(-r, y - 1.0), p.at("m1"), 0.08),
+              boxBody("right", Vec2(r, y - 4.5), p.at("m2"), 0.08)};
   if (p.at("I") == 0) s.bodies[0].inertia = 1e-9;  // "0" means as light as Box2D allows
 
   JointDef axle;

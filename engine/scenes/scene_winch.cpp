@@ -1,5 +1,6 @@
 // A drum on a driven axle winds the cable and lifts `weight` for many turns: the rise is r times
 // the angle turned (docs/wheels.md). The servo drives the drum at omega (rad/s).
+#include "engine/scenes/scene_parts.h"
 #include "engine/scenes/scene_registry.h"
 
 namespace cablelab {
@@ -13,24 +14,10 @@ SceneDef makeWinchScene(const SceneParams& p) {
       "omega=0 (holds), or r=0.2 (twice as fast)";
   s.view = {Vec2(0, 1.0), 6.0};
 
-  BodyDef drum;
-  drum.name = "drum";
-  drum.position = Vec2(0, y);
+  BodyDef drum = wheelBody("drum", Vec2(0, y), r);
   drum.mass = 2.0;
   drum.inertia = 0.5;  // a flywheel on the drum's axle keeps the servo stable at 60 Hz
-  ShapeDef disc;
-  disc.radius = r;
-  disc.sensor = true;
-  drum.shapes = {disc};
-  BodyDef weight;
-  weight.name = "weight";
-  weight.position = Vec2(r, y - 3.5);
-  weight.mass = p.at("mass");
-  ShapeDef box;
-  box.kind = ShapeDef::Kind::Polygon;
-  box.vertices = {Vec2(-0.1, -0.1), Vec2(0.1, -0.1), Vec2(0.1, 0.1), Vec2(-0.1, 0.1)};
-  weight.shapes = {box};
-  s.bodies = {drum, weight};
+  s.bodies = {drum, boxBody("weight", Vec2(r, y - 3.5), p.at("mass"), 0.1)};
 
   JointDef axle;
   axle.name = "axle";

@@ -187,9 +187,13 @@ int main(int argc, char** argv) {
             stderr, "    stats: iters %d residual %.3g cable_us %.1f | rest %.4f %.4f k %g %g\n",
             st.solverIterations, st.residual, st.cableMicros, world.cable(0).restLength(),
             world.cable(1).restLength(), world.cable(0).stiffness(), world.cable(1).stiffness());
-        for (int c = 0; c < 2; ++c) for (const WrapPoint& w : world.cable(c).path())
-          std::fprintf(stderr, "    path%d pulley %d vertex %d (%.4f %.4f)\n", c, w.pulley, w.vertex, w.world.x(), w.world.y());
-        std::fprintf(stderr, "    box angle %.4f events %d mid %d fb %d lin %d\n", world.body(6).angle, st.events, st.midpointSolves, st.midpointFallbacks, st.linearisationFallbacks);
+        for (int c = 0; c < 2; ++c)
+          for (const WrapPoint& w : world.cable(c).path())
+            std::fprintf(stderr, "    path%d pulley %d vertex %d (%.4f %.4f)\n", c, w.pulley,
+                         w.vertex, w.world.x(), w.world.y());
+        std::fprintf(stderr, "    box angle %.4f events %d mid %d fb %d lin %d\n",
+                     world.body(6).angle, st.events, st.midpointSolves, st.midpointFallbacks,
+                     st.linearisationFallbacks);
         for (int b = 0; b < world.bodyCount(); ++b)
           std::fprintf(stderr, "    %s (%.4f %.4f %.4f) v (%.3g %.3g %.3g)\n",
                        world.scene().bodies[b].name.c_str(), world.body(b).position.x(),
@@ -236,7 +240,8 @@ int main(int argc, char** argv) {
       failure.empty() ? "true" : "false");
   if (!failure.empty()) {
     // The world's own notes (guards, length jumps) usually name what went wrong.
-    for (const std::string& w : worldPtr->warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    for (const std::string& w : worldPtr->warnings())
+      std::fprintf(stderr, "warning: %s\n", w.c_str());
     std::fprintf(stderr, "soak FAILED: %s\n", failure.c_str());
     return 1;
   }
