@@ -7,22 +7,14 @@
 #include <cmath>
 
 #include "engine/dynamics/floors.h"
+#include "engine/dynamics/length_targets.h"
 #include "engine/dynamics/tension_solver.h"
 
 namespace cablelab {
 
 namespace {
 
-constexpr double kBaumgarte = 0.2;  // share of a rigid cable's length error fixed per step
-// Length error a rigid cable tolerates before stabilisation acts (m). Box2D keeps positions in
-// float (about 1e-7 m resolution at 1 m): correcting below that only amplifies rounding, by
-// beta / h^2 in the tension.
-constexpr double kLengthSlop = 1e-5;
 constexpr int kNewtonIterations = 3;  // on the end-of-step lengths; geometry is nearly linear
-
-bool moves(const BodyState& b) {
-  return b.invMass > 0 || b.invInertia > 0;
-}
 
 // Generalized coordinates of the bodies one island's cables move: 3 per moving body.
 struct DofMap {
