@@ -10,7 +10,6 @@
 #include "engine/dynamics/tension_solver.h"
 
 namespace cablelab {
-
 namespace {
 
 constexpr double kBaumgarte = 0.2;  // share of a rigid cable's length error fixed per step
@@ -128,6 +127,12 @@ struct CableSolverWorkspace {
   std::vector<BodyJacobian> floorJacobian;  // scratch: a floor row's J
   LcpWorkspace lcp;
   LcpSolution lcpSolution;
+  // Per cable, the h and tension of the solve that last set its tension (Newton's warm start).
+  struct WarmStart {
+    double h = 0, tension = 0;
+    int spans = 0;
+  };
+  std::vector<WarmStart> warm;
 
   void factorStiffMass(double h);
   void applyInverseMass(Eigen::Ref<Eigen::MatrixXd> X);
@@ -588,30 +593,33 @@ void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
   }
 }
 
-// 6. Newton on the end-of-step lengths phi1(P), each linearisation an LCP over all cables:
-// tension >= 0, slack cables only shorten.
-void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
-                     StepStats& stats) {
+// Warm start: a cable's tension changes little from one sub-step to the next, so Newton starts
+// from the impulses of the last solve when it had the same h and nothing has set the tension
+// since (after a step cut at an event the impulse is not force times h: a length correction is
+// m dv whatever h). Floors start at 0. True if any row starts away from 0.
+bool warmStart(Workspace& ws, double h, std::span<const Cable> cables) {
+  const int m = static_cast<int>(ws.rows.size());
+  ws.P.setZero(m);
+  bool warm = false;
+  for (int r = 0; r < m; ++r) {
+    const Workspace::Row& row = ws.rows[r];
+    const Cable& c = cables[row.cable];
+    const Workspace::WarmStart& last = ws.warm[row.cable];
+    if (row.segment >= 0 || last.h != h || last.tension != c.tension() ||
+        last.spans != c.spanCount())
+      continue;
+    ws.P[r] = std::max(0.0, c.spanTension(row.first) / row.weight(ws.rowWeights, row.first)) * h;
+    warm |= ws.P[r] > 0;
+  }
+  return warm;
+}
+
+// Newton iterations from ws.P, each linearisation an LCP over all rows. True once the impulses
+// have settled (the linearisation at a point the LCP keeps is exact there: it is the solution).
+bool iterateNewton(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
+                   bool redundant, StepStats& stats) {
   const int m = static_cast<int>(ws.rows.size());
   const double h = in.h;
-  ws.P.setZero(m);
-  ws.phi1.resize(m);
-  ws.JW.resize(m, m);
-  // J0 W from the start-of-step Jacobians (positive semidefinite), for the guard below.
-  ws.JW0.setZero(m, m);
-  for (int r = 0; r < m; ++r)
-    forStartJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
-      addJacobianTimesW(ws, jacobian, ws.JW0.row(r));
-    });
-  // Redundant cables (J0 W singular): J1 W is then singular too, but not symmetric, and its
-  // symmetric part indefinite, so the minimum-norm solve (tension_solver.h) would be ill posed.
-  // Such an island iterates on J0 W instead (a quasi-Newton step: it still converges to the
-  // end-of-step lengths, only more slowly).
-  bool redundant = false;
-  if (m > 1 && (ws.compliance.array() == 0).any()) {  // elastic rows alone: K is definite
-    ws.redundancy.compute(ws.JW0);
-    redundant = rankDeficient(ws.redundancy);
-  }
   for (int iteration = 0; iteration < kNewtonIterations; ++iteration) {
     linearise(ws, in, cables);
     if (redundant) ws.JW = ws.JW0;
@@ -638,9 +646,45 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
     ws.P = sol.x;
     stats.solverIterations += sol.iterations;
     stats.residual = std::max(stats.residual, sol.residual);
-    // The end-of-step geometry is nearly linear in P: stop once the impulses have settled.
-    if (iteration > 0 && change <= 1e-9 * (1e-9 + ws.P.lpNorm<Eigen::Infinity>())) break;
+    if (change <= 1e-9 * (1e-9 + ws.P.lpNorm<Eigen::Infinity>())) return true;
   }
+  return false;
+}
+
+// 6. Newton on the end-of-step lengths phi1(P), each linearisation an LCP over all cables:
+// tension >= 0, slack cables only shorten. A warm start that does not settle (a tiny mass the
+// last impulses throw far) starts again from P = 0, so it only ever saves iterations.
+void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
+                     StepStats& stats) {
+  const int m = static_cast<int>(ws.rows.size());
+  ws.phi1.resize(m);
+  ws.JW.resize(m, m);
+  // J0 W from the start-of-step Jacobians (positive semidefinite), for the guard below.
+  ws.JW0.setZero(m, m);
+  for (int r = 0; r < m; ++r)
+    forStartJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
+      addJacobianTimesW(ws, jacobian, ws.JW0.row(r));
+    });
+  // Redundant cables (J0 W singular): J1 W is then singular too, but not symmetric, and its
+  // symmetric part indefinite, so the minimum-norm solve (tension_solver.h) would be ill posed.
+  // Such an island iterates on J0 W instead (a quasi-Newton step: it still converges to the
+  // end-of-step lengths, only more slowly).
+  bool redundant = false;
+  if (m > 1 && (ws.compliance.array() == 0).any()) {  // elastic rows alone: K is definite
+    ws.redundancy.compute(ws.JW0);
+    redundant = rankDeficient(ws.redundancy);
+  }
+  if (warmStart(ws, in.h, cables)) {
+    StepStats warm;
+    if (iterateNewton(ws, in, cables, redundant, warm)) {
+      stats.solverIterations += warm.solverIterations;
+      stats.residual = std::max(stats.residual, warm.residual);
+      stats.linearisationFallbacks += warm.linearisationFallbacks;
+      return;
+    }
+    ws.P.setZero(m);
+  }
+  iterateNewton(ws, in, cables, redundant, stats);
 }
 
 // 7. The tensions, and the force that gives the end-of-step velocity solved for (cable pull,
@@ -652,6 +696,10 @@ void applyForces(Workspace& ws, double h, std::span<Cable> cables, std::span<Vec
     for (int k = row.first; k <= row.last; ++k)
       cables[row.cable].setSpanTension(k, row.weight(ws.rowWeights, k) * ws.P[r] / h);
     for (int k = row.first; k < row.last; ++k) cables[row.cable].setSlipped(k, true);
+  }
+  for (const Workspace::Row& row : ws.rows) {
+    const Cable& c = cables[row.cable];
+    ws.warm[row.cable] = {h, c.tension(), c.spanCount()};
   }
   ws.WP.noalias() = ws.W * ws.P;
   for (size_t k = 0; k < ws.dofs.body.size(); ++k)
@@ -703,6 +751,7 @@ void CableSolver::solve(const CableSolveInput& in, std::span<Cable> cables, std:
   const int islands = findIslands(ws, in, cables);
   if (islands == 0) return;
   if (ws.dofs.ofBody.size() != in.bodies.size()) ws.dofs.reset(in.bodies.size());
+  if (ws.warm.size() != cables.size()) ws.warm.assign(cables.size(), {});
   predictPrescribed(ws, in);
   for (int island = 0; island < islands; ++island) {
     buildRows(ws, in, cables, island);
