@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "engine/dynamics/floors.h"
+#include "engine/dynamics/joint_projection.h"
 #include "engine/dynamics/tension_solver.h"
 
 namespace cablelab {
@@ -43,22 +44,6 @@ struct DofMap {
       body.push_back(b);
     }
     return ofBody[b];
-  }
-};
-
-// One row of the joint Jacobian C: the relative motion of at most two bodies (dof -1: none).
-// C has n columns but only 2-6 non-zeros per row, so products with C go through these.
-struct JointRow {
-  std::array<int, 2> dof{-1, -1};
-  std::array<Vec3, 2> coeff{Vec3::Zero(), Vec3::Zero()};
-  double bias = 0;  // the row's rate from bodies that are not dofs (kinematic: prescribed motion)
-
-  // This row times the dense column x.
-  double dot(const Eigen::Ref<const Eigen::VectorXd>& x) const {
-    double sum = 0;
-    for (int k = 0; k < 2; ++k)
-      if (dof[k] >= 0) sum += coeff[k].dot(x.segment<3>(dof[k]));
-    return sum;
   }
 };
 
@@ -111,11 +96,9 @@ struct CableSolverWorkspace {
   Eigen::LDLT<Eigen::MatrixXd> coupledLdlt;
   Eigen::VectorXd coupledRhs, coupledSolution;
 
-  // Joint rows and the Schur complement S = C M'^-1 C^T.
+  // Joint rows and the projection through their Schur complement (joint_projection.h).
   std::vector<JointRow> joints;
-  Eigen::MatrixXd MinvCt, S, CW, schurCW, correction;
-  Eigen::VectorXd Cv, schurCv, velocityCorrection;  // Cv includes each row's bias
-  Eigen::LDLT<Eigen::MatrixXd> schur;
+  JointProjection projection;
 
   // Newton on the end-of-step lengths.
   Eigen::VectorXd target, compliance, damped, P, phi1, b, WP, v1;
@@ -136,7 +119,6 @@ struct CableSolverWorkspace {
 
   void factorStiffMass(double h);
   void applyInverseMass(Eigen::Ref<Eigen::MatrixXd> X);
-  void projectOntoJoints();
 };
 
 // Builds M' over the coupled dofs and factors it; immovable dofs (M^-1 = 0) stay put.
@@ -199,39 +181,6 @@ void CableSolverWorkspace::applyInverseMass(Eigen::Ref<Eigen::MatrixXd> X) {
     coupledSolution = coupledLdlt.solve(coupledRhs);
     for (int i = 0; i < nc; ++i) X(coupledDofs[i], col) = coupledSolution[i];
   }
-}
-
-// Schur complement of the joint rows: W <- W - M'^-1 C^T S^-1 C W, and v* made
-// joint-consistent the same way (S = C M'^-1 C^T).
-void CableSolverWorkspace::projectOntoJoints() {
-  const int n = dofs.size(), c = static_cast<int>(joints.size()), m = static_cast<int>(W.cols());
-  MinvCt.setZero(n, c);
-  for (int r = 0; r < c; ++r)
-    for (int k = 0; k < 2; ++k)
-      if (joints[r].dof[k] >= 0) MinvCt.block<3, 1>(joints[r].dof[k], r) += joints[r].coeff[k];
-  applyInverseMass(MinvCt);
-  // S is symmetric and the LDLT reads its lower triangle only.
-  S.resize(c, c);
-  for (int r = 0; r < c; ++r)
-    for (int s = 0; s <= r; ++s) S(r, s) = joints[r].dot(MinvCt.col(s));
-  S.diagonal().array() += 1e-10 * (1 + S.diagonal().array());
-  schur.compute(S);
-
-  // A few columns (one per cable, then v*): column by column is cheaper than the blocked solve.
-  CW.resize(c, m);
-  schurCW.resize(c, m);
-  for (int s = 0; s < m; ++s) {
-    for (int r = 0; r < c; ++r) CW(r, s) = joints[r].dot(W.col(s));
-    schurCW.col(s) = schur.solve(CW.col(s));
-  }
-  correction.noalias() = MinvCt.lazyProduct(schurCW);
-  W -= correction;
-
-  Cv.resize(c);
-  for (int r = 0; r < c; ++r) Cv[r] = joints[r].dot(vStar) + joints[r].bias;
-  schurCv = schur.solve(Cv);
-  velocityCorrection.noalias() = MinvCt * schurCv;
-  vStar -= velocityCorrection;
 }
 
 namespace {
@@ -515,7 +464,13 @@ void jointRows(Workspace& ws, const CableSolveInput& in) {
 // cables must already see them (a pulley on a pivoted body turns, it does not translate).
 void projectOntoJoints(Workspace& ws, const CableSolveInput& in) {
   jointRows(ws, in);
-  if (!ws.joints.empty()) ws.projectOntoJoints();
+  if (ws.joints.empty()) return;
+  if (ws.stiff)
+    ws.projection.projectDense(
+        ws.joints, [&](Eigen::Ref<Eigen::MatrixXd> X) { ws.applyInverseMass(X); }, ws.W,
+        ws.vStar);
+  else
+    ws.projection.projectDiagonal(ws.joints, ws.invM, ws.W, ws.vStar);
 }
 
 // 5. Position-level targets. Rigid: length at the end of the step = now (the error below the
