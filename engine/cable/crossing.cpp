@@ -21,6 +21,21 @@ MovingPoint MovingPoint::on(std::span<const BodyState> motion, int body, const V
   return m;
 }
 
+MovingPoint MovingPoint::on(std::span<const BodyState> motion, int body, const Vec2& local,
+                            double c, double s) {
+  MovingPoint m;
+  m.local = local;
+  m.start = local;
+  if (body < 0) return m;
+  const BodyState& b = motion[body];
+  m.origin = b.position;
+  m.velocity = b.velocity;
+  m.angle = b.angle;
+  m.angularVelocity = b.angularVelocity;
+  m.start = b.position + rotate(local, c, s);
+  return m;
+}
+
 int crossingSamples(std::span<const MovingPoint> points, double h) {
   double turn = 0;
   for (const MovingPoint& p : points) turn = std::max(turn, std::abs(p.angularVelocity) * h);

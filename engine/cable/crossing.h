@@ -29,6 +29,9 @@ struct MovingPoint {
   std::optional<Vec2> start;
 
   static MovingPoint on(std::span<const BodyState> motion, int body, const Vec2& local);
+  /// The same with the body's cos and sin of its angle already known (many points on one body).
+  static MovingPoint on(std::span<const BodyState> motion, int body, const Vec2& local, double c,
+                        double s);
   /// World position at time t (s) into the sub-step.
   Vec2 at(double t) const {
     return origin + t * velocity + rotate(local, angle + t * angularVelocity);

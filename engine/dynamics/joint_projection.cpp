@@ -28,15 +28,22 @@ void SmallLdlt::compute(const Eigen::MatrixXd& S) {
   L = S;
   dInv.resize(n);
   d.resize(n);
+  work.resize(n);
+  double* l = L.data();
   for (int j = 0; j < n; ++j) {
-    double dj = L(j, j);
-    for (int k = 0; k < j; ++k) dj -= L(j, k) * L(j, k) * d[k];
+    // Row j of L times D, once: every entry of column j below needs it.
+    double* dl = work.data();
+    double dj = l[j + j * n];
+    for (int k = 0; k < j; ++k) {
+      dl[k] = l[j + k * n] * d[k];
+      dj -= l[j + k * n] * dl[k];
+    }
     d[j] = dj;
     dInv[j] = dj > 0 ? 1.0 / dj : 0.0;
     for (int i = j + 1; i < n; ++i) {
-      double v = L(i, j);
-      for (int k = 0; k < j; ++k) v -= L(i, k) * L(j, k) * d[k];
-      L(i, j) = v * dInv[j];
+      double v = l[i + j * n];
+      for (int k = 0; k < j; ++k) v -= l[i + k * n] * dl[k];
+      l[i + j * n] = v * dInv[j];
     }
   }
 }

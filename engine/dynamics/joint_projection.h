@@ -37,7 +37,7 @@ struct JointRow {
 /// A small dense symmetric positive definite factorisation (joint_projection.cpp).
 struct SmallLdlt {
   Eigen::MatrixXd L;
-  Eigen::VectorXd d, dInv;
+  Eigen::VectorXd d, dInv, work;
   void compute(const Eigen::MatrixXd& S);  ///< reads S's lower triangle
   void solveInPlace(Eigen::MatrixXd& B) const;
 };
