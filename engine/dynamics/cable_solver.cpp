@@ -11,6 +11,7 @@
 #include "engine/dynamics/tension_solver.h"
 
 namespace cablelab {
+
 namespace {
 
 constexpr double kBaumgarte = 0.2;  // share of a rigid cable's length error fixed per step
@@ -377,6 +378,23 @@ void predictVelocities(Workspace& ws, const CableSolveInput& in, std::span<const
   ws.vFree = ws.vStar;  // what Box2D would reach without cables and joints
 }
 
+// Whether a segment of the path could pass inverseMass()'s stiffness test: a segment's Hessian
+// block has trace 1 / length (appendLengthHessianTranslation), so this bounds the test without
+// building the blocks. A cable that cannot needs none (no block is used unless one is stiff).
+bool mayBeStiff(const Workspace& ws, double h2Tension, std::span<const WrapPoint> path) {
+  for (size_t i = 0; i + 1 < path.size(); ++i) {
+    const int a = path[i].body, b = path[i + 1].body;
+    if (a == b) continue;
+    const Vec2 from = path[i].radius == 0 ? path[i].world : path[i].tangentOut;
+    const Vec2 to = path[i + 1].radius == 0 ? path[i + 1].world : path[i + 1].tangentIn;
+    double invMass = 0;
+    for (int e : {a, b})
+      if (e >= 0 && ws.dofs.ofBody[e] >= 0) invMass = std::max(invMass, ws.invM[ws.dofs.ofBody[e]]);
+    if (h2Tension * invMass > 0.04 * (to - from).norm()) return true;
+  }
+  return false;
+}
+
 // 3. W = M'^-1 J^T. M' adds the geometric stiffness h^2 T d^2(length)/dx^2 of taut cables where
 // it matters (a light body on a tight band turns the force direction faster than one step
 // resolves). Backward Euler on the turning force direction: (M + h^2 T G) v1 = M v* - J^T P, so
@@ -391,7 +409,7 @@ void inverseMass(Workspace& ws, double h, std::span<const Cable> cables) {
     const Cable& c = cables[row.cable];
     const double tension =
         std::max(c.tension(), c.elastic() ? c.stiffness() * std::max(0.0, c.stretch()) : 0.0);
-    if (tension <= 0) continue;
+    if (tension <= 0 || !mayBeStiff(ws, h * h * tension, c.path())) continue;
     const size_t begin = ws.blocks.size();
     appendLengthHessianTranslation(c.path(), ws.blocks);
     for (size_t i = begin; i < ws.blocks.size(); ++i) {
@@ -467,8 +485,7 @@ void projectOntoJoints(Workspace& ws, const CableSolveInput& in) {
   if (ws.joints.empty()) return;
   if (ws.stiff)
     ws.projection.projectDense(
-        ws.joints, [&](Eigen::Ref<Eigen::MatrixXd> X) { ws.applyInverseMass(X); }, ws.W,
-        ws.vStar);
+        ws.joints, [&](Eigen::Ref<Eigen::MatrixXd> X) { ws.applyInverseMass(X); }, ws.W, ws.vStar);
   else
     ws.projection.projectDiagonal(ws.joints, ws.invM, ws.W, ws.vStar);
 }

@@ -19,20 +19,17 @@ void regularise(Eigen::Ref<Eigen::MatrixXd> S) {
 
 }  // namespace
 
-// L D L^T without pivoting, in place in the lower triangle (L's unit diagonal implied): S is
+// L D L^T without pivoting, in place in A's lower triangle (L's unit diagonal implied): S is
 // positive definite once regularised, and a pivot that rounding still makes <= 0 (redundant
 // rows) gets no inverse, as a rank-deficient LDLT would. Eigen's LDLT costs more than the whole
 // projection at a finger's 6 x 6.
-void SmallLdlt::compute(const Eigen::MatrixXd& S) {
-  const int n = static_cast<int>(S.rows());
-  L = S;
-  dInv.resize(n);
-  d.resize(n);
-  work.resize(n);
-  double* l = L.data();
+void SmallLdlt::factor(Eigen::MatrixXd& A) {
+  const int n = static_cast<int>(A.rows());
+  if (d.size() != n) d.resize(n), dInv.resize(n), work.resize(n);
+  double* l = A.data();
+  double* dl = work.data();
   for (int j = 0; j < n; ++j) {
     // Row j of L times D, once: every entry of column j below needs it.
-    double* dl = work.data();
     double dj = l[j + j * n];
     for (int k = 0; k < j; ++k) {
       dl[k] = l[j + k * n] * d[k];
@@ -50,9 +47,9 @@ void SmallLdlt::compute(const Eigen::MatrixXd& S) {
 
 // All columns together: each column's substitutions are a chain of dependent multiply-adds, so
 // interleaving them keeps the pipeline full.
-void SmallLdlt::solveInPlace(Eigen::MatrixXd& B) const {
-  const int n = static_cast<int>(L.rows()), cols = static_cast<int>(B.cols());
-  const double* l = L.data();
+void SmallLdlt::solveInPlace(const Eigen::MatrixXd& A, Eigen::MatrixXd& B) const {
+  const int n = static_cast<int>(A.rows()), cols = static_cast<int>(B.cols());
+  const double* l = A.data();
   double* x = B.data();
   for (int i = 0; i < n; ++i)
     for (int k = 0; k < i; ++k) {
@@ -110,49 +107,56 @@ void JointProjection::findBlocks(std::span<const JointRow> rows, int dofs) {
 void JointProjection::projectDiagonal(std::span<const JointRow> rows, const Eigen::VectorXd& invM,
                                       Eigen::MatrixXd& W, Eigen::VectorXd& vStar) {
   const int c = static_cast<int>(rows.size()), m = static_cast<int>(W.cols());
-  findBlocks(rows, static_cast<int>(invM.size()));
-  // C W and C v* + bias, one column each (the last is v*'s).
-  rhs.resize(c, m + 1);
   const Eigen::Index n = W.rows();
-  for (int r = 0; r < c; ++r) {
-    const JointRow& row = rows[r];
-    for (int s = 0; s < m; ++s) {
-      const double* w = W.data() + s * n;
-      double sum = 0;
-      for (int k = 0; k < 2; ++k)
-        if (row.dof[k] >= 0) sum += row.coeff[k].dot(Eigen::Map<const Vec3>(w + row.dof[k]));
-      rhs(r, s) = sum;
-    }
-    rhs(r, m) = row.dot(vStar) + row.bias;
-  }
+  findBlocks(rows, static_cast<int>(n));
+  // M'^-1 C^T, row by row: each row's coefficients scaled by its dofs' inverse masses.
+  scaled.resize(c);
+  for (int r = 0; r < c; ++r)
+    for (int k = 0; k < 2; ++k)
+      scaled[r][k] = rows[r].dof[k] >= 0
+                         ? Vec3(rows[r].coeff[k].cwiseProduct(invM.segment<3>(rows[r].dof[k])))
+                         : Vec3(Vec3::Zero());
   const int blocks = static_cast<int>(start.size()) - 1;
   for (int b = 0; b < blocks; ++b) {
     const int first = start[b], size = start[b + 1] - first;
-    // The lower triangle of S's block (the LDLT reads only that): rows meet on shared dofs.
-    blockS.resize(size, size);
+    const int* index = order.data() + first;
+    // The lower triangle of S's block (the factorisation reads only that): rows meet on shared
+    // dofs. Then C W and C v* + bias, one column each (the last is v*'s).
+    if (blockS.rows() != size) blockS.resize(size, size);
+    if (blockSolution.rows() != size || blockSolution.cols() != m + 1)
+      blockSolution.resize(size, m + 1);
     for (int i = 0; i < size; ++i) {
-      const JointRow& ri = rows[order[first + i]];
+      const JointRow& ri = rows[index[i]];
       for (int j = 0; j <= i; ++j) {
-        const JointRow& rj = rows[order[first + j]];
+        const JointRow& rj = rows[index[j]];
         double sum = 0;
         for (int k = 0; k < 2; ++k)
           for (int l = 0; l < 2; ++l)
             if (ri.dof[k] >= 0 && ri.dof[k] == rj.dof[l])
-              sum += ri.coeff[k].cwiseProduct(invM.segment<3>(ri.dof[k])).dot(rj.coeff[l]);
+              sum += scaled[index[i]][k].dot(rj.coeff[l]);
         blockS(i, j) = sum;
       }
+      for (int s = 0; s < m; ++s) {
+        const double* w = W.data() + s * n;
+        double sum = 0;
+        for (int k = 0; k < 2; ++k)
+          if (ri.dof[k] >= 0) sum += ri.coeff[k].dot(Eigen::Map<const Vec3>(w + ri.dof[k]));
+        blockSolution(i, s) = sum;
+      }
+      double cv = ri.bias;
+      for (int k = 0; k < 2; ++k)
+        if (ri.dof[k] >= 0) cv += ri.coeff[k].dot(vStar.segment<3>(ri.dof[k]));
+      blockSolution(i, m) = cv;
     }
     regularise(blockS);
-    blockLdlt.compute(blockS);
-    blockSolution.resize(size, m + 1);
-    for (int i = 0; i < size; ++i) blockSolution.row(i) = rhs.row(order[first + i]);
-    blockLdlt.solveInPlace(blockSolution);
+    ldlt.factor(blockS);
+    ldlt.solveInPlace(blockS, blockSolution);
     // W -= M'^-1 C^T S^-1 C W (and v*): each row adds to its own few dofs.
     for (int i = 0; i < size; ++i) {
-      const JointRow& row = rows[order[first + i]];
+      const JointRow& row = rows[index[i]];
       for (int k = 0; k < 2; ++k) {
         if (row.dof[k] < 0) continue;
-        const Vec3 push = row.coeff[k].cwiseProduct(invM.segment<3>(row.dof[k]));
+        const Vec3& push = scaled[index[i]][k];
         for (int s = 0; s < m; ++s) W.block<3, 1>(row.dof[k], s) -= push * blockSolution(i, s);
         vStar.segment<3>(row.dof[k]) -= push * blockSolution(i, m);
       }

@@ -34,12 +34,11 @@ struct JointRow {
   }
 };
 
-/// A small dense symmetric positive definite factorisation (joint_projection.cpp).
+/// A small dense symmetric positive definite factorisation, in place (joint_projection.cpp).
 struct SmallLdlt {
-  Eigen::MatrixXd L;
   Eigen::VectorXd d, dInv, work;
-  void compute(const Eigen::MatrixXd& S);  ///< reads S's lower triangle
-  void solveInPlace(Eigen::MatrixXd& B) const;
+  void factor(Eigen::MatrixXd& A);  ///< A's lower triangle becomes L (unit diagonal implied)
+  void solveInPlace(const Eigen::MatrixXd& A, Eigen::MatrixXd& B) const;
 };
 
 /// The projection's buffers, reused across sub-steps (no allocation once the sizes settle).
@@ -60,8 +59,9 @@ class JointProjection {
   std::vector<int> parent, rowOfBody, blockOfRoot, order, start, fill;
   std::vector<std::array<int, 2>> lastDofs;  // the rows' dofs the blocks were found for
   int lastDofCount = -1;
-  SmallLdlt blockLdlt;
-  Eigen::MatrixXd rhs, blockS, blockSolution;
+  std::vector<std::array<Vec3, 2>> scaled;  // M'^-1 C^T by rows
+  SmallLdlt ldlt;
+  Eigen::MatrixXd blockS, blockSolution;
   // The dense path.
   Eigen::MatrixXd MinvCt, S, CW, schurCW, correction;
   Eigen::VectorXd Cv, schurCv, velocityCorrection;  // Cv includes each row's bias
