@@ -96,19 +96,20 @@ std::optional<WrapEvent> Cable::nextEvent(std::span<const BodyState> motion, dou
       if (p.engaged || p.side == WrapSide::Threaded) continue;
       for (const Vec2& v : p.local) tryPoint(j, v, WrapEvent::Kind::Join);
     }
-    // A polygon's vertices not in its chain, against the segments entering and leaving it.
+    // A polygon's chain grows at its ends: the vertex before its first one (walking round it
+    // with the polygon on the cable's right) against the segment entering it, the one after its
+    // last against the segment leaving it. On a convex polygon no other vertex can reach those
+    // segments first, and that vertex may be in the chain already (a wrap of a whole turn).
+    if (a.kind == WrapPoint::Kind::Vertex && b.kind == WrapPoint::Kind::Vertex &&
+        a.pulley == b.pulley)
+      continue;  // an edge of the chain: the convex polygon stays on its inner side
     for (const WrapPoint* end : {&a, &b}) {
       if (end->kind != WrapPoint::Kind::Vertex) continue;
-      if (a.kind == WrapPoint::Kind::Vertex && b.kind == WrapPoint::Kind::Vertex &&
-          a.pulley == b.pulley)
-        break;  // an edge of the chain: the convex polygon stays on its inner side
       const PulleyState& p = pulleys_[end->pulley];
-      for (int v = 0; v < static_cast<int>(p.local.size()); ++v) {
-        const bool inChain = std::any_of(path_.begin(), path_.end(), [&](const WrapPoint& w) {
-          return w.pulley == end->pulley && w.vertex == v;
-        });
-        if (!inChain) tryPoint(end->pulley, p.local[v], WrapEvent::Kind::Vertex);
-      }
+      const int n = static_cast<int>(p.local.size());
+      const int walk = p.side == WrapSide::Right ? 1 : -1;
+      const int v = ((end == &b ? end->vertex - walk : end->vertex + walk) % n + n) % n;
+      tryPoint(end->pulley, p.local[v], WrapEvent::Kind::Vertex);
     }
   }
   // Leaves: the turn at a wrap point straightens.
