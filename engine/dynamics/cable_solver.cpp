@@ -266,8 +266,8 @@ bool mayReachFloor(const CableSolveInput& in, const WrapPoint& p, const WrapPoin
     const Vec2 v = b.velocity + b.angularVelocity * perp(Vec2(w.world - b.position));
     return v.norm() + (b.invMass > 0 ? in.h * in.gravity.norm() : 0.0);
   };
-  const double length = (q.world - p.world).norm();
-  return length > 1e-9 && length < 2 * kFloorLength + 2 * in.h * (speed(p) + speed(q));
+  const double gap = floorGap(p, q);
+  return gap > 1e-9 && gap < 2 * kFloorLength + 2 * in.h * (speed(p) + speed(q));
 }
 
 // 1b. One island's rows (one per span of its cables), and the dofs of the bodies it moves: its
@@ -301,22 +301,25 @@ void buildRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
   }
 }
 
-// A floor row's constraint kFloorLength - u0 . (q - p) of segment (p, q) on `bodies`, and its J
+// A floor row's constraint kFloorLength - u0 . (q - p) of segment (p, q) on `bodies` (p, q: its
+// contact points, a circle's tangent point moving with its centre, floors.h), and its J
 // (into ws.floorJacobian). u0 is the segment's direction at the start of the step: measured along
 // it, a body that would pass through its pulley within the step goes negative instead of
 // coming out the other side at a length that looks allowed.
 double floorRow(Workspace& ws, std::span<const BodyState> bodies, const Cable& cable, int segment) {
   const WrapPoint* ends[2] = {&cable.path()[segment], &cable.path()[segment + 1]};
-  const Vec2 u0 = (ends[1]->world - ends[0]->world).normalized();
+  const Vec2 u0 = (floorTo(*ends[1]) - floorFrom(*ends[0])).normalized();
   ws.floorJacobian.clear();
   double along = 0;
   for (int e = 0; e < 2; ++e) {
     const double sign = e == 0 ? 1.0 : -1.0;  // d(kFloorLength - u0 . (q - p))
     const WrapPoint& w = *ends[e];
-    const Vec2 x = worldPoint(bodies, w.body, w.local);
-    along -= sign * u0.dot(x);
+    const Vec2 centre = worldPoint(bodies, w.body, w.local);
+    // A circle's contact is its tangent point at the start of the step, carried with its centre.
+    const Vec2 offset = (e == 0 ? floorFrom(w) : floorTo(w)) - w.world;
+    along -= sign * u0.dot(centre + offset);
     if (w.body < 0) continue;
-    const Vec2 arm = x - bodies[w.body].position;
+    const Vec2 arm = centre - bodies[w.body].position;
     ws.floorJacobian.push_back({w.body, sign * Vec3(u0.x(), u0.y(), u0.dot(perp(arm)))});
   }
   return kFloorLength - along;
@@ -508,7 +511,7 @@ void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable>
     const int seg = row.segment;
     double phi = 0;
     if (seg >= 0)
-      phi = kFloorLength - (c.path()[seg + 1].world - c.path()[seg].world).norm();
+      phi = kFloorLength - floorGap(c.path()[seg], c.path()[seg + 1]);
     else
       for (int k = row.first; k <= row.last; ++k) phi += c.spanStretch(k);
     if (!c.elastic() || seg >= 0) {
