@@ -4,22 +4,22 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <vector>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "app/command.h"
 #include "app/options.h"
-#include "engine/scenes/bench_scenes.h"
+#include "engine/dynamics/world.h"
 #include "engine/hand/hand_controller.h"
 #include "engine/hand/hand_reach.h"
+#include "engine/scenes/bench_scenes.h"
+#include "engine/scenes/scale_scenes.h"
 #include "engine/scenes/scene_registry.h"
 #include "engine/statics/statics_bench.h"
-#include "engine/dynamics/world.h"
-#include "engine/scenes/scale_scenes.h"
 #ifdef CABLELAB_HAVE_MUJOCO
 #include "engine/mujoco/mujoco_world.h"
 #endif
@@ -132,10 +132,13 @@ const bool registered = registerCommand(
           const SceneTiming t =
               info.name == "hand" ? h
                                   : measureScene(makeScene(info.name), 30, quick ? 1000 : 5000, 4);
+          nlohmann::json spans = nlohmann::json::object();
+          for (const auto& [cable, tensions] : t.withCables.spanTensions) spans[cable] = tensions;
           scenes[info.name] = {{"box2d_step_us", t.withoutCables.stepMicros},
                                {"cable_step_us", t.withCables.stepMicros},
                                {"cable_overhead", t.overhead},
-                               {"wrap_points_mean", t.withCables.meanWrapPoints}};
+                               {"wrap_points_mean", t.withCables.meanWrapPoints},
+                               {"span_tensions_n", spans}};
         }
         out["scenes"] = scenes;
 
@@ -147,8 +150,10 @@ const bool registered = registerCommand(
           const int cables = static_cast<int>(c.scene.cables.size());
           const int steps = std::max(quick ? 5 : 20, (quick ? 2000 : 8000) / (cables + 4));
           const ScaleTiming t = measureScaleCase(c.scene, steps, 3);
-          scaleTable[c.name] = {{"cablelab_us", t.cablelab}, {"cable_us", t.cable},
-                           {"cables", cables}, {"steps", 3 * steps}};
+          scaleTable[c.name] = {{"cablelab_us", t.cablelab},
+                                {"cable_us", t.cable},
+                                {"cables", cables},
+                                {"steps", 3 * steps}};
 #ifdef CABLELAB_HAVE_MUJOCO
           scaleTable[c.name]["mujoco_us"] = t.mujoco;
           ratios[c.name] = t.cablelab / t.mujoco;

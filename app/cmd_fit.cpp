@@ -21,6 +21,7 @@
 #include "engine/core/parse.h"
 #include "engine/membrane/membrane_data.h"
 #include "engine/membrane/membrane_fit.h"
+#include "engine/membrane/membrane_fit_io.h"
 #include "engine/membrane/membrane_plot.h"
 #include "engine/membrane/membrane_synth.h"
 #ifdef CABLELAB_HAVE_OFFSCREEN
@@ -56,16 +57,14 @@ double parseDouble(const std::string& text, const std::string& flag) {
 MembraneGeometry parsePulleys(const std::string& text) {
   if (text.empty())
     throw InputError(kCommandLine, "--pulleys", "is required: --pulleys AX,AY,BX,BY (m)");
-  const auto v = parseNumberList(text, 4, kCommandLine, "--pulleys", "AX,AY,BX,BY");
-  MembraneGeometry g{Vec2(v[0], v[1]), Vec2(v[2], v[3])};
-  validateMembraneGeometry(g, kCommandLine, "--pulleys");
-  return g;
+  return membranePulleys(parseNumberList(text, 4, kCommandLine, "--pulleys", "AX,AY,BX,BY"));
 }
 
 int runGenerate(const FitOptions& o) {
   if (!o.data.empty())
-    throw InputError(kCommandLine, "DATA",
-                     "give either DATA.csv (fit) or --generate OUT.csv, not both" + gotValue(o.data));
+    throw InputError(
+        kCommandLine, "DATA",
+        "give either DATA.csv (fit) or --generate OUT.csv, not both" + gotValue(o.data));
   MembraneSynthDef def;
   def.geometry = parsePulleys(o.pulleys);
   if (o.k.empty()) throw InputError(kCommandLine, "--k", "is required with --generate (N/m)");
@@ -130,21 +129,16 @@ int runFit(const FitOptions& o) {
     throw InputError(kCommandLine, "DATA",
                      "is required: cablelab fit DATA.csv --pulleys ... (or --generate OUT.csv)");
   for (const auto& [value, flag] : {std::pair{o.k, "--k"}, std::pair{o.preload, "--preload"}})
-    if (!value.empty()) throw InputError(kCommandLine, flag, "only with --generate" + gotValue(value));
+    if (!value.empty())
+      throw InputError(kCommandLine, flag, "only with --generate" + gotValue(value));
   const MembraneGeometry g = parsePulleys(o.pulleys);
   MembraneFitOptions options;
   options.source = o.data;
-  if (!o.sigmaFy.empty()) {
-    options.sigmaFy = parseDouble(o.sigmaFy, "--sigma-fy");
-    if (options.sigmaFy <= 0)
-      throw InputError(kCommandLine, "--sigma-fy", "must be positive (N)" + gotValue(options.sigmaFy));
-  }
-  if (!o.sigmaAngleDeg.empty()) {
-    options.sigmaAngleDeg = parseDouble(o.sigmaAngleDeg, "--sigma-angle-deg");
-    if (options.sigmaAngleDeg <= 0)
-      throw InputError(kCommandLine, "--sigma-angle-deg",
-                       "must be positive (degrees)" + gotValue(options.sigmaAngleDeg));
-  }
+  if (!o.sigmaFy.empty())
+    options.sigmaFy = membraneSigma(parseDouble(o.sigmaFy, "--sigma-fy"), "--sigma-fy");
+  if (!o.sigmaAngleDeg.empty())
+    options.sigmaAngleDeg =
+        membraneSigma(parseDouble(o.sigmaAngleDeg, "--sigma-angle-deg"), "--sigma-angle-deg");
 
   const auto rows = loadMembraneCsv(o.data, g);
   const auto start = std::chrono::steady_clock::now();
@@ -152,25 +146,7 @@ int runFit(const FitOptions& o) {
   const double fitUs =
       std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
 
-  nlohmann::ordered_json j;
-  j["k"] = fit.params.k;
-  j["preload"] = fit.params.preload;
-  j["rms_fy"] = fit.rmsFy;
-  j["rms_angle_deg"] = fit.rmsAngleDeg;
-  j["k_stderr"] = fit.kStderr;
-  j["preload_stderr"] = fit.preloadStderr;
-  j["k_preload_correlation"] =
-      fit.covariance(0, 1) / std::sqrt(fit.covariance(0, 0) * fit.covariance(1, 1));
-  j["sigma_fy"] = fit.sigmaFy;
-  j["sigma_angle_deg"] = fit.sigmaAngleDeg;
-  j["sigmas"] = (options.sigmaFy > 0 && options.sigmaAngleDeg > 0)   ? "given"
-                : (options.sigmaFy > 0 || options.sigmaAngleDeg > 0) ? "partly estimated"
-                                                                     : "estimated";
-  j["chi2_per_dof"] = fit.chi2PerDof;
-  j["iterations"] = fit.iterations;
-  j["rounds"] = fit.rounds;
-  j["rows"] = fit.rows;
-  j["fit_us"] = fitUs;
+  nlohmann::ordered_json j = membraneFitJson(fit, options, fitUs);
 
   if (!o.plots.empty()) {
     const auto [width, height] = parsePixelSize(o.plotSize, kCommandLine, "--plot-size", 200, 4096);

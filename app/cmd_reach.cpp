@@ -9,7 +9,7 @@
 #include "app/options.h"
 #include "engine/core/error.h"
 #include "engine/core/file_input.h"
-#include "engine/hand/hand_reach.h"
+#include "engine/hand/hand_io.h"
 #ifdef CABLELAB_HAVE_OFFSCREEN
 #include "ui/plot.h"
 #endif
@@ -41,15 +41,18 @@ void writeReachPng(const std::string& path, const ReachResult& r, int grid, doub
   std::vector<Vec2> predicted, beyond, tips, missed;
   for (const ReachTarget& t : r.targets) {
     const bool reached = simulated ? t.simulated : t.quasiStatic;
-    if (t.fingertip) (reached || !simulated ? tips : missed).push_back(t.point);
-    else if (reached) beyond.push_back(t.point);
-    else if (t.quasiStatic) predicted.push_back(t.point);
+    if (t.fingertip)
+      (reached || !simulated ? tips : missed).push_back(t.point);
+    else if (reached)
+      beyond.push_back(t.point);
+    else if (t.quasiStatic)
+      predicted.push_back(t.point);
   }
   char label[120];
   using Style = ui::PlotSeries::Style;
   auto add = [&](const std::vector<Vec2>& points, ui::Colour colour) {
-    plot.series.push_back({label, coordinates(points, 0), coordinates(points, 1), Style::Markers,
-                           colour});
+    plot.series.push_back(
+        {label, coordinates(points, 0), coordinates(points, 1), Style::Markers, colour});
   };
   if (simulated) {
     std::snprintf(label, sizeof label, "quasi-static prediction only (set %.2f m^2)",
@@ -96,32 +99,24 @@ const bool registered = registerCommand(
                      "Write x,y,object_reached,fingertip_reachable per target to this CSV file");
       sub.add_option("--png", o->png, "Draw the sets to this PNG file");
       return [o] {
-        if (o->grid < 1 || o->grid > 1000)
-          badOption("--grid", "must be a whole number in [1, 1000]" + gotValue(o->grid));
-        if (o->model != "simulation" && o->model != "quasi-static")
-          badOption("--model", "must be simulation or quasi-static (got " + o->model + ")");
+        const ReachOptions options = reachOptions(o->grid, o->model, o->pd);
 #ifndef CABLELAB_HAVE_OFFSCREEN
         if (!o->png.empty()) badOption("--png", "this build has no offscreen renderer");
 #endif
         requireOutputFile(o->png, "--png");
         std::unique_ptr<std::ofstream> csv;
         if (!o->csv.empty()) csv = std::make_unique<std::ofstream>(openOutputFile(o->csv, "--csv"));
-        ReachOptions options;
-        options.grid = o->grid;
-        options.model = o->model == "simulation" ? ReachModel::Simulation : ReachModel::QuasiStatic;
-        options.pid = !o->pd;
         Progress progress("reach", static_cast<long>(o->grid) * o->grid);
         const ReachResult r =
             runReach(options, HandModel{}, [&](long done, long) { progress.update(done); });
         progress.done();
         const double ratio = r.fingertipArea > 0 ? r.objectArea / r.fingertipArea : 0.0;
         if (csv) {
-          const bool simulated = r.model == ReachModel::Simulation;
           *csv << "x,y,object_reached,fingertip_reachable\n";
           char line[120];
           for (const ReachTarget& t : r.targets) {
             std::snprintf(line, sizeof line, "%.17g,%.17g,%d,%d\n", t.point.x(), t.point.y(),
-                          int(simulated ? t.simulated : t.quasiStatic), int(t.fingertip));
+                          int(objectReached(r, t)), int(t.fingertip));
             *csv << line;
           }
           finishOutputFile(*csv, o->csv, "--csv");
@@ -129,24 +124,7 @@ const bool registered = registerCommand(
 #ifdef CABLELAB_HAVE_OFFSCREEN
         if (!o->png.empty()) writeReachPng(o->png, r, o->grid, ratio);
 #endif
-        int beyond = 0;
-        for (const ReachTarget& t : r.targets)
-          beyond += (r.model == ReachModel::Simulation ? t.simulated : t.quasiStatic) && !t.fingertip;
-        printJson(nlohmann::json{{"object_area", r.objectArea},
-                                 {"fingertip_area", r.fingertipArea},
-                                 {"ratio", ratio},
-                                 {"points", r.points},
-                                 {"model", o->model},
-                                 {"law", o->pd ? "PD" : "PID"},
-                                 {"object_points", r.objectPoints.size()},
-                                 {"fingertip_points", r.fingertipPoints.size()},
-                                 {"beyond_fingertips", beyond},
-                                 {"quasi_static_area", r.quasiStaticArea},
-                                 {"quasi_static_points", r.quasiStaticPoints.size()},
-                                 {"threads", r.threads},
-                                 {"simulated_s", r.simulatedSeconds},
-                                 {"seconds", r.seconds}}
-                      .dump());
+        printJson(reachSummary(r, options).dump());
         return 0;
       };
     });

@@ -10,8 +10,8 @@
 #include "app/options.h"
 #include "engine/core/error.h"
 #include "engine/core/file_input.h"
-#include "engine/scenes/scene_registry.h"
 #include "engine/dynamics/world.h"
+#include "engine/scenes/scene_registry.h"
 #ifdef CABLELAB_HAVE_OFFSCREEN
 #include "ui/offscreen.h"
 #endif
@@ -32,6 +32,14 @@ class CsvWriter {
     for (int i = 0; i < world.cableCount(); ++i)
       for (const char* c : {".length", ".tension", ".wraps"})
         out_ << "," << world.cable(i).name() << c;
+    // Cables split by wheels that grip them: one tension per span, NAME.span<k>.tension.
+    for (int i = 0; i < world.cableCount(); ++i) {
+      int spans = 1;
+      for (const PulleyDef& p : world.cable(i).def().pulleys) spans += gripsCable(p);
+      spans_.push_back(spans > 1 ? spans : 0);
+      for (int k = 0; k < spans_.back(); ++k)
+        out_ << "," << world.cable(i).name() << ".span" << k << ".tension";
+    }
     out_ << "\n";
   }
   void row(const World& world) {
@@ -52,6 +60,11 @@ class CsvWriter {
       num(c.length()), num(c.tension());
       out_ << "," << c.wraps();
     }
+    for (int i = 0; i < world.cableCount(); ++i)
+      for (int k = 0; k < spans_[i]; ++k) {
+        const Cable& c = world.cable(i);
+        num(k < c.spanCount() ? c.spanTension(k) : c.tension());
+      }
     out_ << "\n";
   }
   void finish() { finishOutputFile(out_, path_, "--csv"); }
@@ -59,6 +72,7 @@ class CsvWriter {
  private:
   std::string path_;
   std::ofstream out_;
+  std::vector<int> spans_;  ///< span tension columns per cable
 };
 
 const bool registered = registerCommand(

@@ -28,7 +28,8 @@ const bool registered = registerCommand(
       return [=]() {
         const PixelSize s = parsePixelSize(*size, kCommandLine, "--size", 16, 8192);
         if (!std::isfinite(*time) || *time < 0)
-          throw InputError(kCommandLine, "--time", "must be a finite number >= 0" + gotValue(*time));
+          throw InputError(kCommandLine, "--time",
+                           "must be a finite number >= 0" + gotValue(*time));
         requireWritable(*out, "--out");
         World world(ui::loadScene(*scene), *scene);
         const double dt = world.scene().dt;

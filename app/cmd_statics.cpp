@@ -20,7 +20,8 @@ struct StaticsArgs {
 int runStatics(const StaticsArgs& args) {
   // Validate the option before touching the file, so the message names the right culprit.
   if (args.solver != "auto" && args.solver != "socp" && args.solver != "newton")
-    throw InputError(kCommandLine, "--solver", "must be auto, socp or newton" + gotValue(args.solver));
+    throw InputError(kCommandLine, "--solver",
+                     "must be auto, socp or newton" + gotValue(args.solver));
   const StaticsProblem problem = loadStaticsFile(args.file);
   StaticsResult result;
   if (args.solver == "socp") {

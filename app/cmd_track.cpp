@@ -9,8 +9,7 @@
 #include "engine/core/error.h"
 #include "engine/core/file_input.h"
 #include "engine/core/parse.h"
-#include "engine/hand/hand_kinematics.h"
-#include "engine/hand/hand_tracking.h"
+#include "engine/hand/hand_io.h"
 #include "engine/scenes/scene_registry.h"
 #ifdef CABLELAB_HAVE_OFFSCREEN
 #include "ui/plot.h"
@@ -42,16 +41,18 @@ void writeTrackPng(const std::string& path, const TrackOptions& options, const T
   const ui::Colour blue{0.12f, 0.38f, 0.75f, 1.0f}, red{0.85f, 0.25f, 0.15f, 1.0f};
   const ui::Colour paleBlue{0.55f, 0.7f, 0.95f, 1.0f}, paleRed{0.95f, 0.65f, 0.55f, 1.0f};
   using Style = ui::PlotSeries::Style;
-  plot.series.push_back({"target x", t, series(r, [](const TrackSample& s) { return s.target.x(); }),
+  plot.series.push_back({"target x", t,
+                         series(r, [](const TrackSample& s) { return s.target.x(); }),
                          Style::Dashed, blue});
-  plot.series.push_back({"target y", t, series(r, [](const TrackSample& s) { return s.target.y(); }),
+  plot.series.push_back({"target y", t,
+                         series(r, [](const TrackSample& s) { return s.target.y(); }),
                          Style::Dashed, red});
   plot.series.push_back({std::string("box x, ") + otherLaw, to,
-                         series(other, [](const TrackSample& s) { return s.box.x(); }),
-                         Style::Line, paleBlue});
+                         series(other, [](const TrackSample& s) { return s.box.x(); }), Style::Line,
+                         paleBlue});
   plot.series.push_back({std::string("box y, ") + otherLaw, to,
-                         series(other, [](const TrackSample& s) { return s.box.y(); }),
-                         Style::Line, paleRed});
+                         series(other, [](const TrackSample& s) { return s.box.y(); }), Style::Line,
+                         paleRed});
   plot.series.push_back({std::string("box x, ") + law, t,
                          series(r, [](const TrackSample& s) { return s.box.x(); }), Style::Line,
                          blue});
@@ -90,29 +91,22 @@ const bool registered = registerCommand(
                      "Plot target (dashed) and response (solid; the other law, PD or PID, pale) "
                      "to this PNG file");
       return [o] {
-        TrackOptions options;
-        if (!o->target.empty() && !o->ramp.empty())
-          badOption("--ramp", "give either --target or --ramp, not both");
+        TrackRequest request;
         if (!o->target.empty()) {
           const auto v = parseNumberList(o->target, 2, kCommandLine, "--target", "X,Y");
-          options.target = Vec2(v[0], v[1]);
+          request.target = Vec2(v[0], v[1]);
         }
         if (!o->ramp.empty()) {
           const auto v = parseNumberList(o->ramp, 3, kCommandLine, "--ramp", "X,Y,SECONDS");
-          if (v[2] <= 0) badOption("--ramp", "SECONDS must be positive" + gotValue(v[2]));
-          options.target = Vec2(v[0], v[1]);
-          options.rampTime = v[2];
+          request.ramp = {v[0], v[1], v[2]};
         }
-        requireFinite(options.target.norm(), o->ramp.empty() ? "--target" : "--ramp", 0, 100);
         if (!o->start.empty()) {
           const auto v = parseNumberList(o->start, 2, kCommandLine, "--start", "X,Y");
-          options.start = Vec2(v[0], v[1]);
-          if (!pinchWithinLimits(HandModel{}, *options.start))
-            badOption("--start", "the fingers cannot pinch the box there (got " + o->start + ")");
+          request.start = Vec2(v[0], v[1]);
         }
-        requireFinite(o->time, "--time", 0, 1e5);
-        options.time = o->time;
-        options.pid = o->pid;
+        request.time = o->time;
+        request.pid = o->pid;
+        const TrackOptions options = trackOptions(request);
 #ifndef CABLELAB_HAVE_OFFSCREEN
         if (!o->png.empty()) badOption("--png", "this build has no offscreen renderer");
 #endif
@@ -146,19 +140,7 @@ const bool registered = registerCommand(
 #ifdef CABLELAB_HAVE_OFFSCREEN
         if (!o->png.empty()) writeTrackPng(o->png, options, r, other);
 #endif
-        nlohmann::json events = nlohmann::json::array();
-        for (const GraspEvent& e : r.events) events.push_back({{"t", e.t}, {"what", e.what}});
-        printJson(nlohmann::json{{"final_error", r.finalError},
-                                 {"rms_error", r.rmsError},
-                                 {"grasp_time", r.graspTime},
-                                 {"start_error", r.startError},
-                                 {"grasp_held", r.graspHeld},
-                                 {"losses", r.losses},
-                                 {"start", {r.start.x(), r.start.y()}},
-                                 {"final_box", {r.samples.back().box.x(), r.samples.back().box.y()}},
-                                 {"max_tension", r.maxTension},
-                                 {"events", events}}
-                      .dump());
+        printJson(trackSummary(r).dump());
         return 0;
       };
     });

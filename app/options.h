@@ -10,6 +10,7 @@
 
 #include "engine/core/error.h"
 #include "engine/core/file_input.h"
+#include "engine/core/parse.h"
 
 namespace cablelab::app {
 
@@ -20,9 +21,7 @@ namespace cablelab::app {
 
 /// Throws unless lo <= v <= hi and finite.
 inline void requireFinite(double v, const std::string& option, double lo, double hi) {
-  if (!std::isfinite(v) || v < lo || v > hi)
-    badOption(option, "must be a number in [" + formatNumber(lo) + ", " + formatNumber(hi) + "]" +
-                          gotValue(v));
+  requireInRange(v, kCommandLine, option, lo, hi);
 }
 
 /// Fails at once, before a long run, if an output file given by `option` cannot be written.

@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
-"""A controller for the two-finger hand written in Python: the hand closes a pinch grasp,
-then a resolved-rate law built on the engine's statics model (HandController.predict: the
-box's equilibrium and db/dq) moves the box to a target. Compare with `cablelab track`.
+"""A controller for the two-finger hand written in Python: the engine's grasp sequence
+(HandGrasp) closes a pinch grasp, then a resolved-rate law written here, built on the engine's
+statics model (HandController.predict: the box's equilibrium and db/dq), moves the box to a
+target. Compare with `cablelab track`, which runs the same sequence with the built-in law.
 
     PYTHONPATH=build/python /usr/bin/python3 examples/hand_controller.py \
-        [--target 0.1,0.05] [--time 8] [--out DIR]
+        [--target 0.1,0.05] [--start -0.05,-0.05] [--time 8] [--out DIR]
 
 Writes DIR/hand_controller.png (box path and error) and DIR/hand_final.png (the hand at the
 end), and prints one JSON line with the final error.
@@ -22,61 +23,50 @@ import numpy as np
 import cablelab
 
 
-def close_grasp(world, model, close_time=1.0, settle=0.5):
-    """Fingers from the open pose to the pinch (q = 0) by ramping the servo targets."""
-    q_open = model.open_pose()
-    cablelab.place_hand(world, q_open, model)
-    steps = round(close_time / world.dt)
-    for i in range(1, steps + 1):
-        targets = world.servo_targets()
-        targets[:6] = q_open * (1 - i / steps)
-        world.set_servo_targets(targets)
-        world.step()
-    world.run(settle)
-
-
-def grasp_held(world):
-    wraps = world.cable_wraps()
-    return all(wraps[world.cable_names.index(c)] == 2 for c in cablelab.HAND_CABLES)
-
-
-def control(world, model, target, seconds, gain=0.1, kd=0.6, max_step=0.02, damping=0.05):
-    """Every `period` s: dq = J^T (J J^T + damping^2 I)^-1 (gain e - kd db), with e the error
-    (limited to max_step m) and db the box's change since the last update: the derivative term
-    damps the box's sway on the membranes (about 1 Hz), which the fingers lead."""
+def resolved_rate(model, target, gain=0.1, kd=0.6, max_step=0.02, damping=0.05):
+    """The outer-loop law: dq = J^T (J J^T + damping^2 I)^-1 (gain e - kd db), with J = db/dq
+    from the engine's statics model, e the error (limited to max_step m) and db the box's change
+    since the last update: the derivative term damps the box's sway on the membranes (about
+    1 Hz), which the fingers lead."""
     predictor = cablelab.HandController(model)
-    period = cablelab.ControllerParams().period
-    every = max(1, round(period / world.dt))
+    previous = []
+
+    def law(q, box, commanded):
+        J = predictor.predict(q, box)["jacobian"]          # m per rad / m per m, 2 x 6
+        e = gain * (np.asarray(target) - box)
+        n = np.linalg.norm(e)
+        if n > max_step:
+            e *= max_step / n
+        if previous:
+            e -= kd * (box - previous[0])
+        previous[:] = [box]
+        return J.T @ np.linalg.solve(J @ J.T + damping ** 2 * np.eye(2), e)
+
+    return law
+
+
+def control(world, model, target, start, seconds):
+    """The engine's grasp sequence (HandGrasp) closes the pinch about `start`, then calls the
+    law every controller period, spreads each update over the period and clamps it into the
+    joint limits; it notices a lost grasp and re-grasps."""
+    grasp = cablelab.HandGrasp(world, model)
+    grasp.begin(start)
+    law = resolved_rate(model, target)
     box = world.body_names.index(cablelab.HAND_BOX)
-    commanded = world.servo_targets()[:6].copy()
-    t, path, held = [], [], True
-    previous = world.body_state(box)[:2]
-    for i in range(round(seconds / world.dt)):
-        if i % every == 0:
-            q = cablelab.hand_joints(world)
-            b = world.body_state(box)[:2]
-            J = predictor.predict(q, b)["jacobian"]         # m per rad / m per m, 2 x 6
-            e = gain * (np.asarray(target) - b)
-            n = np.linalg.norm(e)
-            if n > max_step:
-                e *= max_step / n
-            e -= kd * (b - previous)
-            previous = b
-            dq = J.T @ np.linalg.solve(J @ J.T + damping ** 2 * np.eye(2), e)
-            commanded = model.clamp(commanded + dq)
-            targets = world.servo_targets()
-            targets[:6] = commanded
-            world.set_servo_targets(targets)
-        world.step()
-        held &= grasp_held(world)
+    t, path = [], []
+    give_up = seconds + 10  # s: the grasp never closed, or failed after its re-grasps
+    while world.time < give_up and not (grasp.controlling
+                                        and world.time >= grasp.control_start + seconds):
+        grasp.step(law=law)
         t.append(world.time)
         path.append(world.body_state(box)[:2])
-    return np.array(t), np.array(path), held
+    return grasp, np.array(t), np.array(path)
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--target", default="0.1,0.05", help="X,Y (m)")
+    parser.add_argument("--start", default="-0.05,-0.05", help="X,Y (m) the grasp closes about")
     parser.add_argument("--time", type=float, default=8.0, help="control time (s)")
     parser.add_argument("--out", default="out")
     parser.add_argument("--quick", action="store_true", help="5 s of control (for tests)")
@@ -84,11 +74,11 @@ def main():
     target = np.array([float(v) for v in args.target.split(",")])
     seconds = 5.0 if args.quick else args.time
 
+    start = np.array([float(v) for v in args.start.split(",")])
+
     model = cablelab.HandModel()
     world = model.world()
-    close_grasp(world, model)
-    start = world.body_state(cablelab.HAND_BOX)[:2]
-    t, path, held = control(world, model, target, seconds)
+    grasp, t, path = control(world, model, target, start, seconds)
     error = np.linalg.norm(path - target, axis=1)
 
     out = pathlib.Path(args.out)
@@ -105,7 +95,8 @@ def main():
     if cablelab.HAS_RENDERER:
         cablelab.snapshot(world, out / "hand_final.png", (640, 480))
     print(json.dumps({"start_error": float(np.linalg.norm(start - target)),
-                      "final_error": float(error[-1]), "grasp_held": bool(held),
+                      "final_error": float(error[-1]), "grasp_held": grasp.held,
+                      "losses": grasp.losses, "events": grasp.events,
                       "plot": str(out / "hand_controller.png")}))
 
 

@@ -23,6 +23,7 @@ nlohmann::json toJson(py::handle value, const std::string& source, const std::st
 
 /// JSON as plain Python values (dict keeps the key order).
 py::object fromJson(const nlohmann::json& j);
+py::object fromJson(const nlohmann::ordered_json& j);
 
 /// A str or an os.PathLike as a path string; throws InputError naming `field` otherwise.
 std::string pathString(py::handle value, const std::string& source, const std::string& field);

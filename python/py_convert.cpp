@@ -13,14 +13,17 @@ std::string typeName(py::handle value) {
   return py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>();
 }
 
-std::string numberText(double v) { return formatNumber(v); }  // the one format (error.h)
+std::string numberText(double v) {
+  return formatNumber(v);
+}  // the one format (error.h)
 
 }  // namespace
 
 nlohmann::json toJson(py::handle value, const std::string& source, const std::string& field) {
   const std::string here = field.empty() ? "(value)" : field;
   if (value.is_none()) return nullptr;
-  if (PyBool_Check(value.ptr()) || typeName(value) == "bool_") return value.attr("__bool__")().cast<bool>();
+  if (PyBool_Check(value.ptr()) || typeName(value) == "bool_")
+    return value.attr("__bool__")().cast<bool>();
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
   if (py::isinstance<py::dict>(value)) {
     nlohmann::json out = nlohmann::json::object();
@@ -55,32 +58,52 @@ nlohmann::json toJson(py::handle value, const std::string& source, const std::st
   }
   if (PyFloat_Check(value.ptr()) || PyNumber_Check(value.ptr())) {
     const double d = py::float_(value.cast<py::object>()).cast<double>();
-    if (!std::isfinite(d)) throw InputError(source, here, "must be finite (got " + numberText(d) + ")");
+    if (!std::isfinite(d))
+      throw InputError(source, here, "must be finite (got " + numberText(d) + ")");
     return d;
   }
   throw InputError(source, here, "cannot be read as JSON (got a " + typeName(value) + ")");
 }
 
-py::object fromJson(const nlohmann::json& j) {
+namespace {
+
+template <typename Json>
+py::object jsonToPython(const Json& j) {
   switch (j.type()) {
-    case nlohmann::json::value_t::null: return py::none();
-    case nlohmann::json::value_t::boolean: return py::bool_(j.get<bool>());
-    case nlohmann::json::value_t::number_integer: return py::int_(j.get<long long>());
-    case nlohmann::json::value_t::number_unsigned: return py::int_(j.get<unsigned long long>());
-    case nlohmann::json::value_t::number_float: return py::float_(j.get<double>());
-    case nlohmann::json::value_t::string: return py::str(j.get<std::string>());
-    case nlohmann::json::value_t::array: {
+    case nlohmann::detail::value_t::null:
+      return py::none();
+    case nlohmann::detail::value_t::boolean:
+      return py::bool_(j.template get<bool>());
+    case nlohmann::detail::value_t::number_integer:
+      return py::int_(j.template get<long long>());
+    case nlohmann::detail::value_t::number_unsigned:
+      return py::int_(j.template get<unsigned long long>());
+    case nlohmann::detail::value_t::number_float:
+      return py::float_(j.template get<double>());
+    case nlohmann::detail::value_t::string:
+      return py::str(j.template get<std::string>());
+    case nlohmann::detail::value_t::array: {
       py::list out;
-      for (const auto& item : j) out.append(fromJson(item));
+      for (const auto& item : j) out.append(jsonToPython(item));
       return out;
     }
-    case nlohmann::json::value_t::object: {
+    case nlohmann::detail::value_t::object: {
       py::dict out;
-      for (const auto& [key, item] : j.items()) out[py::str(key)] = fromJson(item);
+      for (const auto& [key, item] : j.items()) out[py::str(key)] = jsonToPython(item);
       return out;
     }
-    default: return py::none();
+    default:
+      return py::none();
   }
+}
+
+}  // namespace
+
+py::object fromJson(const nlohmann::json& j) {
+  return jsonToPython(j);
+}
+py::object fromJson(const nlohmann::ordered_json& j) {
+  return jsonToPython(j);
 }
 
 std::string pathString(py::handle value, const std::string& source, const std::string& field) {

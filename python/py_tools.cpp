@@ -6,8 +6,10 @@
 
 #include "engine/cable/wrap_io.h"
 #include "engine/core/error.h"
+#include "engine/core/parse.h"
 #include "engine/membrane/membrane_data.h"
 #include "engine/membrane/membrane_fit.h"
+#include "engine/membrane/membrane_fit_io.h"
 #include "engine/membrane/membrane_synth.h"
 #include "engine/scenes/scene_registry.h"
 #include "engine/statics/socp.h"
@@ -20,7 +22,9 @@ namespace cablelab::python {
 
 namespace {
 
-bool isPath(py::handle v) { return py::isinstance<py::str>(v) || py::hasattr(v, "__fspath__"); }
+bool isPath(py::handle v) {
+  return py::isinstance<py::str>(v) || py::hasattr(v, "__fspath__");
+}
 
 /// cables as a list of {"a", "b", "k", "L"} dicts, an (N, 6) array of ax ay bx by k L, or a
 /// whole problem dict {"cables": ..., "p0": ...}: the statics input JSON.
@@ -28,7 +32,8 @@ nlohmann::json staticsJson(py::handle cables, py::handle p0) {
   nlohmann::json j;
   if (py::isinstance<py::dict>(cables)) {
     j = toJson(cables, "statics");
-  } else if (py::isinstance<py::array>(cables) && py::array(py::reinterpret_borrow<py::object>(cables)).ndim() == 2) {
+  } else if (py::isinstance<py::array>(cables) &&
+             py::array(py::reinterpret_borrow<py::object>(cables)).ndim() == 2) {
     auto a = py::array_t<double, py::array::forcecast | py::array::c_style>::ensure(cables);
     if (!a || a.shape(1) != 6)
       throw InputError("statics", "cables", "an array must be (N, 6): ax ay bx by k L per cable");
@@ -78,7 +83,8 @@ py::dict staticsCall(py::handle cables, const std::string& solver, py::handle p0
 
 py::dict wrapCall(py::handle a, py::handle b, py::handle polygon, py::handle side) {
   nlohmann::json j = nlohmann::json::object();  // None leaves a key out: "B: is required"
-  const std::pair<const char*, py::handle> fields[] = {{"A", a}, {"B", b}, {"polygon", polygon}, {"side", side}};
+  const std::pair<const char*, py::handle> fields[] = {
+      {"A", a}, {"B", b}, {"polygon", polygon}, {"side", side}};
   for (const auto& [key, value] : fields)
     if (!value.is_none()) j[key] = toJson(value, "wrap", key);
   const WrapSolution s = solveWrap(parseWrapJson(j, "wrap"), "wrap");
@@ -89,23 +95,25 @@ py::dict wrapCall(py::handle a, py::handle b, py::handle polygon, py::handle sid
   return out;
 }
 
+/// --pulleys as the CLI's text ("AX,AY,BX,BY": its parser and messages), 4 numbers or
+/// [[AX, AY], [BX, BY]].
 MembraneGeometry pulleysOf(py::handle pulleys) {
-  std::vector<double> v;
+  if (py::isinstance<py::str>(pulleys))
+    return membranePulleys(
+        parseNumberList(pulleys.cast<std::string>(), 4, kCommandLine, "--pulleys", "AX,AY,BX,BY"));
   auto a = py::array_t<double, py::array::forcecast>::ensure(pulleys);
-  if (a && a.size() == 4 && !py::isinstance<py::str>(pulleys))
-    v = toNumbers(a.attr("reshape")(4), 4, "--pulleys", "pulleys");
-  else
-    throw InputError("--pulleys", "pulleys", "must be AX, AY, BX, BY (m): 4 numbers or [[AX, AY], [BX, BY]]");
-  MembraneGeometry g{Vec2(v[0], v[1]), Vec2(v[2], v[3])};
-  validateMembraneGeometry(g, "--pulleys");
-  return g;
+  if (!a || a.size() != 4)
+    throw InputError(kCommandLine, "--pulleys",
+                     "must be AX, AY, BX, BY (m): 4 numbers or [[AX, AY], [BX, BY]]");
+  return membranePulleys(toNumbers(a.attr("reshape")(4), 4, kCommandLine, "--pulleys"));
 }
 
 std::vector<MembraneSample> membraneRows(py::handle data, const MembraneGeometry& g) {
   if (isPath(data)) return loadMembraneCsv(pathString(data, "fit", "data"), g);
   auto a = py::array_t<double, py::array::forcecast | py::array::c_style>::ensure(data);
   if (!a || a.ndim() != 2 || a.shape(1) != 4)
-    throw InputError("data", "(array)", "must be an (n, 4) array: x, y (m), fy (N), angle_deg per row, or a CSV path");
+    throw InputError("data", "(array)",
+                     "must be an (n, 4) array: x, y (m), fy (N), angle_deg per row, or a CSV path");
   // Through the CSV reader, so an array is checked exactly as a file is (same messages).
   std::ostringstream csv;
   csv << "x,y,fy,angle_deg\n";
@@ -123,14 +131,9 @@ py::dict fitCall(py::handle data, py::handle pulleys, py::handle sigmaFy, py::ha
   const MembraneGeometry g = pulleysOf(pulleys);
   MembraneFitOptions options;
   options.source = isPath(data) ? pathString(data, "fit", "data") : "data";
-  auto sigma = [](py::handle v, const char* flag, const char* field) {
-    if (v.is_none()) return 0.0;
-    const double s = v.cast<double>();
-    if (!(s > 0) || !std::isfinite(s)) throw InputError(flag, field, "must be positive");
-    return s;
-  };
-  options.sigmaFy = sigma(sigmaFy, "--sigma-fy", "sigma_fy");
-  options.sigmaAngleDeg = sigma(sigmaAngle, "--sigma-angle-deg", "sigma_angle_deg");
+  if (!sigmaFy.is_none()) options.sigmaFy = membraneSigma(sigmaFy.cast<double>(), "--sigma-fy");
+  if (!sigmaAngle.is_none())
+    options.sigmaAngleDeg = membraneSigma(sigmaAngle.cast<double>(), "--sigma-angle-deg");
   const auto rows = membraneRows(data, g);
   const auto start = std::chrono::steady_clock::now();
   MembraneFitResult fit;
@@ -140,25 +143,7 @@ py::dict fitCall(py::handle data, py::handle pulleys, py::handle sigmaFy, py::ha
   }
   const double fitUs =
       std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
-  py::dict out;
-  out["k"] = fit.params.k;
-  out["preload"] = fit.params.preload;
-  out["rms_fy"] = fit.rmsFy;
-  out["rms_angle_deg"] = fit.rmsAngleDeg;
-  out["k_stderr"] = fit.kStderr;
-  out["preload_stderr"] = fit.preloadStderr;
-  out["k_preload_correlation"] =
-      fit.covariance(0, 1) / std::sqrt(fit.covariance(0, 0) * fit.covariance(1, 1));
-  out["sigma_fy"] = fit.sigmaFy;
-  out["sigma_angle_deg"] = fit.sigmaAngleDeg;
-  out["sigmas"] = (options.sigmaFy > 0 && options.sigmaAngleDeg > 0)   ? "given"
-                  : (options.sigmaFy > 0 || options.sigmaAngleDeg > 0) ? "partly estimated"
-                                                                       : "estimated";
-  out["chi2_per_dof"] = fit.chi2PerDof;
-  out["iterations"] = fit.iterations;
-  out["rounds"] = fit.rounds;
-  out["rows"] = fit.rows;
-  out["fit_us"] = fitUs;
+  py::dict out = fromJson(membraneFitJson(fit, options, fitUs));
   py::array_t<double> cov = newArray({2, 2});
   for (int r = 0; r < 2; ++r)
     for (int c = 0; c < 2; ++c) cov.mutable_at(r, c) = fit.covariance(r, c);
@@ -169,7 +154,8 @@ py::dict fitCall(py::handle data, py::handle pulleys, py::handle sigmaFy, py::ha
 py::array_t<double> samplesArray(const std::vector<MembraneSample>& rows) {
   py::array_t<double> a = newArray({static_cast<py::ssize_t>(rows.size()), 4});
   double* d = a.mutable_data();
-  for (const MembraneSample& s : rows) *d++ = s.p.x(), *d++ = s.p.y(), *d++ = s.fy, *d++ = s.angleDeg;
+  for (const MembraneSample& s : rows)
+    *d++ = s.p.x(), *d++ = s.p.y(), *d++ = s.fy, *d++ = s.angleDeg;
   return a;
 }
 
@@ -183,7 +169,8 @@ py::array_t<double> membraneDataCall(double k, double preload, py::handle pulley
   if (seed < 0) throw InputError("--seed", "seed", "must be a whole number >= 0");
   def.seed = static_cast<std::uint64_t>(seed);
   const auto g = toNumbers(grid, 2, "--grid", "grid");
-  if (g[0] != std::floor(g[0]) || g[1] != std::floor(g[1]) || g[0] < 1 || g[1] < 1 || g[0] * g[1] > 1e6)
+  if (g[0] != std::floor(g[0]) || g[1] != std::floor(g[1]) || g[0] < 1 || g[1] < 1 ||
+      g[0] * g[1] > 1e6)
     throw InputError("--grid", "grid", "NX and NY must be whole numbers >= 1, at most 1e6 points");
   def.nx = static_cast<int>(g[0]), def.ny = static_cast<int>(g[1]);
   const auto d = toNumbers(depth, 2, "--depth", "depth");
@@ -267,8 +254,9 @@ fy (N), angle_deg (degrees). pulleys: AX, AY, BX, BY (m). sigma_*: noise levels 
 degrees), estimated when None. Returns the CLI's keys (k N/m, preload m, rms_fy N,
 rms_angle_deg, k_stderr, preload_stderr, ...) plus covariance (2 x 2 of k, preload).)doc");
   m.def("membrane_data", &membraneDataCall, "k"_a, "preload"_a, "pulleys"_a, py::kw_only(),
-        "noise_fy"_a = 0.05, "noise_angle_deg"_a = 1.0, "seed"_a = 1, "grid"_a = py::make_tuple(16, 12),
-        "depth"_a = py::make_tuple(0.05, 0.35), "along"_a = py::make_tuple(0.1, 0.9),
+        "noise_fy"_a = 0.05, "noise_angle_deg"_a = 1.0, "seed"_a = 1,
+        "grid"_a = py::make_tuple(16, 12), "depth"_a = py::make_tuple(0.05, 0.35),
+        "along"_a = py::make_tuple(0.1, 0.9),
         R"doc(membrane_data(k, preload, pulleys, *, noise_fy=0.05, noise_angle_deg=1, seed=1,
               grid=(16, 12), depth=(0.05, 0.35), along=(0.1, 0.9)) -> ndarray (n, 4)
 

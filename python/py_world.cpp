@@ -32,8 +32,9 @@ int resolveIndex(py::handle which, int count, const std::vector<std::string>& na
     const std::string name = which.cast<std::string>();
     for (int i = 0; i < count; ++i)
       if (names[i] == name) return i;
-    throw InputError(source, kind, "no " + std::string(kind) + " named '" + name + "' (known: " +
-                                       namesOf(names) + ")");
+    throw InputError(
+        source, kind,
+        "no " + std::string(kind) + " named '" + name + "' (known: " + namesOf(names) + ")");
   }
   if (PyIndex_Check(which.ptr())) {
     const long long i = py::int_(py::reinterpret_borrow<py::object>(which)).cast<long long>();
@@ -82,7 +83,8 @@ SceneDef currentScene(const World& world) {
     s.bodies[i].position = b.position, s.bodies[i].angle = b.angle;
     s.bodies[i].velocity = b.velocity, s.bodies[i].angularVelocity = b.angularVelocity;
   }
-  for (int i = 0; i < world.jointCount(); ++i) s.joints[i].servo.target = world.joint(i).servoTarget;
+  for (int i = 0; i < world.jointCount(); ++i)
+    s.joints[i].servo.target = world.joint(i).servoTarget;
   for (int i = 0; i < world.cableCount(); ++i) {
     const CableParameters& live = world.cable(i).parameters();
     CableDef& c = s.cables[i];
@@ -115,7 +117,9 @@ PyWorld::Busy::Busy(const PyWorld& w) : w_(w) {
   if (w_.busy.exchange(true))
     throw std::runtime_error("this World is in use by another thread (run() releases the GIL)");
 }
-PyWorld::Busy::~Busy() { w_.busy = false; }
+PyWorld::Busy::~Busy() {
+  w_.busy = false;
+}
 
 namespace {
 
@@ -152,7 +156,8 @@ py::object runWorld(PyWorld& self, py::handle time, py::handle steps, py::handle
     throw InputError("run", "time", "give either time (s) or steps, not both");
   if (!time.is_none()) {
     const double t = time.cast<double>();
-    if (!std::isfinite(t) || t < 0 || t > 1e7) throw InputError("run", "time", "must be in [0, 1e7] s");
+    if (!std::isfinite(t) || t < 0 || t > 1e7)
+      throw InputError("run", "time", "must be in [0, 1e7] s");
     count = std::lround(t / h);
   } else {
     const long long s = steps.cast<long long>();
@@ -195,7 +200,8 @@ py::object runWorld(PyWorld& self, py::handle time, py::handle steps, py::handle
       w.step(h, n);
       if (record) row();
       // Let Ctrl-C through about ten times a second.
-      if ((i & 255) == 255 && std::chrono::steady_clock::now() - lastCheck > std::chrono::milliseconds(100)) {
+      if ((i & 255) == 255 &&
+          std::chrono::steady_clock::now() - lastCheck > std::chrono::milliseconds(100)) {
         lastCheck = std::chrono::steady_clock::now();
         py::gil_scoped_acquire acquire;
         if (PyErr_CheckSignals() != 0) throw py::error_already_set();
@@ -227,8 +233,9 @@ py::array_t<double> bodyStates(const PyWorld& self, py::object out) {
     a = out.cast<py::array_t<double>>();
     if (a.ndim() != 2 || a.shape(0) != n || a.shape(1) != 6 || !(a.flags() & py::array::c_style) ||
         !a.writeable())
-      throw InputError("body_states", "out",
-                       "must be a writeable C-contiguous (" + std::to_string(n) + ", 6) float64 array");
+      throw InputError(
+          "body_states", "out",
+          "must be a writeable C-contiguous (" + std::to_string(n) + ", 6) float64 array");
   }
   double* d = a.mutable_data();
   for (py::ssize_t i = 0; i < n; ++i) writeBody(w.body(static_cast<int>(i)), d + 6 * i);
@@ -239,7 +246,7 @@ void setBodyState(PyWorld& self, py::handle body, py::handle state) {
   PyWorld::Busy busy(self);
   const int i = self.bodyIndex(body, "set_body_state");
   const auto v = toNumbers(state, 6, "set_body_state", "state");
-  static const char* fields[6] = {"state[0] (x)", "state[1] (y)", "state[2] (theta)",
+  static const char* fields[6] = {"state[0] (x)",  "state[1] (y)",  "state[2] (theta)",
                                   "state[3] (vx)", "state[4] (vy)", "state[5] (omega)"};
   for (int k = 0; k < 6; ++k) checkedValue(v[k], "set_body_state", fields[k]);
   self.world->setBodyTransform(i, Vec2(v[0], v[1]), v[2]);
@@ -251,8 +258,9 @@ void setBodyStates(PyWorld& self, py::handle states) {
   World& w = *self.world;
   auto a = py::array_t<double, py::array::forcecast | py::array::c_style>::ensure(states);
   if (!a || a.ndim() != 2 || a.shape(0) != w.bodyCount() || a.shape(1) != 6)
-    throw InputError("set_body_states", "states",
-                     "must be a (" + std::to_string(w.bodyCount()) + ", 6) array of x y theta vx vy omega");
+    throw InputError(
+        "set_body_states", "states",
+        "must be a (" + std::to_string(w.bodyCount()) + ", 6) array of x y theta vx vy omega");
   const double* d = a.data();
   for (py::ssize_t k = 0; k < a.size(); ++k)
     checkedValue(d[k], "set_body_states",
@@ -307,27 +315,28 @@ void setServoTargets(PyWorld& self, py::handle targets) {
   PyWorld::Busy busy(self);
   World& w = *self.world;
   const auto v = toNumbers(targets, w.jointCount(), "set_servo_targets", "targets");
-  for (int i = 0; i < w.jointCount(); ++i) w.setServoTarget(i, checkedValue(v[i], "set_servo_targets", "targets[" + std::to_string(i) + "]"));
+  for (int i = 0; i < w.jointCount(); ++i)
+    w.setServoTarget(i,
+                     checkedValue(v[i], "set_servo_targets", "targets[" + std::to_string(i) + "]"));
 }
 
 py::dict stepStats(const PyWorld& self) {
   PyWorld::Busy busy(self);
   const StepStats& s = self.world->lastStepStats();
-  py::dict d;
-  d["step_us"] = s.stepMicros;
-  d["cable_us"] = s.cableMicros;
-  d["wrap_points"] = s.wrapPoints;
-  d["solver_iterations"] = s.solverIterations;
-  d["residual"] = s.residual;
-  d["linearisation_fallbacks"] = s.linearisationFallbacks;
-  return d;
+  using namespace pybind11::literals;
+  return py::dict("step_us"_a = s.stepMicros, "cable_us"_a = s.cableMicros,
+                  "wrap_points"_a = s.wrapPoints, "solver_iterations"_a = s.solverIterations,
+                  "residual"_a = s.residual,
+                  "linearisation_fallbacks"_a = s.linearisationFallbacks);
 }
 
 }  // namespace
 
 void bindWorld(py::module_& m) {
   using namespace pybind11::literals;
-  py::class_<PyWorld> c(m, "World", R"doc(A scene being simulated: Box2D bodies, joints and contacts plus cablelab's cables.
+  py::class_<PyWorld> c(
+      m, "World",
+      R"doc(A scene being simulated: Box2D bodies, joints and contacts plus cablelab's cables.
 
 Build one with World.load("hand") (a built-in scene, see cablelab.scenes()) or
 World.load("my_scene.json"), or World.from_dict(d) from the scene JSON as a dict.
@@ -401,11 +410,14 @@ Ctrl-C interrupts it (KeyboardInterrupt) between steps.)doc");
   c.def_property_readonly(
       "name", [](const PyWorld& self) { return self.world->scene().name; }, "The scene's name.");
   c.def_property_readonly(
-      "body_names", [](const PyWorld& self) { return self.bodyNames; }, "Body names, in index order.");
+      "body_names", [](const PyWorld& self) { return self.bodyNames; },
+      "Body names, in index order.");
   c.def_property_readonly(
-      "cable_names", [](const PyWorld& self) { return self.cableNames; }, "Cable names, in index order.");
+      "cable_names", [](const PyWorld& self) { return self.cableNames; },
+      "Cable names, in index order.");
   c.def_property_readonly(
-      "joint_names", [](const PyWorld& self) { return self.jointNames; }, "Joint names, in index order.");
+      "joint_names", [](const PyWorld& self) { return self.jointNames; },
+      "Joint names, in index order.");
   c.def_property(
       "gravity",
       [](const PyWorld& self) {
@@ -428,7 +440,8 @@ Ctrl-C interrupts it (KeyboardInterrupt) between steps.)doc");
       "warnings", [](const PyWorld& self) { return self.world->warnings(); },
       "Notes from the geometry guards (zero-length segments merged, ...), newest last.");
   c.def("last_step_stats", &stepStats,
-        "last_step_stats() -> dict: timing and solver figures of the last step: step_us, cable_us (wall time, us), "
+        "last_step_stats() -> dict: timing and solver figures of the last step: step_us, cable_us "
+        "(wall time, us), "
         "wrap_points, solver_iterations, residual, linearisation_fallbacks.");
 
   c.def("body_states", &bodyStates, "out"_a = py::none(),
@@ -459,8 +472,8 @@ array of that shape) to fill it in place with no allocation.)doc");
         const int i = self.bodyIndex(body, "apply_force");
         const Vec2 f = toVec2(force, "apply_force", "force");
         checkedValue(f.norm(), "apply_force", "force");
-        const Vec2 p = point.is_none() ? self.world->body(i).position
-                                       : toVec2(point, "apply_force", "point");
+        const Vec2 p =
+            point.is_none() ? self.world->body(i).position : toVec2(point, "apply_force", "point");
         self.world->applyForce(i, f, p);
       },
       "body"_a, "force"_a, "point"_a = py::none(),
@@ -469,16 +482,19 @@ array of that shape) to fill it in place with no allocation.)doc");
 Adds force [fx, fy] (N) at a world point [x, y] (m; default the body origin) for the next
 step only (call it before every step for a lasting load).)doc");
   c.def(
-      "body_index", [](const PyWorld& self, py::handle b) { return self.bodyIndex(b, "body_index"); },
-      "name"_a, "body_index(name) -> int: index of a body by name.");
+      "body_index",
+      [](const PyWorld& self, py::handle b) { return self.bodyIndex(b, "body_index"); }, "name"_a,
+      "body_index(name) -> int: index of a body by name.");
   c.def(
       "begin_drag",
       [](PyWorld& self, py::handle body, py::handle point, double hz) {
         PyWorld::Busy busy(self);
-        self.world->beginDrag(self.bodyIndex(body, "begin_drag"), toVec2(point, "begin_drag", "point"), hz);
+        self.world->beginDrag(self.bodyIndex(body, "begin_drag"),
+                              toVec2(point, "begin_drag", "point"), hz);
       },
       "body"_a, "point"_a, "stiffness_hz"_a = 5.0,
-      "begin_drag(body, point, stiffness_hz=5): mouse-style drag (as in the sandbox): a soft spring (stiffness_hz, Hz) from a world "
+      "begin_drag(body, point, stiffness_hz=5): mouse-style drag (as in the sandbox): a soft "
+      "spring (stiffness_hz, Hz) from a world "
       "point on the body to the drag target.");
   c.def(
       "drag_to",
@@ -496,15 +512,20 @@ step only (call it before every step for a lasting load).)doc");
       "end_drag(): releases the drag.");
 
   c.def(
-      "cable_lengths", [](const PyWorld& s) { return perCable(s, [](const Cable& c) { return c.length(); }); },
+      "cable_lengths",
+      [](const PyWorld& s) { return perCable(s, [](const Cable& c) { return c.length(); }); },
       "cable_lengths() -> ndarray (cables,): lengths (m).");
   c.def(
-      "cable_tensions", [](const PyWorld& s) { return perCable(s, [](const Cable& c) { return c.tension(); }); },
+      "cable_tensions",
+      [](const PyWorld& s) { return perCable(s, [](const Cable& c) { return c.tension(); }); },
       "cable_tensions() -> ndarray (cables,): tensions of the last step (N); 0 when slack.");
   c.def(
       "cable_wraps",
-      [](const PyWorld& s) { return perCable(s, [](const Cable& c) { return double(c.wraps()); }); },
-      "cable_wraps() -> ndarray (cables,): pulley wrap points in use per cable (the CSV's NAME.wraps), as floats.");
+      [](const PyWorld& s) {
+        return perCable(s, [](const Cable& c) { return double(c.wraps()); });
+      },
+      "cable_wraps() -> ndarray (cables,): pulley wrap points in use per cable (the CSV's "
+      "NAME.wraps), as floats.");
   c.def("cable_path", &cablePath, "cable"_a,
         "cable_path(cable) -> ndarray (k, 2): the cable's current path in world coordinates (m), "
         "start anchor, the k - 2 wrap points in order, end anchor.");
@@ -532,7 +553,8 @@ step only (call it before every step for a lasting load).)doc");
       "cable_parameters",
       [](const PyWorld& self, py::handle cable) {
         PyWorld::Busy busy(self);
-        const CableParameters& p = self.world->cable(self.cableIndex(cable, "cable_parameters")).parameters();
+        const CableParameters& p =
+            self.world->cable(self.cableIndex(cable, "cable_parameters")).parameters();
         py::dict d;
         d["rest_length"] = p.restLength;
         d["stiffness"] = p.stiffness;
@@ -550,15 +572,20 @@ step only (call it before every step for a lasting load).)doc");
         "preload=None (m), damping=None (N s/m)): live edits; None keeps the current value.");
 
   c.def(
-      "joint_values", [](const PyWorld& s) { return perJoint(s, [](const JointState& j) { return j.value; }); },
+      "joint_values",
+      [](const PyWorld& s) { return perJoint(s, [](const JointState& j) { return j.value; }); },
       "joint_values() -> ndarray (joints,): angle (rad) or translation (m) of each joint.");
   c.def(
-      "joint_speeds", [](const PyWorld& s) { return perJoint(s, [](const JointState& j) { return j.speed; }); },
+      "joint_speeds",
+      [](const PyWorld& s) { return perJoint(s, [](const JointState& j) { return j.speed; }); },
       "joint_speeds() -> ndarray (joints,): rad/s or m/s.");
   c.def(
       "servo_targets",
-      [](const PyWorld& s) { return perJoint(s, [](const JointState& j) { return j.servoTarget; }); },
-      "servo_targets() -> ndarray (joints,): servo targets (rad or m); only joints with a servo follow them.");
+      [](const PyWorld& s) {
+        return perJoint(s, [](const JointState& j) { return j.servoTarget; });
+      },
+      "servo_targets() -> ndarray (joints,): servo targets (rad or m); only joints with a servo "
+      "follow them.");
   c.def(
       "set_servo_target",
       [](PyWorld& self, py::handle joint, double target) {
@@ -570,8 +597,9 @@ step only (call it before every step for a lasting load).)doc");
   c.def("set_servo_targets", &setServoTargets, "targets"_a,
         "set_servo_targets(targets): every joint's servo target at once (rad or m).");
   c.def("__repr__", [](const PyWorld& self) {
-    return "<cablelab.World '" + self.world->scene().name + "' t=" + std::to_string(self.world->time()) +
-           " s, " + std::to_string(self.world->bodyCount()) + " bodies, " +
+    return "<cablelab.World '" + self.world->scene().name +
+           "' t=" + std::to_string(self.world->time()) + " s, " +
+           std::to_string(self.world->bodyCount()) + " bodies, " +
            std::to_string(self.world->cableCount()) + " cables>";
   });
 }

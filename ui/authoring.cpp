@@ -307,10 +307,27 @@ bool authoringClick(Sandbox& sandbox, const Vec2& p, bool right) {
   return true;
 }
 
-void saveScene(const Sandbox& sandbox, const std::string& path) {
+SceneDef sceneToSave(const Sandbox& sandbox) {
   SceneDef def = sandbox.scene;
   def.dt = sandbox.dt, def.substeps = sandbox.substeps, def.gravity = sandbox.gravity;
-  saveSceneFile(def, path);
+  const World* world = sandbox.world();
+  if (!world || world->cableCount() != static_cast<int>(def.cables.size())) return def;
+  // Live cable edits (the inspector, a loaded fit) are World state: write them. The rest length
+  // only where it differs from the one the file gives (an unset one is the initial length).
+  const World fresh(def, sandbox.sceneName);
+  for (int i = 0; i < world->cableCount(); ++i) {
+    const Cable& live = world->cable(i);
+    CableDef& c = def.cables[i];
+    c.stiffness = live.stiffness();
+    c.preload = live.preload();
+    c.damping = live.damping();
+    if (live.restLength() != fresh.cable(i).restLength()) c.restLength = live.restLength();
+  }
+  return def;
+}
+
+void saveScene(const Sandbox& sandbox, const std::string& path) {
+  saveSceneFile(sceneToSave(sandbox), path);
 }
 
 void authoringPanel(Sandbox& sandbox) {
@@ -327,9 +344,8 @@ void authoringPanel(Sandbox& sandbox) {
       {Tool::Cable, "Click the start (a body or empty space), the pulleys in order, then the end."},
       {Tool::Delete, "Click a body or a cable to delete it (with its cables and joints)."},
   }};
-  int k = 0;
   for (const auto& [tool, tip] : tools) {
-    if (k++ % 3) ImGui::SameLine();
+    if (tool != Tool::None) sameLineIfRoom(checkboxWidth(toolName(tool)));
     if (ImGui::RadioButton(toolName(tool), a.tool == tool)) {
       a.tool = tool;
       a.polygon.clear();
@@ -338,10 +354,10 @@ void authoringPanel(Sandbox& sandbox) {
     tooltip(tip);
   }
   float size = static_cast<float>(a.size), mass = static_cast<float>(a.mass);
-  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 5);
+  ImGui::SetNextItemWidth(fieldWidth("size (m)", ImGui::GetFontSize() * 5));
   if (ImGui::DragFloat("size (m)", &size, 0.01f, 0.02f, 10.0f, "%.2f")) a.size = size;
   tooltip("Box side, circle and pulley diameter.");
-  ImGui::SameLine();
+  sameLineIfRoom(ImGui::GetFontSize() * 4 + checkboxWidth("kg") - ImGui::GetFrameHeight());
   ImGui::SetNextItemWidth(ImGui::GetFontSize() * 4);
   if (ImGui::DragFloat("kg", &mass, 0.05f, 0.01f, 1000.0f, "%.2f")) a.mass = mass;
   tooltip("Mass of the next body.");
@@ -354,13 +370,15 @@ void authoringPanel(Sandbox& sandbox) {
   }
   if (ImGui::Button("Undo")) undoEdit(sandbox);
   tooltip("Undo the last edit.");
-  ImGui::SameLine();
+  sameLineIfRoom(buttonWidth("Redo"));
   if (ImGui::Button("Redo")) redoEdit(sandbox);
   tooltip("Redo the edit undone last.");
-  ImGui::SameLine();
+  sameLineIfRoom(buttonWidth("New"));
   if (ImGui::Button("New")) newScene(sandbox);
   tooltip("An empty scene with a ground (undo brings the old one back).");
-  ImGui::TextDisabled("%zu undo, %zu redo; Scene > Save scene as...", a.undo.size(), a.redo.size());
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  ImGui::TextWrapped("%zu undo, %zu redo; Scene > Save scene as...", a.undo.size(), a.redo.size());
+  ImGui::PopStyleColor();
 }
 
 void authoringOverlay(const Sandbox& sandbox, Overlay& overlay) {

@@ -62,8 +62,11 @@ bool undoEdit(Sandbox& sandbox);
 bool redoEdit(Sandbox& sandbox);
 /// Replaces the scene by an empty one (a ground and nothing else), as an edit.
 void newScene(Sandbox& sandbox);
-/// Writes the scene as edited (with the current dt, substeps and gravity) to `path`; throws
-/// InputError / std::runtime_error naming the path on failure.
+/// The scene as edited, with the live settings: dt, substeps, gravity and every cable's live
+/// parameters (rest length, stiffness, preload, damping, as the inspector or a fit set them).
+SceneDef sceneToSave(const Sandbox& sandbox);
+/// Writes sceneToSave() to `path`; throws InputError / std::runtime_error naming the path on
+/// failure.
 void saveScene(const Sandbox& sandbox, const std::string& path);
 
 /// The Build section of the Simulation panel (tools, sizes, undo, redo, save).

@@ -19,8 +19,7 @@
 namespace cablelab::ui {
 namespace {
 
-constexpr double kSqueezeSettle = 0.5;  // s after the closing ramp before the outer loop starts
-constexpr float kTargetRange = 1.0f;    // m, the target sliders' range about the origin
+constexpr float kTargetRange = 1.0f;  // m, the target sliders' range about the origin
 constexpr Colour kPredictionColour{0.0f, 0.55f, 0.55f, 1.0f};
 constexpr Colour kForceColour{0.1f, 0.3f, 0.85f, 1.0f};
 
@@ -99,15 +98,38 @@ void timePlot(const char* id, const TimeHistory& h, std::initializer_list<PlotLi
     }
     run.clear();
   };
+  // At most the lowest and the highest sample of each pixel column, in time order: the same
+  // picture as every sample with a fraction of the vertices (900 samples over ~250 px).
   for (const PlotLine& l : lines) {
+    int column = -1, firstIndex = 0, secondIndex = 0;
+    ImVec2 top, bottom;  // the column's smallest and largest screen y
+    int topIndex = 0, bottomIndex = 0;
+    auto emit = [&] {
+      if (column < 0) return;
+      firstIndex = std::min(topIndex, bottomIndex), secondIndex = std::max(topIndex, bottomIndex);
+      run.push_back(firstIndex == topIndex ? top : bottom);
+      if (secondIndex != firstIndex) run.push_back(secondIndex == topIndex ? top : bottom);
+      column = -1;
+    };
     for (int k = 0; k < h.count; ++k) {
       const float v = h.values[l.series][at(k)];
       if (!std::isfinite(v)) {
+        emit();
         flush(l);
         continue;
       }
-      run.push_back(map(h.t[at(k)], std::clamp(v, lo, hi)));
+      const ImVec2 p = map(h.t[at(k)], std::clamp(v, lo, hi));
+      const int c = static_cast<int>(std::floor(p.x));
+      if (c != column) {
+        emit();
+        column = c, top = bottom = p, topIndex = bottomIndex = k;
+      } else if (p.y < top.y) {
+        top = p, topIndex = k;
+      } else if (p.y > bottom.y) {
+        bottom = p, bottomIndex = k;
+      }
     }
+    emit();
     flush(l);
   }
   char text[96];
@@ -125,45 +147,21 @@ void timePlot(const char* id, const TimeHistory& h, std::initializer_list<PlotLi
 // ---------------------------------------------------------------------------------------------
 // Hand.
 
-/// The hand's joints, box and membranes in `world`, or nullptr when it is not a hand scene.
+/// The hand's state for `world`, or nullptr when it is not a hand scene.
 std::unique_ptr<HandControlState> makeHandState(const World& world) {
   auto h = std::make_unique<HandControlState>();
-  for (int j = 0; j < 6; ++j)
-    if ((h->joints[j] = world.findJoint(kHandJointNames[j])) < 0) return nullptr;
-  h->box = world.findBody(kHandBoxName);
-  for (int f = 0; f < 2; ++f) h->cables[f] = world.findCable(kHandCableNames[f]);
-  if (h->box < 0 || h->cables[0] < 0 || h->cables[1] < 0) return nullptr;
+  const int band = world.findCable(kHandCableNames[0]);
+  const int box = world.findBody(kHandBoxName);
+  if (band < 0 || box < 0) return nullptr;
   // The controller's model must be the scene's: take the parameters `--set` can change.
-  const Cable& band = world.cable(h->cables[0]);
-  h->model.stiffness = band.stiffness();
-  h->model.damping = band.damping();
-  h->model.preload = band.preload();
-  h->model.boxMass = world.scene().bodies[h->box].mass;
-  h->model.boxDamping = world.scene().bodies[h->box].linearDamping;
-  h->open = h->model.openPose();
+  h->model.stiffness = world.cable(band).stiffness();
+  h->model.damping = world.cable(band).damping();
+  h->model.preload = world.cable(band).preload();
+  h->model.boxMass = world.scene().bodies[box].mass;
+  h->model.boxDamping = world.scene().bodies[box].linearDamping;
+  h->newGrasp(world);
+  if (!h->grasp) return nullptr;  // no hand joints: not the hand
   return h;
-}
-
-HandJoints jointValues(const World& world, const HandControlState& h) {
-  HandJoints q;
-  for (int j = 0; j < 6; ++j) q[j] = world.joint(h.joints[j]).value;
-  return q;
-}
-
-bool grasped(const World& world, const HandControlState& h) {
-  return world.cable(h.cables[0]).wraps() >= 2 && world.cable(h.cables[1]).wraps() >= 2;
-}
-
-/// Begins the Pinched phase: the scene starts at the pinch pose with the box between the
-/// membranes, so the outer loop may start after the settle time.
-void startPinched(HandControlState& h, double now) {
-  h.phase = HandControlState::Phase::Pinched;
-  h.graspTime = now;
-  h.controlStart = now + kSqueezeSettle;
-  h.nextUpdate = h.controlStart;
-  h.offset.setZero();
-  h.updates = 0;
-  if (h.controller) h.controller->reset();
 }
 
 void handBeforeStep(Sandbox& sandbox, World& world, HandControlState& h) {
@@ -178,75 +176,79 @@ void handBeforeStep(Sandbox& sandbox, World& world, HandControlState& h) {
   } else {
     h.rampLast.reset();
   }
-  // The closing ramp keeps running under the controller's offsets after the grasp, as in
-  // runTracking(), so the squeeze finishes as planned.
-  HandJoints nominal = HandJoints::Zero();
-  if (h.phase != HandControlState::Phase::Pinched)
-    nominal = h.open * std::max(0.0, 1 - (t - h.sequenceStart) / h.closeTime);
-  const bool active = h.enabled && sandbox.target && h.graspTime >= 0 && t >= h.controlStart - 1e-9;
-  const BodyState& box = world.body(h.box);
-  if (active && t >= h.nextUpdate - 1e-9) {
-    h.offset += h.controller->update(jointValues(world, h), box.position, *sandbox.target,
-                                     h.model.clamp(nominal + h.offset));
-    h.prediction = h.controller->lastPrediction();
+  // No target (or the loop switched off): the engine's sequence holds the hand.
+  h.grasp->beforeStep(world, h.enabled ? sandbox.target : std::nullopt);
+  const Vec2 box = world.body(h.box()).position;
+  if (h.grasp->updates() != h.seenUpdates) {
+    h.seenUpdates = h.grasp->updates();
+    h.prediction = h.controller().lastPrediction();
     h.predictionTime = t;
-    ++h.updates;
-    // After a pause or a slow frame, skip missed ticks rather than catching up in a burst.
-    h.nextUpdate = std::max(h.nextUpdate + h.params.period, t + 0.5 * h.params.period);
-  } else if (!active && t >= h.predictionTime + h.params.period - 1e-9) {
+  } else if (!h.grasp->controlling(t) && t >= h.predictionTime + h.params.period - 1e-9) {
     // The statics model's view of the current pose, for the overlay.
-    h.prediction = h.controller->predict(jointValues(world, h), box.position);
+    h.prediction = h.controller().predict(h.grasp->joints(world), box);
     h.predictionTime = t;
   }
-  h.commanded = h.model.clamp(nominal + h.offset);
-  h.offset = h.commanded - nominal;  // no wind-up against the limits
-  for (int j = 0; j < 6; ++j) world.setServoTarget(h.joints[j], h.commanded[j]);
 }
 
 void handAfterStep(const Sandbox& sandbox, const World& world, HandControlState& h) {
-  const double t = world.time();
-  if (h.phase == HandControlState::Phase::Closing && h.graspTime < 0 && grasped(world, h)) {
-    h.graspTime = t;
-    h.controlStart = std::max(t, h.sequenceStart + h.closeTime + kSqueezeSettle);
-    h.nextUpdate = h.controlStart;
-    h.phase = HandControlState::Phase::Grasped;
-  }
-  // Grasp loss: a membrane off the box (fewer than two wrap points on it) or slack.
-  if (h.graspTime >= 0 && h.lostTime < 0) {
-    const Cable& top = world.cable(h.cables[0]);
-    const Cable& bottom = world.cable(h.cables[1]);
-    const bool holds = grasped(world, h) && top.tension() > 1e-6 && bottom.tension() > 1e-6;
-    if (holds) {
-      h.offSince = -1;
-    } else {
-      if (h.offSince < 0) h.offSince = t;
-      if (t - h.offSince >= kGraspLossSeconds) {
-        h.lostTime = h.offSince;
-        h.lostWhy = top.wraps() < 2 || top.tension() <= 1e-6 ? "top membrane let go"
-                                                             : "bottom membrane let go";
-      }
-    }
-  }
-  const Vec2 box = world.body(h.box).position;
-  const float error = sandbox.target ? static_cast<float>((box - *sandbox.target).norm())
-                                     : std::numeric_limits<float>::quiet_NaN();
+  h.grasp->afterStep(world);
+  const Vec2 box = world.body(h.box()).position;
   const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float error = sandbox.target ? static_cast<float>((box - *sandbox.target).norm()) : nan;
   const float tx = sandbox.target ? static_cast<float>(sandbox.target->x()) : nan;
   const float ty = sandbox.target ? static_cast<float>(sandbox.target->y()) : nan;
-  h.history.push(static_cast<float>(t),
-                 {static_cast<float>(world.cable(h.cables[0]).tension()),
-                  static_cast<float>(world.cable(h.cables[1]).tension()), error,
+  h.history.push(static_cast<float>(world.time()),
+                 {static_cast<float>(world.cable(h.grasp->membrane(0)).tension()),
+                  static_cast<float>(world.cable(h.grasp->membrane(1)).tension()), error,
                   static_cast<float>(box.x()), static_cast<float>(box.y()), tx, ty});
+}
+
+/// The last loss event (what the engine's detection saw), "" if none.
+std::string lastLoss(const HandGrasp& g) {
+  for (auto e = g.events().rbegin(); e != g.events().rend(); ++e)
+    if (e->what.find("unwrapped") != std::string::npos ||
+        e->what.find("slack") != std::string::npos)
+      return e->what;
+  return "";
+}
+
+/// One status line: the phase, and when the loop runs or why not.
+void graspStatus(const Sandbox& sandbox, const HandControlState& h, double t) {
+  const HandGrasp& g = *h.grasp;
+  const std::string state = handGraspState(sandbox);
+  if (state == "grasp lost") {
+    ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(200, 0, 20, 255));
+    ImGui::TextWrapped("GRASP LOST (%d): %s%s", g.losses(), lastLoss(g).c_str(),
+                       g.phase() == HandGrasp::Phase::Failed ? "; gave up"
+                       : g.phase() == HandGrasp::Phase::Lost ? "; stopped"
+                                                             : "; re-grasping");
+    ImGui::PopStyleColor();
+    tooltip(
+        "The engine's grasp-loss detection (as `cablelab track`): a membrane unwrapped the box "
+        "or went slack after the grasp closed. The hand stops, then grasps again about the box "
+        "(at most twice).");
+  } else if (g.phase() != HandGrasp::Phase::Control) {
+    ImGui::TextWrapped("%s, waiting for both membranes", state.c_str());
+  } else if (!g.controlling(t)) {
+    ImGui::TextWrapped("%s at %.2f s, control from %.2f s", state.c_str(), g.graspTime(),
+                       g.controlStart());
+  } else {
+    ImGui::TextWrapped("%s; %d updates%s%s", state.c_str(), g.updates(),
+                       !h.enabled        ? " (loop off)"
+                       : !sandbox.target ? " (no target)"
+                                         : "",
+                       g.held() ? "" : " (re-grasped)");
+  }
 }
 
 void handPanel(Sandbox& sandbox, HandControlState& h) {
   World* world = sandbox.world();
-  ImGui::TextUnformatted("Jacobian controller (thesis 4.3)");
+  ImGui::TextWrapped("Jacobian controller (thesis 4.3)");
 
   // Target: sliders and click-to-set (the overlay cross), or a ramp as `track --ramp`.
   bool hasTarget = sandbox.target.has_value();
   if (ImGui::Checkbox("target", &hasTarget)) {
-    sandbox.target = hasTarget ? std::optional<Vec2>(world->body(h.box).position) : std::nullopt;
+    sandbox.target = hasTarget ? std::optional<Vec2>(world->body(h.box()).position) : std::nullopt;
     h.rampStart = -1;
   }
   tooltip("A constant target for the box (click empty space in the view to move it).");
@@ -263,7 +265,8 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
   }
   float ramp[3] = {static_cast<float>(h.rampTo.x()), static_cast<float>(h.rampTo.y()),
                    static_cast<float>(h.rampSeconds)};
-  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize("Ramp__").x);
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x - buttonWidth("Ramp") -
+                          ImGui::GetStyle().ItemSpacing.x);
   if (ImGui::DragFloat3("##ramp", ramp, 0.005f, -kTargetRange, kTargetRange, "%.3f")) {
     h.rampTo = Vec2(ramp[0], ramp[1]);
     h.rampSeconds = std::clamp(static_cast<double>(ramp[2]), 0.05, 60.0);
@@ -271,7 +274,7 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
   tooltip("Ramp goal x, y (m) and its duration (s), as `cablelab track --ramp X,Y,SECONDS`.");
   ImGui::SameLine();
   if (ImGui::SmallButton("Ramp")) {
-    h.rampFrom = sandbox.target.value_or(world->body(h.box).position);
+    h.rampFrom = sandbox.target.value_or(world->body(h.box()).position);
     h.rampStart = world->time();
   }
   tooltip("Move the target from where it is to the goal in a straight line over the duration.");
@@ -281,12 +284,12 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
   bool changed = false;
   ImGui::Checkbox("outer loop on", &h.enabled);
   tooltip("Run the Jacobian outer loop (else the servos hold the last joint targets).");
-  ImGui::SameLine();
+  sameLineIfRoom(checkboxWidth("PID"));
   changed |= ImGui::Checkbox("PID", &h.pid);
   tooltip("Add the integral term k_i (the `track --pid` controller).");
-  ImGui::PushItemWidth(ImGui::GetFontSize() * 7);
-  changed |= ImGui::InputDouble("k_p (per update)", &h.params.kp, 0.01, 0.1, "%.3f");
-  tooltip("Proportional gain of the outer loop, per update.");
+  ImGui::PushItemWidth(fieldWidth("k_i (1/s)", ImGui::GetFontSize() * 7));
+  changed |= ImGui::InputDouble("k_p", &h.params.kp, 0.01, 0.1, "%.3f");
+  tooltip("Proportional gain of the outer loop, per update (dimensionless).");
   changed |= ImGui::InputDouble("k_d", &h.params.kd, 0.01, 0.1, "%.3f");
   tooltip("Derivative gain of the outer loop.");
   if (!h.pid) ImGui::BeginDisabled();
@@ -294,8 +297,8 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
   tooltip("Integral gain (with PID on).");
   if (!h.pid) ImGui::EndDisabled();
   ImGui::PopItemWidth();
-  const bool thesis = ImGui::SmallButton("thesis gains (k_p 0.1, k_d 0.58)");
-  tooltip("Back to the gains of thesis section 4.3.");
+  const bool thesis = ImGui::SmallButton("thesis gains");
+  tooltip("Back to the gains of thesis section 4.3: k_p 0.1, k_d 0.58 (k_i 1 with PID).");
   if (thesis) {
     const HandControllerParams d;
     h.params.kp = d.kp, h.params.kd = d.kd, h.ki = kHandPidKi;
@@ -305,17 +308,17 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
     h.params.kp = std::clamp(h.params.kp, 0.0, 10.0);
     h.params.kd = std::clamp(h.params.kd, 0.0, 10.0);
     h.ki = std::clamp(h.ki, 0.0, 10.0);
-    h.rebuildController();
+    h.applyGains();
   }
 
   // Grasp sequence.
   ImGui::TextUnformatted("start pose:");
-  ImGui::SameLine();
+  sameLineIfRoom(buttonWidth("open (grasp)"));
   const bool grasp = ImGui::Button("open (grasp)");
   tooltip(
-      "As `cablelab track`: reset, swing the fingers open, close them over 1 s, grasp, then "
-      "control the box.");
-  ImGui::SameLine();
+      "As `cablelab track`: reset, the box at track's default start, swing the fingers open, "
+      "close them over 1 s, grasp, then control the box.");
+  sameLineIfRoom(buttonWidth("pinch"));
   const bool pinch = ImGui::Button("pinch");
   tooltip("Reset to the pinch pose, the box already between the membranes.");
   if (grasp) {
@@ -326,26 +329,8 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
     sandbox.reset();
     return;
   }
-  const double t = world->time();
-  const std::string state = handGraspState(sandbox);
-  const char* phase = state.c_str();
-  if (h.lostTime >= 0) {
-    ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(200, 0, 20, 255));
-    ImGui::TextWrapped("GRASP LOST at %.2f s: %s", h.lostTime, h.lostWhy.c_str());
-    ImGui::PopStyleColor();
-    tooltip(
-        "A membrane stopped wrapping the box (or went slack) for more than 0.1 s after the "
-        "grasp. Reset hand or Start grasp to try again.");
-  } else if (h.graspTime < 0)
-    ImGui::Text("%s, waiting for both membranes", phase);
-  else if (t < h.controlStart)
-    ImGui::Text("%s at %.2f s, control from %.2f s", phase, h.graspTime, h.controlStart);
-  else
-    ImGui::Text("%s; %d updates%s", phase, h.updates,
-                !h.enabled        ? " (loop off)"
-                : !sandbox.target ? " (no target)"
-                                  : "");
-  const Vec2 box = world->body(h.box).position;
+  graspStatus(sandbox, h, world->time());
+  const Vec2 box = world->body(h.box()).position;
   ImGui::Text("box (%.3f, %.3f) m", box.x(), box.y());
   if (sandbox.target) ImGui::Text("error %.4f m", (box - *sandbox.target).norm());
   if (h.prediction.valid)
@@ -384,7 +369,7 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
     }
   }
   tooltip("The plotted history (last 15 s) as CSV in the working directory.");
-  ImGui::SameLine();
+  sameLineIfRoom(buttonWidth("Export PNG"));
   if (ImGui::SmallButton("Export PNG")) {
     sandbox.pngRequest = h.plotRect;
     sandbox.pngRequestPath = "cablelab-hand-plots.png";
@@ -439,23 +424,26 @@ MembraneNow membraneNow(const World& world, const MembraneViewState& m) {
 void membranePanel(Sandbox& sandbox, MembraneViewState& m) {
   World* world = sandbox.world();
   const MembraneNow n = membraneNow(*world, m);
-  ImGui::TextUnformatted("Membrane model (thesis ch. 3)");
+  ImGui::TextWrapped("Membrane model (thesis ch. 3)");
   const Cable& band = world->cable(m.band);
-  ImGui::Text("k %.4g N/m, preload %.4g m", band.stiffness(), band.preload());
+  ImGui::TextWrapped("k %.4g N/m, preload %.4g m", band.stiffness(), band.preload());
   if (n.valid) {
-    ImGui::Text("model F = (%.3f, %.3f) N", n.force.x(), n.force.y());
-    ImGui::Text("model T %.4g N, engine T %.4g N", membraneTension(n.g, n.params, n.p),
-                band.tension());
+    ImGui::TextWrapped("model F = (%.3f, %.3f) N", n.force.x(), n.force.y());
+    ImGui::TextWrapped("model T %.4g N, engine T %.4g N", membraneTension(n.g, n.params, n.p),
+                       band.tension());
   }
-  ImGui::TextUnformatted("fit JSON (cablelab fit output):");
+  ImGui::TextWrapped("fit JSON (cablelab fit output):");
   ImGui::SetNextItemWidth(-1);
   ImGui::InputText("##fitjson", m.path.data(), m.path.size());
-  if (ImGui::Button("Load k, preload into the band"))
+  if (ImGui::Button("Load k, preload"))
     m.messageIsError = !loadFitIntoBand(sandbox, m.path.data(), m.message);
+  tooltip("Load the fit's k and preload into the band (its rest length becomes |AB|).");
   if (!m.message.empty()) {
-    if (m.messageIsError)
-      ImGui::TextColored(ImVec4(0.8f, 0.1f, 0.1f, 1), "%s", m.message.c_str());
-    else
+    if (m.messageIsError) {
+      ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(204, 26, 26, 255));
+      ImGui::TextWrapped("%s", m.message.c_str());
+      ImGui::PopStyleColor();
+    } else
       ImGui::TextWrapped("%s", m.message.c_str());
   }
 }
@@ -478,10 +466,24 @@ void TimeHistory::clear() {
   head = count = 0;
 }
 
-void HandControlState::rebuildController() {
-  HandControllerParams p = params;
-  p.ki = pid ? ki : 0.0;
-  controller = std::make_unique<HandController>(model, p);
+namespace {
+HandControllerParams gains(const HandControlState& h) {
+  HandControllerParams p = h.params;
+  p.ki = h.pid ? h.ki : 0.0;
+  return p;
+}
+}  // namespace
+
+void HandControlState::applyGains() {
+  if (grasp) grasp->controller().setParams(gains(*this));
+}
+
+void HandControlState::newGrasp(const World& world) {
+  grasp = std::make_unique<HandGrasp>(model, gains(*this));
+  if (!grasp->attach(world)) grasp.reset();
+  prediction = {};
+  predictionTime = -1;
+  seenUpdates = 0;
 }
 
 void writeHandHistoryCsv(const HandControlState& h, const std::string& path) {
@@ -503,15 +505,20 @@ void writeHandHistoryCsv(const HandControlState& h, const std::string& path) {
 
 std::string handGraspState(const Sandbox& sandbox) {
   const HandControlState* h = sandbox.controller ? sandbox.controller->hand.get() : nullptr;
-  if (!h) return "";
-  if (h->lostTime >= 0) return "grasp lost";
-  switch (h->phase) {
-    case HandControlState::Phase::Closing:
-      return "closing";
-    case HandControlState::Phase::Grasped:
-      return "grasped";
-    case HandControlState::Phase::Pinched:
-      return "pinch pose";
+  if (!h || !h->grasp) return "";
+  const HandGrasp& g = *h->grasp;
+  switch (g.phase()) {
+    case HandGrasp::Phase::Lost:
+    case HandGrasp::Phase::Failed:
+      return "grasp lost";
+    case HandGrasp::Phase::Opening:
+    case HandGrasp::Phase::Closing:
+      // Re-grasping after a loss still counts as lost until the membranes wrap the box again.
+      return !g.held()                                ? "grasp lost"
+             : g.phase() == HandGrasp::Phase::Opening ? "opening"
+                                                      : "closing";
+    case HandGrasp::Phase::Control:
+      return h->pinchedStart && g.held() ? "pinch pose" : "grasped";
   }
   return "";
 }
@@ -519,14 +526,12 @@ std::string handGraspState(const Sandbox& sandbox) {
 bool startHandGrasp(Sandbox& sandbox) {
   sandbox.reset();  // a fresh world; controllerOpened() keeps the gains
   HandControlState* h = sandbox.controller ? sandbox.controller->hand.get() : nullptr;
-  if (!h || !sandbox.world()) return false;
-  placeHand(*sandbox.world(), h->model, h->open);
-  h->phase = HandControlState::Phase::Closing;
-  h->sequenceStart = sandbox.world()->time();
-  h->graspTime = -1;
-  h->controlStart = std::numeric_limits<double>::infinity();
-  h->commanded = h->open;
+  World* world = sandbox.world();
+  if (!h || !world) return false;
   if (!sandbox.target) sandbox.target = Vec2::Zero();
+  h->newGrasp(*world);
+  h->grasp->begin(*world, defaultStart(*sandbox.target));
+  h->pinchedStart = false;
   sandbox.paused = false;
   return true;
 }
@@ -536,16 +541,17 @@ void controllerOpened(Sandbox& sandbox) {
   if (const World* world = sandbox.world()) {
     state->hand = makeHandState(*world);
     if (state->hand) {
+      HandControlState& h = *state->hand;
       if (sandbox.controller && sandbox.controller->hand) {  // a reset keeps the user's gains
         const HandControlState& old = *sandbox.controller->hand;
-        state->hand->params = old.params;
-        state->hand->enabled = old.enabled;
-        state->hand->pid = old.pid;
-        state->hand->ki = old.ki;
+        h.params = old.params;
+        h.enabled = old.enabled;
+        h.pid = old.pid;
+        h.ki = old.ki;
       }
-      state->hand->rebuildController();
-      startPinched(*state->hand, world->time());
-      if (!sandbox.target) sandbox.target = world->body(state->hand->box).position;
+      h.applyGains();
+      h.grasp->beginPinched(*world);
+      if (!sandbox.target) sandbox.target = world->body(h.box()).position;
     } else {
       state->membrane = makeMembraneState(*world);
       if (state->membrane && sandbox.controller && sandbox.controller->membrane)
@@ -587,7 +593,8 @@ void controllerOverlay(const Sandbox& sandbox, Overlay& overlay) {
       overlay.targets.push_back({h->prediction.box, "", kPredictionColour});
       overlay.texts.push_back(
           {h->prediction.box + Vec2(0.03, -0.09), "statics", kPredictionColour});
-      overlay.keys.push_back({Overlay::Key::Marker::Cross, "statics model's box", kPredictionColour});
+      overlay.keys.push_back(
+          {Overlay::Key::Marker::Cross, "statics model's box", kPredictionColour});
     }
     return;
   }

@@ -4,13 +4,13 @@
 //   hand      the statics-based Jacobian controller of thesis section 4.3
 //             (engine/hand/hand_controller.h) runs live: the target is `sandbox.target` (click
 //             empty space, or the sliders), gains k_p, k_d, k_i and the PID toggle are editable,
-//             the grasp sequence (open pose -> closing ramp -> grasp -> control, as `cablelab
-//             track`) can be started and reset; membrane tensions and tracking error are plotted
-//             against time; the overlay shows the target and the statics model's box prediction.
+//             the grasp sequence and the grasp-loss detection are the engine's
+//             (engine/hand/hand_grasp.h, the code `cablelab track` runs) and can be started and
+//             reset; membrane tensions and tracking error are plotted against time; the overlay
+//             shows the target and the statics model's box prediction.
 //   membrane  the chapter 3 model force F = -T (u1 + u2) (engine/membrane/membrane_model.h) is
-//   drawn at
-//             the finger point, and k and preload fitted by `cablelab fit` (its JSON output) can
-//             be loaded into the band.
+//             drawn at the finger point, and k and preload fitted by `cablelab fit` (its JSON
+//             output) can be loaded into the band.
 //
 // Needs: ui/sandbox.h and Dear ImGui (a frame in progress for the panel). The sandbox calls
 // controllerOpened() after every open() and reset(), controllerBeforeStep() before and
@@ -26,6 +26,7 @@
 
 #include "engine/dynamics/world.h"
 #include "engine/hand/hand_controller.h"
+#include "engine/hand/hand_grasp.h"
 #include "engine/hand/hand_model.h"
 #include "engine/membrane/membrane_model.h"
 #include "ui/overlay.h"
@@ -44,35 +45,20 @@ struct TimeHistory {
   void clear();
 };
 
-/// Live state of the hand controller (per world; gains survive a reset).
+/// Live state of the hand controller (per world; gains survive a reset). The grasp sequence,
+/// the outer loop and the grasp-loss detection are the engine's (engine/hand/hand_grasp.h, the
+/// same code `cablelab track` runs); the panel adds targets, plots and the overlay.
 struct HandControlState {
-  enum class Phase { Pinched, Closing, Grasped };
   HandModel model;  ///< from the scene's membranes and box
   HandControllerParams params;
   bool enabled = true;     ///< the outer loop runs (once grasped and settled)
   bool pid = false;        ///< use params.ki (else k_i = 0)
   double ki = kHandPidKi;  ///< the integral gain used when `pid` (per update, 1/s)
-  std::unique_ptr<HandController> controller;
-  Phase phase = Phase::Pinched;
-  double sequenceStart = 0;  ///< s, world time the grasp sequence began
-  double closeTime = 1.0;    ///< s, open pose -> pinch pose ramp
-  double graspTime = -1;     ///< s, both membranes wrap the box; -1 not yet
-  /// Grasp loss: after the grasp, a membrane stopped wrapping the box (or went slack) for
-  /// longer than kGraspLossSeconds; the world time it happened, -1 while held.
-  double lostTime = -1;
-  double offSince = -1;  ///< s, when a membrane last let go of the box; -1 both hold it
-  std::string lostWhy;
-  double controlStart = 0;  ///< s, the outer loop starts here
-  double nextUpdate = 0;    ///< s, next outer-loop tick
-  int updates = 0;
-  HandJoints open = HandJoints::Zero();
-  HandJoints offset = HandJoints::Zero();  ///< controller's accumulated joint-target change
-  HandJoints commanded = HandJoints::Zero();
-  std::array<int, 6> joints{};  ///< world joint index of each HandJoints entry
-  int box = -1;
-  std::array<int, 2> cables{-1, -1};
+  std::unique_ptr<HandGrasp> grasp;
+  bool pinchedStart = true;    ///< the scene as built (pinched), not a grasp sequence
   BoxPrediction prediction;    ///< the statics model at the last outer tick
   double predictionTime = -1;  ///< s
+  int seenUpdates = 0;         ///< grasp->updates() when `prediction` was taken
   /// top tension, bottom tension (N), |box - target|, box x, box y, target x, target y (m)
   TimeHistory history{7};
   float errorRange = 0.05f, xyRange = 0.2f;  ///< stable plot ranges (m), grow only
@@ -82,9 +68,14 @@ struct HandControlState {
   Vec2 rampFrom = Vec2::Zero(), rampTo = Vec2(0.1, 0.1);
   std::optional<Vec2> rampLast;  ///< the target the ramp set last (a different one: a click)
   PanelRect plotRect;            ///< screen rectangle of the plots (for the PNG export)
-  double lastSample = -1;        ///< s
 
-  void rebuildController();
+  /// The engine's controller (gains from `params`, `pid` and `ki`).
+  const HandController& controller() const { return grasp->controller(); }
+  int box() const { return grasp->boxBody(); }
+  /// Applies the edited gains to the running controller.
+  void applyGains();
+  /// A fresh grasp sequence for `world` (gains applied).
+  void newGrasp(const World& world);
 };
 
 /// The membrane scene's view: model force and fitted parameters.
@@ -104,20 +95,19 @@ struct ControllerState {
 /// throws std::runtime_error naming the path.
 void writeHandHistoryCsv(const HandControlState& h, const std::string& path);
 
-/// A membrane must be off the box this long (s) before the grasp counts as lost.
-inline constexpr double kGraspLossSeconds = 0.1;
-
-/// The hand's grasp state as the panel shows it: "pinch pose", "closing", "grasped",
-/// "grasp lost"; "" when the scene is not the hand.
+/// The hand's grasp state as the panel shows it, from the engine's sequence and loss detection:
+/// "pinch pose" (the scene as built, held), "opening", "closing", "grasped", "grasp lost" (lost
+/// and not grasped again yet); "" when the scene is not the hand.
 std::string handGraspState(const Sandbox& sandbox);
 
 /// Sets up the state for the sandbox's current world (after open() or reset()).
 void controllerOpened(Sandbox& sandbox);
 
-/// The hand's grasp sequence, as `cablelab track` runs it: resets the world, swings the fingers
-/// to the open pose and ramps them closed; once both membranes wrap the box (and the squeeze
-/// has settled) the outer loop drives the box to `sandbox.target` (set to (0, 0) if unset).
-/// False if the current scene is not the hand.
+/// The hand's grasp sequence, the one `cablelab track` runs (HandGrasp::begin): resets the world,
+/// places the box at `cablelab track`'s default start for the target (defaultStart), swings the
+/// fingers to the open pose about it and ramps them closed; once both membranes wrap the box
+/// (and the squeeze has settled) the outer loop drives the box to `sandbox.target` (set to
+/// (0, 0) if unset). False if the current scene is not the hand.
 bool startHandGrasp(Sandbox& sandbox);
 
 /// ImGui widgets for the current scene's controller; called inside an open window.

@@ -59,7 +59,8 @@ std::optional<Options> parse(int argc, char** argv) {
   std::string uiScale, script;
   cli.add_option("--ui-scale", uiScale, "text and panel scale, 0.5..4 (default: from the display)");
   cli.add_option("--script", script,
-                 "run an acceptance scenario (describe, reset-scale, rigid-drag, drop-box, author) "
+                 "run an acceptance scenario (describe, reset-scale, rigid-drag, drop-box, author, "
+                 "capstan-slip) "
                  "with synthetic events and print its JSON report");
   cli.add_option("--script-out", o.scriptOut, "the scene file the author scenario saves");
   cli.add_option("--open", o.openLater,
@@ -179,9 +180,16 @@ int run(const Options& options) {
     window.beginFrame();
     drawPanels(sandbox, panelState);
     if (sandbox.fitPending) sandbox.fitView();  // needs this frame's panel layout
+    // The panels' colour everywhere (they draw no background), then the world in the free
+    // area only (panels.cpp, kPanelBackground): a clear is a fill, the cheapest pixels.
+    const ImVec4 panel = ImGui::GetStyleColorVec4(ImGuiCol_WindowBg);
+    glDisable(GL_SCISSOR_TEST);
+    glClearColor(panel.x, panel.y, panel.z, 1);
+    glClear(GL_COLOR_BUFFER_BIT);
     if (const cablelab::World* world = sandbox.world()) {
-      drawWorld(*world, sandbox.camera, sandbox.overlay(), sandbox.renderOptions(),
-                ImGui::GetBackgroundDrawList());
+      RenderOptions options = sandbox.renderOptions();
+      options.clipToFree = true;
+      drawWorld(*world, sandbox.camera, sandbox.overlay(), options, ImGui::GetBackgroundDrawList());
     } else {
       glClearColor(0.97f, 0.97f, 0.95f, 1);
       glClear(GL_COLOR_BUFFER_BIT);
@@ -254,9 +262,10 @@ int run(const Options& options) {
     const PanelRect f = sandbox.freeArea();
     std::printf(
         "{\"frames\": %d, \"fps\": %.17g, \"camera\": [%.17g, %.17g, %.17g], "
-        "\"free\": [%g, %g, %g, %g], \"tension_scale\": %.17g}\n",
+        "\"free\": [%g, %g, %g, %g], \"tension_scale\": %.17g, \"overflow\": [%g, %g]}\n",
         options.frames, m > 0 ? 1 / m : 0.0, c.center.x(), c.center.y(), c.metresPerPixel, f.x, f.y,
-        f.width, f.height, sandbox.tensionScale);
+        f.width, f.height, sandbox.tensionScale, sandbox.panelOverflow[0],
+        sandbox.panelOverflow[1]);
   }
   return 0;
 }

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "ui/panels.h"
+#include "ui/synthetic_events.h"
 
 namespace cablelab::ui {
 namespace {
@@ -21,35 +22,11 @@ bool inFreeArea(const Sandbox& sandbox, const Vec2& s) {
 }  // namespace
 
 void InputScript::pushKey(SDL_Keycode key) {
-  for (Uint32 type : {SDL_KEYDOWN, SDL_KEYUP}) {
-    SDL_Event event{};
-    event.type = type;
-    event.key.windowID = windowId_;
-    event.key.state = type == SDL_KEYDOWN ? SDL_PRESSED : SDL_RELEASED;
-    event.key.keysym.sym = key;
-    event.key.keysym.scancode = SDL_GetScancodeFromKey(key);
-    SDL_PushEvent(&event);
-  }
+  pushKeyPress(windowId_, key);
 }
 
 void InputScript::push(Uint32 type, const Vec2& screen, Uint8 button) {
-  SDL_Event event{};
-  event.type = type;
-  const int x = static_cast<int>(std::lround(screen.x())),
-            y = static_cast<int>(std::lround(screen.y()));
-  if (type == SDL_MOUSEMOTION) {
-    event.motion.windowID = windowId_;
-    event.motion.x = x;
-    event.motion.y = y;
-  } else {
-    event.button.windowID = windowId_;
-    event.button.button = button;
-    event.button.state = type == SDL_MOUSEBUTTONDOWN ? SDL_PRESSED : SDL_RELEASED;
-    event.button.clicks = 1;
-    event.button.x = x;
-    event.button.y = y;
-  }
-  SDL_PushEvent(&event);
+  pushMouseEvent(windowId_, type, screen, button);
 }
 
 bool InputScript::beforeFrame(Sandbox& sandbox, int frame) {

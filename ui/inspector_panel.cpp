@@ -6,6 +6,7 @@
 #include <string>
 
 #include "ui/authoring.h"
+#include "ui/cable_spans.h"
 #include "ui/panel_sections.h"
 #include "ui/renderer.h"
 
@@ -30,21 +31,30 @@ void cableList(Sandbox& sandbox, const World& world) {
 }
 
 void cableEdits(Sandbox& sandbox) {
-  bool changed = false;
   auto& e = sandbox.cableEdit;
-  ImGui::PushItemWidth(ImGui::GetFontSize() * 9);
-  changed |= ImGui::InputDouble("rest length (m)", &e.restLength, 0.01, 0.1, "%.4f",
-                                ImGuiInputTextFlags_EnterReturnsTrue);
-  tooltip("Rest length L; Enter applies it live.");
-  changed |= ImGui::InputDouble("stiffness (N/m)", &e.stiffness, 10, 100, "%.2f",
-                                ImGuiInputTextFlags_EnterReturnsTrue);
-  tooltip("0: a rigid cable (tension from the constraint); > 0: an elastic band.");
-  changed |= ImGui::InputDouble("preload (m)", &e.preload, 0.001, 0.01, "%.4f",
-                                ImGuiInputTextFlags_EnterReturnsTrue);
-  tooltip("Pre-stretch of an elastic cable.");
-  changed |= ImGui::InputDouble("damping (N s/m)", &e.damping, 0.1, 1, "%.3f",
-                                ImGuiInputTextFlags_EnterReturnsTrue);
-  tooltip("Damping of an elastic cable, times its length rate.");
+  struct Field {
+    const char* label;
+    double* value;
+    double step, fastStep;
+    const char* format;
+    const char* tip;
+  };
+  const Field fields[] = {
+      {"rest length (m)", &e.restLength, 0.01, 0.1, "%.4f",
+       "Rest length L; Enter applies it live."},
+      {"stiffness (N/m)", &e.stiffness, 10, 100, "%.2f",
+       "0: a rigid cable (tension from the constraint); > 0: an elastic band."},
+      {"preload (m)", &e.preload, 0.001, 0.01, "%.4f", "Pre-stretch of an elastic cable."},
+      {"damping (N s/m)", &e.damping, 0.1, 1, "%.3f",
+       "Damping of an elastic cable, times its length rate."},
+  };
+  bool changed = false;
+  ImGui::PushItemWidth(fieldWidth("damping (N s/m)", ImGui::GetFontSize() * 9));
+  for (const Field& f : fields) {
+    changed |= ImGui::InputDouble(f.label, f.value, f.step, f.fastStep, f.format,
+                                  ImGuiInputTextFlags_EnterReturnsTrue);
+    tooltip(f.tip);
+  }
   ImGui::PopItemWidth();
   if (changed) sandbox.applyCableEdit();
 }
@@ -65,6 +75,8 @@ void wrapTable(const Cable& cable) {
       ImGui::TextUnformatted("anchor");
     else if (p.kind == WrapPoint::Kind::Point)
       ImGui::Text("pulley %d", p.pulley);
+    else if (p.kind == WrapPoint::Kind::Circle)
+      ImGui::Text("circle %d", p.pulley);
     else
       ImGui::Text("pulley %d v%d", p.pulley, p.vertex);
     ImGui::TableNextColumn();
@@ -75,8 +87,40 @@ void wrapTable(const Cable& cable) {
   ImGui::EndTable();
 }
 
+/// Per-span tensions of a cable split by gripping wheels, and each wheel's tension ratio.
+void spanSection(Sandbox& sandbox, const Cable& cable) {
+  SpanTable table = spanTable(cable);
+  if (table.spans.empty()) {
+    sandbox.shownSpans = {};
+    return;
+  }
+  ImGui::Text("spans (%d)", cable.spanCount());
+  tooltip(
+      "Each span between gripping wheels carries its own tension (docs/wheels.md). A capstan "
+      "holds while the tension ratio is below e^(mu theta) and slips at that ratio.");
+  if (ImGui::BeginTable("spans", 3, ImGuiTableFlags_RowBg)) {
+    ImGui::TableSetupColumn("span");
+    ImGui::TableSetupColumn("tension (N)");
+    ImGui::TableSetupColumn("length (m)");
+    ImGui::TableHeadersRow();
+    for (const SpanRow& row : table.spans) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::Text("%d", row.span);
+      ImGui::TableNextColumn();
+      ImGui::Text("%.4g%s", row.tension, row.tension <= 0 ? " slack" : "");
+      ImGui::TableNextColumn();
+      ImGui::Text("%.4f", row.length);
+    }
+    ImGui::EndTable();
+  }
+  for (const WheelRow& w : table.wheels) ImGui::TextWrapped("%s", w.text.c_str());
+  sandbox.shownSpans = std::move(table);
+}
+
 void cableInspector(Sandbox& sandbox, const World& world) {
   if (world.cableCount() == 0) {
+    sandbox.shownSpans = {};
     ImGui::TextDisabled("no cables");
     return;
   }
@@ -89,6 +133,7 @@ void cableInspector(Sandbox& sandbox, const World& world) {
   if (overstretched(cable))
     ImGui::TextColored(ImVec4(0.8f, 0.0f, 0.1f, 1), "overstretched by %.4f m",
                        cable.length() - cable.restLength());
+  spanSection(sandbox, cable);
   cableEdits(sandbox);
   if (i < static_cast<int>(sandbox.tensionHistory.size())) {
     const auto& h = sandbox.tensionHistory[i];
@@ -109,7 +154,7 @@ void bodyEdits(Sandbox& sandbox, int b) {
   const BodyDef& def = sandbox.scene.bodies[b];
   double mass = def.mass, x = def.position.x(), y = def.position.y();
   bool isStatic = def.type == BodyType::Static;
-  ImGui::PushItemWidth(ImGui::GetFontSize() * 7);
+  ImGui::PushItemWidth(fieldWidth("start x (m)", ImGui::GetFontSize() * 7));
   const bool m =
       ImGui::InputDouble("mass (kg)", &mass, 0, 0, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue);
   tooltip("Edit the body's mass (Enter applies it; the scene restarts; Ctrl+Z undoes it).");
@@ -122,7 +167,7 @@ void bodyEdits(Sandbox& sandbox, int b) {
   ImGui::PopItemWidth();
   const bool st = ImGui::Checkbox("static", &isStatic);
   tooltip("A static body does not move.");
-  ImGui::SameLine();
+  sameLineIfRoom(buttonWidth("Delete body"));
   const bool del = ImGui::SmallButton("Delete body");
   tooltip("Remove the body with its cables and joints (Delete key; Ctrl+Z undoes it).");
   if (del) {

@@ -1,6 +1,7 @@
 #include "ui/panels.h"
 
 #include <imgui.h>
+#include <imgui_internal.h>  // the window's widest row (ImGuiWindow::DC.CursorMaxPos)
 
 #include <algorithm>
 #include <cstring>
@@ -15,6 +16,12 @@
 
 namespace cablelab::ui {
 namespace {
+
+// The side panels and the status line draw no background of their own: the window clears the
+// whole frame in the panels' colour and the world only inside the free area (gui_main.cpp). On
+// Xvfb's software GL the panels' background quads (textured and blended, half the window) cost
+// more than everything else in a frame.
+constexpr ImGuiWindowFlags kPanelBackground = ImGuiWindowFlags_NoBackground;
 
 void record(Sandbox& sandbox) {
   const ImVec2 p = ImGui::GetWindowPos(), s = ImGui::GetWindowSize();
@@ -112,11 +119,20 @@ bool beginSidePanel(Sandbox& sandbox, PanelState& state, const char* name, bool 
   bool& collapse = left ? state.collapseLeft : state.collapseRight;
   if (collapse) ImGui::SetNextWindowCollapsed(true, ImGuiCond_Always);
   collapse = false;
-  const bool open = ImGui::Begin(name, nullptr, ImGuiWindowFlags_NoMove);
+  // Rows fit the width (ui/panels.h; no horizontal scrolling: with it ImGui widens the work
+  // area to the widest row, and rows sized to the work area then keep the scrollbar). No
+  // background: the window clears the panels' area in their colour (gui_main.cpp).
+  const bool open = ImGui::Begin(name, nullptr, ImGuiWindowFlags_NoMove | kPanelBackground);
   record(sandbox);
   // The user's resize shows up as this frame's size: keep it for the next frame.
   if (open) width = ImGui::GetWindowSize().x;
   return open;
+}
+
+/// How far (px) the current window's widest row reaches past its content area; 0 if none.
+float rowOverflow() {
+  const ImGuiWindow* w = ImGui::GetCurrentWindow();
+  return std::max(0.0f, w->DC.CursorMaxPos.x - w->WorkRect.Max.x);
 }
 
 void simulationPanel(Sandbox& sandbox, PanelState& state, float top) {
@@ -129,12 +145,16 @@ void simulationPanel(Sandbox& sandbox, PanelState& state, float top) {
     tooltip("Add bodies, pulleys and cables by clicks; undo, redo; save as scene JSON.");
     if (ImGui::CollapsingHeader("View")) viewPanel(sandbox);
     if (ImGui::CollapsingHeader("Integration")) integrationPanel(sandbox);
+    sandbox.panelOverflow[0] = rowOverflow();
   }
   ImGui::End();
 }
 
 void inspectorPanel(Sandbox& sandbox, PanelState& state, float top) {
-  if (beginSidePanel(sandbox, state, "Inspector", false, top)) inspectorContents(sandbox);
+  if (beginSidePanel(sandbox, state, "Inspector", false, top)) {
+    inspectorContents(sandbox);
+    sandbox.panelOverflow[1] = rowOverflow();
+  }
   ImGui::End();
 }
 
@@ -145,7 +165,7 @@ void statusLine(Sandbox& sandbox) {
   ImGui::Begin("##status", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                    ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoScrollbar |
-                   ImGuiWindowFlags_NoSavedSettings);
+                   ImGuiWindowFlags_NoSavedSettings | kPanelBackground);
   record(sandbox);
   if (const World* world = sandbox.world()) {
     const StepStats& s = world->lastStepStats();
@@ -180,42 +200,49 @@ void helpOverlay(Sandbox& sandbox) {
   ImGui::End();
 }
 
-void openDialog(Sandbox& sandbox, PanelState& state) {
-  if (!state.showOpen) return;
+/// A dialog window centred below the menu bar (call ImGui::End() after it).
+void beginDialog(Sandbox& sandbox, const char* title, bool* show) {
   ImGui::SetNextWindowPos(ImVec2(0.5f * sandbox.camera.width, 0.15f * sandbox.camera.height),
                           ImGuiCond_Always, ImVec2(0.5f, 0));
   ImGui::SetNextWindowSize(
       ImVec2(std::min(520.0f * sandbox.uiScale, sandbox.camera.width - 20.0f), 0));
-  ImGui::Begin("Open scene file", &state.showOpen, ImGuiWindowFlags_NoCollapse);
+  ImGui::Begin(title, show, ImGuiWindowFlags_NoCollapse);
   record(sandbox);
+}
+
+/// A path field over the dialog's width, then `action` and Cancel (which closes the dialog);
+/// true when the user chose the action (or pressed Enter) with a path in the field.
+bool pathRow(const char* id, std::array<char, 512>& path, const char* action, bool& show,
+             const char* tip) {
+  ImGui::SetNextItemWidth(-1);
+  const bool enter =
+      ImGui::InputText(id, path.data(), path.size(), ImGuiInputTextFlags_EnterReturnsTrue);
+  if (tip) tooltip(tip);
+  const bool chosen = (ImGui::Button(action) || enter) && path[0] != '\0';
+  ImGui::SameLine();
+  if (ImGui::Button("Cancel")) show = false;
+  return chosen;
+}
+
+void openDialog(Sandbox& sandbox, PanelState& state) {
+  if (!state.showOpen) return;
+  beginDialog(sandbox, "Open scene file", &state.showOpen);
   ImGui::TextUnformatted("Bundled scenes (assets/scenes):");
   for (const std::string& f : bundledSceneFiles())
     if (ImGui::Selectable(f.c_str())) copyPath(state.openPath, f);
   ImGui::TextUnformatted("Path of a scene JSON file (or a built-in scene name):");
-  ImGui::SetNextItemWidth(-1);
-  const bool enter = ImGui::InputText("##path", state.openPath.data(), state.openPath.size(),
-                                      ImGuiInputTextFlags_EnterReturnsTrue);
-  tooltip("A file, relative to the working directory, or a built-in name such as hexagon.");
-  if ((ImGui::Button("Open") || enter) && state.openPath[0] != '\0')
-    if (sandbox.open(state.openPath.data())) state.showOpen = false;
-  ImGui::SameLine();
-  if (ImGui::Button("Cancel")) state.showOpen = false;
+  if (pathRow("##path", state.openPath, "Open", state.showOpen,
+              "A file, relative to the working directory, or a built-in name such as hexagon.") &&
+      sandbox.open(state.openPath.data()))
+    state.showOpen = false;
   ImGui::End();
 }
 
 void saveDialog(Sandbox& sandbox, PanelState& state) {
   if (!state.showSave) return;
-  ImGui::SetNextWindowPos(ImVec2(0.5f * sandbox.camera.width, 0.15f * sandbox.camera.height),
-                          ImGuiCond_Always, ImVec2(0.5f, 0));
-  ImGui::SetNextWindowSize(
-      ImVec2(std::min(520.0f * sandbox.uiScale, sandbox.camera.width - 20.0f), 0));
-  ImGui::Begin("Save scene", &state.showSave, ImGuiWindowFlags_NoCollapse);
-  record(sandbox);
+  beginDialog(sandbox, "Save scene", &state.showSave);
   ImGui::TextUnformatted("Scene JSON file to write (`cablelab run FILE` runs it):");
-  ImGui::SetNextItemWidth(-1);
-  const bool enter = ImGui::InputText("##save", state.savePath.data(), state.savePath.size(),
-                                      ImGuiInputTextFlags_EnterReturnsTrue);
-  if ((ImGui::Button("Save") || enter) && state.savePath[0] != '\0') {
+  if (pathRow("##save", state.savePath, "Save", state.showSave, nullptr)) {
     try {
       saveScene(sandbox, state.savePath.data());
       sandbox.message = std::string("saved ") + state.savePath.data();
@@ -224,8 +251,6 @@ void saveDialog(Sandbox& sandbox, PanelState& state) {
       sandbox.error = e.what();
     }
   }
-  ImGui::SameLine();
-  if (ImGui::Button("Cancel")) state.showSave = false;
   ImGui::End();
 }
 

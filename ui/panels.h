@@ -40,4 +40,17 @@ void drawPanels(Sandbox& sandbox, PanelState& state);
 /// Shows `text` as the tooltip of the last widget when the mouse rests on it.
 void tooltip(const char* text);
 
+// Rows that fit a narrow panel (640x480 leaves the Simulation panel about 200 px): widgets
+// shrink to leave room for their label, and a widget that would not fit goes to the next row.
+
+/// Width for a widget labelled `label`: `preferred` (px), less when the row has no room for it
+/// and the label, never under three characters.
+float fieldWidth(const char* label, float preferred);
+/// Width of a button (SmallButton too) showing `label`.
+float buttonWidth(const char* label);
+/// Width of a checkbox with `label`.
+float checkboxWidth(const char* label);
+/// ImGui::SameLine() when an item `width` px wide still fits on the current row.
+void sameLineIfRoom(float width);
+
 }  // namespace cablelab::ui

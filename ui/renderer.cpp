@@ -9,6 +9,7 @@
 #include <string>
 
 #include "ui/colormap.h"
+#include "ui/label_layout.h"
 
 namespace cablelab::ui {
 namespace {
@@ -151,35 +152,40 @@ class Painter {
     labels_.push_back({cam_.toScreen(world), offsetPx, s, c});
   }
 
-  /// Draws the queued labels, each at the first of its candidate places that overlaps neither
-  /// an earlier label nor the viewport's edge (the least-overlapping one if none is free).
-  void placeLabels() const {
+  /// A body's shape (world points) that labels keep off.
+  void obstacle(const std::vector<Vec2>& worldPoints) const {
     if (!text_) return;
-    std::vector<ImVec4> placed;  // x0, y0, x1, y1
+    LabelObstacle& o = obstacles_.emplace_back();
+    o.reserve(worldPoints.size());
+    for (const Vec2& p : worldPoints) o.push_back(cam_.toScreen(p));
+  }
+
+  /// Draws the queued labels where label_layout.h puts them inside `view` (px): off the bodies
+  /// and each other, a leader line to those placed away from their anchor.
+  void placeLabels(const LabelBox& view) const {
+    if (!text_) return;
+    std::vector<LabelRequest> requests;
+    requests.reserve(labels_.size());
     for (const Label& l : labels_) {
       const ImVec2 size = ImGui::CalcTextSize(l.text.c_str());
-      const double w = size.x, h = size.y, g = 4 * scale_;
-      const Vec2 candidates[] = {l.offset,           {g, g},           {g, -h - g},
-                                 {-w - g, g},        {-w - g, -h - g}, {-0.5 * w, g},
-                                 {-0.5 * w, -h - g}, {g, -0.5 * h}};
-      double best = 1e300;
-      ImVec4 bestRect;
-      for (const Vec2& offset : candidates) {
-        const Vec2 p = l.anchor + offset;
-        const ImVec4 r(static_cast<float>(p.x()), static_cast<float>(p.y()),
-                       static_cast<float>(p.x() + w), static_cast<float>(p.y() + h));
-        double overlap = 0;
-        for (const ImVec4& q : placed)
-          overlap += std::max(0.0f, std::min(r.z, q.z) - std::max(r.x, q.x)) *
-                     std::max(0.0f, std::min(r.w, q.w) - std::max(r.y, q.y));
-        if (r.x < 0 || r.y < 0 || r.z > cam_.width || r.w > cam_.height) overlap += 0.5 * w * h;
-        if (overlap < best) best = overlap, bestRect = r;
-        if (overlap <= 0) break;
+      requests.push_back({l.anchor, l.offset, size.x, size.y});
+    }
+    const auto placed = ui::placeLabels(requests, obstacles_, view, 4 * scale_);
+    for (size_t k = 0; k < labels_.size(); ++k) {
+      const LabelBox& b = placed[k].box;
+      const ImU32 colour = toImU32(labels_[k].colour);
+      if (placed[k].leader) {
+        const Vec2& a = labels_[k].anchor;
+        const ImVec2 near(static_cast<float>(std::clamp(a.x(), b.x0, b.x1)),
+                          static_cast<float>(std::clamp(a.y(), b.y0, b.y1)));
+        text_->AddLine(ImVec2(static_cast<float>(a.x()), static_cast<float>(a.y())), near,
+                       (colour & 0x00FFFFFF) | 0x99000000, scale_);
       }
-      placed.push_back(bestRect);
-      text_->AddText(ImVec2(bestRect.x, bestRect.y), toImU32(l.colour), l.text.c_str());
+      text_->AddText(ImVec2(static_cast<float>(b.x0), static_cast<float>(b.y0)), colour,
+                     labels_[k].text.c_str());
     }
     labels_.clear();
+    obstacles_.clear();
   }
 
   const Camera& camera() const { return cam_; }
@@ -196,6 +202,7 @@ class Painter {
   ImDrawList* text_;
   float scale_;
   mutable std::vector<Label> labels_;
+  mutable std::vector<LabelObstacle> obstacles_;
 };
 
 Vec2 bodyPoint(const World& world, int body, const Vec2& local) {
@@ -216,10 +223,14 @@ void drawGrid(const Painter& paint) {
   const long j0 = static_cast<long>(std::floor(cam.bottom() / step));
   const long j1 = static_cast<long>(std::ceil(cam.top() / step));
   if (i1 - i0 > 2000 || j1 - j0 > 2000) return;
+  // Axis-aligned lines gain nothing from smoothing, and on a software rasteriser a smooth line
+  // is a textured quad: the grid, the longest lines, draws without it.
+  glDisable(GL_LINE_SMOOTH);
   for (long i = i0; i <= i1; ++i)
     paint.line({i * step, cam.bottom()}, {i * step, cam.top()}, i == 0 ? kGridAxis : kGridMinor, 1);
   for (long j = j0; j <= j1; ++j)
     paint.line({cam.left(), j * step}, {cam.right(), j * step}, j == 0 ? kGridAxis : kGridMinor, 1);
+  glEnable(GL_LINE_SMOOTH);
 }
 
 void drawBodies(const World& world, const RenderOptions& options, const Painter& paint) {
@@ -234,14 +245,17 @@ void drawBodies(const World& world, const RenderOptions& options, const Painter&
       if (shape.sensor) fill[3] = 0.35f;
       if (shape.kind == ShapeDef::Kind::Circle) {
         const Vec2 centre = bodyPoint(world, i, shape.center);
-        paint.polygon(paint.circlePoints(centre, shape.radius), &fill, outline, width);
+        const std::vector<Vec2> rim = paint.circlePoints(centre, shape.radius);
+        paint.polygon(rim, &fill, outline, width);
+        paint.obstacle(rim);
         // A radius shows the rotation.
-        const Vec2 rim = bodyPoint(world, i, shape.center + Vec2(shape.radius, 0));
-        paint.line(centre, rim, outline, 1.0f);
+        const Vec2 edge = bodyPoint(world, i, shape.center + Vec2(shape.radius, 0));
+        paint.line(centre, edge, outline, 1.0f);
       } else {
         std::vector<Vec2> points;
         for (const Vec2& v : shape.vertices) points.push_back(bodyPoint(world, i, v));
         paint.polygon(points, &fill, outline, width);
+        paint.obstacle(points);
       }
     }
     if (options.labels && !bodies[i].name.empty() && bodies[i].type != BodyType::Static)
@@ -276,6 +290,13 @@ void drawPulleys(const World& world, const Painter& paint) {
         const std::vector<Vec2> points = pulleyPolygon(world, pulley);
         paint.polygon(points, nullptr, colour, 2.5f);
         for (const Vec2& p : points) paint.disc(p, paint.px(2.5), colour);
+      } else if (pulley.kind == PulleyDef::Kind::Circle) {
+        // A rim and a spoke: the spoke shows a wheel turning.
+        const int body = findBodyIndex(world.scene(), pulley.body);
+        const Vec2 c = bodyPoint(world, body, pulley.point);
+        paint.polygon(paint.circlePoints(c, pulley.radius), nullptr, colour, 2.5f);
+        paint.line(c, bodyPoint(world, body, pulley.point + Vec2(0, pulley.radius)), colour, 2.0f);
+        paint.disc(c, paint.px(2.5), colour);
       } else {
         const Vec2 p = bodyPoint(world, findBodyIndex(world.scene(), pulley.body), pulley.point);
         const Colour white{1, 1, 1, 1};
@@ -307,6 +328,32 @@ void drawJoints(const World& world, const Painter& paint) {
   }
 }
 
+/// The cable lying on a circle: from the tangent point round by the wrap angle (an interior
+/// circle), or the turns wound on a drum (a path's end), drawn as one turn a little outside the
+/// rim per extra turn, up to three.
+void drawCableArc(const WrapPoint& p, bool atStart, bool atEnd, const Colour& colour, float width,
+                  const Painter& paint) {
+  const double r = std::abs(p.radius), s = p.radius > 0 ? -1.0 : 1.0;  // s: angle's sense
+  const Vec2 t = atStart ? p.tangentOut : p.tangentIn;
+  const double from = std::atan2(t.y() - p.world.y(), t.x() - p.world.x());
+  // A path's start on a drum: the wound part runs backwards from where the cable leaves.
+  const double sense = atStart ? -s : s;
+  const double arc = std::max(0.0, p.arc);
+  const int loops = std::min(3, static_cast<int>(arc / (2 * M_PI)));
+  for (int loop = 0; loop <= loops; ++loop) {
+    const double span = loop < loops ? 2 * M_PI : arc - 2 * M_PI * loops;
+    const double radius = r + (atStart || atEnd ? paint.px(2.5) * loop : 0.0);
+    const int n = std::max(2, static_cast<int>(48 * span / (2 * M_PI)) + 1);
+    Vec2 previous = p.world + radius * Vec2(std::cos(from), std::sin(from));
+    for (int i = 1; i <= n; ++i) {
+      const double a = from + sense * span * i / n;
+      const Vec2 next = p.world + radius * Vec2(std::cos(a), std::sin(a));
+      paint.line(previous, next, colour, width);
+      previous = next;
+    }
+  }
+}
+
 /// The arrow length per newton of the force arrows: the colour bar's top tension is a tenth
 /// of the view's height.
 double metresPerNewton(const Camera& cam, double scale) {
@@ -327,13 +374,23 @@ void drawCables(const World& world, const RenderOptions& options, double scale,
       for (size_t k = 1; k < path.size(); ++k)
         paint.line(path[k - 1].world, path[k].world, kStretch, 12.0f);
     double phase = 0;
-    const Colour c = options.tensions ? tensionColour(cable.tension() / scale) : kPlain;
+    // Straight pieces run between tangent points; each carries its span's tension.
     for (size_t k = 1; k < path.size(); ++k) {
-      if (cable.slack())
-        paint.dashed(path[k - 1].world, path[k].world, kSlack, width - 1, phase);
+      const Vec2 from = path[k - 1].radius == 0 ? path[k - 1].world : path[k - 1].tangentOut;
+      const Vec2 to = path[k].radius == 0 ? path[k].world : path[k].tangentIn;
+      const double tension = cable.segmentTension(k - 1);
+      if (tension <= 0)
+        paint.dashed(from, to, kSlack, width - 1, phase);
       else
-        paint.line(path[k - 1].world, path[k].world, c, width);
+        paint.line(from, to, options.tensions ? tensionColour(tension / scale) : kPlain, width);
     }
+    for (size_t k = 0; k < path.size(); ++k)
+      if (path[k].radius != 0)
+        drawCableArc(path[k], k == 0, k + 1 == path.size(),
+                     options.tensions
+                         ? tensionColour(cable.segmentTension(k == 0 ? 0 : k - 1) / scale)
+                         : kPlain,
+                     width, paint);
     if (options.wrapPoints)
       for (const WrapPoint& p : path) {
         const Colour dark{0.15f, 0.15f, 0.15f, 1};
@@ -646,11 +703,19 @@ double tensionScaleFor(const World& world, const RenderOptions& options) {
 void drawWorld(const World& world, const Camera& camera, const Overlay& overlay,
                const RenderOptions& options, ImDrawList* text) {
   glClearColor(kBackground[0], kBackground[1], kBackground[2], kBackground[3]);
-  glClear(GL_COLOR_BUFFER_BIT);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
   glDisable(GL_TEXTURE_2D);
-  glDisable(GL_SCISSOR_TEST);
+  const bool clip = options.clipToFree && options.freeWidth > 0 && options.freeHeight > 0;
+  if (clip) {  // GL's window origin is the bottom left
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(static_cast<GLint>(options.freeX),
+              static_cast<GLint>(camera.height - options.freeY - options.freeHeight),
+              static_cast<GLsizei>(options.freeWidth), static_cast<GLsizei>(options.freeHeight));
+  } else {
+    glDisable(GL_SCISSOR_TEST);
+  }
+  glClear(GL_COLOR_BUFFER_BIT);
   glEnable(GL_BLEND);
   glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
   glEnable(GL_LINE_SMOOTH);
@@ -669,9 +734,14 @@ void drawWorld(const World& world, const Camera& camera, const Overlay& overlay,
   drawJoints(world, paint);
   drawCables(world, options, scale, paint);
   drawOverlay(overlay, paint);
-  paint.placeLabels();
+  const bool free = options.freeWidth > 0 && options.freeHeight > 0;
+  paint.placeLabels(
+      free ? LabelBox{options.freeX, options.freeY, options.freeX + options.freeWidth,
+                      options.freeY + options.freeHeight}
+           : LabelBox{0, 0, static_cast<double>(camera.width), static_cast<double>(camera.height)});
   drawScreenSpace(world, overlay, options, scale, camera, text);
   glDisable(GL_LINE_SMOOTH);
+  glDisable(GL_SCISSOR_TEST);
 }
 
 }  // namespace cablelab::ui

@@ -45,6 +45,9 @@ struct RenderOptions {
   /// Screen rectangle (px, top-left origin) free of UI panels, where the legend and scale bar
   /// go; a zero-size rectangle means the whole viewport.
   float freeX = 0, freeY = 0, freeWidth = 0, freeHeight = 0;
+  /// Clear and draw only inside the free rectangle (GL scissor): the sandbox's panels cover the
+  /// rest, and on a software rasteriser every pixel drawn under them is time lost.
+  bool clipToFree = false;
 };
 
 /// A rigid cable longer than its rest length by more than this (m) is drawn as overstretched.
@@ -56,7 +59,8 @@ inline constexpr double kOverstretchElastic = 0.5;
 /// pulled it through a constraint.
 bool overstretched(const Cable& cable);
 
-/// Clears the viewport and draws `world` seen by `camera`, with `overlay` on top.
+/// Clears the viewport (the free rectangle with `clipToFree`) and draws `world` seen by
+/// `camera`, with `overlay` on top.
 void drawWorld(const World& world, const Camera& camera, const Overlay& overlay,
                const RenderOptions& options, ImDrawList* text);
 

@@ -5,6 +5,7 @@
 // (ui/panels.h) and input (ui/input.h) are plain functions over a Sandbox.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "engine/dynamics/world.h"
+#include "ui/cable_spans.h"
 #include "ui/camera.h"
 #include "ui/overlay.h"
 #include "ui/renderer.h"
@@ -170,6 +172,12 @@ class Sandbox {
 
   // What the Scene panel showed last (for the scripted checks).
   std::string shownTitle, shownDescription;
+  /// The selected cable's span table as the Inspector showed it (empty: one span).
+  SpanTable shownSpans;
+
+  /// How far (px) the widest row of the Simulation and the Inspector panel reached past the
+  /// panel's width in the last frame each was open (0: every row fits).
+  std::array<float, 2> panelOverflow{};
 
   // Status.
   double lastFrameSeconds = 0;

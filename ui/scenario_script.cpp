@@ -6,6 +6,7 @@
 
 #include "ui/authoring.h"
 #include "ui/controller_panel.h"
+#include "ui/synthetic_events.h"
 #include "ui/tension_scale.h"
 
 namespace cablelab::ui {
@@ -42,6 +43,28 @@ int rigidCableBody(const World& world, int* cable) {
   return -1;
 }
 
+/// The Inspector's span table as it was shown, with the engine's span tensions of the moment.
+std::string spansJson(const Sandbox& sandbox) {
+  const SpanTable& t = sandbox.shownSpans;
+  std::string out = "{\"spans\": [";
+  for (size_t k = 0; k < t.spans.size(); ++k)
+    out += std::string(k ? ", " : "") + "{\"tension\": " + number(t.spans[k].tension) +
+           ", \"text\": " + jsonQuoted(t.spans[k].text) + "}";
+  out += "], \"wheels\": [";
+  for (size_t k = 0; k < t.wheels.size(); ++k) {
+    const WheelRow& w = t.wheels[k];
+    out += std::string(k ? ", " : "") + "{\"mu\": " + number(w.mu) +
+           ", \"theta\": " + number(w.wrapAngle) + ", \"ratio\": " + number(w.ratio) +
+           ", \"state\": " + jsonQuoted(w.state) + ", \"text\": " + jsonQuoted(w.text) + "}";
+  }
+  out += "], \"engine\": [";
+  const World& world = *sandbox.world();
+  const Cable& c = world.cable(std::clamp(sandbox.selectedCable, 0, world.cableCount() - 1));
+  for (int k = 0; k < c.spanCount(); ++k)
+    out += std::string(k ? ", " : "") + number(c.spanTension(k));
+  return out + "], \"overflow\": " + number(sandbox.panelOverflow[1]) + "}";
+}
+
 /// The world point in the free area's fraction (fx, fy) from its top-left corner, as pixels.
 Vec2 freePoint(const Sandbox& sandbox, double fx, double fy) {
   const PanelRect f = sandbox.freeArea();
@@ -51,8 +74,8 @@ Vec2 freePoint(const Sandbox& sandbox, double fx, double fy) {
 }  // namespace
 
 const std::vector<std::string>& ScenarioScript::names() {
-  static const std::vector<std::string> n = {"describe", "reset-scale", "rigid-drag", "drop-box",
-                                             "author"};
+  static const std::vector<std::string> n = {"describe", "reset-scale", "rigid-drag",
+                                             "drop-box", "author",      "capstan-slip"};
   return n;
 }
 
@@ -60,33 +83,11 @@ ScenarioScript::ScenarioScript(std::string name, Uint32 windowId, std::string ou
     : name_(std::move(name)), out_(std::move(out)), windowId_(windowId) {}
 
 void ScenarioScript::mouse(Uint32 type, const Vec2& screen, Uint8 button) {
-  SDL_Event e{};
-  e.type = type;
-  const int x = static_cast<int>(std::lround(screen.x())),
-            y = static_cast<int>(std::lround(screen.y()));
-  if (type == SDL_MOUSEMOTION) {
-    e.motion.windowID = windowId_;
-    e.motion.x = x, e.motion.y = y;
-  } else {
-    e.button.windowID = windowId_;
-    e.button.button = button;
-    e.button.state = type == SDL_MOUSEBUTTONDOWN ? SDL_PRESSED : SDL_RELEASED;
-    e.button.clicks = 1;
-    e.button.x = x, e.button.y = y;
-  }
-  SDL_PushEvent(&e);
+  pushMouseEvent(windowId_, type, screen, button);
 }
 
 void ScenarioScript::key(SDL_Keycode k) {
-  for (Uint32 type : {SDL_KEYDOWN, SDL_KEYUP}) {
-    SDL_Event e{};
-    e.type = type;
-    e.key.windowID = windowId_;
-    e.key.state = type == SDL_KEYDOWN ? SDL_PRESSED : SDL_RELEASED;
-    e.key.keysym.sym = k;
-    e.key.keysym.scancode = SDL_GetScancodeFromKey(k);
-    SDL_PushEvent(&e);
-  }
+  pushKeyPress(windowId_, k);
 }
 
 bool ScenarioScript::beforeFrame(Sandbox& sandbox, int frame) {
@@ -99,6 +100,7 @@ bool ScenarioScript::beforeFrame(Sandbox& sandbox, int frame) {
   if (name_ == "rigid-drag") return rigidDrag(sandbox, frame);
   if (name_ == "drop-box") return dropBox(sandbox, frame);
   if (name_ == "author") return author(sandbox, frame);
+  if (name_ == "capstan-slip") return capstanSlip(sandbox, frame);
   report_ = "{\"scenario\": " + jsonQuoted(name_) + ", \"failure\": \"unknown scenario\"}";
   return false;
 }
@@ -208,6 +210,25 @@ bool ScenarioScript::dropBox(Sandbox& sandbox, int frame) {
     report_ += ", \"state_after\": " + jsonQuoted(handGraspState(sandbox)) + ", \"box\": [" +
                number(world.body(box).position.x()) + ", " + number(world.body(box).position.y()) +
                "]}";
+    return false;
+  }
+  return true;
+}
+
+bool ScenarioScript::capstanSlip(Sandbox& sandbox, int frame) {
+  if (sandbox.world()->cableCount() == 0) {
+    report_ = "{\"scenario\": \"capstan-slip\", \"failure\": \"no cable\"}";
+    return false;
+  }
+  if (frame == 60) {  // 1 s with the scene's own masses: the rope holds
+    report_ = "{\"scenario\": \"capstan-slip\", \"holding\": " + spansJson(sandbox);
+    // The Scene panel's slider, as a user sets it: a load past e^(mu theta) m_hold.
+    auto parameters = sandbox.parameters;
+    std::erase_if(parameters, [](const auto& p) { return p.first == "m_load"; });
+    parameters.emplace_back("m_load", 6.0);
+    sandbox.rebuild(parameters);
+  } else if (frame == 120) {  // 1 s later: slipping (the hold reaches its pulley after 1.2 s)
+    report_ += ", \"slipping\": " + spansJson(sandbox) + "}";
     return false;
   }
   return true;

@@ -9,6 +9,10 @@
 //                reports the largest stretch (length - rest length) of any taut rigid cable
 //   drop-box     the hand: drags the box out of the membranes and lets go; reports the grasp
 //                state the controller panel shows
+//   capstan-slip the capstan: 1 s with its own masses (holds), then m_load = 6 as the Scene
+//                panel's slider sets it (slips for 1 s); reports the Inspector's span table both
+//                times with the engine's span tensions of the moment and the Inspector's row
+//                overflow
 //   author       builds a scene by clicks (a box, a pulley, a cable anchor -> pulley -> box),
 //                saves it to --script-out; reports the counts and the file
 //
@@ -46,6 +50,7 @@ class ScenarioScript {
   bool rigidDrag(Sandbox& sandbox, int frame);
   bool dropBox(Sandbox& sandbox, int frame);
   bool author(Sandbox& sandbox, int frame);
+  bool capstanSlip(Sandbox& sandbox, int frame);
 
   std::string name_, out_, report_ = "{}";
   Uint32 windowId_;

@@ -79,7 +79,9 @@ void scenePanel(Sandbox& sandbox) {
 }
 
 void runPanel(Sandbox& sandbox) {
-  const float w = ImGui::GetFontSize() * 4.5f;
+  const float w =
+      std::min(ImGui::GetFontSize() * 4.5f,
+               (ImGui::GetContentRegionAvail().x - 2 * ImGui::GetStyle().ItemSpacing.x) / 3);
   if (ImGui::Button(sandbox.paused ? "Play" : "Pause", ImVec2(w, 0)))
     sandbox.paused = !sandbox.paused;
   tooltip("Run or pause the simulation (space).");
@@ -94,35 +96,39 @@ void runPanel(Sandbox& sandbox) {
   tooltip("Rebuild the scene from its start (r); the tension scale goes back to the scene's.");
   // Speed: a slider over the steps, plus the step buttons.
   float speed = static_cast<float>(sandbox.speed);
-  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+  const float spacing = ImGui::GetStyle().ItemSpacing.x;
+  const float buttons = buttonWidth("-") + buttonWidth("+") + buttonWidth("1x") + 3 * spacing;
+  ImGui::SetNextItemWidth(
+      std::max(fieldWidth("speed", ImGui::GetFontSize() * 8) - buttons, 3 * ImGui::GetFontSize()));
   if (ImGui::SliderFloat("speed", &speed, 0.1f, 4.0f, "%.2fx", ImGuiSliderFlags_Logarithmic))
     sandbox.speed = std::clamp(static_cast<double>(speed), 0.1, 4.0);
   tooltip("Simulated seconds per wall second: 0.1x is slow motion, 4x fast forward ([ and ]).");
-  ImGui::SameLine();
+  sameLineIfRoom(buttonWidth("-"));
   if (ImGui::SmallButton("-")) sandbox.speed = stepSpeed(sandbox.speed, -1);
   tooltip("Slower ([).");
-  ImGui::SameLine();
+  sameLineIfRoom(buttonWidth("+"));
   if (ImGui::SmallButton("+")) sandbox.speed = stepSpeed(sandbox.speed, +1);
   tooltip("Faster (]).");
-  ImGui::SameLine();
+  sameLineIfRoom(buttonWidth("1x"));
   if (ImGui::SmallButton("1x")) sandbox.speed = 1;
   tooltip("Real time.");
 
   if (ImGui::Button("Screenshot")) sandbox.screenshotRequested = true;
   tooltip("Save the window as a PNG in the working directory (F12).");
-  ImGui::SameLine();
   const bool recording = sandbox.recording;
   if (recording) ImGui::PushStyleColor(ImGuiCol_Button, IM_COL32(220, 70, 60, 255));
   char label[64];
   std::snprintf(label, sizeof label, recording ? "Stop (%d frames)###rec" : "Record GIF###rec",
                 sandbox.recordedFrames);
+  sameLineIfRoom(buttonWidth(label));
   if (ImGui::Button(label)) sandbox.recordToggleRequested = true;
   if (recording) ImGui::PopStyleColor();
   tooltip(
       "Record the world view as an animated GIF (F9), one frame per 1/fps s of simulated "
       "time: it plays at the simulation's own speed. Saved in the working directory.");
-  ImGui::SameLine();
   float fps = static_cast<float>(sandbox.recordFps);
+  sameLineIfRoom(ImGui::GetFontSize() * 3.5f + ImGui::GetStyle().ItemInnerSpacing.x +
+                 ImGui::CalcTextSize("fps").x);
   ImGui::SetNextItemWidth(ImGui::GetFontSize() * 3.5f);
   if (recording) ImGui::BeginDisabled();
   if (ImGui::DragFloat("fps", &fps, 0.5f, 5, 50, "%.0f"))
@@ -133,21 +139,21 @@ void runPanel(Sandbox& sandbox) {
 
 void integrationPanel(Sandbox& sandbox) {
   double dtMs = sandbox.dt * 1000;
-  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+  ImGui::SetNextItemWidth(fieldWidth("dt (ms)", ImGui::GetFontSize() * 8));
   if (ImGui::InputDouble("dt (ms)", &dtMs, 1, 5, "%.3f") && dtMs > 0.01 && dtMs <= 100)
     sandbox.dt = dtMs / 1000;
   tooltip("Time step of one World::step (takes effect at once; Reset keeps it).");
-  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+  ImGui::SetNextItemWidth(fieldWidth("substeps", ImGui::GetFontSize() * 8));
   if (ImGui::SliderInt("substeps", &sandbox.substeps, 1, 64))
     sandbox.substeps = std::max(1, sandbox.substeps);
   tooltip("Box2D sub-steps per time step: more is stiffer and slower.");
   float g[2] = {static_cast<float>(sandbox.gravity.x()), static_cast<float>(sandbox.gravity.y())};
-  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+  ImGui::SetNextItemWidth(fieldWidth("gravity", ImGui::GetFontSize() * 8));
   if (ImGui::DragFloat2("gravity", g, 0.05f, -50, 50, "%.2f")) sandbox.gravity = Vec2(g[0], g[1]);
   tooltip("Gravity (m/s^2), x and y.");
   if (ImGui::Button("g = 0")) sandbox.gravity = Vec2::Zero();
   tooltip("Switch gravity off.");
-  ImGui::SameLine();
+  sameLineIfRoom(buttonWidth("g = -9.81"));
   if (ImGui::Button("g = -9.81")) sandbox.gravity = Vec2(0, -9.81);
   tooltip("Earth gravity, downwards.");
 }
@@ -172,9 +178,14 @@ void drawToggles(Sandbox& sandbox) {
       {"overstretch", &d.overstretch,
        "Mark cables longer than they should be (rigid: > 1 cm over rest)."},
   };
+  // Two columns when the widest toggle fits in half the panel, else one.
+  float widest = 0;
+  for (const Toggle& t : toggles) widest = std::max(widest, checkboxWidth(t.label));
+  const float half = 0.5f * ImGui::GetContentRegionAvail().x;
+  const bool twoColumns = widest + ImGui::GetStyle().ItemSpacing.x <= half;
   int k = 0;
   for (const Toggle& t : toggles) {
-    if (k++ % 2) ImGui::SameLine(ImGui::GetContentRegionAvail().x * 0.5f + ImGui::GetCursorPosX());
+    if (k++ % 2 && twoColumns) ImGui::SameLine(half + ImGui::GetCursorPosX());
     ImGui::Checkbox(t.label, t.value);
     tooltip(t.tip);
   }
@@ -184,13 +195,13 @@ void drawToggles(Sandbox& sandbox) {
 
 void viewPanel(Sandbox& sandbox) {
   float zoom = static_cast<float>(1.0 / sandbox.camera.metresPerPixel);
-  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+  ImGui::SetNextItemWidth(fieldWidth("px per m", ImGui::GetFontSize() * 8));
   if (ImGui::DragFloat("px per m", &zoom, 1.0f, 1.0f, 100000.0f, "%.0f") && zoom > 0)
     sandbox.camera.metresPerPixel = 1.0 / zoom;
   tooltip("Zoom: screen pixels per metre (the wheel zooms about the cursor).");
   if (ImGui::Button("Fit scene view")) sandbox.fitView();
   tooltip("Back to the scene's own view, grown to show every body and cable.");
-  ImGui::SameLine();
+  sameLineIfRoom(checkboxWidth("follow"));
   if (sandbox.selectedBody < 0) ImGui::BeginDisabled();
   ImGui::Checkbox("follow", &sandbox.follow);
   if (sandbox.selectedBody < 0) ImGui::EndDisabled();
@@ -203,22 +214,22 @@ void viewPanel(Sandbox& sandbox) {
       "the same tension. Unlocked: it grows with the largest tension seen. Reset restores "
       "the scene's range.");
   float top = static_cast<float>(sandbox.tensionScale);
-  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+  ImGui::SetNextItemWidth(fieldWidth("scale max (N)", ImGui::GetFontSize() * 8));
   if (ImGui::DragFloat("scale max (N)", &top, std::max(top * 0.01f, 0.01f), 0.01f, 1e7f, "%.4g"))
     sandbox.tensionScale = std::max(static_cast<double>(top), 1e-3);
   tooltip("Tension at the red end of the colour bar.");
 
-  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+  ImGui::SetNextItemWidth(fieldWidth("drag limit", ImGui::GetFontSize() * 8));
   float drag = static_cast<float>(sandbox.dragWeights);
   if (ImGui::SliderFloat("drag limit", &drag, 0.5f, 20.0f, "%.1f weights"))
     sandbox.dragWeights = drag;
   tooltip(
       "The mouse pulls with at most this many times the body's weight (at least 9.81 "
       "m/s^2), so a cable can hold against it.");
-  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+  ImGui::SetNextItemWidth(fieldWidth("UI scale", ImGui::GetFontSize() * 8));
   ImGui::SliderFloat("UI scale", &sandbox.uiScale, 0.75f, 3.0f, "%.2f");
   tooltip("Size of the text and the panels.");
-  ImGui::SameLine();
+  sameLineIfRoom(checkboxWidth("projector"));
   if (ImGui::Checkbox("projector", &sandbox.projector)) sandbox.uiScale = sandbox.projector ? 2 : 1;
   tooltip("Projector mode: large fonts and thick lines for a lecture hall.");
 }

@@ -1,6 +1,8 @@
 // Small ImGui helpers shared by the panels (declared in ui/panels.h and ui/panel_sections.h).
 #include <imgui.h>
 
+#include <algorithm>
+
 #include "ui/panel_sections.h"
 #include "ui/panels.h"
 
@@ -20,6 +22,28 @@ void tooltip(const char* text) {
     ImGui::PopTextWrapPos();
     ImGui::EndTooltip();
   }
+}
+
+float fieldWidth(const char* label, float preferred) {
+  const float room = ImGui::GetContentRegionAvail().x -
+                     ImGui::CalcTextSize(label, nullptr, true).x -
+                     ImGui::GetStyle().ItemInnerSpacing.x;
+  return std::max(std::min(preferred, room), 3 * ImGui::GetFontSize());
+}
+
+float buttonWidth(const char* label) {
+  return ImGui::CalcTextSize(label, nullptr, true).x + 2 * ImGui::GetStyle().FramePadding.x;
+}
+
+float checkboxWidth(const char* label) {
+  return ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x +
+         ImGui::CalcTextSize(label, nullptr, true).x;
+}
+
+void sameLineIfRoom(float width) {
+  const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
+  if (ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x + width <= right)
+    ImGui::SameLine();
 }
 
 }  // namespace cablelab::ui

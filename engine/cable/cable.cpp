@@ -5,8 +5,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "engine/core/error.h"
+#include "engine/cable/circle_wrap.h"
 #include "engine/cable/wrap.h"
+#include "engine/core/error.h"
 
 namespace cablelab {
 
@@ -16,6 +17,21 @@ std::string cableField(int index, const std::string& rest) {
   return "cables[" + std::to_string(index) + "]" + rest;
 }
 
+WrapPoint terminal(int body, const AnchorDef& a) {
+  WrapPoint p{a.radius > 0 ? WrapPoint::Kind::Circle : WrapPoint::Kind::Anchor, body, a.point};
+  p.radius = a.side == WrapSide::Right ? -a.radius : a.radius;
+  p.arc = 2 * M_PI * a.turns;
+  return p;
+}
+
+// Where the cable leaves (or reaches) a path point: the tangent point of a circle.
+Vec2 leaving(const WrapPoint& p) {
+  return p.radius == 0 ? p.world : p.tangentOut;
+}
+Vec2 arriving(const WrapPoint& p) {
+  return p.radius == 0 ? p.world : p.tangentIn;
+}
+
 }  // namespace
 
 Cable::Cable(const SceneDef& scene, int index, const std::string& source)
@@ -23,18 +39,26 @@ Cable::Cable(const SceneDef& scene, int index, const std::string& source)
       params_{def_->restLength, def_->stiffness, def_->preload, def_->damping} {
   auto resolve = [&](const std::string& name, const std::string& field) {
     const int b = findBodyIndex(scene, name);
-    if (b == -2) throw InputError(source, cableField(index, field), "unknown body" + gotValue(name));
+    if (b == -2)
+      throw InputError(source, cableField(index, field), "unknown body" + gotValue(name));
     return b;
   };
   startBody_ = resolve(def_->start.body, ".start.body");
   endBody_ = resolve(def_->end.body, ".end.body");
+  start_ = terminal(startBody_, def_->start);
+  end_ = terminal(endBody_, def_->end);
+  startDrum_ = {def_->start.point, def_->start.radius};
+  endDrum_ = {def_->end.point, def_->end.radius};
   for (size_t j = 0; j < def_->pulleys.size(); ++j) {
     const PulleyDef& pd = def_->pulleys[j];
     const std::string field = ".pulleys[" + std::to_string(j) + "]";
     PulleyState ps;
     ps.body = resolve(pd.body, field + ".body");
     ps.side = pd.side;
+    ps.autoSide = pd.side == WrapSide::Auto;
+    if (ps.autoSide) ps.side = WrapSide::Left;
     ps.polygon = pd.kind == PulleyDef::Kind::Polygon;
+    ps.circle = pd.kind == PulleyDef::Kind::Circle;
     if (ps.polygon) {
       ps.local = pd.vertices;
       if (ps.local.empty() && ps.body >= 0)
@@ -48,18 +72,64 @@ Cable::Cable(const SceneDef& scene, int index, const std::string& source)
                          "polygon pulley needs a convex counter-clockwise polygon");
       if (ps.side == WrapSide::Threaded)
         throw InputError(source, cableField(index, field + ".side"),
-                         "a polygon pulley cannot be threaded (use left or right)");
+                         "a polygon pulley cannot be threaded (use left, right or auto)");
     } else {
       ps.local = {pd.point};
     }
+    if (ps.circle) {
+      ps.radius = pd.radius;
+      ps.grips = gripsCable(pd);
+      ps.turns = pd.turns;
+    }
     ps.world = ps.local;
-    ps.engaged = ps.side == WrapSide::Threaded;
+    // A circle the scene winds the cable round (turns > 0) is in the path from the start.
+    ps.engaged = ps.side == WrapSide::Threaded || (ps.circle && ps.turns > 0);
+    ps.arc = ps.initialArc();
     pulleys_.push_back(std::move(ps));
   }
 }
 
+void Cable::setParameters(const CableParameters& parameters) {
+  // Spans share a change of the rest length equally.
+  for (Span& s : spans_) s.rest += (parameters.restLength - params_.restLength) / spans_.size();
+  params_ = parameters;
+}
+
 double Cable::stretch() const {
   return kin_.length - params_.restLength + (elastic() ? params_.preload : 0.0);
+}
+
+void Cable::setTension(double t) {
+  tension_ = t;
+  for (Span& s : spans_) s.tension = t;
+}
+
+std::span<const WrapPoint> Cable::spanPath(int k) const {
+  return spans_.empty() ? std::span<const WrapPoint>(path_) : spans_[k].path;
+}
+
+const CableKinematics& Cable::spanKinematics(int k) const {
+  return spans_.empty() ? kin_ : spans_[k].kin;
+}
+
+double Cable::spanStretch(int k) const {
+  return spans_.empty() ? stretch() : spans_[k].kin.length - spans_[k].rest;
+}
+
+void Cable::setSpanTension(int k, double t) {
+  if (spans_.empty()) {
+    tension_ = t;
+    return;
+  }
+  spans_[k].tension = t;
+  tension_ = 0;
+  for (const Span& s : spans_) tension_ = std::max(tension_, s.tension);
+}
+
+double Cable::segmentTension(size_t i) const {
+  for (const Span& s : spans_)
+    if (i < s.last) return s.tension;
+  return tension_;
 }
 
 void Cable::placePulleys(std::span<const BodyState> bodies) {
@@ -75,10 +145,11 @@ void Cable::placePulleys(std::span<const BodyState> bodies) {
   }
 }
 
-// Node n of the chain: 0 = start anchor, 1..P = pulley n-1, P+1 = end anchor.
+// Node n of the chain: 0 = start anchor, 1..P = pulley n-1, P+1 = end anchor. A circle's
+// contact points are those of the last update (the polygon chain only needs them roughly).
 Vec2 Cable::entryPoint(int node, const std::vector<std::vector<int>>& chains) const {
-  if (node == 0) return path_.front().world;
-  if (node == static_cast<int>(pulleys_.size()) + 1) return path_.back().world;
+  if (node == 0) return leaving(path_.front());
+  if (node == static_cast<int>(pulleys_.size()) + 1) return arriving(path_.back());
   const PulleyState& p = pulleys_[node - 1];
   const auto& c = chains[node - 1];
   if (!p.polygon) return p.world[0];
@@ -124,6 +195,7 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
       if (!wrapChain(a, b, p.world, p.side, chains[nodes[n] - 1])) {
         p.engaged = false;
         p.dropped = true;
+        p.dropped = true;
         if (warnings)
           warnings->push_back("cable '" + def_->name + "': pulley " + std::to_string(nodes[n] - 1) +
                               " left the path: a neighbouring point lies inside its hull");
@@ -131,35 +203,221 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
       }
     }
 
-  WrapPoint start{WrapPoint::Kind::Anchor, startBody_, def_->start.point,
-                  path_.front().world,     -1,         -1};
-  WrapPoint end{WrapPoint::Kind::Anchor, endBody_, def_->end.point, path_.back().world, -1, -1};
+  // Keep the terminals' last contact points (circle tangents) for the next build.
+  if (!path_.empty()) {
+    start_.tangentOut = path_.front().tangentOut;
+    end_.tangentIn = path_.back().tangentIn;
+  }
   path_.clear();
-  path_.push_back(start);
+  path_.push_back(start_);
   for (size_t n = 1; n + 1 < nodes.size(); ++n) {
     const int j = nodes[n] - 1;
     const PulleyState& p = pulleys_[j];
-    if (!p.polygon) {
+    if (p.circle) {
+      WrapPoint w{WrapPoint::Kind::Circle, p.body, p.local[0], p.world[0], j, -1};
+      w.radius = p.signedRadius();
+      w.arc = p.arc;
+      path_.push_back(w);
+    } else if (!p.polygon) {
       path_.push_back({WrapPoint::Kind::Point, p.body, p.local[0], p.world[0], j, -1});
+    } else {
+      for (int v : chains[j])
+        path_.push_back({WrapPoint::Kind::Vertex, p.body, p.local[v], p.world[v], j, v});
+    }
+  }
+  path_.push_back(end_);
+  return true;
+}
+
+// Leave: the path no longer bends around the pulley. Returns true if one left.
+bool Cable::leaveRound() {
+  for (size_t i = 1; i + 1 < path_.size(); ++i) {
+    const int j = path_[i].pulley;
+    PulleyState& p = pulleys_[j];
+    if (p.side == WrapSide::Threaded || p.polygon) continue;
+    const bool gone = p.circle ? path_[i].arc < 0
+                               : wrapSideDistance(leaving(path_[i - 1]), arriving(path_[i + 1]),
+                                                  p.world[0], p.side) < 0;
+    if (gone) {
+      p.engaged = false;
+      p.previousDepth = -1e-300;
+      p.arc = 0;
+      return true;
+    }
+  }
+  // Polygons with an empty chain have left already in the path (no vertex emitted).
+  for (size_t j = 0; j < pulleys_.size(); ++j) {
+    PulleyState& p = pulleys_[j];
+    if (!p.engaged || !p.polygon) continue;
+    const bool inPath = std::any_of(path_.begin(), path_.end(), [j](const WrapPoint& w) {
+      return w.pulley == static_cast<int>(j);
+    });
+    if (!inPath) {
+      p.engaged = false;
+      p.previousDepth = 0;
+      return true;
+    }
+  }
+  return false;
+}
+
+// Join: a disengaged pulley that crossed its host segment from the non-wrap side (an auto
+// pulley: from either side, and it wraps on the side it came from). Returns true if one joined.
+bool Cable::joinRound(std::vector<std::string>* warnings) {
+  size_t host = 0;  // path index of the last point before pulley j
+  for (size_t j = 0; j < pulleys_.size(); ++j) {
+    PulleyState& p = pulleys_[j];
+    if (p.engaged) {
+      while (host + 1 < path_.size() - 1 && path_[host + 1].pulley == static_cast<int>(j)) ++host;
       continue;
     }
-    for (int v : chains[j])
-      path_.push_back({WrapPoint::Kind::Vertex, p.body, p.local[v], p.world[v], j, v});
+    const Vec2 a = leaving(path_[host]);
+    const Vec2 b = arriving(path_[host + 1]);
+    const Vec2 ab = b - a;
+    const double len = ab.norm();
+    // Auto: the centre's side of the segment decides, and a change of side is a crossing.
+    if (p.autoSide) {
+      Vec2 centre = Vec2::Zero();
+      for (const Vec2& v : p.world) centre += v;
+      centre /= static_cast<double>(p.world.size());
+      const double left = len > 0 ? cross(ab, centre - a) / len : 0.0;
+      const double t = len > 0 ? (centre - a).dot(ab) / (len * len) : -1;
+      const double was = firstUpdate_ ? left : p.previousLeft;
+      p.previousLeft = left;
+      p.side = was <= 0 ? WrapSide::Left : WrapSide::Right;
+      const bool within = t > 0 && t < 1;
+      const bool touches =
+          p.polygon ? segmentCutsPolygon(a, b, p.world) : within && std::abs(left) < p.radius;
+      const bool crossed = within && !firstUpdate_ && (left > 0) != (was > 0);
+      if (touches || crossed) {
+        p.engaged = true;
+        p.arc = 0;
+        return true;
+      }
+      continue;
+    }
+    double depth = -1e300;
+    for (const Vec2& v : p.world) depth = std::max(depth, wrapSideDistance(a, b, v, p.side));
+    depth += p.radius;
+    bool cuts;
+    if (p.polygon) {
+      cuts = segmentCutsPolygon(a, b, p.world);
+    } else {
+      const double t = len > 0 ? (p.world[0] - a).dot(ab) / (len * len) : -1;
+      cuts = t > 0 && t < 1 && (firstUpdate_ ? depth >= 0 : depth > 0);
+    }
+    bool crossed = firstUpdate_ || p.previousDepth <= 0;
+    p.previousDepth = depth;
+    // A polygon a guard dropped rejoins once a taut path round it exists again.
+    if (p.dropped && cuts && !crossed) {
+      // Only where the drop is undone, not round the far side of a polygon that went through.
+      crossed =
+          wrapChain(a, b, p.world, p.side, rejoinChain_) &&
+          chainLength(a, b, p.world, rejoinChain_) - (b - a).norm() <= p.dropCut + kLengthJump;
+      if (crossed && warnings)
+        warnings->push_back("cable '" + def_->name + "': pulley " + std::to_string(j) +
+                            " rejoined the path (a guard had dropped it)");
+    }
+    if (!cuts && depth <= 0) p.dropped = false;
+    if (cuts && crossed) {
+      p.engaged = true;
+      p.dropped = false;
+      // A circle joins at zero wrap; at the start its wrap is the one it was wound with.
+      p.arc = firstUpdate_ ? p.initialArc() : 0.0;
+      return true;
+    }
   }
-  path_.push_back(end);
+  return false;
+}
+
+void Cable::storeArcs() {
+  for (const WrapPoint& w : path_)
+    if (w.kind == WrapPoint::Kind::Circle && w.pulley >= 0) pulleys_[w.pulley].arc = w.arc;
+  start_.arc = path_.front().arc;
+  end_.arc = path_.back().arc;
+}
+
+// A drum's end is fixed `turns` turns back from where the cable first touches it.
+void Cable::placeDrumMarks(std::span<const BodyState> bodies) {
+  for (WrapPoint* w : {&path_.front(), &path_.back()}) {
+    if (w->radius == 0) continue;
+    const bool atStart = w == &path_.front();
+    w->arc = 2 * M_PI * (atStart ? def_->start.turns : def_->end.turns);
+    const Vec2 t = atStart ? w->tangentOut : w->tangentIn;
+    const double beta = std::atan2(t.y() - w->world.y(), t.x() - w->world.x());
+    const double s = w->radius > 0 ? 1.0 : -1.0;
+    const double angle = w->body >= 0 ? bodies[w->body].angle : 0.0;
+    // End: arc = s (beta - mark); start: arc = s (mark - beta) (circle_wrap.h).
+    w->mark = (atStart ? beta + s * w->arc : beta - s * w->arc) - angle;
+    (atStart ? start_ : end_).mark = w->mark;
+  }
+}
+
+// Wound -> a point at the mark when the arc turns negative (the cable is all paid out); point ->
+// wound again when the segment into the mark starts to cut the drum, on the side it meets it.
+// Both changes happen where the length and its gradient are continuous (arc 0, tangent at mark).
+bool Cable::updateDrumEnd(WrapPoint& end, bool atStart, std::span<const BodyState> bodies) {
+  const Drum& drum = atStart ? startDrum_ : endDrum_;
+  if (drum.radius == 0) return false;
+  const WrapPoint& here = atStart ? path_.front() : path_.back();
+  const WrapPoint& next = atStart ? path_[1] : path_[path_.size() - 2];
+  if (end.kind == WrapPoint::Kind::Circle) {
+    if (here.arc >= 0) return false;
+    end.kind = WrapPoint::Kind::Anchor;
+    end.radius = 0;
+    end.arc = 0;
+    end.local = drum.centre + drum.radius * Vec2(std::cos(end.mark), std::sin(end.mark));
+    return true;
+  }
+  const Vec2 mark = worldPoint(bodies, end.body, end.local);
+  const Vec2 centre = worldPoint(bodies, end.body, drum.centre);
+  const Vec2 other = atStart ? arriving(next) : leaving(next);
+  const Vec2 u = atStart ? Vec2(other - mark) : Vec2(mark - other);  // walking the cable
+  const Vec2 outward = mark - centre;
+  // The cable runs into the disc just before (end) or after (start) the mark.
+  const bool cuts = atStart ? u.dot(outward) < 0 : u.dot(outward) > 0;
+  if (!cuts) return false;
+  end.kind = WrapPoint::Kind::Circle;
+  end.local = drum.centre;
+  end.radius = cross(u, centre - mark) < 0 ? drum.radius : -drum.radius;
+  end.arc = 0;
   return true;
+}
+
+void Cable::refresh(std::span<const BodyState> bodies) {
+  cableKinematics(path_, bodies, kin_);
+  for (Span& s : spans_) cableKinematics(s.path, bodies, s.kin);
+}
+
+// The length the path before this update has on `bodies`.
+double Cable::previousLength(std::span<const BodyState> bodies) {
+  cableKinematics(previousPath_, bodies, previousKin_);
+  return previousKin_.length;
 }
 
 // Every wrap change is meant to happen on the old path (docs/cables.md); one that was not (a
 // guard acting, a crossing found late) and moved the length by more than kLengthJump says so.
-void Cable::reportLengthJump(double before, std::vector<std::string>* warnings) const {
-  if (firstUpdate_ || !warnings || std::abs(kin_.length - before) <= kLengthJump) return;
-  bool same = signature_.size() == path_.size();
+void Cable::reportLengthJump(std::span<const BodyState> bodies,
+                             std::vector<std::string>* warnings) {
+  if (firstUpdate_ || !warnings) return;
+  bool same = previousPath_.size() == path_.size();
   for (size_t i = 0; same && i < path_.size(); ++i)
-    same = signature_[i].first == path_[i].pulley && signature_[i].second == path_[i].vertex;
+    same = previousPath_[i].pulley == path_[i].pulley && previousPath_[i].vertex == path_[i].vertex;
   if (same) return;
+  const double before = previousLength(bodies);
+  if (std::abs(kin_.length - before) <= kLengthJump) return;
   char jump[64];
   std::snprintf(jump, sizeof jump, "%.6g m", kin_.length - before);
+  // A polygon whose chain emptied with a jump was hooked: the cable bent round it further than a
+  // hull chain between its neighbours can hold (it swung round beyond an end anchor).
+  for (size_t j = 0; j < pulleys_.size(); ++j)
+    if (pulleys_[j].polygon && engagedBefore_[j] && !pulleys_[j].engaged && !pulleys_[j].dropped) {
+      warnings->push_back("cable '" + def_->name + "': pulley " + std::to_string(j) +
+                          " released while the cable still hooks round it (it turned beyond " +
+                          "what a taut path between its neighbours can wrap, e.g. past an end " +
+                          "anchor): the length moved by " + jump);
+      return;
+    }
   warnings->push_back("cable '" + def_->name + "': a wrap change moved the length by " + jump +
                       " (not on the old path: a guard acted or a crossing was found late)");
 }
@@ -167,98 +425,57 @@ void Cable::reportLengthJump(double before, std::vector<std::string>* warnings) 
 void Cable::update(std::span<const BodyState> select, std::span<const BodyState> bodies,
                    std::vector<std::string>* warnings) {
   placePulleys(select);
-  if (path_.empty()) path_.resize(2);
-  path_.front().world = worldPoint(select, startBody_, def_->start.point);
-  path_.back().world = worldPoint(select, endBody_, def_->end.point);
-
-  // The path before re-selection, for the length-jump check below.
-  double before = 0;
-  signature_.clear();
-  for (size_t i = 0; i < path_.size(); ++i) {
-    signature_.push_back({path_[i].pulley, path_[i].vertex});
-    if (i > 0)
-      before += (worldPoint(bodies, path_[i].body, path_[i].local) -
-                 worldPoint(bodies, path_[i - 1].body, path_[i - 1].local))
-                    .norm();
-  }
-
-  // Settle the engaged set: leaves first, then joins, until nothing changes.
+  if (path_.empty()) path_ = {start_, end_};
+  previousPath_ = path_;
+  // The terminals where they are now (a polygon's chain is built against them).
+  start_.world = path_.front().world = worldPoint(select, start_.body, start_.local);
+  end_.world = path_.back().world = worldPoint(select, end_.body, end_.local);
+  if (start_.radius == 0) path_.front().tangentOut = start_.tangentOut = start_.world;
+  if (end_.radius == 0) path_.back().tangentIn = end_.tangentIn = end_.world;
+  // Settle the engaged set on `select`: leaves first, then joins, until nothing changes.
+  // Circles need the path's tangent points and arcs to decide; points and polygons do not.
+  const bool curved =
+      start_.radius != 0 || end_.radius != 0 ||
+      std::any_of(pulleys_.begin(), pulleys_.end(), [](const PulleyState& p) { return p.circle; });
   const int count = static_cast<int>(pulleys_.size());
+  droppedBefore_.resize(count);
+  engagedBefore_.resize(count);
+  for (int j = 0; j < count; ++j) {
+    droppedBefore_[j] = pulleys_[j].dropped;
+    engagedBefore_[j] = pulleys_[j].engaged;
+  }
   for (int round = 0; round < 2 * count + 2; ++round) {
     if (!buildPath(warnings)) continue;
-    bool changed = false;
-    // Leave: the path no longer bends around the pulley.
-    for (size_t i = 1; i + 1 < path_.size() && !changed; ++i) {
-      const int j = path_[i].pulley;
-      PulleyState& p = pulleys_[j];
-      if (p.side == WrapSide::Threaded || p.polygon) continue;
-      const double depth =
-          wrapSideDistance(path_[i - 1].world, path_[i + 1].world, p.world[0], p.side);
-      if (depth < 0) {
-        p.engaged = false;
-        p.previousDepth = depth;
-        changed = true;
+    if (curved) {
+      cableKinematics(path_, select, kin_);
+      if (firstUpdate_) {
+        placeDrumMarks(select);
+        cableKinematics(path_, select, kin_);
       }
+      storeArcs();
     }
-    // Polygons with an empty chain have left already in the path (no vertex emitted).
-    for (int j = 0; j < count && !changed; ++j) {
-      PulleyState& p = pulleys_[j];
-      if (!p.engaged || !p.polygon) continue;
-      const bool inPath = std::any_of(path_.begin(), path_.end(),
-                                      [j](const WrapPoint& w) { return w.pulley == j; });
-      if (!inPath) {
-        p.engaged = false;
-        p.previousDepth = 0;
-        changed = true;
-      }
-    }
-    if (changed) continue;
-    // Join: a disengaged pulley that crossed its host segment from the non-wrap side.
-    size_t host = 0;  // path index of the last point before pulley j
-    for (int j = 0; j < count && !changed; ++j) {
-      PulleyState& p = pulleys_[j];
-      if (p.engaged) {
-        while (host + 1 < path_.size() - 1 && path_[host + 1].pulley == j) ++host;
-        continue;
-      }
-      const Vec2 a = path_[host].world;
-      const Vec2 b = path_[host + 1].world;
-      double depth = -1e300;
-      for (const Vec2& v : p.world) depth = std::max(depth, wrapSideDistance(a, b, v, p.side));
-      bool cuts;
-      if (p.polygon) {
-        cuts = segmentCutsPolygon(a, b, p.world);
-      } else {
-        const Vec2 ab = b - a;
-        const double t = ab.squaredNorm() > 0 ? (p.world[0] - a).dot(ab) / ab.squaredNorm() : -1;
-        cuts = t > 0 && t < 1 && (firstUpdate_ ? depth >= 0 : depth > 0);
-      }
-      bool crossed = firstUpdate_ || p.previousDepth <= 0;
-      p.previousDepth = depth;
-      // A polygon a guard dropped rejoins once a taut path round it exists again.
-      if (p.dropped && cuts && !crossed) {
-        crossed = wrapChain(a, b, p.world, p.side, rejoinChain_);
-        if (crossed && warnings)
-          warnings->push_back("cable '" + def_->name + "': pulley " + std::to_string(j) +
-                              " rejoined the path (a guard had dropped it)");
-      }
-      if (!cuts && depth <= 0) p.dropped = false;
-      if (cuts && crossed) {
-        p.engaged = true;
-        p.dropped = false;
-        changed = true;
-      }
-    }
-    if (!changed) break;
+    if (leaveRound()) continue;
+    if (!joinRound(warnings)) break;
   }
-
-  cableKinematics(path_, bodies, kin_);
-  reportLengthJump(before, warnings);
+  // Drum ends that ran out of cable, or that the cable wraps again.
+  const bool drumChanged = updateDrumEnd(start_, true, select) | updateDrumEnd(end_, false, select);
+  if (drumChanged) buildPath(warnings);
+  // Length, J and J-dot-v on `bodies`.
+  if (!curved || drumChanged || select.data() != bodies.data()) {
+    cableKinematics(path_, bodies, kin_);
+    if (curved) storeArcs();
+  }
+  // What a drop in this update took out is what a later rejoin may put back.
+  for (int j = 0; j < count; ++j)
+    if (pulleys_[j].dropped && !droppedBefore_[j])
+      pulleys_[j].dropCut = std::max(0.0, previousLength(bodies) - kin_.length);
+  reportLengthJump(bodies, warnings);
   if (warnings && kin_.zeroLengthSegments > 0 && !reportedZeroLength_)
     warnings->push_back("cable '" + def_->name + "': " + std::to_string(kin_.zeroLengthSegments) +
                         " zero-length segment(s) (coincident points) left out of the Jacobian");
   reportedZeroLength_ = kin_.zeroLengthSegments > 0;
   if (firstUpdate_ && params_.restLength < 0) params_.restLength = kin_.length;
+  updateSpans(bodies);
   firstUpdate_ = false;
 }
 

@@ -14,15 +14,23 @@
 //    segment's line: it must cross the segment from outside. A pulley coming from the wrap side,
 //    or sitting on the wrap side beyond the segment's ends, is left out (the cable passes it).
 //  * An engaged pulley LEAVES when the path no longer bends around it: a point pulley when the
-//    turn at it is straight or the wrong way; a polygon when its hull chain is empty.
+//    turn at it goes the wrong way (a straight turn keeps it: it changes neither length nor J);
+//    a circle when its arc goes below zero; a polygon when its hull chain is empty.
 //  * A terminal inside a polygon pulley's hull (a neighbouring pulley inside it) has no taut path:
 //    the polygon is DROPPED (it leaves the path) and a warning says so. A dropped polygon that
-//    still cuts its segment REJOINS as soon as a taut path round it exists again (warning); one
-//    that clears the segment is an ordinary disengaged pulley again.
+//    still cuts its segment REJOINS as soon as a taut path round it exists again and that path is
+//    no longer than the straight segment by more than the drop took out (+ kLengthJump), with a
+//    warning: drop and rejoin together add no length. One that moved through the cable while
+//    dropped (its taut path would go round its far side, much longer) stays out; one that clears
+//    the segment is an ordinary disengaged pulley again.
 //  * Consecutive coincident wrap points (a zero-length segment, < 1e-12 m) are merged: the
 //    segment is left out of J and J-dot-v, never divided by, and a warning says so.
 //  * Any wrap change that moves the length by more than kLengthJump (1 mm) names the jump in a
 //    warning: it did not happen on the old path (a guard acted, or a crossing was found late).
+//    A polygon whose chain empties with such a jump was HOOKED: the cable bent round it further
+//    than a hull chain between its neighbours holds (a polygon swung round past an end anchor,
+//    a wrap of more than half a turn there). It is RELEASED, and the warning says so: wrapping
+//    it on is not modelled.
 //  At creation every pulley that the straight segment cuts joins (as if it had just crossed).
 //  The World locates every join and leave inside the step (nextEvent(), docs/cables.md) and
 //  selects the wrap set a moment after it, so the new point lies on the old path and length and
@@ -51,13 +59,23 @@ struct BodyState {
 
 /// One point of a cable's current path.
 struct WrapPoint {
-  enum class Kind { Anchor, Point, Vertex };
+  enum class Kind { Anchor, Point, Vertex, Circle };
   Kind kind = Kind::Anchor;
   int body = -1;              ///< -1: world
   Vec2 local = Vec2::Zero();  ///< body frame (world frame for the world)
   Vec2 world = Vec2::Zero();  ///< current world position
   int pulley = -1;            ///< index into CableDef::pulleys, -1 for anchors
   int vertex = -1;            ///< polygon vertex index, -1 otherwise
+  /// Circle: signed radius (m), + when the cable passes on the circle's left (it turns clockwise
+  /// round it), - on its right; 0 for every other kind. `local` and `world` are the centre.
+  double radius = 0;
+  /// Circle: the angle the cable turns on it (rad, >= 0 while wrapped, continuous over turns).
+  /// At a path's end (a drum, a wheel the cable does not slip on): the angle between the
+  /// tangent point and the mark, in the winding sense.
+  double arc = 0;
+  double mark = 0;  ///< Circle at a path's end: body-frame angle of the cable's fixed point (rad)
+  Vec2 tangentIn = Vec2::Zero();   ///< Circle: where the cable arrives (world), set by kinematics
+  Vec2 tangentOut = Vec2::Zero();  ///< Circle: where it leaves (world)
 };
 
 /// d(length)/d(x, y, theta) of one body.
@@ -73,6 +91,7 @@ struct CableKinematics {
   double jdotV = 0;                    ///< J-dot v (m/s^2)
   std::vector<BodyJacobian> jacobian;  ///< one entry per moving body touched, sorted by body
   int zeroLengthSegments = 0;          ///< segments left out of J (coincident points)
+  std::vector<Vec2> directions;        ///< unit direction of each segment (path size - 1)
 };
 
 /// One 2x2 block of d^2 length / (d x_a d x_b), x = a body's translation.
@@ -84,7 +103,7 @@ struct StiffnessBlock {
 /// The translational Hessian of the length of a path (world points already set), appended to
 /// `blocks` (no allocation once it has the capacity): tension times this is the cable's
 /// geometric stiffness, which a stiff membrane on a light body needs implicitly. Rotations are
-/// left out. Blocks of world-fixed points are skipped.
+/// left out. Blocks of world-fixed points are skipped. Circles: between the tangent points.
 void appendLengthHessianTranslation(std::span<const WrapPoint> path,
                                     std::vector<StiffnessBlock>& blocks);
 
@@ -100,9 +119,11 @@ void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodie
 /// The discrete gradient of a path's length between two states (docs/cables.md, "Energy"):
 /// a row G with G (q1 - q0) = length(q1) - length(q0) exactly, which tends to J as q1 -> q0.
 /// Each segment contributes along (d0 + d1) / (|d0| + |d1|); a turn dtheta of a body moves its
-/// point by sinc(dtheta / 2) dtheta perp(r_mid). `path`'s world points are left at q1.
-void lengthDiscreteGradient(std::span<WrapPoint> path, std::span<const BodyState> q0,
-                            std::span<const BodyState> q1, std::vector<BodyJacobian>& gradient);
+/// point by sinc(dtheta / 2) dtheta perp(r_mid). A path with circles (arcs) takes the
+/// gradient at the midpoint pose plus Gonzalez's correction along (q1 - q0). `path`'s world
+/// points are left at q1. Returns length(q1) (m).
+double lengthDiscreteGradient(std::span<WrapPoint> path, std::span<const BodyState> q0,
+                              std::span<const BodyState> q1, std::vector<BodyJacobian>& gradient);
 
 /// A wrap change inside a sub-step (docs/cables.md, "Events").
 struct WrapEvent {
@@ -119,6 +140,15 @@ struct CableParameters {
   double stiffness = 0.0;    ///< N/m; 0 = rigid
   double preload = 0.0;      ///< m
   double damping = 0.0;      ///< N s/m
+};
+
+/// A wheel that grips the cable (no slip or capstan friction) between span k and span k + 1.
+struct SpanLink {
+  int pulley = -1;           ///< index into CableDef::pulleys
+  Grip grip = Grip::NoSlip;  ///< NoSlip or Capstan
+  double mu = 0;             ///< capstan friction coefficient
+  double wrapAngle = 0;      ///< rad, the angle the cable turns on the wheel (both spans' arcs)
+  bool slipped = false;      ///< the last solve let the cable slide (tension ratio e^(mu theta))
 };
 
 class Cable {
@@ -145,7 +175,7 @@ class Cable {
   const CableDef& def() const { return *def_; }
   const std::string& name() const { return def_->name; }
   /// Recomputes length, J and J-dot-v for the current wrap points (no re-selection).
-  void refresh(std::span<const BodyState> bodies) { cableKinematics(path_, bodies, kin_); }
+  void refresh(std::span<const BodyState> bodies);
 
   const std::vector<WrapPoint>& path() const { return path_; }
   const CableKinematics& kinematics() const { return kin_; }
@@ -159,45 +189,107 @@ class Cable {
   /// Pulley wrap points in use (path points that are not anchors).
   int wraps() const { return static_cast<int>(path_.size()) - 2; }
   bool engaged(int pulley) const { return pulleys_[pulley].engaged; }
+  /// The side an engaged pulley is wrapped on (an "auto" pulley's resolved side).
+  WrapSide wrapSide(int pulley) const { return pulleys_[pulley].side; }
 
   /// Constraint value: length - rest length (+ preload for elastic cables) (m).
   double stretch() const;
-  /// Tension of the last step (N) and whether it was slack.
+  /// Tension of the last step (N) and whether it was slack. With spans: the largest.
   double tension() const { return tension_; }
   bool slack() const { return tension_ <= 0; }
-  void setTension(double t) { tension_ = t; }
+  void setTension(double t);
   /// Live parameter edits (validated by the World).
-  void setParameters(const CableParameters& parameters) { params_ = parameters; }
+  void setParameters(const CableParameters& parameters);
+
+  // Spans: wheels that grip the cable (no slip, capstan) split it into spans, each its own
+  // constraint with its own rest length and tension (docs/wheels.md). Without such wheels the
+  // cable is one span: the whole path.
+  int spanCount() const { return spans_.empty() ? 1 : static_cast<int>(spans_.size()); }
+  std::span<const WrapPoint> spanPath(int k) const;
+  const CableKinematics& spanKinematics(int k) const;
+  /// Span length - span rest length (m); the whole stretch() for a one-span cable.
+  double spanStretch(int k) const;
+  double spanTension(int k) const { return spans_.empty() ? tension_ : spans_[k].tension; }
+  void setSpanTension(int k, double t);
+  /// The wheel between spans k and k + 1 (spanCount() - 1 of them).
+  const SpanLink& link(int k) const { return links_[k]; }
+  /// The solver let the cable slide on link k's wheel this sub-step: the next update moves rest
+  /// length between the two spans so that the slide is not undone.
+  void setSlipped(int k, bool slipped) { links_[k].slipped = slipped; }
+  /// Tension on path segment i (path()[i] -> path()[i + 1]): its span's.
+  double segmentTension(size_t i) const;
 
  private:
   struct PulleyState {
     int body = -1;
-    std::vector<Vec2> local;  ///< point or polygon vertices, body frame
-    std::vector<Vec2> world;  ///< the same in the world frame, this update
-    WrapSide side = WrapSide::Left;
+    std::vector<Vec2> local;         ///< point or polygon vertices (a circle's centre), body frame
+    std::vector<Vec2> world;         ///< the same in the world frame, this update
+    WrapSide side = WrapSide::Left;  ///< resolved side (an auto pulley's while engaged)
+    bool autoSide = false;           ///< "side": "auto": the side is chosen at each join
     bool polygon = false;
+    bool circle = false;
+    double radius = 0;   ///< circle, m (unsigned)
+    bool grips = false;  ///< circle that the cable does not slide freely on
+    double turns = 0;    ///< turns wound at the start (0: from the geometry, < 1 turn)
+    double arc = 0;      ///< circle: wrap angle at the last update (branch reference)
     bool engaged = false;
     double previousDepth = 0;  ///< wrap-side depth at the last update (guard memory)
+    double previousLeft = 0;   ///< auto: signed distance left of the host segment (guard memory)
     bool dropped = false;      ///< left by a guard (terminal inside the hull): may rejoin
+    double dropCut = 0;        ///< length the drop took out of the path (m): the most a rejoin
+                               ///< may put back
+    double signedRadius() const { return side == WrapSide::Right ? -radius : radius; }
+    /// The wrap branch at the start: the turns it was wound with, else within (0, 2 pi).
+    double initialArc() const { return turns > 0 ? 2 * M_PI * turns : M_PI; }
+  };
+  struct Span {
+    size_t first = 0, last = 0;  ///< path_ indices of its end points (shared with neighbours)
+    std::vector<WrapPoint> path;
+    CableKinematics kin;
+    double rest = 0;     ///< m
+    double tension = 0;  ///< N
   };
   void placePulleys(std::span<const BodyState> bodies);
   bool buildPath(std::vector<std::string>* warnings);
   Vec2 entryPoint(int node, const std::vector<std::vector<int>>& chains) const;
   Vec2 exitPoint(int node, const std::vector<std::vector<int>>& chains) const;
+  bool leaveRound();
+  bool joinRound(std::vector<std::string>* warnings);
+  void storeArcs();
+  void placeDrumMarks(std::span<const BodyState> bodies);
+  void updateSpans(std::span<const BodyState> bodies);
+  void splitIntoSpans(std::span<const BodyState> bodies, const std::vector<size_t>& splits);
+  void rebaseMarks();
+  bool updateDrumEnd(WrapPoint& end, bool atStart, std::span<const BodyState> bodies);
 
   const CableDef* def_;     ///< the scene's, never edited
   CableParameters params_;  ///< live values
   int startBody_, endBody_;
+  WrapPoint start_, end_;  ///< the terminals (drums keep their mark and arc here)
+  /// A drum end unwound to its mark is a point on the rim until the cable wraps it again, on
+  /// whichever side (a yo-yo): its centre and radius while it is a point.
+  struct Drum {
+    Vec2 centre = Vec2::Zero();
+    double radius = 0;
+  };
+  Drum startDrum_, endDrum_;
   std::vector<PulleyState> pulleys_;
   std::vector<WrapPoint> path_;
   std::vector<int> nodes_;                ///< buildPath scratch: engaged chain nodes
   std::vector<std::vector<int>> chains_;  ///< buildPath scratch: polygon vertex chains
-  void reportLengthJump(double before, std::vector<std::string>* warnings) const;
+  double previousLength(std::span<const BodyState> bodies);
+  void reportLengthJump(std::span<const BodyState> bodies, std::vector<std::string>* warnings);
   /// Wrap changes that move the length by more than this say so in a warning (m).
   static constexpr double kLengthJump = 1e-3;
-  std::vector<std::pair<int, int>> signature_;  ///< (pulley, vertex) of the path before update
-  std::vector<int> rejoinChain_;                ///< scratch of the rejoin test
+  std::vector<WrapPoint> previousPath_;  ///< the path before update (length-jump check)
+  CableKinematics previousKin_;          ///< scratch of the length-jump check
+  std::vector<int> rejoinChain_;         ///< scratch of the rejoin test
+  std::vector<char> droppedBefore_;      ///< scratch: pulleys dropped before this update
+  std::vector<char> engagedBefore_;      ///< scratch: pulleys engaged before this update
   CableKinematics kin_;
+  std::vector<Span> spans_;        ///< empty: one span, the whole path
+  std::vector<SpanLink> links_;    ///< spans_.size() - 1
+  std::vector<int> splitPulleys_;  ///< pulleys at the links, in path order (scratch + memory)
   double tension_ = 0;
   bool firstUpdate_ = true;
   bool reportedZeroLength_ = false;

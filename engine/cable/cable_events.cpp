@@ -25,18 +25,32 @@ std::optional<WrapEvent> Cable::nextEvent(std::span<const BodyState> motion, dou
   if (path_.size() < 2) return best;
   const int count = static_cast<int>(pulleys_.size());
   auto moving = [&](const WrapPoint& w) { return MovingPoint::on(motion, w.body, w.local); };
+  // Where the cable touches a path point: a circle's tangent point (fixed on its body for the
+  // sub-step, a first-order guess), else the point itself.
+  auto contact = [&](const WrapPoint& w, const Vec2& world) {
+    if (w.kind != WrapPoint::Kind::Circle) return moving(w);
+    if (w.body < 0) return MovingPoint::on(motion, -1, world);
+    const BodyState& b = motion[w.body];
+    return MovingPoint::on(motion, w.body, rotate(Vec2(world - b.position), -b.angle));
+  };
 
   // Joins: a point that would enter the path between path_[i] and path_[i + 1].
   for (size_t i = 0; i + 1 < path_.size(); ++i) {
     const WrapPoint& a = path_[i];
     const WrapPoint& b = path_[i + 1];
-    const MovingPoint ma = moving(a), mb = moving(b);
+    const MovingPoint ma = contact(a, a.tangentOut), mb = contact(b, b.tangentIn);
+    // A circle joins when it comes within its radius of the segment; an auto pulley from
+    // either side.
     auto tryPoint = [&](int j, const Vec2& local, WrapEvent::Kind kind) {
       const PulleyState& p = pulleys_[j];
       const MovingPoint mp = MovingPoint::on(motion, p.body, local);
-      const double horizon = best ? best->time : h;
-      if (auto c = pointCrossesSegment(ma, mb, mp, p.side, horizon))
-        keepEarliest(best, c->time, j, kind);
+      const double reach = p.circle ? p.radius : 0.0;
+      for (const WrapSide side : {WrapSide::Left, WrapSide::Right}) {
+        if (!p.autoSide && side != p.side) continue;
+        const double horizon = best ? best->time : h;
+        if (auto c = pointCrossesSegment(ma, mb, mp, side, horizon, reach))
+          keepEarliest(best, c->time, j, kind);
+      }
     };
     // Disengaged pulleys ordered between the segment's ends.
     const int lo = a.pulley;  // -1 at the start anchor
@@ -66,11 +80,16 @@ std::optional<WrapEvent> Cable::nextEvent(std::span<const BodyState> motion, dou
     const WrapPoint& w = path_[i];
     if (pulleys_[w.pulley].side == WrapSide::Threaded) continue;
     const double horizon = best ? best->time : h;
-    if (auto t = turnStraightens(moving(path_[i - 1]), moving(w), moving(path_[i + 1]),
-                                 pulleys_[w.pulley].side, horizon))
-      keepEarliest(best, *t, w.pulley,
-                   w.kind == WrapPoint::Kind::Vertex ? WrapEvent::Kind::Vertex
-                                                     : WrapEvent::Kind::Leave);
+    // A circle leaves when its arc reaches 0; the straight-line test below sees that only on
+    // the last turn (wound further, the line between the neighbours says nothing).
+    if (w.kind == WrapPoint::Kind::Circle && w.arc > M_PI) continue;
+    const double reach = w.kind == WrapPoint::Kind::Circle ? std::abs(w.radius) : 0.0;
+    if (auto t = turnStraightens(contact(path_[i - 1], path_[i - 1].tangentOut), moving(w),
+                                 contact(path_[i + 1], path_[i + 1].tangentIn),
+                                 pulleys_[w.pulley].side, horizon, reach))
+      keepEarliest(
+          best, *t, w.pulley,
+          w.kind == WrapPoint::Kind::Vertex ? WrapEvent::Kind::Vertex : WrapEvent::Kind::Leave);
   }
   return best;
 }

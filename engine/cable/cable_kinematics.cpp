@@ -1,15 +1,21 @@
 // Length, Jacobian and J-dot-v of a cable path (thesis section 2.3 as corrected in
-// docs/model.md#cable-geometry).
+// docs/model.md#cable-geometry, generalised to circles in docs/wheels.md).
 //
-// Segment d = p_{i+1} - p_i, u = d / |d|, w = d'(t):
-//   d|d|/dt     = u . w
-//   d^2|d|/dt^2 = u . dw/dt + (|w|^2 - (u . w)^2) / |d|
-// A point fixed on body b at world offset r = R(theta) local moves with v_b + omega perp(r); its
-// d/d(x, y, theta) is [I | perp(r)] and its velocity-product acceleration is -omega^2 r.
+// Every path point is a circle with centre C (fixed on a body) and signed radius rho (0 for
+// anchors, points and polygon vertices). Segment i runs tangent to circles i and i+1 with unit u,
+// left normal n and length l; D = C_{i+1} - C_i = l u + (rho_i - rho_{i+1}) n. With W = dD/dt:
+//   dl/dt + (arc terms)   = u . W              (the arcs absorb the turn of u, docs/wheels.md)
+//   d(u . W)/dt           = u . dW/dt + (|W|^2 - (u . W)^2) / l
+// so J and J-dot-v are those of radius-zero points at the centres, with u the tangent's direction.
+// A centre fixed on body b at world offset r moves with v_b + omega perp(r); its d/d(x, y, theta)
+// is [I | perp(r)] and its velocity-product acceleration is -omega^2 r. A circle at a path's end
+// (a drum, or a wheel the cable does not slip on) adds the arc to its material mark: -rho (end)
+// or +rho (start) times the body's turn rate.
 #include <algorithm>
 #include <cmath>
 
 #include "engine/cable/cable.h"
+#include "engine/cable/circle_wrap.h"
 
 namespace cablelab {
 
@@ -75,6 +81,34 @@ void addJacobian(std::vector<BodyJacobian>& jac, int body, const Vec3& d) {
   jac.push_back({body, d});
 }
 
+double bodyAngle(std::span<const BodyState> bodies, int body) {
+  return body < 0 ? 0.0 : bodies[body].angle;
+}
+
+// The arc lengths on the circles, given every segment's direction (tangents already set).
+void addArcs(std::span<WrapPoint> path, std::span<const BodyState> bodies, std::span<const Vec2> u,
+             CableKinematics& k) {
+  const size_t n = path.size();
+  for (size_t i = 0; i < n; ++i) {
+    WrapPoint& p = path[i];
+    if (p.radius == 0) continue;
+    const double rho = p.radius;
+    if (i == 0 || i + 1 == n) {
+      // A path's end on a circle: the cable is fixed to the mark (a drum or a non-slip wheel).
+      const double mark = bodyAngle(bodies, p.body) + p.mark;
+      p.arc = i == 0 ? arcFromMark(u[0], rho, mark, p.arc) : arcToMark(u[n - 2], rho, mark, p.arc);
+      const double sign = i == 0 ? 1.0 : -1.0;
+      if (p.body >= 0) {
+        addJacobian(k.jacobian, p.body, Vec3(0, 0, sign * rho));
+        k.lengthRate += sign * rho * bodies[p.body].angularVelocity;
+      }
+    } else {
+      p.arc = turnAngle(u[i - 1], u[i], rho, p.arc);
+    }
+    k.length += std::abs(rho) * p.arc;
+  }
+}
+
 }  // namespace
 
 Vec2 worldPoint(std::span<const BodyState> bodies, int body, const Vec2& local) {
@@ -94,41 +128,65 @@ void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodie
   k.length = k.lengthRate = k.jdotV = 0;
   k.jacobian.clear();
   k.zeroLengthSegments = 0;
+  k.directions.resize(path.empty() ? 0 : path.size() - 1);
   PathFrames frames(bodies);
-  for (WrapPoint& p : path) p.world = frames.worldPoint(p.body, p.local);
+  bool circles = false;
+  for (WrapPoint& p : path) {
+    p.world = frames.worldPoint(p.body, p.local);
+    p.tangentIn = p.tangentOut = p.world;
+    circles |= p.radius != 0;
+  }
   // Each point's motion serves the segments on both sides of it.
   PointMotion m1 = path.empty() ? PointMotion{} : motionOf(bodies, path[0]);
   for (size_t i = 0; i + 1 < path.size(); ++i) {
-    const WrapPoint& p0 = path[i];
-    const WrapPoint& p1 = path[i + 1];
+    WrapPoint& p0 = path[i];
+    WrapPoint& p1 = path[i + 1];
     const PointMotion m0 = m1;
     m1 = motionOf(bodies, p1);
-    const Vec2 d = p1.world - p0.world;
-    const double len = d.norm();
+    double len;
+    Vec2 u;
+    if (p0.radius == 0 && p1.radius == 0) {
+      const Vec2 d = p1.world - p0.world;
+      len = d.norm();
+      u = len >= kZeroLength ? Vec2(d / len) : Vec2(1, 0);
+    } else {
+      const CircleTangent t = circleTangent(p0.world, p0.radius, p1.world, p1.radius);
+      len = t.length;
+      u = t.u;
+      p0.tangentOut = t.from(p0.world, p0.radius);
+      p1.tangentIn = t.to(p1.world, p1.radius);
+    }
+    k.directions[i] = u;
     k.length += len;
     if (len < kZeroLength) {
       ++k.zeroLengthSegments;
       continue;
     }
-    const Vec2 u = d / len;
     const Vec2 w = m1.velocity - m0.velocity;
     const double uw = u.dot(w);
     k.lengthRate += uw;
     k.jdotV += u.dot(m1.accel - m0.accel) + (w.squaredNorm() - uw * uw) / len;
-    if (p0.body != p1.body) {
+    // Two points on one body keep their distance; two circles with different signed radii on
+    // one body do too, but their contributions (each -delta omega) do not cancel term by term.
+    if (p0.body != p1.body || p0.radius != p1.radius) {
       addJacobian(k.jacobian, p1.body, Vec3(u.x(), u.y(), u.dot(perp(m1.offset))));
       addJacobian(k.jacobian, p0.body, -Vec3(u.x(), u.y(), u.dot(perp(m0.offset))));
     }
   }
+  if (circles) addArcs(path, bodies, k.directions, k);
   std::sort(k.jacobian.begin(), k.jacobian.end(),
             [](const BodyJacobian& a, const BodyJacobian& b) { return a.body < b.body; });
 }
 
 void appendLengthHessianTranslation(std::span<const WrapPoint> path,
                                     std::vector<StiffnessBlock>& blocks) {
+  // du/dD = (I - u u^T) / l for a tangent between circles too (the tangent points' offsets do
+  // not change the turn rate of u), so the blocks use the tangent points.
   for (size_t i = 0; i + 1 < path.size(); ++i) {
     const int a = path[i].body, b = path[i + 1].body;
-    const Vec2 d = path[i + 1].world - path[i].world;
+    const Vec2 from = path[i].radius == 0 ? path[i].world : path[i].tangentOut;
+    const Vec2 to = path[i + 1].radius == 0 ? path[i + 1].world : path[i + 1].tangentIn;
+    const Vec2 d = to - from;
     const double len = d.norm();
     if (a == b || len < kZeroLength) continue;
     const Vec2 u = d / len;
@@ -142,8 +200,49 @@ void appendLengthHessianTranslation(std::span<const WrapPoint> path,
   }
 }
 
-void lengthDiscreteGradient(std::span<WrapPoint> path, std::span<const BodyState> q0,
-                            std::span<const BodyState> q1, std::vector<BodyJacobian>& gradient) {
+namespace {
+
+// Gonzalez's discrete gradient for a path with arcs: G = J(q_mid) + c (q1 - q0), with c chosen
+// so that G (q1 - q0) = L(q1) - L(q0) exactly (the metric: metres and radians alike).
+double curvedDiscreteGradient(std::span<WrapPoint> path, std::span<const BodyState> q0,
+                              std::span<const BodyState> q1, std::vector<BodyJacobian>& gradient) {
+  std::vector<WrapPoint> scratch(path.begin(), path.end());
+  CableKinematics k;
+  cableKinematics(scratch, q0, k);
+  const double length0 = k.length;
+  std::vector<BodyState> mid(q0.begin(), q0.end());
+  for (size_t b = 0; b < mid.size(); ++b) {
+    mid[b].position = 0.5 * (q0[b].position + q1[b].position);
+    mid[b].angle = 0.5 * (q0[b].angle + q1[b].angle);
+  }
+  scratch.assign(path.begin(), path.end());
+  cableKinematics(scratch, mid, k);
+  gradient = k.jacobian;
+  cableKinematics(path, q1, k);  // leaves path at q1
+  auto delta = [&](int b) {
+    return Vec3(q1[b].position.x() - q0[b].position.x(), q1[b].position.y() - q0[b].position.y(),
+                q1[b].angle - q0[b].angle);
+  };
+  double predicted = 0, norm2 = 0;
+  for (const BodyJacobian& e : gradient) {
+    const Vec3 d = delta(e.body);
+    predicted += e.d.dot(d);
+    norm2 += d.squaredNorm();
+  }
+  if (norm2 > 1e-300) {
+    const double c = (k.length - length0 - predicted) / norm2;
+    for (BodyJacobian& e : gradient) e.d += c * delta(e.body);
+  }
+  return k.length;
+}
+
+}  // namespace
+
+double lengthDiscreteGradient(std::span<WrapPoint> path, std::span<const BodyState> q0,
+                              std::span<const BodyState> q1, std::vector<BodyJacobian>& gradient) {
+  if (std::any_of(path.begin(), path.end(),
+                  [](const WrapPoint& w) { return w.kind == WrapPoint::Kind::Circle; }))
+    return curvedDiscreteGradient(path, q0, q1, gradient);
   gradient.clear();
   // d(point)/d(x, y, theta) over the step: [I | sinc(dtheta / 2) perp(r_mid)].
   auto chord = [&](const WrapPoint& p, Vec2& at0, Vec2& at1, Vec2& turn) {
@@ -157,7 +256,8 @@ void lengthDiscreteGradient(std::span<WrapPoint> path, std::span<const BodyState
     turn = sinc * perp(rotate(p.local, q0[p.body].angle + half));
   };
   Vec2 a0, a1, ta;
-  if (path.empty()) return;
+  if (path.empty()) return 0;
+  double length1 = 0;
   chord(path[0], a0, a1, ta);
   path[0].world = a1;
   for (size_t i = 0; i + 1 < path.size(); ++i) {
@@ -166,6 +266,7 @@ void lengthDiscreteGradient(std::span<WrapPoint> path, std::span<const BodyState
     path[i + 1].world = b1;
     const Vec2 d0 = b0 - a0, d1 = b1 - a1;
     const double sum = d0.norm() + d1.norm();
+    length1 += d1.norm();
     if (sum >= 2 * kZeroLength && path[i].body != path[i + 1].body) {
       const Vec2 u = (d0 + d1) / sum;
       addJacobian(gradient, path[i + 1].body, Vec3(u.x(), u.y(), u.dot(tb)));
@@ -175,6 +276,7 @@ void lengthDiscreteGradient(std::span<WrapPoint> path, std::span<const BodyState
   }
   std::sort(gradient.begin(), gradient.end(),
             [](const BodyJacobian& a, const BodyJacobian& b) { return a.body < b.body; });
+  return length1;
 }
 
 }  // namespace cablelab

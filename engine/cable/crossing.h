@@ -41,8 +41,7 @@ int crossingSamples(std::span<const MovingPoint> points, double h);
 /// `tolerance` (s) by regula falsi. g is sampled at `samples` equal intervals first, so two
 /// crossings closer than h / samples may be missed. nullopt: no such rise.
 template <class G, class Accept>
-std::optional<double> firstRise(G&& g, Accept&& accept, double h, int samples,
-                                double tolerance) {
+std::optional<double> firstRise(G&& g, Accept&& accept, double h, int samples, double tolerance) {
   double t0 = 0, g0 = g(0.0);
   for (int i = 1; i <= samples; ++i) {
     const double t1 = h * i / samples, g1 = g(t1);
@@ -71,21 +70,32 @@ std::optional<double> firstRise(G&& g, Accept&& accept, double h, int samples,
   return std::nullopt;
 }
 
+/// True when p's signed distance from the line a-b cannot change sign in [0, h]: it starts
+/// farther from zero than the points' speeds can carry it. Most points of a resting cable are
+/// far from any event, and this spares them the sampling (each sample turns three points);
+/// false says nothing. With `reach` (m): p cannot come within reach of the line either (circles).
+bool sideCannotChange(const MovingPoint& a, const MovingPoint& b, const MovingPoint& p, double h,
+                      double reach = 0);
+
 /// A crossing of a segment: when, and where along it (0 at a, 1 at b).
 struct Crossing {
   double time = 0;   ///< s into the sub-step
   double along = 0;  ///< segment parameter of the crossing point
 };
 
-/// First time in (0, h] at which p crosses the segment a-b onto its wrap side (the
-/// wrapSideDistance of p goes from <= 0 to > 0) between the segment's ends.
+/// First time in (0, h] at which p comes within `reach` (m) of the segment a-b's wrap side (the
+/// wrapSideDistance of p goes from <= -reach to > -reach) between the segment's ends. Reach 0:
+/// a point crosses; a circle's radius: the circle round p starts to cut the segment.
 std::optional<Crossing> pointCrossesSegment(const MovingPoint& a, const MovingPoint& b,
-                                            const MovingPoint& p, WrapSide side, double h);
+                                            const MovingPoint& p, WrapSide side, double h,
+                                            double reach = 0);
 
 /// First time in (0, h] at which the path a -> p -> b stops bending round p the `side` way
-/// (p's wrapSideDistance from the line a-b goes from > 0 to <= 0): p leaves the path.
+/// (p's wrapSideDistance from the line a-b goes from > -reach to <= -reach): p, or the circle of
+/// radius `reach` round it, leaves the path.
 std::optional<double> turnStraightens(const MovingPoint& a, const MovingPoint& p,
-                                      const MovingPoint& b, WrapSide side, double h);
+                                      const MovingPoint& b, WrapSide side, double h,
+                                      double reach = 0);
 
 /// Locating tolerance of the events (s), relative to the sub-step.
 inline double crossingTolerance(double h) {

@@ -1,4 +1,5 @@
-// Taut cable path around one convex polygon pulley (thesis section 2.4.3, docs/model.md#wrap-points).
+// Taut cable path around one convex polygon pulley (thesis section 2.4.3,
+// docs/model.md#wrap-points).
 //
 // For terminals A and B and a winding side, the taut path is the chain of the convex hull of
 // {A, B, polygon vertices} on that side. It is a pure function of the geometry. Collinear points

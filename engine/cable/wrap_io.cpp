@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/cable/wrap.h"
 #include "engine/core/error.h"
 #include "engine/core/file_input.h"
 #include "engine/core/json_reader.h"
-#include "engine/cable/wrap.h"
 
 namespace cablelab {
 
@@ -37,7 +37,8 @@ WrapProblem parseWrapJson(const json& in, const std::string& file) {
     p.b = bounded(r.requiredVec2("B"), file, "B");
     const json& polygon = r.requiredList("polygon");
     if (polygon.size() < 3)
-      r.fail("polygon", "needs at least 3 vertices" + gotValue(static_cast<double>(polygon.size())));
+      r.fail("polygon",
+             "needs at least 3 vertices" + gotValue(static_cast<double>(polygon.size())));
     p.polygon = r.points("polygon");
     for (size_t i = 0; i < p.polygon.size(); ++i)
       bounded(p.polygon[i], file, "polygon[" + std::to_string(i) + "]");

@@ -40,10 +40,18 @@ inline std::string quoteText(std::string_view text) {
 }
 
 /// " (got VALUE)", to end a message.
-inline std::string gotValue(double v) { return " (got " + formatNumber(v) + ")"; }
-inline std::string gotValue(std::string_view text) { return " (got " + quoteText(text) + ")"; }
-inline std::string gotValue(const char* text) { return gotValue(std::string_view(text)); }
-inline std::string gotValue(const std::string& text) { return gotValue(std::string_view(text)); }
+inline std::string gotValue(double v) {
+  return " (got " + formatNumber(v) + ")";
+}
+inline std::string gotValue(std::string_view text) {
+  return " (got " + quoteText(text) + ")";
+}
+inline std::string gotValue(const char* text) {
+  return gotValue(std::string_view(text));
+}
+inline std::string gotValue(const std::string& text) {
+  return gotValue(std::string_view(text));
+}
 
 class InputError : public std::runtime_error {
  public:

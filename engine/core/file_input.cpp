@@ -19,7 +19,8 @@ std::string readInputFile(const std::string& path) {
   if (!in) throw InputError(path, "(file)", std::string("cannot open: ") + std::strerror(errno));
   std::ostringstream text;
   text << in.rdbuf();
-  if (in.bad()) throw InputError(path, "(file)", std::string("cannot read: ") + std::strerror(errno));
+  if (in.bad())
+    throw InputError(path, "(file)", std::string("cannot read: ") + std::strerror(errno));
   return text.str();
 }
 
@@ -29,7 +30,8 @@ nlohmann::json parseJsonText(const std::string& text, const std::string& source)
   } catch (const nlohmann::json::exception& e) {  // syntax errors, numbers beyond double range
     // "[json.exception.parse_error.101] parse error at line 1, column 2: what" -> "at ...: what"
     std::string what = e.what();
-    if (const size_t id = what.find("] "); what.rfind("[json.exception.", 0) == 0 && id != what.npos)
+    if (const size_t id = what.find("] ");
+        what.rfind("[json.exception.", 0) == 0 && id != what.npos)
       what.erase(0, id + 2);
     if (what.rfind("parse error ", 0) == 0) what.erase(0, 12);
     throw InputError(source, "(json)", "not valid JSON " + what);
@@ -59,8 +61,9 @@ std::ofstream openOutputFile(const std::string& path, const std::string& option)
   requireWritable(path, option);
   std::ofstream out(path, std::ios::binary);
   if (!out)
-    throw InputError(kCommandLine, option,
-                     std::string("cannot write the file: ") + std::strerror(errno) + gotValue(path));
+    throw InputError(
+        kCommandLine, option,
+        std::string("cannot write the file: ") + std::strerror(errno) + gotValue(path));
   return out;
 }
 

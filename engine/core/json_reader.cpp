@@ -14,7 +14,9 @@ std::string describeJson(const nlohmann::json& v) {
 }
 
 namespace {
-std::string got(const nlohmann::json& v) { return " (got " + describeJson(v) + ")"; }
+std::string got(const nlohmann::json& v) {
+  return " (got " + describeJson(v) + ")";
+}
 }  // namespace
 
 JsonReader::JsonReader(const json& j, std::string source, std::string path)

@@ -27,6 +27,14 @@ double parseNumber(std::string_view text, const std::string& source, const std::
   return *v;
 }
 
+void requireInRange(double v, const std::string& source, const std::string& field, double lo,
+                    double hi) {
+  if (!std::isfinite(v) || v < lo || v > hi)
+    throw InputError(
+        source, field,
+        "must be a number in [" + formatNumber(lo) + ", " + formatNumber(hi) + "]" + gotValue(v));
+}
+
 long parseWholeNumber(std::string_view text, const std::string& source, const std::string& field,
                       long lo, long hi) {
   const auto v = parseFiniteNumber(text);
@@ -44,21 +52,22 @@ std::vector<double> parseNumberList(std::string_view text, size_t count, const s
   size_t start = 0;
   while (ok) {
     const size_t comma = text.find(',', start);
-    const auto v = parseFiniteNumber(text.substr(start, comma == text.npos ? comma : comma - start));
+    const auto v =
+        parseFiniteNumber(text.substr(start, comma == text.npos ? comma : comma - start));
     if (v) values.push_back(*v);
     ok = v.has_value();
     if (comma == text.npos) break;
     start = comma + 1;
   }
   if (!ok || values.size() != count)
-    throw InputError(source, field,
-                     "must be " + shape + ", " + std::to_string(count) + " finite numbers" +
-                         gotValue(text));
+    throw InputError(
+        source, field,
+        "must be " + shape + ", " + std::to_string(count) + " finite numbers" + gotValue(text));
   return values;
 }
 
-PixelSize parsePixelSize(std::string_view text, const std::string& source,
-                         const std::string& field, int minSide, int maxSide) {
+PixelSize parsePixelSize(std::string_view text, const std::string& source, const std::string& field,
+                         int minSide, int maxSide) {
   size_t x = text.find_first_of("xX");
   if (x == text.npos) x = text.size();  // no 'x': the height below is empty, so it fails
   const auto w = parseFiniteNumber(text.substr(0, x));
@@ -87,7 +96,8 @@ InputError commandLineError(const std::string& message, const std::string& help)
   if (std::regex_match(message, m, required))
     return InputError(kCommandLine, m[1], "is required" + tail);
   if (std::regex_match(message, m, named)) return InputError(kCommandLine, m[1], m[2].str() + tail);
-  return InputError(kCommandLine, "(arguments)", (message.empty() ? "bad command line" : message) + tail);
+  return InputError(kCommandLine, "(arguments)",
+                    (message.empty() ? "bad command line" : message) + tail);
 }
 
 }  // namespace cablelab

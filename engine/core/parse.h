@@ -32,8 +32,13 @@ struct PixelSize {
 };
 
 /// "WxH" (or "WXH"), each side a whole number in [minSide, maxSide].
-PixelSize parsePixelSize(std::string_view text, const std::string& source,
-                         const std::string& field, int minSide, int maxSide);
+PixelSize parsePixelSize(std::string_view text, const std::string& source, const std::string& field,
+                         int minSide, int maxSide);
+
+/// Throws InputError(source, field, "must be a number in [lo, hi] (got v)") unless v is finite
+/// and lo <= v <= hi.
+void requireInRange(double v, const std::string& source, const std::string& field, double lo,
+                    double hi);
 
 class InputError;
 

@@ -241,8 +241,7 @@ void Box2DBridge::jointFrames(std::span<const JointDef> defs,
   }
 }
 
-bool Box2DBridge::beginDrag(int body, const Vec2& worldPoint, double stiffnessHz,
-                            double gravity) {
+bool Box2DBridge::beginDrag(int body, const Vec2& worldPoint, double stiffnessHz, double gravity) {
   endDrag();
   b2Body* b = impl_->bodies[body];
   if (b->GetType() != b2_dynamicBody) return false;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/dynamics/floors.h"
 #include "engine/dynamics/tension_solver.h"
 
 namespace cablelab {
@@ -68,15 +69,28 @@ struct JointRow {
 // allocate: after the first step every size has been seen and Eigen reuses the storage.
 struct CableSolverWorkspace {
   // Islands: cables and the moving bodies they (and the joints) connect, solved one by one.
-  std::vector<int> parent;                   // union-find over bodies
-  std::vector<int> islandOfRoot;             // root body -> island, -1: none
-  std::vector<std::vector<int>> islandRows;  // cables of each island, in cable order
+  std::vector<int> parent;                     // union-find over bodies
+  std::vector<int> islandOfRoot;               // root body -> island, -1: none
+  std::vector<std::vector<int>> islandRows;    // cables of each island, in cable order
   std::vector<std::vector<int>> islandJoints;  // joints of each island, in joint order
   int islands = 0;
   std::vector<int> jointIndex;  // the island's joints (indices into the input's joints)
 
   DofMap dofs;
-  std::vector<int> rows;         // cable of each LCP row (this island)
+  std::vector<int> cablesWithRows;  // every cable that pulls on a moving body, in cable order
+  // One LCP row per cable span (wheels that grip a cable split it, docs/wheels.md); a row over
+  // several spans is a cable sliding on capstans between them: its constraint is their summed
+  // length and span k pulls with weight k times the row's impulse (the e^(mu theta) ratios).
+  // Floor rows (segment >= 0) follow the cables' rows.
+  struct Row {
+    int cable = 0;
+    int first = 0, last = 0;  // spans
+    size_t weights = 0;       // offset of span first's weight in rowWeights
+    int segment = -1;         // -1: the spans' length; i: a floor on the cable's segment i
+    double weight(const std::vector<double>& w, int k) const { return w[weights + k - first]; }
+  };
+  std::vector<Row> rows;  // this island's
+  std::vector<double> rowWeights;
   Eigen::VectorXd invM;          // M^-1 diagonal over the dofs
   Eigen::VectorXd vStar, vFree;  // predicted velocities (stage 2)
   Eigen::MatrixXd W;             // M'^-1 J^T, then projected onto the joints (n x m)
@@ -111,6 +125,7 @@ struct CableSolverWorkspace {
   std::vector<BodyState> predicted;
   std::vector<WrapPoint> path;
   CableKinematics kin;
+  std::vector<BodyJacobian> floorJacobian;  // scratch: a floor row's J
   LcpWorkspace lcp;
   LcpSolution lcpSolution;
 
@@ -218,6 +233,14 @@ namespace {
 
 using Workspace = CableSolverWorkspace;
 
+// Calls f(body) for every body a span of the cable pulls on that moves.
+template <class F>
+void forMovingBodies(const Cable& cable, const CableSolveInput& in, F&& f) {
+  for (int k = 0; k < cable.spanCount(); ++k)
+    for (const auto& e : cable.spanKinematics(k).jacobian)
+      if (moves(in.bodies[e.body])) f(e.body);
+}
+
 int findRoot(std::vector<int>& parent, int b) {
   while (parent[b] != b) b = parent[b] = parent[parent[b]];
   return b;
@@ -236,16 +259,15 @@ int findIslands(Workspace& ws, const CableSolveInput& in, std::span<Cable> cable
   const int bodies = static_cast<int>(in.bodies.size());
   ws.parent.resize(bodies);
   for (int b = 0; b < bodies; ++b) ws.parent[b] = b;
-  ws.rows.clear();  // every cable with a row, in cable order
+  ws.cablesWithRows.clear();
   for (size_t i = 0; i < cables.size(); ++i) {
     int first = -1;
-    for (const auto& e : cables[i].kinematics().jacobian)
-      if (moves(in.bodies[e.body])) {
-        if (first >= 0) unite(ws.parent, first, e.body);
-        first = e.body;
-      }
+    forMovingBodies(cables[i], in, [&](int body) {
+      if (first >= 0) unite(ws.parent, first, body);
+      first = body;
+    });
     if (first >= 0)
-      ws.rows.push_back(static_cast<int>(i));
+      ws.cablesWithRows.push_back(static_cast<int>(i));
     else
       cables[i].setTension(0);
   }
@@ -256,10 +278,9 @@ int findIslands(Workspace& ws, const CableSolveInput& in, std::span<Cable> cable
   for (auto& rows : ws.islandRows) rows.clear();
   for (auto& joints : ws.islandJoints) joints.clear();
   ws.islands = 0;
-  for (int row : ws.rows) {
+  for (int row : ws.cablesWithRows) {
     int body = -1;
-    for (const auto& e : cables[row].kinematics().jacobian)
-      if (moves(in.bodies[e.body])) body = e.body;
+    forMovingBodies(cables[row], in, [&](int b) { body = b; });
     int& island = ws.islandOfRoot[findRoot(ws.parent, body)];
     if (island < 0) island = ws.islands++;
     if (static_cast<int>(ws.islandRows.size()) < ws.islands) {
@@ -280,19 +301,87 @@ int findIslands(Workspace& ws, const CableSolveInput& in, std::span<Cable> cable
   return ws.islands;
 }
 
-// 1b. One island's rows, and the dofs of the bodies it moves: its cables' moving bodies in cable
-// order, then those jointed to them (breadth first: they move with them).
+// Whether segment (p, q) could close to kFloorLength within the step, at the speed its ends have
+// now plus a step of gravity (twice that, and a floor length, for margin): only then does it get
+// a floor row. A hand's membranes have short end segments that never come close; rows cost.
+bool mayReachFloor(const CableSolveInput& in, const WrapPoint& p, const WrapPoint& q) {
+  auto speed = [&](const WrapPoint& w) {
+    if (w.body < 0) return 0.0;
+    const BodyState& b = in.bodies[w.body];
+    const Vec2 v = b.velocity + b.angularVelocity * perp(Vec2(w.world - b.position));
+    return v.norm() + (b.invMass > 0 ? in.h * in.gravity.norm() : 0.0);
+  };
+  const double length = (q.world - p.world).norm();
+  return length > 1e-9 && length < 2 * kFloorLength + 2 * in.h * (speed(p) + speed(q));
+}
+
+// 1b. One island's rows (one per span of its cables), and the dofs of the bodies it moves: its
+// cables' moving bodies in cable order, then those jointed to them (breadth first: they move with
+// them). Then the floors.
 void buildRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
                int island) {
   ws.dofs.clear();
-  ws.rows = ws.islandRows[island];
+  ws.rows.clear();
+  ws.rowWeights.clear();
   ws.jointIndex = ws.islandJoints[island];
-  for (int row : ws.rows)
-    for (const auto& e : cables[row].kinematics().jacobian)
-      if (moves(in.bodies[e.body])) ws.dofs.add(e.body);
+  for (int cable : ws.islandRows[island]) {
+    forMovingBodies(cables[cable], in, [&](int body) { ws.dofs.add(body); });
+    for (int k = 0; k < cables[cable].spanCount(); ++k) {
+      ws.rows.push_back({cable, k, k, ws.rowWeights.size()});
+      ws.rowWeights.push_back(1.0);
+    }
+  }
   for (size_t k = 0; k < ws.dofs.body.size(); ++k)
     for (int other : in.jointNeighbours[ws.dofs.body[k]])
       if (moves(in.bodies[other])) ws.dofs.add(other);
+  // Floors (floors.h): a short segment on a moving body gets a row of its own after the cables.
+  for (int cable : ws.islandRows[island]) {
+    const auto& path = cables[cable].path();
+    for (size_t i = 0; i + 1 < path.size(); ++i)
+      if (needsFloor(path, i, [&](int b) { return ws.dofs.ofBody[b] >= 0; }) &&
+          mayReachFloor(in, path[i], path[i + 1])) {
+        ws.rows.push_back({cable, 0, 0, ws.rowWeights.size(), static_cast<int>(i)});
+        ws.rowWeights.push_back(1.0);
+      }
+  }
+}
+
+// A floor row's constraint kFloorLength - u0 . (q - p) of segment (p, q) on `bodies`, and its J
+// (into ws.floorJacobian). u0 is the segment's direction at the start of the step: measured along
+// it, a body that would pass through its pulley within the step goes negative instead of
+// coming out the other side at a length that looks allowed.
+double floorRow(Workspace& ws, std::span<const BodyState> bodies, const Cable& cable, int segment) {
+  const WrapPoint* ends[2] = {&cable.path()[segment], &cable.path()[segment + 1]};
+  const Vec2 u0 = (ends[1]->world - ends[0]->world).normalized();
+  ws.floorJacobian.clear();
+  double along = 0;
+  for (int e = 0; e < 2; ++e) {
+    const double sign = e == 0 ? 1.0 : -1.0;  // d(kFloorLength - u0 . (q - p))
+    const WrapPoint& w = *ends[e];
+    const Vec2 x = worldPoint(bodies, w.body, w.local);
+    along -= sign * u0.dot(x);
+    if (w.body < 0) continue;
+    const Vec2 arm = x - bodies[w.body].position;
+    ws.floorJacobian.push_back({w.body, sign * Vec3(u0.x(), u0.y(), u0.dot(perp(arm)))});
+  }
+  return kFloorLength - along;
+}
+
+// Calls f(J, weight) for each Jacobian that row r's J at the start of the step sums: its
+// spans', or its floor's. The constraint is the plain sum; the weights are how hard each span
+// pulls (W's columns).
+template <class F>
+void forStartJacobians(Workspace& ws, std::span<const BodyState> bodies,
+                       std::span<const Cable> cables, int r, F&& f) {
+  const Workspace::Row& row = ws.rows[r];
+  const Cable& c = cables[row.cable];
+  if (row.segment >= 0) {
+    floorRow(ws, bodies, c, row.segment);
+    f(ws.floorJacobian, 1.0);
+    return;
+  }
+  for (int k = row.first; k <= row.last; ++k)
+    f(c.spanKinematics(k).jacobian, row.weight(ws.rowWeights, k));
 }
 
 // Bodies that are not dofs (kinematic, static) at the end of the step: Box2D moves them with
@@ -327,8 +416,10 @@ void predictVelocities(Workspace& ws, const CableSolveInput& in, std::span<const
   }
   ws.W.setZero(n, m);
   for (int r = 0; r < m; ++r)
-    for (const auto& e : cables[ws.rows[r]].kinematics().jacobian)
-      if (dofs.ofBody[e.body] >= 0) ws.W.block<3, 1>(dofs.ofBody[e.body], r) = e.d;
+    forStartJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double weight) {
+      for (const auto& e : jacobian)
+        if (dofs.ofBody[e.body] >= 0) ws.W.block<3, 1>(dofs.ofBody[e.body], r) += weight * e.d;
+    });
   ws.vFree = ws.vStar;  // what Box2D would reach without cables and joints
 }
 
@@ -340,8 +431,10 @@ void inverseMass(Workspace& ws, double h, std::span<const Cable> cables) {
   ws.taut.clear();
   ws.blocks.clear();
   ws.stiff = false;
-  for (int row : ws.rows) {
-    const Cable& c = cables[row];
+  for (const Workspace::Row& row : ws.rows) {
+    // Once per cable: not a floor, not a later span.
+    if (row.segment >= 0 || row.first != 0) continue;
+    const Cable& c = cables[row.cable];
     const double tension =
         std::max(c.tension(), c.elastic() ? c.stiffness() * std::max(0.0, c.stretch()) : 0.0);
     if (tension <= 0) continue;
@@ -422,18 +515,28 @@ void projectOntoJoints(Workspace& ws, const CableSolveInput& in) {
 
 // 5. Position-level targets. Rigid: length at the end of the step = now (the error below the
 // slop is float rounding: fixing it would amplify it by 1/h^2), a slack cable may come taut, an
-// over-long one is shortened by a share of the excess. Elastic: T = k phi1 + b (phi1 - phi0)/h.
-void lengthTargets(Workspace& ws, double h, std::span<const Cable> cables) {
+// over-long one is shortened by a share of the excess per nominal sub-step (a step cut at an
+// event fixes its share of that: fixing it all would ask for a velocity of error / h). Elastic: T =
+// k phi1 + b (phi1 - phi0)/h.
+void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable> cables) {
+  // Floors are rigid rows on kFloorLength - |segment|: they only ever push.
+  const double beta = kBaumgarte * share;
   const int m = static_cast<int>(ws.rows.size());
   ws.target.resize(m);
   ws.compliance.setZero(m);
   ws.damped.setZero(m);
   for (int r = 0; r < m; ++r) {
-    const Cable& c = cables[ws.rows[r]];
-    const double phi = c.stretch();
-    if (!c.elastic()) {
+    const Workspace::Row& row = ws.rows[r];
+    const Cable& c = cables[row.cable];
+    const int seg = row.segment;
+    double phi = 0;
+    if (seg >= 0)
+      phi = kFloorLength - (c.path()[seg + 1].world - c.path()[seg].world).norm();
+    else
+      for (int k = row.first; k <= row.last; ++k) phi += c.spanStretch(k);
+    if (!c.elastic() || seg >= 0) {
       ws.target[r] = phi < -kLengthSlop  ? 0.0
-                     : phi > kLengthSlop ? phi - kBaumgarte * (phi - kLengthSlop)
+                     : phi > kLengthSlop ? phi - beta * (phi - kLengthSlop)
                                          : phi;
     } else {
       const double stiffK = c.stiffness(), damp = c.damping();
@@ -444,11 +547,11 @@ void lengthTargets(Workspace& ws, double h, std::span<const Cable> cables) {
 }
 
 // J W for a row from a sparse Jacobian (a cable touches a few of the n dofs).
-void jacobianTimesW(const Workspace& ws, const std::vector<BodyJacobian>& jacobian,
-                    Eigen::Ref<Eigen::RowVectorXd, 0, Eigen::InnerStride<>> out) {
-  out.setZero();
+void addJacobianTimesW(const Workspace& ws, const std::vector<BodyJacobian>& jacobian,
+                       Eigen::Ref<Eigen::RowVectorXd, 0, Eigen::InnerStride<>> out) {
   for (const auto& e : jacobian)
-    if (const int d = ws.dofs.ofBody[e.body]; d >= 0) out += e.d.transpose() * ws.W.middleRows<3>(d);
+    if (const int d = ws.dofs.ofBody[e.body]; d >= 0)
+      out += e.d.transpose() * ws.W.middleRows<3>(d);
 }
 
 // The end-of-step state for impulses P (Box2D integrates q1 = q0 + h v1), then each row's
@@ -466,11 +569,22 @@ void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
     p.angle = s.angle + h * p.angularVelocity;
   }
   for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
-    const Cable& c = cables[ws.rows[r]];
-    ws.path.assign(c.path().begin(), c.path().end());
-    cableKinematics(ws.path, ws.predicted, ws.kin);
-    ws.phi1[r] = c.stretch() + ws.kin.length - c.length();
-    jacobianTimesW(ws, ws.kin.jacobian, ws.JW.row(r));
+    const Workspace::Row& row = ws.rows[r];
+    const Cable& c = cables[row.cable];
+    ws.JW.row(r).setZero();
+    if (row.segment >= 0) {
+      ws.phi1[r] = floorRow(ws, ws.predicted, c, row.segment);
+      addJacobianTimesW(ws, ws.floorJacobian, ws.JW.row(r));
+      continue;
+    }
+    ws.phi1[r] = 0;
+    for (int k = row.first; k <= row.last; ++k) {
+      const std::span<const WrapPoint> span = c.spanPath(k);
+      ws.path.assign(span.begin(), span.end());
+      cableKinematics(ws.path, ws.predicted, ws.kin);
+      ws.phi1[r] += c.spanStretch(k) + ws.kin.length - c.spanKinematics(k).length;
+      addJacobianTimesW(ws, ws.kin.jacobian, ws.JW.row(r));
+    }
   }
 }
 
@@ -485,7 +599,10 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
   ws.JW.resize(m, m);
   // J0 W from the start-of-step Jacobians (positive semidefinite), for the guard below.
   ws.JW0.setZero(m, m);
-  for (int r = 0; r < m; ++r) jacobianTimesW(ws, cables[ws.rows[r]].kinematics().jacobian, ws.JW0.row(r));
+  for (int r = 0; r < m; ++r)
+    forStartJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
+      addJacobianTimesW(ws, jacobian, ws.JW0.row(r));
+    });
   // Redundant cables (J0 W singular): J1 W is then singular too, but not symmetric, and its
   // symmetric part indefinite, so the minimum-norm solve (tension_solver.h) would be ill posed.
   // Such an island iterates on J0 W instead (a quasi-Newton step: it still converges to the
@@ -511,8 +628,9 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
     ws.K.diagonal() += ws.compliance;
     ws.b.noalias() = ws.JW * ws.P;
     for (int r = 0; r < m; ++r)
-      ws.b[r] += (cables[ws.rows[r]].elastic() ? ws.phi1[r] - ws.damped[r]
-                                               : ws.phi1[r] - ws.target[r]) /
+      ws.b[r] += (cables[ws.rows[r].cable].elastic() && ws.rows[r].segment < 0
+                      ? ws.phi1[r] - ws.damped[r]
+                      : ws.phi1[r] - ws.target[r]) /
                  h;
     LcpSolution& sol = ws.lcpSolution;
     solveLcp(ws.K, ws.b, ws.lcp, sol, redundant);
@@ -528,8 +646,13 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
 // 7. The tensions, and the force that gives the end-of-step velocity solved for (cable pull,
 // geometric stiffness and joint reactions together): Box2D integrates v += h M^-1 F.
 void applyForces(Workspace& ws, double h, std::span<Cable> cables, std::span<Vec3> loads) {
-  for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r)
-    cables[ws.rows[r]].setTension(ws.P[r] / h);
+  for (size_t r = 0; r < ws.rows.size(); ++r) {
+    const Workspace::Row& row = ws.rows[r];
+    if (row.segment >= 0) continue;  // a floor pushes; it is no cable's tension
+    for (int k = row.first; k <= row.last; ++k)
+      cables[row.cable].setSpanTension(k, row.weight(ws.rowWeights, k) * ws.P[r] / h);
+    for (int k = row.first; k < row.last; ++k) cables[row.cable].setSlipped(k, true);
+  }
   ws.WP.noalias() = ws.W * ws.P;
   for (size_t k = 0; k < ws.dofs.body.size(); ++k)
     for (int c = 0; c < 3; ++c) {
@@ -537,6 +660,36 @@ void applyForces(Workspace& ws, double h, std::span<Cable> cables, std::span<Vec
       const double dv = ws.vStar[d] - ws.WP[d] - ws.vFree[d];
       if (ws.invM[d] > 0) loads[ws.dofs.body[k]][c] += dv / (h * ws.invM[d]);
     }
+}
+
+// 6b. Capstans: where the sticking tensions break T_high <= T_low e^(mu theta), the cable slides
+// at that ratio instead (Euler-Eytelwein): the two rows beside the wheel become one, whose
+// constraint is their summed length. True if any merged (then stages 2-6 run again).
+bool mergeSlidingSpans(Workspace& ws, std::span<const Cable> cables) {
+  bool merged = false;
+  for (size_t r = 0; r + 1 < ws.rows.size(); ++r) {
+    Workspace::Row& a = ws.rows[r];
+    const Workspace::Row& b = ws.rows[r + 1];
+    if (a.cable != b.cable || a.last + 1 != b.first || a.segment >= 0 || b.segment >= 0) continue;
+    const SpanLink& link = cables[a.cable].link(a.last);
+    if (link.grip != Grip::Capstan) continue;
+    const double wa = a.weight(ws.rowWeights, a.last), wb = b.weight(ws.rowWeights, b.first);
+    const double ta = ws.P[r] * wa, tb = ws.P[r + 1] * wb;
+    const double ratio = std::exp(link.mu * std::max(0.0, link.wrapAngle));
+    if (std::max(ta, tb) <= ratio * std::min(ta, tb) * (1 + 1e-9)) continue;
+    // The merged row's impulse is b's: a's spans pull with ratio (or 1 / ratio) times it.
+    const double scale = (ta > tb ? ratio : 1.0 / ratio) * wb / wa;
+    const size_t offset = ws.rowWeights.size();
+    for (int k = a.first; k <= a.last; ++k)
+      ws.rowWeights.push_back(scale * a.weight(ws.rowWeights, k));
+    for (int k = b.first; k <= b.last; ++k) ws.rowWeights.push_back(b.weight(ws.rowWeights, k));
+    a.weights = offset;
+    a.last = b.last;
+    ws.rows.erase(ws.rows.begin() + static_cast<std::ptrdiff_t>(r) + 1);
+    merged = true;
+    --r;  // the merged row may slide on its next capstan too
+  }
+  return merged;
 }
 
 }  // namespace
@@ -553,11 +706,14 @@ void CableSolver::solve(const CableSolveInput& in, std::span<Cable> cables, std:
   predictPrescribed(ws, in);
   for (int island = 0; island < islands; ++island) {
     buildRows(ws, in, cables, island);
-    predictVelocities(ws, in, cables, loads);
-    inverseMass(ws, in.h, cables);
-    projectOntoJoints(ws, in);
-    lengthTargets(ws, in.h, cables);
-    newtonOnLengths(ws, in, cables, stats);
+    for (bool again = true; again;) {
+      predictVelocities(ws, in, cables, loads);
+      inverseMass(ws, in.h, cables);
+      projectOntoJoints(ws, in);
+      lengthTargets(ws, in.h, in.share, cables);
+      newtonOnLengths(ws, in, cables, stats);
+      again = mergeSlidingSpans(ws, cables);
+    }
     applyForces(ws, in.h, cables, loads);
   }
   ws.dofs.clear();

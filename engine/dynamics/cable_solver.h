@@ -5,12 +5,15 @@
 // condition, docs/model.md). Cables and the moving bodies they connect (through cables or
 // joints) form islands, solved one after the other, so the cost grows with the islands' sizes,
 // not with the square of the world's. Per island, in named stages:
-//   1. buildRows            one row per cable that pulls on a moving body; the dofs it moves
+//   1. buildRows            one row per cable span that pulls on a moving body; the dofs
+//                           it moves (wheels that grip a cable split it in spans); a floor
+//                           row per short segment that may close up (floors.h)
 //   2. predictVelocities    v* (gravity and loads, no cables) and J^T at the start of the step
 //   3. inverseMass          W = M'^-1 J^T, M' with the taut cables' geometric stiffness
 //   4. projectOntoJoints    W and v* restricted to what Box2D's joints allow (Schur complement)
 //   5. lengthTargets        rigid: the end-of-step length; elastic: the implicit spring-damper
 //   6. newtonOnLengths      Newton on the end-of-step lengths, one LCP per iteration
+//   6b. mergeSlidingSpans   capstans past e^(mu theta): merge their spans, run 2-6 again
 //   7. applyForces          the force that gives the solved end-of-step velocity
 // Private to engine/dynamics.
 #pragma once
@@ -28,11 +31,14 @@ namespace cablelab {
 
 /// What one solve reads: the sub-step, the bodies now, and the joints among them.
 struct CableSolveInput {
-  double h = 0;                                      ///< sub-step (s)
-  Vec2 gravity = Vec2::Zero();                       ///< m/s^2
-  std::span<const BodyState> bodies;                 ///< start of the sub-step
-  std::span<const JointFrame> joints;                ///< every joint, indexed as the scene's
-  std::span<const std::vector<int>> jointNeighbours; ///< bodies jointed to each body
+  double h = 0;  ///< sub-step (s)
+  /// h over the nominal sub-step (<= 1): a step cut short at a wrap event fixes only this share
+  /// of a rigid cable's length error, so the correcting velocity does not grow as h shrinks.
+  double share = 1;
+  Vec2 gravity = Vec2::Zero();                        ///< m/s^2
+  std::span<const BodyState> bodies;                  ///< start of the sub-step
+  std::span<const JointFrame> joints;                 ///< every joint, indexed as the scene's
+  std::span<const std::vector<int>> jointNeighbours;  ///< bodies jointed to each body
 };
 
 struct CableSolverWorkspace;  // the stages' buffers (cable_solver.cpp)

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/dynamics/floors.h"
+
 namespace cablelab {
 
 namespace {
@@ -13,10 +15,6 @@ namespace {
 constexpr double kLengthSlop = 1e-5;
 constexpr double kBaumgarte = 0.2;
 constexpr int kIterations = 40;
-// Floors (docs/cables.md): a segment shorter than kFloorWatch gets a row keeping it at least
-// kFloorLength long, so a body that reaches its pulley stops there (an inelastic stop).
-constexpr double kFloorWatch = 0.5;    // m
-constexpr double kFloorLength = 0.01;  // m
 constexpr double kPositionTolerance = 1e-12;  // m: end-of-step pose settled
 
 bool moves(const BodyState& b) {
@@ -56,10 +54,11 @@ double elasticMode(const Cable& c, std::span<const BodyState> bodies) {
   return std::sqrt(c.parameters().stiffness * bound);
 }
 
-// The rigid-cable length target at the end of the step (as in the main solve).
-double rigidTarget(double phi) {
+// The rigid-cable length target at the end of the step (as in the main solve): `share` is the
+// step over the nominal sub-step, so a step cut at an event corrects only its share.
+double rigidTarget(double phi, double share) {
   return phi < -kLengthSlop  ? 0.0
-         : phi > kLengthSlop ? phi - kBaumgarte * (phi - kLengthSlop)
+         : phi > kLengthSlop ? phi - kBaumgarte * share * (phi - kLengthSlop)
                              : phi;
 }
 
@@ -78,6 +77,8 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
     if (!pulls) continue;
     any = true;
     const auto& path = c.path();
+    // Wheels that grip the cable (spans) are left to the main solve (docs/wheels.md).
+    if (c.spanCount() > 1) return false;
     for (size_t i = 1; i + 1 < path.size(); ++i)
       wanted |= path[i].body >= 0 && moves(bodies[path[i].body]);
     for (size_t i = 0; i + 1 < path.size(); ++i)
@@ -113,10 +114,7 @@ void MidpointSolver::evaluate(std::span<const BodyState> bodies, std::span<const
       continue;
     }
     path_.assign(c.path().begin(), c.path().end());
-    lengthDiscreteGradient(path_, bodies, predicted_, gradients_[r]);
-    double length1 = 0;
-    for (size_t i = 0; i + 1 < path_.size(); ++i)
-      length1 += (path_[i + 1].world - path_[i].world).norm();
+    const double length1 = lengthDiscreteGradient(path_, bodies, predicted_, gradients_[r]);
     phi1_[r] = phi0_[r] + length1 - c.length();
   }
 }
@@ -140,8 +138,9 @@ double MidpointSolver::transverseMode(std::span<const BodyState> bodies,
 }
 
 int MidpointSolver::solve(std::span<const BodyState> bodies, std::span<Cable> cables,
-                          const Vec2& gravity, double h, std::span<Vec3> forces,
+                          const Vec2& gravity, double h, double share, std::span<Vec3> forces,
                           std::span<Vec3> kicks) {
+  share_ = share;
   if (!buildRows(bodies, cables, gravity, h, forces)) return 0;
   for (int iteration = 0; iteration < kIterations; ++iteration)
     if (newtonStep(bodies, cables, h)) {
@@ -177,14 +176,11 @@ bool MidpointSolver::buildRows(std::span<const BodyState> bodies, std::span<Cabl
   const size_t cableRows = rows_.size();
   for (size_t r = 0; r < cableRows; ++r) {
     const auto& path = cables[rows_[r]].path();
-    for (size_t i = 0; i + 1 < path.size(); ++i) {
-      const int a = path[i].body, b = path[i + 1].body;
-      const bool moving = (a >= 0 && dofOfBody_[a] >= 0) || (b >= 0 && dofOfBody_[b] >= 0);
-      if (a != b && moving && (path[i + 1].world - path[i].world).norm() < kFloorWatch) {
+    for (size_t i = 0; i + 1 < path.size(); ++i)
+      if (needsFloor(path, i, [&](int b) { return dofOfBody_[b] >= 0; })) {
         rows_.push_back(rows_[r]);
         segment_.push_back(static_cast<int>(i));
       }
-    }
   }
   const int m = static_cast<int>(rows_.size()), n = 3 * static_cast<int>(bodyOfDof_.size());
   if (m == 0) return false;
@@ -288,7 +284,7 @@ bool MidpointSolver::newtonStep(std::span<const BodyState> bodies, std::span<con
     const Cable& c = cables[rows_[r]];
     const double kp = K_.row(r).dot(P_) - GAinvR_[r];
     if (!c.elastic() || segment_[r] >= 0) {
-      b_[r] = kp + (phi1_[r] - rigidTarget(phi0_[r])) / h;
+      b_[r] = kp + (phi1_[r] - rigidTarget(phi0_[r], share_)) / h;
       continue;
     }
     // P / h = the secant tension (+ damping) at the new phi1, linearised.

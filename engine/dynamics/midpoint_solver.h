@@ -41,16 +41,18 @@ class MidpointSolver {
   static constexpr double kMaxElasticOmegaH = 2.0;
 
   /// Whether this solve should take the step: some cable is elastic, wraps a point on a
-  /// moving body or has a segment short enough to need a floor (a body nearing its pulley) (straight cables between fixed pulleys keep Box2D's own integration), no moved
-  /// body is `excluded` (jointed or in contact), and every mode is resolved at h.
+  /// moving body or has a segment short enough to need a floor (a body nearing its pulley)
+  /// (straight cables between fixed pulleys keep Box2D's own integration), no moved body is
+  /// `excluded` (jointed or in contact), and every mode is resolved at h.
   bool applies(std::span<const BodyState> bodies, std::span<const Cable> cables,
                std::span<const char> excluded, double h);
 
   /// Sets the cables' tensions, adds the force Box2D needs over h to `forces` ((fx, fy, torque)
   /// per body) and the velocity each body must get after Box2D's step to `kicks`.
+  /// `share` is h over the nominal sub-step (CableSolveInput::share).
   /// Returns the iterations used, or -1 (nothing changed) if they did not converge.
   int solve(std::span<const BodyState> bodies, std::span<Cable> cables, const Vec2& gravity,
-            double h, std::span<Vec3> forces, std::span<Vec3> kicks);
+            double h, double share, std::span<Vec3> forces, std::span<Vec3> kicks);
 
   /// The fastest transverse mode of the last solve's cables (rad/s), from their tensions and
   /// segment curvatures over the lightest body they move: sqrt(T sum(1 / |d|) / m).
@@ -65,10 +67,11 @@ class MidpointSolver {
   void finish(std::span<const BodyState> bodies, std::span<Cable> cables, double h,
               std::span<Vec3> forces, std::span<Vec3> kicks);
 
-  std::vector<int> rows_;        // cable of each row
-  std::vector<int> segment_;     // -1: the cable's length; i: a floor on its segment i
-  std::vector<int> dofOfBody_;   // body -> first dof, -1: not moved
-  std::vector<int> bodyOfDof_;   // dof / 3 -> body
+  double share_ = 1;            // this step over the nominal sub-step
+  std::vector<int> rows_;       // cable of each row
+  std::vector<int> segment_;    // -1: the cable's length; i: a floor on its segment i
+  std::vector<int> dofOfBody_;  // body -> first dof, -1: not moved
+  std::vector<int> bodyOfDof_;  // dof / 3 -> body
   Eigen::VectorXd invM_, vStar_, vFree_, vb_, P_, phi0_, phi1_, b_;
   Eigen::VectorXd residual_, AinvR_, GAinvR_, dP_, dv_;
   Eigen::MatrixXd A_, Gt_, AinvGt_, K_;

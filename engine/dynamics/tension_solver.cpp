@@ -20,7 +20,6 @@ void solveSingle(double k, double b, LcpSolution& sol) {
   sol.residual = std::abs(std::min(sol.x[0] * k, w));
 }
 
-
 // The equal compliance that makes a singular K definite, relative to its largest diagonal: small
 // enough that the impulses are the minimum-norm ones to 1e-6, large enough that the active-set
 // solves stay well conditioned. The targets are consistent (projected), so it never amplifies.
@@ -41,6 +40,7 @@ const Eigen::VectorXd& consistentTargets(Eigen::MatrixXd& K, const Eigen::Vector
   // Lawson and Hanson's method needs.
   work.Ks = K.transpose();
   K = 0.5 * (K + work.Ks);
+  work.symmetric = true;
   work.cod.setThreshold(kRankTolerance);
   work.cod.compute(K);
   work.bs = work.cod.solve(b);
@@ -65,8 +65,13 @@ void solveOnSet(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, const std::v
     work.bs[r] = b[idx[r]];
     for (int c = 0; c < m; ++c) work.Ks(r, c) = K(idx[r], idx[c]);
   }
-  work.ldlt.compute(work.Ks);
-  work.xs = work.ldlt.solve(work.bs);
+  if (work.symmetric) {
+    work.ldlt.compute(work.Ks);
+    work.xs = work.ldlt.solve(work.bs);
+  } else {
+    work.lu.compute(work.Ks);
+    work.xs = work.lu.solve(work.bs);
+  }
   for (int r = 0; r < m; ++r) x[idx[r]] = work.xs[r];
 }
 
@@ -125,7 +130,7 @@ void lawsonHanson(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, LcpWorkspa
   // A row whose impulse would grow by less than this (N s) is done.
   double scale = 0;
   for (int i = 0; i < n; ++i) scale = std::max(scale, std::abs(b[i]) / K(i, i));
-  const double tolerance = 1e-7 * scale;  // the regularisation makes x exact to about 1e-6
+  const double tolerance = 1e-7 * scale;      // the regularisation makes x exact to about 1e-6
   std::vector<char>& blocked = work.blocked;  // added, and dropped again at once: not now
   blocked.assign(n, 0);
   for (const int maxIterations = 10 * n + 10; sol.iterations < maxIterations;) {
@@ -146,13 +151,23 @@ void lawsonHanson(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, LcpWorkspa
       x += alpha * (s - x);
       if (alpha >= 1) break;
       for (int i = 0; i < n; ++i)
-        if (passive[i] && x[i] <= 1e-15 * (1 + x.lpNorm<Eigen::Infinity>())) passive[i] = 0, x[i] = 0;
+        if (passive[i] && x[i] <= 1e-15 * (1 + x.lpNorm<Eigen::Infinity>()))
+          passive[i] = 0, x[i] = 0;
     }
     if (passive[best])
       blocked.assign(n, 0);  // progress: every row may be tried again
     else
       blocked[best] = 1;
   }
+}
+
+// Symmetric to rounding (no temporary: this runs every sub-step).
+bool isSymmetric(const Eigen::MatrixXd& K) {
+  const double tolerance = 1e-12 * K.cwiseAbs().maxCoeff();
+  for (int c = 0; c < K.cols(); ++c)
+    for (int r = c + 1; r < K.rows(); ++r)
+      if (std::abs(K(r, c) - K(c, r)) > tolerance) return false;
+  return true;
 }
 
 }  // namespace
@@ -177,12 +192,16 @@ void solveLcp(const Eigen::MatrixXd& Kin, const Eigen::VectorXd& b, LcpWorkspace
   Eigen::MatrixXd& K = work.K;
   K = Kin;
   for (int i = 0; i < n; ++i) K(i, i) += 1e-12 * (1 + K(i, i));
-  if (n == 1 && K(0, 0) > std::numeric_limits<double>::min()) return solveSingle(K(0, 0), b[0], sol);
+  if (n == 1 && K(0, 0) > std::numeric_limits<double>::min())
+    return solveSingle(K(0, 0), b[0], sol);
 
   sol.x.setZero(n);
   sol.iterations = 0;
   sol.residual = 0;
   sol.rankDeficient = false;
+  // A cable sliding on a capstan pulls with e^(mu theta) times the tension its constraint row
+  // carries: K is then not symmetric (docs/wheels.md) and needs LU instead of LDLT.
+  work.symmetric = isSymmetric(K);
   const Eigen::VectorXd& bUsed = redundant ? consistentTargets(K, b, work, sol) : b;
   if (sol.rankDeficient)
     lawsonHanson(K, bUsed, work, sol);

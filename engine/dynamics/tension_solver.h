@@ -10,6 +10,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <Eigen/QR>
 #include <vector>
 
@@ -19,10 +20,10 @@ namespace cablelab {
 constexpr double kRankTolerance = 1e-9;
 
 struct LcpSolution {
-  Eigen::VectorXd x;    ///< the impulses P (N s), >= 0
-  int iterations = 0;   ///< active-set changes
+  Eigen::VectorXd x;           ///< the impulses P (N s), >= 0
+  int iterations = 0;          ///< active-set changes
   bool rankDeficient = false;  ///< K was singular: least-squares targets, minimum-norm x
-  double residual = 0;  ///< max_i |min(x_i K_ii, w_i)| (m/s)
+  double residual = 0;         ///< max_i |min(x_i K_ii, w_i)| (m/s)
 };
 
 /// Solves w = K x - b >= 0, x >= 0, x . w = 0 exactly for a symmetric positive (semi)definite K
@@ -49,6 +50,8 @@ struct LcpWorkspace {
   Eigen::MatrixXd K, Ks;
   Eigen::VectorXd bs, xs, w, projected, step;
   Eigen::LDLT<Eigen::MatrixXd> ldlt;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu;  ///< for a non-symmetric K (sliding capstans)
+  bool symmetric = true;                    ///< K is (LDLT), else LU
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;  ///< rank-deficient active sets
   std::vector<char> active, blocked;
   std::vector<int> idx;

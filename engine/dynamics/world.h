@@ -124,18 +124,20 @@ class World {
   void checkFinite() const;
   void selectWraps(double h);
   void predictMotion(double dt);
-  void solveForces(double dt);
+  void solveForces(double dt, double h);
   double advance(double left, double h, bool locate);
 
-  const SceneDef scene_;                         ///< the model: never edited after construction
-  std::unique_ptr<Box2DBridge> b2_;              ///< bodies, joints, contacts
-  std::unique_ptr<CableSolver> solver_;          ///< tensions, one solve per sub-step
-  std::unique_ptr<MidpointSolver> midpoint_;     ///< the energy-consistent solve, where it applies
-  std::vector<BodyState> motion_;    ///< look-ahead or predicted body states (wrap events)
+  const SceneDef scene_;                      ///< the model: never edited after construction
+  std::unique_ptr<Box2DBridge> b2_;           ///< bodies, joints, contacts
+  std::unique_ptr<CableSolver> solver_;       ///< tensions, one solve per sub-step
+  std::unique_ptr<MidpointSolver> midpoint_;  ///< the energy-consistent solve, where it applies
+  std::vector<BodyState> motion_;             ///< look-ahead or predicted body states (wrap events)
   std::vector<char> excluded_;       ///< bodies the midpoint solve leaves alone (joints, contacts)
   std::vector<Vec3> kicks_;          ///< velocity added after Box2D's step (midpoint solve)
   bool midpointUsed_ = false;        ///< the last solveForces() was a midpoint one
-  std::vector<BodyState> bodies_;                ///< read back from Box2D
+  int cutCable_ = -1;                ///< the last Box2D step ended at this cable's event...
+  WrapEvent cutEvent_;               ///< ...this one (-1: it ran to its end)
+  std::vector<BodyState> bodies_;    ///< read back from Box2D
   std::vector<Vec3> forces_;         ///< (fx, fy, torque) per body for the current sub-step
   std::vector<Vec3> pendingForces_;  ///< applyForce() loads for the next step
   std::vector<Cable> cables_;

@@ -109,7 +109,8 @@ void HandController::advanceReference(const Vec2& box, const Vec2& target) {
     v *= std::clamp((params_.leadLimit - behind) / (0.5 * params_.leadLimit), 0.0, 1.0);
     // Nor past where the membranes stop wrapping the box face-on (the box would slide out):
     // brake to stop `wrapMargin` short of it.
-    const double room = commandedPrediction_.smooth ? commandedPrediction_.margin - params_.wrapMargin : 0;
+    const double room =
+        commandedPrediction_.smooth ? commandedPrediction_.margin - params_.wrapMargin : 0;
     v = std::min(v, std::sqrt(2 * a * std::max(0.0, room)));
     desired = v * d;
   }
@@ -131,8 +132,9 @@ void HandController::advanceServos(const HandJoints& commanded) {
   constexpr int kSubsteps = 8;
   const double decay = 1 - std::exp(-params_.period / kSubsteps / servoLag(model_));
   for (int i = 1; i <= kSubsteps; ++i)
-    servoJoints_ += (previousCommanded_ + (commanded - previousCommanded_) * (double(i) / kSubsteps) -
-                     servoJoints_) * decay;
+    servoJoints_ += (previousCommanded_ +
+                     (commanded - previousCommanded_) * (double(i) / kSubsteps) - servoJoints_) *
+                    decay;
   previousCommanded_ = commanded;
 }
 
@@ -219,8 +221,9 @@ HandJoints HandController::update(const HandJoints& q, const Vec2& box, const Ve
   // statics model's own error, which PD leaves.
   // Once the reference rests on the target the lag has gone and k_p acts on the box itself.
   const bool resting = reference_ == target;
-  const Vec2 modelError =
-      resting ? Vec2(box - target) : p.smooth ? Vec2(p.box - reference_) : Vec2::Zero();
+  const Vec2 modelError = resting    ? Vec2(box - target)
+                          : p.smooth ? Vec2(p.box - reference_)
+                                     : Vec2::Zero();
   const Vec2 error = box - modelBox_;
   const Vec2 change = first ? Vec2::Zero() : Vec2(error - previousError_);
   previousError_ = error;

@@ -52,14 +52,14 @@ struct HandControllerParams {
   /// has paddleHalfWidth - boxHalfSize before a corner reaches the paddle's end, across them the
   /// indentation of the pinch (boxHalfSize - baseY + paddleOffset).
   double lagShare = 0.2;
-  double wrapMargin = 0.005;   ///< the reference stops this far (m) before the membranes would
-                               ///< stop wrapping the box face-on (it brakes in time)
-  double leadLimit = 0.03;     ///< the reference slows once the box is this far off the
-                               ///< reference model (m): it waits at the reachable set's boundary
-  double distalWeight = 4.0;   ///< joint-space weight of the distal joints in the pseudo-inverse
-                               ///< (> 1: prefer moving the fingers to tilting the paddles)
-  double faceOnGain = 0.3;     ///< per update: null-space pull back to face-on paddles and the
-                               ///< pinch gap
+  double wrapMargin = 0.005;  ///< the reference stops this far (m) before the membranes would
+                              ///< stop wrapping the box face-on (it brakes in time)
+  double leadLimit = 0.03;    ///< the reference slows once the box is this far off the
+                              ///< reference model (m): it waits at the reachable set's boundary
+  double distalWeight = 4.0;  ///< joint-space weight of the distal joints in the pseudo-inverse
+                              ///< (> 1: prefer moving the fingers to tilting the paddles)
+  double faceOnGain = 0.3;    ///< per update: null-space pull back to face-on paddles and the
+                              ///< pinch gap
 };
 
 /// The integral gain `--pid` uses (1/s per update).

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <limits>
 
-#include "engine/hand/hand_kinematics.h"
 #include "engine/dynamics/world.h"
+#include "engine/hand/hand_kinematics.h"
 
 namespace cablelab {
 
@@ -21,7 +21,8 @@ Vec2 nearestPinch(const HandModel& m, const Vec2& g) {
   }
   const double rLow = m.linkLength + std::max(m.lower[kSlide], m.lower[3 + kSlide]);
   const double rHigh = m.linkLength + std::min(m.upper[kSlide], m.upper[3 + kSlide]);
-  const double angle = std::clamp(std::atan2(d.y(), d.x()), -angleLimit + margin, angleLimit - margin);
+  const double angle =
+      std::clamp(std::atan2(d.y(), d.x()), -angleLimit + margin, angleLimit - margin);
   const double r = std::clamp(d.norm(), rLow + margin, rHigh - margin);
   return Vec2(m.baseX, 0) + r * Vec2(std::cos(angle), std::sin(angle));
 }
@@ -72,8 +73,7 @@ void HandGrasp::setServos(World& world, const HandJoints& q) const {
   for (int j = 0; j < 6; ++j) world.setServoTarget(joints_[j], q[j]);
 }
 
-void HandGrasp::startRamp(double t, const HandJoints& from, const HandJoints& to,
-                          double duration) {
+void HandGrasp::startRamp(double t, const HandJoints& from, const HandJoints& to, double duration) {
   rampFrom_ = from;
   commanded_ = to;
   rampStart_ = t;
@@ -110,7 +110,7 @@ void HandGrasp::beginPinched(const World& world) {
   events_.push_back({t, "pinched"});
 }
 
-void HandGrasp::beforeStep(World& world, const std::optional<Vec2>& target) {
+void HandGrasp::beforeStep(World& world, const std::optional<Vec2>& target, const GraspLaw& law) {
   const double t = world.time();
   const double period = controller_.params().period;
   if (phase_ == Phase::Lost && t >= phaseStart_ + options_.stopTime) {
@@ -132,9 +132,11 @@ void HandGrasp::beforeStep(World& world, const std::optional<Vec2>& target) {
   }
   if (controlling(t) && t >= nextUpdate_ - 1e-9) {
     const HandJoints from = commanded_;
-    if (target) {
-      const HandJoints dq = controller_.update(joints(world), world.body(box_).position, *target,
-                                               commanded_);
+    if (law || target) {
+      const HandJoints q = joints(world);
+      const Vec2 box = world.body(box_).position;
+      const HandJoints dq =
+          law ? law(q, box, commanded_) : controller_.update(q, box, *target, commanded_);
       ++updates_;
       // Spread over the period; no wind-up against the limits.
       startRamp(t, from, model_.clamp(commanded_ + dq), period);

@@ -13,6 +13,7 @@
 //             box (Opening), at most `maxRegrasps` times; then Failed (held still).
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -38,6 +39,12 @@ struct GraspEvent {
   std::string what;  ///< "grasp closed", "top membrane unwrapped", "re-grasp", ...
 };
 
+/// An outer-loop law in place of the Jacobian controller (a custom controller, e.g. written in
+/// Python): from the measured joints q, the box centre (m) and the joint targets commanded now,
+/// the joint-target increment (rad, m) of one update.
+using GraspLaw =
+    std::function<HandJoints(const HandJoints& q, const Vec2& box, const HandJoints& commanded)>;
+
 class HandGrasp {
  public:
   enum class Phase { Opening, Closing, Control, Lost, Failed };
@@ -54,14 +61,15 @@ class HandGrasp {
   /// grasp counts as closed now and control starts after the settle time.
   void beginPinched(const World& world);
 
-  /// Before World::step: runs the outer loop when due (no target: the hand holds) and sets the
-  /// servo targets.
-  void beforeStep(World& world, const std::optional<Vec2>& target);
+  /// Before World::step: runs the outer loop when due and sets the servo targets. The update is
+  /// `law`'s when given, else the controller's towards `target` (neither: the hand holds); it is
+  /// clamped into the joint limits and spread over one period either way.
+  void beforeStep(World& world, const std::optional<Vec2>& target, const GraspLaw& law = {});
   /// After World::step: notices the grasp closing and a lost grasp.
   void afterStep(const World& world);
 
   Phase phase() const { return phase_; }
-  double graspTime() const { return graspTime_; }      ///< s; -1 until the grasp first closes
+  double graspTime() const { return graspTime_; }        ///< s; -1 until the grasp first closes
   double controlStart() const { return controlStart_; }  ///< s; +inf until known
   bool controlling(double t) const { return phase_ == Phase::Control && t >= controlStart_ - 1e-9; }
   /// False once the box was lost after the grasp had closed (even if re-grasped since).

@@ -3,6 +3,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <thread>
 
 #include "engine/hand/hand_controller.h"
@@ -92,11 +93,19 @@ ReachResult runReach(const ReachOptions& o, const HandModel& m,
   r.threads = o.threads > 0 ? o.threads : std::max(1u, std::thread::hardware_concurrency());
   std::vector<std::thread> threads;
   for (int i = 0; i < r.threads; ++i) threads.emplace_back(worker);
-  while (done < n * n) {
-    if (progress) progress(done, static_cast<long>(n) * n);
+  std::exception_ptr stopped;  // progress threw (e.g. Ctrl-C from Python): stop the sweep
+  while (done < n * n && !stopped) {
+    try {
+      if (progress) progress(done, static_cast<long>(n) * n);
+    } catch (...) {
+      stopped = std::current_exception();
+      next = n * n;  // the workers take no new targets; the runs under way finish
+      break;
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   for (std::thread& t : threads) t.join();
+  if (stopped) std::rethrow_exception(stopped);
   if (progress) progress(done, static_cast<long>(n) * n);
 
   for (const ReachTarget& t : r.targets) {

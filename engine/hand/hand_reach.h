@@ -24,7 +24,7 @@ namespace cablelab {
 enum class ReachModel { Simulation, QuasiStatic };
 
 struct ReachOptions {
-  int grid = 50;  ///< N: N x N targets
+  int grid = 50;    ///< N: N x N targets
   int threads = 0;  ///< 0: one per hardware thread
   ReachModel model = ReachModel::Simulation;
   bool pid = true;           ///< the integral term (as `track --pid`); false: PD
@@ -46,19 +46,20 @@ struct ReachTarget {
 
 struct ReachResult {
   ReachModel model = ReachModel::Simulation;
-  double objectArea = 0;     ///< m^2, the chosen model's object set
-  double fingertipArea = 0;  ///< m^2
-  double quasiStaticArea = 0;  ///< m^2
-  int points = 0;              ///< targets tried (N^2)
+  double objectArea = 0;             ///< m^2, the chosen model's object set
+  double fingertipArea = 0;          ///< m^2
+  double quasiStaticArea = 0;        ///< m^2
+  int points = 0;                    ///< targets tried (N^2)
   std::vector<ReachTarget> targets;  ///< N^2, row by row from the window's lower left
   std::vector<Vec2> objectPoints, fingertipPoints, quasiStaticPoints;  ///< the sets (m)
-  Vec2 lower = Vec2::Zero(), upper = Vec2::Zero();  ///< grid window (m)
-  double seconds = 0;                               ///< wall time
-  double simulatedSeconds = 0;                      ///< summed over the runs
+  Vec2 lower = Vec2::Zero(), upper = Vec2::Zero();                     ///< grid window (m)
+  double seconds = 0;                                                  ///< wall time
+  double simulatedSeconds = 0;                                         ///< summed over the runs
   int threads = 1;
 };
 
-/// `progress(done, total)` is called from the calling thread about every 0.1 s.
+/// `progress(done, total)` is called from the calling thread about every 0.1 s. If it throws, the
+/// sweep stops (the runs under way finish first) and the exception propagates.
 ReachResult runReach(const ReachOptions& options, const HandModel& model = {},
                      const std::function<void(long, long)>& progress = {});
 

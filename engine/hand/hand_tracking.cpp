@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "engine/core/error.h"
-#include "engine/hand/hand_kinematics.h"
 #include "engine/dynamics/world.h"
+#include "engine/hand/hand_kinematics.h"
 
 namespace cablelab {
 
@@ -72,7 +72,8 @@ TrackResult runTracking(const TrackOptions& o, const HandModel& model,
   };
 
   result.samples.reserve(steps + 1);
-  result.samples.push_back({0, targetAt(0), world.body(box).position, maxTension(), world.body(box).position});
+  result.samples.push_back(
+      {0, targetAt(0), world.body(box).position, maxTension(), world.body(box).position});
   StopWatch watch(o.stop);
   double sumSquares = 0;
   long controlledSteps = 0;

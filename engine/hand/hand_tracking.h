@@ -34,39 +34,39 @@ struct EarlyStop {
 };
 
 struct TrackOptions {
-  Vec2 target = Vec2::Zero();     ///< final target box centre (m)
-  std::optional<Vec2> start;      ///< box position where the hand grasps it; default
-                                  ///< defaultStart(target)
-  double rampTime = 0;            ///< s; > 0: the target moves linearly from the start to
-                                  ///< `target` over this long, starting at grasp time
+  Vec2 target = Vec2::Zero();         ///< final target box centre (m)
+  std::optional<Vec2> start;          ///< box position where the hand grasps it; default
+                                      ///< defaultStart(target)
+  double rampTime = 0;                ///< s; > 0: the target moves linearly from the start to
+                                      ///< `target` over this long, starting at grasp time
   std::vector<TargetChange> changes;  ///< later target steps, in time order
-  double time = 15;               ///< simulated time (s)
-  bool pid = false;               ///< add the integral term (k_i = kHandPidKi)
+  double time = 15;                   ///< simulated time (s)
+  bool pid = false;                   ///< add the integral term (k_i = kHandPidKi)
   GraspOptions grasp;
   HandControllerParams controller;  ///< outer-loop gains (`pid` sets ki = kHandPidKi)
   EarlyStop stop;
 };
 
 struct TrackSample {
-  double t = 0;                ///< s
-  Vec2 target = Vec2::Zero();  ///< m
-  Vec2 box = Vec2::Zero();     ///< m
-  double tension = 0;          ///< the larger membrane tension (N)
+  double t = 0;                   ///< s
+  Vec2 target = Vec2::Zero();     ///< m
+  Vec2 box = Vec2::Zero();        ///< m
+  double tension = 0;             ///< the larger membrane tension (N)
   Vec2 reference = Vec2::Zero();  ///< the controller's reference r (m); the box before control
 };
 
 struct TrackResult {
-  double finalError = 0;   ///< |box - target| at the end (m)
-  double rmsError = 0;     ///< RMS of |box - target| over the steps after control began (m)
-  double graspTime = -1;   ///< s; -1 if the membranes never both wrapped the box
-  double startError = 0;   ///< |box - target| when control began (m)
-  bool graspHeld = false;  ///< the grasp closed and was never lost afterwards
-  int losses = 0;          ///< times the box was lost (each followed by a re-grasp attempt)
+  double finalError = 0;    ///< |box - target| at the end (m)
+  double rmsError = 0;      ///< RMS of |box - target| over the steps after control began (m)
+  double graspTime = -1;    ///< s; -1 if the membranes never both wrapped the box
+  double startError = 0;    ///< |box - target| when control began (m)
+  bool graspHeld = false;   ///< the grasp closed and was never lost afterwards
+  int losses = 0;           ///< times the box was lost (each followed by a re-grasp attempt)
   double startTension = 0;  ///< the larger membrane tension when control began (N): the squeeze
   double maxTension = 0;    ///< the larger membrane tension's maximum after control began (N)
   bool stoppedEarly = false;
-  bool reached = false;    ///< ended within the early-stop tolerance (any run)
-  Vec2 start = Vec2::Zero();       ///< where the grasp closed about (m)
+  bool reached = false;       ///< ended within the early-stop tolerance (any run)
+  Vec2 start = Vec2::Zero();  ///< where the grasp closed about (m)
   HandJoints finalJoints = HandJoints::Zero();
   std::vector<GraspEvent> events;
   std::vector<TrackSample> samples;  ///< one per step, t = 0 first

@@ -49,7 +49,8 @@ double parseField(const std::string& text, int row, const std::string& column,
 
 void validateMembraneGeometry(const MembraneGeometry& g, const std::string& source,
                               const std::string& field) {
-  if (!isFinite(g.a) || !isFinite(g.b)) throw InputError(source, field, "coordinates must be finite");
+  if (!isFinite(g.a) || !isFinite(g.b))
+    throw InputError(source, field, "coordinates must be finite");
   const double span = (g.b - g.a).norm();
   const double scale = std::max({1.0, g.a.norm(), g.b.norm()});
   if (span <= 1e-12 * scale)
@@ -59,8 +60,9 @@ void validateMembraneGeometry(const MembraneGeometry& g, const std::string& sour
 void validateMembranePoint(const MembraneGeometry& g, const Vec2& p, int row,
                            const std::string& source) {
   if (!isFinite(p))
-    throw InputError(source, rowField(row, "x"),
-                     "must be finite (got [" + formatNumber(p.x()) + ", " + formatNumber(p.y()) + "])");
+    throw InputError(
+        source, rowField(row, "x"),
+        "must be finite (got [" + formatNumber(p.x()) + ", " + formatNumber(p.y()) + "])");
   const double span = (g.b - g.a).norm();
   // A point on a pulley has no unit vector u_i; one between them has u1 + u2 = 0.
   for (const auto& [pulley, name] : {std::pair{g.a, "A"}, std::pair{g.b, "B"}})

@@ -171,7 +171,8 @@ MembraneFitResult fitMembrane(const MembraneGeometry& g, const std::vector<Membr
   if (!(x[0] > 0.0) || !std::isfinite(x[1]))
     throw InputError(options.source, "fy",
                      "best fit has stiffness k <= 0: the measured forces do not pull towards the "
-                     "band (sign of fy?)" + gotValue(x[0]));
+                     "band (sign of fy?)" +
+                         gotValue(x[0]));
 
   result.params = {x[0], x[1]};
   result.covariance = info.inverse();

@@ -1,6 +1,6 @@
 // Fitting the membrane model (engine/membrane/membrane_model.h) to force measurements
-// (engine/membrane/membrane_data.h): stiffness k and preload from the vertical force component and the
-// force direction at each contact point, thesis section 3.2.
+// (engine/membrane/membrane_data.h): stiffness k and preload from the vertical force component and
+// the force direction at each contact point, thesis section 3.2.
 //
 // Method: one weighted nonlinear least-squares problem over both measurement kinds,
 //   minimise  sum_i ((fy_model_i - fy_i) / sigma_fy)^2

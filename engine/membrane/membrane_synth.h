@@ -1,5 +1,5 @@
-// Synthetic membrane measurements: the model of engine/membrane/membrane_model.h evaluated over a grid
-// of contact points, with seeded Gaussian noise on fy and on the force direction. Used to make
+// Synthetic membrane measurements: the model of engine/membrane/membrane_model.h evaluated over a
+// grid of contact points, with seeded Gaussian noise on fy and on the force direction. Used to make
 // example data sets and to test the fit against known parameters.
 //
 // Grid, in the band's frame: t = (B - A) / |B - A| along the band, n = t rotated by +90 deg.

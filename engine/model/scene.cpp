@@ -62,7 +62,8 @@ void validateScene(const SceneDef& scene, const std::string& source) {
   Checker check(source);
   check.finite(scene.gravity, "gravity");
   check.positive(scene.dt, "dt");
-  if (scene.substeps < 1 || scene.substeps > 1000) check.fail("substeps", "must be 1..1000" + gotValue(scene.substeps));
+  if (scene.substeps < 1 || scene.substeps > 1000)
+    check.fail("substeps", "must be 1..1000" + gotValue(scene.substeps));
   check.finite(scene.view.center, "view.center");
   check.positive(scene.view.height, "view.height");
 
@@ -71,7 +72,8 @@ void validateScene(const SceneDef& scene, const std::string& source) {
     const BodyDef& b = scene.bodies[i];
     const std::string f = at("bodies", i);
     if (b.name.empty()) check.fail(f + ".name", "must not be empty");
-    if (b.name == "world") check.fail(f + ".name", "is reserved for the fixed frame" + gotValue(b.name));
+    if (b.name == "world")
+      check.fail(f + ".name", "is reserved for the fixed frame" + gotValue(b.name));
     if (!names.insert(b.name).second)
       check.fail(f + ".name", "duplicate body name" + gotValue(b.name));
     check.finite(b.position, f + ".position");
@@ -128,6 +130,7 @@ void validateScene(const SceneDef& scene, const std::string& source) {
     check.nonNegative(j.servo.kd, f + ".servo.kd");
     check.finite(j.servo.target, f + ".servo.target");
     check.positive(j.servo.maxForce, f + ".servo.max_force");
+    check.finite(j.servo.speed, f + ".servo.speed");
   }
 
   std::set<std::string> cableNames;
@@ -141,6 +144,13 @@ void validateScene(const SceneDef& scene, const std::string& source) {
     bodyRef(c.end.body, f + ".end.body");
     check.finite(c.start.point, f + ".start.point");
     check.finite(c.end.point, f + ".end.point");
+    for (const auto& [end, name] : {std::pair{&c.start, ".start"}, std::pair{&c.end, ".end"}}) {
+      check.nonNegative(end->radius, f + name + ".radius");
+      if (end->radius == 0) continue;
+      check.positive(end->turns, f + name + ".turns");
+      if (end->side != WrapSide::Left && end->side != WrapSide::Right)
+        check.fail(f + name + ".side", "a drum is wound on the left or the right");
+    }
     check.finite(c.restLength, f + ".rest_length");
     if (c.restLength == 0) check.fail(f + ".rest_length", "zero-length cable" + gotValue(0.0));
     check.nonNegative(c.stiffness, f + ".stiffness");
@@ -155,6 +165,21 @@ void validateScene(const SceneDef& scene, const std::string& source) {
         check.finite(pd.vertices[v], fp + at(".vertices", v));
       if (pd.kind == PulleyDef::Kind::Polygon && !pd.vertices.empty() && !isConvexCCW(pd.vertices))
         check.fail(fp + ".vertices", "polygon must be convex and counter-clockwise");
+      if (pd.kind == PulleyDef::Kind::Point && pd.side == WrapSide::Auto)
+        check.fail(fp + ".side", "a point pulley cannot be auto (use left, right or threaded)");
+      if (pd.kind != PulleyDef::Kind::Circle) continue;
+      check.positive(pd.radius, fp + ".radius");
+      if (pd.side == WrapSide::Threaded)
+        check.fail(fp + ".side", "a circle pulley cannot be threaded (use left, right or auto)");
+      if (pd.side == WrapSide::Auto && pd.turns > 0)
+        check.fail(fp + ".side", "a circle wound at the start needs side left or right");
+      check.nonNegative(pd.turns, fp + ".turns");
+      if (pd.grip == Grip::Capstan) check.positive(pd.mu, fp + ".mu");
+      if (gripsCable(pd) && c.stiffness > 0)
+        check.fail(fp + (pd.grip == Grip::Capstan ? ".mu" : ".no_slip"),
+                   "a wheel that grips the cable needs a rigid cable (stiffness 0)");
+      if (gripsCable(pd) && pd.side == WrapSide::Auto)
+        check.fail(fp + ".side", "a wheel that grips the cable needs side left or right");
     }
   }
 }

@@ -49,6 +49,9 @@ struct ServoDef {
   double kd = 44.72;      ///< N s/m or N m s/rad (default 2 sqrt(500))
   double target = 0.0;    ///< m or rad, in the joint's coordinate
   double maxForce = 1e4;  ///< N or N m, clamp
+  /// m/s or rad/s: the target moves at this rate (a drive at constant speed; 0 = holds still),
+  /// and the damping term tracks it: force = kp (target - q) + kd (speed - q').
+  double speed = 0.0;
 };
 
 struct JointDef {
@@ -70,24 +73,44 @@ struct JointDef {
 ///         (the pulley lies on the cable's right).
 ///  Right: the mirror image.
 ///  Threaded: always in the path, whatever the bend (an eyelet the cable runs through).
-enum class WrapSide { Left, Right, Threaded };
+///  Auto:  Left or Right, whichever side the pulley meets the cable from (polygons, circles).
+enum class WrapSide { Left, Right, Threaded, Auto };
 
-/// A radius-zero pulley: a point, or the vertices of a convex polygon, fixed to a body or the
-/// world.
+/// How a cable grips a circle pulley (docs/wheels.md).
+///  Frictionless: slides freely; one tension on both sides, the wheel is not driven.
+///  NoSlip: never slides; the wheel's angle enters the constraint and the two sides carry
+///          their own tensions (a toothed belt, a rope on a winch barrel).
+///  Capstan: sticks while T_high <= T_low e^(mu theta) (theta the wrap angle), slides at that
+///           ratio beyond (Euler-Eytelwein).
+enum class Grip { Frictionless, NoSlip, Capstan };
+
+/// A pulley fixed to a body or the world: a point, the vertices of a convex polygon, or a circle.
 struct PulleyDef {
-  enum class Kind { Point, Polygon };
+  enum class Kind { Point, Polygon, Circle };
   Kind kind = Kind::Point;
   std::string body = "world";      ///< "world" or a body name
-  Vec2 point = Vec2::Zero();       ///< Point: position in the body frame (world frame for "world")
+  Vec2 point = Vec2::Zero();       ///< Point: position; Circle: centre (body frame; world frame
+                                   ///< for "world")
   std::vector<Vec2> vertices;      ///< Polygon: CCW convex polygon, body frame; empty = the
                                    ///< body's first polygon shape
   WrapSide side = WrapSide::Left;  ///< Polygon pulleys cannot be Threaded
+  double radius = 0.0;             ///< Circle: m, > 0
+  Grip grip = Grip::Frictionless;  ///< Circle only
+  double mu = 0.0;                 ///< Capstan: friction coefficient, > 0
+  double turns = 0.0;              ///< Circle: the wrap at the start in turns, for a cable wound
+                                   ///< round more than once (2.25 = 810 degrees); 0 = the wrap
+                                   ///< the geometry gives, under one turn
 };
 
-/// One end of a cable, fixed to a body (or the world).
+/// One end of a cable, fixed to a body (or the world). With a radius it is a drum: the cable is
+/// wound `turns` turns onto a circle round `point` (the end fixed on the drum's rim), and winds
+/// or unwinds as the drum turns: the length stored is r times the angle turned.
 struct AnchorDef {
   std::string body = "world";
-  Vec2 point = Vec2::Zero();  ///< body frame (world frame for "world")
+  Vec2 point = Vec2::Zero();       ///< body frame (world frame for "world"); a drum's centre
+  double radius = 0.0;             ///< m; 0 = a point, > 0 = a drum
+  WrapSide side = WrapSide::Left;  ///< drum: the side the cable passes it (Left or Right)
+  double turns = 1.0;              ///< drum: turns wound at the start (> 0)
 };
 
 /// A cable from `start` over `pulleys` (in order) to `end`.
@@ -103,6 +126,11 @@ struct CableDef {
   double preload = 0.0;      ///< m of pre-stretch, >= 0 (elastic cables only)
   double damping = 0.0;      ///< N s/m, >= 0 (elastic cables only)
 };
+
+/// True for a circle pulley the cable does not slide freely on (it splits the cable in spans).
+inline bool gripsCable(const PulleyDef& p) {
+  return p.kind == PulleyDef::Kind::Circle && p.grip != Grip::Frictionless;
+}
 
 /// Where the camera looks by default (for the sandbox and snapshots).
 struct ViewDef {

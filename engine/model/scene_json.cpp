@@ -66,8 +66,7 @@ BodyDef readBody(Reader&& r) {
   b.linearDamping = r.number("linear_damping", 0);
   b.angularDamping = r.number("angular_damping", 0);
   const json& shapes = r.list("shapes");
-  for (size_t i = 0; i < shapes.size(); ++i)
-    b.shapes.push_back(readShape(r.item("shapes", i)));
+  for (size_t i = 0; i < shapes.size(); ++i) b.shapes.push_back(readShape(r.item("shapes", i)));
   return b;
 }
 
@@ -101,25 +100,65 @@ JointDef readJoint(Reader&& r) {
     j.servo.kd = s.number("kd", j.servo.kd);
     j.servo.target = s.number("target", 0);
     j.servo.maxForce = s.number("max_force", j.servo.maxForce);
+    j.servo.speed = s.number("speed", 0);
   }
   return j;
 }
 
+const char* sideName(WrapSide s) {
+  switch (s) {
+    case WrapSide::Left:
+      return "left";
+    case WrapSide::Right:
+      return "right";
+    case WrapSide::Threaded:
+      return "threaded";
+    case WrapSide::Auto:
+      return "auto";
+  }
+  return "left";
+}
+
 WrapSide readSide(Reader& r, WrapSide fallback) {
-  const std::string side = r.string("side", fallback == WrapSide::Left    ? "left"
-                                            : fallback == WrapSide::Right ? "right"
-                                                                          : "threaded");
+  const std::string side = r.string("side", sideName(fallback));
   if (side == "left") return WrapSide::Left;
   if (side == "right") return WrapSide::Right;
   if (side == "threaded") return WrapSide::Threaded;
-  r.fail("side", "must be left, right or threaded" + gotValue(side));
+  if (side == "auto") return WrapSide::Auto;
+  r.fail("side", "must be left, right, threaded or auto" + gotValue(side));
 }
 
 AnchorDef readAnchor(Reader&& r) {
   AnchorDef a;
   a.body = r.string("body", "world");
   a.point = r.vec2("point", Vec2::Zero());
+  if (r.has("radius")) {
+    a.radius = r.number("radius", 0);
+    if (a.radius <= 0)
+      r.fail("radius", "a drum's radius must be positive (got " + formatNumber(a.radius) + ")");
+    a.side = readSide(r, WrapSide::Left);
+    a.turns = r.number("turns", a.turns);
+  }
   return a;
+}
+
+// Circle pulleys: "radius", and either "no_slip": true or "mu" (capstan friction).
+void readCircle(Reader& p, PulleyDef& pd) {
+  pd.kind = PulleyDef::Kind::Circle;
+  pd.point = p.vec2("point", Vec2::Zero());
+  if (!p.has("radius")) p.fail("radius", "is required for a circle pulley");
+  pd.radius = p.number("radius", 0);
+  pd.side = readSide(p, WrapSide::Left);
+  pd.turns = p.number("turns", 0);
+  const bool noSlip = p.boolean("no_slip", false);
+  if (p.has("mu")) {
+    if (noSlip) p.fail("mu", "give either mu or no_slip, not both");
+    pd.mu = p.number("mu", 0);
+    if (pd.mu < 0) p.fail("mu", "must be >= 0" + gotValue(pd.mu));
+    pd.grip = pd.mu > 0 ? Grip::Capstan : Grip::Frictionless;
+  } else if (noSlip) {
+    pd.grip = Grip::NoSlip;
+  }
 }
 
 CableDef readCable(Reader&& r) {
@@ -143,8 +182,10 @@ CableDef readCable(Reader&& r) {
       pd.kind = PulleyDef::Kind::Polygon;
       pd.vertices = p.points("vertices");
       pd.side = readSide(p, WrapSide::Left);
+    } else if (type == "circle") {
+      readCircle(p, pd);
     } else {
-      p.fail("type", "must be point or polygon" + gotValue(type));
+      p.fail("type", "must be point, polygon or circle" + gotValue(type));
     }
     c.pulleys.push_back(pd);
   }
@@ -165,8 +206,14 @@ json polygonJson(const std::vector<Vec2>& vs) {
   for (const Vec2& v : vs) out.push_back(vec(v));
   return out;
 }
-const char* sideName(WrapSide s) {
-  return s == WrapSide::Left ? "left" : s == WrapSide::Right ? "right" : "threaded";
+json anchorJson(const AnchorDef& a) {
+  json j = {{"body", a.body}, {"point", vec(a.point)}};
+  if (a.radius > 0) {
+    j["radius"] = a.radius;
+    j["side"] = sideName(a.side);
+    j["turns"] = a.turns;
+  }
+  return j;
 }
 
 }  // namespace
@@ -188,14 +235,11 @@ SceneDef sceneFromJson(const json& j, const std::string& source) {
     const json& bodies = r.list("bodies");
     // An empty object would run as an empty world: surely not what the author meant.
     if (bodies.empty()) r.fail("bodies", "must list at least one body (the scene has none)");
-    for (size_t i = 0; i < bodies.size(); ++i)
-      s.bodies.push_back(readBody(r.item("bodies", i)));
+    for (size_t i = 0; i < bodies.size(); ++i) s.bodies.push_back(readBody(r.item("bodies", i)));
     const json& joints = r.list("joints");
-    for (size_t i = 0; i < joints.size(); ++i)
-      s.joints.push_back(readJoint(r.item("joints", i)));
+    for (size_t i = 0; i < joints.size(); ++i) s.joints.push_back(readJoint(r.item("joints", i)));
     const json& cables = r.list("cables");
-    for (size_t i = 0; i < cables.size(); ++i)
-      s.cables.push_back(readCable(r.item("cables", i)));
+    for (size_t i = 0; i < cables.size(); ++i) s.cables.push_back(readCable(r.item("cables", i)));
   }
   validateScene(s, source);
   return s;
@@ -255,26 +299,31 @@ json sceneToJson(const SceneDef& s) {
       jj["servo"] = {{"kp", jd.servo.kp},
                      {"kd", jd.servo.kd},
                      {"target", jd.servo.target},
-                     {"max_force", jd.servo.maxForce}};
+                     {"max_force", jd.servo.maxForce},
+                     {"speed", jd.servo.speed}};
     j["joints"].push_back(jj);
   }
   j["cables"] = json::array();
   for (const CableDef& c : s.cables) {
-    json jc = {{"name", c.name},
-               {"start", {{"body", c.start.body}, {"point", vec(c.start.point)}}},
-               {"end", {{"body", c.end.body}, {"point", vec(c.end.point)}}},
-               {"pulleys", json::array()},
-               {"stiffness", c.stiffness},
-               {"preload", c.preload},
+    json jc = {{"name", c.name},           {"start", anchorJson(c.start)},
+               {"end", anchorJson(c.end)}, {"pulleys", json::array()},
+               {"stiffness", c.stiffness}, {"preload", c.preload},
                {"damping", c.damping}};
     if (c.restLength > 0) jc["rest_length"] = c.restLength;
     for (const PulleyDef& p : c.pulleys) {
-      json jp = {{"type", p.kind == PulleyDef::Kind::Point ? "point" : "polygon"},
+      json jp = {{"type", p.kind == PulleyDef::Kind::Point    ? "point"
+                          : p.kind == PulleyDef::Kind::Circle ? "circle"
+                                                              : "polygon"},
                  {"body", p.body},
                  {"side", sideName(p.side)}};
-      if (p.kind == PulleyDef::Kind::Point)
-        jp["point"] = vec(p.point);
-      else if (!p.vertices.empty())
+      if (p.kind != PulleyDef::Kind::Polygon) jp["point"] = vec(p.point);
+      if (p.kind == PulleyDef::Kind::Circle) {
+        jp["radius"] = p.radius;
+        jp["turns"] = p.turns;
+        if (p.grip == Grip::NoSlip) jp["no_slip"] = true;
+        if (p.grip == Grip::Capstan) jp["mu"] = p.mu;
+      }
+      if (p.kind == PulleyDef::Kind::Polygon && !p.vertices.empty())
         jp["vertices"] = polygonJson(p.vertices);
       jc["pulleys"].push_back(jp);
     }
@@ -291,7 +340,8 @@ void saveSceneFile(const SceneDef& scene, const std::string& path) {
   std::ofstream out(path);
   if (!out) throw InputError(path, "(file)", std::string("cannot write: ") + std::strerror(errno));
   out << sceneToJson(scene).dump(2) << "\n";
-  if (!out.flush()) throw InputError(path, "(file)", std::string("write failed: ") + std::strerror(errno));
+  if (!out.flush())
+    throw InputError(path, "(file)", std::string("write failed: ") + std::strerror(errno));
 }
 
 }  // namespace cablelab

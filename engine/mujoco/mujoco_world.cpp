@@ -49,8 +49,8 @@ void writeBody(std::ostringstream& xml, const BodyDef& b, int index) {
   }
   for (const ShapeDef& s : b.shapes) {
     if (s.kind == ShapeDef::Kind::Circle) {
-      xml << "    <geom type=\"sphere\" size=\"" << number(s.radius) << "\" pos=\""
-          << xz(s.center) << '"';
+      xml << "    <geom type=\"sphere\" size=\"" << number(s.radius) << "\" pos=\"" << xz(s.center)
+          << '"';
     } else {
       Vec2 lo = s.vertices[0], hi = s.vertices[0];
       for (const Vec2& v : s.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);

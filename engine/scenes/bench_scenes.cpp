@@ -20,6 +20,7 @@ struct Samples {
   std::vector<double> step, cable, perWrap;
   double wraps = 0;
   int substeps = 1;
+  std::vector<std::pair<std::string, std::vector<double>>> spanTensions;  // the last run's
 };
 
 void sample(SceneDef scene, bool withCables, int warmup, int steps, Samples& out) {
@@ -37,6 +38,13 @@ void sample(SceneDef scene, bool withCables, int warmup, int steps, Samples& out
     out.wraps += s.wrapPoints;
     if (s.wrapPoints > 0) out.perWrap.push_back(1e3 * s.cableMicros / s.wrapPoints);
   }
+  out.spanTensions.clear();
+  for (int c = 0; c < world.cableCount(); ++c) {
+    const Cable& cable = world.cable(c);
+    std::vector<double> tensions;
+    for (int k = 0; k < cable.spanCount(); ++k) tensions.push_back(cable.spanTension(k));
+    out.spanTensions.emplace_back(cable.name(), std::move(tensions));
+  }
 }
 
 StepTiming summarise(const Samples& s) {
@@ -47,6 +55,7 @@ StepTiming summarise(const Samples& s) {
   t.meanWrapPoints = t.steps > 0 ? s.wraps / t.steps : 0;
   t.wrapPointNanos = medianOf(s.perWrap);
   t.substepWrapPointNanos = t.wrapPointNanos / s.substeps;
+  t.spanTensions = s.spanTensions;
   return t;
 }
 

@@ -8,6 +8,10 @@
 
 #include <string>
 
+#include <string>
+#include <utility>
+#include <vector>
+
 #include "engine/model/scene.h"
 
 namespace cablelab {
@@ -19,6 +23,9 @@ struct StepTiming {
   double meanWrapPoints = 0;  ///< wrap points in use, mean over the timed steps
   double wrapPointNanos = 0;  ///< median over steps of cableMicros / wrap points (ns), 0 if none
   double substepWrapPointNanos = 0;  ///< the same per sub-step (ns)
+  /// Per cable, the tension of each span (N) after the last timed step: a cable that wheels
+  /// grip has one per span, any other one.
+  std::vector<std::pair<std::string, std::vector<double>>> spanTensions;
 };
 
 /// Steps a World built from `scene` `warmup` times, then times `steps` steps of scene.dt with

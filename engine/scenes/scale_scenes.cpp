@@ -77,7 +77,8 @@ SceneDef makePulleyChain(int pulleys) {
 
 std::vector<ScaleCase> scaleCases() {
   std::vector<ScaleCase> cases;
-  for (int n : {1, 16, 256, 1024}) cases.push_back({"atwood_" + std::to_string(n), makeAtwoodMachines(n)});
+  for (int n : {1, 16, 256, 1024})
+    cases.push_back({"atwood_" + std::to_string(n), makeAtwoodMachines(n)});
   cases.push_back({"pulleys_64", makePulleyChain(64)});
   return cases;
 }

@@ -48,5 +48,9 @@ SceneDef makeHandScene(const SceneParams& p);
 SceneDef makeHexagonScene(const SceneParams& p);
 SceneDef makeMembraneScene(const SceneParams& p);
 SceneDef makePulleyScene(const SceneParams& p);
+SceneDef makeWheelScene(const SceneParams& p);
+SceneDef makeCapstanScene(const SceneParams& p);
+SceneDef makeWinchScene(const SceneParams& p);
+SceneDef makeTackleScene(const SceneParams& p);
 
 }  // namespace cablelab

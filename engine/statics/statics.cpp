@@ -19,7 +19,9 @@ const char* toString(StaticsMethod method) {
 
 namespace {
 
-std::string describe(double v) { return formatNumber(v); }
+std::string describe(double v) {
+  return formatNumber(v);
+}
 
 void requireFinite(const Vec2& v, const std::string& source, const std::string& field) {
   if (!isFinite(v))
@@ -48,7 +50,8 @@ void validateStatics(const StaticsProblem& problem, const std::string& source) {
           source, field,
           "coordinates must be within +/-1e9 m (got " + describe(v.cwiseAbs().maxCoeff()) + ")");
   };
-  if (problem.cables.empty()) throw InputError(source, "cables", "needs at least one cable");
+  if (problem.cables.empty())
+    throw InputError(source, "cables", "must list at least one cable (the problem has none)");
   for (size_t i = 0; i < problem.cables.size(); ++i) {
     const StaticsCable& c = problem.cables[i];
     const std::string at = "cables[" + std::to_string(i) + "]";

@@ -5,8 +5,8 @@
 // T_i = k_i max(0, l_i - L_i) (a cable cannot push). The equilibrium minimises the elastic energy
 //   E(p) = sum_i k_i / 2 max(0, l_i(p) - L_i)^2,
 // which is convex. E has a kink at every fingertip point (a_i or b_i) of a taut cable: the
-// minimiser may sit exactly there, the fingertip absorbing the net force (docs/model.md#statics), and it need
-// not be unique (one taut cable with p on its own a-b segment, or every cable slack).
+// minimiser may sit exactly there, the fingertip absorbing the net force (docs/model.md#statics),
+// and it need not be unique (one taut cable with p on its own a-b segment, or every cable slack).
 //
 // Where to find things:
 //   problem, validation, energy, gradient, Hessian ....... this file (statics.cpp)

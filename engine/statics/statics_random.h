@@ -4,8 +4,8 @@
 // "loose" with probability `looseFraction`: its rest length exceeds |a - b| by 0.2..1.5 m, so it
 // may end slack; the others are shorter than |a - b| (always taut). With `onFingertip` the
 // problem is built so that its unique minimiser is exactly the fingertip point a_0 (the kink
-// case of docs/model.md#statics): cable 0 is aimed against the others' pull at a_0 and made strong enough
-// for a_0 to absorb their net force with margin.
+// case of docs/model.md#statics): cable 0 is aimed against the others' pull at a_0 and made strong
+// enough for a_0 to absorb their net force with margin.
 #pragma once
 
 #include <random>

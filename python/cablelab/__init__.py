@@ -13,7 +13,9 @@ says _deg). Arrays are numpy float64.
 Simulation   World (load, from_dict, step, run, state as arrays, forces, servos, cables)
 Tools        statics, wrap, fit, membrane_data, membrane_model, scenes
 The hand     HandModel, ControllerParams, HandController, hand_joints, place_hand,
-             track, reach (the GIL is released while they run)
+             track, reach (`cablelab track` and `reach`; the GIL is released while they
+             run), HandGrasp and GraspOptions (the grasp sequence, to step the hand under
+             the controller or a law written in Python)
 Pictures     render (numpy RGBA image), snapshot (PNG); offscreen, no display needed
              (HAS_RENDERER is False in a build without the UI)
 Errors       InputError (a ValueError; str(e) is the CLI's one-line message, with
@@ -28,7 +30,9 @@ from ._core import (
     HAND_JOINT_NAMES,
     PID_KI,
     ControllerParams,
+    GraspOptions,
     HandController,
+    HandGrasp,
     HandModel,
     InputError,
     SimulationError,
@@ -49,7 +53,8 @@ from ._core import (
 
 __all__ = [
     "World", "statics", "wrap", "fit", "membrane_data", "membrane_model", "scenes",
-    "HandModel", "ControllerParams", "HandController", "hand_joints", "place_hand",
+    "HandModel", "ControllerParams", "HandController", "HandGrasp", "GraspOptions",
+    "hand_joints", "place_hand",
     "track", "reach", "render", "snapshot", "InputError", "SimulationError",
     "HAND_JOINT_NAMES", "HAND_BOX", "HAND_CABLES", "PID_KI", "HAS_RENDERER",
 ]

@@ -1,8 +1,8 @@
 // Controller update and hand-scene step (with and without the membranes).
 #include <benchmark/benchmark.h>
 
-#include "engine/hand/hand_controller.h"
 #include "engine/dynamics/world.h"
+#include "engine/hand/hand_controller.h"
 
 namespace cablelab {
 namespace {

@@ -51,8 +51,8 @@ const bool registered = [] {
                                  BM_ScaleCablelab, std::string(name))
         ->Unit(benchmark::kMicrosecond);
 #ifdef CABLELAB_HAVE_MUJOCO
-    benchmark::RegisterBenchmark(("BM_Scale/mujoco/" + std::string(name)).c_str(),
-                                 BM_ScaleMujoco, std::string(name))
+    benchmark::RegisterBenchmark(("BM_Scale/mujoco/" + std::string(name)).c_str(), BM_ScaleMujoco,
+                                 std::string(name))
         ->Unit(benchmark::kMicrosecond);
 #endif
   }

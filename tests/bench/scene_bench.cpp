@@ -6,11 +6,11 @@
 #include <Eigen/Dense>
 #include <random>
 
-#include "engine/scenes/bench_scenes.h"
 #include "engine/cable/cable.h"
-#include "engine/scenes/scene_registry.h"
 #include "engine/dynamics/tension_solver.h"
 #include "engine/dynamics/world.h"
+#include "engine/scenes/bench_scenes.h"
+#include "engine/scenes/scene_registry.h"
 
 namespace cablelab {
 namespace {

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <string>
 
+#include <unistd.h>
+
 #include "tests/support/engine_test_support.h"
 
 namespace {
@@ -17,8 +19,10 @@ std::string slurp(const std::string& path) {
 }
 
 void expectIdenticalRuns(const std::string& args, const std::string& tag) {
-  const std::string a = "/tmp/cablelab_determinism_" + tag + "_a.csv",
-                    b = "/tmp/cablelab_determinism_" + tag + "_b.csv";
+  // The process id in the names: other checkouts on the machine run this test at the same time.
+  const std::string stem =
+      "/tmp/cablelab_determinism_" + tag + "_" + std::to_string(::getpid()) + "_";
+  const std::string a = stem + "a.csv", b = stem + "b.csv";
   const auto r1 = cablelab::test::runCli(args + " --csv " + a);
   const auto r2 = cablelab::test::runCli(args + " --csv " + b);
   ASSERT_EQ(r1.exitCode, 0) << r1.err;

@@ -182,32 +182,38 @@ TEST(FitCli, BadDataFilesExitTwoNamingRowAndField) {
                    "tests/data/bad/fit_two_rows.csv: rows: need at least 3 measurements");
   expectInputError("tests/data/bad/fit_nan.csv " + kPulleys,
                    "tests/data/bad/fit_nan.csv: row 7, fy: must be a finite number (got \"nan\")");
-  expectInputError("tests/data/bad/fit_not_a_number.csv " + kPulleys,
-                   "tests/data/bad/fit_not_a_number.csv: row 2, angle_deg: must be a finite number");
+  expectInputError(
+      "tests/data/bad/fit_not_a_number.csv " + kPulleys,
+      "tests/data/bad/fit_not_a_number.csv: row 2, angle_deg: must be a finite number");
   expectInputError("tests/data/bad/fit_on_line.csv " + kPulleys,
                    "tests/data/bad/fit_on_line.csv: row 3, y: point lies on the band between the "
                    "pulleys");
-  expectInputError("tests/data/bad/does_not_exist.csv " + kPulleys,
-                   "tests/data/bad/does_not_exist.csv: (file): cannot open: No such file or directory");
+  expectInputError(
+      "tests/data/bad/does_not_exist.csv " + kPulleys,
+      "tests/data/bad/does_not_exist.csv: (file): cannot open: No such file or directory");
 }
 
 TEST(FitCli, BadPulleysExitTwo) {
   expectInputError("assets/data/membrane_example.csv --pulleys 0.1,0,0.1,0",
                    "command line: --pulleys: pulleys A and B coincide");
-  expectInputError("assets/data/membrane_example.csv --pulleys 0.1,0,0.2",
-                   "command line: --pulleys: must be AX,AY,BX,BY, 4 finite numbers (got \"0.1,0,0.2\")");
-  expectInputError("assets/data/membrane_example.csv --pulleys 0.1,nan,0.2,0",
-                   "command line: --pulleys: must be AX,AY,BX,BY, 4 finite numbers (got \"0.1,nan,0.2,0\")");
+  expectInputError(
+      "assets/data/membrane_example.csv --pulleys 0.1,0,0.2",
+      "command line: --pulleys: must be AX,AY,BX,BY, 4 finite numbers (got \"0.1,0,0.2\")");
+  expectInputError(
+      "assets/data/membrane_example.csv --pulleys 0.1,nan,0.2,0",
+      "command line: --pulleys: must be AX,AY,BX,BY, 4 finite numbers (got \"0.1,nan,0.2,0\")");
   expectInputError("assets/data/membrane_example.csv", "command line: --pulleys: is required");
 }
 
 TEST(FitCli, BadGenerateOptionsExitTwo) {
   const std::string out = (scratch() / "never.csv").string();
-  expectInputError("--generate " + out + " " + kPulleys + " --preload 0.8", "command line: --k: is required with --generate");
+  expectInputError("--generate " + out + " " + kPulleys + " --preload 0.8",
+                   "command line: --k: is required with --generate");
   expectInputError("--generate " + out + " " + kPulleys + " --k 25 --preload -1",
                    "command line: --preload: must be >= 0");
-  expectInputError("--generate " + out + " " + kPulleys + " --k 25 --preload 1 --grid 4by4",
-                   "command line: --grid: must be WxH, each a whole number in [1, 1000000] (got \"4by4\")");
+  expectInputError(
+      "--generate " + out + " " + kPulleys + " --k 25 --preload 1 --grid 4by4",
+      "command line: --grid: must be WxH, each a whole number in [1, 1000000] (got \"4by4\")");
   EXPECT_FALSE(fs::exists(out));
 }
 

@@ -7,11 +7,11 @@
 
 #include <array>
 #include <cmath>
-#include <filesystem>
-#include <vector>
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace {
 

@@ -14,14 +14,14 @@
 #include <string>
 #include <string_view>
 
+#include "engine/cable/wrap_io.h"
 #include "engine/core/error.h"
+#include "engine/dynamics/world.h"
 #include "engine/model/scene_json.h"
 #include "engine/statics/socp.h"
 #include "engine/statics/statics.h"
 #include "engine/statics/statics_io.h"
 #include "engine/statics/statics_newton.h"
-#include "engine/dynamics/world.h"
-#include "engine/cable/wrap_io.h"
 
 namespace cablelab::fuzz {
 

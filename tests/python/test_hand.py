@@ -44,18 +44,3 @@ def test_update_moves_the_prediction_towards_the_target():
     dq = c.update(q, box, target, q)
     moved = c.predict(q + dq, box)["box"]
     assert np.linalg.norm(moved - target) < np.linalg.norm(box - target)
-
-
-def test_track_releases_the_gil_and_reports_samples():
-    r = cablelab.track(target=(0.05, 0.05), time=2)
-    assert r["grasp_time"] > 0
-    assert r["box"].shape == (r["t"].shape[0], 2)
-    assert np.all(np.diff(r["t"]) > 0)
-
-
-def test_reach_small_grid_is_consistent():
-    r = cablelab.reach(grid=6, threads=1)
-    assert r["points"] == 36
-    cell = np.prod((np.array(r["upper"]) - r["lower"]) / 6)
-    assert r["fingertip_area"] == pytest.approx(len(r["fingertip_points"]) * cell, rel=1e-9)
-    assert r["ratio"] == pytest.approx(r["object_area"] / r["fingertip_area"], rel=1e-12)

@@ -1,5 +1,5 @@
 # The module gives the CLI's answers for the same inputs: run --csv bit for bit, the Atwood
-# tension, statics p to 1e-12, wrap, fit and track; and the same error message for bad input.
+# tension, statics p to 1e-12, wrap and fit (track and reach: test_hand_runs.py); and the same error message for bad input.
 import json
 
 import numpy as np
@@ -125,6 +125,32 @@ def test_fit_equals_cli_for_csv_and_array():
         for key in ("k", "preload", "rms_fy", "rms_angle_deg", "k_stderr", "preload_stderr",
                     "chi2_per_dof", "iterations", "rounds", "rows"):
             assert got[key] == expected[key], key
+    # the same keys in the same order (the CLI's JSON), the time apart
+    assert list(got)[:len(expected)] == list(expected)
+    given = cli_json("fit", data, "--pulleys", "-0.2,0,0.2,0", "--sigma-fy", "0.05",
+                     "--sigma-angle-deg", "1")
+    got = cablelab.fit(data, "-0.2,0,0.2,0", sigma_fy=0.05, sigma_angle_deg=1)
+    assert {k: v for k, v in got.items() if k in given and k != "fit_us"} == \
+        {k: v for k, v in given.items() if k != "fit_us"}
+
+
+FIT_OPTION_ERRORS = {
+    "pulleys_coincide": ("0.1,0,0.1,0", {}, []),
+    "pulleys_text": ("0.1,0,0.2", {}, []),
+    "pulleys_nan": ("0.1,nan,0.2,0", {}, []),
+    "sigma_fy": ("-0.2,0,0.2,0", dict(sigma_fy=-1), ["--sigma-fy", "-1"]),
+    "sigma_angle": ("-0.2,0,0.2,0", dict(sigma_angle_deg=0), ["--sigma-angle-deg", "0"]),
+}
+
+
+@pytest.mark.parametrize("case", FIT_OPTION_ERRORS, ids=list(FIT_OPTION_ERRORS))
+def test_bad_fit_options_same_message_as_cli(case):
+    pulleys, kwargs, args = FIT_OPTION_ERRORS[case]
+    data = SOURCE_DIR / "assets" / "data" / "membrane_example.csv"
+    expected = cli_error("fit", data, "--pulleys", pulleys, *args)
+    with pytest.raises(cablelab.InputError) as e:
+        cablelab.fit(data, pulleys, **kwargs)
+    assert str(e.value) == expected
 
 
 def test_membrane_data_equals_cli_generate(tmp_path):
@@ -134,15 +160,6 @@ def test_membrane_data_equals_cli_generate(tmp_path):
     _, rows = read_csv(out)
     got = cablelab.membrane_data(30, 0.5, (-0.2, 0, 0.2, 0), seed=7, grid=(5, 4))
     assert np.array_equal(got, np.array(rows))
-
-
-def test_track_equals_cli():
-    expected = cli_json("track", "--target", "0.05,-0.05", "--time", "3")
-    got = cablelab.track(target=(0.05, -0.05), time=3)
-    for key in expected:
-        assert got[key] == expected[key], key
-    assert got["t"].shape[0] == got["box"].shape[0] == round(3 * 60) + 1
-    assert np.linalg.norm(got["box"][-1] - (0.05, -0.05)) == pytest.approx(got["final_error"], abs=1e-12)
 
 
 def bad_files(prefix):

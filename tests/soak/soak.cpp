@@ -21,8 +21,8 @@
 #include <string>
 
 #include "engine/core/error.h"
-#include "engine/scenes/scene_registry.h"
 #include "engine/dynamics/world.h"
+#include "engine/scenes/scene_registry.h"
 
 namespace {
 
@@ -183,11 +183,17 @@ int main(int argc, char** argv) {
                      world.cable(0).wraps(), world.cable(1).wraps(), world.cable(0).length(),
                      world.cable(1).length(), world.cable(0).tension(), world.cable(1).tension());
         const StepStats& st = world.lastStepStats();
-        std::fprintf(stderr,
-                     "    stats: iters %d residual %.3g cable_us %.1f | rest %.4f %.4f k %g %g\n",
-                     st.solverIterations, st.residual, st.cableMicros, world.cable(0).restLength(),
-                     world.cable(1).restLength(), world.cable(0).stiffness(),
-                     world.cable(1).stiffness());
+        std::fprintf(
+            stderr, "    stats: iters %d residual %.3g cable_us %.1f | rest %.4f %.4f k %g %g\n",
+            st.solverIterations, st.residual, st.cableMicros, world.cable(0).restLength(),
+            world.cable(1).restLength(), world.cable(0).stiffness(), world.cable(1).stiffness());
+        for (int c = 0; c < 2; ++c)
+          for (const WrapPoint& w : world.cable(c).path())
+            std::fprintf(stderr, "    path%d pulley %d vertex %d (%.4f %.4f)\n", c, w.pulley,
+                         w.vertex, w.world.x(), w.world.y());
+        std::fprintf(stderr, "    box angle %.4f events %d mid %d fb %d lin %d\n",
+                     world.body(6).angle, st.events, st.midpointSolves, st.midpointFallbacks,
+                     st.linearisationFallbacks);
         for (int b = 0; b < world.bodyCount(); ++b)
           std::fprintf(stderr, "    %s (%.4f %.4f %.4f) v (%.3g %.3g %.3g)\n",
                        world.scene().bodies[b].name.c_str(), world.body(b).position.x(),
@@ -233,6 +239,9 @@ int main(int argc, char** argv) {
       double(wrapped) / std::max(1L, step), warnings + worldPtr->warnings().size(),
       failure.empty() ? "true" : "false");
   if (!failure.empty()) {
+    // The world's own notes (guards, length jumps) usually name what went wrong.
+    for (const std::string& w : worldPtr->warnings())
+      std::fprintf(stderr, "warning: %s\n", w.c_str());
     std::fprintf(stderr, "soak FAILED: %s\n", failure.c_str());
     return 1;
   }

@@ -2,8 +2,9 @@
 //
 //   H qdd = f + J^T lambda,   J qdd + Jdot v = 0
 //   lambda = -(J H^-1 J^T)^+ (J H^-1 f + Jdot v)
-// (c(q, v) = 0 for planar rigid bodies in world coordinates, docs/model.md#conventions.) Used by the tests as the
-// ground truth the Box2D bridge is checked against; not used when stepping a World.
+// (c(q, v) = 0 for planar rigid bodies in world coordinates, docs/model.md#conventions.) Used by
+// the tests as the ground truth the Box2D bridge is checked against; not used when stepping a
+// World.
 #pragma once
 
 #include <Eigen/Core>

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -29,7 +30,7 @@ TEST(ControllerPanel, HandOpensPinchedWithATargetAndAPrediction) {
   ASSERT_TRUE(sandbox.target.has_value());
   runFor(sandbox, 1.0);
   const HandControlState& h = *sandbox.controller->hand;
-  EXPECT_GT(h.updates, 5);  // the outer loop runs after the settle time
+  EXPECT_GT(h.grasp->updates(), 5);  // the outer loop runs after the settle time
   ASSERT_TRUE(h.prediction.valid);
   const Overlay o = sandbox.overlay();
   ASSERT_EQ(o.targets.size(), 2u);  // the target and the statics prediction
@@ -37,6 +38,8 @@ TEST(ControllerPanel, HandOpensPinchedWithATargetAndAPrediction) {
   EXPECT_GT(h.history.count, 50);
 }
 
+// The panel runs the engine's grasp sequence (HandGrasp), so its run is `cablelab track`'s to the
+// bit: the same grasp time, the same box and the same events.
 TEST(ControllerPanel, GraspSequenceMatchesCablelabTrack) {
   Sandbox sandbox(800, 600);
   ASSERT_TRUE(sandbox.open("hand"));
@@ -44,15 +47,47 @@ TEST(ControllerPanel, GraspSequenceMatchesCablelabTrack) {
   ASSERT_TRUE(startHandGrasp(sandbox));
   runFor(sandbox, 4.0);
   const HandControlState& h = *sandbox.controller->hand;
-  ASSERT_GE(h.graspTime, 0);
-  const Vec2 box = sandbox.world()->body(h.box).position;
+  ASSERT_GE(h.grasp->graspTime(), 0);
+  EXPECT_EQ(handGraspState(sandbox), "grasped");
+  const Vec2 box = sandbox.world()->body(h.box()).position;
 
   const auto r =
       test::run(std::string(CABLELAB_CLI) + " track --target 0.1,0.05 --time 4", "track");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  EXPECT_NEAR(h.graspTime, j["grasp_time"].get<double>(), 1e-9);
+  EXPECT_NEAR(h.grasp->graspTime(), j["grasp_time"].get<double>(), 1e-9);
+  EXPECT_EQ(h.grasp->losses(), j["losses"].get<int>());
   EXPECT_NEAR((box - Vec2(0.1, 0.05)).norm(), j["final_error"].get<double>(), kSameAsTrack);
+  EXPECT_NEAR(box.x(), j["final_box"][0].get<double>(), kSameAsTrack);
+  EXPECT_NEAR(box.y(), j["final_box"][1].get<double>(), kSameAsTrack);
+  ASSERT_EQ(h.grasp->events().size(), j["events"].size());
+  for (size_t k = 0; k < j["events"].size(); ++k)
+    EXPECT_EQ(h.grasp->events()[k].what, j["events"][k]["what"].get<std::string>());
+}
+
+// A box pulled out of the membranes is the engine's grasp loss: the panel's state says so, with
+// the engine's reason, and the hand stops, then tries to grasp again.
+TEST(ControllerPanel, ABoxPulledOutIsTheEnginesGraspLoss) {
+  Sandbox sandbox(800, 600);
+  ASSERT_TRUE(sandbox.open("hand"));
+  runFor(sandbox, 1.0);
+  EXPECT_EQ(handGraspState(sandbox), "pinch pose");
+  const HandControlState& h = *sandbox.controller->hand;
+  sandbox.dragWeights = 20;
+  const Vec2 box = sandbox.world()->body(h.box()).position;
+  sandbox.beginDrag(h.box(), box);
+  sandbox.dragTo(box + Vec2(1.5, 0));
+  runFor(sandbox, 1.0);
+  sandbox.endDrag();
+  EXPECT_EQ(handGraspState(sandbox), "grasp lost");
+  ASSERT_GE(h.grasp->losses(), 1);
+  const auto& events = h.grasp->events();
+  const bool engineReason = std::any_of(events.begin(), events.end(), [](const GraspEvent& e) {
+    return e.what == "top membrane unwrapped" || e.what == "bottom membrane unwrapped" ||
+           e.what == "top membrane slack" || e.what == "bottom membrane slack";
+  });
+  EXPECT_TRUE(engineReason);
+  EXPECT_FALSE(h.grasp->held());
 }
 
 TEST(ControllerPanel, GainsSurviveAResetAndPidUsesKi) {
@@ -62,12 +97,12 @@ TEST(ControllerPanel, GainsSurviveAResetAndPidUsesKi) {
   h.params.kp = 0.2;
   h.pid = true;
   h.ki = 0.05;
-  h.rebuildController();
-  EXPECT_DOUBLE_EQ(h.controller->params().ki, 0.05);
+  h.applyGains();
+  EXPECT_DOUBLE_EQ(h.controller().params().ki, 0.05);
   sandbox.reset();
   const HandControlState& fresh = *sandbox.controller->hand;
-  EXPECT_DOUBLE_EQ(fresh.controller->params().kp, 0.2);
-  EXPECT_DOUBLE_EQ(fresh.controller->params().ki, 0.05);
+  EXPECT_DOUBLE_EQ(fresh.controller().params().kp, 0.2);
+  EXPECT_DOUBLE_EQ(fresh.controller().params().ki, 0.05);
 }
 
 TEST(ControllerPanel, MembraneShowsTheModelForceAndLoadsFitParameters) {

@@ -3,6 +3,8 @@
 // Skipped (GTEST_SKIP) when xvfb-run is not installed.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -284,6 +286,62 @@ TEST(GuiAcceptance, SmallWindowStillShowsTheWorldView) {
   const auto cells = occupancy(image, static_cast<int>(x), static_cast<int>(y),
                                static_cast<int>(x + w), static_cast<int>(y + h));
   EXPECT_GT(std::count(cells.begin(), cells.end(), true), 10) << "no scene drawn in " << shot;
+}
+
+// At 640x480 every row of the Simulation panel fits its width (the panel's widest row, as ImGui
+// measured it, ends inside the panel) in the scenes with the most rows.
+TEST(GuiAcceptance, SmallWindowPanelRowsFit) {
+  REQUIRE_XVFB();
+  for (const char* scene : {"hand", "membrane", "hexagon"}) {
+    const RunResult r = run(kXvfb + kCli + " gui " + scene + " --size 640x480 --frames 5",
+                            std::string("gui_rows_") + scene);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["overflow"][0].get<double>(), 0) << scene << ": " << r.out;
+  }
+}
+
+// The capstan's Inspector lists the rope's two span tensions, the engine's, and the wheel's ratio:
+// the masses' while it holds, e^(mu theta) once a heavier load (set as the Scene panel's slider
+// does) slips, the tensions then m_load (g - a) and m_hold (g + a) with
+// a = g (m_load - m_hold E) / (m_load + m_hold E), E = e^(mu theta). Every row fits the panel.
+TEST(GuiAcceptance, CapstanInspectorListsSpanTensionsInTheCapstanRatio) {
+  REQUIRE_XVFB();
+  const std::string shot = (outputDir("gui") / "capstan-slip.png").string();
+  const auto j = scenario("capstan", "capstan-slip", "--screenshot " + shot);
+  ASSERT_TRUE(j.contains("holding") && j.contains("slipping")) << j.dump();
+  const SceneDef scene = ui::loadScene("capstan");  // mu 0.3, 0.75 turns, m_load 3, m_hold 1
+  const double g = scene.gravity.norm(), mHold = 1.0, mu = 0.3, theta = 2 * M_PI * 0.75;
+  const double capstan = std::exp(mu * theta);
+  for (const char* phase : {"holding", "slipping"}) {
+    const auto& p = j[phase];
+    ASSERT_EQ(p["spans"].size(), 2u) << phase << ": " << p.dump();
+    ASSERT_EQ(p["wheels"].size(), 1u) << phase << ": " << p.dump();
+    for (int k = 0; k < 2; ++k) {  // the numbers shown are the engine's
+      EXPECT_EQ(p["spans"][k]["tension"].get<double>(), p["engine"][k].get<double>()) << phase;
+      char shown[32];
+      std::snprintf(shown, sizeof shown, "%.4g N", p["engine"][k].get<double>());
+      EXPECT_NE(p["spans"][k]["text"].get<std::string>().find(shown), std::string::npos)
+          << phase << ": " << p["spans"][k]["text"];
+    }
+    EXPECT_NEAR(p["wheels"][0]["theta"].get<double>(), theta, 1e-6) << phase;
+    EXPECT_NEAR(p["wheels"][0]["mu"].get<double>(), mu, 1e-12) << phase;
+    EXPECT_EQ(p["overflow"].get<double>(), 0) << phase << ": a row is wider than the Inspector";
+  }
+  const auto& hold = j["holding"];
+  EXPECT_EQ(hold["wheels"][0]["state"], "holding") << hold.dump();
+  EXPECT_NEAR(hold["wheels"][0]["ratio"].get<double>(), 3.0, 1e-6);  // the masses' ratio, at rest
+  const auto& slip = j["slipping"];
+  EXPECT_EQ(slip["wheels"][0]["state"], "slipping") << slip.dump();
+  const double ratio = slip["wheels"][0]["ratio"].get<double>();
+  EXPECT_NEAR(ratio, capstan, 0.01 * capstan);
+  EXPECT_NE(slip["wheels"][0]["text"].get<std::string>().find("slipping"), std::string::npos);
+  const double tLoad = slip["spans"][0]["tension"], tHold = slip["spans"][1]["tension"];
+  EXPECT_NEAR(tLoad / tHold, ratio, 1e-9);  // span 0 is the load's
+  const double mLoad = 6.0, a = g * (mLoad - mHold * capstan) / (mLoad + mHold * capstan);
+  EXPECT_NEAR(tLoad, mLoad * (g - a), 0.01 * mLoad * (g - a));
+  EXPECT_NEAR(tHold, mHold * (g + a), 0.01 * mHold * (g + a));
+  EXPECT_EQ(ui::readPng(shot).width, 1280);
 }
 
 TEST(GuiAcceptance, RecordButtonWritesOneFramePerThirtiethOfASimulatedSecond) {

@@ -31,20 +31,20 @@ TEST(Crossing, PointOnALineMeetsAFixedSegmentWhenItsDistanceRunsOut) {
   // segment's right side is the wrap side of a Left pulley walking -x to +x... below it.
   const MovingPoint a = fixedAt(Vec2(-1, 0)), b = fixedAt(Vec2(1, 0));
   // Left: wrapped once the point is to the left of a->b, i.e. above (y > 0).
-  const auto c = pointCrossesSegment(a, b, movingFrom(Vec2(0.25, -0.3), Vec2(0, 50)),
-                                     WrapSide::Left, kH);
+  const auto c =
+      pointCrossesSegment(a, b, movingFrom(Vec2(0.25, -0.3), Vec2(0, 50)), WrapSide::Left, kH);
   ASSERT_TRUE(c.has_value());
   EXPECT_NEAR(c->time, 0.3 / 50, 2 * crossingTolerance(kH));
   EXPECT_NEAR(c->along, 0.625, 1e-9);
   // Coming from the wrap side it is no join: the cable passes it.
-  EXPECT_FALSE(pointCrossesSegment(a, b, movingFrom(Vec2(0, 0.3), Vec2(0, -50)), WrapSide::Left,
-                                   kH));
+  EXPECT_FALSE(
+      pointCrossesSegment(a, b, movingFrom(Vec2(0, 0.3), Vec2(0, -50)), WrapSide::Left, kH));
   // Too slow to arrive within the sub-step.
-  EXPECT_FALSE(pointCrossesSegment(a, b, movingFrom(Vec2(0, -0.3), Vec2(0, 1)), WrapSide::Left,
-                                   kH));
+  EXPECT_FALSE(
+      pointCrossesSegment(a, b, movingFrom(Vec2(0, -0.3), Vec2(0, 1)), WrapSide::Left, kH));
   // Crossing the line beyond the segment's end is no crossing of the segment.
-  EXPECT_FALSE(pointCrossesSegment(a, b, movingFrom(Vec2(1.5, -0.3), Vec2(0, 50)),
-                                   WrapSide::Left, kH));
+  EXPECT_FALSE(
+      pointCrossesSegment(a, b, movingFrom(Vec2(1.5, -0.3), Vec2(0, 50)), WrapSide::Left, kH));
 }
 
 TEST(Crossing, RandomLinearMotionsAgreeWithTheQuadratic) {
@@ -99,6 +99,37 @@ TEST(Crossing, RandomLinearMotionsAgreeWithTheQuadratic) {
   EXPECT_GT(found, 50);
 }
 
+TEST(Crossing, TheEarlyOutNeverSkipsASideChange) {
+  // Points on bodies that move and spin: whenever sideCannotChange says so, the signed distance
+  // sampled densely over the sub-step keeps its sign. And it does say so for most points that
+  // start a few centimetres off the line (otherwise it spares nothing).
+  test::Random rng(5);
+  auto spinning = [&](double speed, double spin) {
+    MovingPoint m = movingFrom(rng.point(-1, 1), rng.point(-speed, speed));
+    m.local = rng.point(-0.3, 0.3);
+    m.angle = rng.uniform(-3, 3);
+    m.angularVelocity = rng.uniform(-spin, spin);
+    return m;
+  };
+  int skipped = 0, far = 0;
+  for (int trial = 0; trial < 1500; ++trial) {
+    const double speed = trial % 3 == 0 ? 30 : 2, spin = trial % 2 == 0 ? 40 : 1;
+    const MovingPoint a = spinning(speed, spin), b = spinning(speed, spin),
+                      p = spinning(speed, spin);
+    const bool skip = sideCannotChange(a, b, p, kH);
+    const double g0 = wrapSideDistance(a.at(0), b.at(0), p.at(0), WrapSide::Left);
+    bool changes = false;
+    for (int k = 1; k <= 500 && !changes; ++k) {
+      const double t = kH * k / 500;
+      changes = (wrapSideDistance(a.at(t), b.at(t), p.at(t), WrapSide::Left) > 0) != (g0 > 0);
+    }
+    if (skip) EXPECT_FALSE(changes) << "trial " << trial;
+    skipped += skip;
+    far += std::abs(g0) > 0.05 && speed < 10 && spin < 10;
+  }
+  EXPECT_GT(skipped, far / 2);
+}
+
 TEST(Crossing, VertexOfASpinningSquareReachesTheSegment) {
   // A vertex 1.5 m from the centre (0, -2) of a body spinning at 100 rad/s crosses y = -1 (the
   // segment (-5,-1)-(5,-1)) when its angle phi0 + w t reaches asin(2/3).
@@ -131,8 +162,8 @@ TEST(Crossing, MovingSegmentSweepsAcrossAFixedPoint) {
   b.local = Vec2(2, 0);
   b.angle = -0.5;
   b.angularVelocity = 60;
-  const auto c = pointCrossesSegment(fixedAt(Vec2::Zero()), b, fixedAt(Vec2(1, 0)),
-                                     WrapSide::Right, kH);
+  const auto c =
+      pointCrossesSegment(fixedAt(Vec2::Zero()), b, fixedAt(Vec2(1, 0)), WrapSide::Right, kH);
   ASSERT_TRUE(c.has_value());
   EXPECT_NEAR(c->time, 0.5 / 60, 1e-9 * kH);
   EXPECT_NEAR(c->along, 0.5, 1e-9);

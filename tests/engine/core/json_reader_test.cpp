@@ -98,7 +98,8 @@ TEST(JsonReader, RejectsKeysNobodyAskedFor) {
 
 TEST(FileInput, MissingDirectoryAndBadJsonSayWhatIsWrong) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("cablelab_file_input_" + std::to_string(getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("cablelab_file_input_" + std::to_string(getpid()));
   fs::create_directories(dir);
   const std::string bad = (dir / "bad.json").string();
   std::ofstream(bad) << "{\"a\": 1,\n \"b\": }";

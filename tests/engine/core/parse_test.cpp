@@ -20,11 +20,15 @@ std::string messageOf(const std::function<void()>& f) {
 }
 
 TEST(Parse, FiniteNumberTakesTheWholeTextOrNothing) {
-  for (const auto& [text, value] : {std::pair{"1", 1.0}, {"+2", 2.0}, {"-0.5", -0.5}, {".5", 0.5},
-                                    {"1e3", 1000.0}, {"1.7976931348623157e308", 1.7976931348623157e308}})
+  for (const auto& [text, value] : {std::pair{"1", 1.0},
+                                    {"+2", 2.0},
+                                    {"-0.5", -0.5},
+                                    {".5", 0.5},
+                                    {"1e3", 1000.0},
+                                    {"1.7976931348623157e308", 1.7976931348623157e308}})
     EXPECT_EQ(parseFiniteNumber(text), value) << text;
-  for (const char* text : {"", " 1", "1 ", "1x", "0x10", "inf", "-inf", "nan", "+-1", "+", "1e999",
-                           "1,2", "--1"})
+  for (const char* text :
+       {"", " 1", "1 ", "1x", "0x10", "inf", "-inf", "nan", "+-1", "+", "1e999", "1,2", "--1"})
     EXPECT_FALSE(parseFiniteNumber(text)) << text;
 }
 
@@ -68,7 +72,9 @@ TEST(Parse, PixelSizeIsWxHWithinBounds) {
 }
 
 TEST(Parse, CommandLineParserMessagesNameTheOption) {
-  auto text = [](const std::string& m) { return std::string(commandLineError(m, "see x --help").what()); };
+  auto text = [](const std::string& m) {
+    return std::string(commandLineError(m, "see x --help").what());
+  };
   EXPECT_EQ(text("Could not convert: --time = abc"),
             "command line: --time: cannot convert the value (got \"abc\") (see x --help)");
   EXPECT_EQ(text("The value abc is not an allowed value for --frames"),

@@ -8,8 +8,8 @@
 #include <map>
 
 #include "engine/core/error.h"
-#include "engine/model/scene_json.h"
 #include "engine/dynamics/world.h"
+#include "engine/model/scene_json.h"
 #include "tests/support/engine_test_support.h"
 
 namespace cablelab {

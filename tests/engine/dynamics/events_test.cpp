@@ -86,7 +86,8 @@ TEST(Events, PointPuckIsCaughtAtAnySpeedWithoutEnergyChangeOrStretch) {
     EXPECT_TRUE(c.engaged && c.released) << speed << " m/s";
     EXPECT_FALSE(c.tunnelled) << speed << " m/s";
     EXPECT_GT(c.events, 0) << speed << " m/s: the join was located inside a step";
-    EXPECT_LT(std::abs(c.energyChange), 0.01 * thrown) << speed << " m/s: " << c.energyChange / thrown;
+    EXPECT_LT(std::abs(c.energyChange), 0.01 * thrown)
+        << speed << " m/s: " << c.energyChange / thrown;
     EXPECT_LT(c.stretch, 1e-3) << speed << " m/s";
   }
 }

@@ -65,7 +65,8 @@ std::vector<double> minimumNormTensions(const World& world) {
     if (!changed) break;
   }
   std::vector<double> t(n);
-  for (int k = 0; k < n; ++k) t[k] = taut[k] ? std::max(0.0, spokeDirection(world, k).dot(lambda)) : 0;
+  for (int k = 0; k < n; ++k)
+    t[k] = taut[k] ? std::max(0.0, spokeDirection(world, k).dot(lambda)) : 0;
   return t;
 }
 

@@ -86,7 +86,9 @@ std::optional<VectorXd> bruteForce(const Lcp& p) {
   return std::nullopt;
 }
 
-double value(const Lcp& p, const VectorXd& x) { return 0.5 * x.dot(p.K * x) - p.b.dot(x); }
+double value(const Lcp& p, const VectorXd& x) {
+  return 0.5 * x.dot(p.K * x) - p.b.dot(x);
+}
 
 // The solver's answer satisfies the LCP, and agrees with brute force on w and the QP value
 // (and on x itself when K is positive definite).
@@ -107,7 +109,8 @@ void expectSolves(const Lcp& original, const VectorXd& truth, bool unique,
   const VectorXd wTruth = p.K * truth - p.b;
   EXPECT_LE((w - wTruth).lpNorm<Eigen::Infinity>(), tol) << what;
   EXPECT_NEAR(value(p, sol.x), value(p, truth), tol * (1 + truth.lpNorm<1>())) << what;
-  if (unique) EXPECT_LE((sol.x - truth).lpNorm<Eigen::Infinity>(), 1e-6 * (1 + truth.norm())) << what;
+  if (unique)
+    EXPECT_LE((sol.x - truth).lpNorm<Eigen::Infinity>(), 1e-6 * (1 + truth.norm())) << what;
 }
 
 TEST(TensionSolver, MatchesBruteForceOnPositiveDefiniteProblems) {
@@ -135,8 +138,8 @@ TEST(TensionSolver, MatchesBruteForceOnRankDeficientProblems) {
       for (int trial = 0; trial < 60; ++trial) {
         const Lcp p = randomLcp(rng, n, m, 0.0);
         ++total;
-        const std::string what = "n " + std::to_string(n) + " m " + std::to_string(m) +
-                                 " trial " + std::to_string(trial);
+        const std::string what = "n " + std::to_string(n) + " m " + std::to_string(m) + " trial " +
+                                 std::to_string(trial);
         if (!bruteForce(p)) {  // unbounded (a positive null direction pulls): still no NaN
           EXPECT_TRUE(solveLcp(p.K, p.b).x.allFinite()) << what;
           continue;

@@ -7,8 +7,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "engine/scenes/scene_registry.h"
 #include "engine/cable/wrap.h"
+#include "engine/scenes/scene_registry.h"
 #include "tests/support/engine_test_support.h"
 
 namespace cablelab {

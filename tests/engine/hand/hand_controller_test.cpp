@@ -81,8 +81,7 @@ TEST(HandController, SpeedLimitPutsTheLagOnTheMembranesRoom) {
   ASSERT_TRUE(p.valid);
   const double c = m.boxMass * m.boxDamping, tau = 2 / std::sqrt(m.servoKp);
   const double along = controller.params().lagShare * (m.paddleHalfWidth - m.boxHalfSize);
-  const double across =
-      controller.params().lagShare * (m.boxHalfSize - m.baseY + m.paddleOffset);
+  const double across = controller.params().lagShare * (m.boxHalfSize - m.baseY + m.paddleOffset);
   for (double angle : {0.0, 0.4, 1.2, M_PI / 2, 2.5}) {
     const Vec2 d(std::cos(angle), std::sin(angle));
     const double v = controller.speedLimit(p.stiffness, d);

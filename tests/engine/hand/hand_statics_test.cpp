@@ -4,9 +4,9 @@
 
 #include <cstdio>
 
+#include "engine/dynamics/world.h"
 #include "engine/hand/hand_controller.h"
 #include "engine/hand/hand_tracking.h"
-#include "engine/dynamics/world.h"
 
 namespace cablelab {
 namespace {

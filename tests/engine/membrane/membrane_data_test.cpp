@@ -71,7 +71,8 @@ TEST(MembraneData, NamesTheProblem) {
             "test.csv: row 4, angle_deg: must be a finite number (got \"inf\")");
   EXPECT_EQ(errorOf(header + "0,-0.1,5,abc\n" + good),
             "test.csv: row 1, angle_deg: must be a finite number (got \"abc\")");
-  EXPECT_EQ(errorOf(header + "0,-0.1,,90\n" + good), "test.csv: row 1, fy: must be a finite number (got \"\")");
+  EXPECT_EQ(errorOf(header + "0,-0.1,,90\n" + good),
+            "test.csv: row 1, fy: must be a finite number (got \"\")");
   EXPECT_EQ(errorOf(header + "0,-0.1,5\n" + good), "test.csv: row 1: expected 4 fields (got 3)");
   EXPECT_EQ(errorOf(header + good + "0.05,0,5,90\n"),
             "test.csv: row 4, y: point lies on the band between the pulleys: force direction "

@@ -1,5 +1,5 @@
-// Tests for engine/membrane/membrane_fit.h on synthetic data with known parameters: recovery with the
-// thesis's noise levels, exact recovery without noise, honest standard errors, and the errors
+// Tests for engine/membrane/membrane_fit.h on synthetic data with known parameters: recovery with
+// the thesis's noise levels, exact recovery without noise, honest standard errors, and the errors
 // for data that cannot determine k and preload.
 #include "engine/membrane/membrane_fit.h"
 

@@ -1,5 +1,5 @@
-// Tests for engine/membrane/membrane_synth.h: reproducible, noise of the requested size, the model exactly
-// when noise-free, the documented grid, and validated defs.
+// Tests for engine/membrane/membrane_synth.h: reproducible, noise of the requested size, the model
+// exactly when noise-free, the documented grid, and validated defs.
 #include "engine/membrane/membrane_synth.h"
 
 #include <gtest/gtest.h>

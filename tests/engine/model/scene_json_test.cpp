@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include "engine/core/error.h"
-#include "engine/scenes/scene_registry.h"
 #include "engine/dynamics/world.h"
+#include "engine/scenes/scene_registry.h"
 #include "tests/support/engine_test_support.h"
 
 namespace cablelab {
@@ -73,6 +73,14 @@ const BadScene kBadScenes[] = {
     {"scene_unknown_body_type.json", "bodies[0].type"},
     {"scene_not_json.json", "(json)"},
     {"scene_infinite_mass.json", "(json)"},
+    // Circles, drums and wheels (the good twin: tests/data/wheels/good_wheels_scene.json).
+    {"scene_circle_no_radius.json", "cables[0].pulleys[0].radius"},
+    {"scene_circle_negative_mu.json", "cables[1].pulleys[0].mu"},
+    {"scene_circle_threaded.json", "cables[0].pulleys[1].side"},
+    {"scene_drum_zero_turns.json", "cables[1].end.turns"},
+    {"scene_no_slip_elastic.json", "cables[0].pulleys[0].no_slip"},
+    {"scene_mu_and_no_slip.json", "cables[1].pulleys[0].mu"},
+    {"scene_drum_threaded.json", "cables[1].end.side"},
 };
 
 TEST(SceneJson, BadFilesExitTwoNamingTheField) {
@@ -92,6 +100,21 @@ TEST(SceneJson, TheGoodTwinOfTheBadFilesRuns) {
   const auto r =
       test::runCli("run '" + test::sourcePath("tests/data/good_scene.json") + "' --time 0.1");
   EXPECT_EQ(r.exitCode, 0) << r.err;
+}
+
+TEST(SceneJson, TheWheelsExampleRunsAndRoundTrips) {
+  const std::string path = test::sourcePath("tests/data/wheels/good_wheels_scene.json");
+  const auto r = test::runCli("run '" + path + "' --time 0.5");
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  const SceneDef scene = loadSceneFile(path);
+  const PulleyDef& wheel = scene.cables[0].pulleys[0];
+  EXPECT_EQ(wheel.kind, PulleyDef::Kind::Circle);
+  EXPECT_EQ(wheel.grip, Grip::NoSlip);
+  EXPECT_EQ(scene.cables[0].pulleys[1].side, WrapSide::Auto);
+  EXPECT_EQ(scene.cables[1].pulleys[0].grip, Grip::Capstan);
+  EXPECT_DOUBLE_EQ(scene.cables[1].end.radius, 0.1);
+  EXPECT_DOUBLE_EQ(scene.joints[1].servo.speed, 1.0);
+  EXPECT_EQ(sceneToJson(sceneFromJson(sceneToJson(scene), "again")), sceneToJson(scene));
 }
 
 TEST(SceneJson, MissingFileAndUnknownSceneExitTwo) {

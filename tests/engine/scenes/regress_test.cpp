@@ -8,8 +8,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "tests/support/engine_test_support.h"
 #include "tests/fuzz/fuzz_inputs.h"
+#include "tests/support/engine_test_support.h"
 
 namespace cablelab {
 namespace {

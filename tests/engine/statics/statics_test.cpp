@@ -1,5 +1,6 @@
 // Tests for engine/statics.{h,cpp}, statics_newton, statics_sensitivity, box_reduction,
-// statics_io: the model, the default path against the SOCP, and the corner cases of docs/model.md#statics.
+// statics_io: the model, the default path against the SOCP, and the corner cases of
+// docs/model.md#statics.
 #include "engine/statics/statics.h"
 
 #include <gtest/gtest.h>
@@ -9,8 +10,8 @@
 #include <cmath>
 #include <random>
 
-#include "engine/statics/box_reduction.h"
 #include "engine/core/error.h"
+#include "engine/statics/box_reduction.h"
 #include "engine/statics/socp.h"
 #include "engine/statics/statics_io.h"
 #include "engine/statics/statics_newton.h"

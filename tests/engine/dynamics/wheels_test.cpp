@@ -1,0 +1,260 @@
+// Wheels, capstans, winches and tackles against their textbook answers (docs/wheels.md).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "engine/dynamics/world.h"
+#include "engine/scenes/scene_registry.h"
+#include "tests/support/engine_test_support.h"
+
+namespace cablelab {
+namespace {
+
+constexpr double kG = 9.81;
+constexpr double kDt = 1.0 / 60.0;
+
+World load(const std::string& name, const std::vector<std::pair<std::string, double>>& set) {
+  return World(makeScene(name, set), name);
+}
+
+// Mean acceleration of body b's vertical motion over `seconds`, from its velocity change.
+double verticalAcceleration(World& w, int b, double seconds, int substeps = 1) {
+  const double v0 = w.body(b).velocity.y(), t0 = w.time();
+  while (w.time() - t0 < seconds - 1e-9) w.step(kDt, substeps);
+  return (w.body(b).velocity.y() - v0) / (w.time() - t0);
+}
+
+TEST(Wheel, AccelerationAndNoSlipMatchTheMassiveWheelAtwood) {
+  test::Random rng(21);
+  for (int trial = 0; trial < 12; ++trial) {
+    const double r = rng.uniform(0.1, 0.4), inertia = rng.uniform(0.005, 0.2);
+    const double m1 = rng.uniform(0.5, 5), m2 = rng.uniform(0.5, 5);
+    World w = load("wheel", {{"r", r}, {"I", inertia}, {"m1", m1}, {"m2", m2}});
+    const int left = w.findBody("left"), wheel = w.findBody("wheel");
+    const double expected = -kG * (m1 - m2) / (m1 + m2 + inertia / (r * r));
+    double worstSlip = 0;
+    const double v0 = w.body(left).velocity.y();
+    for (int i = 0; i < 30; ++i) {
+      w.step(kDt);
+      const double v = w.body(left).velocity.norm(), omega = w.body(wheel).angularVelocity;
+      worstSlip = std::max(worstSlip, std::abs(v - r * std::abs(omega)));
+    }
+    const double a = (w.body(left).velocity.y() - v0) / w.time();
+    EXPECT_NEAR(a, expected, 0.005 * std::abs(expected) + 1e-6)
+        << "trial " << trial << " r " << r << " I " << inertia << " m1 " << m1 << " m2 " << m2;
+    EXPECT_LT(worstSlip, 1e-4) << "trial " << trial;
+  }
+}
+
+double capstanAcceleration(double mu, double turns, double mLoad, double mHold) {
+  World w = load("capstan", {{"mu", mu}, {"turns", turns}, {"m_load", mLoad}, {"m_hold", mHold}});
+  w.step(kDt);  // the first step settles the tensions
+  return verticalAcceleration(w, w.findBody("load"), 0.5);
+}
+
+TEST(Capstan, HoldsBelowTheEulerEytelweinRatioAndSlipsAtItAbove) {
+  test::Random rng(4);
+  for (int trial = 0; trial < 6; ++trial) {
+    const double mu = rng.uniform(0.1, 0.5), turns = rng.uniform(0.3, 1.8);
+    const double ratio = std::exp(mu * 2 * M_PI * turns);
+    const double mHold = rng.uniform(0.5, 2);
+    SCOPED_TRACE("mu " + std::to_string(mu) + " turns " + std::to_string(turns));
+    // Within 1% of the ratio on either side: holds, then slips.
+    EXPECT_LT(std::abs(capstanAcceleration(mu, turns, 0.99 * ratio * mHold, mHold)), 1e-4);
+    for (double factor : {1.01, 2.0}) {
+      const double mLoad = factor * ratio * mHold;
+      const double expected = -kG * (mLoad - mHold * ratio) / (mLoad + mHold * ratio);
+      EXPECT_NEAR(capstanAcceleration(mu, turns, mLoad, mHold), expected, 0.01 * std::abs(expected))
+          << "load " << factor << " x ratio";
+    }
+    // The hold side heavier than ratio x the load: it slips the other way.
+    const double mLoad = mHold / (2 * ratio);
+    const double expected = kG * (mHold - mLoad * ratio) / (mHold + mLoad * ratio);
+    EXPECT_NEAR(capstanAcceleration(mu, turns, mLoad, mHold), expected, 0.01 * expected);
+  }
+}
+
+TEST(Capstan, SlipTensionsAreInTheFrictionRatio) {
+  World w = load("capstan", {{"mu", 0.3}, {"turns", 0.75}, {"m_load", 10}, {"m_hold", 1}});
+  for (int i = 0; i < 30; ++i) w.step(kDt);
+  const Cable& rope = w.cable(0);
+  ASSERT_EQ(rope.spanCount(), 2);
+  EXPECT_NEAR(rope.spanTension(0) / rope.spanTension(1), std::exp(0.3 * 1.5 * M_PI), 1e-6);
+}
+
+TEST(Winch, FiveTurnsLiftTheWeightByRadiusTimesAngle) {
+  World w = load("winch", {});
+  const int drum = w.findBody("drum"), weight = w.findBody("weight");
+  const double r = 0.1;
+  w.step(kDt);
+  const double y0 = w.body(weight).position.y(), angle0 = w.body(drum).angle;
+  double previous = w.cable(0).length(), worstJump = 0;
+  while (w.body(drum).angle - angle0 < 5 * 2 * M_PI) {
+    w.step(kDt);
+    worstJump = std::max(worstJump, std::abs(w.cable(0).length() - previous));
+    previous = w.cable(0).length();
+    ASSERT_LT(w.time(), 60);
+  }
+  const double rise = w.body(weight).position.y() - y0;
+  const double wound = r * (w.body(drum).angle - angle0);
+  EXPECT_NEAR(rise, wound, 0.005 * wound);
+  EXPECT_LT(worstJump, 1e-3);
+  EXPECT_NEAR(w.cable(0).path().back().arc, 2 * M_PI * 6, 0.2);  // one turn wound at the start
+}
+
+TEST(Tackle, FourFallsGiveAMechanicalAdvantageOfFour) {
+  for (double mEffort : {1.5, 0.6}) {
+    const double mLoad = 4;
+    World w = load("tackle", {{"m_load", mLoad}, {"m_effort", mEffort}});
+    const double expected = -kG * (mEffort - mLoad / 4) / (mEffort + mLoad / 16);
+    EXPECT_NEAR(verticalAcceleration(w, w.findBody("effort"), 0.5), expected,
+                0.01 * std::abs(expected))
+        << "effort " << mEffort;
+  }
+}
+
+// Energy without Box2D joints (a velocity-level joint loses about (omega h)^2 of the energy per
+// step, more than the cable: that is Box2D's, measured on the bare pendulum). Gravity off:
+//  post: a ball on a rope round a fixed frictionless post, winding on for several turns;
+//  drum: a spinning drum tethered to a fixed point by a rope wound on it (a yo-yo in space).
+SceneDef tetherScene(bool drum) {
+  SceneDef s;
+  s.name = drum ? "tethered-drum" : "tetherball";
+  s.gravity = Vec2::Zero();
+  const double r = 0.03;
+  BodyDef ball;
+  ball.name = "ball";
+  ball.position = Vec2(0, -2);
+  ball.velocity = Vec2(1.0, 0);
+  ball.mass = 1.0;
+  ball.inertia = drum ? 0.01 : 0.0;
+  ball.angularVelocity = drum ? 3.0 : 0.0;
+  ShapeDef disc;
+  disc.radius = drum ? 0.1 : 0.05;
+  disc.sensor = true;
+  ball.shapes = {disc};
+  s.bodies = {ball};
+  CableDef c;
+  c.name = "rope";
+  if (drum) {
+    c.start = {"world", Vec2(0, 0)};
+    c.end.body = "ball";
+    c.end.radius = 0.1;
+    c.end.side = WrapSide::Right;
+    c.end.turns = 3;
+  } else {
+    c.start = {"world", Vec2(-r - 1e-3, 0.3)};
+    PulleyDef post;
+    post.kind = PulleyDef::Kind::Circle;
+    post.radius = r;
+    post.side = WrapSide::Right;
+    post.turns = 0.25;
+    c.pulleys = {post};
+    c.end = {"ball", Vec2::Zero()};
+  }
+  s.cables = {c};
+  return s;
+}
+
+TEST(Wheel, FrictionlessPostAndWindingDrumKeepTheirEnergy) {
+  for (bool drum : {false, true}) {
+    World w(tetherScene(drum), "tether");
+    w.step(kDt);  // the first step takes out the start velocity's part along the rope
+    const double e0 = w.energy();
+    double worst = 0, minLength = 1e9, maxLength = 0;
+    for (int i = 0; i < 60 * 60; ++i) {
+      w.step(kDt);
+      worst = std::max(worst, std::abs(w.energy() - e0));
+      const WrapPoint& end = drum ? w.cable(0).path().back() : w.cable(0).path()[1];
+      minLength = std::min(minLength, end.arc);
+      maxLength = std::max(maxLength, end.arc);
+    }
+    EXPECT_LT(worst, 0.02 * e0) << (drum ? "drum" : "post");
+    EXPECT_GT(maxLength - minLength, 2 * M_PI) << "it wound at least a turn";
+  }
+}
+
+}  // namespace
+}  // namespace cablelab
+
+namespace cablelab {
+namespace {
+
+// A 0.1 kg puck carrying an "auto" circle (or a 0.1 m square, `square`) thrown at a rope
+// loaded by 5 kg (60 Hz, 1 sub-step).
+SceneDef puckScene(double speed, bool fromBelow, bool square = false) {
+  SceneDef s;
+  s.name = "puck";
+  BodyDef puck;
+  puck.name = "puck";
+  puck.position = Vec2(0, fromBelow ? -0.3 : 0.3);
+  puck.velocity = Vec2(0, fromBelow ? speed : -speed);
+  puck.mass = 0.1;
+  ShapeDef disc;
+  disc.radius = 0.05;
+  disc.sensor = true;
+  puck.shapes = {disc};
+  BodyDef weight;
+  weight.name = "weight";
+  weight.position = Vec2(2, -3);
+  weight.mass = 5;
+  weight.shapes = {disc};
+  s.bodies = {puck, weight};
+  s.gravity = Vec2::Zero();  // the rope straight and taut from the start: the puck's own motion
+  CableDef c;
+  c.name = "rope";
+  c.start = {"world", Vec2(-2, 0)};
+  PulleyDef catcher;
+  catcher.kind = PulleyDef::Kind::Circle;
+  catcher.body = "puck";
+  catcher.radius = 0.05;
+  if (square) {
+    catcher.kind = PulleyDef::Kind::Polygon;
+    catcher.vertices = {{-0.05, -0.05}, {0.05, -0.05}, {0.05, 0.05}, {-0.05, 0.05}};
+    catcher.radius = 0;
+  }
+  catcher.side = WrapSide::Auto;
+  PulleyDef over;
+  over.point = Vec2(2, 0);
+  over.side = WrapSide::Threaded;
+  c.pulleys = {catcher, over};
+  c.end = {"weight", Vec2::Zero()};
+  s.cables = {c};
+  return s;
+}
+
+// The acceptance test of "side": "auto": caught from either side at any speed (the join is
+// located inside the step), never through the rope, and the catch keeps the energy (theorem 1).
+TEST(AutoSide, APuckThrownFromEitherSideIsCaughtAndNeverPassesThrough) {
+  for (bool square : {false, true})
+    for (bool fromBelow : {true, false})
+      for (double speed : {5.0, 15.0, 50.0}) {
+        SCOPED_TRACE(square ? "square" : "circle");
+        World w(puckScene(speed, fromBelow, square), "puck");
+        const double e0 = w.energy();
+        const double sign = fromBelow ? 1 : -1;
+        bool caught = false;
+        double worstEnergy = 0, worstStretch = 0;
+        for (int i = 0; i < 60; ++i) {
+          w.step(kDt);
+          caught |= w.cable(0).engaged(0);
+          // The catch (the first third of a second): the weight is still far from its pulley.
+          if (i < 20) worstEnergy = std::max(worstEnergy, std::abs(w.energy() - e0) / e0);
+          worstStretch = std::max(worstStretch, w.cable(0).stretch());
+          // Once past the rope's line, the puck is wrapped, on the side it came from.
+          if (sign * w.body(0).position.y() > 0.05) {
+            ASSERT_TRUE(w.cable(0).engaged(0))
+                << "passed through at " << speed << " m/s, step " << i;
+            EXPECT_EQ(w.cable(0).wrapSide(0), fromBelow ? WrapSide::Left : WrapSide::Right);
+          }
+        }
+        EXPECT_TRUE(caught) << speed << " m/s " << (fromBelow ? "from below" : "from above");
+        EXPECT_LT(worstEnergy, 0.01)
+            << speed << " m/s " << (fromBelow ? "from below" : "from above");
+        EXPECT_LT(worstStretch, 1e-3) << speed << " m/s";
+        EXPECT_GT(w.body(1).position.y(), -3 + 1e-3) << "the weight was pulled up";
+      }
+}
+
+}  // namespace
+}  // namespace cablelab

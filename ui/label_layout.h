@@ -1,0 +1,43 @@
+// Label placement in screen space (pixels, y down), without GL: each label goes to the first of
+// its candidate places, nearest to its anchor first, that overlaps no label placed before it,
+// no body and stays inside the view; the least-bad place when none is free. A label placed
+// away from its anchor gets a leader line back to it.
+#pragma once
+
+#include <vector>
+
+#include "engine/core/math.h"
+
+namespace cablelab::ui {
+
+struct LabelBox {
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool overlaps(const LabelBox& o) const { return overlapArea(o) > 0; }
+  double overlapArea(const LabelBox& o) const;
+};
+
+struct LabelRequest {
+  Vec2 anchor = Vec2::Zero();  ///< px
+  Vec2 offset = Vec2::Zero();  ///< preferred top-left corner relative to the anchor (px)
+  double width = 0, height = 0;
+};
+
+struct LabelPlacement {
+  LabelBox box;
+  bool leader = false;  ///< placed away from its anchor: draw a line back to it
+};
+
+/// Bodies as convex screen polygons (either winding) that labels keep off.
+using LabelObstacle = std::vector<Vec2>;
+
+/// Places `labels` in order inside `view`; `gap` is the smallest distance (px) kept from the
+/// anchor.
+std::vector<LabelPlacement> placeLabels(const std::vector<LabelRequest>& labels,
+                                        const std::vector<LabelObstacle>& obstacles,
+                                        const LabelBox& view, double gap);
+
+/// How much of `box` the obstacles cover, 0..1 (a grid of sample points, plus obstacle
+/// vertices inside the box, so that a small body under a big label counts).
+double obstacleCover(const LabelBox& box, const std::vector<LabelObstacle>& obstacles);
+
+}  // namespace cablelab::ui
