@@ -18,6 +18,7 @@ MovingPoint MovingPoint::on(std::span<const BodyState> motion, int body, const V
   m.angle = b.angle;
   m.angularVelocity = b.angularVelocity;
   m.start = m.at(0);
+  m.speed = m.velocity.norm() + std::abs(m.angularVelocity) * local.norm();
   return m;
 }
 
@@ -33,6 +34,7 @@ MovingPoint MovingPoint::on(std::span<const BodyState> motion, int body, const V
   m.angle = b.angle;
   m.angularVelocity = b.angularVelocity;
   m.start = b.position + rotate(local, c, s);
+  m.speed = m.velocity.norm() + std::abs(m.angularVelocity) * local.norm();
   return m;
 }
 
@@ -46,7 +48,7 @@ namespace {
 
 // The most a point fixed on a body can move per second over the sub-step: |v| + |omega| |r|.
 double speedBound(const MovingPoint& m) {
-  return m.velocity.norm() + std::abs(m.angularVelocity) * m.local.norm();
+  return m.speed ? *m.speed : m.velocity.norm() + std::abs(m.angularVelocity) * m.local.norm();
 }
 
 }  // namespace

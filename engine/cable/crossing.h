@@ -25,8 +25,10 @@ struct MovingPoint {
   double angle = 0;              ///< rad at t = 0
   double angularVelocity = 0;    ///< rad/s
   Vec2 local = Vec2::Zero();     ///< body frame (world frame for the world)
-  /// at(0), set by on(): the early-outs read every point's start several times.
+  /// at(0) and the speed bound |v| + |omega| |local|, set by on(): the early-outs read every
+  /// point's several times.
   std::optional<Vec2> start;
+  std::optional<double> speed;
 
   static MovingPoint on(std::span<const BodyState> motion, int body, const Vec2& local);
   /// The same with the body's cos and sin of its angle already known (many points on one body).
