@@ -192,10 +192,14 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
       if (!p.polygon) continue;
       const Vec2 a = exitPoint(nodes[n - 1], chains);
       const Vec2 b = entryPoint(nodes[n + 1], chains);
-      if (!wrapChain(a, b, p.world, p.side, chains[nodes[n] - 1])) {
+      // The chain that continues the last update's wrap (more than half a turn when the
+      // polygon swung round past an end anchor).
+      const auto turn = wrapChainTurning(a, b, p.world, p.side, p.arc, chains[nodes[n] - 1]);
+      if (turn) p.arc = *turn;
+      if (!turn) {
         p.engaged = false;
         p.dropped = true;
-        p.dropped = true;
+        p.arc = 0;
         if (warnings)
           warnings->push_back("cable '" + def_->name + "': pulley " + std::to_string(nodes[n] - 1) +
                               " left the path: a neighbouring point lies inside its hull");
@@ -235,9 +239,18 @@ bool Cable::leaveRound() {
     const int j = path_[i].pulley;
     PulleyState& p = pulleys_[j];
     if (p.side == WrapSide::Threaded || p.polygon) continue;
-    const bool gone = p.circle ? path_[i].arc < 0
-                               : wrapSideDistance(leaving(path_[i - 1]), arriving(path_[i + 1]),
-                                                  p.world[0], p.side) < 0;
+    bool gone;
+    if (p.circle) {
+      gone = path_[i].arc < 0;
+    } else {
+      // The turn at a point, continuous over time: past half a turn (the cable doubled back round
+      // it, e.g. swung round past an end anchor) it stays; it leaves when the turn goes below 0.
+      const Vec2 in = p.world[0] - leaving(path_[i - 1]), out = arriving(path_[i + 1]) - p.world[0];
+      const double s = p.side == WrapSide::Right ? -1.0 : 1.0;
+      const double raw = -s * std::atan2(cross(in, out), in.dot(out));
+      p.arc = raw + 2 * M_PI * std::round((p.arc - raw) / (2 * M_PI));
+      gone = p.arc < 0;
+    }
     if (gone) {
       p.engaged = false;
       p.previousDepth = -1e-300;
@@ -255,6 +268,7 @@ bool Cable::leaveRound() {
     if (!inPath) {
       p.engaged = false;
       p.previousDepth = 0;
+      p.arc = 0;
       return true;
     }
   }
@@ -322,8 +336,9 @@ bool Cable::joinRound(std::vector<std::string>* warnings) {
     if (cuts && crossed) {
       p.engaged = true;
       p.dropped = false;
-      // A circle joins at zero wrap; at the start its wrap is the one it was wound with.
-      p.arc = firstUpdate_ ? p.initialArc() : 0.0;
+      // A circle joins at zero wrap; at the start its wrap is the one it was wound with. A
+      // point or a polygon joins at zero turn.
+      p.arc = firstUpdate_ && p.circle ? p.initialArc() : 0.0;
       return true;
     }
   }
@@ -408,14 +423,12 @@ void Cable::reportLengthJump(std::span<const BodyState> bodies,
   if (std::abs(kin_.length - before) <= kLengthJump) return;
   char jump[64];
   std::snprintf(jump, sizeof jump, "%.6g m", kin_.length - before);
-  // A polygon whose chain emptied with a jump was hooked: the cable bent round it further than a
-  // hull chain between its neighbours can hold (it swung round beyond an end anchor).
+  // A polygon whose chain emptied with a jump moved off the cable within one update (cable.h).
   for (size_t j = 0; j < pulleys_.size(); ++j)
     if (pulleys_[j].polygon && engagedBefore_[j] && !pulleys_[j].engaged && !pulleys_[j].dropped) {
       warnings->push_back("cable '" + def_->name + "': pulley " + std::to_string(j) +
-                          " released while the cable still hooks round it (it turned beyond " +
-                          "what a taut path between its neighbours can wrap, e.g. past an end " +
-                          "anchor): the length moved by " + jump);
+                          " released with a jump (it moved off the cable within one update, " +
+                          "further than its wrap can follow): the length moved by " + jump);
       return;
     }
   warnings->push_back("cable '" + def_->name + "': a wrap change moved the length by " + jump +

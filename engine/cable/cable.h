@@ -13,9 +13,12 @@
 //    neighbours) cuts it, and at the previous update it lay entirely on the non-wrap side of that
 //    segment's line: it must cross the segment from outside. A pulley coming from the wrap side,
 //    or sitting on the wrap side beyond the segment's ends, is left out (the cable passes it).
-//  * An engaged pulley LEAVES when the path no longer bends around it: a point pulley when the
-//    turn at it goes the wrong way (a straight turn keeps it: it changes neither length nor J);
-//    a circle when its arc goes below zero; a polygon when its hull chain is empty.
+//  * An engaged pulley LEAVES when the path no longer bends around it: a point pulley or a
+//    polygon when the angle the path turns round it goes below zero (a straight turn keeps it:
+//    it changes neither length nor J); a circle when its arc goes below zero. That angle is kept
+//    continuous over time, like a circle's arc: a pulley swung round past an end anchor, which
+//    the cable bends round by more than half a turn or winds round for whole turns, STAYS, and a
+//    polygon's chain grows and shrinks one vertex at a time (wrapChainTurning, wrap.h).
 //  * A terminal inside a polygon pulley's hull (a neighbouring pulley inside it) has no taut path:
 //    the polygon is DROPPED (it leaves the path) and a warning says so. A dropped polygon that
 //    still cuts its segment REJOINS as soon as a taut path round it exists again and that path is
@@ -27,10 +30,9 @@
 //    segment is left out of J and J-dot-v, never divided by, and a warning says so.
 //  * Any wrap change that moves the length by more than kLengthJump (1 mm) names the jump in a
 //    warning: it did not happen on the old path (a guard acted, or a crossing was found late).
-//    A polygon whose chain empties with such a jump was HOOKED: the cable bent round it further
-//    than a hull chain between its neighbours holds (a polygon swung round past an end anchor,
-//    a wrap of more than half a turn there). It is RELEASED, and the warning says so: wrapping
-//    it on is not modelled.
+//    A polygon whose chain empties with such a jump is RELEASED, and the warning says so: it
+//    moved off the cable within one update further than the turn kept over time can follow
+//    (moved by hand, a crossing missed by the events), so its wrap is lost.
 //  At creation every pulley that the straight segment cuts joins (as if it had just crossed).
 //  The World locates every join and leave inside the step (nextEvent(), docs/cables.md) and
 //  selects the wrap set a moment after it, so the new point lies on the old path and length and
@@ -236,7 +238,9 @@ class Cable {
     double radius = 0;   ///< circle, m (unsigned)
     bool grips = false;  ///< circle that the cable does not slide freely on
     double turns = 0;    ///< turns wound at the start (0: from the geometry, < 1 turn)
-    double arc = 0;      ///< circle: wrap angle at the last update (branch reference)
+    double arc = 0;      ///< circle: wrap angle at the last update (branch reference);
+                         ///< point, polygon: the angle the path turns round it (rad,
+                         ///< continuous over time, wrapChainTurning)
     bool engaged = false;
     double previousDepth = 0;  ///< wrap-side depth at the last update (guard memory)
     double previousLeft = 0;   ///< auto: signed distance left of the host segment (guard memory)

@@ -6,6 +6,7 @@
 // straightening. Located in time, the change can be made where the new point lies on the old
 // path, which is what theorem 1 needs for the velocities not to jump.
 #include <algorithm>
+#include <cmath>
 
 #include "engine/cable/cable.h"
 #include "engine/cable/crossing.h"
@@ -13,6 +14,41 @@
 namespace cablelab {
 
 namespace {
+
+// The start poses' cos and sin, worked out once per body: a cable's points sit on few bodies
+// (a polygon's vertices, both ends on one paddle) and each event test turns three of them.
+class StartFrames {
+ public:
+  explicit StartFrames(std::span<const BodyState> motion) : motion_(motion) {}
+  MovingPoint point(int body, const Vec2& local) {
+    if (body < 0) return MovingPoint::on(motion_, body, local);
+    const Rotation& r = rotationOf(body);
+    return MovingPoint::on(motion_, body, local, r.c, r.s);
+  }
+  // The world point `world` in the body's frame.
+  Vec2 local(int body, const Vec2& world) {
+    const Rotation& r = rotationOf(body);
+    return rotate(Vec2(world - motion_[body].position), r.c, -r.s);
+  }
+
+ private:
+  struct Rotation {
+    int body;
+    double c, s;
+  };
+  const Rotation& rotationOf(int body) {
+    for (int i = 0; i < count_; ++i)
+      if (cache_[i].body == body) return cache_[i];
+    const double angle = motion_[body].angle;
+    if (count_ == kSize) count_ = 0;  // many bodies: recycle the slots
+    cache_[count_] = {body, std::cos(angle), std::sin(angle)};
+    return cache_[count_++];
+  }
+  static constexpr int kSize = 4;
+  std::span<const BodyState> motion_;
+  Rotation cache_[kSize];
+  int count_ = 0;
+};
 
 void keepEarliest(std::optional<WrapEvent>& best, double time, int pulley, WrapEvent::Kind kind) {
   if (!best || time < best->time) best = WrapEvent{time, pulley, kind};
@@ -24,14 +60,14 @@ std::optional<WrapEvent> Cable::nextEvent(std::span<const BodyState> motion, dou
   std::optional<WrapEvent> best;
   if (path_.size() < 2) return best;
   const int count = static_cast<int>(pulleys_.size());
-  auto moving = [&](const WrapPoint& w) { return MovingPoint::on(motion, w.body, w.local); };
+  StartFrames frames(motion);
+  auto moving = [&](const WrapPoint& w) { return frames.point(w.body, w.local); };
   // Where the cable touches a path point: a circle's tangent point (fixed on its body for the
   // sub-step, a first-order guess), else the point itself.
   auto contact = [&](const WrapPoint& w, const Vec2& world) {
     if (w.kind != WrapPoint::Kind::Circle) return moving(w);
     if (w.body < 0) return MovingPoint::on(motion, -1, world);
-    const BodyState& b = motion[w.body];
-    return MovingPoint::on(motion, w.body, rotate(Vec2(world - b.position), -b.angle));
+    return frames.point(w.body, frames.local(w.body, world));
   };
 
   // Joins: a point that would enter the path between path_[i] and path_[i + 1].
@@ -43,7 +79,7 @@ std::optional<WrapEvent> Cable::nextEvent(std::span<const BodyState> motion, dou
     // either side.
     auto tryPoint = [&](int j, const Vec2& local, WrapEvent::Kind kind) {
       const PulleyState& p = pulleys_[j];
-      const MovingPoint mp = MovingPoint::on(motion, p.body, local);
+      const MovingPoint mp = frames.point(p.body, local);
       const double reach = p.circle ? p.radius : 0.0;
       for (const WrapSide side : {WrapSide::Left, WrapSide::Right}) {
         if (!p.autoSide && side != p.side) continue;
@@ -60,19 +96,20 @@ std::optional<WrapEvent> Cable::nextEvent(std::span<const BodyState> motion, dou
       if (p.engaged || p.side == WrapSide::Threaded) continue;
       for (const Vec2& v : p.local) tryPoint(j, v, WrapEvent::Kind::Join);
     }
-    // A polygon's vertices not in its chain, against the segments entering and leaving it.
+    // A polygon's chain grows at its ends: the vertex before its first one (walking round it
+    // with the polygon on the cable's right) against the segment entering it, the one after its
+    // last against the segment leaving it. On a convex polygon no other vertex can reach those
+    // segments first, and that vertex may be in the chain already (a wrap of a whole turn).
+    if (a.kind == WrapPoint::Kind::Vertex && b.kind == WrapPoint::Kind::Vertex &&
+        a.pulley == b.pulley)
+      continue;  // an edge of the chain: the convex polygon stays on its inner side
     for (const WrapPoint* end : {&a, &b}) {
       if (end->kind != WrapPoint::Kind::Vertex) continue;
-      if (a.kind == WrapPoint::Kind::Vertex && b.kind == WrapPoint::Kind::Vertex &&
-          a.pulley == b.pulley)
-        break;  // an edge of the chain: the convex polygon stays on its inner side
       const PulleyState& p = pulleys_[end->pulley];
-      for (int v = 0; v < static_cast<int>(p.local.size()); ++v) {
-        const bool inChain = std::any_of(path_.begin(), path_.end(), [&](const WrapPoint& w) {
-          return w.pulley == end->pulley && w.vertex == v;
-        });
-        if (!inChain) tryPoint(end->pulley, p.local[v], WrapEvent::Kind::Vertex);
-      }
+      const int n = static_cast<int>(p.local.size());
+      const int walk = p.side == WrapSide::Right ? 1 : -1;
+      const int v = ((end == &b ? end->vertex - walk : end->vertex + walk) % n + n) % n;
+      tryPoint(end->pulley, p.local[v], WrapEvent::Kind::Vertex);
     }
   }
   // Leaves: the turn at a wrap point straightens.

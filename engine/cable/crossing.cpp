@@ -10,12 +10,31 @@ namespace cablelab {
 MovingPoint MovingPoint::on(std::span<const BodyState> motion, int body, const Vec2& local) {
   MovingPoint m;
   m.local = local;
+  m.start = local;
   if (body < 0) return m;
   const BodyState& b = motion[body];
   m.origin = b.position;
   m.velocity = b.velocity;
   m.angle = b.angle;
   m.angularVelocity = b.angularVelocity;
+  m.start = m.at(0);
+  m.speed = m.velocity.norm() + std::abs(m.angularVelocity) * local.norm();
+  return m;
+}
+
+MovingPoint MovingPoint::on(std::span<const BodyState> motion, int body, const Vec2& local,
+                            double c, double s) {
+  MovingPoint m;
+  m.local = local;
+  m.start = local;
+  if (body < 0) return m;
+  const BodyState& b = motion[body];
+  m.origin = b.position;
+  m.velocity = b.velocity;
+  m.angle = b.angle;
+  m.angularVelocity = b.angularVelocity;
+  m.start = b.position + rotate(local, c, s);
+  m.speed = m.velocity.norm() + std::abs(m.angularVelocity) * local.norm();
   return m;
 }
 
@@ -29,7 +48,7 @@ namespace {
 
 // The most a point fixed on a body can move per second over the sub-step: |v| + |omega| |r|.
 double speedBound(const MovingPoint& m) {
-  return m.velocity.norm() + std::abs(m.angularVelocity) * m.local.norm();
+  return m.speed ? *m.speed : m.velocity.norm() + std::abs(m.angularVelocity) * m.local.norm();
 }
 
 }  // namespace
@@ -38,7 +57,7 @@ double speedBound(const MovingPoint& m) {
 // |n'| <= |b' - a'| / |b - a|; both are bounded over the sub-step by the points' speed bounds.
 bool sideCannotChange(const MovingPoint& a, const MovingPoint& b, const MovingPoint& p, double h,
                       double reach) {
-  const Vec2 a0 = a.at(0), d0 = b.at(0) - a0, pa0 = p.at(0) - a0;
+  const Vec2 a0 = a.atStart(), d0 = b.atStart() - a0, pa0 = p.atStart() - a0;
   const double sa = speedBound(a), sb = speedBound(b), sp = speedBound(p);
   const double length = d0.norm(), shortest = length - h * (sa + sb);
   if (!(shortest > 0)) return false;

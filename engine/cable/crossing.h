@@ -25,12 +25,20 @@ struct MovingPoint {
   double angle = 0;              ///< rad at t = 0
   double angularVelocity = 0;    ///< rad/s
   Vec2 local = Vec2::Zero();     ///< body frame (world frame for the world)
+  /// at(0) and the speed bound |v| + |omega| |local|, set by on(): the early-outs read every
+  /// point's several times.
+  std::optional<Vec2> start;
+  std::optional<double> speed;
 
   static MovingPoint on(std::span<const BodyState> motion, int body, const Vec2& local);
+  /// The same with the body's cos and sin of its angle already known (many points on one body).
+  static MovingPoint on(std::span<const BodyState> motion, int body, const Vec2& local, double c,
+                        double s);
   /// World position at time t (s) into the sub-step.
   Vec2 at(double t) const {
     return origin + t * velocity + rotate(local, angle + t * angularVelocity);
   }
+  Vec2 atStart() const { return start ? *start : at(0); }
 };
 
 /// Sample count that resolves the turns of the given points over h (a point on a body turning

@@ -1,6 +1,7 @@
 #include "engine/cable/wrap.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace cablelab {
 
@@ -8,6 +9,8 @@ namespace {
 
 // Points closer than this to a hull edge's line count as collinear and are not wrap points.
 constexpr double kCollinear = 1e-12;
+// A wrap that turns the path by less than this (rad) is straight: no vertex is a wrap point.
+constexpr double kStraightTurn = 1e-12;
 
 }  // namespace
 
@@ -53,6 +56,50 @@ std::optional<std::vector<int>> wrapChain(const Vec2& a, const Vec2& b,
   return chain;
 }
 
+namespace {
+
+// The tangent vertices of the taut path a -> polygon -> b on `side`: ta from a, tb into b.
+// False when a terminal lies inside the polygon (no taut path round it exists).
+bool tangentVertices(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, WrapSide side,
+                     int& ta, int& tb) {
+  const int n = static_cast<int>(polygon.size());
+  // Mirror Right into Left: walking the path, the polygon must stay on the right (s = +1).
+  const double s = side == WrapSide::Right ? -1.0 : 1.0;
+  auto right = [&](const Vec2& from, const Vec2& to, const Vec2& p) {
+    return -s * cross(to - from, p - from);
+  };
+  auto insidePolygon = [&](const Vec2& p) {
+    for (int i = 0; i < n; ++i)
+      if (cross(polygon[(i + 1) % n] - polygon[i], p - polygon[i]) <= 0) return false;
+    return true;
+  };
+  if (insidePolygon(a) || insidePolygon(b)) return false;
+  // Tangent vertices by one sweep each (seen from an outside point the polygon spans less than
+  // half a turn, so "more to the left" is a total order): from a, the vertex with nothing on the
+  // left of a->v; into b, the vertex with nothing on the left of v->b. Ties (collinear): the
+  // vertex farther from the terminal, so collinear points never become wrap points.
+  ta = 0, tb = 0;
+  for (int i = 1; i < n; ++i) {
+    const double r = right(a, polygon[ta], polygon[i]);
+    if (r < 0 || (r == 0 && (polygon[i] - a).squaredNorm() > (polygon[ta] - a).squaredNorm()))
+      ta = i;
+  }
+  for (int i = 1; i < n; ++i) {
+    const double r = right(polygon[tb], b, polygon[i]);
+    if (r < 0 || (r == 0 && (polygon[i] - b).squaredNorm() > (polygon[tb] - b).squaredNorm()))
+      tb = i;
+  }
+  return true;
+}
+
+// The walk round the boundary with the polygon on the right (clockwise for Left,
+// counter-clockwise for Right): +1 or -1 per vertex.
+int walkStep(WrapSide side) {
+  return side == WrapSide::Right ? 1 : -1;
+}
+
+}  // namespace
+
 bool wrapChain(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, WrapSide side,
                std::vector<int>& chain) {
   chain.clear();
@@ -64,42 +111,47 @@ bool wrapChain(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, Wrap
   bool bends = false;
   for (const Vec2& v : polygon) bends |= wrapSideDistance(a, b, v, side) * scale > eps;
   if (!bends) return true;
-
-  // Mirror Right into Left: walking the path, the polygon must stay on the right (s = +1).
-  const double s = side == WrapSide::Right ? -1.0 : 1.0;
-  auto right = [&](const Vec2& from, const Vec2& to, const Vec2& p) {
-    return -s * cross(to - from, p - from);
-  };
-  // A terminal inside the polygon has no taut path round it.
-  auto insidePolygon = [&](const Vec2& p) {
-    for (int i = 0; i < n; ++i)
-      if (cross(polygon[(i + 1) % n] - polygon[i], p - polygon[i]) <= 0) return false;
-    return true;
-  };
-  if (insidePolygon(a) || insidePolygon(b)) return false;
-  // Tangent vertices by one sweep each (seen from an outside point the polygon spans less than
-  // half a turn, so "more to the left" is a total order): from a, the vertex with nothing on the
-  // left of a->v; into b, the vertex with nothing on the left of v->b. Ties (collinear): the
-  // vertex farther from the terminal, so collinear points never become wrap points.
-  int ta = 0, tb = 0;
-  for (int i = 1; i < n; ++i) {
-    const double r = right(a, polygon[ta], polygon[i]);
-    if (r < 0 || (r == 0 && (polygon[i] - a).squaredNorm() > (polygon[ta] - a).squaredNorm()))
-      ta = i;
-  }
-  for (int i = 1; i < n; ++i) {
-    const double r = right(polygon[tb], b, polygon[i]);
-    if (r < 0 || (r == 0 && (polygon[i] - b).squaredNorm() > (polygon[tb] - b).squaredNorm()))
-      tb = i;
-  }
-  // Walk the boundary with the polygon on the right: clockwise for Left, counter-clockwise for
-  // Right.
-  const int stepDir = side == WrapSide::Right ? 1 : -1;
+  int ta, tb;
+  if (!tangentVertices(a, b, polygon, side, ta, tb)) return false;
+  const int stepDir = walkStep(side);
   for (int i = ta;; i = (i + stepDir + n) % n) {
     chain.push_back(i);
     if (i == tb || static_cast<int>(chain.size()) > n) break;
   }
   return true;
+}
+
+std::optional<double> wrapChainTurning(const Vec2& a, const Vec2& b,
+                                       std::span<const Vec2> polygon, WrapSide side,
+                                       double reference, std::vector<int>& chain) {
+  chain.clear();
+  int ta, tb;
+  if (!tangentVertices(a, b, polygon, side, ta, tb)) return std::nullopt;
+  const int n = static_cast<int>(polygon.size()), stepDir = walkStep(side);
+  // The walk ta -> tb and the angle the path turns along it, in the wrap sense (clockwise for
+  // Left): every turn on it is >= 0 but possibly the one of a single vertex, so it lies in
+  // (-pi, 2 pi]. The wrap is that plus whole turns: the branch nearest the reference.
+  const double s = side == WrapSide::Right ? -1.0 : 1.0;
+  double walkTurn = 0;
+  Vec2 from = a;
+  for (int i = ta;; i = (i + stepDir + n) % n) {
+    chain.push_back(i);
+    const Vec2 in = polygon[i] - from;
+    from = polygon[i];
+    const Vec2 out = (i == tb ? b : polygon[(i + stepDir + n) % n]) - from;
+    walkTurn -= s * std::atan2(cross(in, out), in.dot(out));
+    if (i == tb || static_cast<int>(chain.size()) > n) break;
+  }
+  const double loops = std::round((reference - walkTurn) / (2 * M_PI));
+  const double turn = walkTurn + 2 * M_PI * loops;
+  if (turn <= kStraightTurn) {
+    chain.clear();
+    return std::min(turn, 0.0);
+  }
+  // More than the walk: whole loops round the polygon, ending at tb again.
+  for (int k = 0; k < static_cast<int>(loops) * n; ++k)
+    chain.push_back((chain.back() + stepDir + n) % n);
+  return turn;
 }
 
 double chainLength(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,

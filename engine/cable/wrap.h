@@ -25,6 +25,18 @@ std::optional<std::vector<int>> wrapChain(const Vec2& a, const Vec2& b,
 bool wrapChain(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, WrapSide side,
                std::vector<int>& chain);
 
+/// The chain of a polygon the cable is wrapped on, kept continuous over time: the walk between
+/// the tangent vertices from A and into B, plus as many whole loops round the polygon as put the
+/// angle the path turns round it nearest `reference` (rad, its value at the last update; 0 for a
+/// polygon that just joined). So a polygon swung round past an end anchor stays wrapped (more than
+/// half a turn, more than whole turns), and the chain grows and shrinks one vertex at a time.
+/// Returns that angle (the chain is empty when it is <= 0: the path no longer bends round the
+/// polygon); nullopt when a terminal lies inside the polygon. With reference 0 it is wrapChain's
+/// hull chain wherever that turns the path by less than half a turn.
+std::optional<double> wrapChainTurning(const Vec2& a, const Vec2& b,
+                                       std::span<const Vec2> polygon, WrapSide side,
+                                       double reference, std::vector<int>& chain);
+
 /// Length of the path A -> polygon[chain...] -> B.
 double chainLength(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,
                    const std::vector<int>& chain);

@@ -4,6 +4,7 @@
 #include <box2d/box2d.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace cablelab {
 
@@ -117,7 +118,29 @@ struct Box2DBridge::Impl {
   std::vector<b2Joint*> joints;
   std::vector<JointDef::Kind> kinds;
   b2MouseJoint* mouse = nullptr;
+  /// Whole turns (2 pi k, rad) taken out of each body's Box2D angle, and whether it may be:
+  /// Box2D integrates the angle in float, so a body spinning for minutes would hold it to ever
+  /// fewer digits (0.5 mrad per step past 4096 rad) and its cable points would jitter by that
+  /// (docs/model.md, "Coupling to Box2D"). Only bodies whose joints ignore the angle may be rewound:
+  /// revolute joints without a limit (the offsets go back into their coordinate).
+  std::vector<double> turns;
+  std::vector<char> rewinds;
+  std::vector<std::array<int, 2>> jointBodies;  ///< body indices of each joint, -1: the world
+  void rewind();
 };
+
+// Keeps every body that may be rewound within (-pi, pi] in Box2D; the World sees the angle in
+// full (readBodies adds the turns back).
+void Box2DBridge::Impl::rewind() {
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    b2Body* b = bodies[i];
+    const float a = b->GetAngle();
+    if (!rewinds[i] || std::abs(a) <= static_cast<float>(M_PI)) continue;
+    const double k = std::round(a / (2 * M_PI));
+    b->SetTransform(b->GetPosition(), static_cast<float>(a - 2 * M_PI * k));
+    turns[i] += 2 * M_PI * k;
+  }
+}
 
 Box2DBridge::Box2DBridge(const SceneDef& scene) : impl_(std::make_unique<Impl>()) {
   b2World& w = impl_->world;
@@ -134,6 +157,14 @@ Box2DBridge::Box2DBridge(const SceneDef& scene) : impl_(std::make_unique<Impl>()
     impl_->joints.push_back(createJoint(w, jd, bodyOf(jd.bodyA), bodyOf(jd.bodyB)));
     impl_->kinds.push_back(jd.kind);
   }
+  impl_->turns.assign(scene.bodies.size(), 0.0);
+  impl_->rewinds.assign(scene.bodies.size(), 1);
+  for (const JointDef& jd : scene.joints) {
+    impl_->jointBodies.push_back({findBodyIndex(scene, jd.bodyA), findBodyIndex(scene, jd.bodyB)});
+    if (jd.kind != JointDef::Kind::Revolute || jd.enableLimit)
+      for (const std::string& name : {jd.bodyA, jd.bodyB})
+        if (const int i = findBodyIndex(scene, name); i >= 0) impl_->rewinds[i] = 0;
+  }
 }
 
 Box2DBridge::~Box2DBridge() = default;
@@ -144,7 +175,7 @@ void Box2DBridge::readBodies(std::vector<BodyState>& bodies) const {
     const b2Body* b = impl_->bodies[i];
     BodyState& s = bodies[i];
     s.position = fromB2(b->GetPosition());
-    s.angle = b->GetAngle();
+    s.angle = b->GetAngle() + impl_->turns[i];
     s.velocity = fromB2(b->GetLinearVelocity());
     s.angularVelocity = b->GetAngularVelocity();
     const bool dynamic = b->GetType() == b2_dynamicBody;
@@ -155,6 +186,7 @@ void Box2DBridge::readBodies(std::vector<BodyState>& bodies) const {
 }
 
 void Box2DBridge::setTransform(int body, const Vec2& position, double angle) {
+  impl_->turns[body] = 0;
   impl_->bodies[body]->SetTransform(toB2(position), static_cast<float>(angle));
 }
 
@@ -178,6 +210,7 @@ void Box2DBridge::applyLoads(std::span<const Vec3> loads) {
 
 void Box2DBridge::step(double h) {
   impl_->world.Step(static_cast<float>(h), kVelocityIterations, kPositionIterations);
+  impl_->rewind();
 }
 
 void Box2DBridge::addVelocities(std::span<const Vec3> dv) {
@@ -200,10 +233,12 @@ void Box2DBridge::markTouching(std::vector<char>& touching) const {
 
 JointCoordinate Box2DBridge::jointCoordinate(int joint) const {
   const b2Joint* j = impl_->joints[joint];
+  auto turnsOf = [&](int body) { return body >= 0 ? impl_->turns[body] : 0.0; };
   JointCoordinate q;
   if (impl_->kinds[joint] == JointDef::Kind::Revolute) {
     auto* r = static_cast<const b2RevoluteJoint*>(j);
-    q.value = r->GetJointAngle();
+    const auto [a, b] = impl_->jointBodies[joint];
+    q.value = r->GetJointAngle() + turnsOf(b) - turnsOf(a);
     q.speed = r->GetJointSpeed();
   } else if (impl_->kinds[joint] == JointDef::Kind::Prismatic) {
     auto* p = static_cast<const b2PrismaticJoint*>(j);

@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/dynamics/disjoint_sets.h"
 #include "engine/dynamics/floors.h"
+#include "engine/dynamics/joint_projection.h"
 #include "engine/dynamics/length_targets.h"
 #include "engine/dynamics/tension_solver.h"
 
@@ -36,22 +38,6 @@ struct DofMap {
       body.push_back(b);
     }
     return ofBody[b];
-  }
-};
-
-// One row of the joint Jacobian C: the relative motion of at most two bodies (dof -1: none).
-// C has n columns but only 2-6 non-zeros per row, so products with C go through these.
-struct JointRow {
-  std::array<int, 2> dof{-1, -1};
-  std::array<Vec3, 2> coeff{Vec3::Zero(), Vec3::Zero()};
-  double bias = 0;  // the row's rate from bodies that are not dofs (kinematic: prescribed motion)
-
-  // This row times the dense column x.
-  double dot(const Eigen::Ref<const Eigen::VectorXd>& x) const {
-    double sum = 0;
-    for (int k = 0; k < 2; ++k)
-      if (dof[k] >= 0) sum += coeff[k].dot(x.segment<3>(dof[k]));
-    return sum;
   }
 };
 
@@ -104,11 +90,9 @@ struct CableSolverWorkspace {
   Eigen::LDLT<Eigen::MatrixXd> coupledLdlt;
   Eigen::VectorXd coupledRhs, coupledSolution;
 
-  // Joint rows and the Schur complement S = C M'^-1 C^T.
+  // Joint rows and the projection through their Schur complement (joint_projection.h).
   std::vector<JointRow> joints;
-  Eigen::MatrixXd MinvCt, S, CW, schurCW, correction;
-  Eigen::VectorXd Cv, schurCv, velocityCorrection;  // Cv includes each row's bias
-  Eigen::LDLT<Eigen::MatrixXd> schur;
+  JointProjection projection;
 
   // Newton on the end-of-step lengths.
   Eigen::VectorXd target, compliance, damped, P, phi1, b, WP, v1;
@@ -120,10 +104,15 @@ struct CableSolverWorkspace {
   std::vector<BodyJacobian> floorJacobian;  // scratch: a floor row's J
   LcpWorkspace lcp;
   LcpSolution lcpSolution;
+  // Per cable, the h and tension of the solve that last set its tension (Newton's warm start).
+  struct WarmStart {
+    double h = 0, tension = 0;
+    int spans = 0;
+  };
+  std::vector<WarmStart> warm;
 
   void factorStiffMass(double h);
   void applyInverseMass(Eigen::Ref<Eigen::MatrixXd> X);
-  void projectOntoJoints();
 };
 
 // Builds M' over the coupled dofs and factors it; immovable dofs (M^-1 = 0) stay put.
@@ -188,39 +177,6 @@ void CableSolverWorkspace::applyInverseMass(Eigen::Ref<Eigen::MatrixXd> X) {
   }
 }
 
-// Schur complement of the joint rows: W <- W - M'^-1 C^T S^-1 C W, and v* made
-// joint-consistent the same way (S = C M'^-1 C^T).
-void CableSolverWorkspace::projectOntoJoints() {
-  const int n = dofs.size(), c = static_cast<int>(joints.size()), m = static_cast<int>(W.cols());
-  MinvCt.setZero(n, c);
-  for (int r = 0; r < c; ++r)
-    for (int k = 0; k < 2; ++k)
-      if (joints[r].dof[k] >= 0) MinvCt.block<3, 1>(joints[r].dof[k], r) += joints[r].coeff[k];
-  applyInverseMass(MinvCt);
-  // S is symmetric and the LDLT reads its lower triangle only.
-  S.resize(c, c);
-  for (int r = 0; r < c; ++r)
-    for (int s = 0; s <= r; ++s) S(r, s) = joints[r].dot(MinvCt.col(s));
-  S.diagonal().array() += 1e-10 * (1 + S.diagonal().array());
-  schur.compute(S);
-
-  // A few columns (one per cable, then v*): column by column is cheaper than the blocked solve.
-  CW.resize(c, m);
-  schurCW.resize(c, m);
-  for (int s = 0; s < m; ++s) {
-    for (int r = 0; r < c; ++r) CW(r, s) = joints[r].dot(W.col(s));
-    schurCW.col(s) = schur.solve(CW.col(s));
-  }
-  correction.noalias() = MinvCt.lazyProduct(schurCW);
-  W -= correction;
-
-  Cv.resize(c);
-  for (int r = 0; r < c; ++r) Cv[r] = joints[r].dot(vStar) + joints[r].bias;
-  schurCv = schur.solve(Cv);
-  velocityCorrection.noalias() = MinvCt * schurCv;
-  vStar -= velocityCorrection;
-}
-
 namespace {
 
 using Workspace = CableSolverWorkspace;
@@ -231,16 +187,6 @@ void forMovingBodies(const Cable& cable, const CableSolveInput& in, F&& f) {
   for (int k = 0; k < cable.spanCount(); ++k)
     for (const auto& e : cable.spanKinematics(k).jacobian)
       if (moves(in.bodies[e.body])) f(e.body);
-}
-
-int findRoot(std::vector<int>& parent, int b) {
-  while (parent[b] != b) b = parent[b] = parent[parent[b]];
-  return b;
-}
-
-void unite(std::vector<int>& parent, int a, int b) {
-  a = findRoot(parent, a), b = findRoot(parent, b);
-  if (a != b) parent[std::max(a, b)] = std::min(a, b);
 }
 
 // 1a. Islands: a cable that pulls on something that moves gets a row; cables sharing a moving
@@ -303,8 +249,8 @@ bool mayReachFloor(const CableSolveInput& in, const WrapPoint& p, const WrapPoin
     const Vec2 v = b.velocity + b.angularVelocity * perp(Vec2(w.world - b.position));
     return v.norm() + (b.invMass > 0 ? in.h * in.gravity.norm() : 0.0);
   };
-  const double length = (q.world - p.world).norm();
-  return length > 1e-9 && length < 2 * kFloorLength + 2 * in.h * (speed(p) + speed(q));
+  const double gap = floorGap(p, q);
+  return gap > 1e-9 && gap < 2 * kFloorLength + 2 * in.h * (speed(p) + speed(q));
 }
 
 // 1b. One island's rows (one per span of its cables), and the dofs of the bodies it moves: its
@@ -338,22 +284,25 @@ void buildRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
   }
 }
 
-// A floor row's constraint kFloorLength - u0 . (q - p) of segment (p, q) on `bodies`, and its J
+// A floor row's constraint kFloorLength - u0 . (q - p) of segment (p, q) on `bodies` (p, q: its
+// contact points, a circle's tangent point moving with its centre, floors.h), and its J
 // (into ws.floorJacobian). u0 is the segment's direction at the start of the step: measured along
 // it, a body that would pass through its pulley within the step goes negative instead of
 // coming out the other side at a length that looks allowed.
 double floorRow(Workspace& ws, std::span<const BodyState> bodies, const Cable& cable, int segment) {
   const WrapPoint* ends[2] = {&cable.path()[segment], &cable.path()[segment + 1]};
-  const Vec2 u0 = (ends[1]->world - ends[0]->world).normalized();
+  const Vec2 u0 = (floorTo(*ends[1]) - floorFrom(*ends[0])).normalized();
   ws.floorJacobian.clear();
   double along = 0;
   for (int e = 0; e < 2; ++e) {
     const double sign = e == 0 ? 1.0 : -1.0;  // d(kFloorLength - u0 . (q - p))
     const WrapPoint& w = *ends[e];
-    const Vec2 x = worldPoint(bodies, w.body, w.local);
-    along -= sign * u0.dot(x);
+    const Vec2 centre = worldPoint(bodies, w.body, w.local);
+    // A circle's contact is its tangent point at the start of the step, carried with its centre.
+    const Vec2 offset = (e == 0 ? floorFrom(w) : floorTo(w)) - w.world;
+    along -= sign * u0.dot(centre + offset);
     if (w.body < 0) continue;
-    const Vec2 arm = x - bodies[w.body].position;
+    const Vec2 arm = centre - bodies[w.body].position;
     ws.floorJacobian.push_back({w.body, sign * Vec3(u0.x(), u0.y(), u0.dot(perp(arm)))});
   }
   return kFloorLength - along;
@@ -415,6 +364,23 @@ void predictVelocities(Workspace& ws, const CableSolveInput& in, std::span<const
   ws.vFree = ws.vStar;  // what Box2D would reach without cables and joints
 }
 
+// Whether a segment of the path could pass inverseMass()'s stiffness test: a segment's Hessian
+// block has trace 1 / length (appendLengthHessianTranslation), so this bounds the test without
+// building the blocks. A cable that cannot needs none (no block is used unless one is stiff).
+bool mayBeStiff(const Workspace& ws, double h2Tension, std::span<const WrapPoint> path) {
+  for (size_t i = 0; i + 1 < path.size(); ++i) {
+    const int a = path[i].body, b = path[i + 1].body;
+    if (a == b) continue;
+    const Vec2 from = path[i].radius == 0 ? path[i].world : path[i].tangentOut;
+    const Vec2 to = path[i + 1].radius == 0 ? path[i + 1].world : path[i + 1].tangentIn;
+    double invMass = 0;
+    for (int e : {a, b})
+      if (e >= 0 && ws.dofs.ofBody[e] >= 0) invMass = std::max(invMass, ws.invM[ws.dofs.ofBody[e]]);
+    if (h2Tension * invMass > 0.04 * (to - from).norm()) return true;
+  }
+  return false;
+}
+
 // 3. W = M'^-1 J^T. M' adds the geometric stiffness h^2 T d^2(length)/dx^2 of taut cables where
 // it matters (a light body on a tight band turns the force direction faster than one step
 // resolves). Backward Euler on the turning force direction: (M + h^2 T G) v1 = M v* - J^T P, so
@@ -429,7 +395,7 @@ void inverseMass(Workspace& ws, double h, std::span<const Cable> cables) {
     const Cable& c = cables[row.cable];
     const double tension =
         std::max(c.tension(), c.elastic() ? c.stiffness() * std::max(0.0, c.stretch()) : 0.0);
-    if (tension <= 0) continue;
+    if (tension <= 0 || !mayBeStiff(ws, h * h * tension, c.path())) continue;
     const size_t begin = ws.blocks.size();
     appendLengthHessianTranslation(c.path(), ws.blocks);
     for (size_t i = begin; i < ws.blocks.size(); ++i) {
@@ -502,7 +468,12 @@ void jointRows(Workspace& ws, const CableSolveInput& in) {
 // cables must already see them (a pulley on a pivoted body turns, it does not translate).
 void projectOntoJoints(Workspace& ws, const CableSolveInput& in) {
   jointRows(ws, in);
-  if (!ws.joints.empty()) ws.projectOntoJoints();
+  if (ws.joints.empty()) return;
+  if (ws.stiff)
+    ws.projection.projectDense(
+        ws.joints, [&](Eigen::Ref<Eigen::MatrixXd> X) { ws.applyInverseMass(X); }, ws.W, ws.vStar);
+  else
+    ws.projection.projectDiagonal(ws.joints, ws.invM, ws.W, ws.vStar);
 }
 
 // 5. Position-level targets. Rigid: length at the end of the step = now (the error below the
@@ -523,7 +494,7 @@ void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable>
     const int seg = row.segment;
     double phi = 0;
     if (seg >= 0)
-      phi = kFloorLength - (c.path()[seg + 1].world - c.path()[seg].world).norm();
+      phi = kFloorLength - floorGap(c.path()[seg], c.path()[seg + 1]);
     else
       for (int k = row.first; k <= row.last; ++k) phi += c.spanStretch(k);
     if (!c.elastic() || seg >= 0) {
@@ -580,30 +551,33 @@ void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
   }
 }
 
-// 6. Newton on the end-of-step lengths phi1(P), each linearisation an LCP over all cables:
-// tension >= 0, slack cables only shorten.
-void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
-                     StepStats& stats) {
+// Warm start: a cable's tension changes little from one sub-step to the next, so Newton starts
+// from the impulses of the last solve when it had the same h and nothing has set the tension
+// since (after a step cut at an event the impulse is not force times h: a length correction is
+// m dv whatever h). Floors start at 0. True if any row starts away from 0.
+bool warmStart(Workspace& ws, double h, std::span<const Cable> cables) {
+  const int m = static_cast<int>(ws.rows.size());
+  ws.P.setZero(m);
+  bool warm = false;
+  for (int r = 0; r < m; ++r) {
+    const Workspace::Row& row = ws.rows[r];
+    const Cable& c = cables[row.cable];
+    const Workspace::WarmStart& last = ws.warm[row.cable];
+    if (row.segment >= 0 || last.h != h || last.tension != c.tension() ||
+        last.spans != c.spanCount())
+      continue;
+    ws.P[r] = std::max(0.0, c.spanTension(row.first) / row.weight(ws.rowWeights, row.first)) * h;
+    warm |= ws.P[r] > 0;
+  }
+  return warm;
+}
+
+// Newton iterations from ws.P, each linearisation an LCP over all rows. True once the impulses
+// have settled (the linearisation at a point the LCP keeps is exact there: it is the solution).
+bool iterateNewton(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
+                   bool redundant, StepStats& stats) {
   const int m = static_cast<int>(ws.rows.size());
   const double h = in.h;
-  ws.P.setZero(m);
-  ws.phi1.resize(m);
-  ws.JW.resize(m, m);
-  // J0 W from the start-of-step Jacobians (positive semidefinite), for the guard below.
-  ws.JW0.setZero(m, m);
-  for (int r = 0; r < m; ++r)
-    forStartJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
-      addJacobianTimesW(ws, jacobian, ws.JW0.row(r));
-    });
-  // Redundant cables (J0 W singular): J1 W is then singular too, but not symmetric, and its
-  // symmetric part indefinite, so the minimum-norm solve (tension_solver.h) would be ill posed.
-  // Such an island iterates on J0 W instead (a quasi-Newton step: it still converges to the
-  // end-of-step lengths, only more slowly).
-  bool redundant = false;
-  if (m > 1 && (ws.compliance.array() == 0).any()) {  // elastic rows alone: K is definite
-    ws.redundancy.compute(ws.JW0);
-    redundant = rankDeficient(ws.redundancy);
-  }
   for (int iteration = 0; iteration < kNewtonIterations; ++iteration) {
     linearise(ws, in, cables);
     if (redundant) ws.JW = ws.JW0;
@@ -630,9 +604,45 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
     ws.P = sol.x;
     stats.solverIterations += sol.iterations;
     stats.residual = std::max(stats.residual, sol.residual);
-    // The end-of-step geometry is nearly linear in P: stop once the impulses have settled.
-    if (iteration > 0 && change <= 1e-9 * (1e-9 + ws.P.lpNorm<Eigen::Infinity>())) break;
+    if (change <= 1e-9 * (1e-9 + ws.P.lpNorm<Eigen::Infinity>())) return true;
   }
+  return false;
+}
+
+// 6. Newton on the end-of-step lengths phi1(P), each linearisation an LCP over all cables:
+// tension >= 0, slack cables only shorten. A warm start that does not settle (a tiny mass the
+// last impulses throw far) starts again from P = 0, so it only ever saves iterations.
+void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
+                     StepStats& stats) {
+  const int m = static_cast<int>(ws.rows.size());
+  ws.phi1.resize(m);
+  ws.JW.resize(m, m);
+  // J0 W from the start-of-step Jacobians (positive semidefinite), for the guard below.
+  ws.JW0.setZero(m, m);
+  for (int r = 0; r < m; ++r)
+    forStartJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
+      addJacobianTimesW(ws, jacobian, ws.JW0.row(r));
+    });
+  // Redundant cables (J0 W singular): J1 W is then singular too, but not symmetric, and its
+  // symmetric part indefinite, so the minimum-norm solve (tension_solver.h) would be ill posed.
+  // Such an island iterates on J0 W instead (a quasi-Newton step: it still converges to the
+  // end-of-step lengths, only more slowly).
+  bool redundant = false;
+  if (m > 1 && (ws.compliance.array() == 0).any()) {  // elastic rows alone: K is definite
+    ws.redundancy.compute(ws.JW0);
+    redundant = rankDeficient(ws.redundancy);
+  }
+  if (warmStart(ws, in.h, cables)) {
+    StepStats warm;
+    if (iterateNewton(ws, in, cables, redundant, warm)) {
+      stats.solverIterations += warm.solverIterations;
+      stats.residual = std::max(stats.residual, warm.residual);
+      stats.linearisationFallbacks += warm.linearisationFallbacks;
+      return;
+    }
+    ws.P.setZero(m);
+  }
+  iterateNewton(ws, in, cables, redundant, stats);
 }
 
 // 7. The tensions, and the force that gives the end-of-step velocity solved for (cable pull,
@@ -644,6 +654,10 @@ void applyForces(Workspace& ws, double h, std::span<Cable> cables, std::span<Vec
     for (int k = row.first; k <= row.last; ++k)
       cables[row.cable].setSpanTension(k, row.weight(ws.rowWeights, k) * ws.P[r] / h);
     for (int k = row.first; k < row.last; ++k) cables[row.cable].setSlipped(k, true);
+  }
+  for (const Workspace::Row& row : ws.rows) {
+    const Cable& c = cables[row.cable];
+    ws.warm[row.cable] = {h, c.tension(), c.spanCount()};
   }
   ws.WP.noalias() = ws.W * ws.P;
   for (size_t k = 0; k < ws.dofs.body.size(); ++k)
@@ -695,6 +709,7 @@ void CableSolver::solve(const CableSolveInput& in, std::span<Cable> cables, std:
   const int islands = findIslands(ws, in, cables);
   if (islands == 0) return;
   if (ws.dofs.ofBody.size() != in.bodies.size()) ws.dofs.reset(in.bodies.size());
+  if (ws.warm.size() != cables.size()) ws.warm.assign(cables.size(), {});
   predictPrescribed(ws, in);
   for (int island = 0; island < islands; ++island) {
     buildRows(ws, in, cables, island);

@@ -55,6 +55,36 @@ double rigidTarget(double phi, double share) {
                              : phi;
 }
 
+// A floor row (floors.h) at the end of the step, kFloorLength - u0 . (x_to - x_from), and its
+// exact discrete gradient into `g`. The contacts are those at the start of the step (a circle's
+// tangent point carried with its centre) and u0 the segment's direction then, as in the main
+// solve: measured along it, a body that passes its pulley within the step (or rolls over a
+// wheel's rim, where the tangent length comes back up) goes negative instead of looking allowed.
+double floorRow(const WrapPoint& p, const WrapPoint& q, std::span<const BodyState> q0,
+                std::span<const BodyState> q1, std::vector<BodyJacobian>& g) {
+  const Vec2 from = floorFrom(p), to = floorTo(q);
+  const Vec2 u0 = (to - from).normalized();
+  g.clear();
+  double along = 0;
+  for (int e = 0; e < 2; ++e) {
+    const WrapPoint& w = e == 0 ? p : q;
+    const double sign = e == 0 ? -1.0 : 1.0;  // d(along) / d(x of this end)
+    const Vec2 offset = (e == 0 ? from : to) - w.world;
+    if (w.body < 0) {
+      along += sign * u0.dot(w.world + offset);
+      continue;
+    }
+    const BodyState &s0 = q0[w.body], &s1 = q1[w.body];
+    along += sign * u0.dot(s1.position + rotate(w.local, s1.angle) + offset);
+    // R(theta1) r - R(theta0) r = sinc(dtheta / 2) dtheta perp(R(theta_mid) r), exactly.
+    const double half = 0.5 * (s1.angle - s0.angle);
+    const double sinc = std::abs(half) < 1e-8 ? 1 - half * half / 6 : std::sin(half) / half;
+    const Vec2 arm = sinc * perp(rotate(w.local, 0.5 * (s0.angle + s1.angle)));
+    g.push_back({w.body, -sign * Vec3(u0.x(), u0.y(), u0.dot(arm))});
+  }
+  return kFloorLength - along;
+}
+
 }  // namespace
 
 bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const Cable> cables,
@@ -75,8 +105,7 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
     for (size_t i = 1; i + 1 < path.size(); ++i)
       wanted |= path[i].body >= 0 && moves(bodies[path[i].body]);
     for (size_t i = 0; i + 1 < path.size(); ++i)
-      wanted |= path[i].body != path[i + 1].body &&
-                (path[i + 1].world - path[i].world).norm() < kFloorWatch;
+      wanted |= path[i].body != path[i + 1].body && floorGap(path[i], path[i + 1]) < kFloorWatch;
     if (c.elastic()) {
       if (elasticMode(c, bodies) * h > kMaxElasticOmegaH) return false;
       wanted = true;
@@ -99,11 +128,8 @@ void MidpointSolver::evaluate(std::span<const BodyState> bodies, std::span<const
   }
   for (size_t r = 0; r < rows_.size(); ++r) {
     const Cable& c = cables[rows_[r]];
-    if (const int seg = segment_[r]; seg >= 0) {  // a floor: kFloorLength - |segment|
-      path_.assign(c.path().begin() + seg, c.path().begin() + seg + 2);
-      lengthDiscreteGradient(path_, bodies, predicted_, gradients_[r]);
-      for (auto& e : gradients_[r]) e.d = -e.d;
-      phi1_[r] = kFloorLength - (path_[1].world - path_[0].world).norm();
+    if (const int seg = segment_[r]; seg >= 0) {
+      phi1_[r] = floorRow(c.path()[seg], c.path()[seg + 1], bodies, predicted_, gradients_[r]);
       continue;
     }
     path_.assign(c.path().begin(), c.path().end());
@@ -198,7 +224,7 @@ bool MidpointSolver::buildRows(std::span<const BodyState> bodies, std::span<Cabl
     const auto& path = cables[rows_[r]].path();
     const int seg = segment_[r];
     phi0_[r] = seg < 0 ? cables[rows_[r]].stretch()
-                       : kFloorLength - (path[seg + 1].world - path[seg].world).norm();
+                       : kFloorLength - floorGap(path[seg], path[seg + 1]);
   }
   P_.setZero(m);
   vb_ = vStar_;

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace cablelab {
@@ -59,6 +60,21 @@ void solveOnSet(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, const std::v
   x.setZero(b.size());
   if (idx.empty()) return;
   const int m = static_cast<int>(idx.size());
+  // One or two rows (a hand's two membranes): closed form, well away from singular. Eigen's
+  // factorisations cost more than the rest of the solve at these sizes.
+  if (m == 1 && K(idx[0], idx[0]) > 0) {
+    x[idx[0]] = b[idx[0]] / K(idx[0], idx[0]);
+    return;
+  }
+  if (m == 2) {
+    const int i = idx[0], j = idx[1];
+    const double det = K(i, i) * K(j, j) - K(i, j) * K(j, i);
+    if (std::abs(det) > 1e-6 * std::abs(K(i, i) * K(j, j))) {  // else nearly dependent: pivot
+      x[i] = (K(j, j) * b[i] - K(i, j) * b[j]) / det;
+      x[j] = (K(i, i) * b[j] - K(j, i) * b[i]) / det;
+      return;
+    }
+  }
   work.Ks.resize(m, m);
   work.bs.resize(m);
   for (int r = 0; r < m; ++r) {

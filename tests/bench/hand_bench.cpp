@@ -19,7 +19,15 @@ void BM_HandStep(benchmark::State& state) {
   SceneDef scene = buildHandScene(HandModel{});
   if (state.range(0) == 0) scene.cables.clear();
   World world(scene, "hand");
-  for (auto _ : state) world.step(scene.dt, scene.substeps);
+  double events = 0, iterations = 0;
+  for (auto _ : state) {
+    world.step(scene.dt, scene.substeps);
+    events += world.lastStepStats().events;
+    iterations += world.lastStepStats().solverIterations;
+  }
+  // Sub-steps cut at a wrap event (each costs a second cable solve) and LCP pivots, per step.
+  state.counters["cuts"] = benchmark::Counter(events, benchmark::Counter::kAvgIterations);
+  state.counters["pivots"] = benchmark::Counter(iterations, benchmark::Counter::kAvgIterations);
 }
 BENCHMARK(BM_HandStep)->Arg(1)->Arg(0)->ArgNames({"cables"});
 

@@ -87,6 +87,63 @@ TEST(WrapChain, MatchesBruteForceShortestPathOnRandomCases) {
   EXPECT_GT(wrapped, 100);  // the cases exercise real wrapping, not only straight cables
 }
 
+TEST(WrapChainTurning, FromZeroIsTheHullChainWhereThatTurnsLessThanHalfATurn) {
+  test::Random rng(11);
+  int tested = 0, wrapped = 0;
+  std::vector<int> chain;
+  while (tested < 400) {
+    const auto poly = randomConvexPolygon(rng);
+    if (!isConvexCCW(poly)) continue;
+    const Vec2 a = rng.point(-3, 3), b = rng.point(-3, 3);
+    if (inside(poly, a) || inside(poly, b) || (a - b).norm() < 1e-3) continue;
+    for (WrapSide side : {WrapSide::Left, WrapSide::Right}) {
+      const auto hull = wrapChain(a, b, poly, side);
+      const auto turn = wrapChainTurning(a, b, poly, side, 0.0, chain);
+      ASSERT_TRUE(hull && turn);
+      // The turn of the hull chain's path, measured directly.
+      std::vector<Vec2> path{a};
+      for (int i : *hull) path.push_back(poly[i]);
+      path.push_back(b);
+      double hullTurn = 0;
+      for (size_t i = 1; i + 1 < path.size(); ++i) {
+        const Vec2 in = path[i] - path[i - 1], out = path[i + 1] - path[i];
+        hullTurn += (side == WrapSide::Left ? -1 : 1) * std::atan2(cross(in, out), in.dot(out));
+      }
+      if (hullTurn < M_PI - 1e-9) {
+        EXPECT_EQ(chain, *hull) << "case " << tested;
+        EXPECT_NEAR(std::max(*turn, 0.0), hullTurn, 1e-9);
+      }
+      wrapped += !chain.empty();
+      ++tested;
+    }
+  }
+  EXPECT_GT(wrapped, 100);
+}
+
+TEST(WrapChainTurning, WholeTurnsFollowTheReference) {
+  // The square [-1, 1]^2 and a cable from a = (-3, 0.5) to b = (-3, -0.5) on its left, both
+  // terminals on the square's left: hooked round its far side over all four corners, the path
+  // turns by pi + 2 atan(1/4) (more than half a turn: no hull chain between a and b holds it).
+  const std::vector<Vec2> square{Vec2(-1, -1), Vec2(1, -1), Vec2(1, 1), Vec2(-1, 1)};
+  const Vec2 a(-3, 0.5), b(-3, -0.5);
+  std::vector<int> chain;
+  const auto hooked = wrapChainTurning(a, b, square, WrapSide::Left, M_PI, chain);
+  ASSERT_TRUE(hooked);
+  EXPECT_EQ(chain, (std::vector<int>{3, 2, 1, 0}));
+  EXPECT_NEAR(*hooked, M_PI + 2 * std::atan(0.25), 1e-12);
+  const double once = chainLength(a, b, square, chain);
+  EXPECT_NEAR(once, 2 * std::hypot(2.0, 0.5) + 6, 1e-12);
+  // From near 0 (a polygon that just joined) the same geometry is the straight cable.
+  EXPECT_LE(*wrapChainTurning(a, b, square, WrapSide::Left, 0.0, chain), 0.0);
+  EXPECT_TRUE(chain.empty());
+  // One whole turn more: every vertex once more, ending where the walk ends; the length grows
+  // by the perimeter.
+  const auto twice = wrapChainTurning(a, b, square, WrapSide::Left, *hooked + 2 * M_PI, chain);
+  EXPECT_NEAR(*twice, *hooked + 2 * M_PI, 1e-12);
+  EXPECT_EQ(chain, (std::vector<int>{3, 2, 1, 0, 3, 2, 1, 0}));
+  EXPECT_NEAR(chainLength(a, b, square, chain), once + 8, 1e-12);
+}
+
 TEST(WrapChain, SquareFromBothSides) {
   const std::vector<Vec2> square{{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}};
   const Vec2 a(-2, 0), b(2, 0);

@@ -95,5 +95,54 @@ TEST(Floors, JointedBodyPulledIntoItsPulleyIsHeldThere) {
   }
 }
 
+// The pulley scene over two round pulleys (radius 1, a quarter turn wound on each): the light box
+// is hauled up along the tangent to the right wheel's rim. The floor is on the segment's length
+// between its contact points (the tangent point), measured along its start direction. With no
+// floor next to an arc (as before), or with one on the tangent length itself (which comes back
+// up once the box is past the rim), the box reached the rim, rolled over it (the wheel left the
+// path), and both boxes fell for ever. Free bodies (the midpoint solve) and bodies on rails (the
+// main solve).
+TEST(Floors, ABodyHauledUpToARoundPulleyIsHeldShortOfItsRim) {
+  for (const bool rails : {false, true}) {
+    SCOPED_TRACE(rails ? "on rails" : "free");
+    SceneDef scene = makeScene("pulley");
+    for (PulleyDef& p : scene.cables[0].pulleys) {
+      p.kind = PulleyDef::Kind::Circle;
+      p.radius = 1;
+      p.side = WrapSide::Left;  // over the tops: walking from the left box the cable turns right
+      p.turns = 0.25;
+      p.point.x() += p.point.x() < 0 ? 1 : -1;  // the cable comes down at x = -10 and 10
+    }
+    if (rails)
+      for (const BodyDef& b : std::vector<BodyDef>(scene.bodies)) {
+        JointDef rail;
+        rail.name = b.name + "_rail";
+        rail.kind = JointDef::Kind::Prismatic;
+        rail.bodyB = b.name;
+        rail.anchor = b.position;
+        rail.axis = Vec2(0, 1);
+        scene.joints.push_back(rail);
+      }
+    World world(scene);
+    const Cable& cable = world.cable(0);
+    const double e0 = world.energy(), rest = cable.restLength();
+    double highest = e0, stretch = 0;
+    for (int s = 0; s < 1200; ++s) {  // 20 s: the box reaches the rim after about 2.7 s
+      world.step(scene.dt, scene.substeps);
+      highest = std::max(highest, world.energy());
+      stretch = std::max(stretch, std::abs(cable.length() - rest));
+    }
+    EXPECT_LT(highest, e0 + 0.01 * std::abs(e0));
+    EXPECT_LT(stretch, 0.01);
+    ASSERT_EQ(cable.wraps(), 2);  // both wheels still in the path
+    const WrapPoint& wheel = cable.path()[2];
+    const WrapPoint& box = cable.path()[3];
+    EXPECT_NEAR((box.world - wheel.tangentOut).norm(), 0.01, 0.005);  // the segment held at 1 cm
+    EXPECT_NEAR(world.body(1).position.y() + 2, 30.0 - 0.01, 0.005);
+    EXPECT_LT(world.body(0).velocity.norm() + world.body(1).velocity.norm(), 0.05);
+    EXPECT_TRUE(world.warnings().empty()) << world.warnings().front();
+  }
+}
+
 }  // namespace
 }  // namespace cablelab
