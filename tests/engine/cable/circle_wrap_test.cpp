@@ -249,10 +249,14 @@ TEST(CircleWrap, TouchingCircleChangesNeitherLengthNorJacobian) {
     EXPECT_NEAR(k1.lengthRate, k0.lengthRate, 1e-9);
     for (const BodyJacobian& e : k0.jacobian)
       for (const BodyJacobian& f : k1.jacobian)
-        if (e.body == f.body) EXPECT_LT((e.d - f.d).norm(), 1e-9) << "trial " << trial;
+        if (e.body == f.body) {
+          EXPECT_LT((e.d - f.d).norm(), 1e-9) << "trial " << trial;
+        }
     // The wheel's own row is zero at the touch (its centre sees u_in - u_out = 0).
     for (const BodyJacobian& f : k1.jacobian)
-      if (f.body == 1) EXPECT_LT(f.d.norm(), 1e-9);
+      if (f.body == 1) {
+        EXPECT_LT(f.d.norm(), 1e-9);
+      }
   }
 }
 

@@ -123,7 +123,9 @@ TEST(Crossing, TheEarlyOutNeverSkipsASideChange) {
       const double t = kDt * k / 500;
       changes = (wrapSideDistance(a.at(t), b.at(t), p.at(t), WrapSide::Left) > 0) != (g0 > 0);
     }
-    if (skip) EXPECT_FALSE(changes) << "trial " << trial;
+    if (skip) {
+      EXPECT_FALSE(changes) << "trial " << trial;
+    }
     skipped += skip;
     far += std::abs(g0) > 0.05 && speed < 10 && spin < 10;
   }
