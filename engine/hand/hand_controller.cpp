@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "engine/core/small_qp.h"
 #include "engine/statics/box_reduction.h"
 #include "engine/statics/statics_sensitivity.h"
 
@@ -19,6 +20,8 @@ constexpr double kMaxSpeed = 2.0;          // m/s: a bound on the speed limit it
 constexpr double kFeedbackHeadroom = 2.0;  // the update may move the box this many reference steps
 constexpr double kLimitMargin = 1e-9;      // rad or m: a joint this close to a limit is at it
 constexpr int kLimitPasses = 3;            // re-solves of J+ after taking joints out
+constexpr double kGapWeight = 100;         // the reference's direction holds the paddles' gap far
+                                           // more firmly than it follows the target
 }  // namespace
 
 HandController::HandController(HandModel model, HandControllerParams params)
@@ -102,17 +105,31 @@ void HandController::advanceReference(const Vec2& box, const Vec2& target) {
     // Cruise at the membranes' speed, brake in time to stop at the target, never overshoot.
     double v = std::min({speedLimit(stiffness_, d), std::sqrt(2 * a * distance), distance / T});
     // Slow down as the box falls behind its model, or the commanded equilibrium behind the
-    // reference (the joints at their limits cannot deliver it): the reference waits at the
-    // boundary of the reachable set.
+    // reference (the joints at their limits cannot deliver it).
     const Vec2 equilibrium = commandedPrediction_.smooth ? commandedPrediction_.box : reference_;
     const double behind = std::max((modelBox_ - box).norm(), (equilibrium - reference_).norm());
-    v *= std::clamp((params_.leadLimit - behind) / (0.5 * params_.leadLimit), 0.0, 1.0);
-    // Nor past where the membranes stop wrapping the box face-on (the box would slide out):
-    // brake to stop `wrapMargin` short of it.
-    const double room =
-        commandedPrediction_.smooth ? commandedPrediction_.margin - params_.wrapMargin : 0;
-    v = std::min(v, std::sqrt(2 * a * std::max(0.0, room)));
-    desired = v * d;
+    const double wait =
+        std::clamp((params_.leadLimit - behind) / (0.5 * params_.leadLimit), 0.0, 1.0);
+    v *= wait;
+    // Along what the joints can deliver: at a joint limit or where the membranes would stop
+    // wrapping the box face-on the reference turns along that boundary at the membranes' speed
+    // while it still gets closer, braking as the share of the target's direction that the
+    // boundary still allows shrinks (for a straight boundary that share times the distance is
+    // the way left to the nearest point): a target outside the reachable set leads to the set's
+    // nearest point.
+    if (commandedPrediction_.smooth && v > 0) {
+      const FeasibleMotion m = feasibleDirection(d, v, a);
+      const double share = m.motion.norm();
+      if (!m.bounded) {
+        desired = v * d;
+      } else if (share > 0) {
+        const Vec2 u = m.motion / share;
+        const double au = accelerationLimit(stiffness_, u);
+        desired = u * wait *
+                  std::min({speedLimit(stiffness_, u), std::sqrt(2 * au * share * distance),
+                            share * distance / T});
+      }
+    }
   }
   Vec2 dv = desired - referenceVelocity_;
   const double aMax = accelerationLimit(stiffness_, dv);
@@ -125,6 +142,80 @@ void HandController::advanceReference(const Vec2& box, const Vec2& target) {
     reference_ += referenceVelocity_ * T;
   if (reference_ == target && dv.norm() == 0) referenceVelocity_.setZero();
   status_.speedLimit = distance > 0 ? speedLimit(stiffness_, toGo) : 0;
+}
+
+Eigen::Matrix<double, 12, 6> HandController::faceOnJacobian(const HandJoints& q,
+                                                            const BoxPrediction& p) const {
+  // Each condition is linear in the fingertips and the box; both move with the joints, the box
+  // through the statics (p.jacobian).
+  const FaceOnTerms terms = faceOnTerms(model_, fingertipPoints(model_, q), p.box);
+  return terms.dTips * fingertipJacobian(model_, q) + terms.dBox * p.jacobian;
+}
+
+Eigen::Matrix<double, 6, 6> HandController::stepMetric(const BoxJacobian& J,
+                                                       const Eigen::Matrix<double, 2, 6>& G,
+                                                       double gapWeight) const {
+  // |J dq|^2 + w |G dq|^2 + lambda^2 dq^T W^-1 dq: the damped, weighted least squares of the
+  // stacked task (the distal joints cost distalWeight times more).
+  HandJoints cost = HandJoints::Ones();
+  cost[kDistal] = cost[3 + kDistal] = params_.distalWeight;
+  return J.transpose() * J + gapWeight * G.transpose() * G +
+         params_.lambda * params_.lambda * Eigen::Matrix<double, 6, 6>(cost.asDiagonal());
+}
+
+void HandController::stepConstraints(double scale, Eigen::Matrix<double, 24, 6>& C,
+                                     Eigen::Matrix<double, 24, 1>& b) const {
+  // Rows 0-11 the face-on conditions (the caller sets their bounds), rows 12-23 the joint limits
+  // of the commanded joints for a step scale * dq.
+  C.topRows<12>() = faceOnJacobian(steeringJoints_, commandedPrediction_);
+  for (int j = 0; j < 6; ++j) {
+    C.row(12 + 2 * j).setZero(), C.row(13 + 2 * j).setZero();
+    C(12 + 2 * j, j) = 1,
+                  b[12 + 2 * j] = std::min(0.0, model_.lower[j] - steeringJoints_[j]) / scale;
+    C(13 + 2 * j, j) = -1,
+                  b[13 + 2 * j] = std::min(0.0, steeringJoints_[j] - model_.upper[j]) / scale;
+  }
+}
+
+HandController::FeasibleMotion HandController::feasibleDirection(const Vec2& d, double v,
+                                                                 double a) const {
+  // Joint motion dq per metre of reference travel: the least-squares step towards J dq = d with
+  // the paddles' gap held (G dq = 0, weighted far above the direction), bounded by
+  //   joint limits  v T dq_j within [lower_j - c_j, upper_j - c_j] (c the commanded joints),
+  //   face-on       v (g_i . dq) >= -sqrt(2 a room_i): each condition's slack room_i beyond
+  //                 wrapMargin shrinks no faster than the reference can brake to a stop on it.
+  const BoxJacobian& J = commandedPrediction_.jacobian;
+  Vec2 gap;
+  const Eigen::Matrix<double, 2, 6> G = gapJacobian(commanded_, gap);
+  Eigen::Matrix<double, 24, 6> C;
+  Eigen::Matrix<double, 24, 1> b;
+  stepConstraints(v * params_.period, C, b);
+  const FaceOnTerms terms =
+      faceOnTerms(model_, fingertipPoints(model_, steeringJoints_), commandedPrediction_.box);
+  for (int i = 0; i < 12; ++i)
+    b[i] = -std::sqrt(2 * a * std::max(0.0, terms.value[i] - params_.wrapMargin)) / v;
+  const SmallQpResult r = solveSmallQp(stepMetric(J, G, kGapWeight), -J.transpose() * d, C, b,
+                                       Eigen::VectorXd::Zero(6));
+  return {J * r.x, !r.active.empty()};
+}
+
+HandJoints HandController::boundedStep(const HandJoints& dq, const Eigen::Matrix<double, 4, 6>& A,
+                                       const HandJoints& winv) const {
+  // The step nearest dq in the task's metric that keeps the commanded joints within their limits
+  // and every face-on condition at least wrapMargin (restoring one that has fallen below).
+  if (!commandedPrediction_.smooth) return dq;
+  Eigen::Matrix<double, 24, 6> C;
+  Eigen::Matrix<double, 24, 1> b;
+  stepConstraints(1, C, b);
+  const FaceOnTerms terms =
+      faceOnTerms(model_, fingertipPoints(model_, steeringJoints_), commandedPrediction_.box);
+  for (int i = 0; i < 12; ++i) b[i] = params_.wrapMargin - terms.value[i];
+  if ((C * dq - b).minCoeff() >= 0) return dq;
+  Eigen::Matrix<double, 6, 6> M = stepMetric(A.topRows<2>(), A.bottomRows<2>(), 1);
+  for (int j = 0; j < 6; ++j)
+    if (winv[j] == 0) M(j, j) += 1e6;  // joints taken out at a limit stay out
+  const SmallQpResult r = solveSmallQp(M, -M * dq, C, b, Eigen::VectorXd::Zero(6));
+  return r.x;
 }
 
 void HandController::advanceServos(const HandJoints& commanded) {
@@ -195,7 +286,9 @@ HandJoints HandController::update(const HandJoints& q, const Vec2& box, const Ve
   // reference model expects, not errors.
   if (!started_) servoJoints_ = previousCommanded_ = commanded;
   advanceServos(commanded);
-  commandedPrediction_ = predict(commanded + (q - servoJoints_), started_ ? reference_ : box);
+  commanded_ = commanded;
+  steeringJoints_ = commanded + (q - servoJoints_);
+  commandedPrediction_ = predict(steeringJoints_, started_ ? reference_ : box);
   const BoxPrediction& p = commandedPrediction_;
   // The reduction's Jacobian steers wherever the statics is smooth, also with a paddle tilted
   // beyond face-on (the equilibrium still follows the box there to a centimetre or so; a stale
@@ -232,7 +325,7 @@ HandJoints HandController::update(const HandJoints& q, const Vec2& box, const Ve
   Vec2 want = (reference_ - previousReference) - params_.kp * modelError - params_.kd * change -
               params_.ki * T * integral_;
   const double cap = kFeedbackHeadroom * T * speedLimit(stiffness_, want);
-  status_ = {reference_, modelBox_, error, integral_, status_.speedLimit, false, 0};
+  status_ = {reference_, modelBox_, error, integral_, status_.speedLimit, false, 0, p.margin};
   if (want.norm() > cap) want *= cap / want.norm(), status_.rateLimited = true;
 
   // Weighted damped pseudo-inverse of the box task stacked with the paddles' gap: the gap is held
@@ -267,6 +360,17 @@ HandJoints HandController::update(const HandJoints& q, const Vec2& box, const Ve
     if (!blocked) break;
   }
   status_.jointsAtLimit = static_cast<int>((winv.array() == 0).count());
+  // Bounded by the joint limits and the face-on conditions. While the reference moves, what the
+  // bound takes off the box's motion comes off the reference too (back-calculation): it never
+  // runs ahead of what the joints can deliver, so it keeps sliding along the boundary instead of
+  // waiting outside it. Once it rests on the target it stays there (the integral's anti-windup
+  // below handles a bound then).
+  const HandJoints bounded = boundedStep(dq, A, winv);
+  if (bounded != dq && !resting) {
+    reference_ += J * (bounded - dq);
+    status_.reference = reference_;
+  }
+  primary += bounded - dq, dq = bounded;
   // Anti-windup: collect the error only once the reference rests on the target and the update
   // is not saturated (the requested motion is what the joints deliver).
   const HandJoints clipped = model_.clamp(commanded + dq) - (commanded + dq);

@@ -15,16 +15,20 @@
 //    the servos' ramp lag; that lag must stay within `lagShare` of the membranes' room (along
 //    and across the paddles). It speeds up and brakes over twice the box's velocity decay time,
 //    so a target jump becomes a smooth ramp. r waits while the box falls behind the reference
-//    model or the commanded equilibrium behind r (joints at their limits), and brakes to stop
-//    `wrapMargin` before the membranes would stop wrapping the box face-on: a target outside the
-//    reachable set leaves the box at the boundary, still held.
+//    model or the commanded equilibrium behind r.
+//  * r moves along what the joints can deliver (docs/model.md#controller): the box motion of a
+//    bounded least-squares joint step towards the target, within the joint limits and keeping
+//    every face-on condition `wrapMargin` from failing (braking in time). At the boundary of the
+//    reachable set it turns along the boundary while that still gets closer, so a target outside
+//    the set leads the box, still held, to the set's nearest point. The update's step is bounded
+//    the same way, and what the bound removes comes off r too (back-calculation).
 //  * A reference model (servo lag, then the box's mass, drag and K) says where the box should be;
 //    its own lag is expected, not fed back. k_p acts on the equilibrium of the commanded joints
 //    (plus the servos' static droop) against r while r moves, on the box against the target once
 //    r rests there; k_d on the box's departure from the reference model.
 //  * The feedforward dr moves the statics equilibrium with r.
 //  * Joints at a limit that the update would push further are taken out of A+ (their weight
-//    zeroed) so the others take over.
+//    zeroed) so the others take over; the bounded step then keeps the joints within their limits.
 //  * The integral collects the box's error only once r rests on the target and the update is
 //    not saturated (by the rate limit or by joint limits): no wind-up during the ramp or against
 //    a limit, and an offset of any size within the reachable set is removed.
@@ -52,10 +56,10 @@ struct HandControllerParams {
   /// has paddleHalfWidth - boxHalfSize before a corner reaches the paddle's end, across them the
   /// indentation of the pinch (boxHalfSize - baseY + paddleOffset).
   double lagShare = 0.2;
-  double wrapMargin = 0.005;  ///< the reference stops this far (m) before the membranes would
-                              ///< stop wrapping the box face-on (it brakes in time)
+  double wrapMargin = 0.005;  ///< every face-on condition keeps this much slack (m): the
+                              ///< reference brakes in time and slides along it
   double leadLimit = 0.03;    ///< the reference slows once the box is this far off the
-                              ///< reference model (m): it waits at the reachable set's boundary
+                              ///< reference model (m), or the commanded equilibrium off it
   double distalWeight = 4.0;  ///< joint-space weight of the distal joints in the pseudo-inverse
                               ///< (> 1: prefer moving the fingers to tilting the paddles)
   double faceOnGain = 0.3;    ///< per update: null-space pull back to face-on paddles and the
@@ -87,6 +91,7 @@ struct ControllerStatus {
   double speedLimit = 0;          ///< the reference's speed limit along its motion (m/s)
   bool rateLimited = false;       ///< the update was scaled down to the rate limit
   int jointsAtLimit = 0;          ///< joints taken out of J+ at their limits
+  double margin = 0;              ///< faceOnMargin() of the commanded joints' equilibrium (m)
 };
 
 class HandController {
@@ -115,6 +120,10 @@ class HandController {
   HandJoints update(const HandJoints& q, const Vec2& box, const Vec2& target,
                     const HandJoints& commanded);
 
+  /// d(face-on conditions)/dq at joints q with the prediction p there (12 x 6, faceOnTerms()'s
+  /// rows): the fingertips move with q, the box with p.jacobian.
+  Eigen::Matrix<double, 12, 6> faceOnJacobian(const HandJoints& q, const BoxPrediction& p) const;
+
   /// The last update's prediction and status (for diagnostics).
   const BoxPrediction& lastPrediction() const { return last_; }
   const ControllerStatus& status() const { return status_; }
@@ -132,6 +141,17 @@ class HandController {
   void advanceModel(const Vec2& from);
   void advanceServos(const HandJoints& commanded);
   double ellipseNorm(const Vec2& lag) const;
+  struct FeasibleMotion {
+    Vec2 motion;   ///< box motion per metre of reference travel along d (|.| <= about 1)
+    bool bounded;  ///< a joint limit or a face-on condition shaped it
+  };
+  FeasibleMotion feasibleDirection(const Vec2& d, double v, double a) const;
+  HandJoints boundedStep(const HandJoints& dq, const Eigen::Matrix<double, 4, 6>& A,
+                         const HandJoints& winv) const;
+  Eigen::Matrix<double, 6, 6> stepMetric(const BoxJacobian& J, const Eigen::Matrix<double, 2, 6>& G,
+                                         double gapWeight) const;
+  void stepConstraints(double scale, Eigen::Matrix<double, 24, 6>& C,
+                       Eigen::Matrix<double, 24, 1>& b) const;
   HandJoints nullSpaceTask(const HandJoints& commanded, const HandJoints& winv) const;
   Eigen::Matrix<double, 2, 6> gapJacobian(const HandJoints& commanded, Vec2& gap) const;
 
@@ -149,6 +169,8 @@ class HandController {
   bool hasSteering_ = false;
   BoxPrediction last_, commandedPrediction_;
   HandJoints servoJoints_ = HandJoints::Zero(), previousCommanded_ = HandJoints::Zero();
+  HandJoints commanded_ = HandJoints::Zero();       ///< the joint targets of this update
+  HandJoints steeringJoints_ = HandJoints::Zero();  ///< commanded plus the servos' droop
   ControllerStatus status_;
 };
 

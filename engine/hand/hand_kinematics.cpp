@@ -85,20 +85,32 @@ FingertipJacobian fingertipJacobian(const HandModel& m, const HandJoints& q) {
   return J;
 }
 
-double faceOnMargin(const HandModel& m, const FingertipPoints& tips, const Vec2& p) {
+FaceOnTerms faceOnTerms(const HandModel& m, const FingertipPoints& tips, const Vec2& p) {
   const double h = m.boxHalfSize;
-  double margin = std::numeric_limits<double>::infinity();
+  FaceOnTerms t;
+  t.dTips.setZero(), t.dBox.setZero();
   for (int f = 0; f < 2; ++f) {
     const double s = HandModel::side(f);
-    const Vec2 a = tips.segment<2>(4 * f), b = tips.segment<2>(4 * f + 2);
+    const int row = 6 * f, a = 4 * f, b = 4 * f + 2;  // rows, and the corners' x in the tips
     // Each corner must sit beside the box and between its faces, on the wrapped face's side.
-    margin = std::min({margin, (p.x() - h) - a.x(), b.x() - (p.x() + h)});
-    for (const Vec2& t : {a, b}) {
-      const double depth = s * (t.y() - p.y());  // the corner's height above the centre
-      margin = std::min({margin, h - depth, depth + h});
+    t.value[row] = (p.x() - h) - tips[a];
+    t.dBox(row, 0) = 1, t.dTips(row, a) = -1;
+    t.value[row + 1] = tips[b] - (p.x() + h);
+    t.dBox(row + 1, 0) = -1, t.dTips(row + 1, b) = 1;
+    for (int c = 0; c < 2; ++c) {
+      const int y = 4 * f + 2 * c + 1, r = row + 2 + 2 * c;
+      const double depth = s * (tips[y] - p.y());  // the corner's height above the centre
+      t.value[r] = h - depth;
+      t.dTips(r, y) = -s, t.dBox(r, 1) = s;
+      t.value[r + 1] = depth + h;
+      t.dTips(r + 1, y) = s, t.dBox(r + 1, 1) = -s;
     }
   }
-  return margin;
+  return t;
+}
+
+double faceOnMargin(const HandModel& m, const FingertipPoints& tips, const Vec2& p) {
+  return faceOnTerms(m, tips, p).value.minCoeff();
 }
 
 bool wrapsFaceOn(const HandModel& m, const FingertipPoints& tips, const Vec2& p) {

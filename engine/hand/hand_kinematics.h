@@ -50,4 +50,15 @@ bool wrapsFaceOn(const HandModel& m, const FingertipPoints& tips, const Vec2& p)
 /// conditions wrapsFaceOn() checks (negative when one fails).
 double faceOnMargin(const HandModel& m, const FingertipPoints& tips, const Vec2& p);
 
+/// The face-on conditions one by one, each linear in the fingertips and the box centre. Per
+/// finger f, rows 6 f + 0..5: the left corner beside the box's left face, the right corner beside
+/// its right face, then for the left and the right corner its height above the centre below +h
+/// and above -h (on the wrapped face's side). faceOnMargin() is the smallest value.
+struct FaceOnTerms {
+  Eigen::Matrix<double, 12, 1> value;  ///< slack of each condition (m)
+  Eigen::Matrix<double, 12, 8> dTips;  ///< d value / d fingertip points
+  Eigen::Matrix<double, 12, 2> dBox;   ///< d value / d box centre
+};
+FaceOnTerms faceOnTerms(const HandModel& m, const FingertipPoints& tips, const Vec2& p);
+
 }  // namespace cablelab

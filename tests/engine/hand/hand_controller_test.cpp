@@ -109,5 +109,59 @@ TEST(HandController, JointsAtALimitDropOutAndTheOthersTakeOver) {
   EXPECT_GT(moved.dot(target - box), 0);
 }
 
+TEST(HandController, FaceOnJacobianMatchesFiniteDifferencesThroughTheStatics) {
+  // The face-on conditions move with the fingertips and with the box's equilibrium: both parts
+  // against central differences of faceOnTerms() at the re-solved equilibrium. At the pinch and
+  // near the (5, 5) boundary (slides at their limit, a corner almost level with the box's face).
+  HandModel m;
+  HandController controller(m);
+  HandJoints nearBoundary;
+  nearBoundary << 0.3635, 0.9, -0.2456, 0.3411, 0.8944, -0.4333;
+  for (const HandJoints& q : {HandJoints(HandJoints::Zero()), nearBoundary}) {
+    const BoxPrediction p = controller.predict(q, Vec2::Zero());
+    ASSERT_TRUE(p.smooth);
+    const Eigen::Matrix<double, 12, 6> G = controller.faceOnJacobian(q, p);
+    for (int j = 0; j < 6; ++j) {
+      HandJoints a = q, b = q;
+      a[j] += kFdStep, b[j] -= kFdStep;
+      const Vec2 pa = controller.predict(a, p.box).box, pb = controller.predict(b, p.box).box;
+      const Eigen::Matrix<double, 12, 1> fd = (faceOnTerms(m, fingertipPoints(m, a), pa).value -
+                                               faceOnTerms(m, fingertipPoints(m, b), pb).value) /
+                                              (2 * kFdStep);
+      for (int r = 0; r < 12; ++r)
+        EXPECT_NEAR(G(r, j), fd[r], kSensitivityTolerance) << "row " << r << " joint " << j;
+    }
+  }
+}
+
+TEST(HandController, BoundedStepKeepsTheFaceOnSlackAndTheJointLimits) {
+  // Quasi-statically (box at the statics equilibrium of the commanded joints) towards a target
+  // far outside the reachable set: every update's joints stay within their limits, the face-on
+  // slack of the equilibrium never falls below wrapMargin once it is above it, and the box ends
+  // much nearer the target than where the slides first reach their limit.
+  HandModel m;
+  HandControllerParams params;
+  params.kd = 0;  // quasi-static: no dynamics to damp (as in the quasi-static reach)
+  HandController controller(m, params);
+  const Vec2 target(5, 5);
+  HandJoints q = HandJoints::Zero();
+  BoxPrediction p = controller.predict(q, Vec2::Zero());
+  double firstAtLimit = -1;
+  for (int u = 0; u < 1500; ++u) {
+    q += controller.update(q, p.box, target, q);
+    for (int j = 0; j < 6; ++j) {
+      ASSERT_GE(q[j], m.lower[j] - 1e-9) << "update " << u;
+      ASSERT_LE(q[j], m.upper[j] + 1e-9) << "update " << u;
+    }
+    p = controller.predict(q, p.box);
+    ASSERT_TRUE(p.smooth) << "update " << u;
+    EXPECT_GT(p.margin, params.wrapMargin - 1e-3) << "update " << u;
+    if (firstAtLimit < 0 && q[kSlide] > m.upper[kSlide] - 1e-6)
+      firstAtLimit = (p.box - target).norm();
+  }
+  ASSERT_GT(firstAtLimit, 0) << "the slides never reached their limit";
+  EXPECT_LT((p.box - target).norm(), firstAtLimit - 0.05);
+}
+
 }  // namespace
 }  // namespace cablelab
