@@ -409,8 +409,9 @@ TEST(CableGuards, ATerminalInsideACircleLeavesThatSegmentOutWithAWarning) {
   EXPECT_EQ(k.zeroLengthSegments, 1);
   EXPECT_TRUE(std::isfinite(k.length));
   for (const BodyJacobian& j : k.jacobian) EXPECT_TRUE(j.d.allFinite());
-  EXPECT_TRUE(warned(rig.warnings, "zero-length segment(s) (coincident points, or a point inside "
-                                   "a circle)"))
+  EXPECT_TRUE(warned(rig.warnings,
+                     "zero-length segment(s) (coincident points, or a point inside "
+                     "a circle)"))
       << (rig.warnings.empty() ? "" : rig.warnings.back());
 }
 
