@@ -471,7 +471,9 @@ void Cable::update(std::span<const BodyState> select, std::span<const BodyState>
     if (!joinRound(warnings)) break;
   }
   // Drum ends that ran out of cable, or that the cable wraps again.
-  const bool drumChanged = updateDrumEnd(start_, true, select) | updateDrumEnd(end_, false, select);
+  const bool startChanged = updateDrumEnd(start_, true, select);  // both ends, always
+  const bool endChanged = updateDrumEnd(end_, false, select);
+  const bool drumChanged = startChanged || endChanged;
   if (drumChanged) buildPath(warnings);
   // Length, J and J-dot-v on `bodies`.
   if (!curved || drumChanged || select.data() != bodies.data()) {
