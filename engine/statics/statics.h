@@ -15,6 +15,7 @@
 //   interior-point SOCP ................................. socp.h
 //   d p* / d fingertips ................................. statics_sensitivity.h
 //   box -> point reduction (figure 4-2) ................. box_reduction.h
+//   a box that may turn (x, y, theta) .................... box_pose.h
 //   JSON in and out ..................................... statics_io.h
 // Units: lengths in metres, stiffness in N/m, tension in N, energy in J, time in microseconds.
 #pragma once

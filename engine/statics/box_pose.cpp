@@ -1,0 +1,103 @@
+#include "engine/statics/box_pose.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+namespace cablelab {
+
+namespace {
+
+constexpr double kResidualTolerance = 1e-10;  // |net force, torque / size| per unit max tension
+constexpr double kArmijo = 1e-4;              // sufficient decrease of the line search
+
+/// s(q) = |c(q) - anchor| with c(q) = (x, y) + R(theta) r, its gradient and Hessian in q.
+struct Segment {
+  double length = 0;
+  Eigen::RowVector3d gradient = Eigen::RowVector3d::Zero();
+  Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();
+};
+
+Segment segment(const BoxPose& q, const Vec2& r, const Vec2& anchor) {
+  const Vec2 arm = rotate(r, q[2]);  // R(theta) r
+  const Vec2 d = q.head<2>() + arm - anchor;
+  Segment s;
+  s.length = d.norm();
+  if (s.length < 1e-300) return s;  // the corner on its fingertip: a kink, no gradient
+  // dc/dq: the corner moves with the centre and turns about it (d(R r)/dtheta = perp(R r)).
+  Eigen::Matrix<double, 2, 3> D;
+  D << 1, 0, -arm.y(), 0, 1, arm.x();
+  const Vec2 u = d / s.length;
+  s.gradient = u.transpose() * D;
+  s.hessian = D.transpose() * ((Eigen::Matrix2d::Identity() - u * u.transpose()) / s.length) * D;
+  s.hessian(2, 2) -= u.dot(arm);  // d2c/dtheta2 = -R r
+  return s;
+}
+
+double tension(const BoxCable& c, const BoxPose& q) {
+  const double l = segment(q, c.cornerA, c.a).length + (c.cornerB - c.cornerA).norm() +
+                   segment(q, c.cornerB, c.b).length;
+  return c.k * std::max(0.0, l - c.L);
+}
+
+}  // namespace
+
+double boxPoseEnergy(const std::vector<BoxCable>& cables, const BoxPose& q,
+                     Eigen::Vector3d* gradient, Eigen::Matrix3d* hessian) {
+  double energy = 0;
+  if (gradient) gradient->setZero();
+  if (hessian) hessian->setZero();
+  for (const BoxCable& c : cables) {
+    const Segment A = segment(q, c.cornerA, c.a), B = segment(q, c.cornerB, c.b);
+    const double stretch = A.length + (c.cornerB - c.cornerA).norm() + B.length - c.L;
+    if (stretch <= 0) continue;  // slack: no energy, no force
+    energy += 0.5 * c.k * stretch * stretch;
+    const Eigen::RowVector3d dl = A.gradient + B.gradient;
+    if (gradient) *gradient += c.k * stretch * dl.transpose();
+    if (hessian) *hessian += c.k * (dl.transpose() * dl + stretch * (A.hessian + B.hessian));
+  }
+  return energy;
+}
+
+BoxPoseResult solveBoxPose(const std::vector<BoxCable>& cables, const BoxPose& start, double size,
+                           int maxIterations) {
+  BoxPoseResult out;
+  out.pose = start;
+  auto residual = [&](const Eigen::Vector3d& g, const BoxPose& q) {
+    double maxTension = 0;
+    for (const BoxCable& c : cables) maxTension = std::max(maxTension, tension(c, q));
+    if (maxTension == 0) return 0.0;  // every cable slack: any pose is an equilibrium
+    return Eigen::Vector3d(g[0], g[1], g[2] / size).norm() / maxTension;
+  };
+  for (out.iterations = 0; out.iterations <= maxIterations; ++out.iterations) {
+    Eigen::Vector3d g;
+    Eigen::Matrix3d H;
+    const double E = boxPoseEnergy(cables, out.pose, &g, &H);
+    out.energy = E;
+    out.residual = residual(g, out.pose);
+    if (out.residual <= kResidualTolerance) {
+      out.converged = true;
+      break;
+    }
+    if (out.iterations == maxIterations) break;
+    // Levenberg: shift the Hessian until it is positive definite (E is not convex in theta).
+    double shift = 0;
+    Eigen::LDLT<Eigen::Matrix3d> ldlt(H);
+    while (ldlt.info() != Eigen::Success || ldlt.vectorD().minCoeff() <= 0 || !ldlt.isPositive()) {
+      shift = std::max(2 * shift, 1e-8 * (1 + H.cwiseAbs().maxCoeff()));
+      ldlt.compute(H + shift * Eigen::Matrix3d::Identity());
+    }
+    const Eigen::Vector3d step = -ldlt.solve(g);
+    // Backtracking: every accepted step lowers E.
+    double t = 1;
+    while (boxPoseEnergy(cables, out.pose + t * step) > E + kArmijo * t * g.dot(step) && t > 1e-12)
+      t *= 0.5;
+    if (t <= 1e-12) break;  // no descent left at double precision
+    out.pose += t * step;
+  }
+  out.tensions.clear();
+  for (const BoxCable& c : cables) out.tensions.push_back(tension(c, out.pose));
+  return out;
+}
+
+}  // namespace cablelab
