@@ -494,8 +494,10 @@ void Cable::update(std::span<const BodyState> select, std::span<const BodyState>
 
 void Cable::finishUpdate(std::span<const BodyState> bodies, std::vector<std::string>* warnings) {
   if (warnings && kin_.zeroLengthSegments > 0 && !reportedZeroLength_)
-    warnings->push_back("cable '" + def_->name + "': " + std::to_string(kin_.zeroLengthSegments) +
-                        " zero-length segment(s) (coincident points) left out of the Jacobian");
+    warnings->push_back(
+        "cable '" + def_->name + "': " + std::to_string(kin_.zeroLengthSegments) +
+        " zero-length segment(s) (coincident points, or a point inside a circle) left "
+        "out of the Jacobian");
   reportedZeroLength_ = kin_.zeroLengthSegments > 0;
   if (firstUpdate_ && params_.restLength < 0) params_.restLength = kin_.length;
   updateSpans(bodies);

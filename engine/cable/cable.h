@@ -14,6 +14,9 @@
 //    neighbours) cuts it, and at the previous update it lay entirely on the non-wrap side of that
 //    segment's line: it must cross the segment from outside. A pulley coming from the wrap side,
 //    or sitting on the wrap side beyond the segment's ends, is left out (the cable passes it).
+//  * An "auto" pulley (a polygon or a circle) JOINS from either side: when the segment cuts it
+//    (a circle: comes within its radius) or its centre crossed the segment between its ends, and
+//    it wraps on the side it came from.
 //  * An engaged pulley LEAVES when the path no longer bends around it: a point pulley or a
 //    polygon when the angle the path turns round it goes below zero (a straight turn keeps it:
 //    it changes neither length nor J); a circle when its arc goes below zero. That angle is kept
@@ -28,7 +31,8 @@
 //    dropped (its taut path would go round its far side, much longer) stays out; one that clears
 //    the segment is an ordinary disengaged pulley again.
 //  * Consecutive coincident wrap points (a zero-length segment, < 1e-12 m) are merged: the
-//    segment is left out of J and J-dot-v, never divided by, and a warning says so.
+//    segment is left out of J and J-dot-v, never divided by, and a warning says so. A point
+//    inside a circle pulley's disc (no tangent exists) makes such a segment too.
 //  * Any wrap change that moves the length by more than kLengthJump (1 mm) names the jump in a
 //    warning: it did not happen on the old path (a guard acted, or a crossing was found late).
 //    A polygon whose chain empties with such a jump is RELEASED, and the warning says so: it
@@ -312,10 +316,10 @@ class Cable {
     double angle;
   };
   struct SkipTest {
-    int a, b, p;           ///< indices into skipBodies_
-    double ra, rb, rp;     ///< |local| of the points (m)
-    double margin;         ///< |distance of p from line a-b| (m)
-    double arm, length;    ///< |p - a|, |b - a| (m)
+    int a, b, p;         ///< indices into skipBodies_
+    double ra, rb, rp;   ///< |local| of the points (m)
+    double margin;       ///< |distance of p from line a-b| (m)
+    double arm, length;  ///< |p - a|, |b - a| (m)
   };
   bool skipEligible() const;
   void buildSkipCertificate(std::span<const BodyState> pose);

@@ -146,9 +146,8 @@ double walkTurning(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, 
   return turn;
 }
 
-std::optional<double> wrapChainTurning(const Vec2& a, const Vec2& b,
-                                       std::span<const Vec2> polygon, WrapSide side,
-                                       double reference, std::vector<int>& chain) {
+std::optional<double> wrapChainTurning(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,
+                                       WrapSide side, double reference, std::vector<int>& chain) {
   chain.clear();
   int ta, tb;
   if (!tangentVertices(a, b, polygon, side, ta, tb)) return std::nullopt;

@@ -33,9 +33,8 @@ bool wrapChain(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, Wrap
 /// Returns that angle (the chain is empty when it is <= 0: the path no longer bends round the
 /// polygon); nullopt when a terminal lies inside the polygon. With reference 0 it is wrapChain's
 /// hull chain wherever that turns the path by less than half a turn.
-std::optional<double> wrapChainTurning(const Vec2& a, const Vec2& b,
-                                       std::span<const Vec2> polygon, WrapSide side,
-                                       double reference, std::vector<int>& chain);
+std::optional<double> wrapChainTurning(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,
+                                       WrapSide side, double reference, std::vector<int>& chain);
 
 /// wrapChainTurning's angle for known tangent vertices ta (from A) and tb (into B): the turn
 /// along the walk ta -> tb (`walk` vertices, one lap at most) plus the `loops` whole loops that

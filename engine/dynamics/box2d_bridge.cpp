@@ -121,8 +121,8 @@ struct Box2DBridge::Impl {
   /// Whole turns (2 pi k, rad) taken out of each body's Box2D angle, and whether it may be:
   /// Box2D integrates the angle in float, so a body spinning for minutes would hold it to ever
   /// fewer digits (0.5 mrad per step past 4096 rad) and its cable points would jitter by that
-  /// (docs/model.md, "Coupling to Box2D"). Only bodies whose joints ignore the angle may be rewound:
-  /// revolute joints without a limit (the offsets go back into their coordinate).
+  /// (docs/model.md, "Coupling to Box2D"). Only bodies whose joints ignore the angle may be
+  /// rewound: revolute joints without a limit (the offsets go back into their coordinate).
   std::vector<double> turns;
   std::vector<char> rewinds;
   std::vector<std::array<int, 2>> jointBodies;  ///< body indices of each joint, -1: the world

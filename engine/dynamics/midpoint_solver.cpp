@@ -230,8 +230,8 @@ bool MidpointSolver::buildRows(std::span<const BodyState> bodies, std::span<Cabl
   for (int r = 0; r < m; ++r) {
     const auto& path = cables[rows_[r]].path();
     const int seg = segment_[r];
-    phi0_[r] = seg < 0 ? cables[rows_[r]].stretch()
-                       : kFloorLength - floorGap(path[seg], path[seg + 1]);
+    phi0_[r] =
+        seg < 0 ? cables[rows_[r]].stretch() : kFloorLength - floorGap(path[seg], path[seg + 1]);
   }
   P_.setZero(m);
   vb_ = vStar_;

@@ -59,6 +59,39 @@ double boxPoseEnergy(const std::vector<BoxCable>& cables, const BoxPose& q,
   return energy;
 }
 
+Eigen::MatrixXd boxPoseSensitivity(const std::vector<BoxCable>& cables, const BoxPose& pose) {
+  const Eigen::Index n = static_cast<Eigen::Index>(cables.size());
+  Eigen::MatrixXd mixed = Eigen::MatrixXd::Zero(3, 4 * n);  // d grad E / d fingertips
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const BoxCable& c = cables[i];
+    const Segment A = segment(pose, c.cornerA, c.a), B = segment(pose, c.cornerB, c.b);
+    const double stretch = A.length + (c.cornerB - c.cornerA).norm() + B.length - c.L;
+    if (stretch <= 0) continue;
+    const Eigen::RowVector3d dl = A.gradient + B.gradient;
+    // Each free segment |c(q) - anchor|: d/d anchor = -u^T, d2/dq d anchor = -D^T (I - u u^T)/s.
+    const std::pair<const Segment*, std::pair<const Vec2*, const Vec2*>> ends[2] = {
+        {&A, {&c.cornerA, &c.a}}, {&B, {&c.cornerB, &c.b}}};
+    for (int e = 0; e < 2; ++e) {
+      const Segment& seg = *ends[e].first;
+      if (seg.length < 1e-300) continue;
+      const Vec2 arm = rotate(*ends[e].second.first, pose[2]);
+      const Vec2 u = (pose.head<2>() + arm - *ends[e].second.second) / seg.length;
+      Eigen::Matrix<double, 2, 3> D;
+      D << 1, 0, -arm.y(), 0, 1, arm.x();
+      const Eigen::Matrix2d P = (Eigen::Matrix2d::Identity() - u * u.transpose()) / seg.length;
+      mixed.block<3, 2>(0, 4 * i + 2 * e) +=
+          c.k * (dl.transpose() * (-u.transpose()) - stretch * D.transpose() * P);
+    }
+  }
+  Eigen::Vector3d g;
+  Eigen::Matrix3d H;
+  boxPoseEnergy(cables, pose, &g, &H);
+  const Eigen::LDLT<Eigen::Matrix3d> ldlt(H);
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || ldlt.vectorD().minCoeff() <= 0)
+    return Eigen::MatrixXd::Zero(3, 4 * n);
+  return -ldlt.solve(mixed);
+}
+
 BoxPoseResult solveBoxPose(const std::vector<BoxCable>& cables, const BoxPose& start, double size,
                            int maxIterations) {
   BoxPoseResult out;

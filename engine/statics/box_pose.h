@@ -34,6 +34,11 @@ struct BoxPoseResult {
   bool converged = false;
 };
 
+/// d pose* / d fingertips at an equilibrium `pose` (3 x 4N; columns a_i.x, a_i.y, b_i.x, b_i.y
+/// per cable, in order): from grad E(q*, tips) = 0, dq* = -H^-1 (d grad E / d tips) d tips.
+/// Zero where H is not positive definite (no isolated equilibrium).
+Eigen::MatrixXd boxPoseSensitivity(const std::vector<BoxCable>& cables, const BoxPose& pose);
+
 /// Newton on E from `start`; `size` (m) scales the torque in the convergence test (the box's
 /// half side, say).
 BoxPoseResult solveBoxPose(const std::vector<BoxCable>& cables, const BoxPose& start,

@@ -51,8 +51,8 @@ SceneDef puckScene(double speed, bool square, bool fixedRotation = false) {
 
 struct Catch {
   bool engaged = false, released = false, tunnelled = false;
-  bool hooked = false;  // swung round the start anchor (x < -1) still wrapped
-  bool stayedOn = true;  // once hooked, never released
+  bool hooked = false;      // swung round the start anchor (x < -1) still wrapped
+  bool stayedOn = true;     // once hooked, never released
   double energyChange = 0;  // J, from the step before the join to the step the puck leaves
   double stretch = 0;       // m, largest length - rest length
   int events = 0;

@@ -125,5 +125,29 @@ TEST(BoxPose, AnAsymmetricPinchTurnsTheBoxIntoForceAndTorqueBalance) {
   EXPECT_LT(r.energy, boxPoseEnergy(cables, BoxPose(point.p.x(), point.p.y(), 0)));
 }
 
+TEST(BoxPose, SensitivityMatchesReSolvedFiniteDifferences) {
+  // d pose* / d fingertips against central differences of re-solved equilibria, on an
+  // asymmetric pinch where the box has turned.
+  Eigen::Matrix<double, 8, 1> shift = Eigen::Matrix<double, 8, 1>::Zero();
+  shift << 0.02, -0.01, 0.03, 0.06, -0.02, 0.01, 0.0, -0.03;
+  const std::vector<BoxCable> cables = pinch(0.25, shift);
+  const BoxPoseResult r = solveBoxPose(cables, BoxPose::Zero(), 0.25);
+  ASSERT_TRUE(r.converged);
+  ASSERT_GT(std::abs(r.pose[2]), 1e-3);
+  const Eigen::MatrixXd S = boxPoseSensitivity(cables, r.pose);
+  ASSERT_EQ(S.cols(), 8);
+  for (int j = 0; j < 8; ++j) {
+    std::vector<BoxCable> a = cables, b = cables;
+    Vec2& ta = (j % 4 < 2) ? a[j / 4].a : a[j / 4].b;
+    Vec2& tb = (j % 4 < 2) ? b[j / 4].a : b[j / 4].b;
+    ta[j % 2] += kFdStep, tb[j % 2] -= kFdStep;
+    const BoxPoseResult ra = solveBoxPose(a, r.pose, 0.25), rb = solveBoxPose(b, r.pose, 0.25);
+    ASSERT_TRUE(ra.converged && rb.converged);
+    const Eigen::Vector3d fd = (ra.pose - rb.pose) / (2 * kFdStep);
+    for (int i = 0; i < 3; ++i)
+      EXPECT_NEAR(S(i, j), fd[i], kDerivativeTolerance) << "pose " << i << " fingertip " << j;
+  }
+}
+
 }  // namespace
 }  // namespace cablelab
