@@ -93,7 +93,7 @@ ScaleTiming measureScaleCase(const SceneDef& scene, int steps, int rounds) {
   return {median(ours), median(cable), median(theirs)};
 }
 
-const bool registered = registerCommand(
+const bool benchRegistered = registerCommand(
     "bench", "Measure the headline performance figures (docs/cli.md)", [](CLI::App& sub) {
       struct Options {
         bool json = false, quick = false;

@@ -185,7 +185,7 @@ int runFit(const FitOptions& o) {
 
 }  // namespace
 
-static const bool registered = registerCommand(
+static const bool fitRegistered = registerCommand(
     "fit", "Fit membrane stiffness k and preload to force data (thesis ch. 3), or --generate data",
     [](CLI::App& sub) -> std::function<int()> {
       auto o = std::make_shared<FitOptions>();

@@ -21,7 +21,7 @@ std::filesystem::path siblingGui() {
   return (error ? std::filesystem::path(".") : self.parent_path()) / "cablelab-gui";
 }
 
-const bool registered = registerCommand(
+const bool guiRegistered = registerCommand(
     "gui", "The interactive sandbox (SDL2 + Dear ImGui), run as the sibling cablelab-gui",
     [](CLI::App& sub) {
       auto scene = std::make_shared<std::string>();

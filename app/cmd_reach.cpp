@@ -80,7 +80,7 @@ void writeReachPng(const std::string& path, const ReachResult& r, int grid, doub
 }
 #endif
 
-const bool registered = registerCommand(
+const bool reachRegistered = registerCommand(
     "reach", "Box positions the hand's controller reaches vs the fingertips' range (fig. 4-4)",
     [](CLI::App& sub) {
       struct Options {

@@ -77,7 +77,7 @@ int record(const RecordOptions& o) {
   return 0;
 }
 
-const bool registered = registerCommand(
+const bool recordRegistered = registerCommand(
     "record", "Headless animated GIF of a scene (offscreen renderer, one frame per 1/fps s)",
     [](CLI::App& sub) {
       auto o = std::make_shared<RecordOptions>();

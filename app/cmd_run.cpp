@@ -75,7 +75,7 @@ class CsvWriter {
   std::vector<int> spans_;  ///< span tension columns per cable
 };
 
-const bool registered = registerCommand(
+const bool runRegistered = registerCommand(
     "run", "Run a scene headless (CSV per step, PNG of the end state)", [](CLI::App& sub) {
       struct Options {
         std::string scene, csv, png;

@@ -10,7 +10,7 @@
 namespace cablelab::app {
 namespace {
 
-const bool registered =
+const bool scenesRegistered =
     registerCommand("scenes", "List the built-in scenes, one line each", [](CLI::App& sub) {
       auto verbose = std::make_shared<bool>(false);
       sub.add_flag("-v,--verbose", *verbose,

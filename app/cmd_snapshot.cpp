@@ -14,7 +14,7 @@
 namespace cablelab::app {
 namespace {
 
-const bool registered = registerCommand(
+const bool snapshotRegistered = registerCommand(
     "snapshot", "Offscreen PNG of a scene after T seconds (OSMesa, no display needed)",
     [](CLI::App& sub) {
       auto scene = std::make_shared<std::string>();

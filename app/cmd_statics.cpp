@@ -36,7 +36,7 @@ int runStatics(const StaticsArgs& args) {
   return 0;
 }
 
-const bool registered = registerCommand(
+const bool staticsRegistered = registerCommand(
     "statics", "equilibrium of a point held by cables (thesis 4.2) from a JSON file",
     [](CLI::App& sub) {
       auto args = std::make_shared<StaticsArgs>();

@@ -68,7 +68,7 @@ void writeTrackPng(const std::string& path, const TrackOptions& options, const T
 }
 #endif
 
-const bool registered = registerCommand(
+const bool trackRegistered = registerCommand(
     "track", "Hand closes a pinch grasp, then the Jacobian controller tracks a target (fig. 4-5)",
     [](CLI::App& sub) {
       struct Options {

@@ -8,7 +8,7 @@
 namespace cablelab::app {
 namespace {
 
-const bool registered = registerCommand(
+const bool wrapRegistered = registerCommand(
     "wrap", "Taut cable path from A to B around a convex polygon", [](CLI::App& sub) {
       auto file = std::make_shared<std::string>();
       sub.add_option("file", *file,

@@ -13,7 +13,6 @@
 namespace cablelab::ui {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr Colour kDraft{0.1f, 0.45f, 0.2f, 1.0f};
 
 Authoring& state(Sandbox& sandbox) {
@@ -40,7 +39,7 @@ std::string freshCableName(const SceneDef& scene) {
 std::vector<Vec2> regularPolygon(int n, double radius) {
   std::vector<Vec2> v;
   for (int k = 0; k < n; ++k)
-    v.push_back(radius * Vec2(std::cos(2 * kPi * k / n), std::sin(2 * kPi * k / n)));
+    v.push_back(radius * Vec2(std::cos(2 * M_PI * k / n), std::sin(2 * M_PI * k / n)));
   return v;
 }
 

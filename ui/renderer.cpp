@@ -22,7 +22,6 @@ constexpr Colour kPulley{0.9f, 0.45f, 0.0f, 1};
 constexpr Colour kPulleyIdle{0.95f, 0.75f, 0.55f, 1};  // a pulley the cable does not touch now
 constexpr Colour kJoint{0.25f, 0.25f, 0.3f, 1};
 constexpr Colour kSelected{0.95f, 0.75f, 0.0f, 1};
-constexpr double kPi = 3.14159265358979323846;
 
 struct BodyColours {
   Colour fill, outline;
@@ -111,7 +110,7 @@ class Painter {
     std::vector<Vec2> points;
     points.reserve(n);
     for (int i = 0; i < n; ++i) {
-      const double a = 2 * kPi * i / n;
+      const double a = 2 * M_PI * i / n;
       points.emplace_back(c.x() + r * std::cos(a), c.y() + r * std::sin(a));
     }
     return points;
@@ -550,7 +549,7 @@ void drawSample(const KeyRow& row, float cx, float cy, float s) {
     colour(fill);
     glBegin(GL_TRIANGLE_FAN);
     for (int k = 0; k < 20; ++k)
-      glVertex2f(cx + r * std::cos(2 * kPi * k / 20), cy + r * std::sin(2 * kPi * k / 20));
+      glVertex2f(cx + r * std::cos(2 * M_PI * k / 20), cy + r * std::sin(2 * M_PI * k / 20));
     glEnd();
   };
   auto segment = [&](float x0, float y0, float x1, float y1, float width) {

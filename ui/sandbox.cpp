@@ -15,7 +15,6 @@ namespace cablelab::ui {
 namespace {
 
 constexpr double kBannerSeconds = 6;  // a guard's banner stays this long (wall time)
-constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace
 
@@ -197,7 +196,7 @@ void Sandbox::applyDrag() {
   const Vec2 point = s.position + r;
   const Vec2 velocity = s.velocity + s.angularVelocity * Vec2(-r.y(), r.x());
   const double m = world_->scene().bodies[drag.body].mass;
-  const double omega = 2 * kPi * drag.hz;
+  const double omega = 2 * M_PI * drag.hz;
   Vec2 force =
       m * (omega * omega * (drag.target - point) - 2 * drag.dampingRatio * omega * velocity);
   const double limit = dragLimit(drag.body);

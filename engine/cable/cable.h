@@ -64,6 +64,11 @@ struct BodyState {
   double invInertia = 0;         ///< 1/(kg m^2) about the body origin... see World
 };
 
+/// Whether a solve can move the body (static and kinematic bodies have no inverse mass).
+inline bool moves(const BodyState& b) {
+  return b.invMass > 0 || b.invInertia > 0;
+}
+
 /// One point of a cable's current path.
 struct WrapPoint {
   enum class Kind { Anchor, Point, Vertex, Circle };

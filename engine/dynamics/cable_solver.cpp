@@ -6,24 +6,17 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/dynamics/disjoint_sets.h"
 #include "engine/dynamics/floors.h"
 #include "engine/dynamics/joint_projection.h"
+#include "engine/dynamics/length_targets.h"
 #include "engine/dynamics/tension_solver.h"
 
 namespace cablelab {
 
 namespace {
 
-constexpr double kBaumgarte = 0.2;  // share of a rigid cable's length error fixed per step
-// Length error a rigid cable tolerates before stabilisation acts (m). Box2D keeps positions in
-// float (about 1e-7 m resolution at 1 m): correcting below that only amplifies rounding, by
-// beta / h^2 in the tension.
-constexpr double kLengthSlop = 1e-5;
 constexpr int kNewtonIterations = 3;  // on the end-of-step lengths; geometry is nearly linear
-
-bool moves(const BodyState& b) {
-  return b.invMass > 0 || b.invInertia > 0;
-}
 
 // Generalized coordinates of the bodies one island's cables move: 3 per moving body.
 struct DofMap {
@@ -194,16 +187,6 @@ void forMovingBodies(const Cable& cable, const CableSolveInput& in, F&& f) {
   for (int k = 0; k < cable.spanCount(); ++k)
     for (const auto& e : cable.spanKinematics(k).jacobian)
       if (moves(in.bodies[e.body])) f(e.body);
-}
-
-int findRoot(std::vector<int>& parent, int b) {
-  while (parent[b] != b) b = parent[b] = parent[parent[b]];
-  return b;
-}
-
-void unite(std::vector<int>& parent, int a, int b) {
-  a = findRoot(parent, a), b = findRoot(parent, b);
-  if (a != b) parent[std::max(a, b)] = std::min(a, b);
 }
 
 // 1a. Islands: a cable that pulls on something that moves gets a row; cables sharing a moving

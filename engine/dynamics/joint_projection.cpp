@@ -3,14 +3,11 @@
 
 #include <numeric>
 
+#include "engine/dynamics/disjoint_sets.h"
+
 namespace cablelab {
 
 namespace {
-
-int findRoot(std::vector<int>& parent, int r) {
-  while (parent[r] != r) r = parent[r] = parent[parent[r]];
-  return r;
-}
 
 // Rounding guard on S's diagonal: redundant joint rows (a closed loop) make S singular.
 void regularise(Eigen::Ref<Eigen::MatrixXd> S) {
@@ -87,8 +84,7 @@ void JointProjection::findBlocks(std::span<const JointRow> rows, int dofs) {
       if (first < 0) {
         first = r;
       } else {
-        const int a = findRoot(parent, first), b = findRoot(parent, r);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);
+        unite(parent, first, r);
       }
     }
   blockOfRoot.assign(c, -1);

@@ -5,21 +5,14 @@
 #include <cmath>
 
 #include "engine/dynamics/floors.h"
+#include "engine/dynamics/length_targets.h"
 
 namespace cablelab {
 
 namespace {
 
-// The rigid-cable targets of the main solve (world.cpp): float rounding below the slop is left
-// alone, a share of a larger error is fixed per step.
-constexpr double kLengthSlop = 1e-5;
-constexpr double kBaumgarte = 0.2;
 constexpr int kIterations = 40;
 constexpr double kPositionTolerance = 1e-12;  // m: end-of-step pose settled
-
-bool moves(const BodyState& b) {
-  return b.invMass > 0 || b.invInertia > 0;
-}
 
 // Discrete gradient of V = k/2 max(0, phi)^2 between phi0 and phi1, and its phi1-derivative.
 struct SpringSecant {

@@ -35,7 +35,7 @@ std::string readFile(const fs::path& path) {
 }
 
 /// A fresh directory per test under the system temp dir.
-fs::path scratch() {
+fs::path fitScratch() {
   const auto* info = testing::UnitTest::GetInstance()->current_test_info();
   fs::path dir = fs::temp_directory_path() /
                  ("cablelab_fit_cli_" + std::to_string(getpid()) + "_" + info->name());
@@ -72,7 +72,7 @@ TEST(FitCli, FitsTheExampleDataAndPrintsOneJsonObject) {
 }
 
 TEST(FitCli, GenerateThenFitRecoversTheParametersAndIsReproducible) {
-  const fs::path dir = scratch();
+  const fs::path dir = fitScratch();
   const std::string data = (dir / "gen.csv").string();
   const CliRun gen = cablelab("--generate " + data +
                               " --pulleys 0,0,0.5,0 --k 40 --preload 0.5 --noise-fy 0 "
@@ -97,7 +97,7 @@ TEST(FitCli, GenerateThenFitRecoversTheParametersAndIsReproducible) {
 }
 
 TEST(FitCli, PlotsWritesQuiverAndScatterData) {
-  const fs::path dir = scratch() / "plots";
+  const fs::path dir = fitScratch() / "plots";
   const CliRun run =
       cablelab("assets/data/membrane_example.csv " + kPulleys + " --plots " + dir.string());
   ASSERT_EQ(run.exitCode, 0) << run.err;
@@ -123,7 +123,7 @@ long colouredPixels(const cablelab::ui::Image& image) {
 }
 
 TEST(FitCli, PlotsWritesNonBlankPngsOfTheRequestedSize) {
-  const fs::path dir = scratch() / "png";
+  const fs::path dir = fitScratch() / "png";
   const CliRun run = cablelab("assets/data/membrane_example.csv " + kPulleys + " --plots " +
                               dir.string() + " --plot-size 640x480");
   ASSERT_EQ(run.exitCode, 0) << run.err;
@@ -206,7 +206,7 @@ TEST(FitCli, BadPulleysExitTwo) {
 }
 
 TEST(FitCli, BadGenerateOptionsExitTwo) {
-  const std::string out = (scratch() / "never.csv").string();
+  const std::string out = (fitScratch() / "never.csv").string();
   expectInputError("--generate " + out + " " + kPulleys + " --preload 0.8",
                    "command line: --k: is required with --generate");
   expectInputError("--generate " + out + " " + kPulleys + " --k 25 --preload -1",

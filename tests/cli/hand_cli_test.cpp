@@ -15,12 +15,12 @@
 
 namespace {
 
-struct CliRun {
+struct HandRun {
   int code;
   std::string out;  // stdout only
 };
 
-CliRun run(const std::string& args) {
+HandRun run(const std::string& args) {
   const auto r = cablelab::test::runCli(args);
   return {r.exitCode, r.out};
 }
@@ -32,7 +32,7 @@ constexpr double kConstantTolerance = 1e-3;  // m
 constexpr double kRampTolerance = 1e-2;      // m
 
 TEST(TrackCli, ConstantTargetFromOpenPose) {
-  const CliRun r = run("track --target 0,0 --time 15");
+  const HandRun r = run("track --target 0,0 --time 15");
   ASSERT_EQ(r.code, 0);
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_LT(j["final_error"].get<double>(), kConstantTolerance);
@@ -42,7 +42,7 @@ TEST(TrackCli, ConstantTargetFromOpenPose) {
 }
 
 TEST(TrackCli, StartPlacesTheGrasp) {
-  const CliRun r = run("track --target 0.2,0.3 --start -0.1,0.2 --time 3");
+  const HandRun r = run("track --target 0.2,0.3 --start -0.1,0.2 --time 3");
   ASSERT_EQ(r.code, 0);
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_NEAR(j["start"][0].get<double>(), -0.1, 1e-12);
@@ -54,21 +54,21 @@ TEST(TrackCli, StartPlacesTheGrasp) {
 }
 
 TEST(TrackCli, RampTarget) {
-  const CliRun r = run("track --ramp 0.5,1.0,5 --time 15");
+  const HandRun r = run("track --ramp 0.5,1.0,5 --time 15");
   ASSERT_EQ(r.code, 0);
   EXPECT_LT(nlohmann::json::parse(r.out)["final_error"].get<double>(), kRampTolerance);
 }
 
 // The acceptance goals with the integral term.
 TEST(TrackCli, PidConstantTargetWithinOneMillimetre) {
-  const CliRun r = run("track --target 0,0 --pid --time 15");
+  const HandRun r = run("track --target 0,0 --pid --time 15");
   ASSERT_EQ(r.code, 0);
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_LT(j["final_error"].get<double>(), kConstantTolerance);
   EXPECT_GT(j["grasp_time"].get<double>(), 0);
 }
 TEST(TrackCli, PidRampWithinOneCentimetre) {
-  const CliRun r = run("track --ramp 0.5,1.0,5 --pid --time 15");
+  const HandRun r = run("track --ramp 0.5,1.0,5 --pid --time 15");
   ASSERT_EQ(r.code, 0);
   EXPECT_LT(nlohmann::json::parse(r.out)["final_error"].get<double>(), kRampTolerance);
 }
@@ -87,7 +87,7 @@ TEST(ReachCli, SimulatedReachExceedsTheFingertipsAndTrackAgrees) {
   const std::string csv = (std::filesystem::temp_directory_path() /
                            ("cablelab_reach20_" + std::to_string(getpid()) + ".csv"))
                               .string();
-  const CliRun r = run("reach --grid 20 --csv " + csv);
+  const HandRun r = run("reach --grid 20 --csv " + csv);
   ASSERT_EQ(r.code, 0);
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_GT(j["ratio"].get<double>(), 1.0);
@@ -112,7 +112,7 @@ TEST(ReachCli, SimulatedReachExceedsTheFingertipsAndTrackAgrees) {
   for (size_t k = 0; k < beyond.size(); k += beyond.size() / 3) {  // three spread samples
     char target[96];
     std::snprintf(target, sizeof target, "%.17g,%.17g", beyond[k][0], beyond[k][1]);
-    const CliRun t = run(std::string("track --pid --target ") + target);
+    const HandRun t = run(std::string("track --pid --target ") + target);
     ASSERT_EQ(t.code, 0);
     const auto tj = nlohmann::json::parse(t.out);
     EXPECT_LT(tj["final_error"].get<double>(), 0.005) << target;
@@ -121,7 +121,7 @@ TEST(ReachCli, SimulatedReachExceedsTheFingertipsAndTrackAgrees) {
 }
 
 TEST(ReachCli, QuasiStaticModel) {
-  const CliRun r = run("reach --grid 12 --model quasi-static");
+  const HandRun r = run("reach --grid 12 --model quasi-static");
   ASSERT_EQ(r.code, 0);
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["model"].get<std::string>(), "quasi-static");

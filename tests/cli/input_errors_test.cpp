@@ -15,7 +15,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string data(const std::string& name) {
-  return test::sourcePath("tests/data/" + name);
+  return test::dataPath(name);
 }
 
 // A scratch folder of this test's own, with a few input files in it.

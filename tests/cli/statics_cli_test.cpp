@@ -11,23 +11,23 @@
 
 namespace {
 
-struct CliRun {
+struct StaticsRun {
   int code = -1;
   std::string out;  // stdout and stderr together
 };
 
-CliRun runCli(const std::string& args) {
+StaticsRun runCli(const std::string& args) {
   const auto r = cablelab::test::runCli(args);
   return {r.exitCode, r.out + r.err};
 }
 
 std::string data(const std::string& name) {
-  return std::string(CABLELAB_SOURCE_DIR) + "/tests/data/" + name;
+  return cablelab::test::dataPath(name);
 }
 
 TEST(StaticsCli, PrintsTheContractKeysForEverySolver) {
   for (const char* solver : {"", " --solver socp", " --solver newton", " --solver auto"}) {
-    const CliRun run = runCli("statics " + data("statics/two_cables.json") + solver);
+    const StaticsRun run = runCli("statics " + data("statics/two_cables.json") + solver);
     ASSERT_EQ(run.code, 0) << run.out;
     const auto j = nlohmann::json::parse(run.out);
     for (const char* key : {"p", "lengths", "tensions", "energy", "iterations", "solve_us"})
@@ -40,7 +40,7 @@ TEST(StaticsCli, PrintsTheContractKeysForEverySolver) {
 }
 
 TEST(StaticsCli, FingertipExampleEndsOnTheFingertip) {
-  const CliRun run = runCli("statics " + data("statics/on_fingertip.json"));
+  const StaticsRun run = runCli("statics " + data("statics/on_fingertip.json"));
   ASSERT_EQ(run.code, 0) << run.out;
   const auto j = nlohmann::json::parse(run.out);
   EXPECT_EQ(j["p"][0].get<double>(), 0.0);
@@ -62,7 +62,7 @@ TEST(StaticsCli, BadInputExitsTwoNamingTheField) {
       {"bad/does_not_exist.json", "cannot open"},
   };
   for (const auto& [file, field] : cases) {
-    const CliRun run = runCli("statics " + data(file));
+    const StaticsRun run = runCli("statics " + data(file));
     EXPECT_EQ(run.code, 2) << file << ": " << run.out;
     EXPECT_NE(run.out.find(field), std::string::npos) << file << ": " << run.out;
     EXPECT_EQ(run.out.find("nan"), std::string::npos) << run.out;
@@ -70,7 +70,7 @@ TEST(StaticsCli, BadInputExitsTwoNamingTheField) {
 }
 
 TEST(StaticsCli, UnknownSolverExitsTwo) {
-  const CliRun run = runCli("statics " + data("statics/two_cables.json") + " --solver simplex");
+  const StaticsRun run = runCli("statics " + data("statics/two_cables.json") + " --solver simplex");
   EXPECT_EQ(run.code, 2);
   EXPECT_NE(run.out.find("solver"), std::string::npos) << run.out;
 }

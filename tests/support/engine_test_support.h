@@ -10,9 +10,24 @@
 
 #include <cstdlib>
 
+#include <functional>
+
+#include "engine/core/error.h"
 #include "engine/core/math.h"
 
 namespace cablelab::test {
+
+inline constexpr double kDt = 1.0 / 60.0;  ///< s: the scenes' default step (60 Hz)
+
+/// The InputError message `f` throws, "" if it throws none.
+inline std::string messageOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
 
 class Random {
  public:
@@ -64,6 +79,11 @@ inline CommandResult runCli(const std::string& args, const std::string& workingD
 
 inline std::string sourcePath(const std::string& relative) {
   return std::string(CABLELAB_SOURCE_DIR) + "/" + relative;
+}
+
+/// A file of tests/data/.
+inline std::string dataPath(const std::string& name) {
+  return sourcePath("tests/data/" + name);
 }
 
 }  // namespace cablelab::test

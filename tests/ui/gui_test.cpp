@@ -17,7 +17,6 @@
 namespace cablelab::test {
 namespace {
 
-const std::string kCli = CABLELAB_CLI;
 const std::string kXvfb = "xvfb-run -a -s \"-screen 0 1280x720x24\" ";
 constexpr int kFrames = 60;
 constexpr int kCell = 20;              // px, layout comparison cells
@@ -92,7 +91,7 @@ void expectSameLayout(const ui::Image& gui, const ui::Image& offscreen, const st
 TEST(Gui, FramesScreenshotAndLayoutMatchTheOffscreenRenderer) {
   REQUIRE_XVFB();
   const std::string shot = (outputDir("gui") / "hexagon.png").string();
-  const RunResult r = run(kXvfb + kCli + " gui hexagon --size 1280x720 --frames " +
+  const RunResult r = run(kXvfb + std::string(CABLELAB_CLI) + " gui hexagon --size 1280x720 --frames " +
                               std::to_string(kFrames) + " --screenshot " + shot,
                           "gui_frames");
   ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -115,7 +114,7 @@ TEST(Gui, HandSceneRunsTheControllerWithLivePlots) {
   REQUIRE_XVFB();
   constexpr int kHandFrames = 120;
   const std::string shot = (outputDir("gui") / "hand.png").string();
-  const RunResult r = run(kXvfb + kCli + " gui hand --size 1280x720 --frames " +
+  const RunResult r = run(kXvfb + std::string(CABLELAB_CLI) + " gui hand --size 1280x720 --frames " +
                               std::to_string(kHandFrames) + " --screenshot " + shot,
                           "gui_hand");
   ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -149,7 +148,7 @@ TEST(Gui, HandSceneRunsTheControllerWithLivePlots) {
 
 TEST(Gui, SyntheticMouseDragsABodyAndClickSetsTheTarget) {
   REQUIRE_XVFB();
-  const RunResult r = run(kXvfb + kCli + " gui hexagon --size 1280x720 --test-input", "gui_input");
+  const RunResult r = run(kXvfb + std::string(CABLELAB_CLI) + " gui hexagon --size 1280x720 --test-input", "gui_input");
   EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("\"test_input\": true"), std::string::npos) << r.out;
 }
@@ -159,7 +158,7 @@ TEST(Gui, BadSceneFileShowsTheErrorAndKeepsRunning) {
   const std::string bad = (outputDir("gui") / "bad-scene.json").string();
   std::ofstream(bad) << "{\"bodies\": [ this is not json";
   const std::string shot = (outputDir("gui") / "bad-scene.png").string();
-  const RunResult r = run(kXvfb + kCli + " gui hexagon --size 1280x720 --frames 30 --open " + bad +
+  const RunResult r = run(kXvfb + std::string(CABLELAB_CLI) + " gui hexagon --size 1280x720 --frames 30 --open " + bad +
                               " --screenshot " + shot,
                           "gui_bad_scene");
   EXPECT_EQ(r.exitCode, 0) << r.err;
@@ -176,7 +175,7 @@ TEST(Gui, BadSceneFileShowsTheErrorAndKeepsRunning) {
   EXPECT_GT(banner, 2000) << "no error banner in " << shot;
 
   // A bad scene on the command line: the error, then the default scene, exit 0.
-  const RunResult first = run(kXvfb + kCli + " gui " + bad + " --frames 5", "gui_bad_first");
+  const RunResult first = run(kXvfb + std::string(CABLELAB_CLI) + " gui " + bad + " --frames 5", "gui_bad_first");
   EXPECT_EQ(first.exitCode, 0) << first.err;
   EXPECT_NE(first.err.find(bad), std::string::npos) << first.err;
 }
@@ -191,7 +190,7 @@ namespace {
 nlohmann::json scenario(const std::string& scene, const std::string& name,
                         const std::string& extra = "") {
   const RunResult r =
-      run(kXvfb + kCli + " gui " + scene + " --size 1280x720 --script " + name + " " + extra,
+      run(kXvfb + std::string(CABLELAB_CLI) + " gui " + scene + " --size 1280x720 --script " + name + " " + extra,
           "gui_script_" + name);
   EXPECT_EQ(r.exitCode, 0) << r.err;
   try {
@@ -259,7 +258,7 @@ TEST(GuiAcceptance, AuthoredSceneRunsInTheCli) {
   EXPECT_EQ(j.value("cables", 0), 1) << j.dump();
   EXPECT_EQ(j.value("pulleys", 0), 1) << j.dump();
   const std::string csv = (outputDir("gui") / "authored.csv").string();
-  const RunResult r = run(kCli + " run " + file + " --time 1 --csv " + csv, "run_authored");
+  const RunResult r = run(std::string(CABLELAB_CLI) + " run " + file + " --time 1 --csv " + csv, "run_authored");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   // The box hangs from the cable over the pulley: it may swing, but it does not fall away.
   std::ifstream in(csv);
@@ -275,7 +274,7 @@ TEST(GuiAcceptance, SmallWindowStillShowsTheWorldView) {
   REQUIRE_XVFB();
   const std::string shot = (outputDir("gui") / "hexagon-640.png").string();
   const RunResult r = run(
-      kXvfb + kCli + " gui hexagon --size 640x480 --frames 30 --screenshot " + shot, "gui_small");
+      kXvfb + std::string(CABLELAB_CLI) + " gui hexagon --size 640x480 --frames 30 --screenshot " + shot, "gui_small");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   const double x = j["free"][0], y = j["free"][1], w = j["free"][2], h = j["free"][3];
@@ -293,7 +292,7 @@ TEST(GuiAcceptance, SmallWindowStillShowsTheWorldView) {
 TEST(GuiAcceptance, SmallWindowPanelRowsFit) {
   REQUIRE_XVFB();
   for (const char* scene : {"hand", "membrane", "hexagon"}) {
-    const RunResult r = run(kXvfb + kCli + " gui " + scene + " --size 640x480 --frames 5",
+    const RunResult r = run(kXvfb + std::string(CABLELAB_CLI) + " gui " + scene + " --size 640x480 --frames 5",
                             std::string("gui_rows_") + scene);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
@@ -348,7 +347,7 @@ TEST(GuiAcceptance, RecordButtonWritesOneFramePerThirtiethOfASimulatedSecond) {
   REQUIRE_XVFB();
   const std::string gif = (outputDir("gui") / "recorded.gif").string();
   const RunResult r =
-      run(kXvfb + kCli + " gui hexagon --size 1280x720 --frames 61 --record " + gif, "gui_record");
+      run(kXvfb + std::string(CABLELAB_CLI) + " gui hexagon --size 1280x720 --frames 61 --record " + gif, "gui_record");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   const ui::GifAnimation a = ui::readGif(gif);

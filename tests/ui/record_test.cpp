@@ -9,7 +9,6 @@
 namespace cablelab::test {
 namespace {
 
-const std::string kCli = CABLELAB_CLI;
 
 /// A frame of four flat colour bands whose boundary moves with `k`.
 ui::Image bands(int width, int height, int k) {
@@ -64,7 +63,7 @@ TEST(Gif, WriterRejectsAWrongSizeAndAnUnwritablePath) {
 TEST(RecordCli, HexagonForTwoSecondsHasSixtyDifferentFrames) {
   const std::string out = (outputDir("record") / "clip.gif").string();
   const RunResult r =
-      run(kCli + " record hexagon --out " + out + " --time 2 --size 320x240", "record_hexagon");
+      run(std::string(CABLELAB_CLI) + " record hexagon --out " + out + " --time 2 --size 320x240", "record_hexagon");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const ui::GifAnimation a = ui::readGif(out);
   // One frame per 1/30 s from t = 0 to t = 2 inclusive.
@@ -96,11 +95,11 @@ TEST(RecordCli, BadArgumentsExitTwoWithOneLine) {
                                         "hexagon" + o + " --fps abc",
                                         "hexagon --time 0.1"};
   for (const std::string& args : bad) {
-    const RunResult r = run(kCli + " record " + args, "record_bad");
+    const RunResult r = run(std::string(CABLELAB_CLI) + " record " + args, "record_bad");
     EXPECT_EQ(r.exitCode, 2) << args << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
   }
-  EXPECT_EQ(run(kCli + " record --help", "record_help").exitCode, 0);
+  EXPECT_EQ(run(std::string(CABLELAB_CLI) + " record --help", "record_help").exitCode, 0);
 }
 
 }  // namespace

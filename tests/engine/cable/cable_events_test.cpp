@@ -2,11 +2,12 @@
 #include <gtest/gtest.h>
 
 #include "engine/cable/cable.h"
+#include "tests/support/engine_test_support.h"
 
 namespace cablelab {
 namespace {
 
-constexpr double kH = 1.0 / 60.0;
+using test::kDt;
 
 // A cable (-1, 0) -> pulley on body "p" -> (1, 0); the pulley is a point or a square.
 SceneDef crossingScene(bool polygon) {
@@ -48,16 +49,16 @@ TEST(CableEvents, PointPulleyJoinsWhenItReachesTheSegment) {
   std::vector<BodyState> bodies{at(Vec2(0.3, -0.2), Vec2(0, 40))};
   cable.update(bodies);
   ASSERT_EQ(cable.wraps(), 0);
-  const auto e = cable.nextEvent(bodies, kH);
+  const auto e = cable.nextEvent(bodies, kDt);
   ASSERT_TRUE(e.has_value());
   EXPECT_EQ(e->kind, WrapEvent::Kind::Join);
   EXPECT_EQ(e->pulley, 0);
-  EXPECT_NEAR(e->time, 0.2 / 40, 1e-9 * kH);
+  EXPECT_NEAR(e->time, 0.2 / 40, 1e-9 * kDt);
   // Moved to the event, and selected a moment later: it joins with no length jump.
   const double before = cable.length();
   bodies[0].position.y() += e->time * 40;
   std::vector<BodyState> ahead = bodies;
-  ahead[0].position.y() += 1e-6 * kH * 40;
+  ahead[0].position.y() += 1e-6 * kDt * 40;
   cable.update(ahead, bodies, nullptr);
   EXPECT_EQ(cable.wraps(), 1);
   EXPECT_NEAR(cable.length(), before, 1e-12);
@@ -72,10 +73,10 @@ TEST(CableEvents, EngagedPointLeavesWhenTheTurnStraightens) {
   cable.update(bodies);
   ASSERT_EQ(cable.wraps(), 1);
   bodies[0].velocity = Vec2(0, -30);
-  const auto e = cable.nextEvent(bodies, kH);
+  const auto e = cable.nextEvent(bodies, kDt);
   ASSERT_TRUE(e.has_value());
   EXPECT_EQ(e->kind, WrapEvent::Kind::Leave);
-  EXPECT_NEAR(e->time, 0.25 / 30, 1e-9 * kH);
+  EXPECT_NEAR(e->time, 0.25 / 30, 1e-9 * kDt);
 }
 
 TEST(CableEvents, SquareCornerAndItsNextVertexAreLocated) {
@@ -87,10 +88,10 @@ TEST(CableEvents, SquareCornerAndItsNextVertexAreLocated) {
   std::vector<BodyState> bodies{at(Vec2(0.2, -0.05 - r), Vec2(0, 10), M_PI / 4)};
   cable.update(bodies);
   ASSERT_EQ(cable.wraps(), 0);
-  const auto join = cable.nextEvent(bodies, kH);
+  const auto join = cable.nextEvent(bodies, kDt);
   ASSERT_TRUE(join.has_value());
   EXPECT_EQ(join->kind, WrapEvent::Kind::Join);
-  EXPECT_NEAR(join->time, 0.05 / 10, 1e-9 * kH);
+  EXPECT_NEAR(join->time, 0.05 / 10, 1e-9 * kDt);
   // Pushed 0.05 m through, the chain is the top corner alone.
   bodies[0].position.y() = 0.05 - r;
   cable.update(bodies);
@@ -113,7 +114,7 @@ TEST(CableEvents, NothingAheadMeansNoEvent) {
   Cable cable(scene, 0, "test");
   std::vector<BodyState> bodies{at(Vec2(0.3, -0.5), Vec2(0, 1))};
   cable.update(bodies);
-  EXPECT_FALSE(cable.nextEvent(bodies, kH).has_value());
+  EXPECT_FALSE(cable.nextEvent(bodies, kDt).has_value());
 }
 
 }  // namespace

@@ -3,23 +3,16 @@
 
 #include "engine/cable/cable.h"
 #include "tests/support/engine_test_support.h"
+#include "tests/support/finite_differences.h"
 
 namespace cablelab {
 namespace {
 
-constexpr double kRelative = 1e-6;
+using test::advance;
+using test::kRelative;
 
 double lengthOf(std::vector<WrapPoint> path, const std::vector<BodyState>& bodies) {
   return cableKinematics(path, bodies).length;
-}
-
-// Moves every body along its velocity for time t (theta with omega): q(t) = q + t v.
-std::vector<BodyState> advance(std::vector<BodyState> bodies, double t) {
-  for (BodyState& b : bodies) {
-    b.position += t * b.velocity;
-    b.angle += t * b.angularVelocity;
-  }
-  return bodies;
 }
 
 TEST(CableKinematics, JacobianAndJdotVMatchFiniteDifferences) {

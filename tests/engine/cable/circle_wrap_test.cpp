@@ -7,24 +7,18 @@
 #include "engine/cable/cable.h"
 #include "engine/cable/wrap.h"
 #include "tests/support/engine_test_support.h"
+#include "tests/support/finite_differences.h"
 
 namespace cablelab {
 namespace {
 
-constexpr double kRelative = 1e-6;
+using test::advance;
+using test::kRelative;
 
 WrapPoint circlePoint(int body, const Vec2& centre, double rho) {
   WrapPoint p{WrapPoint::Kind::Circle, body, centre};
   p.radius = rho;
   return p;
-}
-
-std::vector<BodyState> advance(std::vector<BodyState> bodies, double t) {
-  for (BodyState& b : bodies) {
-    b.position += t * b.velocity;
-    b.angle += t * b.angularVelocity;
-  }
-  return bodies;
 }
 
 // The textbook tangent-arc length of A -> circle -> B, worked out from angles alone.
@@ -255,10 +249,14 @@ TEST(CircleWrap, TouchingCircleChangesNeitherLengthNorJacobian) {
     EXPECT_NEAR(k1.lengthRate, k0.lengthRate, 1e-9);
     for (const BodyJacobian& e : k0.jacobian)
       for (const BodyJacobian& f : k1.jacobian)
-        if (e.body == f.body) EXPECT_LT((e.d - f.d).norm(), 1e-9) << "trial " << trial;
+        if (e.body == f.body) {
+          EXPECT_LT((e.d - f.d).norm(), 1e-9) << "trial " << trial;
+        }
     // The wheel's own row is zero at the touch (its centre sees u_in - u_out = 0).
     for (const BodyJacobian& f : k1.jacobian)
-      if (f.body == 1) EXPECT_LT(f.d.norm(), 1e-9);
+      if (f.body == 1) {
+        EXPECT_LT(f.d.norm(), 1e-9);
+      }
   }
 }
 

@@ -11,7 +11,7 @@
 namespace cablelab {
 namespace {
 
-constexpr double kH = 1.0 / 60.0;
+using test::kDt;
 
 MovingPoint fixedAt(const Vec2& p) {
   MovingPoint m;
@@ -32,19 +32,19 @@ TEST(Crossing, PointOnALineMeetsAFixedSegmentWhenItsDistanceRunsOut) {
   const MovingPoint a = fixedAt(Vec2(-1, 0)), b = fixedAt(Vec2(1, 0));
   // Left: wrapped once the point is to the left of a->b, i.e. above (y > 0).
   const auto c =
-      pointCrossesSegment(a, b, movingFrom(Vec2(0.25, -0.3), Vec2(0, 50)), WrapSide::Left, kH);
+      pointCrossesSegment(a, b, movingFrom(Vec2(0.25, -0.3), Vec2(0, 50)), WrapSide::Left, kDt);
   ASSERT_TRUE(c.has_value());
-  EXPECT_NEAR(c->time, 0.3 / 50, 2 * crossingTolerance(kH));
+  EXPECT_NEAR(c->time, 0.3 / 50, 2 * crossingTolerance(kDt));
   EXPECT_NEAR(c->along, 0.625, 1e-9);
   // Coming from the wrap side it is no join: the cable passes it.
   EXPECT_FALSE(
-      pointCrossesSegment(a, b, movingFrom(Vec2(0, 0.3), Vec2(0, -50)), WrapSide::Left, kH));
+      pointCrossesSegment(a, b, movingFrom(Vec2(0, 0.3), Vec2(0, -50)), WrapSide::Left, kDt));
   // Too slow to arrive within the sub-step.
   EXPECT_FALSE(
-      pointCrossesSegment(a, b, movingFrom(Vec2(0, -0.3), Vec2(0, 1)), WrapSide::Left, kH));
+      pointCrossesSegment(a, b, movingFrom(Vec2(0, -0.3), Vec2(0, 1)), WrapSide::Left, kDt));
   // Crossing the line beyond the segment's end is no crossing of the segment.
   EXPECT_FALSE(
-      pointCrossesSegment(a, b, movingFrom(Vec2(1.5, -0.3), Vec2(0, 50)), WrapSide::Left, kH));
+      pointCrossesSegment(a, b, movingFrom(Vec2(1.5, -0.3), Vec2(0, 50)), WrapSide::Left, kDt));
 }
 
 TEST(Crossing, RandomLinearMotionsAgreeWithTheQuadratic) {
@@ -76,7 +76,7 @@ TEST(Crossing, RandomLinearMotionsAgreeWithTheQuadratic) {
     std::sort(roots.begin(), roots.end());
     std::optional<double> expected;
     for (double t : roots) {
-      if (t <= 0 || t > kH) continue;
+      if (t <= 0 || t > kDt) continue;
       const double slope = 2 * c2 * t + c1;  // rising onto the wrap side
       const Vec2 pa = a.at(t), ab = b.at(t) - pa;
       const double along = (p.at(t) - pa).dot(ab) / ab.squaredNorm();
@@ -87,12 +87,12 @@ TEST(Crossing, RandomLinearMotionsAgreeWithTheQuadratic) {
       if (slope > 0) break;  // rose outside the segment: later roots start from the wrap side
     }
     if (c0 > 0) continue;  // starts on the wrap side: covered by the cases above
-    const auto got = pointCrossesSegment(a, b, p, side, kH);
+    const auto got = pointCrossesSegment(a, b, p, side, kDt);
     // Two roots within one sample interval may be missed by design; none here is closer.
-    if (roots.size() == 2 && roots[1] - roots[0] < kH / 4) continue;
+    if (roots.size() == 2 && roots[1] - roots[0] < kDt / 4) continue;
     ASSERT_EQ(got.has_value(), expected.has_value()) << "trial " << trial;
     if (got) {
-      EXPECT_NEAR(got->time, *expected, 1e-9 * kH) << "trial " << trial;
+      EXPECT_NEAR(got->time, *expected, 1e-9 * kDt) << "trial " << trial;
       ++found;
     }
   }
@@ -116,14 +116,16 @@ TEST(Crossing, TheEarlyOutNeverSkipsASideChange) {
     const double speed = trial % 3 == 0 ? 30 : 2, spin = trial % 2 == 0 ? 40 : 1;
     const MovingPoint a = spinning(speed, spin), b = spinning(speed, spin),
                       p = spinning(speed, spin);
-    const bool skip = sideCannotChange(a, b, p, kH);
+    const bool skip = sideCannotChange(a, b, p, kDt);
     const double g0 = wrapSideDistance(a.at(0), b.at(0), p.at(0), WrapSide::Left);
     bool changes = false;
     for (int k = 1; k <= 500 && !changes; ++k) {
-      const double t = kH * k / 500;
+      const double t = kDt * k / 500;
       changes = (wrapSideDistance(a.at(t), b.at(t), p.at(t), WrapSide::Left) > 0) != (g0 > 0);
     }
-    if (skip) EXPECT_FALSE(changes) << "trial " << trial;
+    if (skip) {
+      EXPECT_FALSE(changes) << "trial " << trial;
+    }
     skipped += skip;
     far += std::abs(g0) > 0.05 && speed < 10 && spin < 10;
   }
@@ -139,9 +141,9 @@ TEST(Crossing, VertexOfASpinningSquareReachesTheSegment) {
   v.angle = 0.3;
   v.angularVelocity = 100;
   const MovingPoint a = fixedAt(Vec2(-5, -1)), b = fixedAt(Vec2(5, -1));
-  const auto c = pointCrossesSegment(a, b, v, WrapSide::Left, kH);
+  const auto c = pointCrossesSegment(a, b, v, WrapSide::Left, kDt);
   ASSERT_TRUE(c.has_value());
-  EXPECT_NEAR(c->time, (std::asin(2.0 / 3.0) - 0.3) / 100, 1e-9 * kH);
+  EXPECT_NEAR(c->time, (std::asin(2.0 / 3.0) - 0.3) / 100, 1e-9 * kDt);
 }
 
 TEST(Crossing, TurnStraightensWhenThePointCrossesBackOverTheChord) {
@@ -149,10 +151,10 @@ TEST(Crossing, TurnStraightensWhenThePointCrossesBackOverTheChord) {
   // left of the chord); p falls at 30 m/s, the turn is straight at t = 0.2 / 30.
   const MovingPoint a = fixedAt(Vec2(-1, 0)), b = fixedAt(Vec2(1, 0));
   const auto t =
-      turnStraightens(a, movingFrom(Vec2(0.1, 0.2), Vec2(0, -30)), b, WrapSide::Left, kH);
+      turnStraightens(a, movingFrom(Vec2(0.1, 0.2), Vec2(0, -30)), b, WrapSide::Left, kDt);
   ASSERT_TRUE(t.has_value());
-  EXPECT_NEAR(*t, 0.2 / 30, 1e-9 * kH);
-  EXPECT_FALSE(turnStraightens(a, movingFrom(Vec2(0.1, 0.2), Vec2(0, 5)), b, WrapSide::Left, kH));
+  EXPECT_NEAR(*t, 0.2 / 30, 1e-9 * kDt);
+  EXPECT_FALSE(turnStraightens(a, movingFrom(Vec2(0.1, 0.2), Vec2(0, 5)), b, WrapSide::Left, kDt));
 }
 
 TEST(Crossing, MovingSegmentSweepsAcrossAFixedPoint) {
@@ -163,9 +165,9 @@ TEST(Crossing, MovingSegmentSweepsAcrossAFixedPoint) {
   b.angle = -0.5;
   b.angularVelocity = 60;
   const auto c =
-      pointCrossesSegment(fixedAt(Vec2::Zero()), b, fixedAt(Vec2(1, 0)), WrapSide::Right, kH);
+      pointCrossesSegment(fixedAt(Vec2::Zero()), b, fixedAt(Vec2(1, 0)), WrapSide::Right, kDt);
   ASSERT_TRUE(c.has_value());
-  EXPECT_NEAR(c->time, 0.5 / 60, 1e-9 * kH);
+  EXPECT_NEAR(c->time, 0.5 / 60, 1e-9 * kDt);
   EXPECT_NEAR(c->along, 0.5, 1e-9);
 }
 

@@ -9,20 +9,14 @@
 
 #include "engine/core/error.h"
 #include "engine/core/file_input.h"
+#include "tests/support/engine_test_support.h"
 
 namespace cablelab {
 namespace {
 
 using nlohmann::json;
 
-std::string messageOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::messageOf;
 
 TEST(JsonReader, ReadsTypedFieldsWithDefaults) {
   const json j = json::parse(R"({"n": 2.5, "i": 3, "b": true, "s": "x", "v": [1, 2],

@@ -6,18 +6,12 @@
 #include <limits>
 
 #include "engine/core/error.h"
+#include "tests/support/engine_test_support.h"
 
 namespace cablelab {
 namespace {
 
-std::string messageOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::messageOf;
 
 TEST(Parse, FiniteNumberTakesTheWholeTextOrNothing) {
   for (const auto& [text, value] : {std::pair{"1", 1.0},

@@ -6,11 +6,12 @@
 #include <cmath>
 
 #include "engine/dynamics/world.h"
+#include "tests/support/engine_test_support.h"
 
 namespace cablelab {
 namespace {
 
-constexpr double kDt = 1.0 / 60.0;
+using test::kDt;
 constexpr double kLift = 5.0;      // m/s
 constexpr double kStretch = 1e-4;  // m: the goal bound
 

@@ -5,11 +5,12 @@
 #include <cmath>
 
 #include "engine/dynamics/world.h"
+#include "tests/support/engine_test_support.h"
 
 namespace cablelab {
 namespace {
 
-constexpr double kDt = 1.0 / 60.0;
+using test::kDt;
 
 // A cable from (-1, 0) over a threaded pulley at (1, 0) down to a 5 kg ballast 6 m below; a
 // 0.1 kg puck 0.4 m under the cable thrown straight up at it. The puck is a point pulley or a

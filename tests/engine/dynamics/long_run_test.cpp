@@ -8,11 +8,12 @@
 
 #include "engine/dynamics/world.h"
 #include "tests/support/busy_scene.h"
+#include "tests/support/engine_test_support.h"
 
 namespace cablelab {
 namespace {
 
-constexpr double kDt = 1.0 / 60;
+using test::kDt;
 constexpr int kMinute = 3600;  // steps
 
 TEST(LongRun, ASpinningBodyKeepsItsAngleToFullPrecisionForTenMinutes) {

@@ -9,11 +9,12 @@
 #include <Eigen/Dense>
 
 #include "engine/dynamics/world.h"
+#include "tests/support/engine_test_support.h"
 
 namespace cablelab {
 namespace {
 
-constexpr double kDt = 1.0 / 60.0;
+using test::kDt;
 constexpr double kRingMass = 5.0, kRingRadius = 0.5, kAnchorRadius = 1.5;
 
 // A 5 kg ring at the origin held by `cables` radial rigid spokes to anchors 1 m further out,

@@ -9,7 +9,7 @@
 namespace cablelab {
 namespace {
 
-constexpr double kTolerance = 1e-9;
+constexpr double kReferenceTolerance = 1e-9;
 
 // q = (point x, y, theta, ballast x, y, theta); the cable runs (-l, 0) -> point -> (l, 0) ->
 // ballast.
@@ -43,12 +43,12 @@ TEST(ReferenceDynamics, BallastAccelerationsMatchTheAnalyticSolution) {
         constrainedAcceleration(H.asDiagonal().toDenseMatrix(), J,
                                 Eigen::VectorXd::Constant(1, k.jdotV), Eigen::VectorXd::Zero(6));
     const double expected = 2 * c.v0.y() * c.v0.y() / c.l;  // ballast, towards the pulley (+y)
-    EXPECT_NEAR(acc.qdd[0], 0, kTolerance);
-    EXPECT_NEAR(acc.qdd[1], 0, kTolerance);
-    EXPECT_NEAR(acc.qdd[3], 0, kTolerance);
-    EXPECT_NEAR(acc.qdd[4], expected, kTolerance * std::max(1.0, expected));
+    EXPECT_NEAR(acc.qdd[0], 0, kReferenceTolerance);
+    EXPECT_NEAR(acc.qdd[1], 0, kReferenceTolerance);
+    EXPECT_NEAR(acc.qdd[3], 0, kReferenceTolerance);
+    EXPECT_NEAR(acc.qdd[4], expected, kReferenceTolerance * std::max(1.0, expected));
     EXPECT_NEAR(-acc.lambda[0], c.mBallast * expected,
-                kTolerance * std::max(1.0, c.mBallast * expected));
+                kReferenceTolerance * std::max(1.0, c.mBallast * expected));
   }
 }
 

@@ -8,11 +8,12 @@
 #include <memory>
 
 #include "engine/dynamics/world.h"
+#include "tests/support/engine_test_support.h"
 
 namespace cablelab {
 namespace {
 
-constexpr double kDt = 1.0 / 60.0;
+using test::kDt;
 constexpr double kBaumgarte = 0.2;  // the share of the error fixed per sub-step (cable_solver.cpp)
 
 // A rigid cable from the world origin to a 1 kg load at (L, 0) moving down at 0.5 m/s, a world
@@ -44,13 +45,13 @@ std::unique_ptr<World> makeWorld(double L, double cut, double error) {
   return world;
 }
 
-struct Outcome {
+struct StepOutcome {
   double speedChange = 0;  // m/s, of the load over the step
   int events = 0, midpointSolves = 0;
   bool joined = false;
 };
 
-Outcome stepOnce(double L, double cut, double error) {
+StepOutcome stepOnce(double L, double cut, double error) {
   const std::unique_ptr<World> made = makeWorld(L, cut, error);
   World& world = *made;
   const Vec2 v0 = world.body(0).velocity;
@@ -66,7 +67,7 @@ TEST(Stabilisation, ACutStepCorrectsOnlyItsShareOfTheLengthError) {
   for (const double L : {2.0, 0.4}) {
     for (const double cut : {1e-3, 1e-2, 0.3}) {
       const double error = 0.05 * L;
-      const Outcome o = stepOnce(L, cut, error);
+      const StepOutcome o = stepOnce(L, cut, error);
       SCOPED_TRACE("L " + std::to_string(L) + " cut " + std::to_string(cut));
       EXPECT_TRUE(o.joined);
       EXPECT_GE(o.events, 1);  // the step was cut at the join

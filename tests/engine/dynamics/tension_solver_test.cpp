@@ -109,8 +109,9 @@ void expectSolves(const Lcp& original, const VectorXd& truth, bool unique,
   const VectorXd wTruth = p.K * truth - p.b;
   EXPECT_LE((w - wTruth).lpNorm<Eigen::Infinity>(), tol) << what;
   EXPECT_NEAR(value(p, sol.x), value(p, truth), tol * (1 + truth.lpNorm<1>())) << what;
-  if (unique)
+  if (unique) {
     EXPECT_LE((sol.x - truth).lpNorm<Eigen::Infinity>(), 1e-6 * (1 + truth.norm())) << what;
+  }
 }
 
 TEST(TensionSolver, MatchesBruteForceOnPositiveDefiniteProblems) {

@@ -11,7 +11,7 @@ namespace cablelab {
 namespace {
 
 constexpr double kG = 9.81;
-constexpr double kDt = 1.0 / 60.0;
+using test::kDt;
 
 World load(const std::string& name, const std::vector<std::pair<std::string, double>>& set) {
   return World(makeScene(name, set), name);
@@ -182,7 +182,7 @@ namespace {
 
 // A 0.1 kg puck carrying an "auto" circle (or a 0.1 m square, `square`) thrown at a rope
 // loaded by 5 kg (60 Hz, 1 sub-step).
-SceneDef puckScene(double speed, bool fromBelow, bool square = false) {
+SceneDef autoPuckScene(double speed, bool fromBelow, bool square = false) {
   SceneDef s;
   s.name = "puck";
   BodyDef puck;
@@ -230,7 +230,7 @@ TEST(AutoSide, APuckThrownFromEitherSideIsCaughtAndNeverPassesThrough) {
     for (bool fromBelow : {true, false})
       for (double speed : {5.0, 15.0, 50.0}) {
         SCOPED_TRACE(square ? "square" : "circle");
-        World w(puckScene(speed, fromBelow, square), "puck");
+        World w(autoPuckScene(speed, fromBelow, square), "puck");
         const double e0 = w.energy();
         const double sign = fromBelow ? 1 : -1;
         bool caught = false;

@@ -14,7 +14,7 @@
 namespace cablelab {
 namespace {
 
-constexpr double kDt = 1.0 / 60.0;
+using test::kDt;
 
 // Reads a CSV written by `cablelab run --csv` into named columns.
 std::map<std::string, std::vector<double>> readCsv(const std::string& path) {

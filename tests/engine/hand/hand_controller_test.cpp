@@ -6,11 +6,12 @@
 #include <cmath>
 
 #include "engine/hand/hand_kinematics.h"
+#include "tests/support/finite_differences.h"
 
 namespace cablelab {
 namespace {
 
-constexpr double kFdStep = 1e-6;
+using test::kFdStep;
 constexpr double kSensitivityTolerance = 1e-5;
 
 TEST(HandController, StaticsMatchesTheBoxCableEnergy) {

@@ -1,11 +1,12 @@
 #include "engine/hand/hand_kinematics.h"
+#include "tests/support/finite_differences.h"
 
 #include <gtest/gtest.h>
 
 namespace cablelab {
 namespace {
 
-constexpr double kFdStep = 1e-6;
+using test::kFdStep;
 constexpr double kJacobianTolerance = 1e-7;
 
 TEST(HandKinematics, JacobianMatchesCentralDifferences) {
