@@ -437,6 +437,11 @@ void Cable::reportLengthJump(std::span<const BodyState> bodies,
 
 void Cable::update(std::span<const BodyState> select, std::span<const BodyState> bodies,
                    std::vector<std::string>* warnings) {
+  if (skipping_ && skipValid_ && keepWrapSet(select, bodies)) {
+    ++skippedSelections_;
+    finishUpdate(bodies, warnings);
+    return;
+  }
   placePulleys(select);
   if (path_.empty()) path_ = {start_, end_};
   previousPath_ = path_;
@@ -485,6 +490,11 @@ void Cable::update(std::span<const BodyState> select, std::span<const BodyState>
     if (pulleys_[j].dropped && !droppedBefore_[j])
       pulleys_[j].dropCut = std::max(0.0, previousLength(bodies) - kin_.length);
   reportLengthJump(bodies, warnings);
+  finishUpdate(bodies, warnings);
+  buildSkipCertificate(select);
+}
+
+void Cable::finishUpdate(std::span<const BodyState> bodies, std::vector<std::string>* warnings) {
   if (warnings && kin_.zeroLengthSegments > 0 && !reportedZeroLength_)
     warnings->push_back(
         "cable '" + def_->name + "': " + std::to_string(kin_.zeroLengthSegments) +

@@ -3,6 +3,7 @@
 // Where to find things:
 //   wrap-point selection and the guards ......... Cable::updatePath()   (cable.cpp)
 //   length, J = d length / dq, J-dot-v ........... cableKinematics()    (cable_kinematics.cpp)
+//   skipping while the wrap set cannot change .... keepWrapSet()        (wrap_skip.cpp)
 //
 // Generalized coordinates are every body's (x, y, theta) in the world frame (docs/model.md); the
 // world itself is body -1 and never moves. A wrap point is a point fixed on a body; its world
@@ -230,6 +231,14 @@ class Cable {
   /// Tension on path segment i (path()[i] -> path()[i + 1]): its span's.
   double segmentTension(size_t i) const;
 
+  /// Skipping (wrap_skip.cpp, docs/cables.md "Skipping"): while no wrap point or candidate vertex
+  /// can reach the line it is tested against, update() keeps the wrap set without re-selecting
+  /// and nextEvent() reports none without searching. On by default; off re-selects every time.
+  void setSkipping(bool on);
+  /// Updates that kept the wrap set and event searches skipped, since construction.
+  long skippedSelections() const { return skippedSelections_; }
+  long skippedSearches() const { return skippedSearches_; }
+
  private:
   struct PulleyState {
     int body = -1;
@@ -303,6 +312,34 @@ class Cable {
   std::vector<Span> spans_;        ///< empty: one span, the whole path
   std::vector<SpanLink> links_;    ///< spans_.size() - 1
   std::vector<int> splitPulleys_;  ///< pulleys at the links, in path order (scratch + memory)
+  // Skipping: a certificate built at a full update's selection pose. Each test is one signed
+  // distance the event search watches (a point p from the line a-b), with its value then; the
+  // wrap set cannot change while every point's displacement since is too small to zero one.
+  struct SkipBody {
+    int body;
+    Vec2 position;
+    double angle;
+  };
+  struct SkipTest {
+    int a, b, p;         ///< indices into skipBodies_
+    double ra, rb, rp;   ///< |local| of the points (m)
+    double margin;       ///< |distance of p from line a-b| (m)
+    double arm, length;  ///< |p - a|, |b - a| (m)
+  };
+  bool skipEligible() const;
+  void buildSkipCertificate(std::span<const BodyState> pose);
+  bool wrapSetCertain(std::span<const BodyState> pose, double h) const;
+  bool keepWrapSet(std::span<const BodyState> select, std::span<const BodyState> bodies);
+  Vec2 selectedPoint(size_t i) const;
+  void finishUpdate(std::span<const BodyState> bodies, std::vector<std::string>* warnings);
+  std::vector<SkipBody> skipBodies_;
+  std::vector<SkipTest> skipTests_;
+  mutable std::vector<Vec2> skipMotion_;  ///< scratch: per skip body, (linear, angular) bound
+  std::vector<double> skipArcs_;          ///< scratch: the kept wrap's new turn angles
+  bool skipping_ = true;
+  bool skipValid_ = false;
+  long skippedSelections_ = 0;
+  mutable long skippedSearches_ = 0;
   double tension_ = 0;
   bool firstUpdate_ = true;
   bool reportedZeroLength_ = false;

@@ -59,6 +59,11 @@ void keepEarliest(std::optional<WrapEvent>& best, double time, int pulley, WrapE
 std::optional<WrapEvent> Cable::nextEvent(std::span<const BodyState> motion, double h) const {
   std::optional<WrapEvent> best;
   if (path_.size() < 2) return best;
+  // No watched distance can reach zero over the sub-step (wrap_skip.cpp).
+  if (skipping_ && skipValid_ && wrapSetCertain(motion, h)) {
+    ++skippedSearches_;
+    return best;
+  }
   const int count = static_cast<int>(pulleys_.size());
   StartFrames frames(motion);
   auto moving = [&](const WrapPoint& w) { return frames.point(w.body, w.local); };

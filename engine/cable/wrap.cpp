@@ -10,7 +10,7 @@ namespace {
 // Points closer than this to a hull edge's line count as collinear and are not wrap points.
 constexpr double kCollinear = 1e-12;
 // A wrap that turns the path by less than this (rad) is straight: no vertex is a wrap point.
-constexpr double kStraightTurn = 1e-12;
+constexpr double kStraightTurn = kStraightWrapTurn;
 
 }  // namespace
 
@@ -121,11 +121,8 @@ bool wrapChain(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, Wrap
   return true;
 }
 
-std::optional<double> wrapChainTurning(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,
-                                       WrapSide side, double reference, std::vector<int>& chain) {
-  chain.clear();
-  int ta, tb;
-  if (!tangentVertices(a, b, polygon, side, ta, tb)) return std::nullopt;
+double walkTurning(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, WrapSide side,
+                   int ta, int tb, double reference, int& walk, int& loops) {
   const int n = static_cast<int>(polygon.size()), stepDir = walkStep(side);
   // The walk ta -> tb and the angle the path turns along it, in the wrap sense (clockwise for
   // Left): every turn on it is >= 0 but possibly the one of a single vertex, so it lies in
@@ -133,23 +130,34 @@ std::optional<double> wrapChainTurning(const Vec2& a, const Vec2& b, std::span<c
   const double s = side == WrapSide::Right ? -1.0 : 1.0;
   double walkTurn = 0;
   Vec2 from = a;
+  walk = 0;
   for (int i = ta;; i = (i + stepDir + n) % n) {
-    chain.push_back(i);
+    ++walk;
     const Vec2 in = polygon[i] - from;
     from = polygon[i];
     const Vec2 out = (i == tb ? b : polygon[(i + stepDir + n) % n]) - from;
     walkTurn -= s * std::atan2(cross(in, out), in.dot(out));
-    if (i == tb || static_cast<int>(chain.size()) > n) break;
+    if (i == tb || walk > n) break;
   }
-  const double loops = std::round((reference - walkTurn) / (2 * M_PI));
-  const double turn = walkTurn + 2 * M_PI * loops;
-  if (turn <= kStraightTurn) {
-    chain.clear();
-    return std::min(turn, 0.0);
-  }
+  const double whole = std::round((reference - walkTurn) / (2 * M_PI));
+  const double turn = walkTurn + 2 * M_PI * whole;
+  loops = static_cast<int>(whole);
+  if (turn <= kStraightTurn) return std::min(turn, 0.0);
+  return turn;
+}
+
+std::optional<double> wrapChainTurning(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,
+                                       WrapSide side, double reference, std::vector<int>& chain) {
+  chain.clear();
+  int ta, tb;
+  if (!tangentVertices(a, b, polygon, side, ta, tb)) return std::nullopt;
+  const int n = static_cast<int>(polygon.size()), stepDir = walkStep(side);
+  int walk, loops;
+  const double turn = walkTurning(a, b, polygon, side, ta, tb, reference, walk, loops);
+  if (turn <= kStraightTurn) return turn;  // straight: the chain is empty
+  for (int k = 0, i = ta; k < walk; ++k, i = (i + stepDir + n) % n) chain.push_back(i);
   // More than the walk: whole loops round the polygon, ending at tb again.
-  for (int k = 0; k < static_cast<int>(loops) * n; ++k)
-    chain.push_back((chain.back() + stepDir + n) % n);
+  for (int k = 0; k < loops * n; ++k) chain.push_back((chain.back() + stepDir + n) % n);
   return turn;
 }
 

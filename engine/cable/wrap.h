@@ -36,6 +36,15 @@ bool wrapChain(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, Wrap
 std::optional<double> wrapChainTurning(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,
                                        WrapSide side, double reference, std::vector<int>& chain);
 
+/// wrapChainTurning's angle for known tangent vertices ta (from A) and tb (into B): the turn
+/// along the walk ta -> tb (`walk` vertices, one lap at most) plus the `loops` whole loops that
+/// put it nearest `reference`. At most the straight threshold (1e-12 rad): min(angle, 0), the
+/// chain would be empty.
+double walkTurning(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, WrapSide side,
+                   int ta, int tb, double reference, int& walk, int& loops);
+/// Turns below this (rad) are straight: no vertex is a wrap point.
+inline constexpr double kStraightWrapTurn = 1e-12;
+
 /// Length of the path A -> polygon[chain...] -> B.
 double chainLength(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,
                    const std::vector<int>& chain);

@@ -152,6 +152,10 @@ void World::setServoTarget(int i, double target) {
   servoTargets_[i] = target;
 }
 
+void World::setWrapSkipping(bool on) {
+  for (Cable& c : cables_) c.setSkipping(on);
+}
+
 void World::setGravity(const Vec2& g) {
   gravity_ = g;
   b2_->setGravity(g);
@@ -329,6 +333,10 @@ void World::step(double dt, int substeps) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   stats_ = {};
+  for (const Cable& c : cables_) {
+    stats_.selectionSkips -= static_cast<int>(c.skippedSelections());
+    stats_.searchSkips -= static_cast<int>(c.skippedSearches());
+  }
   const double h = dt / std::max(1, substeps);
   if (pendingForces_.size() != bodies_.size()) pendingForces_.assign(bodies_.size(), Vec3::Zero());
   for (int s = 0; s < std::max(1, substeps); ++s) {
@@ -342,7 +350,11 @@ void World::step(double dt, int substeps) {
   // re-selected at the start of the next step.
   for (Cable& c : cables_) c.refresh(bodies_);
   ++steps_;
-  for (const Cable& c : cables_) stats_.wrapPoints += c.wraps();
+  for (const Cable& c : cables_) {
+    stats_.wrapPoints += c.wraps();
+    stats_.selectionSkips += static_cast<int>(c.skippedSelections());
+    stats_.searchSkips += static_cast<int>(c.skippedSearches());
+  }
   stats_.stepMicros = std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
   checkFinite();
 }

@@ -58,6 +58,8 @@ struct StepStats {
   int midpointSolves = 0;          ///< cable solves by the energy-consistent midpoint rule
   int midpointFallbacks = 0;       ///< of those tried, not converged (the main solve was used)
   int refinements = 0;             ///< Box2D steps shortened to resolve a fast catch
+  int selectionSkips = 0;  ///< cable updates that kept the wrap set unsearched (Cable::setSkipping)
+  int searchSkips = 0;     ///< event searches skipped: no wrap change can happen in the sub-step
 };
 
 class World {
@@ -111,6 +113,8 @@ class World {
   void setServoTarget(int i, double target);
 
   void setGravity(const Vec2& g);
+  /// Wrap-set skipping on every cable (on by default; the same trajectory either way).
+  void setWrapSkipping(bool on);
   Vec2 gravity() const { return gravity_; }
 
   /// Kinetic + gravitational + elastic (membrane) energy (J).

@@ -19,17 +19,24 @@ void BM_HandStep(benchmark::State& state) {
   SceneDef scene = buildHandScene(HandModel{});
   if (state.range(0) == 0) scene.cables.clear();
   World world(scene, "hand");
-  double events = 0, iterations = 0;
+  world.setWrapSkipping(state.range(0) != 2);
+  double events = 0, iterations = 0, kept = 0, unsearched = 0;
   for (auto _ : state) {
     world.step(scene.dt, scene.substeps);
     events += world.lastStepStats().events;
     iterations += world.lastStepStats().solverIterations;
+    kept += world.lastStepStats().selectionSkips;
+    unsearched += world.lastStepStats().searchSkips;
   }
   // Sub-steps cut at a wrap event (each costs a second cable solve) and LCP pivots, per step.
   state.counters["cuts"] = benchmark::Counter(events, benchmark::Counter::kAvgIterations);
   state.counters["pivots"] = benchmark::Counter(iterations, benchmark::Counter::kAvgIterations);
+  // Cable updates that kept the wrap set and event searches skipped (wrap_skip.cpp), per step.
+  state.counters["kept"] = benchmark::Counter(kept, benchmark::Counter::kAvgIterations);
+  state.counters["unsearched"] = benchmark::Counter(unsearched, benchmark::Counter::kAvgIterations);
 }
-BENCHMARK(BM_HandStep)->Arg(1)->Arg(0)->ArgNames({"cables"});
+// cables: 1 with the cables, 0 Box2D alone, 2 with the cables and wrap-set skipping off.
+BENCHMARK(BM_HandStep)->Arg(1)->Arg(0)->Arg(2)->ArgNames({"cables"});
 
 }  // namespace
 }  // namespace cablelab

@@ -1,0 +1,163 @@
+// Skipping the wrap selection and the event search while the wrap set cannot change
+// (docs/cables.md, "Skipping").
+//
+// Every change of a cable's wrap set is a sign change of one of the signed distances that
+// nextEvent() watches (cable_events.cpp): a polygon's next vertex from the segment entering or
+// leaving its chain, a wrap point from the line through its neighbours. A full update records
+// each of those distances at its selection pose. Later, with every point's displacement from
+// that pose bounded by the bodies' displacement (|dx| + |r| |dtheta|, plus the sub-step's motion
+// for the event search), a distance whose start value exceeds the most the displacement can
+// change it keeps its sign along the straight path in pose space to the new pose, so the
+// selection there keeps the wrap set and the search finds nothing. Only cables whose pulleys
+// are all engaged points or polygons (no circles, auto sides, dropped pulleys, threaded polygons,
+// drum ends, spans, or neighbouring polygons) take part; the others always take the full path.
+#include <algorithm>
+#include <cmath>
+
+#include "engine/cable/cable.h"
+#include "engine/cable/wrap.h"
+
+namespace cablelab {
+
+void Cable::setSkipping(bool on) {
+  skipping_ = on;
+  if (!on) skipValid_ = false;
+}
+
+bool Cable::skipEligible() const {
+  if (start_.radius != 0 || end_.radius != 0 || startDrum_.radius != 0 || endDrum_.radius != 0 ||
+      !spans_.empty())
+    return false;
+  for (size_t j = 0; j < pulleys_.size(); ++j) {
+    const PulleyState& p = pulleys_[j];
+    if (!p.engaged || p.circle || p.autoSide || p.dropped ||
+        (p.polygon && p.side == WrapSide::Threaded))
+      return false;
+    // Neighbouring polygons settle their common tangent over several passes (buildPath).
+    if (p.polygon && j + 1 < pulleys_.size() && pulleys_[j + 1].polygon) return false;
+  }
+  return path_.size() >= 2;
+}
+
+void Cable::buildSkipCertificate(std::span<const BodyState> pose) {
+  skipValid_ = false;
+  skipTests_.clear();
+  skipBodies_.clear();
+  if (!skipping_ || !skipEligible()) return;
+  auto bodyIndex = [&](int body) {
+    for (size_t k = 0; k < skipBodies_.size(); ++k)
+      if (skipBodies_[k].body == body) return static_cast<int>(k);
+    skipBodies_.push_back(body < 0 ? SkipBody{-1, Vec2::Zero(), 0.0}
+                                   : SkipBody{body, pose[body].position, pose[body].angle});
+    return static_cast<int>(skipBodies_.size()) - 1;
+  };
+  // p's distance from the line a-b; false when the segment is degenerate (no certificate).
+  auto add = [&](const WrapPoint& a, const WrapPoint& b, int body, const Vec2& local) {
+    const Vec2 wa = worldPoint(pose, a.body, a.local), wb = worldPoint(pose, b.body, b.local);
+    const Vec2 wp = worldPoint(pose, body, local);
+    const double length = (wb - wa).norm();
+    if (!(length > 0)) return false;
+    skipTests_.push_back({bodyIndex(a.body), bodyIndex(b.body), bodyIndex(body), a.local.norm(),
+                          b.local.norm(), local.norm(), std::abs(cross(wb - wa, wp - wa)) / length,
+                          (wp - wa).norm(), length});
+    return true;
+  };
+  // The same distances as nextEvent(): chain ends' next vertices against their segments...
+  for (size_t i = 0; i + 1 < path_.size(); ++i) {
+    const WrapPoint& a = path_[i];
+    const WrapPoint& b = path_[i + 1];
+    if (a.kind == WrapPoint::Kind::Vertex && b.kind == WrapPoint::Kind::Vertex &&
+        a.pulley == b.pulley)
+      continue;
+    for (const WrapPoint* end : {&a, &b}) {
+      if (end->kind != WrapPoint::Kind::Vertex) continue;
+      const PulleyState& p = pulleys_[end->pulley];
+      const int n = static_cast<int>(p.local.size());
+      const int walk = p.side == WrapSide::Right ? 1 : -1;
+      const int v = ((end == &b ? end->vertex - walk : end->vertex + walk) % n + n) % n;
+      if (!add(a, b, p.body, p.local[v])) return;
+    }
+  }
+  // ...and every wrap point against the line through its neighbours.
+  for (size_t i = 1; i + 1 < path_.size(); ++i)
+    if (pulleys_[path_[i].pulley].side != WrapSide::Threaded &&
+        !add(path_[i - 1], path_[i + 1], path_[i].body, path_[i].local))
+      return;
+  skipValid_ = true;
+}
+
+// The bound integrates d/dt cross(n, p - a) as sideCannotChange (crossing.cpp) does, with the
+// displacements in place of speed times h: |n'| <= |b' - a'| / |b - a| along the way.
+bool Cable::wrapSetCertain(std::span<const BodyState> pose, double h) const {
+  skipMotion_.resize(skipBodies_.size());
+  for (size_t k = 0; k < skipBodies_.size(); ++k) {
+    const SkipBody& c = skipBodies_[k];
+    if (c.body < 0) {
+      skipMotion_[k] = Vec2::Zero();
+      continue;
+    }
+    const BodyState& b = pose[c.body];
+    skipMotion_[k] = Vec2((b.position - c.position).norm() + h * b.velocity.norm(),
+                          std::abs(b.angle - c.angle) + h * std::abs(b.angularVelocity));
+  }
+  auto moved = [&](int k, double r) { return skipMotion_[k].x() + r * skipMotion_[k].y(); };
+  for (const SkipTest& t : skipTests_) {
+    const double da = moved(t.a, t.ra), db = moved(t.b, t.rb), dp = moved(t.p, t.rp);
+    const double shortest = t.length - da - db;
+    if (!(shortest > 0)) return false;
+    const double arm = t.arm + dp + da;
+    const double bound = dp + da + (da + db) * arm / shortest;
+    if (!(t.margin > 1.01 * bound + 1e-12)) return false;
+  }
+  return true;
+}
+
+// World position of path point i on the selection pose (placePulleys and the terminals set).
+Vec2 Cable::selectedPoint(size_t i) const {
+  if (i == 0) return start_.world;
+  if (i + 1 == path_.size()) return end_.world;
+  const WrapPoint& w = path_[i];
+  return pulleys_[w.pulley].world[w.vertex >= 0 ? w.vertex : 0];
+}
+
+// The selection's result when the wrap set stays: the same path with the turn angles it keeps
+// over time (buildPath and leaveRound compute them the same way). False (nothing kept, the full
+// update runs) when the certificate does not cover `select`, or when a turn disagrees with it.
+bool Cable::keepWrapSet(std::span<const BodyState> select, std::span<const BodyState> bodies) {
+  if (!wrapSetCertain(select, 0)) return false;
+  placePulleys(select);
+  start_.world = start_.tangentOut = worldPoint(select, start_.body, start_.local);
+  end_.world = end_.tangentIn = worldPoint(select, end_.body, end_.local);
+  skipArcs_.resize(pulleys_.size());
+  for (size_t i = 1; i + 1 < path_.size(); ++i) {
+    const int j = path_[i].pulley;
+    const PulleyState& p = pulleys_[j];
+    const double s = p.side == WrapSide::Right ? -1.0 : 1.0;
+    if (p.side == WrapSide::Threaded) {  // never leaves; its turn is not kept (leaveRound)
+      skipArcs_[j] = p.arc;
+      continue;
+    }
+    if (!p.polygon) {
+      const Vec2 in = p.world[0] - selectedPoint(i - 1), out = selectedPoint(i + 1) - p.world[0];
+      const double raw = -s * std::atan2(cross(in, out), in.dot(out));
+      skipArcs_[j] = raw + 2 * M_PI * std::round((p.arc - raw) / (2 * M_PI));
+      if (skipArcs_[j] < 0) return false;
+      continue;
+    }
+    size_t k = i;
+    while (k + 2 < path_.size() && path_[k + 1].pulley == j) ++k;
+    int walk, loops;
+    skipArcs_[j] = walkTurning(selectedPoint(i - 1), selectedPoint(k + 1), p.world, p.side,
+                               path_[i].vertex, path_[k].vertex, p.arc, walk, loops);
+    const int n = static_cast<int>(p.local.size());
+    if (skipArcs_[j] <= kStraightWrapTurn || static_cast<int>(k - i + 1) != walk + loops * n)
+      return false;
+    i = k;
+  }
+  for (const WrapPoint& w : path_)
+    if (w.pulley >= 0) pulleys_[w.pulley].arc = skipArcs_[w.pulley];
+  cableKinematics(path_, bodies, kin_);
+  return true;
+}
+
+}  // namespace cablelab
