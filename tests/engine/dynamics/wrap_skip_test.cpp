@@ -148,8 +148,9 @@ TEST(WrapSkip, FastCatchesAreTheSame) {
       w.step(s.dt, s.substeps);
       caught |= w.cable(0).engaged(0);
       // Above the anchors' line (y = 0) the square must be wrapped, else it went through.
-      if (w.body(0).position.y() > 0)
+      if (w.body(0).position.y() > 0) {
         EXPECT_TRUE(w.cable(0).engaged(0)) << speed << " m/s went through at step " << k;
+      }
     }
     EXPECT_TRUE(caught) << speed;
     EXPECT_GT(n.events, 0) << speed;
