@@ -6,7 +6,7 @@
 
 namespace cablelab {
 
-inline constexpr double kBaumgarte = 0.2;    ///< share of a rigid cable's length error fixed per step
+inline constexpr double kBaumgarte = 0.2;  ///< share of a rigid cable's length error fixed per step
 inline constexpr double kLengthSlop = 1e-5;  ///< m
 
 }  // namespace cablelab

@@ -9,7 +9,7 @@ namespace cablelab {
 namespace {
 
 constexpr double kResidualTolerance = 1e-10;  // |net force, torque / size| per unit max tension
-constexpr double kPoseArmijo = 1e-4;              // sufficient decrease of the line search
+constexpr double kPoseArmijo = 1e-4;          // sufficient decrease of the line search
 
 /// s(q) = |c(q) - anchor| with c(q) = (x, y) + R(theta) r, its gradient and Hessian in q.
 struct Segment {
@@ -123,7 +123,8 @@ BoxPoseResult solveBoxPose(const std::vector<BoxCable>& cables, const BoxPose& s
     const Eigen::Vector3d step = -ldlt.solve(g);
     // Backtracking: every accepted step lowers E.
     double t = 1;
-    while (boxPoseEnergy(cables, out.pose + t * step) > E + kPoseArmijo * t * g.dot(step) && t > 1e-12)
+    while (boxPoseEnergy(cables, out.pose + t * step) > E + kPoseArmijo * t * g.dot(step) &&
+           t > 1e-12)
       t *= 0.5;
     if (t <= 1e-12) break;  // no descent left at double precision
     out.pose += t * step;

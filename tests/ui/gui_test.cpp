@@ -91,9 +91,10 @@ void expectSameLayout(const ui::Image& gui, const ui::Image& offscreen, const st
 TEST(Gui, FramesScreenshotAndLayoutMatchTheOffscreenRenderer) {
   REQUIRE_XVFB();
   const std::string shot = (outputDir("gui") / "hexagon.png").string();
-  const RunResult r = run(kXvfb + std::string(CABLELAB_CLI) + " gui hexagon --size 1280x720 --frames " +
-                              std::to_string(kFrames) + " --screenshot " + shot,
-                          "gui_frames");
+  const RunResult r =
+      run(kXvfb + std::string(CABLELAB_CLI) + " gui hexagon --size 1280x720 --frames " +
+              std::to_string(kFrames) + " --screenshot " + shot,
+          "gui_frames");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.out.find("\"frames\": 60"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"fps\": "), std::string::npos) << r.out;
@@ -114,9 +115,10 @@ TEST(Gui, HandSceneRunsTheControllerWithLivePlots) {
   REQUIRE_XVFB();
   constexpr int kHandFrames = 120;
   const std::string shot = (outputDir("gui") / "hand.png").string();
-  const RunResult r = run(kXvfb + std::string(CABLELAB_CLI) + " gui hand --size 1280x720 --frames " +
-                              std::to_string(kHandFrames) + " --screenshot " + shot,
-                          "gui_hand");
+  const RunResult r =
+      run(kXvfb + std::string(CABLELAB_CLI) + " gui hand --size 1280x720 --frames " +
+              std::to_string(kHandFrames) + " --screenshot " + shot,
+          "gui_hand");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.out.find("\"frames\": 120"), std::string::npos) << r.out;
   const ui::Image gui = ui::readPng(shot);
@@ -148,7 +150,8 @@ TEST(Gui, HandSceneRunsTheControllerWithLivePlots) {
 
 TEST(Gui, SyntheticMouseDragsABodyAndClickSetsTheTarget) {
   REQUIRE_XVFB();
-  const RunResult r = run(kXvfb + std::string(CABLELAB_CLI) + " gui hexagon --size 1280x720 --test-input", "gui_input");
+  const RunResult r = run(
+      kXvfb + std::string(CABLELAB_CLI) + " gui hexagon --size 1280x720 --test-input", "gui_input");
   EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("\"test_input\": true"), std::string::npos) << r.out;
 }
@@ -158,9 +161,10 @@ TEST(Gui, BadSceneFileShowsTheErrorAndKeepsRunning) {
   const std::string bad = (outputDir("gui") / "bad-scene.json").string();
   std::ofstream(bad) << "{\"bodies\": [ this is not json";
   const std::string shot = (outputDir("gui") / "bad-scene.png").string();
-  const RunResult r = run(kXvfb + std::string(CABLELAB_CLI) + " gui hexagon --size 1280x720 --frames 30 --open " + bad +
-                              " --screenshot " + shot,
-                          "gui_bad_scene");
+  const RunResult r =
+      run(kXvfb + std::string(CABLELAB_CLI) + " gui hexagon --size 1280x720 --frames 30 --open " +
+              bad + " --screenshot " + shot,
+          "gui_bad_scene");
   EXPECT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find(bad), std::string::npos) << "stderr should name the file: " << r.err;
   EXPECT_NE(r.out.find("\"frames\": 30"), std::string::npos) << r.out;
@@ -175,7 +179,8 @@ TEST(Gui, BadSceneFileShowsTheErrorAndKeepsRunning) {
   EXPECT_GT(banner, 2000) << "no error banner in " << shot;
 
   // A bad scene on the command line: the error, then the default scene, exit 0.
-  const RunResult first = run(kXvfb + std::string(CABLELAB_CLI) + " gui " + bad + " --frames 5", "gui_bad_first");
+  const RunResult first =
+      run(kXvfb + std::string(CABLELAB_CLI) + " gui " + bad + " --frames 5", "gui_bad_first");
   EXPECT_EQ(first.exitCode, 0) << first.err;
   EXPECT_NE(first.err.find(bad), std::string::npos) << first.err;
 }
@@ -189,9 +194,9 @@ namespace {
 /// Runs the sandbox's acceptance scenario NAME on SCENE and returns its JSON report.
 nlohmann::json scenario(const std::string& scene, const std::string& name,
                         const std::string& extra = "") {
-  const RunResult r =
-      run(kXvfb + std::string(CABLELAB_CLI) + " gui " + scene + " --size 1280x720 --script " + name + " " + extra,
-          "gui_script_" + name);
+  const RunResult r = run(kXvfb + std::string(CABLELAB_CLI) + " gui " + scene +
+                              " --size 1280x720 --script " + name + " " + extra,
+                          "gui_script_" + name);
   EXPECT_EQ(r.exitCode, 0) << r.err;
   try {
     return nlohmann::json::parse(r.out);
@@ -258,7 +263,8 @@ TEST(GuiAcceptance, AuthoredSceneRunsInTheCli) {
   EXPECT_EQ(j.value("cables", 0), 1) << j.dump();
   EXPECT_EQ(j.value("pulleys", 0), 1) << j.dump();
   const std::string csv = (outputDir("gui") / "authored.csv").string();
-  const RunResult r = run(std::string(CABLELAB_CLI) + " run " + file + " --time 1 --csv " + csv, "run_authored");
+  const RunResult r =
+      run(std::string(CABLELAB_CLI) + " run " + file + " --time 1 --csv " + csv, "run_authored");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   // The box hangs from the cable over the pulley: it may swing, but it does not fall away.
   std::ifstream in(csv);
@@ -273,8 +279,9 @@ TEST(GuiAcceptance, AuthoredSceneRunsInTheCli) {
 TEST(GuiAcceptance, SmallWindowStillShowsTheWorldView) {
   REQUIRE_XVFB();
   const std::string shot = (outputDir("gui") / "hexagon-640.png").string();
-  const RunResult r = run(
-      kXvfb + std::string(CABLELAB_CLI) + " gui hexagon --size 640x480 --frames 30 --screenshot " + shot, "gui_small");
+  const RunResult r = run(kXvfb + std::string(CABLELAB_CLI) +
+                              " gui hexagon --size 640x480 --frames 30 --screenshot " + shot,
+                          "gui_small");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   const double x = j["free"][0], y = j["free"][1], w = j["free"][2], h = j["free"][3];
@@ -292,8 +299,9 @@ TEST(GuiAcceptance, SmallWindowStillShowsTheWorldView) {
 TEST(GuiAcceptance, SmallWindowPanelRowsFit) {
   REQUIRE_XVFB();
   for (const char* scene : {"hand", "membrane", "hexagon"}) {
-    const RunResult r = run(kXvfb + std::string(CABLELAB_CLI) + " gui " + scene + " --size 640x480 --frames 5",
-                            std::string("gui_rows_") + scene);
+    const RunResult r =
+        run(kXvfb + std::string(CABLELAB_CLI) + " gui " + scene + " --size 640x480 --frames 5",
+            std::string("gui_rows_") + scene);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["overflow"][0].get<double>(), 0) << scene << ": " << r.out;
@@ -346,8 +354,9 @@ TEST(GuiAcceptance, CapstanInspectorListsSpanTensionsInTheCapstanRatio) {
 TEST(GuiAcceptance, RecordButtonWritesOneFramePerThirtiethOfASimulatedSecond) {
   REQUIRE_XVFB();
   const std::string gif = (outputDir("gui") / "recorded.gif").string();
-  const RunResult r =
-      run(kXvfb + std::string(CABLELAB_CLI) + " gui hexagon --size 1280x720 --frames 61 --record " + gif, "gui_record");
+  const RunResult r = run(kXvfb + std::string(CABLELAB_CLI) +
+                              " gui hexagon --size 1280x720 --frames 61 --record " + gif,
+                          "gui_record");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   const ui::GifAnimation a = ui::readGif(gif);

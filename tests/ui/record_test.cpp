@@ -9,7 +9,6 @@
 namespace cablelab::test {
 namespace {
 
-
 /// A frame of four flat colour bands whose boundary moves with `k`.
 ui::Image bands(int width, int height, int k) {
   ui::Image image;
@@ -63,7 +62,8 @@ TEST(Gif, WriterRejectsAWrongSizeAndAnUnwritablePath) {
 TEST(RecordCli, HexagonForTwoSecondsHasSixtyDifferentFrames) {
   const std::string out = (outputDir("record") / "clip.gif").string();
   const RunResult r =
-      run(std::string(CABLELAB_CLI) + " record hexagon --out " + out + " --time 2 --size 320x240", "record_hexagon");
+      run(std::string(CABLELAB_CLI) + " record hexagon --out " + out + " --time 2 --size 320x240",
+          "record_hexagon");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const ui::GifAnimation a = ui::readGif(out);
   // One frame per 1/30 s from t = 0 to t = 2 inclusive.
