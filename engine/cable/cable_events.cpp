@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/cable/body_frames.h"
 #include "engine/cable/cable.h"
 #include "engine/cable/crossing.h"
 
@@ -15,40 +16,13 @@ namespace cablelab {
 
 namespace {
 
-// The start poses' cos and sin, worked out once per body: a cable's points sit on few bodies
-// (a polygon's vertices, both ends on one paddle) and each event test turns three of them.
-class StartFrames {
- public:
-  explicit StartFrames(std::span<const BodyState> motion) : motion_(motion) {}
-  MovingPoint point(int body, const Vec2& local) {
-    if (body < 0) return MovingPoint::on(motion_, body, local);
-    const Rotation& r = rotationOf(body);
-    return MovingPoint::on(motion_, body, local, r.c, r.s);
-  }
-  // The world point `world` in the body's frame.
-  Vec2 local(int body, const Vec2& world) {
-    const Rotation& r = rotationOf(body);
-    return rotate(Vec2(world - motion_[body].position), r.c, -r.s);
-  }
-
- private:
-  struct Rotation {
-    int body;
-    double c, s;
-  };
-  const Rotation& rotationOf(int body) {
-    for (int i = 0; i < count_; ++i)
-      if (cache_[i].body == body) return cache_[i];
-    const double angle = motion_[body].angle;
-    if (count_ == kSize) count_ = 0;  // many bodies: recycle the slots
-    cache_[count_] = {body, std::cos(angle), std::sin(angle)};
-    return cache_[count_++];
-  }
-  static constexpr int kSize = 4;
-  std::span<const BodyState> motion_;
-  Rotation cache_[kSize];
-  int count_ = 0;
-};
+// A point moving with its body from the start pose (`frames` holds the start rotations).
+MovingPoint startPoint(std::span<const BodyState> motion, BodyFrames& frames, int body,
+                       const Vec2& local) {
+  if (body < 0) return MovingPoint::on(motion, body, local);
+  const BodyFrames::Rotation& r = frames.rotation(body);
+  return MovingPoint::on(motion, body, local, r.c, r.s);
+}
 
 void keepEarliest(std::optional<WrapEvent>& best, double time, int pulley, WrapEvent::Kind kind) {
   if (!best || time < best->time) best = WrapEvent{time, pulley, kind};
@@ -65,14 +39,14 @@ std::optional<WrapEvent> Cable::nextEvent(std::span<const BodyState> motion, dou
     return best;
   }
   const int count = static_cast<int>(pulleys_.size());
-  StartFrames frames(motion);
-  auto moving = [&](const WrapPoint& w) { return frames.point(w.body, w.local); };
+  BodyFrames frames(motion);
+  auto moving = [&](const WrapPoint& w) { return startPoint(motion, frames, w.body, w.local); };
   // Where the cable touches a path point: a circle's tangent point (fixed on its body for the
   // sub-step, a first-order guess), else the point itself.
   auto contact = [&](const WrapPoint& w, const Vec2& world) {
     if (w.kind != WrapPoint::Kind::Circle) return moving(w);
     if (w.body < 0) return MovingPoint::on(motion, -1, world);
-    return frames.point(w.body, frames.local(w.body, world));
+    return startPoint(motion, frames, w.body, frames.localPoint(w.body, world));
   };
 
   // Joins: a point that would enter the path between path_[i] and path_[i + 1].
@@ -84,7 +58,7 @@ std::optional<WrapEvent> Cable::nextEvent(std::span<const BodyState> motion, dou
     // either side.
     auto tryPoint = [&](int j, const Vec2& local, WrapEvent::Kind kind) {
       const PulleyState& p = pulleys_[j];
-      const MovingPoint mp = frames.point(p.body, local);
+      const MovingPoint mp = startPoint(motion, frames, p.body, local);
       const double reach = p.circle ? p.radius : 0.0;
       for (const WrapSide side : {WrapSide::Left, WrapSide::Right}) {
         if (!p.autoSide && side != p.side) continue;

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/cable/body_frames.h"
 #include "engine/cable/cable.h"
 #include "engine/cable/circle_wrap.h"
 
@@ -27,38 +28,6 @@ struct PointMotion {
   Vec2 offset = Vec2::Zero();    // world offset from the body origin
   Vec2 velocity = Vec2::Zero();  // world velocity of the point
   Vec2 accel = Vec2::Zero();     // -omega^2 r: the J-dot-v part of its acceleration
-};
-
-// World points of a path: a path visits few bodies, most of them at several points (polygon
-// vertices, both ends on one paddle), so each body's cos/sin is worked out once per call.
-class PathFrames {
- public:
-  explicit PathFrames(std::span<const BodyState> bodies) : bodies_(bodies) {}
-
-  Vec2 worldPoint(int body, const Vec2& local) {
-    if (body < 0) return local;
-    const Rotation& r = rotationOf(body);
-    return bodies_[body].position + rotate(local, r.c, r.s);
-  }
-
- private:
-  struct Rotation {
-    int body;
-    double c, s;
-  };
-  const Rotation& rotationOf(int body) {
-    for (int i = 0; i < count_; ++i)
-      if (cache_[i].body == body) return cache_[i];
-    const double angle = bodies_[body].angle;
-    Rotation r{body, std::cos(angle), std::sin(angle)};
-    if (count_ == kSize) count_ = 0;  // many bodies: recycle the slots
-    cache_[count_] = r;
-    return cache_[count_++];
-  }
-  static constexpr int kSize = 4;
-  std::span<const BodyState> bodies_;
-  Rotation cache_[kSize];
-  int count_ = 0;
 };
 
 PointMotion motionOf(std::span<const BodyState> bodies, const WrapPoint& p) {
@@ -129,7 +98,7 @@ void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodie
   k.jacobian.clear();
   k.zeroLengthSegments = 0;
   k.directions.resize(path.empty() ? 0 : path.size() - 1);
-  PathFrames frames(bodies);
+  BodyFrames frames(bodies);
   bool circles = false;
   for (WrapPoint& p : path) {
     p.world = frames.worldPoint(p.body, p.local);

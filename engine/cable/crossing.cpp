@@ -8,18 +8,8 @@
 namespace cablelab {
 
 MovingPoint MovingPoint::on(std::span<const BodyState> motion, int body, const Vec2& local) {
-  MovingPoint m;
-  m.local = local;
-  m.start = local;
-  if (body < 0) return m;
-  const BodyState& b = motion[body];
-  m.origin = b.position;
-  m.velocity = b.velocity;
-  m.angle = b.angle;
-  m.angularVelocity = b.angularVelocity;
-  m.start = m.at(0);
-  m.speed = m.velocity.norm() + std::abs(m.angularVelocity) * local.norm();
-  return m;
+  const double angle = body < 0 ? 0.0 : motion[body].angle;
+  return on(motion, body, local, std::cos(angle), std::sin(angle));
 }
 
 MovingPoint MovingPoint::on(std::span<const BodyState> motion, int body, const Vec2& local,
