@@ -18,6 +18,19 @@ void forPulledBodies(const Cable& cable, std::span<const BodyState> bodies, F&& 
 
 }  // namespace
 
+bool CableIslands::anyFree(std::span<const BodyState> bodies, std::span<const Cable> cables,
+                           std::span<const char> excluded) {
+  for (const Cable& c : cables) {
+    bool pulls = false, free = true;
+    forPulledBodies(c, bodies, [&](int body) {
+      pulls = true;
+      free = free && !excluded[body];
+    });
+    if (pulls && free) return true;
+  }
+  return false;
+}
+
 void CableIslands::build(std::span<const BodyState> bodies, std::span<const Cable> cables,
                          bool whole) {
   const int n = static_cast<int>(bodies.size());

@@ -19,6 +19,11 @@ class CableIslands {
   void build(std::span<const BodyState> bodies, std::span<const Cable> cables, bool whole);
 
   int count() const { return static_cast<int>(first_.size()) - 1; }
+  /// Whether some cable pulls on moving bodies none of which is `excluded`: without one no
+  /// island can go to the midpoint solve, and the partition is not needed (a hand's step).
+  static bool anyFree(std::span<const BodyState> bodies, std::span<const Cable> cables,
+                      std::span<const char> excluded);
+
   /// Island i's cables, in cable order.
   std::span<const int> cables(int i) const {
     return std::span<const int>(members_).subspan(first_[i], first_[i + 1] - first_[i]);

@@ -255,30 +255,35 @@ void World::solveForces(double dt, double h) {
     for (int body : {a, b})
       if (body >= 0) excluded_[body] = 1;
   b2_->markTouching(excluded_);
-  islands_->build(bodies_, cables_, !midpointPerIsland_);
-  midpointCable_.assign(cables_.size(), 0);
   midpointCables_.clear();
-  bool mainLeft = false;
-  for (int i = 0; i < islands_->count(); ++i) {
-    const std::span<const int> island = islands_->cables(i);
-    if (midpoint_->applies(bodies_, cables_, island, excluded_, dt)) {
-      const int iterations =
-          midpoint_->solve(bodies_, cables_, island, gravity_, dt, share, forces_, kicks_);
-      if (iterations >= 0) {
-        stats_.solverIterations += iterations;
-        ++stats_.midpointSolves;
-        for (const int c : island) midpointCable_[c] = 1;
-        midpointCables_.insert(midpointCables_.end(), island.begin(), island.end());
-        continue;
+  bool mainLeft = true;
+  if (CableIslands::anyFree(bodies_, cables_, excluded_)) {
+    islands_->build(bodies_, cables_, !midpointPerIsland_);
+    mainLeft = false;
+    for (int i = 0; i < islands_->count(); ++i) {
+      const std::span<const int> island = islands_->cables(i);
+      if (midpoint_->applies(bodies_, cables_, island, excluded_, dt)) {
+        const int iterations =
+            midpoint_->solve(bodies_, cables_, island, gravity_, dt, share, forces_, kicks_);
+        if (iterations >= 0) {
+          stats_.solverIterations += iterations;
+          ++stats_.midpointSolves;
+          midpointCables_.insert(midpointCables_.end(), island.begin(), island.end());
+          continue;
+        }
+        ++stats_.midpointFallbacks;  // Newton did not settle (nothing changed): the main solve
       }
-      ++stats_.midpointFallbacks;  // Newton did not settle (nothing changed): the main solve
+      mainLeft = true;
     }
-    mainLeft = true;
   }
   midpointUsed_ = !midpointCables_.empty();
   if (!mainLeft) {  // every island was the midpoint solve's
     for (const int c : islands_->idle()) cables_[c].setTension(0);
     return;
+  }
+  if (midpointUsed_) {
+    midpointCable_.assign(cables_.size(), 0);
+    for (const int c : midpointCables_) midpointCable_[c] = 1;
   }
   b2_->jointFrames(scene_.joints, jointBodies_, jointFrames_);
   solver_->solve({dt, share, gravity_, bodies_, jointFrames_, jointNeighbours_,
