@@ -53,8 +53,9 @@ class CableSolver {
   CableSolver(const CableSolver&) = delete;
   CableSolver& operator=(const CableSolver&) = delete;
 
-  /// Sets every (not skipped) cable's tension and adds to `loads` (fx, fy, torque per body, already holding
-  /// gravity-free external loads) the forces that realise them. Adds its LCP figures to `stats`.
+  /// Sets every (not skipped) cable's tension and adds to `loads` (fx, fy, torque per body, already
+  /// holding gravity-free external loads) the forces that realise them. Adds its LCP figures to
+  /// `stats`.
   void solve(const CableSolveInput& in, std::span<Cable> cables, std::span<Vec3> loads,
              StepStats& stats);
 

@@ -88,8 +88,7 @@ double floorRow(const WrapPoint& p, const WrapPoint& q, std::span<const BodyStat
 }  // namespace
 
 bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const Cable> cables,
-                             std::span<const int> which, std::span<const char> excluded,
-                             double h) {
+                             std::span<const int> which, std::span<const char> excluded, double h) {
   bool wanted = false, any = false;
   for (const int i : which) {
     const Cable& c = cables[i];

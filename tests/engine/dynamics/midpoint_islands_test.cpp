@@ -143,7 +143,7 @@ TEST(MidpointIslands, UndampedPartsOfTheBusySceneKeepTheirEnergyBesideJointsAndC
 // a midpoint solve in the first.
 struct Gap {
   double largest = 0;
-  int midpointSteps = 0;              // steps with a midpoint solve (per island)
+  int midpointSteps = 0;                   // steps with a midpoint solve (per island)
   long islandSolves = 0, wholeSolves = 0;  // midpoint solves of each world
 };
 
