@@ -163,5 +163,53 @@ TEST(MidpointIslands, OnlyExcludedIslandsFollowTheMainSolveTrajectory) {
   EXPECT_LT(g.largest, 1e-12);
 }
 
+TEST(MidpointIslands, AMidpointIslandBesideAMainOneMovesAsItDoesAlone) {
+  // The undamped band beside a pendulum on a pivot that a rigid cable tethers (jointed: the main
+  // solve's). Neither has wrap events, and the band's own modes set the refinement, so the band
+  // takes the same steps as alone and, solved on its own, moves exactly as alone. With the
+  // whole-world choice the pendulum's joint sent the band to the main solve too.
+  const SceneDef alone = test::undampedBand();
+  SceneDef mixed = alone;
+  BodyDef bob;
+  bob.name = "bob";
+  bob.position = Vec2(5, -1);
+  bob.velocity = Vec2(2, 0);
+  mixed.bodies.push_back(bob);
+  JointDef pivot;
+  pivot.name = "pivot";
+  pivot.bodyB = "bob";
+  pivot.anchor = Vec2(5, 0);
+  mixed.joints.push_back(pivot);
+  CableDef tether;
+  tether.name = "tether";
+  tether.start = {"world", Vec2(7, -1)};
+  tether.end = {"bob", Vec2::Zero()};
+  tether.restLength = 1.9;
+  mixed.cables.push_back(tether);
+  for (const bool perIsland : {true, false}) {
+    SCOPED_TRACE(perIsland ? "per island" : "whole world");
+    World one(alone), two(mixed);
+    two.setMidpointPerIsland(perIsland);
+    double gap = 0, pulled = 0;
+    int midpointSteps = 0;
+    for (int s = 0; s < 600; ++s) {
+      one.step(kDt, alone.substeps);
+      two.step(kDt, mixed.substeps);
+      const BodyState &x = one.body(0), &y = two.body(0);
+      gap = std::max({gap, (x.position - y.position).norm(), (x.velocity - y.velocity).norm()});
+      pulled = std::max(pulled, two.cable(two.findCable("tether")).tension());
+      midpointSteps += two.lastStepStats().midpointSolves > 0;
+    }
+    EXPECT_GT(pulled, 1.0);  // the tether held the pendulum (N)
+    if (perIsland) {
+      EXPECT_EQ(midpointSteps, 600);
+      EXPECT_LT(gap, 1e-12);
+    } else {
+      EXPECT_EQ(midpointSteps, 0);
+      EXPECT_GT(gap, 1e-4);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace cablelab
