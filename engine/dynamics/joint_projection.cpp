@@ -25,17 +25,21 @@ void regularise(double* S, int n) {
 template <int kN>
 void factorLdlt(double* l, int runtimeN, double* d, double* dInv, double* dl) {
   const int n = kN > 0 ? kN : runtimeN;
+#pragma GCC unroll 8
   for (int j = 0; j < n; ++j) {
     // Row j of L times D, once: every entry of column j below needs it.
     double dj = l[j + j * n];
+#pragma GCC unroll 8
     for (int k = 0; k < j; ++k) {
       dl[k] = l[j + k * n] * d[k];
       dj -= l[j + k * n] * dl[k];
     }
     d[j] = dj;
     dInv[j] = dj > 0 ? 1.0 / dj : 0.0;
+#pragma GCC unroll 8
     for (int i = j + 1; i < n; ++i) {
       double v = l[i + j * n];
+#pragma GCC unroll 8
       for (int k = 0; k < j; ++k) v -= l[i + k * n] * dl[k];
       l[i + j * n] = v * dInv[j];
     }
@@ -47,9 +51,12 @@ void solveLdlt(const double* l, int runtimeN, const double* dInv, double* x, int
   const int n = kN > 0 ? kN : runtimeN;
   for (int c = 0; c < cols; ++c, x += n) {
     for (int i = 0; i < n; ++i)
+#pragma GCC unroll 8
       for (int k = 0; k < i; ++k) x[i] -= l[i + k * n] * x[k];
     for (int i = 0; i < n; ++i) x[i] *= dInv[i];
+#pragma GCC unroll 8
     for (int i = n - 1; i >= 0; --i)
+#pragma GCC unroll 8
       for (int k = i + 1; k < n; ++k) x[i] -= l[k + i * n] * x[k];
   }
 }
