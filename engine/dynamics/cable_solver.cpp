@@ -199,6 +199,7 @@ int findIslands(Workspace& ws, const CableSolveInput& in, std::span<Cable> cable
   for (int b = 0; b < bodies; ++b) ws.parent[b] = b;
   ws.cablesWithRows.clear();
   for (size_t i = 0; i < cables.size(); ++i) {
+    if (!in.skip.empty() && in.skip[i]) continue;
     int first = -1;
     forMovingBodies(cables[i], in, [&](int body) {
       if (first >= 0) unite(ws.parent, first, body);
