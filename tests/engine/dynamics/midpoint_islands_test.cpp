@@ -19,32 +19,6 @@ namespace {
 
 using test::kDt;
 
-bool startsWith(const std::string& s, const std::string& prefix) {
-  return s.compare(0, prefix.size(), prefix) == 0;
-}
-
-// Kinetic + gravitational energy of the bodies named `prefix`..., plus the springs of the cables
-// so named; `kinetic` gets the kinetic part.
-double partEnergy(const World& w, const std::string& prefix, double& kinetic) {
-  double e = 0;
-  kinetic = 0;
-  for (int b = 0; b < static_cast<int>(w.scene().bodies.size()); ++b) {
-    if (!startsWith(w.scene().bodies[b].name, prefix)) continue;
-    const BodyState& x = w.body(b);
-    const double m = 1.0 / x.invMass;
-    double k = 0.5 * m * x.velocity.squaredNorm();
-    if (x.invInertia > 0) k += 0.5 * x.angularVelocity * x.angularVelocity / x.invInertia;
-    kinetic += k;
-    e += k - m * w.gravity().dot(x.position);
-  }
-  for (int c = 0; c < w.cableCount(); ++c) {
-    const Cable& cable = w.cable(c);
-    if (startsWith(cable.name(), prefix) && cable.elastic())
-      e += 0.5 * cable.stiffness() * std::pow(std::max(0.0, cable.stretch()), 2);
-  }
-  return e;
-}
-
 // Largest |E - E0| of each undamped part of the busy world over `seconds`, over its largest
 // kinetic energy.
 struct PartDrift {
@@ -57,13 +31,13 @@ PartDrift runBusy(bool perIsland, double seconds) {
   world.setMidpointPerIsland(perIsland);
   const std::string parts[2] = {"sling.", "band."};
   double e0[2], worst[2] = {0, 0}, scale[2] = {0, 0}, kinetic = 0;
-  for (int p = 0; p < 2; ++p) e0[p] = partEnergy(world, parts[p], kinetic);
+  for (int p = 0; p < 2; ++p) e0[p] = test::partEnergy(world, parts[p], kinetic);
   PartDrift r;
   r.steps = static_cast<int>(std::lround(seconds / kDt));
   for (int s = 0; s < r.steps; ++s) {
     world.step(kDt, world.scene().substeps);
     for (int p = 0; p < 2; ++p) {
-      worst[p] = std::max(worst[p], std::abs(partEnergy(world, parts[p], kinetic) - e0[p]));
+      worst[p] = std::max(worst[p], std::abs(test::partEnergy(world, parts[p], kinetic) - e0[p]));
       scale[p] = std::max(scale[p], kinetic);
     }
     // Some island went to the midpoint solve while the world has joints and contacts (the main
