@@ -22,10 +22,15 @@ bool CableIslands::anyFree(std::span<const BodyState> bodies, std::span<const Ca
                            std::span<const char> excluded) {
   for (const Cable& c : cables) {
     bool pulls = false, free = true;
-    forPulledBodies(c, bodies, [&](int body) {
-      pulls = true;
-      free = free && !excluded[body];
-    });
+    for (int k = 0; k < c.spanCount() && free; ++k)
+      for (const auto& e : c.spanKinematics(k).jacobian)
+        if (moves(bodies[e.body])) {
+          pulls = true;
+          if (excluded[e.body]) {
+            free = false;  // a hand's cables stop at their first body
+            break;
+          }
+        }
     if (pulls && free) return true;
   }
   return false;
