@@ -201,6 +201,7 @@ int findIslands(Workspace& ws, const CableSolveInput& in, std::span<Cable> cable
   for (int b = 0; b < bodies; ++b) ws.parent[b] = b;
   ws.cablesWithRows.clear();
   for (size_t i = 0; i < cables.size(); ++i) {
+    if (!in.skip.empty() && in.skip[i]) continue;
     int first = -1;
     forMovingBodies(cables[i], in, [&](int body) {
       if (first >= 0) unite(ws.parent, first, body);
@@ -514,16 +515,32 @@ void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable>
 // J W for a row from a sparse Jacobian (a cable touches a few of the n dofs).
 void addJacobianTimesW(const Workspace& ws, const std::vector<BodyJacobian>& jacobian,
                        Eigen::Ref<Eigen::RowVectorXd, 0, Eigen::InnerStride<>> out) {
+  const Eigen::Index n = ws.W.rows(), m = ws.W.cols();
   for (const auto& e : jacobian)
     if (const int d = ws.dofs.ofBody[e.body]; d >= 0)
-      out += e.d.transpose() * ws.W.middleRows<3>(d);
+      for (Eigen::Index s = 0; s < m; ++s) {
+        const double* w = ws.W.data() + s * n + d;
+        out[s] += e.d[0] * w[0] + e.d[1] * w[1] + e.d[2] * w[2];
+      }
+}
+
+// out = W P, column by column: W has a few columns (one per row), and Eigen's general product
+// costs more than the arithmetic at these sizes.
+void timesImpulses(const Eigen::MatrixXd& W, const Eigen::VectorXd& P, Eigen::VectorXd& out) {
+  const Eigen::Index n = W.rows(), m = W.cols();
+  out.setZero(n);
+  for (Eigen::Index s = 0; s < m; ++s) {
+    const double p = P[s];
+    const double* w = W.data() + s * n;
+    for (Eigen::Index d = 0; d < n; ++d) out[d] += w[d] * p;
+  }
 }
 
 // The end-of-step state for impulses P (Box2D integrates q1 = q0 + h v1), then each row's
 // end-of-step length error phi1 and its linearisation J1 W.
 void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
   const double h = in.h;
-  ws.WP.noalias() = ws.W * ws.P;
+  timesImpulses(ws.W, ws.P, ws.WP);
   ws.v1 = ws.vStar - ws.WP;
   for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
     const BodyState& s = in.bodies[ws.dofs.body[k]];
@@ -661,7 +678,7 @@ void applyForces(Workspace& ws, double h, std::span<Cable> cables, std::span<Vec
     const Cable& c = cables[row.cable];
     ws.warm[row.cable] = {h, c.tension(), c.spanCount()};
   }
-  ws.WP.noalias() = ws.W * ws.P;
+  timesImpulses(ws.W, ws.P, ws.WP);
   for (size_t k = 0; k < ws.dofs.body.size(); ++k)
     for (int c = 0; c < 3; ++c) {
       const int d = 3 * static_cast<int>(k) + c;

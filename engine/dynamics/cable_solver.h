@@ -39,6 +39,9 @@ struct CableSolveInput {
   std::span<const BodyState> bodies;                  ///< start of the sub-step
   std::span<const JointFrame> joints;                 ///< every joint, indexed as the scene's
   std::span<const std::vector<int>> jointNeighbours;  ///< bodies jointed to each body
+  /// Per cable, 1: another solve (the midpoint one) has set its tension this step; its islands
+  /// share no moving body with the rest. Empty: every cable is this solve's.
+  std::span<const char> skip;
 };
 
 struct CableSolverWorkspace;  // the stages' buffers (cable_solver.cpp)
@@ -50,8 +53,9 @@ class CableSolver {
   CableSolver(const CableSolver&) = delete;
   CableSolver& operator=(const CableSolver&) = delete;
 
-  /// Sets every cable's tension and adds to `loads` (fx, fy, torque per body, already holding
-  /// gravity-free external loads) the forces that realise them. Adds its LCP figures to `stats`.
+  /// Sets every (not skipped) cable's tension and adds to `loads` (fx, fy, torque per body, already
+  /// holding gravity-free external loads) the forces that realise them. Adds its LCP figures to
+  /// `stats`.
   void solve(const CableSolveInput& in, std::span<Cable> cables, std::span<Vec3> loads,
              StepStats& stats);
 

@@ -14,52 +14,79 @@ void regularise(Eigen::Ref<Eigen::MatrixXd> S) {
   S.diagonal().array() += 1e-10 * (1 + S.diagonal().array());
 }
 
-}  // namespace
+// The same on a column-major n x n array.
+void regularise(double* S, int n) {
+  for (int i = 0; i < n; ++i) S[i + i * n] += 1e-10 * (1 + S[i + i * n]);
+}
 
-// L D L^T without pivoting, in place in A's lower triangle (L's unit diagonal implied): S is
-// positive definite once regularised, and a pivot that rounding still makes <= 0 (redundant
-// rows) gets no inverse, as a rank-deficient LDLT would. Eigen's LDLT costs more than the whole
-// projection at a finger's 6 x 6.
-void SmallLdlt::factor(Eigen::MatrixXd& A) {
-  const int n = static_cast<int>(A.rows());
-  if (d.size() != n) d.resize(n), dInv.resize(n), work.resize(n);
-  double* l = A.data();
-  double* dl = work.data();
+// L D L^T without pivoting, in place in the lower triangle of the column-major n x n array l.
+// kN > 0: n is that constant (the loops unroll); 0: n = runtimeN.
+
+template <int kN>
+void factorLdlt(double* l, int runtimeN, double* d, double* dInv, double* dl) {
+  const int n = kN > 0 ? kN : runtimeN;
+#pragma GCC unroll 8
   for (int j = 0; j < n; ++j) {
     // Row j of L times D, once: every entry of column j below needs it.
     double dj = l[j + j * n];
+#pragma GCC unroll 8
     for (int k = 0; k < j; ++k) {
       dl[k] = l[j + k * n] * d[k];
       dj -= l[j + k * n] * dl[k];
     }
     d[j] = dj;
     dInv[j] = dj > 0 ? 1.0 / dj : 0.0;
+#pragma GCC unroll 8
     for (int i = j + 1; i < n; ++i) {
       double v = l[i + j * n];
+#pragma GCC unroll 8
       for (int k = 0; k < j; ++k) v -= l[i + k * n] * dl[k];
       l[i + j * n] = v * dInv[j];
     }
   }
 }
 
-// All columns together: each column's substitutions are a chain of dependent multiply-adds, so
-// interleaving them keeps the pipeline full.
-void SmallLdlt::solveInPlace(const Eigen::MatrixXd& A, Eigen::MatrixXd& B) const {
-  const int n = static_cast<int>(A.rows()), cols = static_cast<int>(B.cols());
-  const double* l = A.data();
-  double* x = B.data();
-  for (int i = 0; i < n; ++i)
-    for (int k = 0; k < i; ++k) {
-      const double lik = l[i + k * n];
-      for (int c = 0; c < cols; ++c) x[i + c * n] -= lik * x[k + c * n];
-    }
-  for (int i = 0; i < n; ++i)
-    for (int c = 0; c < cols; ++c) x[i + c * n] *= dInv[i];
-  for (int i = n - 1; i >= 0; --i)
-    for (int k = i + 1; k < n; ++k) {
-      const double lki = l[k + i * n];
-      for (int c = 0; c < cols; ++c) x[i + c * n] -= lki * x[k + c * n];
-    }
+template <int kN>
+void solveLdlt(const double* l, int runtimeN, const double* dInv, double* x, int cols) {
+  const int n = kN > 0 ? kN : runtimeN;
+  for (int c = 0; c < cols; ++c, x += n) {
+    for (int i = 0; i < n; ++i)
+#pragma GCC unroll 8
+      for (int k = 0; k < i; ++k) x[i] -= l[i + k * n] * x[k];
+    for (int i = 0; i < n; ++i) x[i] *= dInv[i];
+#pragma GCC unroll 8
+    for (int i = n - 1; i >= 0; --i)
+#pragma GCC unroll 8
+      for (int k = i + 1; k < n; ++k) x[i] -= l[k + i * n] * x[k];
+  }
+}
+
+// Calls f.template operator()<N>() with the block size as a constant up to kFixedBlock, 0 beyond.
+template <class F>
+void withBlockSize(int n, F&& f) {
+  static_assert(SmallLdlt::kFixedBlock == 8);
+  switch (n) {
+    case 1: return f.template operator()<1>();
+    case 2: return f.template operator()<2>();
+    case 3: return f.template operator()<3>();
+    case 4: return f.template operator()<4>();
+    case 5: return f.template operator()<5>();
+    case 6: return f.template operator()<6>();
+    case 7: return f.template operator()<7>();
+    case 8: return f.template operator()<8>();
+    default: return f.template operator()<0>();
+  }
+}
+
+}  // namespace
+
+void SmallLdlt::factor(double* a, int n) {
+  if (static_cast<int>(d.size()) < n) d.resize(n), dInv.resize(n), work.resize(n);
+  withBlockSize(n, [&]<int kN>() { factorLdlt<kN>(a, n, d.data(), dInv.data(), work.data()); });
+}
+
+void SmallLdlt::solveInPlace(const double* a, int n, double* x, int cols) const {
+  withBlockSize(n, [&]<int kN>() { solveLdlt<kN>(a, n, dInv.data(), x, cols); });
 }
 
 // Rows sharing a body are in one block (union-find over rows, through the first row per body),
@@ -98,6 +125,21 @@ void JointProjection::findBlocks(std::span<const JointRow> rows, int dofs) {
   fill.assign(start.begin(), start.end() - 1);
   order.resize(c);
   for (int r = 0; r < c; ++r) order[fill[blockOfRoot[findRoot(parent, r)]]++] = r;
+  // S's terms: rows meet on shared dofs.
+  terms.clear();
+  termStart.assign(1, 0);
+  for (size_t b = 0; b + 1 < start.size(); ++b) {
+    const int first = start[b], size = start[b + 1] - first;
+    for (int i = 0; i < size; ++i)
+      for (int j = 0; j <= i; ++j) {
+        const int ri = order[first + i], rj = order[first + j];
+        for (int k = 0; k < 2; ++k)
+          for (int l = 0; l < 2; ++l)
+            if (rows[ri].dof[k] >= 0 && rows[ri].dof[k] == rows[rj].dof[l])
+              terms.push_back({i + j * size, ri, rj, k, l});
+      }
+    termStart.push_back(static_cast<int>(terms.size()));
+  }
 }
 
 void JointProjection::projectDiagonal(std::span<const JointRow> rows, const Eigen::VectorXd& invM,
@@ -113,48 +155,44 @@ void JointProjection::projectDiagonal(std::span<const JointRow> rows, const Eige
                          ? Vec3(rows[r].coeff[k].cwiseProduct(invM.segment<3>(rows[r].dof[k])))
                          : Vec3(Vec3::Zero());
   const int blocks = static_cast<int>(start.size()) - 1;
+  const int cols = m + 1;  // C W, then C v* + bias
   for (int b = 0; b < blocks; ++b) {
     const int first = start[b], size = start[b + 1] - first;
     const int* index = order.data() + first;
-    // The lower triangle of S's block (the factorisation reads only that): rows meet on shared
-    // dofs. Then C W and C v* + bias, one column each (the last is v*'s).
-    if (blockS.rows() != size) blockS.resize(size, size);
-    if (blockSolution.rows() != size || blockSolution.cols() != m + 1)
-      blockSolution.resize(size, m + 1);
+    // The lower triangle of S's block (the factorisation reads only that).
+    blockS.assign(static_cast<size_t>(size) * size, 0.0);
+    for (int t = termStart[b]; t < termStart[b + 1]; ++t) {
+      const Term& term = terms[t];
+      blockS[term.entry] += scaled[term.ri][term.k].dot(rows[term.rj].coeff[term.l]);
+    }
+    // The right-hand sides, column after column: C W, then C v* + bias.
+    blockSolution.resize(static_cast<size_t>(size) * cols);
     for (int i = 0; i < size; ++i) {
       const JointRow& ri = rows[index[i]];
-      for (int j = 0; j <= i; ++j) {
-        const JointRow& rj = rows[index[j]];
-        double sum = 0;
-        for (int k = 0; k < 2; ++k)
-          for (int l = 0; l < 2; ++l)
-            if (ri.dof[k] >= 0 && ri.dof[k] == rj.dof[l])
-              sum += scaled[index[i]][k].dot(rj.coeff[l]);
-        blockS(i, j) = sum;
-      }
       for (int s = 0; s < m; ++s) {
         const double* w = W.data() + s * n;
         double sum = 0;
         for (int k = 0; k < 2; ++k)
           if (ri.dof[k] >= 0) sum += ri.coeff[k].dot(Eigen::Map<const Vec3>(w + ri.dof[k]));
-        blockSolution(i, s) = sum;
+        blockSolution[i + s * size] = sum;
       }
       double cv = ri.bias;
       for (int k = 0; k < 2; ++k)
         if (ri.dof[k] >= 0) cv += ri.coeff[k].dot(vStar.segment<3>(ri.dof[k]));
-      blockSolution(i, m) = cv;
+      blockSolution[i + m * size] = cv;
     }
-    regularise(blockS);
-    ldlt.factor(blockS);
-    ldlt.solveInPlace(blockS, blockSolution);
+    regularise(blockS.data(), size);
+    ldlt.factor(blockS.data(), size);
+    ldlt.solveInPlace(blockS.data(), size, blockSolution.data(), cols);
     // W -= M'^-1 C^T S^-1 C W (and v*): each row adds to its own few dofs.
     for (int i = 0; i < size; ++i) {
       const JointRow& row = rows[index[i]];
       for (int k = 0; k < 2; ++k) {
         if (row.dof[k] < 0) continue;
         const Vec3& push = scaled[index[i]][k];
-        for (int s = 0; s < m; ++s) W.block<3, 1>(row.dof[k], s) -= push * blockSolution(i, s);
-        vStar.segment<3>(row.dof[k]) -= push * blockSolution(i, m);
+        for (int s = 0; s < m; ++s)
+          W.block<3, 1>(row.dof[k], s) -= push * blockSolution[i + s * size];
+        vStar.segment<3>(row.dof[k]) -= push * blockSolution[i + m * size];
       }
     }
   }

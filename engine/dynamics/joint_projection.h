@@ -34,11 +34,17 @@ struct JointRow {
   }
 };
 
-/// A small dense symmetric positive definite factorisation, in place (joint_projection.cpp).
+/// A small dense symmetric positive definite factorisation L D L^T without pivoting, in place in
+/// a column-major n x n array's lower triangle (L's unit diagonal implied). A pivot that rounding
+/// makes <= 0 (redundant rows) gets no inverse, as a rank-deficient LDLT would. Blocks up to
+/// kFixedBlock rows run loops of constant length, which the compiler unrolls: Eigen's LDLT costs
+/// more than the whole projection at a finger's 6 x 6 (joint_projection.cpp).
 struct SmallLdlt {
-  Eigen::VectorXd d, dInv, work;
-  void factor(Eigen::MatrixXd& A);  ///< A's lower triangle becomes L (unit diagonal implied)
-  void solveInPlace(const Eigen::MatrixXd& A, Eigen::MatrixXd& B) const;
+  static constexpr int kFixedBlock = 8;
+  std::vector<double> d, dInv, work;
+  void factor(double* a, int n);
+  /// x <- A^-1 x for `cols` columns of length n stored one after the other.
+  void solveInPlace(const double* a, int n, double* x, int cols) const;
 };
 
 /// The projection's buffers, reused across sub-steps (no allocation once the sizes settle).
@@ -59,9 +65,19 @@ class JointProjection {
   std::vector<int> parent, rowOfBody, blockOfRoot, order, start, fill;
   std::vector<std::array<int, 2>> lastDofs;  // the rows' dofs the blocks were found for
   int lastDofCount = -1;
+  // Where S's lower triangle gets its terms: entry (i, j) of block b (rows order[start[b] + i]
+  // and order[start[b] + j]) adds scaled[ri][k] . coeff[l] of row rj wherever dof k of ri is dof
+  // l of rj. Terms of block b are terms[termStart[b], termStart[b + 1]), by entry in column order.
+  struct Term {
+    int entry;  // i + j * size within the block
+    int ri, rj;
+    int k, l;
+  };
+  std::vector<Term> terms;
+  std::vector<int> termStart;
   std::vector<std::array<Vec3, 2>> scaled;  // M'^-1 C^T by rows
   SmallLdlt ldlt;
-  Eigen::MatrixXd blockS, blockSolution;
+  std::vector<double> blockS, blockSolution;  // one block's S and its right-hand sides
   // The dense path.
   Eigen::MatrixXd MinvCt, S, CW, schurCW, correction;
   Eigen::VectorXd Cv, schurCv, velocityCorrection;  // Cv includes each row's bias

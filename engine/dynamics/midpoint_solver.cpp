@@ -88,9 +88,10 @@ double floorRow(const WrapPoint& p, const WrapPoint& q, std::span<const BodyStat
 }  // namespace
 
 bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const Cable> cables,
-                             std::span<const char> excluded, double h) {
+                             std::span<const int> which, std::span<const char> excluded, double h) {
   bool wanted = false, any = false;
-  for (const Cable& c : cables) {
+  for (const int i : which) {
+    const Cable& c = cables[i];
     bool pulls = false;
     for (const auto& e : c.kinematics().jacobian)
       if (moves(bodies[e.body])) {
@@ -117,7 +118,6 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
 // q1 = q0 + h v_b, the midpoint pose, and each row's discrete gradient and end-of-step stretch.
 void MidpointSolver::evaluate(std::span<const BodyState> bodies, std::span<const Cable> cables,
                               double h) {
-  midpoint_.assign(bodies.begin(), bodies.end());
   for (size_t k = 0; k < bodyOfDof_.size(); ++k) {
     const BodyState& s = bodies[bodyOfDof_[k]];
     BodyState& p = predicted_[bodyOfDof_[k]];
@@ -139,11 +139,10 @@ void MidpointSolver::evaluate(std::span<const BodyState> bodies, std::span<const
 }
 
 double MidpointSolver::transverseMode(std::span<const BodyState> bodies,
-                                      std::span<const Cable> cables) const {
+                                      std::span<const Cable> cables, std::span<const int> which) {
   double fastest = 0;
-  for (size_t r = 0; r < rows_.size(); ++r) {
-    if (segment_[r] >= 0) continue;
-    const Cable& c = cables[rows_[r]];
+  for (const int i : which) {
+    const Cable& c = cables[i];
     const auto& path = c.path();
     double invMass = 0, curvature = 0;
     for (size_t i = 0; i < path.size(); ++i) {
@@ -157,10 +156,10 @@ double MidpointSolver::transverseMode(std::span<const BodyState> bodies,
 }
 
 int MidpointSolver::solve(std::span<const BodyState> bodies, std::span<Cable> cables,
-                          const Vec2& gravity, double h, double share, std::span<Vec3> forces,
-                          std::span<Vec3> kicks) {
+                          std::span<const int> which, const Vec2& gravity, double h, double share,
+                          std::span<Vec3> forces, std::span<Vec3> kicks) {
   share_ = share;
-  if (!buildRows(bodies, cables, gravity, h, forces)) return 0;
+  if (!buildRows(bodies, cables, which, gravity, h, forces)) return 0;
   for (int iteration = 0; iteration < kIterations; ++iteration)
     if (newtonStep(bodies, cables, h)) {
       finish(bodies, cables, h, forces, kicks);
@@ -172,11 +171,19 @@ int MidpointSolver::solve(std::span<const BodyState> bodies, std::span<Cable> ca
 // Rows and dofs as in the main solve; v* moves the bodies half-way in velocity (the position
 // step of the midpoint rule), vFree is what Box2D alone would reach.
 bool MidpointSolver::buildRows(std::span<const BodyState> bodies, std::span<Cable> cables,
-                               const Vec2& gravity, double h, std::span<const Vec3> forces) {
+                               std::span<const int> which, const Vec2& gravity, double h,
+                               std::span<const Vec3> forces) {
   rows_.clear();
-  dofOfBody_.assign(bodies.size(), -1);
+  // Over the world's bodies, but reset only where the last island had dofs: an island's solve
+  // costs its own size, not the world's.
+  if (dofOfBody_.size() != bodies.size()) {
+    dofOfBody_.assign(bodies.size(), -1);
+    predicted_.assign(bodies.begin(), bodies.end());
+    midpoint_ = predicted_;
+  }
+  for (const int b : bodyOfDof_) dofOfBody_[b] = -1;
   bodyOfDof_.clear();
-  for (size_t i = 0; i < cables.size(); ++i) {
+  for (const int i : which) {
     bool pulls = false;
     for (const auto& e : cables[i].kinematics().jacobian)
       if (moves(bodies[e.body])) {
@@ -187,9 +194,12 @@ bool MidpointSolver::buildRows(std::span<const BodyState> bodies, std::span<Cabl
         }
       }
     if (pulls)
-      rows_.push_back(static_cast<int>(i));
+      rows_.push_back(i);
     else
       cables[i].setTension(0);
+    // The rows read the poses of the bodies on the paths (q0 where they are not moved).
+    for (const WrapPoint& w : cables[i].path())
+      if (w.body >= 0) predicted_[w.body] = midpoint_[w.body] = bodies[w.body];
   }
   segment_.assign(rows_.size(), -1);
   const size_t cableRows = rows_.size();
@@ -228,7 +238,6 @@ bool MidpointSolver::buildRows(std::span<const BodyState> bodies, std::span<Cabl
   }
   P_.setZero(m);
   vb_ = vStar_;
-  predicted_.assign(bodies.begin(), bodies.end());
   K_.resize(m, m);
   b_.resize(m);
   return true;

@@ -16,11 +16,15 @@
 //
 // Newton on (v_b, P) with the geometric stiffness in the iteration matrix converges in a few
 // steps even where the cable's transverse mode is far from resolved (a puck caught at 50 m/s).
-// It applies when some cable is elastic or wraps a point on a moving body (straight cables over
-// fixed pulleys keep Box2D's own integration, which the Box2D pulley-joint comparison relies
-// on), no body the cables move is jointed (the joint projection would have to be redone per
-// iteration) or touching a contact, and every elastic cable's axial mode is resolved
-// (omega h <= kMaxElasticOmegaH). If Newton does not settle the main solve takes the step.
+// The choice is made per cable island (cable_islands.h: cables sharing a moving body). It takes
+// an island when some cable of it is elastic or wraps a point on a moving body (straight cables
+// over fixed pulleys keep Box2D's own integration, which the Box2D pulley-joint comparison
+// relies on), no body its cables move is jointed (the joint projection would have to be redone
+// per iteration) or touching a contact, and every elastic cable's axial mode is resolved
+// (omega h <= kMaxElasticOmegaH); the main solve takes the other islands, and an island whose
+// Newton does not settle. So undamped parts of a busy world keep their energy beside jointed and
+// touching ones (within 5e-6 of their kinetic energy over 12 s in the busy test scene, where the
+// whole-world choice lost 70-90%; docs/cables.md, "Long runs").
 #pragma once
 
 #include <span>
@@ -40,27 +44,32 @@ class MidpointSolver {
   /// resolved by the step, and the main solve's backward Euler damps them (stable at any k).
   static constexpr double kMaxElasticOmegaH = 2.0;
 
-  /// Whether this solve should take the step: some cable is elastic, wraps a point on a
-  /// moving body or has a segment short enough to need a floor (a body nearing its pulley)
-  /// (straight cables between fixed pulleys keep Box2D's own integration), no moved body is
-  /// `excluded` (jointed or in contact), and every mode is resolved at h.
+  /// Whether this solve should take the step of the cables `which` (an island, cable_islands.h):
+  /// some cable is elastic, wraps a point on a moving body or has a segment short enough to
+  /// need a floor (a body nearing its pulley) (straight cables between fixed pulleys keep
+  /// Box2D's own integration), no moved body is `excluded` (jointed or in contact), and every
+  /// mode is resolved at h.
   bool applies(std::span<const BodyState> bodies, std::span<const Cable> cables,
-               std::span<const char> excluded, double h);
+               std::span<const int> which, std::span<const char> excluded, double h);
 
-  /// Sets the cables' tensions, adds the force Box2D needs over h to `forces` ((fx, fy, torque)
-  /// per body) and the velocity each body must get after Box2D's step to `kicks`.
-  /// `share` is h over the nominal sub-step (CableSolveInput::share).
+  /// Sets the tensions of the cables `which`, adds the force Box2D needs over h to `forces`
+  /// ((fx, fy, torque) per body) and the velocity each body they move must get after Box2D's
+  /// step to `kicks`; other bodies and cables are left alone. `share` is h over the nominal
+  /// sub-step (CableSolveInput::share). Its cost is the island's, not the world's.
   /// Returns the iterations used, or -1 (nothing changed) if they did not converge.
-  int solve(std::span<const BodyState> bodies, std::span<Cable> cables, const Vec2& gravity,
-            double h, double share, std::span<Vec3> forces, std::span<Vec3> kicks);
+  int solve(std::span<const BodyState> bodies, std::span<Cable> cables, std::span<const int> which,
+            const Vec2& gravity, double h, double share, std::span<Vec3> forces,
+            std::span<Vec3> kicks);
 
-  /// The fastest transverse mode of the last solve's cables (rad/s), from their tensions and
-  /// segment curvatures over the lightest body they move: sqrt(T sum(1 / |d|) / m).
-  double transverseMode(std::span<const BodyState> bodies, std::span<const Cable> cables) const;
+  /// The fastest transverse mode of the cables `which` (rad/s), from their tensions and segment
+  /// curvatures over the lightest body they move: sqrt(T sum(1 / |d|) / m).
+  static double transverseMode(std::span<const BodyState> bodies, std::span<const Cable> cables,
+                               std::span<const int> which);
 
  private:
-  bool buildRows(std::span<const BodyState> bodies, std::span<Cable> cables, const Vec2& gravity,
-                 double h, std::span<const Vec3> forces);
+  bool buildRows(std::span<const BodyState> bodies, std::span<Cable> cables,
+                 std::span<const int> which, const Vec2& gravity, double h,
+                 std::span<const Vec3> forces);
   void evaluate(std::span<const BodyState> bodies, std::span<const Cable> cables, double h);
   void buildIterationMatrix(std::span<const Cable> cables, double h);
   bool newtonStep(std::span<const BodyState> bodies, std::span<const Cable> cables, double h);
@@ -76,7 +85,7 @@ class MidpointSolver {
   Eigen::VectorXd residual_, AinvR_, GAinvR_, dP_, dv_;
   Eigen::MatrixXd A_, Gt_, AinvGt_, K_;
   Eigen::LDLT<Eigen::MatrixXd> ldlt_;
-  std::vector<BodyState> predicted_, midpoint_;
+  std::vector<BodyState> predicted_, midpoint_;  // q1 and the midpoint pose (q0 off the dofs)
   std::vector<WrapPoint> path_;
   std::vector<BodyJacobian> gradient_;
   std::vector<std::vector<BodyJacobian>> gradients_;

@@ -9,6 +9,7 @@
 
 #include "engine/core/error.h"
 #include "engine/dynamics/box2d_bridge.h"
+#include "engine/dynamics/cable_islands.h"
 #include "engine/dynamics/cable_solver.h"
 #include "engine/dynamics/midpoint_solver.h"
 
@@ -39,6 +40,7 @@ World::World(SceneDef scene, const std::string& source)
       b2_(std::make_unique<Box2DBridge>(scene_)),
       solver_(std::make_unique<CableSolver>()),
       midpoint_(std::make_unique<MidpointSolver>()),
+      islands_(std::make_unique<CableIslands>()),
       gravity_(scene_.gravity) {
   jointNeighbours_.assign(scene_.bodies.size(), {});
   for (const JointDef& jd : scene_.joints) {
@@ -241,7 +243,8 @@ void World::predictMotion(double dt) {
   }
 }
 
-// The user's loads, the servos, then the cable tensions for a Box2D step of dt (of a sub-step h).
+// The user's loads, the servos, then the cable tensions for a Box2D step of dt (of a sub-step h):
+// per cable island the midpoint solve where it applies, the main solve on the rest.
 void World::solveForces(double dt, double h) {
   const double share = std::min(1.0, dt / h);
   forces_ = pendingForces_;
@@ -252,22 +255,40 @@ void World::solveForces(double dt, double h) {
     for (int body : {a, b})
       if (body >= 0) excluded_[body] = 1;
   b2_->markTouching(excluded_);
-  midpointUsed_ = false;
-  if (midpoint_->applies(bodies_, cables_, excluded_, dt)) {
-    const int iterations = midpoint_->solve(bodies_, cables_, gravity_, dt, share, forces_, kicks_);
-    if (iterations >= 0) {
-      stats_.solverIterations += iterations;
-      ++stats_.midpointSolves;
-      midpointUsed_ = true;
-      return;
+  midpointCables_.clear();
+  bool mainLeft = true;
+  if (CableIslands::anyFree(bodies_, cables_, excluded_)) {
+    islands_->build(bodies_, cables_, !midpointPerIsland_);
+    mainLeft = false;
+    for (int i = 0; i < islands_->count(); ++i) {
+      const std::span<const int> island = islands_->cables(i);
+      if (midpoint_->applies(bodies_, cables_, island, excluded_, dt)) {
+        const int iterations =
+            midpoint_->solve(bodies_, cables_, island, gravity_, dt, share, forces_, kicks_);
+        if (iterations >= 0) {
+          stats_.solverIterations += iterations;
+          ++stats_.midpointSolves;
+          midpointCables_.insert(midpointCables_.end(), island.begin(), island.end());
+          continue;
+        }
+        ++stats_.midpointFallbacks;  // Newton did not settle (nothing changed): the main solve
+      }
+      mainLeft = true;
     }
-    ++stats_.midpointFallbacks;  // Newton did not settle: the main solve takes the step
-    forces_ = pendingForces_;
-    applyServos();
+  }
+  midpointUsed_ = !midpointCables_.empty();
+  if (!mainLeft) {  // every island was the midpoint solve's
+    for (const int c : islands_->idle()) cables_[c].setTension(0);
+    return;
+  }
+  if (midpointUsed_) {
+    midpointCable_.assign(cables_.size(), 0);
+    for (const int c : midpointCables_) midpointCable_[c] = 1;
   }
   b2_->jointFrames(scene_.joints, jointBodies_, jointFrames_);
-  solver_->solve({dt, share, gravity_, bodies_, jointFrames_, jointNeighbours_}, cables_, forces_,
-                 stats_);
+  solver_->solve({dt, share, gravity_, bodies_, jointFrames_, jointNeighbours_,
+                  midpointUsed_ ? std::span<const char>(midpointCable_) : std::span<const char>()},
+                 cables_, forces_, stats_);
 }
 
 // One Box2D step of `left` seconds or less: cut at the first wrap event if `locate`, so the
@@ -279,10 +300,11 @@ double World::advance(double left, double h, bool locate) {
   selectWraps(h);
   solveForces(left, h);
   double dt = left;
-  // Resolve a fast catch: a midpoint step no longer than kMaxOmegaDt over the cables' fastest
-  // transverse mode, so that J v after it is off by little (docs/cables.md, "Energy").
+  // Resolve a fast catch: a midpoint step no longer than kMaxOmegaDt over the fastest transverse
+  // mode of the midpoint islands' cables, so that J v after it is off by little (docs/cables.md,
+  // "Energy").
   if (locate && midpointUsed_) {
-    const double omega = midpoint_->transverseMode(bodies_, cables_);
+    const double omega = MidpointSolver::transverseMode(bodies_, cables_, midpointCables_);
     if (omega * left > kMaxOmegaDt) {
       dt = std::max(kMaxOmegaDt / omega, kMinEventStep * h);
       if (dt < left) {

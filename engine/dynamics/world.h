@@ -32,6 +32,7 @@
 namespace cablelab {
 
 class Box2DBridge;
+class CableIslands;
 class CableSolver;
 class MidpointSolver;
 struct JointFrame;
@@ -55,8 +56,8 @@ struct StepStats {
   double residual = 0;             ///< largest complementarity residual of the tension solve
   int linearisationFallbacks = 0;  ///< cable rows solved on the start-of-step Jacobian (guard)
   int events = 0;                  ///< Box2D steps cut short at a wrap event
-  int midpointSolves = 0;          ///< cable solves by the energy-consistent midpoint rule
-  int midpointFallbacks = 0;       ///< of those tried, not converged (the main solve was used)
+  int midpointSolves = 0;          ///< island solves by the energy-consistent midpoint rule
+  int midpointFallbacks = 0;       ///< of those tried, not converged (the main solve took it)
   int refinements = 0;             ///< Box2D steps shortened to resolve a fast catch
   int selectionSkips = 0;  ///< cable updates that kept the wrap set unsearched (Cable::setSkipping)
   int searchSkips = 0;     ///< event searches skipped: no wrap change can happen in the sub-step
@@ -116,6 +117,9 @@ class World {
   void setGravity(const Vec2& g);
   /// Wrap-set skipping on every cable (on by default; the same trajectory either way).
   void setWrapSkipping(bool on);
+  /// The energy-consistent solve chosen per cable island (on by default) or, off, for the whole
+  /// world at once (every cable or none: the engine before islands, kept for comparison).
+  void setMidpointPerIsland(bool on) { midpointPerIsland_ = on; }
   Vec2 gravity() const { return gravity_; }
 
   /// Kinetic + gravitational + elastic (membrane) energy (J).
@@ -136,10 +140,14 @@ class World {
   std::unique_ptr<Box2DBridge> b2_;           ///< bodies, joints, contacts
   std::unique_ptr<CableSolver> solver_;       ///< tensions, one solve per sub-step
   std::unique_ptr<MidpointSolver> midpoint_;  ///< the energy-consistent solve, where it applies
+  std::unique_ptr<CableIslands> islands_;     ///< which solve takes which cables
   std::vector<BodyState> motion_;             ///< look-ahead or predicted body states (wrap events)
   std::vector<char> excluded_;       ///< bodies the midpoint solve leaves alone (joints, contacts)
   std::vector<Vec3> kicks_;          ///< velocity added after Box2D's step (midpoint solve)
-  bool midpointUsed_ = false;        ///< the last solveForces() was a midpoint one
+  bool midpointUsed_ = false;        ///< the last solveForces() solved some midpoint island
+  bool midpointPerIsland_ = true;    ///< setMidpointPerIsland()
+  std::vector<char> midpointCable_;  ///< per cable: the midpoint solve took it (main solve skips)
+  std::vector<int> midpointCables_;  ///< those cables
   int cutCable_ = -1;                ///< the last Box2D step ended at this cable's event...
   WrapEvent cutEvent_;               ///< ...this one (-1: it ran to its end)
   std::vector<BodyState> bodies_;    ///< read back from Box2D

@@ -7,8 +7,10 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
+#include "engine/dynamics/world.h"
 #include "engine/model/scene.h"
 #include "engine/scenes/scene_registry.h"
 #include "tests/support/sling_scene.h"
@@ -55,17 +57,21 @@ inline void addPart(SceneDef& into, SceneDef part, const std::string& prefix, co
 
 // The parts with nothing damped, jointed or touching: a square spinning in an elastic sling and
 // a point bouncing in an undamped elastic band.
+// The built-in membrane with nothing damped, its point pressed 5 cm into the band and let go: it
+// bounces in it for ever, never leaving it (a flight between bounces would lose m (g h)^2 / 2 per
+// step to Box2D's symplectic Euler, which the energy-consistent catch then keeps).
+inline SceneDef undampedBand() {
+  SceneDef band = makeScene("membrane", {{"damping", 0.0}});
+  band.bodies[0].linearDamping = 0;
+  band.bodies[0].position.y() = -0.05;
+  return band;
+}
+
 inline SceneDef undampedParts() {
   SceneDef s;
   s.name = "undamped";
   addPart(s, test::sling(4, 1, 6.0, 400, 1), "sling.", Vec2(-4, 0));
-  SceneDef band = makeScene("membrane", {{"damping", 0.0}});
-  band.bodies[0].linearDamping = 0;
-  // Pressed 5 cm into the band and let go: it bounces in it for ever, never leaving it (a
-  // flight between bounces would lose m (g h)^2 / 2 per step to Box2D's symplectic Euler, which
-  // the energy-consistent catch then keeps).
-  band.bodies[0].position.y() = -0.05;
-  addPart(s, band, "band.", Vec2(0, 0));
+  addPart(s, undampedBand(), "band.", Vec2(0, 0));
   return s;
 }
 
@@ -86,6 +92,30 @@ inline SceneDef busy(bool withHand) {
   s.bodies.push_back(ground);
   if (withHand) addPart(s, makeScene("hand"), "hand.", Vec2(0, 40));
   return s;
+}
+
+// The energy of one part of a world (its names start with `prefix`, as addPart gives them): kinetic
+// + gravitational of its bodies plus the springs of its elastic cables; `kinetic` gets the
+// kinetic part. A part with no cable or contact to the others keeps its own.
+inline double partEnergy(const World& w, const std::string& prefix, double& kinetic) {
+  auto ours = [&](const std::string& name) { return name.compare(0, prefix.size(), prefix) == 0; };
+  double e = 0;
+  kinetic = 0;
+  for (int b = 0; b < static_cast<int>(w.scene().bodies.size()); ++b) {
+    const BodyState& x = w.body(b);
+    if (!ours(w.scene().bodies[b].name) || x.invMass == 0) continue;
+    const double m = 1.0 / x.invMass;
+    double k = 0.5 * m * x.velocity.squaredNorm();
+    if (x.invInertia > 0) k += 0.5 * x.angularVelocity * x.angularVelocity / x.invInertia;
+    kinetic += k;
+    e += k - m * w.gravity().dot(x.position);
+  }
+  for (int c = 0; c < w.cableCount(); ++c) {
+    const Cable& cable = w.cable(c);
+    if (ours(cable.name()) && cable.elastic())
+      e += 0.5 * cable.stiffness() * std::pow(std::max(0.0, cable.stretch()), 2);
+  }
+  return e;
 }
 
 }  // namespace cablelab::test
