@@ -93,6 +93,33 @@ ScaleTiming measureScaleCase(const SceneDef& scene, int steps, int rounds) {
   return {median(ours), median(cable), median(theirs)};
 }
 
+// One big island (a chain or a net of cables, engine/scenes/scale_scenes.h): medians of
+// individually timed steps, the whole step and its cable part (us).
+ScaleTiming measureBigIsland(const SceneDef& scene, int steps, int rounds) {
+  using Clock = std::chrono::steady_clock;
+  World world(scene, scene.name);
+  for (int i = 0; i < 3; ++i) world.step(scene.dt, scene.substeps);
+  std::vector<double> step, cable;
+  for (int i = 0; i < steps * rounds; ++i) {
+    const auto t0 = Clock::now();
+    world.step(scene.dt, scene.substeps);
+    step.push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
+    cable.push_back(world.lastStepStats().cableMicros);
+  }
+  return {median(step), median(cable), 0};
+}
+
+// Least-squares slope of log(y) against log(x).
+double logLogSlope(const std::vector<std::pair<double, double>>& points) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (const auto& [x0, y0] : points) {
+    const double x = std::log(x0), y = std::log(y0);
+    sx += x, sy += y, sxx += x * x, sxy += x * y;
+  }
+  const double k = static_cast<double>(points.size());
+  return (k * sxy - sx * sy) / (k * sxx - sx * sx);
+}
+
 const bool benchRegistered = registerCommand(
     "bench", "Measure the headline performance figures (docs/cli.md)", [](CLI::App& sub) {
       struct Options {
@@ -173,6 +200,28 @@ const bool benchRegistered = registerCommand(
         const double k = static_cast<double>(growth.size());
         out["cable_overhead_exponent"] = (k * sxy - sx * sy) / (k * sxx - sx * sx);
 
+        // 1c. One big island: chains of N links (16 .. 1024) and nets; the sparse path solves
+        // those above its threshold (docs/model.md, "Big islands").
+        stage("big islands: chains and nets of cables");
+        nlohmann::json bigTable = nlohmann::json::object();
+        std::vector<std::pair<double, double>> chainGrowth;  // (links, step us), N >= 64
+        for (const ScaleCase& c : bigIslandCases()) {
+          const int cables = static_cast<int>(c.scene.cables.size());
+          if (cables > 1000 && c.name.rfind("net_", 0) == 0) continue;  // ~1 s a step
+          const int steps = std::max(quick ? 2 : 5, (quick ? 1000 : 4000) / (cables + 4));
+          const ScaleTiming t = measureBigIsland(c.scene, steps, 3);
+          bigTable[c.name] = {{"step_us", t.cablelab},
+                              {"cable_us", t.cable},
+                              {"cables", cables},
+                              {"bodies", c.scene.bodies.size()},
+                              {"steps", 3 * steps}};
+          if (c.name.rfind("chain_", 0) == 0 && cables >= 64)  // above the sparse threshold
+            chainGrowth.push_back({cables, t.cablelab});
+        }
+        out["big_island"] = bigTable;
+        // Log-log slope of the chain's step time over N = 64 .. 1024 links (sparse path).
+        out["big_island_exponent"] = logLogSlope(chainGrowth);
+
         // 2. Statics solvers, cold start, seeded random instances.
         const int instances = quick ? 150 : 1000;
         nlohmann::json socp = nlohmann::json::object(), newton = nlohmann::json::object();
@@ -243,6 +292,11 @@ const bool benchRegistered = registerCommand(
                       ratios[name].is_null() ? 0.0 : ratios[name].get<double>(),
                       c["cable_us"].get<double>());
         row("cable cost growth exponent (N = 16..1024)", out["cable_overhead_exponent"], "");
+        std::printf("  big islands (step us; cable us):\n");
+        for (const auto& [name, c] : bigTable.items())
+          std::printf("    %-12s %10.1f %10.1f\n", name.c_str(), c["step_us"].get<double>(),
+                      c["cable_us"].get<double>());
+        row("big island growth exponent (chain, N = 64..1024)", out["big_island_exponent"], "");
         std::printf("  per scene (step us: Box2D alone / with cables / overhead):\n");
         for (const auto& [name, s] : scenes.items())
           std::printf("    %-10s %9.2f %9.2f %8.1f %%\n", name.c_str(),

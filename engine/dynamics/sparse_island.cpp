@@ -15,14 +15,31 @@ namespace cablelab {
 
 namespace {
 
-constexpr int kDefaultSparseThreshold = 48;
+constexpr int kDefaultSparseThreshold = 32;
 int sparseThreshold = kDefaultSparseThreshold;
 
 constexpr int kSparseNewtonIterations = 3;  // as the dense path's kNewtonIterations
 
+// ldlt <- A, ordering A again only if its pattern is not the one `pattern` holds (stored).
+void refactor(Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>& ldlt,
+              const Eigen::SparseMatrix<double>& A, std::vector<int>& pattern) {
+  const int outer = static_cast<int>(A.outerSize()) + 1, nnz = static_cast<int>(A.nonZeros());
+  bool same = static_cast<int>(pattern.size()) == outer + nnz;
+  for (int i = 0; same && i < outer; ++i) same = pattern[i] == A.outerIndexPtr()[i];
+  for (int i = 0; same && i < nnz; ++i) same = pattern[outer + i] == A.innerIndexPtr()[i];
+  if (!same) {
+    pattern.assign(A.outerIndexPtr(), A.outerIndexPtr() + outer);
+    pattern.insert(pattern.end(), A.innerIndexPtr(), A.innerIndexPtr() + nnz);
+    ldlt.analyzePattern(A);
+  }
+  ldlt.factorize(A);
+}
+
 }  // namespace
 
-int sparseIslandThreshold() { return sparseThreshold; }
+int sparseIslandThreshold() {
+  return sparseThreshold;
+}
 
 void setSparseIslandThreshold(int rows) {
   sparseThreshold = rows < 0 ? kDefaultSparseThreshold : rows;
@@ -76,11 +93,22 @@ void SparseIsland::buildDofs(const CableSolveInput& in, std::span<const Cable> c
     for (const auto& e : cables[rows_[r]].spanKinematics(0).jacobian)
       if (const int d = dofOfBody_[e.body]; d >= 0)
         for (int c = 0; c < 3; ++c) {
-          j0_.emplace_back(r, d + c, e.d[c]);
+          if (entered(e.body, c, e.d[c])) j0_.emplace_back(r, d + c, e.d[c]);
           j0Diagonal_[r] += e.d[c] * e.d[c] * invM_[d + c];
         }
     j0Start_.push_back(static_cast<int>(j0_.size()));
   }
+}
+
+// Whether component c of a Jacobian entry on `body` goes into the matrices. A cable tied to a
+// body's centre does not turn it: those zeros are left out (a third fewer unknowns in a chain),
+// but once a body has been turned by a cable its turn stays in, so the KKT pattern (and its
+// ordering) does not change with the values.
+bool SparseIsland::entered(int body, int c, double value) {
+  if (c < 2) return true;
+  if (turns_.size() <= static_cast<size_t>(body)) turns_.resize(body + 1, 0);
+  if (value != 0) turns_[body] = 1;
+  return turns_[body] != 0;
 }
 
 // The dense path's mayBeStiff: whether a segment of the path could pass the stiffness test.
@@ -140,7 +168,7 @@ void SparseIsland::buildStiffMass(double h, std::span<const Cable> cables) {
   mass_.resize(n_, n_);
   mass_.setFromTriplets(stiffTriplets_.begin(), stiffTriplets_.end());
   stiffTriplets_.resize(stiffTriplets_.size() - n_);  // keep the off-diagonal part only
-  massLdlt_.compute(mass_);
+  refactor(massLdlt_, mass_, massPattern_);
 }
 
 // Redundant cables: J0 M^-1 J0^T singular (same rank as the dense path's J0 M'^-1 J0^T).
@@ -150,7 +178,7 @@ bool SparseIsland::redundant() {
   Sparse J(m_, n_);
   J.setFromTriplets(j0_.begin(), j0_.end());
   const Sparse A = J * invM_.asDiagonal() * J.transpose();
-  rankLdlt_.compute(A);
+  refactor(rankLdlt_, A, rankPattern_);
   if (rankLdlt_.info() != Eigen::Success) return true;
   const Eigen::VectorXd d = rankLdlt_.vectorD();
   return !(d.minCoeff() > kRankTolerance * d.cwiseAbs().maxCoeff());
@@ -228,7 +256,7 @@ void SparseIsland::linearise(const CableSolveInput& in, std::span<const Cable> c
     for (const auto& e : kin_.jacobian)
       if (const int d = dofOfBody_[e.body]; d >= 0)
         for (int k = 0; k < 3; ++k) {
-          j1_.emplace_back(r, d + k, e.d[k]);
+          if (entered(e.body, k, e.d[k])) j1_.emplace_back(r, d + k, e.d[k]);
           for (int i = j0Start_[r]; i < j0Start_[r + 1]; ++i)
             if (j0_[i].col() == d + k) jw += e.d[k] * invM_[d + k] * j0_[i].value();
         }
@@ -245,8 +273,10 @@ void SparseIsland::linearise(const CableSolveInput& in, std::span<const Cable> c
 }
 
 // The KKT system of the active set (sparse_island.h), factored and solved into P_new (sol_'s
-// tail) and v1 (its head). The dense LCP's regularisation 1e-12 (1 + K_ii) is kept.
-void SparseIsland::factorAndSolve(double) {
+// tail) and v1 (its head). The dense LCP's regularisation 1e-12 (1 + K_ii) is kept. A row off
+// the active set keeps its entries, as zeros, and reads P = 0: the pattern stays the same, so
+// it is analysed (ordered) once and each change costs a numeric factorisation only.
+void SparseIsland::factorAndSolve() {
   kkt_.clear();
   if (stiff_) kkt_ = stiffTriplets_;
   for (int d = 0; d < n_; ++d) kkt_.emplace_back(d, d, invM_[d] > 0 ? 1 / invM_[d] : 1);
@@ -254,25 +284,20 @@ void SparseIsland::factorAndSolve(double) {
   rhs_.head(n_) = momentum_;
   for (int r = 0; r < m_; ++r) {
     const int row = n_ + r;
-    if (!active_[r]) {
-      kkt_.emplace_back(row, row, 1.0);
-      rhs_[row] = 0;
-      continue;
-    }
+    const double on = active_[r] ? 1.0 : 0.0;
     for (int i = j0Start_[r]; i < j0Start_[r + 1]; ++i)
-      if (invM_[j0_[i].col()] > 0) kkt_.emplace_back(j0_[i].col(), row, j0_[i].value());
+      if (invM_[j0_[i].col()] > 0) kkt_.emplace_back(j0_[i].col(), row, on * j0_[i].value());
     double j1v = 0;
     for (int i = j1Start_[r]; i < j1Start_[r + 1]; ++i) {
-      kkt_.emplace_back(row, j1_[i].col(), j1_[i].value());
+      kkt_.emplace_back(row, j1_[i].col(), on * j1_[i].value());
       j1v += j1_[i].value() * v1k_[j1_[i].col()];
     }
     const double kii = j0Diagonal_[r] + compliance_[r];
-    kkt_.emplace_back(row, row, -(compliance_[r] + 1e-12 * (1 + kii)));
-    rhs_[row] = j1v - e_[r];
+    kkt_.emplace_back(row, row, active_[r] ? -(compliance_[r] + 1e-12 * (1 + kii)) : 1.0);
+    rhs_[row] = active_[r] ? j1v - e_[r] : 0.0;
   }
-  kktMatrix_.resize(n_ + m_, n_ + m_);
-  kktMatrix_.setFromTriplets(kkt_.begin(), kkt_.end());
-  lu_.compute(kktMatrix_);
+  assembleKkt();
+  lu_.factorize(kktMatrix_);
   if (lu_.info() != Eigen::Success) {
     failed_ = true;
     sol_.setZero(n_ + m_);
@@ -283,14 +308,41 @@ void SparseIsland::factorAndSolve(double) {
     if (!active_[r]) sol_[n_ + r] = 0;
 }
 
+// kktMatrix_ from kkt_: where the entries sit as last time, their values go into their slots;
+// else the matrix is built anew and its pattern analysed.
+void SparseIsland::assembleKkt() {
+  const int size = n_ + m_;
+  bool same = kktMatrix_.rows() == size && kktKeys_.size() == kkt_.size();
+  for (size_t i = 0; same && i < kkt_.size(); ++i)
+    same = kktKeys_[i].first == kkt_[i].row() && kktKeys_[i].second == kkt_[i].col();
+  if (!same) {
+    kktKeys_.resize(kkt_.size());
+    for (size_t i = 0; i < kkt_.size(); ++i) kktKeys_[i] = {kkt_[i].row(), kkt_[i].col()};
+    kktMatrix_.resize(size, size);
+    kktMatrix_.setFromTriplets(kkt_.begin(), kkt_.end());  // keeps explicit zeros
+    kktSlots_.resize(kkt_.size());
+    const int* outer = kktMatrix_.outerIndexPtr();
+    const int* inner = kktMatrix_.innerIndexPtr();
+    for (size_t i = 0; i < kkt_.size(); ++i) {
+      const int col = kkt_[i].col();
+      kktSlots_[i] = static_cast<int>(
+          std::lower_bound(inner + outer[col], inner + outer[col + 1], kkt_[i].row()) - inner);
+    }
+    lu_.analyzePattern(kktMatrix_);
+  }
+  double* values = kktMatrix_.valuePtr();
+  std::fill(values, values + kktMatrix_.nonZeros(), 0.0);
+  for (size_t i = 0; i < kkt_.size(); ++i) values[kktSlots_[i]] += kkt_[i].value();
+}
+
 // The LCP K P = b of one linearisation by block principal pivoting on the KKT system, from
 // the current active set: flip every infeasible row at once while that reduces their number,
 // else the last one alone (Murty's rule, finite for K a P-matrix). Returns the pivots.
-int SparseIsland::solveLcp(double h) {
+int SparseIsland::solveLcp() {
   int best = m_ + 1, stalls = 0, pivots = 0;
   std::vector<int> wrong;
   for (const int maxPivots = 4 * m_ + 10; pivots < maxPivots; ++pivots) {
-    factorAndSolve(h);
+    factorAndSolve();
     if (failed_) return pivots;
     wrong.clear();
     for (int r = 0; r < m_; ++r) {
@@ -326,7 +378,7 @@ bool SparseIsland::iterateNewton(const CableSolveInput& in, std::span<const Cabl
   for (int iteration = 0; iteration < kSparseNewtonIterations; ++iteration) {
     v1k_ = v1_;
     linearise(in, cables, predicted, stats);
-    stats.solverIterations += solveLcp(in.h);
+    stats.solverIterations += solveLcp();
     if (failed_) return false;
     const Eigen::VectorXd next = sol_.tail(m_).cwiseMax(0.0);
     const double change = (next - P_).lpNorm<Eigen::Infinity>();
@@ -356,8 +408,7 @@ void SparseIsland::applyForces(double h, std::span<Cable> cables, std::span<Vec3
 
 bool SparseIsland::solve(const CableSolveInput& in, std::span<Cable> cables,
                          std::span<const int> islandCables, std::span<const int> islandJoints,
-                         std::span<BodyState> predicted, std::span<Vec3> loads,
-                         StepStats& stats) {
+                         std::span<BodyState> predicted, std::span<Vec3> loads, StepStats& stats) {
   if (!qualifies(in, cables, islandCables, islandJoints)) return false;
   rows_.assign(islandCables.begin(), islandCables.end());
   m_ = static_cast<int>(rows_.size());

@@ -35,7 +35,8 @@
 
 namespace cablelab {
 
-/// Islands with more rows than this take the sparse path (default 48: measured, docs/model.md).
+/// Islands with more rows than this take the sparse path (default 32: where BM_ChainPath
+/// measured the two paths equally fast, docs/model.md).
 int sparseIslandThreshold();
 /// Test hook: -1 restores the default; 0 sends every island that qualifies to the sparse path,
 /// a large value keeps every island dense.
@@ -48,14 +49,15 @@ class SparseIsland {
   /// the end of the step as far as known (prescribed bodies moved); the island's are written.
   /// Returns false, having changed no cable and no load, if the island is not one for this
   /// path (small, or one of the cases the header lists).
-  bool solve(const CableSolveInput& in, std::span<Cable> cables,
-             std::span<const int> islandCables, std::span<const int> islandJoints,
-             std::span<BodyState> predicted, std::span<Vec3> loads, StepStats& stats);
+  bool solve(const CableSolveInput& in, std::span<Cable> cables, std::span<const int> islandCables,
+             std::span<const int> islandJoints, std::span<BodyState> predicted,
+             std::span<Vec3> loads, StepStats& stats);
 
  private:
   using Sparse = Eigen::SparseMatrix<double>;
   using Triplet = Eigen::Triplet<double>;
 
+  bool entered(int body, int c, double value);
   bool stiffCable(double h2Tension, std::span<const WrapPoint> path) const;
   bool qualifies(const CableSolveInput& in, std::span<const Cable> cables,
                  std::span<const int> islandCables, std::span<const int> islandJoints) const;
@@ -68,32 +70,37 @@ class SparseIsland {
   void velocitiesAt(const Eigen::VectorXd& P);
   void linearise(const CableSolveInput& in, std::span<const Cable> cables,
                  std::span<BodyState> predicted, StepStats& stats);
-  int solveLcp(double h);
-  void factorAndSolve(double h);
+  int solveLcp();
+  void factorAndSolve();
+  void assembleKkt();
   bool iterateNewton(const CableSolveInput& in, std::span<const Cable> cables,
                      std::span<BodyState> predicted, StepStats& stats);
   void applyForces(double h, std::span<Cable> cables, std::span<Vec3> loads);
 
   // The island: rows are its cables (one span each), dofs 3 per moving body.
   std::vector<int> rows_;
+  std::vector<char> turns_;                 // per body: some cable has turned it (entered())
   std::vector<int> dofOfBody_, bodyOfDof_;  // body -> first dof (-1: not in this island)
   int n_ = 0, m_ = 0;
   Eigen::VectorXd invM_, vRaw_, vFree_, momentum_;  // momentum_ = M v* (M v* = M' v*' if stiff)
   // Jacobians as (row, dof, value) lists: J0 at the start of the step, J1 at the prediction.
   std::vector<Triplet> j0_, j1_;
   std::vector<int> j0Start_, j1Start_;  // row r's entries: [start[r], start[r + 1])
-  std::vector<double> j0Diagonal_;  // J0 M^-1 J0^T's diagonal (the guard's and the LCP's scale)
+  std::vector<double> j0Diagonal_;      // J0 M^-1 J0^T's diagonal (the guard's and the LCP's scale)
   std::vector<Triplet> stiffTriplets_;  // M' off the mass diagonal
   std::vector<StiffnessBlock> blocks_;
   bool stiff_ = false;
   Sparse mass_;  // M' (only when stiff_)
   Eigen::SimplicialLDLT<Sparse> massLdlt_, rankLdlt_;
+  std::vector<int> massPattern_, rankPattern_;  // of the matrices they factor
   Eigen::VectorXd target_, compliance_, damped_, phi1_, e_, P_, v1_, v1k_, rhs_, sol_;
   std::vector<char> active_;
   bool failed_ = false;  // a KKT factorisation failed: the island goes to the dense path
   std::vector<WrapPoint> path_;
   CableKinematics kin_;
   std::vector<Triplet> kkt_;
+  std::vector<std::pair<int, int>> kktKeys_;  // (row, col) of each entry of kkt_, as assembled
+  std::vector<int> kktSlots_;                 // where each lands in kktMatrix_'s values
   Sparse kktMatrix_;
   Eigen::SparseLU<Sparse, Eigen::COLAMDOrdering<int>> lu_;
   // Per cable: the h and tension of this path's last solve (Newton's warm start) and whether

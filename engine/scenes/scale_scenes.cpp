@@ -79,7 +79,7 @@ namespace {
 
 constexpr double kLinkLength = 0.6;  // m: above kFloorWatch (engine/dynamics/floors.h)
 
-CableDef link(const std::string& name, const std::string& from, const std::string& to,
+CableDef cableLink(const std::string& name, const std::string& from, const std::string& to,
               const Vec2& fromPoint = Vec2::Zero()) {
   CableDef c;
   c.name = name;
@@ -98,8 +98,8 @@ SceneDef makeHangingChain(int n) {
   for (int k = 0; k < n; ++k) {
     const std::string name = "disc" + std::to_string(k);
     s.bodies.push_back(disc(name, Vec2(0, -kLinkLength * (k + 1)), Vec2(0.2, 0)));
-    s.cables.push_back(k == 0 ? link("link0", "world", name, Vec2::Zero())
-                              : link("link" + std::to_string(k), s.bodies[k - 1].name, name));
+    s.cables.push_back(k == 0 ? cableLink("link0", "world", name, Vec2::Zero())
+                              : cableLink("link" + std::to_string(k), s.bodies[k - 1].name, name));
   }
   return s;
 }
@@ -119,9 +119,9 @@ SceneDef makeCableNet(int rows, int cols) {
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < cols; ++c) {
       const std::string id = std::to_string(r) + "_" + std::to_string(c);
-      s.cables.push_back(r == 0 ? link("up" + id, "world", name(r, c), Vec2(kLinkLength * c, 0))
-                                : link("up" + id, name(r - 1, c), name(r, c)));
-      if (c + 1 < cols) s.cables.push_back(link("right" + id, name(r, c + 1), name(r, c)));
+      s.cables.push_back(r == 0 ? cableLink("up" + id, "world", name(r, c), Vec2(kLinkLength * c, 0))
+                                : cableLink("up" + id, name(r - 1, c), name(r, c)));
+      if (c + 1 < cols) s.cables.push_back(cableLink("right" + id, name(r, c + 1), name(r, c)));
     }
   return s;
 }

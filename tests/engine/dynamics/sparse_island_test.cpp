@@ -13,8 +13,8 @@
 namespace cablelab {
 namespace {
 
-constexpr double kG = 9.81;
-constexpr int kDense = 1 << 30;  // threshold that keeps every island dense
+constexpr double kIslandG = 9.81;
+constexpr int kAlwaysDense = 1 << 30;  // threshold that keeps every island dense
 
 // Restores the default threshold whatever a test does.
 struct ThresholdGuard {
@@ -24,7 +24,7 @@ struct ThresholdGuard {
 
 // A chain just above the default threshold, masses 1 + 0.05 k kg (a wrong mass or a row
 // swapped gives a wrong tension), at rest or swinging.
-SceneDef chain(int n, double swing) {
+SceneDef islandChain(int n, double swing) {
   SceneDef s = makeHangingChain(n);
   for (size_t k = 0; k < s.bodies.size(); ++k) {
     BodyDef& b = s.bodies[k];
@@ -35,16 +35,16 @@ SceneDef chain(int n, double swing) {
   return s;
 }
 
-struct Run {
+struct IslandRun {
   std::vector<std::vector<double>> tensions;  // per step, per cable
   std::vector<BodyState> final;
   long sparseSolves = 0;
 };
 
-Run run(const SceneDef& scene, int threshold, int steps, int substeps = 1) {
+IslandRun runIsland(const SceneDef& scene, int threshold, int steps, int substeps = 1) {
   ThresholdGuard guard(threshold);
   World world(scene, "test");
-  Run r;
+  IslandRun r;
   for (int i = 0; i < steps; ++i) {
     world.step(scene.dt, substeps);
     r.sparseSolves += world.lastStepStats().sparseIslands;
@@ -57,7 +57,7 @@ Run run(const SceneDef& scene, int threshold, int steps, int substeps = 1) {
 }
 
 // Same tensions every step and the same final state, relative to their scales.
-void expectSame(const Run& sparse, const Run& dense, double tolerance) {
+void expectSameIsland(const IslandRun& sparse, const IslandRun& dense, double tolerance) {
   ASSERT_GT(sparse.sparseSolves, 0);
   ASSERT_EQ(dense.sparseSolves, 0);
   for (size_t i = 0; i < dense.tensions.size(); ++i) {
@@ -74,18 +74,18 @@ void expectSame(const Run& sparse, const Run& dense, double tolerance) {
 }
 
 TEST(SparseIsland, SwingingChainMatchesTheDensePath) {
-  const SceneDef s = chain(sparseIslandThreshold() + 2, 0.5);
-  expectSame(run(s, 0, 120), run(s, kDense, 120), 1e-9);
+  const SceneDef s = islandChain(sparseIslandThreshold() + 2, 0.5);
+  expectSameIsland(runIsland(s, 0, 120), runIsland(s, kAlwaysDense, 120), 1e-9);
 }
 
 // Stiff elastic links (omega h > 1: the main solve, with compliance rows) and sub-steps.
 TEST(SparseIsland, ElasticLinksMatchTheDensePath) {
-  SceneDef s = chain(sparseIslandThreshold() + 2, 0.3);
+  SceneDef s = islandChain(sparseIslandThreshold() + 2, 0.3);
   for (size_t k = 0; k < s.cables.size(); k += 3) {
     s.cables[k].stiffness = 2e6;
     s.cables[k].damping = 50;
   }
-  expectSame(run(s, 0, 60, 2), run(s, kDense, 60, 2), 1e-9);
+  expectSameIsland(runIsland(s, 0, 60, 2), runIsland(s, kAlwaysDense, 60, 2), 1e-9);
 }
 
 // A curtain of cables (a 2-D mesh: horizontal links carry no load, they sit at the edge of
@@ -93,13 +93,13 @@ TEST(SparseIsland, ElasticLinksMatchTheDensePath) {
 TEST(SparseIsland, NetMatchesTheDensePath) {
   const SceneDef s = makeCableNet(6, 6);
   ASSERT_GT(static_cast<int>(s.cables.size()), sparseIslandThreshold());
-  expectSame(run(s, 0, 60), run(s, kDense, 60), 1e-9);
+  expectSameIsland(runIsland(s, 0, 60), runIsland(s, kAlwaysDense, 60), 1e-9);
 }
 
 // At rest the link above body k carries the weight of bodies k..n-1; lengths stay put.
 TEST(SparseIsland, HangingChainCarriesTheWeightBelow) {
   const int n = sparseIslandThreshold() + 2;
-  const SceneDef s = chain(n, 0);
+  const SceneDef s = islandChain(n, 0);
   ThresholdGuard guard(-1);
   World world(s, "chain");
   std::vector<double> rest;
@@ -114,17 +114,18 @@ TEST(SparseIsland, HangingChainCarriesTheWeightBelow) {
   EXPECT_LT(worst, 1e-6);
   double below = 0;
   for (int k = n - 1; k >= 0; --k) {
-    below += s.bodies[k].mass * kG;
+    below += s.bodies[k].mass * kIslandG;
     EXPECT_NEAR(world.cable(k).tension(), below, 1e-6 * below) << "link " << k;
   }
 }
 
 // Slack rows in the middle of the island: extra cables from the side of body k to the other side
-// of body k + 2 (off the chain's line, so not redundant), 5 cm longer than the gap, pull with zero tension (complementarity) and leave the chain's tensions as
-// without them. They start active (the LCP's warm start), so the pivoting must drop them.
+// of body k + 2 (off the chain's line, so not redundant), 5 cm longer than the gap, pull with zero
+// tension (complementarity) and leave the chain's tensions as without them. They start active (the
+// LCP's warm start), so the pivoting must drop them.
 TEST(SparseIsland, SlackRowsInTheMiddleCarryNothing) {
   const int n = sparseIslandThreshold();
-  SceneDef s = chain(n, 0);
+  SceneDef s = islandChain(n, 0);
   for (int k = 10; k + 2 < n; k += 7) {
     CableDef c;
     c.name = "slack" + std::to_string(k);
@@ -142,7 +143,7 @@ TEST(SparseIsland, SlackRowsInTheMiddleCarryNothing) {
   }
   double below = 0;
   for (int k = n - 1; k >= 0; --k) {
-    below += s.bodies[k].mass * kG;
+    below += s.bodies[k].mass * kIslandG;
     EXPECT_NEAR(world.cable(k).tension(), below, 1e-6 * below) << "link " << k;
   }
 }
