@@ -148,5 +148,29 @@ TEST(SparseIsland, SlackRowsInTheMiddleCarryNothing) {
   }
 }
 
+// Islands of up to the threshold's rows, and jointed ones (the hand), keep the dense path.
+TEST(SparseIsland, SmallAndJointedIslandsKeepTheDensePath) {
+  ThresholdGuard guard(-1);
+  const SceneDef small = islandChain(sparseIslandThreshold(), 0.3);
+  World world(small, "small");
+  world.step(small.dt, 1);
+  EXPECT_EQ(world.lastStepStats().sparseIslands, 0);
+  const SceneDef big = islandChain(sparseIslandThreshold() + 1, 0.3);
+  World bigWorld(big, "big");
+  bigWorld.step(big.dt, 1);
+  EXPECT_EQ(bigWorld.lastStepStats().sparseIslands, 1);
+  // A body of the chain pinned to the world: the joint projection is the dense path's.
+  SceneDef jointed = big;
+  JointDef j;
+  j.name = "pin";
+  j.kind = JointDef::Kind::Revolute;
+  j.bodyB = jointed.bodies[3].name;
+  j.anchor = jointed.bodies[3].position;
+  jointed.joints.push_back(j);
+  World jointedWorld(jointed, "jointed");
+  jointedWorld.step(jointed.dt, 1);
+  EXPECT_EQ(jointedWorld.lastStepStats().sparseIslands, 0);
+}
+
 }  // namespace
 }  // namespace cablelab
