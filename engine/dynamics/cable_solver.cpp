@@ -10,6 +10,7 @@
 #include "engine/dynamics/floors.h"
 #include "engine/dynamics/joint_projection.h"
 #include "engine/dynamics/length_targets.h"
+#include "engine/dynamics/sparse_island.h"
 #include "engine/dynamics/tension_solver.h"
 
 namespace cablelab {
@@ -110,6 +111,7 @@ struct CableSolverWorkspace {
     int spans = 0;
   };
   std::vector<WarmStart> warm;
+  SparseIsland sparse;  // big islands (sparse_island.h)
 
   void factorStiffMass(double h);
   void applyInverseMass(Eigen::Ref<Eigen::MatrixXd> X);
@@ -729,6 +731,10 @@ void CableSolver::solve(const CableSolveInput& in, std::span<Cable> cables, std:
   if (ws.warm.size() != cables.size()) ws.warm.assign(cables.size(), {});
   predictPrescribed(ws, in);
   for (int island = 0; island < islands; ++island) {
+    // Big islands take the sparse path where it applies (sparse_island.h says which).
+    if (ws.sparse.solve(in, cables, ws.islandRows[island], ws.islandJoints[island], ws.predicted,
+                        loads, stats))
+      continue;
     buildRows(ws, in, cables, island);
     for (bool again = true; again;) {
       predictVelocities(ws, in, cables, loads);

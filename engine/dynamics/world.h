@@ -61,6 +61,7 @@ struct StepStats {
   int refinements = 0;             ///< Box2D steps shortened to resolve a fast catch
   int selectionSkips = 0;  ///< cable updates that kept the wrap set unsearched (Cable::setSkipping)
   int searchSkips = 0;     ///< event searches skipped: no wrap change can happen in the sub-step
+  int sparseIslands = 0;   ///< island solves by the sparse path (big islands, docs/model.md)
 };
 
 class World {

@@ -75,6 +75,68 @@ SceneDef makePulleyChain(int pulleys) {
   return s;
 }
 
+namespace {
+
+constexpr double kLinkLength = 0.6;  // m: above kFloorWatch (engine/dynamics/floors.h)
+
+CableDef link(const std::string& name, const std::string& from, const std::string& to,
+              const Vec2& fromPoint = Vec2::Zero()) {
+  CableDef c;
+  c.name = name;
+  c.start = {from, fromPoint};
+  c.end = {to, Vec2::Zero()};
+  return c;
+}
+
+}  // namespace
+
+SceneDef makeHangingChain(int n) {
+  SceneDef s;
+  s.name = "chain_" + std::to_string(n);
+  s.description = "a rope of " + std::to_string(n) + " discs linked by rigid cables";
+  s.view = {Vec2(0, -0.5 * kLinkLength * n), kLinkLength * n + 1};
+  for (int k = 0; k < n; ++k) {
+    const std::string name = "disc" + std::to_string(k);
+    s.bodies.push_back(disc(name, Vec2(0, -kLinkLength * (k + 1)), Vec2(0.2, 0)));
+    s.cables.push_back(k == 0 ? link("link0", "world", name, Vec2::Zero())
+                              : link("link" + std::to_string(k), s.bodies[k - 1].name, name));
+  }
+  return s;
+}
+
+SceneDef makeCableNet(int rows, int cols) {
+  SceneDef s;
+  s.name = "net_" + std::to_string(rows) + "x" + std::to_string(cols);
+  s.description = "a " + std::to_string(rows) + " x " + std::to_string(cols) +
+                  " curtain of discs and rigid cables";
+  s.view = {Vec2(0.5 * kLinkLength * cols, -0.5 * kLinkLength * rows),
+            kLinkLength * std::max(rows, cols) + 1};
+  auto name = [](int r, int c) { return "disc" + std::to_string(r) + "_" + std::to_string(c); };
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c)
+      s.bodies.push_back(
+          disc(name(r, c), Vec2(kLinkLength * c, -kLinkLength * (r + 1)), Vec2(0.2, 0)));
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      const std::string id = std::to_string(r) + "_" + std::to_string(c);
+      s.cables.push_back(r == 0 ? link("up" + id, "world", name(r, c), Vec2(kLinkLength * c, 0))
+                                : link("up" + id, name(r - 1, c), name(r, c)));
+      if (c + 1 < cols) s.cables.push_back(link("right" + id, name(r, c + 1), name(r, c)));
+    }
+  return s;
+}
+
+std::vector<ScaleCase> bigIslandCases() {
+  std::vector<ScaleCase> cases;
+  for (int n : {16, 64, 256, 1024})
+    cases.push_back({"chain_" + std::to_string(n), makeHangingChain(n)});
+  for (int n : {4, 8, 16, 32}) {
+    SceneDef net = makeCableNet(n, n);
+    cases.push_back({net.name, std::move(net)});
+  }
+  return cases;
+}
+
 std::vector<ScaleCase> scaleCases() {
   std::vector<ScaleCase> cases;
   for (int n : {1, 16, 256, 1024})

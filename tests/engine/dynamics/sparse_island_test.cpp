@@ -1,0 +1,151 @@
+// The sparse path for big islands (engine/dynamics/sparse_island.h): it solves the dense path's
+// problem, so both give the same tensions and trajectories; a hanging chain carries the weight
+// below each link; a slack row in the middle of the island pulls with zero tension.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/dynamics/sparse_island.h"
+#include "engine/dynamics/world.h"
+#include "engine/scenes/scale_scenes.h"
+
+namespace cablelab {
+namespace {
+
+constexpr double kG = 9.81;
+constexpr int kDense = 1 << 30;  // threshold that keeps every island dense
+
+// Restores the default threshold whatever a test does.
+struct ThresholdGuard {
+  explicit ThresholdGuard(int rows) { setSparseIslandThreshold(rows); }
+  ~ThresholdGuard() { setSparseIslandThreshold(-1); }
+};
+
+// A chain just above the default threshold, masses 1 + 0.05 k kg (a wrong mass or a row
+// swapped gives a wrong tension), at rest or swinging.
+SceneDef chain(int n, double swing) {
+  SceneDef s = makeHangingChain(n);
+  for (size_t k = 0; k < s.bodies.size(); ++k) {
+    BodyDef& b = s.bodies[k];
+    b.mass = 1 + 0.05 * static_cast<double>(k);
+    b.inertia *= b.mass;
+    b.velocity = Vec2(swing * std::sin(0.3 * static_cast<double>(k)), 0);
+  }
+  return s;
+}
+
+struct Run {
+  std::vector<std::vector<double>> tensions;  // per step, per cable
+  std::vector<BodyState> final;
+  long sparseSolves = 0;
+};
+
+Run run(const SceneDef& scene, int threshold, int steps, int substeps = 1) {
+  ThresholdGuard guard(threshold);
+  World world(scene, "test");
+  Run r;
+  for (int i = 0; i < steps; ++i) {
+    world.step(scene.dt, substeps);
+    r.sparseSolves += world.lastStepStats().sparseIslands;
+    std::vector<double> t;
+    for (int c = 0; c < world.cableCount(); ++c) t.push_back(world.cable(c).tension());
+    r.tensions.push_back(t);
+  }
+  for (int b = 0; b < world.bodyCount(); ++b) r.final.push_back(world.body(b));
+  return r;
+}
+
+// Same tensions every step and the same final state, relative to their scales.
+void expectSame(const Run& sparse, const Run& dense, double tolerance) {
+  ASSERT_GT(sparse.sparseSolves, 0);
+  ASSERT_EQ(dense.sparseSolves, 0);
+  for (size_t i = 0; i < dense.tensions.size(); ++i) {
+    const double scale = *std::max_element(dense.tensions[i].begin(), dense.tensions[i].end());
+    for (size_t c = 0; c < dense.tensions[i].size(); ++c)
+      ASSERT_NEAR(sparse.tensions[i][c], dense.tensions[i][c], tolerance * scale)
+          << "step " << i << " cable " << c;
+  }
+  for (size_t b = 0; b < dense.final.size(); ++b) {
+    const BodyState &s = sparse.final[b], &d = dense.final[b];
+    EXPECT_NEAR((s.position - d.position).norm(), 0, tolerance * (1 + d.position.norm())) << b;
+    EXPECT_NEAR((s.velocity - d.velocity).norm(), 0, tolerance * (1 + d.velocity.norm())) << b;
+  }
+}
+
+TEST(SparseIsland, SwingingChainMatchesTheDensePath) {
+  const SceneDef s = chain(sparseIslandThreshold() + 2, 0.5);
+  expectSame(run(s, 0, 120), run(s, kDense, 120), 1e-9);
+}
+
+// Stiff elastic links (omega h > 1: the main solve, with compliance rows) and sub-steps.
+TEST(SparseIsland, ElasticLinksMatchTheDensePath) {
+  SceneDef s = chain(sparseIslandThreshold() + 2, 0.3);
+  for (size_t k = 0; k < s.cables.size(); k += 3) {
+    s.cables[k].stiffness = 2e6;
+    s.cables[k].damping = 50;
+  }
+  expectSame(run(s, 0, 60, 2), run(s, kDense, 60, 2), 1e-9);
+}
+
+// A curtain of cables (a 2-D mesh: horizontal links carry no load, they sit at the edge of
+// complementarity).
+TEST(SparseIsland, NetMatchesTheDensePath) {
+  const SceneDef s = makeCableNet(6, 6);
+  ASSERT_GT(static_cast<int>(s.cables.size()), sparseIslandThreshold());
+  expectSame(run(s, 0, 60), run(s, kDense, 60), 1e-9);
+}
+
+// At rest the link above body k carries the weight of bodies k..n-1; lengths stay put.
+TEST(SparseIsland, HangingChainCarriesTheWeightBelow) {
+  const int n = sparseIslandThreshold() + 2;
+  const SceneDef s = chain(n, 0);
+  ThresholdGuard guard(-1);
+  World world(s, "chain");
+  std::vector<double> rest;
+  for (int c = 0; c < n; ++c) rest.push_back(world.cable(c).length());
+  double worst = 0;
+  for (int i = 0; i < 600; ++i) {  // 10 s
+    world.step(s.dt, 1);
+    ASSERT_EQ(world.lastStepStats().sparseIslands, 1);
+    for (int c = 0; c < n; ++c)
+      worst = std::max(worst, std::abs(world.cable(c).length() - rest[c]));
+  }
+  EXPECT_LT(worst, 1e-6);
+  double below = 0;
+  for (int k = n - 1; k >= 0; --k) {
+    below += s.bodies[k].mass * kG;
+    EXPECT_NEAR(world.cable(k).tension(), below, 1e-6 * below) << "link " << k;
+  }
+}
+
+// Slack rows in the middle of the island: extra cables from the side of body k to the other side
+// of body k + 2 (off the chain's line, so not redundant), 5 cm longer than the gap, pull with zero tension (complementarity) and leave the chain's tensions as
+// without them. They start active (the LCP's warm start), so the pivoting must drop them.
+TEST(SparseIsland, SlackRowsInTheMiddleCarryNothing) {
+  const int n = sparseIslandThreshold();
+  SceneDef s = chain(n, 0);
+  for (int k = 10; k + 2 < n; k += 7) {
+    CableDef c;
+    c.name = "slack" + std::to_string(k);
+    c.start = {s.bodies[k].name, Vec2(0.1, 0)};
+    c.end = {s.bodies[k + 2].name, Vec2(-0.1, 0)};
+    c.restLength = std::hypot(s.bodies[k].position.y() - s.bodies[k + 2].position.y(), 0.2) + 0.05;
+    s.cables.push_back(c);
+  }
+  ThresholdGuard guard(-1);
+  World world(s, "slack");
+  for (int i = 0; i < 120; ++i) {
+    world.step(s.dt, 1);
+    ASSERT_EQ(world.lastStepStats().sparseIslands, 1);
+    for (int c = n; c < world.cableCount(); ++c) ASSERT_EQ(world.cable(c).tension(), 0) << c;
+  }
+  double below = 0;
+  for (int k = n - 1; k >= 0; --k) {
+    below += s.bodies[k].mass * kG;
+    EXPECT_NEAR(world.cable(k).tension(), below, 1e-6 * below) << "link " << k;
+  }
+}
+
+}  // namespace
+}  // namespace cablelab
