@@ -90,8 +90,8 @@ double floorRow(const WrapPoint& p, const WrapPoint& q, std::span<const BodyStat
 bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const Cable> cables,
                              std::span<const int> which, std::span<const char> excluded, double h) {
   bool wanted = false, any = false;
-  for (const int i : which) {
-    const Cable& c = cables[i];
+  for (const int index : which) {
+    const Cable& c = cables[index];
     bool pulls = false;
     for (const auto& e : c.kinematics().jacobian)
       if (moves(bodies[e.body])) {
@@ -141,8 +141,8 @@ void MidpointSolver::evaluate(std::span<const BodyState> bodies, std::span<const
 double MidpointSolver::transverseMode(std::span<const BodyState> bodies,
                                       std::span<const Cable> cables, std::span<const int> which) {
   double fastest = 0;
-  for (const int i : which) {
-    const Cable& c = cables[i];
+  for (const int index : which) {
+    const Cable& c = cables[index];
     const auto& path = c.path();
     double invMass = 0, curvature = 0;
     for (size_t i = 0; i < path.size(); ++i) {
