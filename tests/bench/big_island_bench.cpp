@@ -42,7 +42,7 @@ void BM_ChainPath(benchmark::State& state) {
   state.SetLabel(state.range(1) ? "sparse" : "dense");
 }
 BENCHMARK(BM_ChainPath)
-    ->ArgsProduct({{8, 16, 24, 32, 48, 64, 96}, {0, 1}})
+    ->ArgsProduct({{8, 16, 24, 32, 48, 64, 96, 256}, {0, 1}})
     ->ArgNames({"links", "sparse"})
     ->Unit(benchmark::kMicrosecond);
 
