@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/dynamics/box2d_bridge.h"
 #include "engine/dynamics/floors.h"
 #include "engine/dynamics/length_targets.h"
 #include "engine/dynamics/tension_solver.h"
@@ -47,10 +48,8 @@ void setSparseIslandThreshold(int rows) {
 
 // Big enough, and none of the cases the dense path alone handles (sparse_island.h).
 bool SparseIsland::qualifies(const CableSolveInput& in, std::span<const Cable> cables,
-                             std::span<const int> islandCables,
-                             std::span<const int> islandJoints) const {
+                             std::span<const int> islandCables, std::span<const int>) const {
   if (static_cast<int>(islandCables.size()) <= sparseThreshold) return false;
-  if (!islandJoints.empty()) return false;  // the joint projection: dense only (yet)
   auto moved = [&](int b) { return moves(in.bodies[b]); };
   for (int cable : islandCables) {
     const Cable& c = cables[cable];
@@ -73,6 +72,13 @@ void SparseIsland::buildDofs(const CableSolveInput& in, std::span<const Cable> c
       if (moves(in.bodies[e.body]) && dofOfBody_[e.body] < 0) {
         dofOfBody_[e.body] = 3 * static_cast<int>(bodyOfDof_.size());
         bodyOfDof_.push_back(e.body);
+      }
+  // Bodies jointed to them move with them (breadth first, as the dense path's dofs).
+  for (size_t k = 0; k < bodyOfDof_.size(); ++k)
+    for (int other : in.jointNeighbours[bodyOfDof_[k]])
+      if (moves(in.bodies[other]) && dofOfBody_[other] < 0) {
+        dofOfBody_[other] = 3 * static_cast<int>(bodyOfDof_.size());
+        bodyOfDof_.push_back(other);
       }
   n_ = 3 * static_cast<int>(bodyOfDof_.size());
   invM_.resize(n_);
@@ -174,9 +180,15 @@ void SparseIsland::buildStiffMass(double h, std::span<const Cable> cables) {
 // Redundant cables: J0 M^-1 J0^T singular (same rank as the dense path's J0 M'^-1 J0^T).
 // Its LDLT pivots below kRankTolerance of the largest send the island to the dense path.
 bool SparseIsland::redundant() {
-  if (m_ <= 1 || (compliance_.array() != 0).all()) return false;
-  Sparse J(m_, n_);
-  J.setFromTriplets(j0_.begin(), j0_.end());
+  if (q_ == 0 && (m_ <= 1 || (compliance_.array() != 0).all())) return false;
+  // With joints: [J0; C] (a cable the joints make redundant, or a closed loop of joints).
+  std::vector<Triplet> rows = j0_;
+  for (int j = 0; j < q_; ++j)
+    for (int k = 0; k < 2; ++k)
+      if (const int d = joints_[j].dof[k]; d >= 0)
+        for (int c = 0; c < 3; ++c) rows.emplace_back(m_ + j, d + c, joints_[j].coeff[k][c]);
+  Sparse J(m_ + q_, n_);
+  J.setFromTriplets(rows.begin(), rows.end());
   const Sparse A = J * invM_.asDiagonal() * J.transpose();
   refactor(rankLdlt_, A, rankPattern_);
   if (rankLdlt_.info() != Eigen::Success) return true;
@@ -215,8 +227,58 @@ void SparseIsland::warmStart(double h, std::span<const Cable> cables) {
   }
 }
 
-// v1 = M'^-1 (M v* - J0^T P): the velocities the impulses P give.
+// The dense path's jointRows(): the velocity-level rows of the island's joints, C v1 + bias = 0
+// (revolute: the anchor points move together; prismatic: no motion across the axis, no relative
+// turn; weld: all three). In the KKT system they are equality rows with reactions C^T lambda:
+// the same v1 as the dense path's projection through S = C M'^-1 C^T.
+void SparseIsland::jointRows(const CableSolveInput& in, std::span<const int> islandJoints) {
+  joints_.clear();
+  for (int j : islandJoints) {
+    const JointFrame& joint = in.joints[j];
+    const int a = joint.bodyA, b = joint.bodyB;
+    const int da = a >= 0 ? dofOfBody_[a] : -1, db = b >= 0 ? dofOfBody_[b] : -1;
+    if (da < 0 && db < 0) continue;
+    const Vec2 rA = a >= 0 ? Vec2(joint.anchor - in.bodies[a].position) : Vec2::Zero();
+    const Vec2 rB = b >= 0 ? Vec2(joint.anchor - in.bodies[b].position) : Vec2::Zero();
+    auto velocity = [&](int body, int dof) {  // a body that is no dof: its prescribed motion
+      if (body < 0 || dof >= 0) return Vec3(Vec3::Zero());
+      const BodyState& s = in.bodies[body];
+      return Vec3(s.velocity.x(), s.velocity.y(), s.angularVelocity);
+    };
+    const Vec3 vA = velocity(a, da), vB = velocity(b, db);
+    auto push = [&](const Vec3& cb, const Vec3& ca) {
+      JointRow row;
+      row.dof = {db, da};
+      row.coeff = {cb, ca};
+      row.bias = cb.dot(vB) + ca.dot(vA);
+      joints_.push_back(row);
+    };
+    auto pointRow = [&](const Vec2& t) {
+      push(Vec3(t.x(), t.y(), t.dot(perp(rB))), -Vec3(t.x(), t.y(), t.dot(perp(rA))));
+    };
+    auto angleRow = [&] { push(Vec3(0, 0, 1), Vec3(0, 0, -1)); };
+    if (joint.kind == JointDef::Kind::Prismatic) {
+      pointRow(perp(joint.axis));
+      angleRow();
+      continue;
+    }
+    pointRow(Vec2(1, 0));
+    pointRow(Vec2(0, 1));
+    if (joint.kind == JointDef::Kind::Weld) angleRow();
+  }
+  q_ = static_cast<int>(joints_.size());
+}
+
+// v1 = M'^-1 (M v* - J0^T P): the velocities the impulses P give (with joints: the KKT system
+// with P fixed, so that v1 also keeps the joints).
 void SparseIsland::velocitiesAt(const Eigen::VectorXd& P) {
+  if (q_ > 0) {
+    fixed_ = &P;
+    factorAndSolve();
+    fixed_ = nullptr;
+    v1_ = sol_.head(n_);
+    return;
+  }
   rhs_ = momentum_;
   for (const Triplet& t : j0_)
     if (invM_[t.col()] > 0) rhs_[t.col()] -= t.value() * P[t.row()];
@@ -280,38 +342,49 @@ void SparseIsland::factorAndSolve() {
   kkt_.clear();
   if (stiff_) kkt_ = stiffTriplets_;
   for (int d = 0; d < n_; ++d) kkt_.emplace_back(d, d, invM_[d] > 0 ? 1 / invM_[d] : 1);
-  rhs_.resize(n_ + m_);
+  rhs_.resize(n_ + m_ + q_);
   rhs_.head(n_) = momentum_;
   for (int r = 0; r < m_; ++r) {
     const int row = n_ + r;
-    const double on = active_[r] ? 1.0 : 0.0;
+    // fixed_: P given (the impulses act, the row reads P_r = given); else the LCP's rows.
+    const bool on = fixed_ || active_[r], equation = !fixed_ && active_[r];
     for (int i = j0Start_[r]; i < j0Start_[r + 1]; ++i)
-      if (invM_[j0_[i].col()] > 0) kkt_.emplace_back(j0_[i].col(), row, on * j0_[i].value());
+      if (invM_[j0_[i].col()] > 0) kkt_.emplace_back(j0_[i].col(), row, on ? j0_[i].value() : 0);
     double j1v = 0;
     for (int i = j1Start_[r]; i < j1Start_[r + 1]; ++i) {
-      kkt_.emplace_back(row, j1_[i].col(), on * j1_[i].value());
-      j1v += j1_[i].value() * v1k_[j1_[i].col()];
+      kkt_.emplace_back(row, j1_[i].col(), equation ? j1_[i].value() : 0);
+      if (equation) j1v += j1_[i].value() * v1k_[j1_[i].col()];
     }
     const double kii = j0Diagonal_[r] + compliance_[r];
-    kkt_.emplace_back(row, row, active_[r] ? -(compliance_[r] + 1e-12 * (1 + kii)) : 1.0);
-    rhs_[row] = active_[r] ? j1v - e_[r] : 0.0;
+    kkt_.emplace_back(row, row, equation ? -(compliance_[r] + 1e-12 * (1 + kii)) : 1.0);
+    rhs_[row] = equation ? j1v - e_[r] : fixed_ ? (*fixed_)[r] : 0.0;
+  }
+  for (int j = 0; j < q_; ++j) {
+    const int row = n_ + m_ + j;
+    for (int k = 0; k < 2; ++k)
+      if (const int d = joints_[j].dof[k]; d >= 0)
+        for (int c = 0; c < 3; ++c) {
+          if (invM_[d + c] > 0) kkt_.emplace_back(d + c, row, joints_[j].coeff[k][c]);
+          kkt_.emplace_back(row, d + c, joints_[j].coeff[k][c]);
+        }
+    rhs_[row] = -joints_[j].bias;
   }
   assembleKkt();
   lu_.factorize(kktMatrix_);
   if (lu_.info() != Eigen::Success) {
     failed_ = true;
-    sol_.setZero(n_ + m_);
+    sol_.setZero(n_ + m_ + q_);
     return;
   }
   sol_ = lu_.solve(rhs_);
   for (int r = 0; r < m_; ++r)
-    if (!active_[r]) sol_[n_ + r] = 0;
+    if (!fixed_ && !active_[r]) sol_[n_ + r] = 0;
 }
 
 // kktMatrix_ from kkt_: where the entries sit as last time, their values go into their slots;
 // else the matrix is built anew and its pattern analysed.
 void SparseIsland::assembleKkt() {
-  const int size = n_ + m_;
+  const int size = n_ + m_ + q_;
   bool same = kktMatrix_.rows() == size && kktKeys_.size() == kkt_.size();
   for (size_t i = 0; same && i < kkt_.size(); ++i)
     same = kktKeys_[i].first == kkt_[i].row() && kktKeys_[i].second == kkt_[i].col();
@@ -380,10 +453,10 @@ bool SparseIsland::iterateNewton(const CableSolveInput& in, std::span<const Cabl
     linearise(in, cables, predicted, stats);
     stats.solverIterations += solveLcp();
     if (failed_) return false;
-    const Eigen::VectorXd next = sol_.tail(m_).cwiseMax(0.0);
+    const Eigen::VectorXd next = sol_.segment(n_, m_).cwiseMax(0.0);
     const double change = (next - P_).lpNorm<Eigen::Infinity>();
     P_ = next;
-    if (sol_.tail(m_).minCoeff() < 0)
+    if (sol_.segment(n_, m_).minCoeff() < 0)
       velocitiesAt(P_);  // the LCP ran out of pivots: the clamped impulses' velocities
     else
       v1_ = sol_.head(n_);
@@ -414,6 +487,9 @@ bool SparseIsland::solve(const CableSolveInput& in, std::span<Cable> cables,
   m_ = static_cast<int>(rows_.size());
   if (warm_.size() != cables.size()) warm_.assign(cables.size(), {});
   buildDofs(in, cables, loads);
+  jointRows(in, islandJoints);
+  j1_ = j0_;  // J1's pattern until the first linearisation (velocitiesAt() with joints)
+  j1Start_ = j0Start_;
   lengthTargets(in.h, in.share, cables);
   if (redundant()) return false;  // the dense path's minimum-norm solve
   buildStiffMass(in.h, cables);

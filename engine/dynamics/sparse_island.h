@@ -16,11 +16,12 @@
 // sub-step usually costs one factorisation per Newton iteration, linear in the cables.
 //
 // Same stages as the dense path: the same v*, M', length targets (length_targets.h), warm
-// start, Newton iterations and tolerance, and the same forces. Islands it does not handle
-// return false and take the dense path: joints among the island's bodies (the joint
-// projection), cables split in spans by gripping wheels (capstans), segments short enough for a
-// floor row (floors.h), and redundant cables (a singular J0 M^-1 J0^T: the dense path's
-// minimum-norm solve). Private to engine/dynamics.
+// start, Newton iterations and tolerance, and the same forces. Joints among the island's bodies
+// are equality rows C v1 + bias = 0 of the same system (reactions C^T lambda in the first block
+// row): the velocities the dense path's projection gives. Islands it does not handle return false
+// and take the dense path: cables split in spans by gripping wheels (capstans), segments short
+// enough for a floor row (floors.h), and redundant rows (a singular [J0; C] M^-1 [J0; C]^T: the
+// dense path's minimum-norm solve). Private to engine/dynamics.
 #pragma once
 
 #include <Eigen/Core>
@@ -32,6 +33,7 @@
 
 #include "engine/cable/cable.h"
 #include "engine/dynamics/cable_solver.h"
+#include "engine/dynamics/joint_projection.h"
 
 namespace cablelab {
 
@@ -67,6 +69,7 @@ class SparseIsland {
   bool redundant();
   void lengthTargets(double h, double share, std::span<const Cable> cables);
   void warmStart(double h, std::span<const Cable> cables);
+  void jointRows(const CableSolveInput& in, std::span<const int> islandJoints);
   void velocitiesAt(const Eigen::VectorXd& P);
   void linearise(const CableSolveInput& in, std::span<const Cable> cables,
                  std::span<BodyState> predicted, StepStats& stats);
@@ -81,7 +84,9 @@ class SparseIsland {
   std::vector<int> rows_;
   std::vector<char> turns_;                 // per body: some cable has turned it (entered())
   std::vector<int> dofOfBody_, bodyOfDof_;  // body -> first dof (-1: not in this island)
-  int n_ = 0, m_ = 0;
+  int n_ = 0, m_ = 0, q_ = 0;               // dofs, cable rows, joint rows
+  std::vector<JointRow> joints_;            // C, as the dense path builds it (joint_projection.h)
+  const Eigen::VectorXd* fixed_ = nullptr;  // factorAndSolve(): P given, not solved for
   Eigen::VectorXd invM_, vRaw_, vFree_, momentum_;  // momentum_ = M v* (M v* = M' v*' if stiff)
   // Jacobians as (row, dof, value) lists: J0 at the start of the step, J1 at the prediction.
   std::vector<Triplet> j0_, j1_;
