@@ -8,6 +8,7 @@
 
 #include "engine/dynamics/disjoint_sets.h"
 #include "engine/dynamics/floors.h"
+#include "engine/dynamics/geometric_stiffness.h"
 #include "engine/dynamics/joint_projection.h"
 #include "engine/dynamics/length_targets.h"
 #include "engine/dynamics/sparse_island.h"
@@ -74,11 +75,7 @@ struct CableSolverWorkspace {
   Eigen::VectorXd vStar, vFree;  // predicted velocities (stage 2)
   Eigen::MatrixXd W;             // M'^-1 J^T, then projected onto the joints (n x m)
 
-  // Geometric stiffness of the taut cables: their Hessian blocks, blocks[begin, end).
-  struct TautCable {
-    double tension;
-    size_t begin, end;
-  };
+  // Geometric stiffness of the taut cables (geometric_stiffness.h).
   std::vector<TautCable> taut;
   std::vector<StiffnessBlock> blocks;
   bool stiff = false;
@@ -367,23 +364,6 @@ void predictVelocities(Workspace& ws, const CableSolveInput& in, std::span<const
   ws.vFree = ws.vStar;  // what Box2D would reach without cables and joints
 }
 
-// Whether a segment of the path could pass inverseMass()'s stiffness test: a segment's Hessian
-// block has trace 1 / length (appendLengthHessianTranslation), so this bounds the test without
-// building the blocks. A cable that cannot needs none (no block is used unless one is stiff).
-bool mayBeStiff(const Workspace& ws, double h2Tension, std::span<const WrapPoint> path) {
-  for (size_t i = 0; i + 1 < path.size(); ++i) {
-    const int a = path[i].body, b = path[i + 1].body;
-    if (a == b) continue;
-    const Vec2 from = path[i].radius == 0 ? path[i].world : path[i].tangentOut;
-    const Vec2 to = path[i + 1].radius == 0 ? path[i + 1].world : path[i + 1].tangentIn;
-    double invMass = 0;
-    for (int e : {a, b})
-      if (e >= 0 && ws.dofs.ofBody[e] >= 0) invMass = std::max(invMass, ws.invM[ws.dofs.ofBody[e]]);
-    if (h2Tension * invMass > 0.04 * (to - from).norm()) return true;
-  }
-  return false;
-}
-
 // 3. W = M'^-1 J^T. M' adds the geometric stiffness h^2 T d^2(length)/dx^2 of taut cables where
 // it matters (a light body on a tight band turns the force direction faster than one step
 // resolves). Backward Euler on the turning force direction: (M + h^2 T G) v1 = M v* - J^T P, so
@@ -392,22 +372,10 @@ void inverseMass(Workspace& ws, double h, std::span<const Cable> cables) {
   ws.taut.clear();
   ws.blocks.clear();
   ws.stiff = false;
-  for (const Workspace::Row& row : ws.rows) {
-    // Once per cable: not a floor, not a later span.
-    if (row.segment >= 0 || row.first != 0) continue;
-    const Cable& c = cables[row.cable];
-    const double tension =
-        std::max(c.tension(), c.elastic() ? c.stiffness() * std::max(0.0, c.stretch()) : 0.0);
-    if (tension <= 0 || !mayBeStiff(ws, h * h * tension, c.path())) continue;
-    const size_t begin = ws.blocks.size();
-    appendLengthHessianTranslation(c.path(), ws.blocks);
-    for (size_t i = begin; i < ws.blocks.size(); ++i) {
-      const StiffnessBlock& blk = ws.blocks[i];
-      if (blk.a == blk.b && ws.dofs.ofBody[blk.a] >= 0)
-        ws.stiff |= h * h * tension * blk.k.trace() * ws.invM[ws.dofs.ofBody[blk.a]] > 0.05;
-    }
-    ws.taut.push_back({tension, begin, ws.blocks.size()});
-  }
+  for (const Workspace::Row& row : ws.rows)
+    if (row.segment < 0 && row.first == 0)  // once per cable: not a floor, not a later span
+      addGeometricStiffness(cables[row.cable], h, ws.dofs.ofBody, ws.invM, ws.blocks, ws.taut,
+                            ws.stiff);
   if (ws.stiff) ws.factorStiffMass(h);
   ws.applyInverseMass(ws.W);
   if (ws.stiff) {

@@ -9,6 +9,7 @@
 
 #include "engine/dynamics/box2d_bridge.h"
 #include "engine/dynamics/floors.h"
+#include "engine/dynamics/geometric_stiffness.h"
 #include "engine/dynamics/length_targets.h"
 #include "engine/dynamics/tension_solver.h"
 
@@ -117,51 +118,20 @@ bool SparseIsland::entered(int body, int c, double value) {
   return turns_[body] != 0;
 }
 
-// The dense path's mayBeStiff: whether a segment of the path could pass the stiffness test.
-bool SparseIsland::stiffCable(double h2Tension, std::span<const WrapPoint> path) const {
-  for (size_t i = 0; i + 1 < path.size(); ++i) {
-    const int a = path[i].body, b = path[i + 1].body;
-    if (a == b) continue;
-    const Vec2 from = path[i].radius == 0 ? path[i].world : path[i].tangentOut;
-    const Vec2 to = path[i + 1].radius == 0 ? path[i + 1].world : path[i + 1].tangentIn;
-    double invMass = 0;
-    for (int e : {a, b})
-      if (e >= 0 && dofOfBody_[e] >= 0) invMass = std::max(invMass, invM_[dofOfBody_[e]]);
-    if (h2Tension * invMass > 0.04 * (to - from).norm()) return true;
-  }
-  return false;
-}
-
 // Dense stage 3: M' = M + h^2 T G where the taut cables' geometric stiffness matters, built
 // sparse (the dense path's coupled block, same entries), and M v* on the right-hand side.
 void SparseIsland::buildStiffMass(double h, std::span<const Cable> cables) {
   blocks_.clear();
   stiffTriplets_.clear();
   stiff_ = false;
-  struct Taut {
-    double tension;
-    size_t begin, end;
-  };
-  std::vector<Taut> taut;
-  for (int cable : rows_) {
-    const Cable& c = cables[cable];
-    const double tension =
-        std::max(c.tension(), c.elastic() ? c.stiffness() * std::max(0.0, c.stretch()) : 0.0);
-    if (tension <= 0 || !stiffCable(h * h * tension, c.path())) continue;
-    const size_t begin = blocks_.size();
-    appendLengthHessianTranslation(c.path(), blocks_);
-    for (size_t i = begin; i < blocks_.size(); ++i) {
-      const StiffnessBlock& blk = blocks_[i];
-      if (blk.a == blk.b && dofOfBody_[blk.a] >= 0)
-        stiff_ |= h * h * tension * blk.k.trace() * invM_[dofOfBody_[blk.a]] > 0.05;
-    }
-    taut.push_back({tension, begin, blocks_.size()});
-  }
+  taut_.clear();
+  for (int cable : rows_)
+    addGeometricStiffness(cables[cable], h, dofOfBody_, invM_, blocks_, taut_, stiff_);
   momentum_.resize(n_);
   for (int d = 0; d < n_; ++d)  // an immovable dof keeps v* (dense: 0 once stiff)
     momentum_[d] = invM_[d] > 0 ? vRaw_[d] / invM_[d] : (stiff_ ? 0.0 : vRaw_[d]);
   if (!stiff_) return;
-  for (const Taut& t : taut)
+  for (const TautCable& t : taut_)
     for (size_t i = t.begin; i < t.end; ++i) {
       const int ia = dofOfBody_[blocks_[i].a], ib = dofOfBody_[blocks_[i].b];
       if (ia < 0 || ib < 0) continue;

@@ -33,6 +33,7 @@
 
 #include "engine/cable/cable.h"
 #include "engine/dynamics/cable_solver.h"
+#include "engine/dynamics/geometric_stiffness.h"
 #include "engine/dynamics/joint_projection.h"
 
 namespace cablelab {
@@ -60,7 +61,6 @@ class SparseIsland {
   using Triplet = Eigen::Triplet<double>;
 
   bool entered(int body, int c, double value);
-  bool stiffCable(double h2Tension, std::span<const WrapPoint> path) const;
   bool qualifies(const CableSolveInput& in, std::span<const Cable> cables,
                  std::span<const int> islandCables, std::span<const int> islandJoints) const;
   void buildDofs(const CableSolveInput& in, std::span<const Cable> cables,
@@ -94,6 +94,7 @@ class SparseIsland {
   std::vector<double> j0Diagonal_;      // J0 M^-1 J0^T's diagonal (the guard's and the LCP's scale)
   std::vector<Triplet> stiffTriplets_;  // M' off the mass diagonal
   std::vector<StiffnessBlock> blocks_;
+  std::vector<TautCable> taut_;  // geometric_stiffness.h
   bool stiff_ = false;
   Sparse mass_;  // M' (only when stiff_)
   Eigen::SimplicialLDLT<Sparse> massLdlt_, rankLdlt_;
