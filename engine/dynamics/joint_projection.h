@@ -67,7 +67,7 @@ class JointProjection {
   int lastDofCount = -1;
   // Where S's lower triangle gets its terms: entry (i, j) of block b (rows order[start[b] + i]
   // and order[start[b] + j]) adds scaled[ri][k] . coeff[l] of row rj wherever dof k of ri is dof
-  // l of rj. Terms of block b are terms[termStart[b], termStart[b + 1]), by entry in column order.
+  // l of rj. Terms of block b are terms[termStart[b], termStart[b + 1]).
   struct Term {
     int entry;  // i + j * size within the block
     int ri, rj;
