@@ -23,13 +23,11 @@ struct Samples {
   std::vector<std::pair<std::string, std::vector<double>>> spanTensions;  // the last run's
 };
 
-void sample(SceneDef scene, bool withCables, int warmup, int steps, Samples& out) {
-  if (!withCables) scene.cables.clear();
-  World world(std::move(scene), "bench");
+// Steps of one world, timed one by one into `out`.
+void record(World& world, int steps, Samples& out) {
   const double dt = world.scene().dt;
   const int substeps = std::max(1, world.scene().substeps);
   out.substeps = substeps;
-  for (int i = 0; i < warmup; ++i) world.step(dt, substeps);
   for (int i = 0; i < steps; ++i) {
     world.step(dt, substeps);
     const StepStats& s = world.lastStepStats();
@@ -38,6 +36,9 @@ void sample(SceneDef scene, bool withCables, int warmup, int steps, Samples& out
     out.wraps += s.wrapPoints;
     if (s.wrapPoints > 0) out.perWrap.push_back(1e3 * s.cableMicros / s.wrapPoints);
   }
+}
+
+void recordSpanTensions(const World& world, Samples& out) {
   out.spanTensions.clear();
   for (int c = 0; c < world.cableCount(); ++c) {
     const Cable& cable = world.cable(c);
@@ -45,6 +46,15 @@ void sample(SceneDef scene, bool withCables, int warmup, int steps, Samples& out
     for (int k = 0; k < cable.spanCount(); ++k) tensions.push_back(cable.spanTension(k));
     out.spanTensions.emplace_back(cable.name(), std::move(tensions));
   }
+}
+
+SceneDef withoutCables(SceneDef scene) {
+  scene.cables.clear();
+  return scene;
+}
+
+void warmUp(World& world, int warmup) {
+  for (int i = 0; i < warmup; ++i) world.step(world.scene().dt, world.scene().substeps);
 }
 
 StepTiming summarise(const Samples& s) {
@@ -62,18 +72,32 @@ StepTiming summarise(const Samples& s) {
 }  // namespace
 
 StepTiming measureSceneSteps(SceneDef scene, bool withCables, int warmup, int steps) {
+  World world(withCables ? std::move(scene) : withoutCables(std::move(scene)), "bench");
+  warmUp(world, warmup);
   Samples s;
-  sample(std::move(scene), withCables, warmup, steps, s);
+  record(world, steps, s);
+  recordSpanTensions(world, s);
   return summarise(s);
 }
 
 SceneTiming measureScene(const SceneDef& scene, int warmup, int steps, int rounds) {
+  // A shared machine's speed drifts within a second (the VM this was written on: a step's
+  // median moved by 1.5x between runs a few seconds apart), so the two worlds step side by side
+  // in batches of kBatch steps: both medians sample the same moments.
+  constexpr int kBatch = 10;
   rounds = std::max(1, rounds);
   Samples with, without;
   for (int r = 0; r < rounds; ++r) {
     const int n = steps / rounds + (r < steps % rounds ? 1 : 0);
-    sample(scene, true, warmup, n, with);
-    sample(scene, false, warmup, n, without);
+    World a(scene, "bench"), b(withoutCables(scene), "bench");
+    warmUp(a, warmup);
+    warmUp(b, warmup);
+    for (int done = 0; done < n; done += kBatch) {
+      const int batch = std::min(kBatch, n - done);
+      record(a, batch, with);
+      record(b, batch, without);
+    }
+    recordSpanTensions(a, with);
   }
   SceneTiming t;
   t.scene = scene.name;

@@ -7,8 +7,6 @@
 #pragma once
 
 #include <string>
-
-#include <string>
 #include <utility>
 #include <vector>
 
@@ -39,8 +37,9 @@ struct SceneTiming {
   double overhead = 0;
 };
 
-/// Runs the two variants interleaved in rounds (so drift in machine load hits both alike) and
-/// takes the median over all rounds.
+/// Runs the two variants side by side: each of `rounds` rounds builds both worlds anew, warms
+/// them up and steps them in alternating batches of 10 steps (so drift in the machine's speed
+/// hits both alike); medians over all rounds.
 SceneTiming measureScene(const SceneDef& scene, int warmup, int steps, int rounds = 5);
 
 }  // namespace cablelab
