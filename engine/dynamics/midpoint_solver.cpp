@@ -159,11 +159,14 @@ int MidpointSolver::solve(std::span<const BodyState> bodies, std::span<Cable> ca
                           std::span<const int> which, const Vec2& gravity, double h, double share,
                           std::span<Vec3> forces, std::span<Vec3> kicks) {
   share_ = share;
+  redundant_ = false;
   if (!buildRows(bodies, cables, which, gravity, h, forces)) return 0;
   for (int iteration = 0; iteration < kIterations; ++iteration)
-    if (newtonStep(bodies, cables, h)) {
+    if (newtonStep(bodies, cables, h, iteration == 0)) {
       finish(bodies, cables, h, forces, kicks);
       return iteration + 1;
+    } else if (redundant_) {
+      return -1;
     }
   return -1;
 }
@@ -291,7 +294,7 @@ void MidpointSolver::buildIterationMatrix(std::span<const Cable> cables, double 
 // One Newton step on (v_b, P): A dv + G^T dP / 2 = -R, R = M (v_b - v*) + G^T P / 2, with the
 // rows' conditions linearised in P (an LCP: rigid cables may go slack). True once settled.
 bool MidpointSolver::newtonStep(std::span<const BodyState> bodies, std::span<const Cable> cables,
-                                double h) {
+                                double h, bool first) {
   const int m = static_cast<int>(rows_.size()), n = static_cast<int>(invM_.size());
   evaluate(bodies, cables, h);
   buildIterationMatrix(cables, h);
@@ -324,12 +327,32 @@ bool MidpointSolver::newtonStep(std::span<const BodyState> bodies, std::span<con
     b_[r] = kp + tension / (slope * h);
   }
   solveLcp(K_, b_, lcp_, solution_);
+  // Redundant rows that pull (the floors of a tackle's four falls, all closed: K singular on
+  // them) leave the split of their impulses free, and Newton on P then never settles: such an
+  // island goes to the main solve, which takes the minimum-norm split (docs/model.md,
+  // "Redundant cables").
+  redundant_ = first && redundantActiveRows();
+  if (redundant_) return false;
   dP_ = solution_.x - P_;
   dv_ = -(AinvR_ + 0.5 * AinvGt_ * dP_);
   P_ = solution_.x;
   vb_ += dv_;
   return h * dv_.lpNorm<Eigen::Infinity>() <= kPositionTolerance &&
          dP_.lpNorm<Eigen::Infinity>() <= 1e-9 * (1e-9 + P_.lpNorm<Eigen::Infinity>());
+}
+
+// Whether the rows the LCP's solution pulls on are dependent (K singular on them).
+bool MidpointSolver::redundantActiveRows() {
+  active_.clear();
+  for (int r = 0; r < static_cast<int>(solution_.x.size()); ++r)
+    if (solution_.x[r] > 0) active_.push_back(r);
+  const int a = static_cast<int>(active_.size());
+  if (a < 2) return false;
+  activeK_.resize(a, a);
+  for (int i = 0; i < a; ++i)
+    for (int j = 0; j < a; ++j) activeK_(i, j) = K_(active_[i], active_[j]);
+  redundancy_.compute(activeK_);
+  return rankDeficient(redundancy_);
 }
 
 // Tensions, the force that gives Box2D the velocity v_b, and the second half after its step.

@@ -56,7 +56,8 @@ class MidpointSolver {
   /// ((fx, fy, torque) per body) and the velocity each body they move must get after Box2D's
   /// step to `kicks`; other bodies and cables are left alone. `share` is h over the nominal
   /// sub-step (CableSolveInput::share). Its cost is the island's, not the world's.
-  /// Returns the iterations used, or -1 (nothing changed) if they did not converge.
+  /// Returns the iterations used, or -1 (nothing changed) if they did not converge, or at once
+  /// when the rows the first iteration's impulses pull on are redundant (`redundant()`).
   int solve(std::span<const BodyState> bodies, std::span<Cable> cables, std::span<const int> which,
             const Vec2& gravity, double h, double share, std::span<Vec3> forces,
             std::span<Vec3> kicks);
@@ -66,15 +67,21 @@ class MidpointSolver {
   static double transverseMode(std::span<const BodyState> bodies, std::span<const Cable> cables,
                                std::span<const int> which);
 
+  /// Whether the last solve gave up at once on redundant rows (Newton on their split of the
+  /// impulses cannot settle; the main solve takes the minimum-norm one).
+  bool redundant() const { return redundant_; }
+
  private:
   bool buildRows(std::span<const BodyState> bodies, std::span<Cable> cables,
                  std::span<const int> which, const Vec2& gravity, double h,
                  std::span<const Vec3> forces);
   void evaluate(std::span<const BodyState> bodies, std::span<const Cable> cables, double h);
   void buildIterationMatrix(std::span<const Cable> cables, double h);
-  bool newtonStep(std::span<const BodyState> bodies, std::span<const Cable> cables, double h);
+  bool newtonStep(std::span<const BodyState> bodies, std::span<const Cable> cables, double h,
+                  bool first);
   void finish(std::span<const BodyState> bodies, std::span<Cable> cables, double h,
               std::span<Vec3> forces, std::span<Vec3> kicks);
+  bool redundantActiveRows();
 
   double share_ = 1;            // this step over the nominal sub-step
   std::vector<int> rows_;       // cable of each row
@@ -85,6 +92,11 @@ class MidpointSolver {
   Eigen::VectorXd residual_, AinvR_, GAinvR_, dP_, dv_;
   Eigen::MatrixXd A_, Gt_, AinvGt_, K_;
   Eigen::LDLT<Eigen::MatrixXd> ldlt_;
+  // Redundant rows among those the first iteration's impulses pull on (redundantActiveRows).
+  std::vector<int> active_;
+  Eigen::MatrixXd activeK_;
+  Eigen::LDLT<Eigen::MatrixXd> redundancy_;
+  bool redundant_ = false;
   std::vector<BodyState> predicted_, midpoint_;  // q1 and the midpoint pose (q0 off the dofs)
   std::vector<WrapPoint> path_;
   std::vector<BodyJacobian> gradient_;

@@ -272,6 +272,7 @@ void World::solveForces(double dt, double h) {
           continue;
         }
         ++stats_.midpointFallbacks;  // Newton did not settle (nothing changed): the main solve
+        stats_.midpointRedundant += midpoint_->redundant();
       }
       mainLeft = true;
     }

@@ -113,6 +113,33 @@ TEST(Tackle, FourFallsGiveAMechanicalAdvantageOfFour) {
   }
 }
 
+// Hauled up against the fixed sheaves, the block rests on the floors of its four falls: four
+// rows the impulses pull on, and dependent ones. The energy-consistent solve hands each such step
+// to the main solve at once (its Newton on their split of the impulses never settles), which
+// holds the effort with its weight; while the block rises the floors are slack and the
+// energy-consistent solve keeps the step.
+TEST(Tackle, ABlockHauledAgainstItsSheavesRestsOnRedundantFloorsAtTheEffortsWeight) {
+  const double mEffort = 1.2, mLoad = 4;
+  World w = load("tackle", {{"m_load", mLoad}, {"m_effort", mEffort}});
+  int rising = 0, handedOver = 0, restingSteps = 0;
+  for (int i = 0; i < 400; ++i) {
+    w.step(kDt);
+    const StepStats& s = w.lastStepStats();
+    if (w.body(w.findBody("block")).velocity.norm() > 1e-3) {
+      rising += s.midpointSolves;
+      EXPECT_EQ(s.midpointRedundant, 0) << "step " << i;
+    } else if (i > 300) {
+      ++restingSteps;
+      handedOver += s.midpointRedundant;
+      EXPECT_EQ(s.midpointRedundant, s.midpointFallbacks) << "step " << i;
+      EXPECT_NEAR(w.cable(0).tension(), mEffort * kG, 1e-6 * mEffort * kG) << "step " << i;
+    }
+  }
+  EXPECT_GT(rising, 100);
+  EXPECT_EQ(restingSteps, 99);
+  EXPECT_EQ(handedOver, restingSteps);
+}
+
 // Energy without Box2D joints (a velocity-level joint loses about (omega h)^2 of the energy per
 // step, more than the cable: that is Box2D's, measured on the bare pendulum). Gravity off:
 //  post: a ball on a rope round a fixed frictionless post, winding on for several turns;
