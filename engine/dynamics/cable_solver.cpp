@@ -385,54 +385,10 @@ void inverseMass(Workspace& ws, double h, std::span<const Cable> cables) {
   }
 }
 
-// Velocity-level Jacobian of the Box2D joints among the dofs (rows: constrained relative motions;
-// limits and motors are left to Box2D). Revolute: the anchor points move together (2 rows);
-// prismatic: no motion across the axis and no relative turn (2 rows); weld: all three.
+// Stage 4's rows: the island's joints among its dofs (joint_projection.h).
 void jointRows(Workspace& ws, const CableSolveInput& in) {
-  const DofMap& dofs = ws.dofs;
   ws.joints.clear();
-  for (int j : ws.jointIndex) {
-    const JointFrame& joint = in.joints[j];
-    const int a = joint.bodyA, b = joint.bodyB;
-    const int da = a >= 0 ? dofs.ofBody[a] : -1, db = b >= 0 ? dofs.ofBody[b] : -1;
-    if (da < 0 && db < 0) continue;
-    const Vec2 rA = a >= 0 ? Vec2(joint.anchor - in.bodies[a].position) : Vec2::Zero();
-    const Vec2 rB = b >= 0 ? Vec2(joint.anchor - in.bodies[b].position) : Vec2::Zero();
-    // A body that is not a dof enters through its prescribed velocity (the row's bias).
-    auto velocity = [&](int body, int dof) {
-      if (body < 0 || dof >= 0) return Vec3(Vec3::Zero());
-      const BodyState& s = in.bodies[body];
-      return Vec3(s.velocity.x(), s.velocity.y(), s.angularVelocity);
-    };
-    const Vec3 vA = velocity(a, da), vB = velocity(b, db);
-    auto push = [&](const Vec3& cb, const Vec3& ca) {
-      JointRow row;
-      row.dof = {db, da};
-      row.coeff = {cb, ca};
-      row.bias = cb.dot(vB) + ca.dot(vA);
-      ws.joints.push_back(row);
-    };
-    // A row on the relative velocity of the anchor point along direction t.
-    auto pointRow = [&](const Vec2& t) {
-      push(Vec3(t.x(), t.y(), t.dot(perp(rB))), -Vec3(t.x(), t.y(), t.dot(perp(rA))));
-    };
-    auto angleRow = [&] { push(Vec3(0, 0, 1), Vec3(0, 0, -1)); };
-    switch (joint.kind) {
-      case JointDef::Kind::Revolute:
-        pointRow(Vec2(1, 0));
-        pointRow(Vec2(0, 1));
-        break;
-      case JointDef::Kind::Prismatic:
-        pointRow(perp(joint.axis));
-        angleRow();
-        break;
-      case JointDef::Kind::Weld:
-        pointRow(Vec2(1, 0));
-        pointRow(Vec2(0, 1));
-        angleRow();
-        break;
-    }
-  }
+  for (int j : ws.jointIndex) appendJointRows(in.joints[j], in.bodies, ws.dofs.ofBody, ws.joints);
 }
 
 // 4. W and v* projected onto what the joints allow: Box2D's joints act after our forces, so the

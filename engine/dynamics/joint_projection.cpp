@@ -98,6 +98,49 @@ void SmallLdlt::solveInPlace(const double* a, int n, double* x, int cols) const 
   withBlockSize(n, [&]<int kN>() { solveLdlt<kN>(a, n, dInv.data(), x, cols); });
 }
 
+void appendJointRows(const JointFrame& joint, std::span<const BodyState> bodies,
+                     std::span<const int> dofOfBody, std::vector<JointRow>& rows) {
+  const int a = joint.bodyA, b = joint.bodyB;
+  const int da = a >= 0 ? dofOfBody[a] : -1, db = b >= 0 ? dofOfBody[b] : -1;
+  if (da < 0 && db < 0) return;
+  const Vec2 rA = a >= 0 ? Vec2(joint.anchor - bodies[a].position) : Vec2::Zero();
+  const Vec2 rB = b >= 0 ? Vec2(joint.anchor - bodies[b].position) : Vec2::Zero();
+  // A body that is not a dof enters through its prescribed velocity (the row's bias).
+  auto velocity = [&](int body, int dof) {
+    if (body < 0 || dof >= 0) return Vec3(Vec3::Zero());
+    const BodyState& s = bodies[body];
+    return Vec3(s.velocity.x(), s.velocity.y(), s.angularVelocity);
+  };
+  const Vec3 vA = velocity(a, da), vB = velocity(b, db);
+  auto push = [&](const Vec3& cb, const Vec3& ca) {
+    JointRow row;
+    row.dof = {db, da};
+    row.coeff = {cb, ca};
+    row.bias = cb.dot(vB) + ca.dot(vA);
+    rows.push_back(row);
+  };
+  // A row on the relative velocity of the anchor point along direction t.
+  auto pointRow = [&](const Vec2& t) {
+    push(Vec3(t.x(), t.y(), t.dot(perp(rB))), -Vec3(t.x(), t.y(), t.dot(perp(rA))));
+  };
+  auto angleRow = [&] { push(Vec3(0, 0, 1), Vec3(0, 0, -1)); };
+  switch (joint.kind) {
+    case JointDef::Kind::Revolute:
+      pointRow(Vec2(1, 0));
+      pointRow(Vec2(0, 1));
+      break;
+    case JointDef::Kind::Prismatic:
+      pointRow(perp(joint.axis));
+      angleRow();
+      break;
+    case JointDef::Kind::Weld:
+      pointRow(Vec2(1, 0));
+      pointRow(Vec2(0, 1));
+      angleRow();
+      break;
+  }
+}
+
 // Rows sharing a body are in one block (union-find over rows, through the first row per body),
 // listed in row order within each block.
 void JointProjection::findBlocks(std::span<const JointRow> rows, int dofs) {

@@ -14,7 +14,9 @@
 #include <span>
 #include <vector>
 
+#include "engine/cable/cable.h"
 #include "engine/core/math.h"
+#include "engine/dynamics/box2d_bridge.h"
 
 namespace cablelab {
 
@@ -33,6 +35,14 @@ struct JointRow {
     return sum;
   }
 };
+
+/// Appends the velocity-level rows of one Box2D joint among an island's dofs (`dofOfBody`: body
+/// -> first dof, -1 if not a dof), the constrained relative motions: revolute, the anchor points
+/// move together (2 rows); prismatic, no motion across the axis and no relative turn (2); weld,
+/// all three. Limits and motors are left to Box2D. A body that is not a dof enters through its
+/// prescribed velocity (the rows' bias); a joint on no dof adds nothing.
+void appendJointRows(const JointFrame& joint, std::span<const BodyState> bodies,
+                     std::span<const int> dofOfBody, std::vector<JointRow>& rows);
 
 /// A small dense symmetric positive definite factorisation L D L^T without pivoting, in place in
 /// a column-major n x n array's lower triangle (L's unit diagonal implied). A pivot that rounding

@@ -197,45 +197,12 @@ void SparseIsland::warmStart(double h, std::span<const Cable> cables) {
   }
 }
 
-// The dense path's jointRows(): the velocity-level rows of the island's joints, C v1 + bias = 0
-// (revolute: the anchor points move together; prismatic: no motion across the axis, no relative
-// turn; weld: all three). In the KKT system they are equality rows with reactions C^T lambda:
-// the same v1 as the dense path's projection through S = C M'^-1 C^T.
+// The island's joints, C v1 + bias = 0 (appendJointRows, the dense path's rows). In the KKT
+// system they are equality rows with reactions C^T lambda: the same v1 as the dense path's
+// projection through S = C M'^-1 C^T.
 void SparseIsland::jointRows(const CableSolveInput& in, std::span<const int> islandJoints) {
   joints_.clear();
-  for (int j : islandJoints) {
-    const JointFrame& joint = in.joints[j];
-    const int a = joint.bodyA, b = joint.bodyB;
-    const int da = a >= 0 ? dofOfBody_[a] : -1, db = b >= 0 ? dofOfBody_[b] : -1;
-    if (da < 0 && db < 0) continue;
-    const Vec2 rA = a >= 0 ? Vec2(joint.anchor - in.bodies[a].position) : Vec2::Zero();
-    const Vec2 rB = b >= 0 ? Vec2(joint.anchor - in.bodies[b].position) : Vec2::Zero();
-    auto velocity = [&](int body, int dof) {  // a body that is no dof: its prescribed motion
-      if (body < 0 || dof >= 0) return Vec3(Vec3::Zero());
-      const BodyState& s = in.bodies[body];
-      return Vec3(s.velocity.x(), s.velocity.y(), s.angularVelocity);
-    };
-    const Vec3 vA = velocity(a, da), vB = velocity(b, db);
-    auto push = [&](const Vec3& cb, const Vec3& ca) {
-      JointRow row;
-      row.dof = {db, da};
-      row.coeff = {cb, ca};
-      row.bias = cb.dot(vB) + ca.dot(vA);
-      joints_.push_back(row);
-    };
-    auto pointRow = [&](const Vec2& t) {
-      push(Vec3(t.x(), t.y(), t.dot(perp(rB))), -Vec3(t.x(), t.y(), t.dot(perp(rA))));
-    };
-    auto angleRow = [&] { push(Vec3(0, 0, 1), Vec3(0, 0, -1)); };
-    if (joint.kind == JointDef::Kind::Prismatic) {
-      pointRow(perp(joint.axis));
-      angleRow();
-      continue;
-    }
-    pointRow(Vec2(1, 0));
-    pointRow(Vec2(0, 1));
-    if (joint.kind == JointDef::Kind::Weld) angleRow();
-  }
+  for (int j : islandJoints) appendJointRows(in.joints[j], in.bodies, dofOfBody_, joints_);
   q_ = static_cast<int>(joints_.size());
 }
 
