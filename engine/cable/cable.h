@@ -331,6 +331,9 @@ class Cable {
   bool wrapSetCertain(std::span<const BodyState> pose, double h) const;
   bool keepWrapSet(std::span<const BodyState> select, std::span<const BodyState> bodies);
   Vec2 selectedPoint(size_t i) const;
+  /// The vertex a polygon's chain would grow by at `end`, a chain end on segment (a, b): the one
+  /// before its first (end is b, the segment enters the chain) or after its last (end is a).
+  int chainEndNeighbour(const WrapPoint& end, bool entering) const;
   void finishUpdate(std::span<const BodyState> bodies, std::vector<std::string>* warnings);
   std::vector<SkipBody> skipBodies_;
   std::vector<SkipTest> skipTests_;

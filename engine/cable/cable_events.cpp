@@ -30,6 +30,13 @@ void keepEarliest(std::optional<WrapEvent>& best, double time, int pulley, WrapE
 
 }  // namespace
 
+int Cable::chainEndNeighbour(const WrapPoint& end, bool entering) const {
+  const PulleyState& p = pulleys_[end.pulley];
+  const int n = static_cast<int>(p.local.size());
+  const int walk = p.side == WrapSide::Right ? 1 : -1;
+  return ((entering ? end.vertex - walk : end.vertex + walk) % n + n) % n;
+}
+
 std::optional<WrapEvent> Cable::nextEvent(std::span<const BodyState> motion, double h) const {
   std::optional<WrapEvent> best;
   if (path_.size() < 2) return best;
@@ -85,9 +92,7 @@ std::optional<WrapEvent> Cable::nextEvent(std::span<const BodyState> motion, dou
     for (const WrapPoint* end : {&a, &b}) {
       if (end->kind != WrapPoint::Kind::Vertex) continue;
       const PulleyState& p = pulleys_[end->pulley];
-      const int n = static_cast<int>(p.local.size());
-      const int walk = p.side == WrapSide::Right ? 1 : -1;
-      const int v = ((end == &b ? end->vertex - walk : end->vertex + walk) % n + n) % n;
+      const int v = chainEndNeighbour(*end, end == &b);
       tryPoint(end->pulley, p.local[v], WrapEvent::Kind::Vertex);
     }
   }

@@ -72,9 +72,7 @@ void Cable::buildSkipCertificate(std::span<const BodyState> pose) {
     for (const WrapPoint* end : {&a, &b}) {
       if (end->kind != WrapPoint::Kind::Vertex) continue;
       const PulleyState& p = pulleys_[end->pulley];
-      const int n = static_cast<int>(p.local.size());
-      const int walk = p.side == WrapSide::Right ? 1 : -1;
-      const int v = ((end == &b ? end->vertex - walk : end->vertex + walk) % n + n) % n;
+      const int v = chainEndNeighbour(*end, end == &b);
       if (!add(a, b, p.body, p.local[v])) return;
     }
   }

@@ -80,7 +80,7 @@ namespace {
 constexpr double kLinkLength = 0.6;  // m: above kFloorWatch (engine/dynamics/floors.h)
 
 CableDef cableLink(const std::string& name, const std::string& from, const std::string& to,
-              const Vec2& fromPoint = Vec2::Zero()) {
+                   const Vec2& fromPoint = Vec2::Zero()) {
   CableDef c;
   c.name = name;
   c.start = {from, fromPoint};
@@ -119,8 +119,9 @@ SceneDef makeCableNet(int rows, int cols) {
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < cols; ++c) {
       const std::string id = std::to_string(r) + "_" + std::to_string(c);
-      s.cables.push_back(r == 0 ? cableLink("up" + id, "world", name(r, c), Vec2(kLinkLength * c, 0))
-                                : cableLink("up" + id, name(r - 1, c), name(r, c)));
+      s.cables.push_back(r == 0
+                             ? cableLink("up" + id, "world", name(r, c), Vec2(kLinkLength * c, 0))
+                             : cableLink("up" + id, name(r - 1, c), name(r, c)));
       if (c + 1 < cols) s.cables.push_back(cableLink("right" + id, name(r, c + 1), name(r, c)));
     }
   return s;

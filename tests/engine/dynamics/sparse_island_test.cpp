@@ -97,6 +97,14 @@ TEST(SparseIsland, NetMatchesTheDensePath) {
   expectSameIsland(runIsland(s, 0, 60), runIsland(s, kAlwaysDense, 60), 1e-9);
 }
 
+// Link k of a hanging chain of n carries the weight of the discs below it.
+void expectEachLinkCarriesTheWeightBelow(const World& world, const SceneDef& s, int n) {
+  double below = 0;
+  for (int k = n - 1; k >= 0; --k) {
+    below += s.bodies[k].mass * kIslandG;
+    EXPECT_NEAR(world.cable(k).tension(), below, 1e-6 * below) << "link " << k;
+  }
+}
 // At rest the link above body k carries the weight of bodies k..n-1; lengths stay put.
 TEST(SparseIsland, HangingChainCarriesTheWeightBelow) {
   const int n = sparseIslandThreshold() + 2;
@@ -113,11 +121,7 @@ TEST(SparseIsland, HangingChainCarriesTheWeightBelow) {
       worst = std::max(worst, std::abs(world.cable(c).length() - rest[c]));
   }
   EXPECT_LT(worst, 1e-6);
-  double below = 0;
-  for (int k = n - 1; k >= 0; --k) {
-    below += s.bodies[k].mass * kIslandG;
-    EXPECT_NEAR(world.cable(k).tension(), below, 1e-6 * below) << "link " << k;
-  }
+  expectEachLinkCarriesTheWeightBelow(world, s, n);
 }
 
 // Swinging, the lengths stay within the rigid targets' slop (kLengthSlop, 1e-5 m, plus float
@@ -164,11 +168,7 @@ TEST(SparseIsland, SlackRowsInTheMiddleCarryNothing) {
     ASSERT_EQ(world.lastStepStats().sparseIslands, 1);
     for (int c = n; c < world.cableCount(); ++c) ASSERT_EQ(world.cable(c).tension(), 0) << c;
   }
-  double below = 0;
-  for (int k = n - 1; k >= 0; --k) {
-    below += s.bodies[k].mass * kIslandG;
-    EXPECT_NEAR(world.cable(k).tension(), below, 1e-6 * below) << "link " << k;
-  }
+  expectEachLinkCarriesTheWeightBelow(world, s, n);
 }
 
 // Islands of up to the threshold's rows keep the dense path; one more row takes the sparse one.
