@@ -10,6 +10,7 @@
 #include "engine/dynamics/floors.h"
 #include "engine/dynamics/geometric_stiffness.h"
 #include "engine/dynamics/joint_projection.h"
+#include "engine/dynamics/joint_tree.h"
 #include "engine/dynamics/length_targets.h"
 #include "engine/dynamics/sparse_island.h"
 #include "engine/dynamics/tension_solver.h"
@@ -88,7 +89,9 @@ struct CableSolverWorkspace {
   Eigen::LDLT<Eigen::MatrixXd> coupledLdlt;
   Eigen::VectorXd coupledRhs, coupledSolution;
 
-  // Joint rows and the projection through their Schur complement (joint_projection.h).
+  // The joint projection: in the joints' coordinates where they form trees (joint_tree.h),
+  // else through the Schur complement of their rows (joint_projection.h).
+  JointTree tree;
   std::vector<JointRow> joints;
   JointProjection projection;
 
@@ -394,6 +397,11 @@ void jointRows(Workspace& ws, const CableSolveInput& in) {
 // 4. W and v* projected onto what the joints allow: Box2D's joints act after our forces, so the
 // cables must already see them (a pulley on a pivoted body turns, it does not translate).
 void projectOntoJoints(Workspace& ws, const CableSolveInput& in) {
+  if (ws.jointIndex.empty()) return;
+  if (!ws.stiff && ws.tree.build(in.joints, ws.jointIndex, in.bodies, ws.dofs.ofBody, ws.invM)) {
+    ws.tree.project(ws.invM, ws.W, ws.vStar);
+    return;
+  }
   jointRows(ws, in);
   if (ws.joints.empty()) return;
   if (ws.stiff)
@@ -535,7 +543,7 @@ bool iterateNewton(Workspace& ws, const CableSolveInput& in, std::span<const Cab
       }
     ws.K = ws.JW;
     ws.K.diagonal() += ws.compliance;
-    ws.b.noalias() = ws.JW * ws.P;
+    ws.b.noalias() = ws.JW.lazyProduct(ws.P);  // a few rows: no GEMV kernel call
     for (int r = 0; r < m; ++r)
       ws.b[r] += (cables[ws.rows[r].cable].elastic() && ws.rows[r].segment < 0
                       ? ws.phi1[r] - ws.damped[r]

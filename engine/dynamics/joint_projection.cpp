@@ -20,7 +20,8 @@ void regularise(double* S, int n) {
 }
 
 // L D L^T without pivoting, in place in the lower triangle of the column-major n x n array l.
-// kN > 0: n is that constant (the loops unroll); 0: n = runtimeN.
+// kN > 0: n is that constant (the loops unroll); 0: n = runtimeN. The solve has no unroll
+// pragmas: with them GCC 12 -O3 gets n = 3 with several columns wrong (SmallLdlt's test).
 
 template <int kN>
 void factorLdlt(double* l, int runtimeN, double* d, double* dInv, double* dl) {
@@ -51,12 +52,9 @@ void solveLdlt(const double* l, int runtimeN, const double* dInv, double* x, int
   const int n = kN > 0 ? kN : runtimeN;
   for (int c = 0; c < cols; ++c, x += n) {
     for (int i = 0; i < n; ++i)
-#pragma GCC unroll 8
       for (int k = 0; k < i; ++k) x[i] -= l[i + k * n] * x[k];
     for (int i = 0; i < n; ++i) x[i] *= dInv[i];
-#pragma GCC unroll 8
     for (int i = n - 1; i >= 0; --i)
-#pragma GCC unroll 8
       for (int k = i + 1; k < n; ++k) x[i] -= l[k + i * n] * x[k];
   }
 }
@@ -148,7 +146,8 @@ void JointProjection::findBlocks(std::span<const JointRow> rows, int dofs) {
   // The same rows on the same dofs as last time (every sub-step of a world whose joints and
   // island do not change): the same blocks.
   bool same = static_cast<int>(lastDofs.size()) == c && lastDofCount == dofs;
-  for (int r = 0; same && r < c; ++r) same = lastDofs[r] == rows[r].dof;
+  for (int r = 0; same && r < c; ++r)  // element by element: std::array's == is a memcmp call
+    same = lastDofs[r][0] == rows[r].dof[0] && lastDofs[r][1] == rows[r].dof[1];
   if (same) return;
   lastDofCount = dofs;
   lastDofs.resize(c);

@@ -102,7 +102,7 @@ void principalPivoting(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, LcpWo
   Eigen::VectorXd& w = work.w;
   for (const int maxIterations = 4 * n + 10; sol.iterations < maxIterations; ++sol.iterations) {
     solveOnSet(K, b, active, work, sol.x);
-    w.noalias() = K * sol.x;
+    w.noalias() = K.lazyProduct(sol.x);  // a few rows: no GEMV kernel call
     w -= b;
     int worst = -1;
     double worstValue = 0;
@@ -224,7 +224,7 @@ void solveLcp(const Eigen::MatrixXd& Kin, const Eigen::VectorXd& b, LcpWorkspace
   else
     principalPivoting(K, b, work, sol);
   Eigen::VectorXd& w = work.w;
-  w.noalias() = Kin * sol.x;  // the residual against the targets as given
+  w.noalias() = Kin.lazyProduct(sol.x);  // the residual against the targets as given
   w -= b;
   for (int i = 0; i < n; ++i) {
     sol.x[i] = std::max(0.0, sol.x[i]);

@@ -1,0 +1,69 @@
+// Stage 4 of the cable solver (cable_solver.h) for joints that form trees hanging from bodies
+// that do not move (a hand's fingers: world - revolute - link - prismatic - slider - revolute -
+// paddle): the same projection as the Schur complement's (joint_projection.h), in the joints'
+// own coordinates. Each body's velocity is its root's prescribed motion plus S qdot, qdot one
+// rate per revolute or prismatic joint between it and its root (welds add none). The projection
+// onto what the joints allow is the M-orthogonal one onto that set,
+//     qdot = (S^T M S)^-1 S^T M (v - r),   v <- r + S qdot,
+// the velocity closest to v in kinetic energy that the joints allow: a k x k system per tree
+// (k joints) where the Schur complement factors one of twice the size, and no joint rows at
+// all. docs/model.md, "Joints", has the equations. Private to engine/dynamics.
+#pragma once
+
+#include <Eigen/Core>
+#include <span>
+#include <vector>
+
+#include "engine/cable/cable.h"
+#include "engine/dynamics/box2d_bridge.h"
+#include "engine/dynamics/joint_projection.h"
+
+namespace cablelab {
+
+/// Off: every island takes the Schur complement (tests and benchmarks compare the two).
+void setJointTreeProjection(bool on);
+
+class JointTree {
+ public:
+  /// Reads an island's joints (`island`: indices into `joints`) over its dofs (`dofOfBody`:
+  /// body -> first dof, -1 if not a dof). False, leaving the Schur complement to project, unless
+  /// every joint on a dof hangs it from a parent (a dof or a body that does not move) with no
+  /// loop, and every jointed dof body moves in all three directions (invM > 0).
+  bool build(std::span<const JointFrame> joints, std::span<const int> island,
+             std::span<const BodyState> bodies, std::span<const int> dofOfBody,
+             const Eigen::VectorXd& invM);
+
+  /// W = M^-1 J^T and v* restricted to what the joints allow (M = diag(invM)^-1).
+  void project(const Eigen::VectorXd& invM, Eigen::MatrixXd& W, Eigen::VectorXd& vStar);
+
+ private:
+  // A jointed dof body, listed parents first within its tree.
+  struct Link {
+    int body, dof;
+    int parent;      // link index, -1: hangs from the root
+    int coordinate;  // its joint's rate within the tree, -1: a weld (none)
+    JointDef::Kind kind;
+    Vec2 anchor, axis;  // its joint's (world)
+    Vec3 root;  // the root's prescribed motion at this body (v + omega perp(x - x_root), omega)
+  };
+  // Entries of S: the motion of a link's body per unit rate of one of its tree's coordinates.
+  struct Entry {
+    int coordinate;
+    Vec3 s;
+  };
+  struct Tree {
+    int firstLink, links, coordinates;
+  };
+  std::vector<Link> links_;
+  std::vector<Entry> entries_;  // link l's are entries_[entryStart_[l], entryStart_[l + 1])
+  std::vector<int> entryStart_;
+  std::vector<Tree> trees_;
+  // Build's scratch: which joints are whose, per dof body.
+  std::vector<int> linkOfBody_, jointsOfBody_, jointStart_;
+  std::vector<char> jointUsed_;
+  // Project's scratch: one tree's S^T M S and right-hand sides.
+  SmallLdlt ldlt_;
+  std::vector<double> mass_, rhs_;
+};
+
+}  // namespace cablelab
