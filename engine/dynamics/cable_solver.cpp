@@ -399,7 +399,7 @@ void jointRows(Workspace& ws, const CableSolveInput& in) {
 void projectOntoJoints(Workspace& ws, const CableSolveInput& in) {
   if (ws.jointIndex.empty()) return;
   if (!ws.stiff && ws.tree.build(in.joints, ws.jointIndex, in.bodies, ws.dofs.ofBody, ws.invM)) {
-    ws.tree.project(ws.invM, ws.W, ws.vStar);
+    ws.tree.project(ws.W, ws.vStar);
     return;
   }
   jointRows(ws, in);

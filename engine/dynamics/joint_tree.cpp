@@ -1,6 +1,8 @@
 // The joint projection in the joints' coordinates (joint_tree.h; docs/model.md, "Joints").
 #include "engine/dynamics/joint_tree.h"
 
+#include <algorithm>
+
 namespace cablelab {
 
 namespace {
@@ -14,41 +16,53 @@ void setJointTreeProjection(bool on) {
 bool JointTree::build(std::span<const JointFrame> joints, std::span<const int> island,
                       std::span<const BodyState> bodies, std::span<const int> dofOfBody,
                       const Eigen::VectorXd& invM) {
+  if (!treeProjection) return false;
+  auto dofOf = [&](int body) { return body >= 0 ? dofOfBody[body] : -1; };
+  bool same = seen_.size() == island.size();
+  for (size_t p = 0; same && p < island.size(); ++p) {
+    const JointFrame& j = joints[island[p]];
+    same = seen_[p] == std::array<int, 3>{island[p], dofOf(j.bodyA), dofOf(j.bodyB)};
+  }
+  if (!same) {
+    seen_.resize(island.size());
+    for (size_t p = 0; p < island.size(); ++p) {
+      const JointFrame& j = joints[island[p]];
+      seen_[p] = {island[p], dofOf(j.bodyA), dofOf(j.bodyB)};
+    }
+    found_ = findTrees(joints, island, dofOfBody);
+  }
+  return found_ && measure(joints, bodies, invM);
+}
+
+bool JointTree::findTrees(std::span<const JointFrame> joints, std::span<const int> island,
+                          std::span<const int> dofOfBody) {
   links_.clear();
   trees_.clear();
-  if (!treeProjection) return false;
-  const int dofBodies = static_cast<int>(invM.size()) / 3;
+  int bodiesWithDofs = 0;
+  for (int d : dofOfBody) bodiesWithDofs = std::max(bodiesWithDofs, d / 3 + 1);
   const int count = static_cast<int>(island.size());
   auto dofOf = [&](int body) { return body >= 0 ? dofOfBody[body] : -1; };
   // Each dof body's joints (positions in `island`), as lists one after the other.
-  jointStart_.assign(dofBodies + 1, 0);
+  jointStart_.assign(bodiesWithDofs + 1, 0);
   for (int p = 0; p < count; ++p)
     for (int body : {joints[island[p]].bodyA, joints[island[p]].bodyB})
       if (const int d = dofOf(body); d >= 0) ++jointStart_[d / 3 + 1];
-  for (int b = 0; b < dofBodies; ++b) jointStart_[b + 1] += jointStart_[b];
-  jointsOfBody_.resize(jointStart_[dofBodies]);
+  for (int b = 0; b < bodiesWithDofs; ++b) jointStart_[b + 1] += jointStart_[b];
+  jointsOfBody_.resize(jointStart_[bodiesWithDofs]);
   linkOfBody_.assign(jointStart_.begin(), jointStart_.end() - 1);  // as the fill positions
   for (int p = 0; p < count; ++p)
     for (int body : {joints[island[p]].bodyA, joints[island[p]].bodyB})
       if (const int d = dofOf(body); d >= 0) jointsOfBody_[linkOfBody_[d / 3]++] = p;
-  linkOfBody_.assign(dofBodies, -1);
+  linkOfBody_.assign(bodiesWithDofs, -1);
   jointUsed_.assign(count, 0);
 
-  auto addLink = [&](int body, int parent, const JointFrame& joint, int rootBody, Tree& tree) {
+  auto addLink = [&](int body, int parent, int joint, int rootBody, Tree& tree) {
     const int dof = dofOfBody[body];
     if (linkOfBody_[dof / 3] >= 0) return false;  // a second way to this body: a loop
-    if (!(invM[dof] > 0 && invM[dof + 1] > 0 && invM[dof + 2] > 0)) return false;
     linkOfBody_[dof / 3] = static_cast<int>(links_.size());
-    Vec3 root = Vec3::Zero();  // the world's prescribed motion: none
-    if (rootBody >= 0) {
-      const BodyState& r = bodies[rootBody];
-      const Vec2 v =
-          r.velocity + r.angularVelocity * perp(Vec2(bodies[body].position - r.position));
-      root = Vec3(v.x(), v.y(), r.angularVelocity);
-    }
-    const bool rate = joint.kind != JointDef::Kind::Weld;
-    links_.push_back({body, dof, parent, rate ? tree.coordinates++ : -1, joint.kind, joint.anchor,
-                      joint.axis, root});
+    const bool rate = joints[joint].kind != JointDef::Kind::Weld;
+    links_.push_back({body, dof, parent, joint, rootBody, rate ? tree.coordinates++ : -1,
+                      Vec3::Zero(), Vec3::Zero()});
     ++tree.links;
     return true;
   };
@@ -61,7 +75,7 @@ bool JointTree::build(std::span<const JointFrame> joints, std::span<const int> i
     jointUsed_[p] = 1;
     const int rootBody = da >= 0 ? rootJoint.bodyB : rootJoint.bodyA;
     Tree tree{static_cast<int>(links_.size()), 0, 0};
-    if (!addLink(da >= 0 ? rootJoint.bodyA : rootJoint.bodyB, -1, rootJoint, rootBody, tree))
+    if (!addLink(da >= 0 ? rootJoint.bodyA : rootJoint.bodyB, -1, island[p], rootBody, tree))
       return false;
     for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l) {
       const int d = links_[l].dof / 3;
@@ -71,7 +85,7 @@ bool JointTree::build(std::span<const JointFrame> joints, std::span<const int> i
         jointUsed_[j] = 1;
         const JointFrame& joint = joints[island[j]];
         const int other = joint.bodyA == links_[l].body ? joint.bodyB : joint.bodyA;
-        if (dofOf(other) < 0 || !addLink(other, l, joint, rootBody, tree)) return false;
+        if (dofOf(other) < 0 || !addLink(other, l, island[j], rootBody, tree)) return false;
       }
     }
     trees_.push_back(tree);
@@ -81,46 +95,86 @@ bool JointTree::build(std::span<const JointFrame> joints, std::span<const int> i
     if (!jointUsed_[p] &&
         (dofOf(joints[island[p]].bodyA) >= 0 || dofOf(joints[island[p]].bodyB) >= 0))
       return false;
-  // S: a link's body moves with its own joint's rate and every ancestor's.
+  // S's shape: a link's body moves with its own joint's rate and every ancestor's.
   entries_.clear();
   entryStart_.assign(1, 0);
-  for (const Link& link : links_) {
-    const Vec2 x = bodies[link.body].position;
-    for (int a = static_cast<int>(&link - links_.data()); a >= 0; a = links_[a].parent) {
-      const Link& joint = links_[a];
-      if (joint.coordinate < 0) continue;
-      const Vec3 s = joint.kind == JointDef::Kind::Prismatic
-                         ? Vec3(joint.axis.x(), joint.axis.y(), 0)
-                         : Vec3(-(x.y() - joint.anchor.y()), x.x() - joint.anchor.x(), 1);
-      entries_.push_back({joint.coordinate, s});
-    }
+  for (size_t l = 0; l < links_.size(); ++l) {
+    for (int a = static_cast<int>(l); a >= 0; a = links_[a].parent)
+      if (links_[a].coordinate >= 0) entries_.push_back({links_[a].coordinate, a, Vec3::Zero()});
     entryStart_.push_back(static_cast<int>(entries_.size()));
   }
   return true;
 }
 
-void JointTree::project(const Eigen::VectorXd& invM, Eigen::MatrixXd& W, Eigen::VectorXd& vStar) {
+bool JointTree::measure(std::span<const JointFrame> joints, std::span<const BodyState> bodies,
+                        const Eigen::VectorXd& invM) {
+  for (Link& link : links_) {
+    const Vec3 inverse = invM.segment<3>(link.dof);
+    if (!(inverse.minCoeff() > 0)) return false;  // cannot move one way: no finite M
+    link.mass = inverse.cwiseInverse();
+    link.root.setZero();  // the world's prescribed motion: none
+    if (link.rootBody >= 0) {
+      const BodyState& r = bodies[link.rootBody];
+      const Vec2 offset = bodies[link.body].position - r.position;
+      const Vec2 v = r.velocity + r.angularVelocity * perp(offset);
+      link.root = Vec3(v.x(), v.y(), r.angularVelocity);
+    }
+  }
+  for (size_t l = 0; l < links_.size(); ++l) {
+    const Vec2 x = bodies[links_[l].body].position;
+    for (int e = entryStart_[l]; e < entryStart_[l + 1]; ++e) {
+      const JointFrame& joint = joints[links_[entries_[e].of].joint];
+      const Vec2 arm = x - joint.anchor;
+      entries_[e].s = joint.kind == JointDef::Kind::Prismatic
+                          ? Vec3(joint.axis.x(), joint.axis.y(), 0)
+                          : Vec3(-arm.y(), arm.x(), 1);  // (perp(x - anchor), 1)
+    }
+  }
+  return true;
+}
+
+void JointTree::project(Eigen::MatrixXd& W, Eigen::VectorXd& vStar) const {
   const int m = static_cast<int>(W.cols());
   const Eigen::Index n = W.rows();
-  const int cols = m + 1;  // S^T M W, then S^T M (v* - root)
+  // Column c of [W | v*] at a dof, and what the root's motion adds to it there. Plain loops
+  // over 3: Eigen's 3-vectors cost twice the arithmetic at these sizes.
+  auto column = [&](int c) { return c < m ? W.data() + c * n : vStar.data(); };
+  static constexpr double kNoMotion[3] = {0, 0, 0};
+  auto rootPart = [&](int c, const Link& link) { return c < m ? kNoMotion : link.root.data(); };
   for (const Tree& tree : trees_) {
-    const int k = tree.coordinates;
+    // The columns to project: the cables that pull on this tree (a finger's own membrane, not
+    // the other finger's), then v* (less the root's motion).
+    columns_.clear();
+    for (int c = 0; c < m; ++c)
+      for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l) {
+        const double* x = column(c) + links_[l].dof;
+        if (x[0] != 0 || x[1] != 0 || x[2] != 0) {
+          columns_.push_back(c);
+          break;
+        }
+      }
+    columns_.push_back(m);
+    const int k = tree.coordinates, cols = static_cast<int>(columns_.size());
     mass_.assign(static_cast<size_t>(k) * k, 0.0);
     rhs_.assign(static_cast<size_t>(k) * cols, 0.0);
+    // S^T M S (lower triangle) and S^T M [W | v* - root].
     for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l) {
       const Link& link = links_[l];
-      const Vec3 mass(1 / invM[link.dof], 1 / invM[link.dof + 1], 1 / invM[link.dof + 2]);
-      const Vec3 v = vStar.segment<3>(link.dof) - link.root;
       for (int e = entryStart_[l]; e < entryStart_[l + 1]; ++e) {
-        const Vec3 ms = mass.cwiseProduct(entries_[e].s);
+        const double* s = entries_[e].s.data();
+        const double ms[3] = {link.mass[0] * s[0], link.mass[1] * s[1], link.mass[2] * s[2]};
         const int ce = entries_[e].coordinate;
-        for (int f = e; f < entryStart_[l + 1]; ++f) {  // S^T M S's lower triangle
+        for (int f = e; f < entryStart_[l + 1]; ++f) {
+          const double* t = entries_[f].s.data();
           const int cf = entries_[f].coordinate;
-          mass_[std::max(ce, cf) + std::min(ce, cf) * k] += ms.dot(entries_[f].s);
+          mass_[std::max(ce, cf) + std::min(ce, cf) * k] +=
+              ms[0] * t[0] + ms[1] * t[1] + ms[2] * t[2];
         }
-        for (int s = 0; s < m; ++s)
-          rhs_[ce + s * k] += ms.dot(Eigen::Map<const Vec3>(W.data() + s * n + link.dof));
-        rhs_[ce + m * k] += ms.dot(v);
+        for (int i = 0; i < cols; ++i) {
+          const double* x = column(columns_[i]) + link.dof;
+          const double* r = rootPart(columns_[i], link);
+          rhs_[ce + i * k] += ms[0] * (x[0] - r[0]) + ms[1] * (x[1] - r[1]) + ms[2] * (x[2] - r[2]);
+        }
       }
     }
     for (int i = 0; i < k; ++i) mass_[i + i * k] += 1e-10 * (1 + mass_[i + i * k]);
@@ -128,18 +182,20 @@ void JointTree::project(const Eigen::VectorXd& invM, Eigen::MatrixXd& W, Eigen::
       ldlt_.factor(mass_.data(), k);
       ldlt_.solveInPlace(mass_.data(), k, rhs_.data(), cols);
     }
-    // W <- S qdot(W), v* <- root + S qdot(v*).
+    // [W | v*] <- [0 | root] + S qdot (a column left out stays 0 on the tree).
     for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l) {
       const Link& link = links_[l];
-      Vec3 v = link.root;
-      for (int s = 0; s < m; ++s) W.block<3, 1>(link.dof, s).setZero();
-      for (int e = entryStart_[l]; e < entryStart_[l + 1]; ++e) {
-        const Entry& entry = entries_[e];
-        for (int s = 0; s < m; ++s)
-          W.block<3, 1>(link.dof, s) += entry.s * rhs_[entry.coordinate + s * k];
-        v += entry.s * rhs_[entry.coordinate + m * k];
+      for (int i = 0; i < cols; ++i) {
+        const double* r = rootPart(columns_[i], link);
+        double x0 = r[0], x1 = r[1], x2 = r[2];
+        for (int e = entryStart_[l]; e < entryStart_[l + 1]; ++e) {
+          const double* s = entries_[e].s.data();
+          const double q = rhs_[entries_[e].coordinate + i * k];
+          x0 += s[0] * q, x1 += s[1] * q, x2 += s[2] * q;
+        }
+        double* x = column(columns_[i]) + link.dof;
+        x[0] = x0, x[1] = x1, x[2] = x2;
       }
-      vStar.segment<3>(link.dof) = v;
     }
   }
 }

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <span>
 #include <vector>
 
@@ -33,22 +34,32 @@ class JointTree {
              std::span<const BodyState> bodies, std::span<const int> dofOfBody,
              const Eigen::VectorXd& invM);
 
-  /// W = M^-1 J^T and v* restricted to what the joints allow (M = diag(invM)^-1).
-  void project(const Eigen::VectorXd& invM, Eigen::MatrixXd& W, Eigen::VectorXd& vStar);
+  /// W = M^-1 J^T and v* restricted to what the joints allow (M: build's diag(invM)^-1).
+  void project(Eigen::MatrixXd& W, Eigen::VectorXd& vStar) const;
 
  private:
+  // The trees' shape: which body hangs from which, through which joint. Kept while the island's
+  // joints and dofs stay the same (every sub-step of a hand); only the values below change.
+  bool findTrees(std::span<const JointFrame> joints, std::span<const int> island,
+                 std::span<const int> dofOfBody);
+  // The anchors, axes and root motions of this pose, S's entries, each body's mass.
+  bool measure(std::span<const JointFrame> joints, std::span<const BodyState> bodies,
+               const Eigen::VectorXd& invM);
+
   // A jointed dof body, listed parents first within its tree.
   struct Link {
     int body, dof;
     int parent;      // link index, -1: hangs from the root
+    int joint;       // the joint it hangs by (index into the joints)
+    int rootBody;    // the tree's root: a body that does not move, -1 the world
     int coordinate;  // its joint's rate within the tree, -1: a weld (none)
-    JointDef::Kind kind;
-    Vec2 anchor, axis;  // its joint's (world)
+    Vec3 mass;       // M's diagonal (m, m, I)
     Vec3 root;  // the root's prescribed motion at this body (v + omega perp(x - x_root), omega)
   };
-  // Entries of S: the motion of a link's body per unit rate of one of its tree's coordinates.
+  // Entries of S: the motion of a link's body per unit rate of one of its tree's coordinates,
+  // whose joint is that of link `of`.
   struct Entry {
-    int coordinate;
+    int coordinate, of;
     Vec3 s;
   };
   struct Tree {
@@ -58,12 +69,15 @@ class JointTree {
   std::vector<Entry> entries_;  // link l's are entries_[entryStart_[l], entryStart_[l + 1])
   std::vector<int> entryStart_;
   std::vector<Tree> trees_;
-  // Build's scratch: which joints are whose, per dof body.
+  bool found_ = false;                    // whether the joints last seen form trees
+  std::vector<std::array<int, 3>> seen_;  // those joints: index and both sides' dofs
+  // findTrees' scratch: which joints are whose, per dof body.
   std::vector<int> linkOfBody_, jointsOfBody_, jointStart_;
   std::vector<char> jointUsed_;
   // Project's scratch: one tree's S^T M S and right-hand sides.
-  SmallLdlt ldlt_;
-  std::vector<double> mass_, rhs_;
+  mutable SmallLdlt ldlt_;
+  mutable std::vector<double> mass_, rhs_;
+  mutable std::vector<int> columns_;
 };
 
 }  // namespace cablelab

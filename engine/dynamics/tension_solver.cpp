@@ -21,6 +21,29 @@ void solveSingle(double k, double b, LcpSolution& sol) {
   sol.residual = std::abs(std::min(sol.x[0] * k, w));
 }
 
+// Two rows (a hand's membranes) that both ask to pull (b > 0): principal pivoting starts from
+// both and stops at once when the closed form gives both impulses >= 0 (w = 0). That case without
+// the loop; false (sol untouched) otherwise, or when the rows are nearly dependent. K carries the
+// solve's regularisation, Kin is K as given (for the residual).
+bool solveBothTaut(const Eigen::MatrixXd& K, const Eigen::MatrixXd& Kin, const Eigen::VectorXd& b,
+                   LcpSolution& sol) {
+  if (!(b[0] > 0 && b[1] > 0)) return false;
+  const double det = K(0, 0) * K(1, 1) - K(0, 1) * K(1, 0);
+  if (!(std::abs(det) > 1e-6 * std::abs(K(0, 0) * K(1, 1)))) return false;
+  const double x0 = (K(1, 1) * b[0] - K(0, 1) * b[1]) / det;
+  const double x1 = (K(0, 0) * b[1] - K(1, 0) * b[0]) / det;
+  if (!(x0 >= 0 && x1 >= 0)) return false;
+  sol.x.resize(2);
+  sol.x << x0, x1;
+  sol.iterations = 0;
+  sol.rankDeficient = false;
+  const double w0 = Kin(0, 0) * x0 + Kin(0, 1) * x1 - b[0];
+  const double w1 = Kin(1, 0) * x0 + Kin(1, 1) * x1 - b[1];
+  sol.residual =
+      std::max(std::abs(std::min(x0 * K(0, 0), w0)), std::abs(std::min(x1 * K(1, 1), w1)));
+  return true;
+}
+
 // The equal compliance that makes a singular K definite, relative to its largest diagonal: small
 // enough that the impulses are the minimum-norm ones to 1e-6, large enough that the active-set
 // solves stay well conditioned. The targets are consistent (projected), so it never amplifies.
@@ -210,6 +233,7 @@ void solveLcp(const Eigen::MatrixXd& Kin, const Eigen::VectorXd& b, LcpWorkspace
   for (int i = 0; i < n; ++i) K(i, i) += 1e-12 * (1 + K(i, i));
   if (n == 1 && K(0, 0) > std::numeric_limits<double>::min())
     return solveSingle(K(0, 0), b[0], sol);
+  if (n == 2 && !redundant && solveBothTaut(K, Kin, b, sol)) return;
 
   sol.x.setZero(n);
   sol.iterations = 0;
