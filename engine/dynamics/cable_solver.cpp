@@ -161,7 +161,7 @@ void CableSolverWorkspace::factorStiffMass(double h) {
 void CableSolverWorkspace::applyInverseMass(Eigen::Ref<Eigen::MatrixXd> X) {
   const int n = dofs.size();
   if (!stiff) {
-    for (int d = 0; d < n; ++d) X.row(d) *= invM[d];
+    X.array().colwise() *= invM.array();  // column by column: X is column-major
     return;
   }
   for (int d = 0; d < n; ++d) {
