@@ -124,9 +124,13 @@ Vec2 worldPoint(std::span<const BodyState> bodies, int body, const Vec2& local);
 
 /// Fills p.world for every point, then length, J, J-dot-v (docs/model.md#cable-geometry).
 CableKinematics cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodies);
-/// The same into `k`, reusing its Jacobian's storage (the solver calls this every Newton step).
+/// The same into `k`, reusing its Jacobian's storage.
 void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodies,
                      CableKinematics& k);
+/// Length and J only, without the velocity terms (k.lengthRate and k.jdotV mean nothing): what a
+/// Newton step of the solver needs at each predicted pose.
+void cableLengthJacobian(std::span<WrapPoint> path, std::span<const BodyState> bodies,
+                         CableKinematics& k);
 
 /// The discrete gradient of a path's length between two states (docs/cables.md, "Energy"):
 /// a row G with G (q1 - q0) = length(q1) - length(q0) exactly, which tends to J as q1 -> q0.

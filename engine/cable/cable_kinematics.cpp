@@ -30,13 +30,16 @@ struct PointMotion {
   Vec2 accel = Vec2::Zero();     // -omega^2 r: the J-dot-v part of its acceleration
 };
 
+template <bool kRates = true>
 PointMotion motionOf(std::span<const BodyState> bodies, const WrapPoint& p) {
   PointMotion m;
   if (p.body < 0) return m;
   const BodyState& b = bodies[p.body];
   m.offset = p.world - b.position;
-  m.velocity = b.velocity + b.angularVelocity * perp(m.offset);
-  m.accel = -b.angularVelocity * b.angularVelocity * m.offset;
+  if constexpr (kRates) {
+    m.velocity = b.velocity + b.angularVelocity * perp(m.offset);
+    m.accel = -b.angularVelocity * b.angularVelocity * m.offset;
+  }
   return m;
 }
 
@@ -92,8 +95,11 @@ CableKinematics cableKinematics(std::span<WrapPoint> path, std::span<const BodyS
   return k;
 }
 
-void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodies,
-                     CableKinematics& k) {
+namespace {
+
+// kRates: also J v and J-dot-v (the velocities and the -omega^2 r accelerations of the points).
+template <bool kRates>
+void kinematics(std::span<WrapPoint> path, std::span<const BodyState> bodies, CableKinematics& k) {
   k.length = k.lengthRate = k.jdotV = 0;
   k.jacobian.clear();
   k.zeroLengthSegments = 0;
@@ -106,12 +112,12 @@ void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodie
     circles |= p.radius != 0;
   }
   // Each point's motion serves the segments on both sides of it.
-  PointMotion m1 = path.empty() ? PointMotion{} : motionOf(bodies, path[0]);
+  PointMotion m1 = path.empty() ? PointMotion{} : motionOf<kRates>(bodies, path[0]);
   for (size_t i = 0; i + 1 < path.size(); ++i) {
     WrapPoint& p0 = path[i];
     WrapPoint& p1 = path[i + 1];
     const PointMotion m0 = m1;
-    m1 = motionOf(bodies, p1);
+    m1 = motionOf<kRates>(bodies, p1);
     double len;
     Vec2 u;
     if (p0.radius == 0 && p1.radius == 0) {
@@ -131,10 +137,12 @@ void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodie
       ++k.zeroLengthSegments;
       continue;
     }
-    const Vec2 w = m1.velocity - m0.velocity;
-    const double uw = u.dot(w);
-    k.lengthRate += uw;
-    k.jdotV += u.dot(m1.accel - m0.accel) + (w.squaredNorm() - uw * uw) / len;
+    if constexpr (kRates) {
+      const Vec2 w = m1.velocity - m0.velocity;
+      const double uw = u.dot(w);
+      k.lengthRate += uw;
+      k.jdotV += u.dot(m1.accel - m0.accel) + (w.squaredNorm() - uw * uw) / len;
+    }
     // Two points on one body keep their distance; two circles with different signed radii on
     // one body do too, but their contributions (each -delta omega) do not cancel term by term.
     if (p0.body != p1.body || p0.radius != p1.radius) {
@@ -145,6 +153,18 @@ void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodie
   if (circles) addArcs(path, bodies, k.directions, k);
   std::sort(k.jacobian.begin(), k.jacobian.end(),
             [](const BodyJacobian& a, const BodyJacobian& b) { return a.body < b.body; });
+}
+
+}  // namespace
+
+void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodies,
+                     CableKinematics& k) {
+  kinematics<true>(path, bodies, k);
+}
+
+void cableLengthJacobian(std::span<WrapPoint> path, std::span<const BodyState> bodies,
+                         CableKinematics& k) {
+  kinematics<false>(path, bodies, k);
 }
 
 void appendLengthHessianTranslation(std::span<const WrapPoint> path,

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/cable/body_frames.h"
 #include "engine/cable/cable.h"
 #include "engine/cable/wrap.h"
 
@@ -124,8 +125,9 @@ Vec2 Cable::selectedPoint(size_t i) const {
 bool Cable::keepWrapSet(std::span<const BodyState> select, std::span<const BodyState> bodies) {
   if (!wrapSetCertain(select, 0)) return false;
   placePulleys(select);
-  start_.world = start_.tangentOut = worldPoint(select, start_.body, start_.local);
-  end_.world = end_.tangentIn = worldPoint(select, end_.body, end_.local);
+  BodyFrames frames(select);  // both ends on one body (a paddle): one cos and sin
+  start_.world = start_.tangentOut = frames.worldPoint(start_.body, start_.local);
+  end_.world = end_.tangentIn = frames.worldPoint(end_.body, end_.local);
   skipArcs_.resize(pulleys_.size());
   for (size_t i = 1; i + 1 < path_.size(); ++i) {
     const int j = path_[i].pulley;

@@ -495,7 +495,7 @@ void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
     for (int k = row.first; k <= row.last; ++k) {
       const std::span<const WrapPoint> span = c.spanPath(k);
       ws.path.assign(span.begin(), span.end());
-      cableKinematics(ws.path, ws.predicted, ws.kin);
+      cableLengthJacobian(ws.path, ws.predicted, ws.kin);
       ws.phi1[r] += c.spanStretch(k) + ws.kin.length - c.spanKinematics(k).length;
       addJacobianTimesW(ws, ws.kin.jacobian, ws.JW.row(r));
     }

@@ -248,7 +248,7 @@ void SparseIsland::linearise(const CableSolveInput& in, std::span<const Cable> c
     const Cable& c = cables[rows_[r]];
     const std::span<const WrapPoint> span = c.spanPath(0);
     path_.assign(span.begin(), span.end());
-    cableKinematics(path_, predicted, kin_);
+    cableLengthJacobian(path_, predicted, kin_);
     phi1_[r] = c.spanStretch(0) + kin_.length - c.spanKinematics(0).length;
     const size_t begin = j1_.size();
     double jw = 0;
