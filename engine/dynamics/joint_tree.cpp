@@ -1,4 +1,4 @@
-// The joint projection in the joints' coordinates (joint_tree.h; docs/model.md, "Joints").
+// The joint projection in the joints' coordinates (joint_tree.h; docs/model.md, "Islands").
 #include "engine/dynamics/joint_tree.h"
 
 #include <algorithm>
@@ -29,17 +29,15 @@ bool JointTree::build(std::span<const JointFrame> joints, std::span<const int> i
       const JointFrame& j = joints[island[p]];
       seen_[p] = {island[p], dofOf(j.bodyA), dofOf(j.bodyB)};
     }
-    found_ = findTrees(joints, island, dofOfBody);
+    found_ = findTrees(joints, island, dofOfBody, static_cast<int>(invM.size()) / 3);
   }
   return found_ && measure(joints, bodies, invM);
 }
 
 bool JointTree::findTrees(std::span<const JointFrame> joints, std::span<const int> island,
-                          std::span<const int> dofOfBody) {
+                          std::span<const int> dofOfBody, int bodiesWithDofs) {
   links_.clear();
   trees_.clear();
-  int bodiesWithDofs = 0;
-  for (int d : dofOfBody) bodiesWithDofs = std::max(bodiesWithDofs, d / 3 + 1);
   const int count = static_cast<int>(island.size());
   auto dofOf = [&](int body) { return body >= 0 ? dofOfBody[body] : -1; };
   // Each dof body's joints (positions in `island`), as lists one after the other.

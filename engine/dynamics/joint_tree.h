@@ -7,7 +7,7 @@
 //     qdot = (S^T M S)^-1 S^T M (v - r),   v <- r + S qdot,
 // the velocity closest to v in kinetic energy that the joints allow: a k x k system per tree
 // (k joints) where the Schur complement factors one of twice the size, and no joint rows at
-// all. docs/model.md, "Joints", has the equations. Private to engine/dynamics.
+// all. docs/model.md, "Islands", has the equations. Private to engine/dynamics.
 #pragma once
 
 #include <Eigen/Core>
@@ -40,8 +40,9 @@ class JointTree {
  private:
   // The trees' shape: which body hangs from which, through which joint. Kept while the island's
   // joints and dofs stay the same (every sub-step of a hand); only the values below change.
+  // The work is the island's (`bodiesWithDofs` of them), not the world's.
   bool findTrees(std::span<const JointFrame> joints, std::span<const int> island,
-                 std::span<const int> dofOfBody);
+                 std::span<const int> dofOfBody, int bodiesWithDofs);
   // The anchors, axes and root motions of this pose, S's entries, each body's mass.
   bool measure(std::span<const JointFrame> joints, std::span<const BodyState> bodies,
                const Eigen::VectorXd& invM);
