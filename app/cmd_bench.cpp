@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
@@ -61,36 +62,52 @@ double median(std::vector<double> v) {
 
 // Issue 11's scale cases, stepped by cablelab and by MuJoCo from the same SceneDef
 // (engine/scenes/scale_scenes.h; the files in tests/data/bench/ are these scenes), in
-// alternating rounds of individually timed steps. Medians per step (us).
+// interleaved rounds: each round steps every case a few times, cablelab then MuJoCo, so that
+// the VM's drifting speed hits every N alike (the growth exponent compares them; measured one
+// after the other, a slow spell over N = 1024 alone once read 1.16 where the cases side by side
+// read 1.01). `steps[k]` steps of case k in all. Medians per step (us).
 struct ScaleTiming {
   double cablelab = 0, cable = 0, mujoco = 0;
 };
 
-ScaleTiming measureScaleCase(const SceneDef& scene, int steps, int rounds) {
+std::vector<ScaleTiming> measureScaleCases(const std::vector<ScaleCase>& cases,
+                                           const std::vector<int>& steps, int rounds) {
   using Clock = std::chrono::steady_clock;
-  World world(scene, scene.name);
-  std::vector<double> ours, cable, theirs;
-  for (int i = 0; i < 5; ++i) world.step(scene.dt, scene.substeps);
+  std::vector<std::unique_ptr<World>> worlds;
 #ifdef CABLELAB_HAVE_MUJOCO
-  MujocoWorld mujoco(scene);
-  for (int i = 0; i < 5; ++i) mujoco.step();
+  std::vector<std::unique_ptr<MujocoWorld>> mujocos;
 #endif
-  for (int round = 0; round < rounds; ++round) {
-    for (int i = 0; i < steps; ++i) {
-      const auto t0 = Clock::now();
-      world.step(scene.dt, scene.substeps);
-      ours.push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
-      cable.push_back(world.lastStepStats().cableMicros);
-    }
+  for (const ScaleCase& c : cases) {
+    worlds.push_back(std::make_unique<World>(c.scene, c.scene.name));
+    for (int i = 0; i < 5; ++i) worlds.back()->step(c.scene.dt, c.scene.substeps);
 #ifdef CABLELAB_HAVE_MUJOCO
-    for (int i = 0; i < steps; ++i) {
-      const auto t0 = Clock::now();
-      mujoco.step();
-      theirs.push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
-    }
+    mujocos.push_back(std::make_unique<MujocoWorld>(c.scene));
+    for (int i = 0; i < 5; ++i) mujocos.back()->step();
 #endif
   }
-  return {median(ours), median(cable), median(theirs)};
+  std::vector<std::vector<double>> ours(cases.size()), cable(cases.size()), theirs(cases.size());
+  for (int round = 0; round < rounds; ++round)
+    for (size_t k = 0; k < cases.size(); ++k) {
+      const SceneDef& scene = cases[k].scene;
+      const int n = std::max(1, steps[k] / rounds);
+      for (int i = 0; i < n; ++i) {
+        const auto t0 = Clock::now();
+        worlds[k]->step(scene.dt, scene.substeps);
+        ours[k].push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
+        cable[k].push_back(worlds[k]->lastStepStats().cableMicros);
+      }
+#ifdef CABLELAB_HAVE_MUJOCO
+      for (int i = 0; i < n; ++i) {
+        const auto t0 = Clock::now();
+        mujocos[k]->step();
+        theirs[k].push_back(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
+      }
+#endif
+    }
+  std::vector<ScaleTiming> timings;
+  for (size_t k = 0; k < cases.size(); ++k)
+    timings.push_back({median(ours[k]), median(cable[k]), median(theirs[k])});
+  return timings;
 }
 
 // One big island (a chain or a net of cables, engine/scenes/scale_scenes.h): medians of
@@ -173,14 +190,23 @@ const bool benchRegistered = registerCommand(
         stage("scale: Atwood machines and the 64-pulley cable, cablelab and MuJoCo");
         nlohmann::json scaleTable = nlohmann::json::object(), ratios = nlohmann::json::object();
         std::vector<std::pair<double, double>> growth;  // (cables, cable us), Atwood cases
-        for (const ScaleCase& c : scaleCases()) {
+        const std::vector<ScaleCase> cases = scaleCases();
+        const int scaleRounds = 12;
+        std::vector<int> caseSteps;
+        for (const ScaleCase& c : cases) {
           const int cables = static_cast<int>(c.scene.cables.size());
-          const int steps = std::max(quick ? 5 : 20, (quick ? 2000 : 8000) / (cables + 4));
-          const ScaleTiming t = measureScaleCase(c.scene, steps, 3);
+          caseSteps.push_back(scaleRounds *
+                              std::max(quick ? 2 : 5, (quick ? 500 : 2000) / (cables + 4)));
+        }
+        const std::vector<ScaleTiming> timings = measureScaleCases(cases, caseSteps, scaleRounds);
+        for (size_t k = 0; k < cases.size(); ++k) {
+          const ScaleCase& c = cases[k];
+          const ScaleTiming& t = timings[k];
+          const int cables = static_cast<int>(c.scene.cables.size());
           scaleTable[c.name] = {{"cablelab_us", t.cablelab},
                                 {"cable_us", t.cable},
                                 {"cables", cables},
-                                {"steps", 3 * steps}};
+                                {"steps", caseSteps[k]}};
 #ifdef CABLELAB_HAVE_MUJOCO
           scaleTable[c.name]["mujoco_us"] = t.mujoco;
           ratios[c.name] = t.cablelab / t.mujoco;
