@@ -9,6 +9,7 @@
 #include "engine/dynamics/joint_projection.h"
 #include "engine/dynamics/joint_tree.h"
 #include "engine/dynamics/world.h"
+#include "engine/scenes/scene_registry.h"
 #include "tests/support/engine_test_support.h"
 
 namespace cablelab {
@@ -188,6 +189,41 @@ TEST(JointProjection, ARopeOverAWeldedBracketCarriesTheAtwoodTension) {
     EXPECT_LT(std::abs(world.cable(0).stretch()), 1e-6);
     EXPECT_LT(world.body(0).velocity.norm(), 1e-5);
   }
+}
+
+// The hand squeezing and moving the box: both projections are the same map, so the fingers,
+// the box and the membranes' tensions follow the same trajectory to rounding.
+TEST(JointProjection, TheHandMovesAlikeInJointCoordinatesAndThroughTheSchurComplement) {
+  auto run = [](bool tree) {
+    setJointTreeProjection(tree);
+    World world(makeScene("hand"));
+    std::vector<double> states;
+    for (int step = 0; step < 120; ++step) {
+      if (step == 10)  // close both fingers and slide them forward
+        for (int j : {0, 3}) world.setServoTarget(j, j == 0 ? -0.1 : 0.1);
+      if (step == 10) world.setServoTarget(1, 0.2), world.setServoTarget(4, 0.2);
+      world.step(test::kDt, 4);
+      for (int b = 0; b < world.bodyCount(); ++b) {
+        const BodyState& s = world.body(b);
+        states.insert(states.end(), {s.position.x(), s.position.y(), s.angle});
+      }
+      for (int c = 0; c < world.cableCount(); ++c) states.push_back(world.cable(c).tension());
+    }
+    setJointTreeProjection(true);
+    return states;
+  };
+  const std::vector<double> tree = run(true), schur = run(false);
+  ASSERT_EQ(tree.size(), schur.size());
+  const size_t perStep = tree.size() / 120, poses = perStep - 2, last = tree.size() - perStep;
+  double pose = 0, tension = 0, motion = 0;
+  for (size_t i = 0; i < tree.size(); ++i) {
+    double& worst = i % perStep < poses ? pose : tension;
+    worst = std::max(worst, std::abs(tree[i] - schur[i]));
+  }
+  for (size_t i = 0; i < poses; ++i) motion = std::max(motion, std::abs(tree[last + i] - tree[i]));
+  EXPECT_LT(pose, 1e-7);     // m, rad: Box2D's float rounding
+  EXPECT_LT(tension, 1e-4);  // N (tens of N): the membranes' damping of 550 N s/m on 1e-8 m/s
+  EXPECT_GT(motion, 0.05);   // the fingers moved
 }
 
 }  // namespace
