@@ -134,28 +134,26 @@ bool JointTree::measure(std::span<const JointFrame> joints, std::span<const Body
 void JointTree::project(Eigen::MatrixXd& W, Eigen::VectorXd& vStar) const {
   const int m = static_cast<int>(W.cols());
   const Eigen::Index n = W.rows();
-  // Column c of [W | v*] at a dof, and what the root's motion adds to it there. Plain loops
-  // over 3: Eigen's 3-vectors cost twice the arithmetic at these sizes.
-  auto column = [&](int c) { return c < m ? W.data() + c * n : vStar.data(); };
-  static constexpr double kNoMotion[3] = {0, 0, 0};
-  auto rootPart = [&](int c, const Link& link) { return c < m ? kNoMotion : link.root.data(); };
+  // v* less the roots' motion is projected like W's columns; the motion goes back on after.
+  for (const Link& link : links_) vStar.segment<3>(link.dof) -= link.root;
   for (const Tree& tree : trees_) {
     // The columns to project: the cables that pull on this tree (a finger's own membrane, not
-    // the other finger's), then v* (less the root's motion).
+    // the other finger's), then v*. Plain loops over 3: Eigen's 3-vectors cost twice the
+    // arithmetic at these sizes.
     columns_.clear();
     for (int c = 0; c < m; ++c)
       for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l) {
-        const double* x = column(c) + links_[l].dof;
+        double* x = W.data() + c * n + links_[l].dof;
         if (x[0] != 0 || x[1] != 0 || x[2] != 0) {
-          columns_.push_back(c);
+          columns_.push_back(W.data() + c * n);
           break;
         }
       }
-    columns_.push_back(m);
+    columns_.push_back(vStar.data());
     const int k = tree.coordinates, cols = static_cast<int>(columns_.size());
     mass_.assign(static_cast<size_t>(k) * k, 0.0);
     rhs_.assign(static_cast<size_t>(k) * cols, 0.0);
-    // S^T M S (lower triangle) and S^T M [W | v* - root].
+    // S^T M S (lower triangle) and S^T M [W | v*].
     for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l) {
       const Link& link = links_[l];
       for (int e = entryStart_[l]; e < entryStart_[l + 1]; ++e) {
@@ -169,9 +167,8 @@ void JointTree::project(Eigen::MatrixXd& W, Eigen::VectorXd& vStar) const {
               ms[0] * t[0] + ms[1] * t[1] + ms[2] * t[2];
         }
         for (int i = 0; i < cols; ++i) {
-          const double* x = column(columns_[i]) + link.dof;
-          const double* r = rootPart(columns_[i], link);
-          rhs_[ce + i * k] += ms[0] * (x[0] - r[0]) + ms[1] * (x[1] - r[1]) + ms[2] * (x[2] - r[2]);
+          const double* x = columns_[i] + link.dof;
+          rhs_[ce + i * k] += ms[0] * x[0] + ms[1] * x[1] + ms[2] * x[2];
         }
       }
     }
@@ -180,22 +177,20 @@ void JointTree::project(Eigen::MatrixXd& W, Eigen::VectorXd& vStar) const {
       ldlt_.factor(mass_.data(), k);
       ldlt_.solveInPlace(mass_.data(), k, rhs_.data(), cols);
     }
-    // [W | v*] <- [0 | root] + S qdot (a column left out stays 0 on the tree).
-    for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l) {
-      const Link& link = links_[l];
+    // [W | v*] <- S qdot (a column left out stays 0 on the tree).
+    for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l)
       for (int i = 0; i < cols; ++i) {
-        const double* r = rootPart(columns_[i], link);
-        double x0 = r[0], x1 = r[1], x2 = r[2];
+        double x0 = 0, x1 = 0, x2 = 0;
         for (int e = entryStart_[l]; e < entryStart_[l + 1]; ++e) {
           const double* s = entries_[e].s.data();
           const double q = rhs_[entries_[e].coordinate + i * k];
           x0 += s[0] * q, x1 += s[1] * q, x2 += s[2] * q;
         }
-        double* x = column(columns_[i]) + link.dof;
+        double* x = columns_[i] + links_[l].dof;
         x[0] = x0, x[1] = x1, x[2] = x2;
       }
-    }
   }
+  for (const Link& link : links_) vStar.segment<3>(link.dof) += link.root;
 }
 
 }  // namespace cablelab

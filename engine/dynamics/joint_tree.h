@@ -78,7 +78,7 @@ class JointTree {
   // Project's scratch: one tree's S^T M S and right-hand sides.
   mutable SmallLdlt ldlt_;
   mutable std::vector<double> mass_, rhs_;
-  mutable std::vector<int> columns_;
+  mutable std::vector<double*> columns_;  // [W | v*]'s columns that a tree's projection takes
 };
 
 }  // namespace cablelab
