@@ -10,7 +10,8 @@
 //                           row per short segment that may close up (floors.h)
 //   2. predictVelocities    v* (gravity and loads, no cables) and J^T at the start of the step
 //   3. inverseMass          W = M'^-1 J^T, M' with the taut cables' geometric stiffness
-//   4. projectOntoJoints    W and v* restricted to what Box2D's joints allow (Schur complement)
+//   4. projectOntoJoints    W and v* restricted to what Box2D's joints allow: in the joints'
+//                           coordinates for trees (joint_tree.h), else the Schur complement
 //   5. lengthTargets        rigid: the end-of-step length; elastic: the implicit spring-damper
 //   6. newtonOnLengths      Newton on the end-of-step lengths, one LCP per iteration
 //   6b. mergeSlidingSpans   capstans past e^(mu theta): merge their spans, run 2-6 again
