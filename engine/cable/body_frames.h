@@ -23,9 +23,9 @@ class BodyFrames {
   const Rotation& rotation(int body) {
     for (int i = 0; i < count_; ++i)
       if (cache_[i].body == body) return cache_[i];
-    const double angle = bodies_[body].angle;
     if (count_ == kSize) count_ = 0;  // many bodies: recycle the slots
-    cache_[count_] = {body, std::cos(angle), std::sin(angle)};
+    cache_[count_].body = body;
+    cosSin(bodies_[body].angle, cache_[count_].c, cache_[count_].s);
     return cache_[count_++];
   }
   /// A body point in the world (the world, body -1, is the identity).

@@ -140,7 +140,8 @@ void Cable::placePulleys(std::span<const BodyState> bodies) {
     }
     // One cos/sin per pulley, not per vertex.
     const BodyState& b = bodies[p.body];
-    const double c = std::cos(b.angle), s = std::sin(b.angle);
+    double c, s;
+    cosSin(b.angle, c, s);
     for (size_t v = 0; v < p.local.size(); ++v) p.world[v] = b.position + rotate(p.local[v], c, s);
   }
 }

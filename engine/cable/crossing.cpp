@@ -9,7 +9,9 @@ namespace cablelab {
 
 MovingPoint MovingPoint::on(std::span<const BodyState> motion, int body, const Vec2& local) {
   const double angle = body < 0 ? 0.0 : motion[body].angle;
-  return on(motion, body, local, std::cos(angle), std::sin(angle));
+  double c, s;
+  cosSin(angle, c, s);
+  return on(motion, body, local, c, s);
 }
 
 MovingPoint MovingPoint::on(std::span<const BodyState> motion, int body, const Vec2& local,

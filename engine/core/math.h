@@ -24,9 +24,21 @@ inline Vec2 rotate(const Vec2& a, double c, double s) {
   return {c * a.x() - s * a.y(), s * a.x() + c * a.y()};
 }
 
+/// The cosine and sine of an angle (radians). Zero, the angle of a body that never turns (fixed
+/// rotation, a box between fingers), costs no sincos: cos 0 = 1 and sin(+-0) = +-0 exactly.
+inline void cosSin(double angle, double& c, double& s) {
+  if (angle == 0) {
+    c = 1, s = angle;
+    return;
+  }
+  c = std::cos(angle), s = std::sin(angle);
+}
+
 /// a rotated by angle (radians).
 inline Vec2 rotate(const Vec2& a, double angle) {
-  return rotate(a, std::cos(angle), std::sin(angle));
+  double c, s;
+  cosSin(angle, c, s);
+  return rotate(a, c, s);
 }
 
 inline bool isFinite(const Vec2& a) {
