@@ -18,17 +18,10 @@ bool JointTree::build(std::span<const JointFrame> joints, std::span<const int> i
                       const Eigen::VectorXd& invM) {
   if (!treeProjection) return false;
   auto dofOf = [&](int body) { return body >= 0 ? dofOfBody[body] : -1; };
-  bool same = seen_.size() == island.size();
-  for (size_t p = 0; same && p < island.size(); ++p) {
-    const JointFrame& j = joints[island[p]];
-    same = seen_[p] == std::array<int, 3>{island[p], dofOf(j.bodyA), dofOf(j.bodyB)};
-  }
-  if (!same) {
-    seen_.resize(island.size());
-    for (size_t p = 0; p < island.size(); ++p) {
-      const JointFrame& j = joints[island[p]];
-      seen_[p] = {island[p], dofOf(j.bodyA), dofOf(j.bodyB)};
-    }
+  key_.clear();
+  for (int j : island) key_.push_back({j, dofOf(joints[j].bodyA), dofOf(joints[j].bodyB)});
+  if (key_ != seen_) {
+    seen_.swap(key_);
     found_ = findTrees(joints, island, dofOfBody, static_cast<int>(invM.size()) / 3);
   }
   return found_ && measure(joints, bodies, invM);

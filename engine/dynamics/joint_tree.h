@@ -70,8 +70,8 @@ class JointTree {
   std::vector<Entry> entries_;  // link l's are entries_[entryStart_[l], entryStart_[l + 1])
   std::vector<int> entryStart_;
   std::vector<Tree> trees_;
-  bool found_ = false;                    // whether the joints last seen form trees
-  std::vector<std::array<int, 3>> seen_;  // those joints: index and both sides' dofs
+  bool found_ = false;                          // whether the joints last seen form trees
+  std::vector<std::array<int, 3>> seen_, key_;  // those joints (index, both sides' dofs), now's
   // findTrees' scratch: which joints are whose, per dof body.
   std::vector<int> linkOfBody_, jointsOfBody_, jointStart_;
   std::vector<char> jointUsed_;

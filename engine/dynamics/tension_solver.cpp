@@ -21,17 +21,25 @@ void solveSingle(double k, double b, LcpSolution& sol) {
   sol.residual = std::abs(std::min(sol.x[0] * k, w));
 }
 
+// K_SS x_S = b_S on rows i and j in closed form (Eigen's factorisations cost more than the rest
+// of the solve at this size); false when they are nearly dependent (then pivot).
+bool solveTwoRows(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, int i, int j, double& xi,
+                  double& xj) {
+  const double det = K(i, i) * K(j, j) - K(i, j) * K(j, i);
+  if (!(std::abs(det) > 1e-6 * std::abs(K(i, i) * K(j, j)))) return false;
+  xi = (K(j, j) * b[i] - K(i, j) * b[j]) / det;
+  xj = (K(i, i) * b[j] - K(j, i) * b[i]) / det;
+  return true;
+}
+
 // Two rows (a hand's membranes) that both ask to pull (b > 0): principal pivoting starts from
 // both and stops at once when the closed form gives both impulses >= 0 (w = 0). That case without
 // the loop; false (sol untouched) otherwise, or when the rows are nearly dependent. K carries the
 // solve's regularisation, Kin is K as given (for the residual).
 bool solveBothTaut(const Eigen::MatrixXd& K, const Eigen::MatrixXd& Kin, const Eigen::VectorXd& b,
                    LcpSolution& sol) {
-  if (!(b[0] > 0 && b[1] > 0)) return false;
-  const double det = K(0, 0) * K(1, 1) - K(0, 1) * K(1, 0);
-  if (!(std::abs(det) > 1e-6 * std::abs(K(0, 0) * K(1, 1)))) return false;
-  const double x0 = (K(1, 1) * b[0] - K(0, 1) * b[1]) / det;
-  const double x1 = (K(0, 0) * b[1] - K(1, 0) * b[0]) / det;
+  double x0, x1;
+  if (!(b[0] > 0 && b[1] > 0) || !solveTwoRows(K, b, 0, 1, x0, x1)) return false;
   if (!(x0 >= 0 && x1 >= 0)) return false;
   sol.x.resize(2);
   sol.x << x0, x1;
@@ -89,15 +97,7 @@ void solveOnSet(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, const std::v
     x[idx[0]] = b[idx[0]] / K(idx[0], idx[0]);
     return;
   }
-  if (m == 2) {
-    const int i = idx[0], j = idx[1];
-    const double det = K(i, i) * K(j, j) - K(i, j) * K(j, i);
-    if (std::abs(det) > 1e-6 * std::abs(K(i, i) * K(j, j))) {  // else nearly dependent: pivot
-      x[i] = (K(j, j) * b[i] - K(i, j) * b[j]) / det;
-      x[j] = (K(i, i) * b[j] - K(j, i) * b[i]) / det;
-      return;
-    }
-  }
+  if (m == 2 && solveTwoRows(K, b, idx[0], idx[1], x[idx[0]], x[idx[1]])) return;
   work.Ks.resize(m, m);
   work.bs.resize(m);
   for (int r = 0; r < m; ++r) {
