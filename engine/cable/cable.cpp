@@ -401,13 +401,13 @@ bool Cable::updateDrumEnd(WrapPoint& end, bool atStart, std::span<const BodyStat
 }
 
 void Cable::refresh(std::span<const BodyState> bodies) {
-  cableKinematics(path_, bodies, kin_);
-  for (Span& s : spans_) cableKinematics(s.path, bodies, s.kin);
+  cableLengthJacobian(path_, bodies, kin_);
+  for (Span& s : spans_) cableLengthJacobian(s.path, bodies, s.kin);
 }
 
 // The length the path before this update has on `bodies`.
 double Cable::previousLength(std::span<const BodyState> bodies) {
-  cableKinematics(previousPath_, bodies, previousKin_);
+  cableLengthJacobian(previousPath_, bodies, previousKin_);
   return previousKin_.length;
 }
 
@@ -466,10 +466,10 @@ void Cable::update(std::span<const BodyState> select, std::span<const BodyState>
   for (int round = 0; round < 2 * count + 2; ++round) {
     if (!buildPath(warnings)) continue;
     if (curved) {
-      cableKinematics(path_, select, kin_);
+      cableLengthJacobian(path_, select, kin_);
       if (firstUpdate_) {
         placeDrumMarks(select);
-        cableKinematics(path_, select, kin_);
+        cableLengthJacobian(path_, select, kin_);
       }
       storeArcs();
     }
@@ -483,7 +483,7 @@ void Cable::update(std::span<const BodyState> select, std::span<const BodyState>
   if (drumChanged) buildPath(warnings);
   // Length, J and J-dot-v on `bodies`.
   if (!curved || drumChanged || select.data() != bodies.data()) {
-    cableKinematics(path_, bodies, kin_);
+    cableLengthJacobian(path_, bodies, kin_);
     if (curved) storeArcs();
   }
   // What a drop in this update took out is what a later rejoin may put back.

@@ -173,14 +173,14 @@ class Cable {
   /// The cable refers to scene.cables[index], which must outlive it (the World owns both).
   Cable(const SceneDef& scene, int index, const std::string& source);
 
-  /// Re-selects the wrap points (guards above), then recomputes length, J and J-dot-v.
+  /// Re-selects the wrap points (guards above), then recomputes length and J.
   /// Appends a line to `warnings` when a guard had to repair the geometry.
   void update(std::span<const BodyState> bodies, std::vector<std::string>* warnings = nullptr) {
     update(bodies, bodies, warnings);
   }
   /// The same with the wrap points selected on `select` (the bodies a moment later, so that a
-  /// point exactly on a segment and moving onto its wrap side counts as crossed) and length, J and
-  /// J-dot-v worked out on `bodies`.
+  /// point exactly on a segment and moving onto its wrap side counts as crossed) and length and J
+  /// worked out on `bodies`.
   void update(std::span<const BodyState> select, std::span<const BodyState> bodies,
               std::vector<std::string>* warnings);
   /// The first wrap change in (0, h] if every body moves as `motion` says over the sub-step
@@ -190,10 +190,12 @@ class Cable {
   /// The authored definition (geometry and initial parameters); parameters() has the live ones.
   const CableDef& def() const { return *def_; }
   const std::string& name() const { return def_->name; }
-  /// Recomputes length, J and J-dot-v for the current wrap points (no re-selection).
+  /// Recomputes length and J for the current wrap points (no re-selection).
   void refresh(std::span<const BodyState> bodies);
 
   const std::vector<WrapPoint>& path() const { return path_; }
+  /// Length and J of the path (cableLengthJacobian: the solvers need no J v or J-dot v, and
+  /// cableKinematics gives them for any path).
   const CableKinematics& kinematics() const { return kin_; }
   double length() const { return kin_.length; }
   const CableParameters& parameters() const { return params_; }
@@ -334,7 +336,6 @@ class Cable {
   void buildSkipCertificate(std::span<const BodyState> pose);
   bool wrapSetCertain(std::span<const BodyState> pose, double h) const;
   bool keepWrapSet(std::span<const BodyState> select, std::span<const BodyState> bodies);
-  Vec2 selectedPoint(size_t i) const;
   /// The vertex a polygon's chain would grow by at `end`, a chain end on segment (a, b): the one
   /// before its first (end is b, the segment enters the chain) or after its last (end is a).
   int chainEndNeighbour(const WrapPoint& end, bool entering) const;

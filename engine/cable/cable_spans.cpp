@@ -41,7 +41,7 @@ void Cable::splitIntoSpans(std::span<const BodyState> bodies, const std::vector<
     span.path.assign(path_.begin() + span.first, path_.begin() + span.last + 1);
     if (k > 0) span.path.front() = wheels[k - 1];
     if (k < splits.size()) span.path.back() = wheels[k];
-    cableKinematics(span.path, bodies, span.kin);
+    cableLengthJacobian(span.path, bodies, span.kin);
     span.tension = tension_;
     lengths += span.kin.length;
   }
@@ -104,7 +104,7 @@ void Cable::updateSpans(std::span<const BodyState> bodies) {
     // A wheel's mark and arc on each side belong to the span, not to the whole path.
     if (k > 0) span.path.front().mark = front.mark, span.path.front().arc = front.arc;
     if (k + 1 < spans_.size()) span.path.back().mark = back.mark, span.path.back().arc = back.arc;
-    cableKinematics(span.path, bodies, span.kin);
+    cableLengthJacobian(span.path, bodies, span.kin);
   }
   // After a slide, the two spans share their stretch again: the slide is kept.
   for (size_t k = 0; k < links_.size(); ++k) {

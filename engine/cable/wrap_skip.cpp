@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "engine/cable/body_frames.h"
 #include "engine/cable/cable.h"
 #include "engine/cable/wrap.h"
 
@@ -111,52 +110,36 @@ bool Cable::wrapSetCertain(std::span<const BodyState> pose, double h) const {
   return true;
 }
 
-// World position of path point i on the selection pose (placePulleys and the terminals set).
-Vec2 Cable::selectedPoint(size_t i) const {
-  if (i == 0) return start_.world;
-  if (i + 1 == path_.size()) return end_.world;
-  const WrapPoint& w = path_[i];
-  return pulleys_[w.pulley].world[w.vertex >= 0 ? w.vertex : 0];
-}
-
-// The selection's result when the wrap set stays: the same path with the turn angles it keeps
-// over time (buildPath and leaveRound compute them the same way). False (nothing kept, the full
-// update runs) when the certificate does not cover `select`, or when a turn disagrees with it.
+// The selection's result when the wrap set stays: the same path, its kinematics on `bodies`, and
+// the turn angles it keeps over time. The certificate keeps every wrap point's own turn in the
+// wrap sense, so a pulley's turn is the angle from its incoming to its outgoing direction, on the
+// branch nearest the last one (what walkTurning sums vertex by vertex on a full update). False
+// (the full update runs) when the certificate does not cover `select`, or a turn straightens.
 bool Cable::keepWrapSet(std::span<const BodyState> select, std::span<const BodyState> bodies) {
   if (!wrapSetCertain(select, 0)) return false;
-  placePulleys(select);
-  BodyFrames frames(select);  // both ends on one body (a paddle): one cos and sin
-  start_.world = start_.tangentOut = frames.worldPoint(start_.body, start_.local);
-  end_.world = end_.tangentIn = frames.worldPoint(end_.body, end_.local);
+  cableLengthJacobian(path_, bodies, kin_);
+  if (kin_.zeroLengthSegments > 0) return false;
   skipArcs_.resize(pulleys_.size());
   for (size_t i = 1; i + 1 < path_.size(); ++i) {
     const int j = path_[i].pulley;
     const PulleyState& p = pulleys_[j];
-    const double s = p.side == WrapSide::Right ? -1.0 : 1.0;
+    size_t k = i;  // a polygon's run of vertices i..k
+    while (p.polygon && k + 2 < path_.size() && path_[k + 1].pulley == j) ++k;
     if (p.side == WrapSide::Threaded) {  // never leaves; its turn is not kept (leaveRound)
       skipArcs_[j] = p.arc;
+      i = k;
       continue;
     }
-    if (!p.polygon) {
-      const Vec2 in = p.world[0] - selectedPoint(i - 1), out = selectedPoint(i + 1) - p.world[0];
-      const double raw = -s * std::atan2(cross(in, out), in.dot(out));
-      skipArcs_[j] = raw + 2 * M_PI * std::round((p.arc - raw) / (2 * M_PI));
-      if (skipArcs_[j] < 0) return false;
-      continue;
-    }
-    size_t k = i;
-    while (k + 2 < path_.size() && path_[k + 1].pulley == j) ++k;
-    int walk, loops;
-    skipArcs_[j] = walkTurning(selectedPoint(i - 1), selectedPoint(k + 1), p.world, p.side,
-                               path_[i].vertex, path_[k].vertex, p.arc, walk, loops);
-    const int n = static_cast<int>(p.local.size());
-    if (skipArcs_[j] <= kStraightWrapTurn || static_cast<int>(k - i + 1) != walk + loops * n)
-      return false;
+    const Vec2& in = kin_.directions[i - 1];
+    const Vec2& out = kin_.directions[k];
+    const double s = p.side == WrapSide::Right ? -1.0 : 1.0;
+    const double raw = -s * std::atan2(cross(in, out), in.dot(out));
+    skipArcs_[j] = raw + 2 * M_PI * std::round((p.arc - raw) / (2 * M_PI));
+    if (p.polygon ? skipArcs_[j] <= kStraightWrapTurn : skipArcs_[j] < 0) return false;
     i = k;
   }
   for (const WrapPoint& w : path_)
     if (w.pulley >= 0) pulleys_[w.pulley].arc = skipArcs_[w.pulley];
-  cableKinematics(path_, bodies, kin_);
   return true;
 }
 
