@@ -65,9 +65,10 @@ struct CableSolverWorkspace {
   // Floor rows (segment >= 0) follow the cables' rows.
   struct Row {
     int cable = 0;
-    int first = 0, last = 0;  // spans
-    size_t weights = 0;       // offset of span first's weight in rowWeights
-    int segment = -1;         // -1: the spans' length; i: a floor on the cable's segment i
+    int first = 0, last = 0;     // spans
+    size_t weights = 0;          // offset of span first's weight in rowWeights
+    int segment = -1;            // -1: the spans' length; i: a floor on the cable's segment i
+    Vec2 normal = Vec2::Zero();  // a floor's direction (floorNormal)
     double weight(const std::vector<double>& w, int k) const { return w[weights + k - first]; }
   };
   std::vector<Row> rows;  // this island's
@@ -279,34 +280,35 @@ void buildRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
   for (int cable : ws.islandRows[island]) {
     const auto& path = cables[cable].path();
     for (size_t i = 0; i + 1 < path.size(); ++i)
-      if (needsFloor(path, i, [&](int b) { return ws.dofs.ofBody[b] >= 0; }) &&
+      if (needsFloor(path, i, in.bodies, in.h, in.gravity,
+                     [&](int b) { return ws.dofs.ofBody[b] >= 0; }) &&
           mayReachFloor(in, path[i], path[i + 1])) {
-        ws.rows.push_back({cable, 0, 0, ws.rowWeights.size(), static_cast<int>(i)});
+        ws.rows.push_back({cable, 0, 0, ws.rowWeights.size(), static_cast<int>(i),
+                           floorNormal(path[i], path[i + 1], in.bodies, in.h, in.gravity)});
         ws.rowWeights.push_back(1.0);
       }
   }
 }
 
-// A floor row's constraint kFloorLength - u0 . (q - p) of segment (p, q) on `bodies` (p, q: its
-// contact points, a circle's tangent point moving with its centre, floors.h), and its J
-// (into ws.floorJacobian). u0 is the segment's direction at the start of the step: measured along
-// it, a body that would pass through its pulley within the step goes negative instead of
-// coming out the other side at a length that looks allowed.
-double floorRow(Workspace& ws, std::span<const BodyState> bodies, const Cable& cable, int segment) {
-  const WrapPoint* ends[2] = {&cable.path()[segment], &cable.path()[segment + 1]};
-  const Vec2 u0 = (floorTo(*ends[1]) - floorFrom(*ends[0])).normalized();
+// A floor row's constraint kFloorLength - n . (q - p) of segment (p, q) on `bodies` (p, q: its
+// contact points, a circle's tangent point moving with its centre; n: floorNormal, floors.h), and
+// its J (into ws.floorJacobian).
+double floorRow(Workspace& ws, std::span<const BodyState> bodies, const Cable& cable,
+                const Workspace::Row& row) {
+  const WrapPoint* ends[2] = {&cable.path()[row.segment], &cable.path()[row.segment + 1]};
+  const Vec2& n = row.normal;
   ws.floorJacobian.clear();
   double along = 0;
   for (int e = 0; e < 2; ++e) {
-    const double sign = e == 0 ? 1.0 : -1.0;  // d(kFloorLength - u0 . (q - p))
+    const double sign = e == 0 ? 1.0 : -1.0;  // d(kFloorLength - n . (q - p))
     const WrapPoint& w = *ends[e];
     const Vec2 centre = worldPoint(bodies, w.body, w.local);
     // A circle's contact is its tangent point at the start of the step, carried with its centre.
     const Vec2 offset = (e == 0 ? floorFrom(w) : floorTo(w)) - w.world;
-    along -= sign * u0.dot(centre + offset);
+    along -= sign * n.dot(centre + offset);
     if (w.body < 0) continue;
     const Vec2 arm = centre - bodies[w.body].position;
-    ws.floorJacobian.push_back({w.body, sign * Vec3(u0.x(), u0.y(), u0.dot(perp(arm)))});
+    ws.floorJacobian.push_back({w.body, sign * Vec3(n.x(), n.y(), n.dot(perp(arm)))});
   }
   return kFloorLength - along;
 }
@@ -320,7 +322,7 @@ void forStartJacobians(Workspace& ws, std::span<const BodyState> bodies,
   const Workspace::Row& row = ws.rows[r];
   const Cable& c = cables[row.cable];
   if (row.segment >= 0) {
-    floorRow(ws, bodies, c, row.segment);
+    floorRow(ws, bodies, c, row);
     f(ws.floorJacobian, 1.0);
     return;
   }
@@ -487,7 +489,7 @@ void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
     const Cable& c = cables[row.cable];
     ws.JW.row(r).setZero();
     if (row.segment >= 0) {
-      ws.phi1[r] = floorRow(ws, ws.predicted, c, row.segment);
+      ws.phi1[r] = floorRow(ws, ws.predicted, c, row);
       addJacobianTimesW(ws, ws.floorJacobian, ws.JW.row(r));
       continue;
     }

@@ -55,15 +55,16 @@ double rigidTarget(double phi, double share) {
                              : phi;
 }
 
-// A floor row (floors.h) at the end of the step, kFloorLength - u0 . (x_to - x_from), and its
+// A floor row (floors.h) at the end of the step, kFloorLength - n . (x_to - x_from), and its
 // exact discrete gradient into `g`. The contacts are those at the start of the step (a circle's
-// tangent point carried with its centre) and u0 the segment's direction then, as in the main
-// solve: measured along it, a body that passes its pulley within the step (or rolls over a
-// wheel's rim, where the tangent length comes back up) goes negative instead of looking allowed.
-double floorRow(const WrapPoint& p, const WrapPoint& q, std::span<const BodyState> q0,
-                std::span<const BodyState> q1, std::vector<BodyJacobian>& g) {
+// tangent point carried with its centre) and n the row's direction (floorNormal), as in the main
+// solve: for a body heading into its pulley (or rolling over a wheel's rim, where the tangent
+// length comes back up) the segment's direction then, along which passing through goes negative
+// instead of looking allowed.
+double floorRow(const WrapPoint& p, const WrapPoint& q, const Vec2& u0,
+                std::span<const BodyState> q0, std::span<const BodyState> q1,
+                std::vector<BodyJacobian>& g) {
   const Vec2 from = floorFrom(p), to = floorTo(q);
-  const Vec2 u0 = (to - from).normalized();
   g.clear();
   double along = 0;
   for (int e = 0; e < 2; ++e) {
@@ -106,7 +107,7 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
     for (size_t i = 1; i + 1 < path.size(); ++i)
       wanted |= path[i].body >= 0 && moves(bodies[path[i].body]);
     for (size_t i = 0; i + 1 < path.size(); ++i)
-      wanted |= path[i].body != path[i + 1].body && floorGap(path[i], path[i + 1]) < kFloorWatch;
+      wanted |= needsFloor(path, i, bodies, h, Vec2::Zero(), [](int) { return true; });
     if (c.elastic()) {
       if (elasticMode(c, bodies) * h > kMaxElasticOmegaH) return false;
       wanted = true;
@@ -129,7 +130,8 @@ void MidpointSolver::evaluate(std::span<const BodyState> bodies, std::span<const
   for (size_t r = 0; r < rows_.size(); ++r) {
     const Cable& c = cables[rows_[r]];
     if (const int seg = segment_[r]; seg >= 0) {
-      phi1_[r] = floorRow(c.path()[seg], c.path()[seg + 1], bodies, predicted_, gradients_[r]);
+      phi1_[r] = floorRow(c.path()[seg], c.path()[seg + 1], normals_[r], bodies, predicted_,
+                          gradients_[r]);
       continue;
     }
     path_.assign(c.path().begin(), c.path().end());
@@ -159,10 +161,12 @@ int MidpointSolver::solve(std::span<const BodyState> bodies, std::span<Cable> ca
                           std::span<const int> which, const Vec2& gravity, double h, double share,
                           std::span<Vec3> forces, std::span<Vec3> kicks) {
   share_ = share;
-  redundant_ = false;
+  redundant_ = floorHit_ = false;
   if (!buildRows(bodies, cables, which, gravity, h, forces)) return 0;
   for (int iteration = 0; iteration < kIterations; ++iteration)
     if (newtonStep(bodies, cables, h, iteration == 0)) {
+      for (size_t r = 0; r < rows_.size(); ++r) floorHit_ |= segment_[r] >= 0 && P_[r] > 0;
+      if (floorHit_) return -1;
       finish(bodies, cables, h, forces, kicks);
       return iteration + 1;
     } else if (redundant_) {
@@ -205,13 +209,15 @@ bool MidpointSolver::buildRows(std::span<const BodyState> bodies, std::span<Cabl
       if (w.body >= 0) predicted_[w.body] = midpoint_[w.body] = bodies[w.body];
   }
   segment_.assign(rows_.size(), -1);
+  normals_.assign(rows_.size(), Vec2::Zero());
   const size_t cableRows = rows_.size();
   for (size_t r = 0; r < cableRows; ++r) {
     const auto& path = cables[rows_[r]].path();
     for (size_t i = 0; i + 1 < path.size(); ++i)
-      if (needsFloor(path, i, [&](int b) { return dofOfBody_[b] >= 0; })) {
+      if (needsFloor(path, i, bodies, h, gravity, [&](int b) { return dofOfBody_[b] >= 0; })) {
         rows_.push_back(rows_[r]);
         segment_.push_back(static_cast<int>(i));
+        normals_.push_back(floorNormal(path[i], path[i + 1], bodies, h, gravity));
       }
   }
   const int m = static_cast<int>(rows_.size()), n = 3 * static_cast<int>(bodyOfDof_.size());

@@ -57,7 +57,9 @@ class MidpointSolver {
   /// step to `kicks`; other bodies and cables are left alone. `share` is h over the nominal
   /// sub-step (CableSolveInput::share). Its cost is the island's, not the world's.
   /// Returns the iterations used, or -1 (nothing changed) if they did not converge, or at once
-  /// when the rows the first iteration's impulses pull on are redundant (`redundant()`).
+  /// when the rows the first iteration's impulses pull on are redundant (`redundant()`), or
+  /// when a floor row pushes (`floorHit()`): that is an impact, which the midpoint rule would
+  /// turn into an elastic bounce; the main solve stops the body at its pulley instead.
   int solve(std::span<const BodyState> bodies, std::span<Cable> cables, std::span<const int> which,
             const Vec2& gravity, double h, double share, std::span<Vec3> forces,
             std::span<Vec3> kicks);
@@ -70,6 +72,8 @@ class MidpointSolver {
   /// Whether the last solve gave up at once on redundant rows (Newton on their split of the
   /// impulses cannot settle; the main solve takes the minimum-norm one).
   bool redundant() const { return redundant_; }
+  /// Whether the last solve gave up because a floor row pushed (a body reached its pulley).
+  bool floorHit() const { return floorHit_; }
 
  private:
   bool buildRows(std::span<const BodyState> bodies, std::span<Cable> cables,
@@ -86,6 +90,7 @@ class MidpointSolver {
   double share_ = 1;            // this step over the nominal sub-step
   std::vector<int> rows_;       // cable of each row
   std::vector<int> segment_;    // -1: the cable's length; i: a floor on its segment i
+  std::vector<Vec2> normals_;   // a floor row's direction (floorNormal)
   std::vector<int> dofOfBody_;  // body -> first dof, -1: not moved
   std::vector<int> bodyOfDof_;  // dof / 3 -> body
   Eigen::VectorXd invM_, vStar_, vFree_, vb_, P_, phi0_, phi1_, b_;
@@ -96,7 +101,7 @@ class MidpointSolver {
   std::vector<int> active_;
   Eigen::MatrixXd activeK_;
   Eigen::LDLT<Eigen::MatrixXd> redundancy_;
-  bool redundant_ = false;
+  bool redundant_ = false, floorHit_ = false;
   std::vector<BodyState> predicted_, midpoint_;  // q1 and the midpoint pose (q0 off the dofs)
   std::vector<WrapPoint> path_;
   std::vector<BodyJacobian> gradient_;

@@ -273,6 +273,7 @@ void World::solveForces(double dt, double h) {
         }
         ++stats_.midpointFallbacks;  // Newton did not settle (nothing changed): the main solve
         stats_.midpointRedundant += midpoint_->redundant();
+        stats_.midpointFloorHits += midpoint_->floorHit();
       }
       mainLeft = true;
     }

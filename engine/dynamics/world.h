@@ -59,6 +59,7 @@ struct StepStats {
   int midpointSolves = 0;          ///< island solves by the energy-consistent midpoint rule
   int midpointFallbacks = 0;       ///< of those tried, not converged (the main solve took it)
   int midpointRedundant = 0;       ///< of the fallbacks, given up at once: redundant rows pull
+  int midpointFloorHits = 0;       ///< of the fallbacks, a floor pushed (a body at its pulley)
   int refinements = 0;             ///< Box2D steps shortened to resolve a fast catch
   int selectionSkips = 0;  ///< cable updates that kept the wrap set unsearched (Cable::setSkipping)
   int searchSkips = 0;     ///< event searches skipped: no wrap change can happen in the sub-step

@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/dynamics/world.h"
@@ -142,6 +144,109 @@ TEST(Floors, ABodyHauledUpToARoundPulleyIsHeldShortOfItsRim) {
     EXPECT_LT(world.body(0).velocity.norm() + world.body(1).velocity.norm(), 0.05);
     EXPECT_TRUE(world.warnings().empty()) << world.warnings().front();
   }
+}
+
+BodyDef puck(const std::string& name, const Vec2& position, const Vec2& velocity, double mass) {
+  BodyDef b;
+  b.name = name;
+  b.position = position;
+  b.velocity = velocity;
+  b.mass = mass;
+  b.inertia = 1e-3;
+  b.fixedRotation = true;
+  ShapeDef s;
+  s.radius = 0.05;
+  s.sensor = true;  // no contacts: the cable alone acts
+  b.shapes = {s};
+  return b;
+}
+
+CableDef rope(const std::string& from, const std::string& to, std::vector<PulleyDef> pulleys = {}) {
+  CableDef c;
+  c.name = "rope";
+  c.start.body = from;
+  c.end.body = to;
+  c.pulleys = std::move(pulleys);
+  return c;
+}
+
+// Two pucks moving together at v, a rigid rope from A over a world pulley at the origin back to B
+// (A 1.37 m short of it): A runs into its pulley, the pair stops there, inelastically. Through
+// 50 m/s (0.83 m a step: more than the floor's watch, kFloorWatch) nothing passes the pulley,
+// nothing bounces back off it, and no energy appears; for unequal masses too.
+TEST(Floors, FastBodiesStopAtTheirPulleyWithoutPassingOrBouncing) {
+  for (const double v : {5.0, 15.0, 50.0})
+    for (const auto& [ma, mb] : {std::pair{1.0, 1.0}, {100.0, 0.01}, {0.01, 100.0}}) {
+      SCOPED_TRACE("v " + std::to_string(v) + " m/s, masses " + std::to_string(ma) + " and " +
+                   std::to_string(mb) + " kg");
+      SceneDef scene;
+      scene.gravity = Vec2::Zero();
+      scene.bodies = {puck("a", Vec2(-1.37, 0), Vec2(v, 0), ma),
+                      puck("b", Vec2(3, 0), Vec2(v, 0), mb)};
+      PulleyDef pulley;
+      pulley.side = WrapSide::Threaded;
+      scene.cables = {rope("a", "b", {pulley})};
+      World world(scene);
+      const double e0 = world.energy(), rest = world.cable(0).restLength();
+      double highest = e0, stretch = 0, furthest = -1e9;
+      for (int s = 0; s < 60; ++s) {
+        world.step(scene.dt, 1);
+        highest = std::max(highest, world.energy());
+        stretch = std::max(stretch, std::abs(world.cable(0).length() - rest));
+        furthest = std::max(furthest, world.body(0).position.x());
+      }
+      EXPECT_LT(highest, e0 * (1 + 1e-6));
+      EXPECT_LT(furthest, 0.0);  // never past the pulley
+      EXPECT_LT(stretch, 1e-3);
+      // Held at the pulley: both at rest, A a floor's length (1 cm) short of it.
+      EXPECT_LT(world.body(0).velocity.norm() + world.body(1).velocity.norm(), 0.01 * v);
+      EXPECT_NEAR(world.body(0).position.x(), -0.01, 0.005);
+    }
+}
+
+// An Atwood machine whose light side reaches its pulley (1.2 kg against 1 kg, gravity on): it is
+// held there, at rest, not thrown back down at nearly the speed it came with.
+TEST(Floors, ABodyThatReachesItsPulleyStaysThere) {
+  SceneDef scene;
+  scene.bodies = {puck("heavy", Vec2(-1, -2), Vec2::Zero(), 1.2),
+                  puck("light", Vec2(1, -0.5), Vec2::Zero(), 1.0)};
+  PulleyDef left, right;
+  left.point = Vec2(-1, 0);
+  right.point = Vec2(1, 0);
+  left.side = right.side = WrapSide::Threaded;
+  scene.cables = {rope("heavy", "light", {left, right})};
+  World world(scene);
+  const double e0 = world.energy();
+  double highest = e0;
+  for (int s = 0; s < 180; ++s) {  // 3 s: it arrives after about 1 s
+    world.step(scene.dt, 1);
+    highest = std::max(highest, world.energy());
+  }
+  EXPECT_LT(highest, e0 + 1e-6 * std::abs(e0));
+  EXPECT_NEAR(world.body(1).position.y(), -0.01, 0.005);
+  EXPECT_LT(world.body(0).velocity.norm() + world.body(1).velocity.norm(), 0.01);
+}
+
+// A slack rope's floor is about the segment closing up, not about the direction it had: a puck
+// flying past its anchor 2 cm and 10 cm beside it, at 5 and 50 m/s, with the rope slack
+// throughout, flies straight on at its speed.
+TEST(Floors, APuckFlyingPastItsAnchorOnASlackRopeFliesStraightOn) {
+  for (const double v : {5.0, 50.0})
+    for (const double miss : {0.02, 0.1}) {
+      SCOPED_TRACE("v " + std::to_string(v) + " m/s, " + std::to_string(miss) + " m beside");
+      SceneDef scene;
+      scene.gravity = Vec2::Zero();
+      scene.bodies = {puck("puck", Vec2(-1, miss), Vec2(v, 0), 1.0)};
+      scene.cables = {rope("world", "puck")};
+      scene.cables[0].restLength = 3;  // the puck never gets further than 1.1 m from the anchor
+      World world(scene);
+      const int steps = static_cast<int>(std::lround(2.0 / v / scene.dt)) + 1;  // 1 m past it
+      for (int s = 0; s < steps; ++s) world.step(scene.dt, 1);
+      EXPECT_GT(world.body(0).position.x(), 0.5);
+      EXPECT_NEAR(world.body(0).velocity.x(), v, 1e-6 * v);
+      EXPECT_NEAR(world.body(0).velocity.y(), 0, 1e-6 * v);
+      EXPECT_EQ(world.cable(0).tension(), 0);
+    }
 }
 
 }  // namespace
