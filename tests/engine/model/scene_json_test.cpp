@@ -55,6 +55,9 @@ const BadScene kBadScenes[] = {
     {"scene_zero_rest_length.json", "cables[0].rest_length"},
     {"scene_unknown_cable_body.json", "cables[0].end.body"},
     {"scene_polygon_not_convex.json", "bodies[1].shapes[0].vertices"},
+    // Box2D would abort on these two: vertices it merges, an area under float's epsilon.
+    {"scene_box_too_small.json", "bodies[0].shapes[0].vertices"},
+    {"scene_polygon_too_thin.json", "bodies[1].shapes[0].vertices"},
     {"scene_unknown_key.json", "bodies[0].mas"},
     {"scene_position_wrong_size.json", "bodies[0].position"},
     {"scene_position_not_number.json", "bodies[0].position[0]"},
