@@ -206,6 +206,9 @@ class Cable {
   bool elastic() const { return params_.stiffness > 0; }
   /// Pulley wrap points in use (path points that are not anchors).
   int wraps() const { return static_cast<int>(path_.size()) - 2; }
+  int pulleyCount() const { return static_cast<int>(pulleys_.size()); }
+  /// The body a pulley is fixed on (-1: the world), engaged or not.
+  int pulleyBody(int pulley) const { return pulleys_[pulley].body; }
   bool engaged(int pulley) const { return pulleys_[pulley].engaged; }
   /// The side an engaged pulley is wrapped on (an "auto" pulley's resolved side).
   WrapSide wrapSide(int pulley) const { return pulleys_[pulley].side; }

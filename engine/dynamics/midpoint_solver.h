@@ -17,7 +17,7 @@
 // Newton on (v_b, P) with the geometric stiffness in the iteration matrix converges in a few
 // steps even where the cable's transverse mode is far from resolved (a puck caught at 50 m/s).
 // The choice is made per cable island (cable_islands.h: cables sharing a moving body). It takes
-// an island when some cable of it is elastic or wraps a point on a moving body (straight cables
+// an island when some cable of it is elastic or has a pulley on a moving body (straight cables
 // over fixed pulleys keep Box2D's own integration, which the Box2D pulley-joint comparison
 // relies on), no body its cables move is jointed (the joint projection would have to be redone
 // per iteration) or touching a contact, and every elastic cable's axial mode is resolved
@@ -45,8 +45,8 @@ class MidpointSolver {
   static constexpr double kMaxElasticOmegaH = 2.0;
 
   /// Whether this solve should take the step of the cables `which` (an island, cable_islands.h):
-  /// some cable is elastic, wraps a point on a moving body or has a segment short enough to
-  /// need a floor (a body nearing its pulley) (straight cables between fixed pulleys keep
+  /// some cable is elastic, has a pulley on a moving body (wrapped or not) or a segment short
+  /// enough to need a floor (a body nearing its pulley) (straight cables between fixed pulleys keep
   /// Box2D's own integration), no moved body is `excluded` (jointed or in contact), and every
   /// mode is resolved at h.
   bool applies(std::span<const BodyState> bodies, std::span<const Cable> cables,
