@@ -147,6 +147,7 @@ class World {
   std::vector<char> excluded_;       ///< bodies the midpoint solve leaves alone (joints, contacts)
   std::vector<Vec3> kicks_;          ///< velocity added after Box2D's step (midpoint solve)
   bool midpointUsed_ = false;        ///< the last solveForces() solved some midpoint island
+  bool midpointUnsettled_ = false;   ///< ... and in some island its Newton did not settle
   bool midpointPerIsland_ = true;    ///< setMidpointPerIsland()
   std::vector<char> midpointCable_;  ///< per cable: the midpoint solve took it (main solve skips)
   std::vector<int> midpointCables_;  ///< those cables
