@@ -31,18 +31,31 @@ SpringSecant springSecant(double k, double phi0, double phi1) {
 }
 
 // The fastest the axial mode of an elastic cable can get on its current path (rad/s):
-// sqrt(k J M^-1 J^T) with J at its largest, each segment adding a unit vector (and its lever
-// arm) at both ends. Bounded rather than taken at J now, since J of a point that just joined is
-// zero (theorem 1) and grows within steps.
+// sqrt(k J M^-1 J^T) with J at its largest. Per body, each segment end on it whose other end is
+// on another body adds at most a unit vector to J's translation and |r| to its turn, so
+// J M^-1 J^T <= sum over bodies of n^2 / m + (sum |r|)^2 / I. Bounded rather than taken at J
+// now, since J of a point that just joined is zero (theorem 1) and grows within steps. (Counted
+// per point, with both of a vertex's segments whichever body the other end is on, it read twice
+// this and gave an undamped sling on a light square to the damped main solve.)
 double elasticMode(const Cable& c, std::span<const BodyState> bodies) {
-  double bound = 0;
   const auto& path = c.path();
+  double bound = 0;
   for (size_t i = 0; i < path.size(); ++i) {
     const int body = path[i].body;
     if (body < 0) continue;
-    const double segments = (i > 0) + (i + 1 < path.size());
+    bool seen = false;  // each body once, at its first point on the path
+    for (size_t j = 0; j < i && !seen; ++j) seen = path[j].body == body;
+    if (seen) continue;
+    double ends = 0, arms = 0;
+    for (size_t j = i; j < path.size(); ++j) {
+      if (path[j].body != body) continue;
+      const double r = path[j].local.norm();
+      for (const size_t k : {j - 1, j + 1})
+        if (k < path.size() && (path[k].body != body || path[k].radius != path[j].radius))
+          ends += 1, arms += r;  // j - 1 wraps to a huge index at j = 0: left out
+    }
     const BodyState& b = bodies[body];
-    bound += (b.invMass + b.invInertia * path[i].local.squaredNorm()) * segments * segments;
+    bound += b.invMass * ends * ends + b.invInertia * arms * arms;
   }
   return std::sqrt(c.parameters().stiffness * bound);
 }
