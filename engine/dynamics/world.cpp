@@ -59,6 +59,12 @@ World::World(SceneDef scene, const std::string& source)
       throw InputError(source, "cables[" + std::to_string(i) + "]",
                        "must not have zero length: its ends coincide at the initial pose (got " +
                            formatNumber(cables_[i].length()) + " m)");
+    // A rigid cable longer than its rest length at the start snaps to it (kBaumgarte of the
+    // excess a sub-step): say so, as it is rarely meant.
+    if (const Cable& c = cables_[i]; !c.elastic() && c.stretch() > 1e-3)
+      warnings_.push_back("cable '" + c.name() + "': rigid and " + formatNumber(c.stretch()) +
+                          " m longer than its rest length " + formatNumber(c.restLength()) +
+                          " m at the start: it snaps taut to it (give it stiffness to stretch)");
   }
 }
 

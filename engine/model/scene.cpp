@@ -85,6 +85,7 @@ void validateScene(const SceneDef& scene, const std::string& source) {
   Checker check(source);
   check.finite(scene.gravity, "gravity");
   check.positive(scene.dt, "dt");
+  if (scene.dt > 1) check.fail("dt", "must be in (0, 1] s, as --dt" + gotValue(scene.dt));
   if (scene.substeps < 1 || scene.substeps > 1000)
     check.fail("substeps", "must be 1..1000" + gotValue(scene.substeps));
   check.finite(scene.view.center, "view.center");

@@ -109,5 +109,31 @@ TEST(Degenerate, EveryCorpusSceneRunsGuardedOrStopsCleanly) {
   EXPECT_EQ(seen, static_cast<int>(expected.size()));
 }
 
+// A rigid cable authored shorter than its path snaps taut to its rest length: a warning names it
+// at the start (and none for one that starts taut).
+TEST(Degenerate, ARigidCableLongerThanItsRestLengthIsNamedAtTheStart) {
+  for (const double rest : {1.0, 3.0}) {
+    SceneDef scene;
+    BodyDef weight;
+    weight.name = "weight";
+    weight.position = Vec2(0, -3);
+    weight.shapes = {ShapeDef{}};
+    scene.bodies = {weight};
+    CableDef rope;
+    rope.name = "rope";
+    rope.end.body = "weight";
+    rope.restLength = rest;
+    scene.cables = {rope};
+    const World world(scene);
+    if (rest < 3) {
+      ASSERT_EQ(world.warnings().size(), 1u);
+      EXPECT_NE(world.warnings()[0].find("cable 'rope': rigid and 2 m longer"), std::string::npos)
+          << world.warnings()[0];
+    } else {
+      EXPECT_TRUE(world.warnings().empty()) << world.warnings()[0];
+    }
+  }
+}
+
 }  // namespace
 }  // namespace cablelab

@@ -71,6 +71,7 @@ const BadScene kBadScenes[] = {
     {"scene_threaded_polygon.json", "cables[0].pulleys[0].side"},
     {"scene_cable_without_name.json", "cables[0].name"},
     {"scene_zero_dt.json", "dt"},
+    {"scene_dt_too_long.json", "dt"},  // 1000 s: ran no step at all for --time 2
     {"scene_bodies_not_list.json", "bodies"},
     {"scene_coincident_cable_ends.json", "cables[0]"},
     {"scene_unknown_body_type.json", "bodies[0].type"},
