@@ -19,6 +19,23 @@ inline std::vector<Vec2> regularPolygon(int sides, double radius) {
   return v;
 }
 
+// A free 0.6 m square of `mass` and `inertia` at `position`, its shape a sensor (it touches
+// nothing), for a cable to wrap.
+inline BodyDef sensorSquare(const std::string& name, const Vec2& position, double mass,
+                            double inertia) {
+  BodyDef body;
+  body.name = name;
+  body.position = position;
+  body.mass = mass;
+  body.inertia = inertia;
+  ShapeDef quad;
+  quad.kind = ShapeDef::Kind::Polygon;
+  quad.vertices = {Vec2(-0.3, -0.3), Vec2(0.3, -0.3), Vec2(0.3, 0.3), Vec2(-0.3, 0.3)};
+  quad.sensor = true;
+  body.shapes = {quad};
+  return body;
+}
+
 // A free polygon body (no shapes: nothing to touch) of 1 kg at the origin, spinning at `spin`,
 // in `cables` undamped elastic cables from (-1.5, y) to (1.5, y) that pass under it (each wraps
 // it from below: the body sits in them as in a sling), y spread over [0.05, 0.15].

@@ -6,6 +6,7 @@
 
 #include "engine/dynamics/world.h"
 #include "engine/scenes/scene_registry.h"
+#include "tests/support/sling_scene.h"
 
 namespace cablelab {
 namespace {
@@ -97,17 +98,7 @@ TEST(ElasticEnergy, UndampedMembraneKeepsItsEnergyOverTenPeriods) {
 // the square to rest.
 TEST(ElasticEnergy, SquareDroppedIntoAnUndampedSlingKeepsBouncing) {
   SceneDef s;
-  BodyDef square;
-  square.name = "square";
-  square.mass = 2;
-  square.inertia = 0.12;
-  square.position = Vec2(0, 1.32);
-  ShapeDef quad;
-  quad.kind = ShapeDef::Kind::Polygon;
-  quad.vertices = {Vec2(-0.3, -0.3), Vec2(0.3, -0.3), Vec2(0.3, 0.3), Vec2(-0.3, 0.3)};
-  quad.sensor = true;
-  square.shapes = {quad};
-  s.bodies = {square};
+  s.bodies = {test::sensorSquare("square", Vec2(0, 1.32), 2, 0.12)};
   CableDef sling;
   sling.name = "sling";
   sling.start = {"world", Vec2(-1, 1)};

@@ -74,16 +74,8 @@ TEST(LongEnergy, HexagonOnManyCablesKeepsItsEnergyFor60s) {
 // and the energy rose by 19% of the largest kinetic energy over 60 s.
 TEST(LongEnergy, AWeightSwingingOnAndOffAHungSquareKeepsItsEnergyFor60s) {
   SceneDef scene;
-  BodyDef square, weight;
-  square.name = "square";
-  square.position = Vec2(0, 0.7);
-  square.mass = 10;
-  square.inertia = 0.6;
-  ShapeDef quad;
-  quad.kind = ShapeDef::Kind::Polygon;
-  quad.vertices = {Vec2(-0.3, -0.3), Vec2(0.3, -0.3), Vec2(0.3, 0.3), Vec2(-0.3, 0.3)};
-  quad.sensor = true;
-  square.shapes = {quad};
+  const BodyDef square = test::sensorSquare("square", Vec2(0, 0.7), 10, 0.6);
+  BodyDef weight;
   weight.name = "weight";
   weight.position = Vec2(1.5, -2.8);
   weight.mass = 10;
