@@ -1,5 +1,6 @@
 #include "engine/model/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -56,24 +57,27 @@ std::string at(const std::string& list, size_t i) {
   return list + "[" + std::to_string(i) + "]";
 }
 
-// Box2D 2.4 merges a polygon's vertices closer than half its linear slop and asserts (aborting
-// the program) on one left with fewer than three, or with an area under float's epsilon: a
-// collision polygon must stay clear of both.
+// Box2D 2.4 merges a polygon's vertices closer than half its linear slop (each against those it
+// kept before it) and asserts, aborting the program, when fewer than three are left or their
+// area is under float's epsilon: a collision polygon must keep clear of both.
 constexpr double kBox2DWeldDistance = 0.0025;  // m: 0.5 b2_linearSlop
 constexpr double kBox2DMinArea = 1.2e-7;       // m^2: b2_epsilon
 
 void checkCollisionPolygon(const Checker& check, const std::vector<Vec2>& polygon,
                            const std::string& field) {
+  std::vector<Vec2> kept;  // what Box2D keeps, in order (a convex polygon's vertices stay convex)
+  for (const Vec2& v : polygon)
+    if (std::none_of(kept.begin(), kept.end(),
+                     [&](const Vec2& k) { return (v - k).norm() < kBox2DWeldDistance; }))
+      kept.push_back(v);
+  if (kept.size() < 3)
+    check.fail(field,
+               "polygon too small for Box2D: it merges vertices closer than 0.0025 m and "
+               "keeps " +
+                   std::to_string(kept.size()) +
+                   " of them (a box needs a half size of at least 0.00125 m)");
   double area2 = 0;
-  for (size_t i = 0; i < polygon.size(); ++i) {
-    area2 += cross(polygon[i], polygon[(i + 1) % polygon.size()]);
-    for (size_t j = i + 1; j < polygon.size(); ++j)
-      if ((polygon[i] - polygon[j]).norm() < kBox2DWeldDistance)
-        check.fail(field, "vertices " + std::to_string(i) + " and " + std::to_string(j) + " are " +
-                              formatNumber((polygon[i] - polygon[j]).norm()) +
-                              " m apart; Box2D merges vertices closer than 0.0025 m (a box "
-                              "needs a half size of at least 0.00125 m)");
-  }
+  for (size_t i = 0; i < kept.size(); ++i) area2 += cross(kept[i], kept[(i + 1) % kept.size()]);
   if (0.5 * area2 < kBox2DMinArea)
     check.fail(field, "polygon too thin for Box2D: area " + formatNumber(0.5 * area2) +
                           " m^2, it needs more than 1.2e-07 m^2");

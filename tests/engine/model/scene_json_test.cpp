@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "engine/core/error.h"
 #include "engine/dynamics/world.h"
 #include "engine/scenes/scene_registry.h"
@@ -96,6 +98,21 @@ TEST(SceneJson, BadFilesExitTwoNamingTheField) {
         << bad.file << " said: " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad.file << " said: " << r.err;
   }
+}
+
+// Box2D merges a collision polygon's vertices closer than 2.5 mm and goes on while three are left:
+// so does the check (a random scene had a pentagon with two vertices 1.8 mm apart).
+TEST(SceneJson, APolygonBox2DMergesTwoVerticesOfIsAccepted) {
+  SceneDef scene = makeScene("hexagon");
+  std::vector<Vec2>& v = scene.bodies[0].shapes[0].vertices;
+  ASSERT_GE(v.size(), 4u);
+  // On the hexagon's circle 1.8 mm on from its first vertex: still strictly convex.
+  const double r = v[0].norm(), a = std::atan2(v[0].y(), v[0].x()) + 0.0018 / r;
+  v.insert(v.begin() + 1, r * Vec2(std::cos(a), std::sin(a)));
+  EXPECT_NO_THROW(validateScene(scene, "scene"));
+  World world(scene);
+  world.step(scene.dt, scene.substeps);
+  EXPECT_TRUE(isFinite(world.body(0).position));
 }
 
 TEST(SceneJson, TheGoodTwinOfTheBadFilesRuns) {
