@@ -38,24 +38,28 @@ SpringSecant springSecant(double k, double phi0, double phi1) {
 // per point, with both of a vertex's segments whichever body the other end is on, it read twice
 // this and gave an undamped sling on a light square to the damped main solve.)
 double elasticMode(const Cable& c, std::span<const BodyState> bodies) {
+  struct Ends {
+    int body;
+    double count = 0, arms = 0;
+  };
+  static thread_local std::vector<Ends> perBody;  // a path touches few bodies; kept: no allocation
+  perBody.clear();
+  auto add = [&](const WrapPoint& w) {
+    if (w.body < 0) return;
+    auto e = std::find_if(perBody.begin(), perBody.end(),
+                          [&](const Ends& x) { return x.body == w.body; });
+    if (e == perBody.end()) e = perBody.insert(perBody.end(), Ends{w.body});
+    e->count += 1;
+    e->arms += w.local.norm();
+  };
   const auto& path = c.path();
+  for (size_t i = 0; i + 1 < path.size(); ++i)
+    if (path[i].body != path[i + 1].body || path[i].radius != path[i + 1].radius)
+      add(path[i]), add(path[i + 1]);  // the segments that J counts (cable_kinematics.cpp)
   double bound = 0;
-  for (size_t i = 0; i < path.size(); ++i) {
-    const int body = path[i].body;
-    if (body < 0) continue;
-    bool seen = false;  // each body once, at its first point on the path
-    for (size_t j = 0; j < i && !seen; ++j) seen = path[j].body == body;
-    if (seen) continue;
-    double ends = 0, arms = 0;
-    for (size_t j = i; j < path.size(); ++j) {
-      if (path[j].body != body) continue;
-      const double r = path[j].local.norm();
-      for (const size_t k : {j - 1, j + 1})
-        if (k < path.size() && (path[k].body != body || path[k].radius != path[j].radius))
-          ends += 1, arms += r;  // j - 1 wraps to a huge index at j = 0: left out
-    }
-    const BodyState& b = bodies[body];
-    bound += b.invMass * ends * ends + b.invInertia * arms * arms;
+  for (const Ends& e : perBody) {
+    const BodyState& b = bodies[e.body];
+    bound += b.invMass * e.count * e.count + b.invInertia * e.arms * e.arms;
   }
   return std::sqrt(c.parameters().stiffness * bound);
 }
@@ -74,7 +78,7 @@ double rigidTarget(double phi, double share) {
 // solve: for a body heading into its pulley (or rolling over a wheel's rim, where the tangent
 // length comes back up) the segment's direction then, along which passing through goes negative
 // instead of looking allowed.
-double floorRow(const WrapPoint& p, const WrapPoint& q, const Vec2& u0,
+double floorRow(const WrapPoint& p, const WrapPoint& q, const Vec2& n,
                 std::span<const BodyState> q0, std::span<const BodyState> q1,
                 std::vector<BodyJacobian>& g) {
   const Vec2 from = floorFrom(p), to = floorTo(q);
@@ -85,16 +89,16 @@ double floorRow(const WrapPoint& p, const WrapPoint& q, const Vec2& u0,
     const double sign = e == 0 ? -1.0 : 1.0;  // d(along) / d(x of this end)
     const Vec2 offset = (e == 0 ? from : to) - w.world;
     if (w.body < 0) {
-      along += sign * u0.dot(w.world + offset);
+      along += sign * n.dot(w.world + offset);
       continue;
     }
     const BodyState &s0 = q0[w.body], &s1 = q1[w.body];
-    along += sign * u0.dot(s1.position + rotate(w.local, s1.angle) + offset);
+    along += sign * n.dot(s1.position + rotate(w.local, s1.angle) + offset);
     // R(theta1) r - R(theta0) r = sinc(dtheta / 2) dtheta perp(R(theta_mid) r), exactly.
     const double half = 0.5 * (s1.angle - s0.angle);
     const double sinc = std::abs(half) < 1e-8 ? 1 - half * half / 6 : std::sin(half) / half;
     const Vec2 arm = sinc * perp(rotate(w.local, 0.5 * (s0.angle + s1.angle)));
-    g.push_back({w.body, -sign * Vec3(u0.x(), u0.y(), u0.dot(arm))});
+    g.push_back({w.body, -sign * Vec3(n.x(), n.y(), n.dot(arm))});
   }
   return kFloorLength - along;
 }
