@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "engine/dynamics/disjoint_sets.h"
 #include "engine/dynamics/floors.h"
@@ -562,6 +563,108 @@ bool iterateNewton(Workspace& ws, const CableSolveInput& in, std::span<const Cab
   return false;
 }
 
+// Newton's shortcut. Where every row is a sum of distances between points fixed on bodies (no
+// circle, no floor), phi1 = phi0 + h J0 v1 + R with a remainder R that the motion bounds
+// (lengthRemainderBound). The start-of-step linearisation is then solved as one LCP, with no
+// kinematics at a predicted pose, and kept when R is provably below kLinearTolerance: the end-of-
+// step lengths are those Newton would converge to, to that tolerance. A body at rest, or slow
+// against its segments' lengths, takes it (the hand holding its box); a fast one takes Newton.
+constexpr double kLinearTolerance = 1e-12;  // m
+
+bool pointRowsOnly(const Workspace& ws, std::span<const Cable> cables) {
+  for (const Workspace::Row& row : ws.rows) {
+    if (row.segment >= 0) return false;
+    for (int k = row.first; k <= row.last; ++k)
+      for (const WrapPoint& w : cables[row.cable].spanPath(k))
+        if (w.radius != 0) return false;
+  }
+  return true;
+}
+
+// |phi1 - phi0 - h J0 v1| for one span, its points moved from `bodies` to `predicted`. A point at
+// arm r from its body's origin moves by at most |dx| + |r| |dtheta| (a chord is no longer than
+// its arc) and leaves its linear motion dx + dtheta perp(r) by at most |r| (dtheta^2 / 2 +
+// |dtheta|^3 / 6). A segment of length l whose ends move by e < l in all has a length
+// |d + e| - l - u . e in [0, e^2 / (2 (l - e))]. Segments on one body keep their length.
+double lengthRemainderBound(std::span<const WrapPoint> span, std::span<const BodyState> bodies,
+                            std::span<const BodyState> predicted) {
+  auto motion = [&](const WrapPoint& w, double& reach, double& bend) {
+    reach = bend = 0;
+    if (w.body < 0) return;
+    const BodyState &b0 = bodies[w.body], &b1 = predicted[w.body];
+    const double r = (w.world - b0.position).norm(), turn = std::abs(b1.angle - b0.angle);
+    reach = (b1.position - b0.position).norm() + r * turn;
+    bend = r * turn * turn * (0.5 + turn / 6);
+  };
+  double bound = 0, reachA, bendA, reachB, bendB;
+  motion(span[0], reachA, bendA);
+  for (size_t i = 0; i + 1 < span.size(); ++i) {
+    motion(span[i + 1], reachB, bendB);
+    if (span[i].body != span[i + 1].body) {
+      const double l = (span[i + 1].world - span[i].world).norm(), e = reachA + reachB;
+      if (!(e < 0.5 * l)) return std::numeric_limits<double>::infinity();
+      bound += e * e / (2 * (l - e)) + bendA + bendB;
+    }
+    reachA = reachB, bendA = bendB;
+  }
+  return bound;
+}
+
+// J0 v for one row at the start of the step: v* on the dofs, the prescribed motion elsewhere.
+double startRate(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables, int r) {
+  double rate = 0;
+  forStartJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
+    for (const auto& e : jacobian) {
+      if (const int d = ws.dofs.ofBody[e.body]; d >= 0) {
+        rate += e.d.dot(ws.vStar.segment<3>(d));
+      } else {
+        const BodyState& b = in.bodies[e.body];
+        rate += e.d.dot(Vec3(b.velocity.x(), b.velocity.y(), b.angularVelocity));
+      }
+    }
+  });
+  return rate;
+}
+
+// The shortcut's LCP on the start-of-step linearisation; true (ws.P set) if its remainder bound
+// holds on every row.
+bool solveLinearised(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
+                     bool redundant, StepStats& stats) {
+  if (!pointRowsOnly(ws, cables)) return false;
+  const int m = static_cast<int>(ws.rows.size());
+  const double h = in.h;
+  ws.K = ws.JW0;
+  ws.K.diagonal() += ws.compliance;
+  ws.b.resize(m);
+  for (int r = 0; r < m; ++r) {
+    const Workspace::Row& row = ws.rows[r];
+    double phi0 = 0;
+    for (int k = row.first; k <= row.last; ++k) phi0 += cables[row.cable].spanStretch(k);
+    ws.b[r] = (phi0 - (cables[row.cable].elastic() ? ws.damped[r] : ws.target[r])) / h +
+              startRate(ws, in, cables, r);
+  }
+  LcpSolution& sol = ws.lcpSolution;
+  solveLcp(ws.K, ws.b, ws.lcp, sol, redundant);
+  timesImpulses(ws.W, sol.x, ws.WP);
+  ws.v1 = ws.vStar - ws.WP;
+  for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
+    const BodyState& s = in.bodies[ws.dofs.body[k]];
+    BodyState& p = ws.predicted[ws.dofs.body[k]];
+    p.position = s.position + h * ws.v1.segment<2>(3 * k);
+    p.angle = s.angle + h * ws.v1[3 * k + 2];
+  }
+  for (const Workspace::Row& row : ws.rows)
+    for (int k = row.first; k <= row.last; ++k)
+      if (!(lengthRemainderBound(cables[row.cable].spanPath(k), in.bodies, ws.predicted) <=
+            kLinearTolerance))
+        return false;
+  ws.P = sol.x;
+  stats.solverIterations += sol.iterations;
+  stats.residual = std::max(stats.residual, sol.residual);
+  ++stats.linearSolves;
+  return true;
+}
+
 // 6. Newton on the end-of-step lengths phi1(P), each linearisation an LCP over all cables:
 // tension >= 0, slack cables only shorten. A warm start that does not settle (a tiny mass the
 // last impulses throw far) starts again from P = 0, so it only ever saves iterations.
@@ -585,6 +688,7 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
     ws.redundancy.compute(ws.JW0);
     redundant = rankDeficient(ws.redundancy);
   }
+  if (solveLinearised(ws, in, cables, redundant, stats)) return;
   if (warmStart(ws, in.h, cables)) {
     StepStats warm;
     if (iterateNewton(ws, in, cables, redundant, warm)) {
