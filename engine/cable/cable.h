@@ -132,6 +132,12 @@ void cableKinematics(std::span<WrapPoint> path, std::span<const BodyState> bodie
 void cableLengthJacobian(std::span<WrapPoint> path, std::span<const BodyState> bodies,
                          CableKinematics& k);
 
+/// A bound on |length(q1) - length(q0) - J(q0) (q1 - q0)| for a path of points fixed on bodies
+/// (no circles; world points set at q0 = `bodies`), the bodies moved to `moved`: how far the
+/// start-of-step linearisation can be off. Infinite when an end could move half its segment.
+double lengthRemainderBound(std::span<const WrapPoint> path, std::span<const BodyState> bodies,
+                            std::span<const BodyState> moved);
+
 /// The discrete gradient of a path's length between two states (docs/cables.md, "Energy"):
 /// a row G with G (q1 - q0) = length(q1) - length(q0) exactly, which tends to J as q1 -> q0.
 /// Each segment contributes along (d0 + d1) / (|d0| + |d1|); a turn dtheta of a body moves its

@@ -13,6 +13,7 @@
 // or +rho (start) times the body's turn rate.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "engine/cable/body_frames.h"
 #include "engine/cable/cable.h"
@@ -187,6 +188,36 @@ void appendLengthHessianTranslation(std::span<const WrapPoint> path,
       blocks.push_back({b, a, -k});
     }
   }
+}
+
+// A point at arm r from its body's origin moves by at most |dx| + |r| |dtheta| (a chord is no
+// longer than its arc) and leaves its linear motion dx + dtheta perp(r) by at most
+// |r| (dtheta^2 / 2 + |dtheta|^3 / 6). A segment of length l whose ends move by e < l in all
+// changes its length by u . e plus a remainder in [0, e^2 / (2 (l - e))]. Segments on one body
+// keep their length.
+double lengthRemainderBound(std::span<const WrapPoint> path, std::span<const BodyState> bodies,
+                            std::span<const BodyState> moved) {
+  auto motion = [&](const WrapPoint& w, double& reach, double& bend) {
+    reach = bend = 0;
+    if (w.body < 0) return;
+    const BodyState &b0 = bodies[w.body], &b1 = moved[w.body];
+    const double r = (w.world - b0.position).norm(), turn = std::abs(b1.angle - b0.angle);
+    reach = (b1.position - b0.position).norm() + r * turn;
+    bend = r * turn * turn * (0.5 + turn / 6);
+  };
+  if (path.empty()) return 0;
+  double bound = 0, reachA, bendA, reachB, bendB;
+  motion(path[0], reachA, bendA);
+  for (size_t i = 0; i + 1 < path.size(); ++i) {
+    motion(path[i + 1], reachB, bendB);
+    if (path[i].body != path[i + 1].body) {
+      const double l = (path[i + 1].world - path[i].world).norm(), e = reachA + reachB;
+      if (!(e < 0.5 * l)) return std::numeric_limits<double>::infinity();
+      bound += e * e / (2 * (l - e)) + bendA + bendB;
+    }
+    reachA = reachB, bendA = bendB;
+  }
+  return bound;
 }
 
 namespace {

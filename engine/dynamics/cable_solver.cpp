@@ -5,7 +5,6 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "engine/dynamics/disjoint_sets.h"
 #include "engine/dynamics/floors.h"
@@ -570,6 +569,7 @@ bool iterateNewton(Workspace& ws, const CableSolveInput& in, std::span<const Cab
 // step lengths are those Newton would converge to, to that tolerance. A body at rest, or slow
 // against its segments' lengths, takes it (the hand holding its box); a fast one takes Newton.
 constexpr double kLinearTolerance = 1e-12;  // m
+bool linearShortcut = true;
 
 bool pointRowsOnly(const Workspace& ws, std::span<const Cable> cables) {
   for (const Workspace::Row& row : ws.rows) {
@@ -579,35 +579,6 @@ bool pointRowsOnly(const Workspace& ws, std::span<const Cable> cables) {
         if (w.radius != 0) return false;
   }
   return true;
-}
-
-// |phi1 - phi0 - h J0 v1| for one span, its points moved from `bodies` to `predicted`. A point at
-// arm r from its body's origin moves by at most |dx| + |r| |dtheta| (a chord is no longer than
-// its arc) and leaves its linear motion dx + dtheta perp(r) by at most |r| (dtheta^2 / 2 +
-// |dtheta|^3 / 6). A segment of length l whose ends move by e < l in all has a length
-// |d + e| - l - u . e in [0, e^2 / (2 (l - e))]. Segments on one body keep their length.
-double lengthRemainderBound(std::span<const WrapPoint> span, std::span<const BodyState> bodies,
-                            std::span<const BodyState> predicted) {
-  auto motion = [&](const WrapPoint& w, double& reach, double& bend) {
-    reach = bend = 0;
-    if (w.body < 0) return;
-    const BodyState &b0 = bodies[w.body], &b1 = predicted[w.body];
-    const double r = (w.world - b0.position).norm(), turn = std::abs(b1.angle - b0.angle);
-    reach = (b1.position - b0.position).norm() + r * turn;
-    bend = r * turn * turn * (0.5 + turn / 6);
-  };
-  double bound = 0, reachA, bendA, reachB, bendB;
-  motion(span[0], reachA, bendA);
-  for (size_t i = 0; i + 1 < span.size(); ++i) {
-    motion(span[i + 1], reachB, bendB);
-    if (span[i].body != span[i + 1].body) {
-      const double l = (span[i + 1].world - span[i].world).norm(), e = reachA + reachB;
-      if (!(e < 0.5 * l)) return std::numeric_limits<double>::infinity();
-      bound += e * e / (2 * (l - e)) + bendA + bendB;
-    }
-    reachA = reachB, bendA = bendB;
-  }
-  return bound;
 }
 
 // J0 v for one row at the start of the step: v* on the dofs, the prescribed motion elsewhere.
@@ -630,7 +601,7 @@ double startRate(Workspace& ws, const CableSolveInput& in, std::span<const Cable
 // holds on every row.
 bool solveLinearised(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
                      bool redundant, StepStats& stats) {
-  if (!pointRowsOnly(ws, cables)) return false;
+  if (!linearShortcut || !pointRowsOnly(ws, cables)) return false;
   const int m = static_cast<int>(ws.rows.size());
   const double h = in.h;
   ws.K = ws.JW0;
@@ -756,6 +727,10 @@ bool mergeSlidingSpans(Workspace& ws, std::span<const Cable> cables) {
 }
 
 }  // namespace
+
+void setLinearShortcut(bool on) {
+  linearShortcut = on;
+}
 
 CableSolver::CableSolver() : ws_(std::make_unique<CableSolverWorkspace>()) {}
 CableSolver::~CableSolver() = default;

@@ -13,7 +13,9 @@
 //   4. projectOntoJoints    W and v* restricted to what Box2D's joints allow: in the joints'
 //                           coordinates for trees (joint_tree.h), else the Schur complement
 //   5. lengthTargets        rigid: the end-of-step length; elastic: the implicit spring-damper
-//   6. newtonOnLengths      Newton on the end-of-step lengths, one LCP per iteration
+//   6. newtonOnLengths      Newton on the end-of-step lengths, one LCP per iteration; one
+//                           LCP on the start-of-step linearisation where its remainder bound
+//                           (lengthRemainderBound) shows it is exact to 1e-12 m
 //   6b. mergeSlidingSpans   capstans past e^(mu theta): merge their spans, run 2-6 again
 //   7. applyForces          the force that gives the solved end-of-step velocity
 // Private to engine/dynamics.
@@ -46,6 +48,9 @@ struct CableSolveInput {
 };
 
 struct CableSolverWorkspace;  // the stages' buffers (cable_solver.cpp)
+
+/// Off: Newton always runs, never the start-of-step linearisation alone (tests compare the two).
+void setLinearShortcut(bool on);
 
 class CableSolver {
  public:

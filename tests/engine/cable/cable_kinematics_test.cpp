@@ -1,6 +1,8 @@
 // J and J-dot-v of cable paths against central finite differences.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "engine/cable/cable.h"
 #include "tests/support/engine_test_support.h"
 #include "tests/support/finite_differences.h"
@@ -58,6 +60,48 @@ TEST(CableKinematics, JacobianAndJdotVMatchFiniteDifferences) {
     const double fdJdot = (rateP - rateM) / (2 * h);
     EXPECT_NEAR(k.jdotV, fdJdot, kRelative * std::max(1.0, std::abs(fdJdot))) << "trial " << trial;
   }
+}
+
+TEST(CableKinematics, LengthRemainderBoundCoversTheLinearisationError) {
+  // |length(q1) - length(q0) - J(q0) (q1 - q0)| <= the bound for moves from 1e-5 to 0.1 (m and
+  // rad), pure turns about far origins included (the bound's |r| dtheta^2 / 2 term), and the
+  // bound is not slack by orders of magnitude where the remainder is not small by cancellation.
+  test::Random rng(21);
+  int checked = 0, tight = 0;
+  for (int trial = 0; trial < 600; ++trial) {
+    std::vector<BodyState> q0(3);
+    for (BodyState& b : q0) {
+      b.position = rng.point(-2, 2);
+      b.angle = rng.uniform(-3, 3);
+    }
+    std::vector<WrapPoint> path = {{WrapPoint::Kind::Anchor, 0, rng.point(-1.5, 1.5)}};
+    for (int v = 0; v < 3; ++v)
+      path.push_back({WrapPoint::Kind::Vertex, 1, rng.point(-0.5, 0.5), Vec2::Zero(), 0, v});
+    path.push_back({WrapPoint::Kind::Point, 2, rng.point(-1.5, 1.5), Vec2::Zero(), 1});
+    path.push_back({WrapPoint::Kind::Anchor, -1, rng.point(-3, 3)});
+    const CableKinematics k = cableKinematics(path, q0);
+    const double scale = std::pow(10.0, rng.uniform(-5, -1));
+    const bool turnOnly = trial % 3 == 0;
+    std::vector<BodyState> q1 = q0;
+    for (BodyState& b : q1) {
+      if (!turnOnly) b.position += scale * rng.point(-1, 1);
+      b.angle += scale * rng.uniform(-1, 1);
+    }
+    const double bound = lengthRemainderBound(path, q0, q1);
+    if (!std::isfinite(bound)) continue;
+    double linear = 0;
+    for (const auto& e : k.jacobian)
+      linear += e.d.dot(Vec3(q1[e.body].position.x() - q0[e.body].position.x(),
+                             q1[e.body].position.y() - q0[e.body].position.y(),
+                             q1[e.body].angle - q0[e.body].angle));
+    const double remainder = std::abs(lengthOf(path, q1) - k.length - linear);
+    EXPECT_LE(remainder, bound * (1 + 1e-9) + 1e-15)
+        << "trial " << trial << " scale " << scale << (turnOnly ? " (turns only)" : "");
+    ++checked;
+    if (remainder > 1e-14) tight += bound < 1e3 * remainder;
+  }
+  EXPECT_GT(checked, 500);
+  EXPECT_GT(tight, checked / 2);
 }
 
 TEST(CableKinematics, DiscreteGradientGivesTheExactLengthChange) {
