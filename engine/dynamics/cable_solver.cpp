@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "engine/cable/wrap.h"
 #include "engine/dynamics/disjoint_sets.h"
 #include "engine/dynamics/floors.h"
 #include "engine/dynamics/geometric_stiffness.h"
@@ -112,7 +113,12 @@ struct CableSolverWorkspace {
     int spans = 0;
   };
   std::vector<WarmStart> warm;
-  SparseIsland sparse;  // big islands (sparse_island.h)
+  // Rows the start-of-step J cannot pull on (blocked): they pull along J at the predicted pose
+  // (stage 4b), one Jacobian each here.
+  std::vector<char> ahead;
+  std::vector<std::vector<BodyJacobian>> aheadJacobian;
+  std::vector<BodyState> free;  // the island's bodies moved by v* over the step
+  SparseIsland sparse;          // big islands (sparse_island.h)
 
   void factorStiffMass(double h);
   void applyInverseMass(Eigen::Ref<Eigen::MatrixXd> X);
@@ -330,6 +336,17 @@ void forStartJacobians(Workspace& ws, std::span<const BodyState> bodies,
     f(c.spanKinematics(k).jacobian, row.weight(ws.rowWeights, k));
 }
 
+// The Jacobians row r pulls along (W's columns): the start-of-step ones, or for a row the
+// joints left no say at the start, J at the pose v* reaches (redirectBlockedRows).
+template <class F>
+void forForceJacobians(Workspace& ws, std::span<const BodyState> bodies,
+                       std::span<const Cable> cables, int r, F&& f) {
+  if (r < static_cast<int>(ws.ahead.size()) && ws.ahead[r])
+    f(ws.aheadJacobian[r], 1.0);
+  else
+    forStartJacobians(ws, bodies, cables, r, f);
+}
+
 // Bodies that are not dofs (kinematic, static) at the end of the step: Box2D moves them with
 // their prescribed velocity. Dofs are overwritten island by island in Newton.
 void predictPrescribed(Workspace& ws, const CableSolveInput& in) {
@@ -362,7 +379,7 @@ void predictVelocities(Workspace& ws, const CableSolveInput& in, std::span<const
   }
   ws.W.setZero(n, m);
   for (int r = 0; r < m; ++r)
-    forStartJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double weight) {
+    forForceJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double weight) {
       for (const auto& e : jacobian)
         if (dofs.ofBody[e.body] >= 0) ws.W.block<3, 1>(dofs.ofBody[e.body], r) += weight * e.d;
     });
@@ -411,6 +428,105 @@ void projectOntoJoints(Workspace& ws, const CableSolveInput& in) {
         ws.joints, [&](Eigen::Ref<Eigen::MatrixXd> X) { ws.applyInverseMass(X); }, ws.W, ws.vStar);
   else
     ws.projection.projectDiagonal(ws.joints, ws.invM, ws.W, ws.vStar);
+}
+
+// Whether path point i (a point pulley or polygon vertex on a moving body, wrapped) bends the
+// cable by almost nothing: it has just joined, or is about to leave.
+bool nearlyStraight(const Cable& cable, std::span<const WrapPoint> path,
+                    std::span<const Vec2> directions, size_t i) {
+  const WrapPoint& w = path[i];
+  if (w.pulley < 0 || w.body < 0 || w.kind == WrapPoint::Kind::Circle ||
+      cable.wrapSide(w.pulley) == WrapSide::Threaded)
+    return false;
+  const Vec2 &in = directions[i - 1], &out = directions[i];
+  return std::abs(cross(in, out)) < 1e-3 && in.dot(out) > 0;
+}
+
+// The span's path at `bodies` as the cable will take it (into ws.path, its length and J into
+// ws.kin): a point pulley that the motion carried to its unwrapped side is left out, as the cable
+// leaves it there. A path bent backwards round it would be longer, and Newton would pull to hold
+// a length the cable never has (a rope straightening between fixed points: 9e9 N).
+void pathAhead(Workspace& ws, const Cable& cable, int span, std::span<const BodyState> bodies) {
+  const std::span<const WrapPoint> source = cable.spanPath(span);
+  ws.path.assign(source.begin(), source.end());
+  cableLengthJacobian(ws.path, bodies, ws.kin);
+  for (size_t i = 1; i + 1 < ws.path.size(); ++i) {
+    const WrapPoint& w = ws.path[i];
+    if (w.kind != WrapPoint::Kind::Point || w.pulley < 0 ||
+        cable.wrapSide(w.pulley) == WrapSide::Threaded ||
+        wrapSideDistance(ws.path[i - 1].world, ws.path[i + 1].world, w.world,
+                         cable.wrapSide(w.pulley)) >= 0)
+      continue;
+    ws.path.erase(ws.path.begin() + static_cast<std::ptrdiff_t>(i));
+    cableLengthJacobian(ws.path, bodies, ws.kin);
+    i = 0;
+  }
+}
+
+// 4b. Rows whose start-of-step J has lost its say: a point that just joined has no share of J0
+// (theorem 1), and the joints may take the rest (a cable's end on an arm pivoted at its
+// pulley). Pulling along J0 such a row needs unbounded impulses (1e24 N were seen), or throws
+// the one body that can give cable (an arm spun to 236 rad/s by a puck it did not stop). Where
+// a wrap point bends the cable by almost nothing and the motion v* carries it further onto its
+// wrap side, or J0 W has no say at all, the row pulls along J at the pose v* reaches instead;
+// Newton still solves the end-of-step length. True if any row was redirected (then stages 2-4
+// run again).
+bool redirectBlockedRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  const int m = static_cast<int>(ws.rows.size());
+  ws.ahead.assign(m, 0);
+  bool any = false, moved = false;
+  for (int r = 0; r < m; ++r) {
+    const Workspace::Row& row = ws.rows[r];
+    if (row.segment >= 0 || row.first != row.last) continue;
+    const Cable& cable = cables[row.cable];
+    const std::span<const WrapPoint> span = cable.spanPath(row.first);
+    const std::span<const Vec2> directions = cable.spanKinematics(row.first).directions;
+    int joining = -1;  // a nearly straight wrap point on a dof
+    double reach = 0;  // the largest M^-1 on the row's bodies
+    for (size_t i = 0; i < span.size(); ++i) {
+      const int d = span[i].body >= 0 ? ws.dofs.ofBody[span[i].body] : -1;
+      if (d < 0) continue;
+      reach = std::max(reach, ws.invM[d]);
+      if (i > 0 && i + 1 < span.size() && nearlyStraight(cable, span, directions, i))
+        joining = static_cast<int>(i);
+    }
+    double authority = 0;  // J0 W(:, r)
+    if (joining < 0)
+      forStartJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
+        for (const auto& e : jacobian)
+          if (const int d = ws.dofs.ofBody[e.body]; d >= 0)
+            authority += e.d.dot(ws.W.block<3, 1>(d, r));
+      });
+    if (joining < 0 && !(authority <= 1e-9 * reach)) continue;
+    if (!moved) {
+      ws.free.assign(ws.predicted.begin(), ws.predicted.end());
+      for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
+        const BodyState& b = in.bodies[ws.dofs.body[k]];
+        BodyState& f = ws.free[ws.dofs.body[k]];
+        f.position = b.position + in.h * ws.vStar.segment<2>(3 * k);
+        f.angle = b.angle + in.h * ws.vStar[3 * k + 2];
+      }
+      ws.aheadJacobian.resize(m);
+      moved = true;
+    }
+    pathAhead(ws, cable, row.first, ws.free);
+    // A joining point must still be on the path there, bent further onto its wrap side.
+    if (joining >= 0) {
+      const WrapPoint& w = span[joining];
+      const auto kept = std::find_if(ws.path.begin(), ws.path.end(), [&](const WrapPoint& p) {
+        return p.pulley == w.pulley && p.kind == w.kind && p.vertex == w.vertex;
+      });
+      if (kept == ws.path.end() || kept == ws.path.begin() || kept + 1 == ws.path.end()) continue;
+      const size_t i = static_cast<size_t>(kept - ws.path.begin());
+      if (std::abs(cross(ws.kin.directions[i - 1], ws.kin.directions[i])) <=
+          std::abs(cross(directions[joining - 1], directions[joining])))
+        continue;
+    }
+    ws.aheadJacobian[r] = ws.kin.jacobian;
+    ws.ahead[r] = 1;
+    any = true;
+  }
+  return any;
 }
 
 // 5. Position-level targets. Rigid: length at the end of the step = now (the error below the
@@ -495,9 +611,7 @@ void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
     }
     ws.phi1[r] = 0;
     for (int k = row.first; k <= row.last; ++k) {
-      const std::span<const WrapPoint> span = c.spanPath(k);
-      ws.path.assign(span.begin(), span.end());
-      cableLengthJacobian(ws.path, ws.predicted, ws.kin);
+      pathAhead(ws, c, k, ws.predicted);
       ws.phi1[r] += c.spanStretch(k) + ws.kin.length - c.spanKinematics(k).length;
       addJacobianTimesW(ws, ws.kin.jacobian, ws.JW.row(r));
     }
@@ -601,7 +715,9 @@ double startRate(Workspace& ws, const CableSolveInput& in, std::span<const Cable
 // holds on every row.
 bool solveLinearised(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
                      bool redundant, StepStats& stats) {
-  if (!linearShortcut || !pointRowsOnly(ws, cables)) return false;
+  if (!linearShortcut || !pointRowsOnly(ws, cables) ||
+      std::find(ws.ahead.begin(), ws.ahead.end(), 1) != ws.ahead.end())
+    return false;
   const int m = static_cast<int>(ws.rows.size());
   const double h = in.h;
   ws.K = ws.JW0;
@@ -644,10 +760,10 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
   const int m = static_cast<int>(ws.rows.size());
   ws.phi1.resize(m);
   ws.JW.resize(m, m);
-  // J0 W from the start-of-step Jacobians (positive semidefinite), for the guard below.
+  // J0 W from the Jacobians W pulls along (positive semidefinite), for the guard below.
   ws.JW0.setZero(m, m);
   for (int r = 0; r < m; ++r)
-    forStartJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
+    forForceJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
       addJacobianTimesW(ws, jacobian, ws.JW0.row(r));
     });
   // Redundant cables (J0 W singular): J1 W is then singular too, but not symmetric, and its
@@ -749,13 +865,20 @@ void CableSolver::solve(const CableSolveInput& in, std::span<Cable> cables, std:
                         loads, stats))
       continue;
     buildRows(ws, in, cables, island);
+    ws.ahead.clear();
     for (bool again = true; again;) {
       predictVelocities(ws, in, cables, loads);
       inverseMass(ws, in.h, cables);
       projectOntoJoints(ws, in);
+      if (ws.ahead.empty() && redirectBlockedRows(ws, in, cables)) {
+        predictVelocities(ws, in, cables, loads);
+        inverseMass(ws, in.h, cables);
+        projectOntoJoints(ws, in);
+      }
       lengthTargets(ws, in.h, in.share, cables);
       newtonOnLengths(ws, in, cables, stats);
       again = mergeSlidingSpans(ws, cables);
+      if (again) ws.ahead.clear();  // the rows changed: measure them again
     }
     applyForces(ws, in.h, cables, loads);
   }

@@ -1,0 +1,88 @@
+// A puck thrown at a rope whose far end hangs on an arm pivoted at (or beside) the rope's pulley:
+// the arm is jointed, so the main solve takes the catch. At the join the puck has no share of
+// the rope's J (theorem 1) and the pivot takes the arm's, so pulling along the start-of-step J
+// needed unbounded impulses (1.4e24 N, the puck thrown back at 120 m/s from 20) or spun the arm
+// up (236 rad/s, 13.5 kJ from a 200 J throw). Such a row pulls along J at the pose the free
+// motion reaches (cable_solver.cpp, stage 4b).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "engine/dynamics/world.h"
+#include "tests/support/engine_test_support.h"
+
+namespace cablelab {
+namespace {
+
+SceneDef pivotedArmCatch(double speed, double pivotOffset) {
+  SceneDef s;
+  s.name = "jointed catch";
+  s.gravity = Vec2::Zero();
+  BodyDef puck;
+  puck.name = "puck";
+  puck.mass = 1;
+  puck.position = Vec2(0, -0.2);
+  puck.velocity = Vec2(0, speed);
+  puck.fixedRotation = true;
+  ShapeDef dot;
+  dot.kind = ShapeDef::Kind::Circle;
+  dot.radius = 0.03;
+  dot.sensor = true;
+  puck.shapes = {dot};
+  BodyDef arm;
+  arm.name = "arm";
+  arm.mass = 1;
+  arm.inertia = 1.0 / 12;
+  arm.position = Vec2(1 + pivotOffset, -0.5);  // off the pulley's vertical: it can give rope
+  ShapeDef bar;
+  bar.kind = ShapeDef::Kind::Polygon;
+  bar.vertices = {Vec2(-0.03, -0.5), Vec2(0.03, -0.5), Vec2(0.03, 0.5), Vec2(-0.03, 0.5)};
+  bar.sensor = true;
+  arm.shapes = {bar};
+  s.bodies = {puck, arm};
+  JointDef pivot;
+  pivot.name = "pivot";
+  pivot.kind = JointDef::Kind::Revolute;
+  pivot.bodyA = "world";
+  pivot.bodyB = "arm";
+  pivot.anchor = Vec2(1 + pivotOffset, 0);
+  s.joints = {pivot};
+  CableDef rope;
+  rope.name = "rope";
+  rope.start = {"world", Vec2(-1, 0)};
+  PulleyDef onPuck;
+  onPuck.body = "puck";
+  onPuck.side = WrapSide::Left;
+  PulleyDef fixed;
+  fixed.point = Vec2(1, 0);
+  fixed.side = WrapSide::Threaded;
+  rope.pulleys = {onPuck, fixed};
+  rope.end = {"arm", Vec2(0, -0.5)};
+  s.cables = {rope};
+  return s;
+}
+
+TEST(JointedCatch, APuckCaughtByARopeOnAPivotedArmGainsNoEnergy) {
+  for (const double offset : {0.0, 0.1, 0.3})
+    for (const double speed : {1.0, 5.0, 20.0, 50.0}) {
+      SCOPED_TRACE("pivot " + std::to_string(offset) + " m beside the pulley, " +
+                   std::to_string(speed) + " m/s");
+      World world(pivotedArmCatch(speed, offset));
+      const double thrown = world.energy();
+      const double rest = world.cable(0).restLength();
+      double highest = thrown, stretch = 0;
+      bool engaged = false;
+      for (int step = 0; step < 120; ++step) {
+        world.step(test::kDt, 1);
+        highest = std::max(highest, world.energy());
+        stretch = std::max(stretch, world.cable(0).length() - rest);
+        engaged |= world.cable(0).wraps() > 1;
+      }
+      EXPECT_TRUE(engaged);
+      EXPECT_LE(highest, 1.01 * thrown) << highest / thrown;
+      EXPECT_LT(stretch, 1e-2);
+    }
+}
+
+}  // namespace
+}  // namespace cablelab
