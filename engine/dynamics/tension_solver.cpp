@@ -58,27 +58,47 @@ bool solveBothTaut(const Eigen::MatrixXd& K, const Eigen::MatrixXd& Kin, const E
 constexpr double kMinimumNormRegularisation = 1e-6;
 
 // Redundant rows (K singular): b's part outside the range of K asks for what no impulse can do,
-// and would come back as an unbounded impulse. Keep its projection onto the range (K K^+ b, by a
-// complete orthogonal decomposition), which every principal sub-problem can meet, and make K
-// definite by a tiny equal regularisation: the LCP's solution then tends to the minimum-norm one
-// (docs/model.md, "Redundant cables"). Returns the b to solve with (b itself if K is regular).
-const Eigen::VectorXd& consistentTargets(Eigen::MatrixXd& K, const Eigen::VectorXd& b,
-                                         LcpWorkspace& work, LcpSolution& sol) {
+// and would come back as an unbounded impulse. True, with K made exactly symmetric in `plain`
+// and then regularised in K, if K is singular (an LDLT pivot below kRankTolerance).
+bool makeMinimumNorm(Eigen::MatrixXd& K, LcpWorkspace& work) {
   work.ldlt.compute(K);
-  if (!rankDeficient(work.ldlt)) return b;
-  sol.rankDeficient = true;
+  if (!rankDeficient(work.ldlt)) return false;
   // K = J1 W is symmetric only up to the change of J over the step; the LDLT solves read its
   // lower triangle. Make it exactly symmetric so that the problem is the convex program that
   // Lawson and Hanson's method needs.
   work.Ks = K.transpose();
-  K = 0.5 * (K + work.Ks);
-  work.symmetric = true;
-  work.cod.setThreshold(kRankTolerance);
-  work.cod.compute(K);
-  work.bs = work.cod.solve(b);
-  work.projected.noalias() = K * work.bs;
+  work.plain = 0.5 * (K + work.Ks);
+  K = work.plain;
   K.diagonal().array() += kMinimumNormRegularisation * K.diagonal().maxCoeff();
-  return work.projected;
+  work.symmetric = true;
+  return true;
+}
+
+// b with its part on the rows in `set` projected onto the range of K_SS (K_SS K_SS^+ b_S, by a
+// complete orthogonal decomposition), the other rows as they are: the targets of the rows that
+// pull, made consistent among themselves. The slack rows' targets (a cable slack by centimetres)
+// stay out of it: projected with the rest they moved the taut cables' targets, which then held
+// a ring on 5 spokes 17 mm long.
+void projectTargets(const Eigen::MatrixXd& K, const Eigen::VectorXd& b,
+                    const std::vector<char>& set, LcpWorkspace& work) {
+  std::vector<int>& idx = work.idx;
+  idx.clear();
+  for (int i = 0; i < static_cast<int>(set.size()); ++i)
+    if (set[i]) idx.push_back(i);
+  work.projected = b;
+  const int m = static_cast<int>(idx.size());
+  if (m == 0) return;
+  work.sub.resize(m, m);
+  work.subB.resize(m);
+  for (int r = 0; r < m; ++r) {
+    work.subB[r] = b[idx[r]];
+    for (int c = 0; c < m; ++c) work.sub(r, c) = K(idx[r], idx[c]);
+  }
+  work.cod.setThreshold(kRankTolerance);
+  work.cod.compute(work.sub);
+  work.subX = work.cod.solve(work.subB);
+  work.subB.noalias() = work.sub * work.subX;
+  for (int r = 0; r < m; ++r) work.projected[idx[r]] = work.subB[r];
 }
 
 // x_S = K_SS^-1 b_S on the rows flagged in `set`, 0 elsewhere.
@@ -242,11 +262,29 @@ void solveLcp(const Eigen::MatrixXd& Kin, const Eigen::VectorXd& b, LcpWorkspace
   // A cable sliding on a capstan pulls with e^(mu theta) times the tension its constraint row
   // carries: K is then not symmetric (docs/wheels.md) and needs LU instead of LDLT.
   work.symmetric = isSymmetric(K);
-  const Eigen::VectorXd& bUsed = redundant ? consistentTargets(K, b, work, sol) : b;
-  if (sol.rankDeficient)
-    lawsonHanson(K, bUsed, work, sol);
-  else
+  sol.rankDeficient = redundant && makeMinimumNorm(K, work);
+  if (sol.rankDeficient) {
+    // The rows that pull: first those whose targets ask for pull, then those the solve made
+    // pull; their targets are made consistent (projectTargets) and the solve run again until
+    // no row outside them pulls.
+    std::vector<char>& pulling = work.pulling;
+    pulling.resize(n);
+    for (int i = 0; i < n; ++i) pulling[i] = b[i] > 0;
+    int iterations = 0;
+    for (int round = 0; round < 4; ++round) {
+      projectTargets(work.plain, b, pulling, work);
+      sol.iterations = 0;
+      lawsonHanson(K, work.projected, work, sol);
+      iterations += sol.iterations;
+      bool grown = false;
+      for (int i = 0; i < n; ++i)
+        if (sol.x[i] > 0 && !pulling[i]) pulling[i] = 1, grown = true;
+      if (!grown) break;
+    }
+    sol.iterations = iterations;
+  } else {
     principalPivoting(K, b, work, sol);
+  }
   Eigen::VectorXd& w = work.w;
   w.noalias() = Kin.lazyProduct(sol.x);  // the residual against the targets as given
   w -= b;
