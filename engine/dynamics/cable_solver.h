@@ -45,6 +45,11 @@ struct CableSolveInput {
   /// Per cable, 1: another solve (the midpoint one) has set its tension this step; its islands
   /// share no moving body with the rest. Empty: every cable is this solve's.
   std::span<const char> skip;
+  /// Per body, 1: in a touching contact (empty: none). Such islands keep Box2D's integration.
+  std::span<const char> touching;
+  /// Per body, a velocity World adds after Box2D's step (empty: none). An island of undamped
+  /// elastic cables on jointed bodies takes the implicit midpoint rule through it (stage 5).
+  std::span<Vec3> kicks;
 };
 
 struct CableSolverWorkspace;  // the stages' buffers (cable_solver.cpp)

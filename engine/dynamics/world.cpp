@@ -260,7 +260,9 @@ void World::solveForces(double dt, double h) {
   for (const auto& [a, b] : jointBodies_)
     for (int body : {a, b})
       if (body >= 0) excluded_[body] = 1;
-  b2_->markTouching(excluded_);
+  touching_.assign(bodies_.size(), 0);
+  b2_->markTouching(touching_);
+  for (size_t b = 0; b < bodies_.size(); ++b) excluded_[b] |= touching_[b];
   midpointCables_.clear();
   midpointUnsettled_ = false;
   bool mainLeft = true;
@@ -297,7 +299,8 @@ void World::solveForces(double dt, double h) {
   }
   b2_->jointFrames(scene_.joints, jointBodies_, jointFrames_);
   solver_->solve({dt, share, gravity_, bodies_, jointFrames_, jointNeighbours_,
-                  midpointUsed_ ? std::span<const char>(midpointCable_) : std::span<const char>()},
+                  midpointUsed_ ? std::span<const char>(midpointCable_) : std::span<const char>(),
+                  touching_, kicks_},
                  cables_, forces_, stats_);
 }
 

@@ -146,6 +146,7 @@ class World {
   std::unique_ptr<CableIslands> islands_;     ///< which solve takes which cables
   std::vector<BodyState> motion_;             ///< look-ahead or predicted body states (wrap events)
   std::vector<char> excluded_;       ///< bodies the midpoint solve leaves alone (joints, contacts)
+  std::vector<char> touching_;       ///< bodies in a touching contact this sub-step
   std::vector<Vec3> kicks_;          ///< velocity added after Box2D's step (midpoint solve)
   bool midpointUsed_ = false;        ///< the last solveForces() solved some midpoint island
   bool midpointUnsettled_ = false;   ///< ... and in some island its Newton did not settle

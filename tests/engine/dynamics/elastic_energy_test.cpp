@@ -128,3 +128,65 @@ TEST(ElasticEnergy, SquareDroppedIntoAnUndampedSlingKeepsBouncing) {
 
 }  // namespace
 }  // namespace cablelab
+
+namespace cablelab {
+namespace {
+
+// An arm pivoted at its end (a jointed body: the main solve's island) swings round, pulled by an
+// undamped elastic cable from a fixed point that goes slack and taut twice a turn. The main
+// solve's backward-Euler spring took 90% of its energy in 1 s; under its midpoint rule (stage 5a,
+// the energy's discrete gradient across each slack-taut switch) the energy holds over ten periods
+// of the axial mode (omega h about 0.4) and over 60 s (measured: 0.9% at 60 Hz; 4.1% with 4
+// sub-steps and 1.6% with 16, where Box2D's joint and the start-of-step force direction cost more
+// than the switches).
+SceneDef pivotedArmOnASpring() {
+  SceneDef s;
+  s.name = "arm";
+  s.gravity = Vec2::Zero();
+  BodyDef arm;
+  arm.name = "arm";
+  arm.mass = 1;
+  arm.inertia = 1.0 / 3;
+  arm.position = Vec2(0.5, 0);
+  arm.velocity = Vec2(0, 1);
+  arm.angularVelocity = 2;
+  ShapeDef bar;
+  bar.kind = ShapeDef::Kind::Polygon;
+  bar.vertices = {Vec2(-0.5, -0.03), Vec2(0.5, -0.03), Vec2(0.5, 0.03), Vec2(-0.5, 0.03)};
+  bar.sensor = true;
+  arm.shapes = {bar};
+  s.bodies = {arm};
+  JointDef pivot;
+  pivot.name = "pivot";
+  pivot.kind = JointDef::Kind::Revolute;
+  pivot.bodyA = "world";
+  pivot.bodyB = "arm";
+  pivot.anchor = Vec2::Zero();
+  s.joints = {pivot};
+  CableDef spring;
+  spring.name = "spring";
+  spring.start = {"world", Vec2(1, -1)};
+  spring.end = {"arm", Vec2(0.5, 0)};
+  spring.restLength = 0.6;
+  spring.stiffness = 200;
+  s.cables = {spring};
+  return s;
+}
+
+TEST(ElasticEnergy, AnUndampedCableOnAJointedBodyKeepsItsEnergy) {
+  World world(pivotedArmOnASpring());
+  const double e0 = world.energy();
+  const double period = 2 * M_PI / std::sqrt(200 * 3.0);  // k over the arm's inertia at its tip
+  double worstTen = 0, worst = 0;
+  for (int step = 0; step < 3600; ++step) {
+    world.step(1.0 / 60, 1);
+    const double drift = std::abs(world.energy() - e0) / e0;
+    if (world.time() <= 10 * period) worstTen = std::max(worstTen, drift);
+    worst = std::max(worst, drift);
+  }
+  EXPECT_LT(worstTen, 0.02);
+  EXPECT_LT(worst, 0.02);
+}
+
+}  // namespace
+}  // namespace cablelab

@@ -98,15 +98,18 @@ TEST(MidpointIslands, CablesSharingAMovingBodyAreOneIslandAndPrescribedBodiesJoi
 TEST(MidpointIslands, UndampedPartsOfTheBusySceneKeepTheirEnergyBesideJointsAndContacts) {
   // The sling and the band share the world with the hexagon on its pivot, the Atwood machine
   // landing on the ground and the hand (joints, servos, contacts). Each part's energy is its own
-  // (no cable or contact between parts). With the whole-world choice every cable went to the
-  // main solve, whose implicit springs damp.
+  // (no cable or contact between parts). With the whole-world choice every cable goes to the
+  // main solve, whose implicit springs damp the unresolved ones.
   const double seconds = 12;
   const PartDrift perIsland = runBusy(true, seconds);
   EXPECT_LT(perIsland.sling, 0.02);
   EXPECT_LT(perIsland.band, 0.02);
   EXPECT_GT(perIsland.stepsWithBothSolves, perIsland.steps * 9 / 10);
   const PartDrift whole = runBusy(false, seconds);
-  EXPECT_GT(whole.sling, 0.1);  // the test tells the two apart
+  // The test tells the two apart: the band's stiff spring (omega h > 2) is the main solve's
+  // backward-Euler one. The sling's (resolved) now takes the main solve's own midpoint rule
+  // (cable_solver.cpp, stage 5a) and lost 0.7 of its energy scale before that.
+  EXPECT_GT(whole.band, 0.1);
   EXPECT_EQ(whole.stepsWithBothSolves, 0);
   std::printf("per island: sling %.2e band %.2e; whole world: sling %.3f band %.3f\n",
               perIsland.sling, perIsland.band, whole.sling, whole.band);
