@@ -482,11 +482,11 @@ void pathAhead(Workspace& ws, const Cable& cable, int span, std::span<const Body
 // 4b. Rows whose start-of-step J has lost its say: a point that just joined has no share of J0
 // (theorem 1), and the joints may take the rest (a cable's end on an arm pivoted at its
 // pulley). Pulling along J0 such a row needs unbounded impulses (1e24 N were seen), or throws
-// the one body that can give cable (an arm spun to 236 rad/s by a puck it did not stop). Where
-// a wrap point bends the cable by almost nothing and the motion v* carries it further onto its
-// wrap side, or J0 W has no say at all, the row pulls along J at the pose v* reaches instead;
-// Newton still solves the end-of-step length. True if any row was redirected (then stages 2-4
-// run again).
+// the one body that can give cable (an arm spun to 236 rad/s by a puck it did not stop). A row
+// with no say at all (J0 W = 0) pulls along J at the pose v* reaches instead; a row whose wrap
+// point joins fast (v* bends the cable round it by more than kFastJoinTurn a sub-step) gives that
+// point half the share of J it has there. Newton still solves the end-of-step length. True if
+// any row was redirected (then stages 2-4 run again).
 bool redirectBlockedRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
   const int m = static_cast<int>(ws.rows.size());
   ws.ahead.assign(m, 0);
@@ -603,10 +603,11 @@ void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable>
 // stage 5 damps them (an arm on a pivot pulled by a k = 200 N/m cable lost 90% of its energy in
 // 1 s). Where every row of the island is such a cable, no body touches, and each row's axial
 // mode is resolved (omega h <= 2, omega^2 = k J0 W), the island takes the implicit midpoint rule
-// instead: q1 = q0 + h (v0 + v1) / 2, the spring pulling with k (phi0 + phi1) / 2, Box2D moving
-// the bodies with (v0 + v1) / 2 and World adding the rest after its step (kicks). The joints
-// allow v0 and v1 alike, so they allow every velocity Box2D sees. The midpoint solver's rule
-// (docs/cables.md, "Energy"), here with the joint projection of stages 2-4.
+// instead: q1 = q0 + h (v0 + v1) / 2, the spring pulling with its energy's discrete gradient
+// (midpointSpringRows: k (phi0 + phi1) / 2 while taut), Box2D moving the bodies with
+// (v0 + v1) / 2 and World adding the rest after its step (kicks). The joints allow v0 and v1
+// alike, so they allow every velocity Box2D sees. The midpoint solver's rule (docs/cables.md,
+// "Energy"), here with the joint projection of stages 2-4.
 bool takesMidpointRule(const Workspace& ws, const CableSolveInput& in,
                        std::span<const Cable> cables) {
   if (in.kicks.empty() || ws.stiff || ws.rows.empty()) return false;
@@ -615,8 +616,7 @@ bool takesMidpointRule(const Workspace& ws, const CableSolveInput& in,
   for (size_t r = 0; r < ws.rows.size(); ++r) {
     const Workspace::Row& row = ws.rows[r];
     const Cable& c = cables[row.cable];
-    if (row.segment >= 0 || row.first != row.last || !c.elastic() || c.damping() != 0)
-      return false;
+    if (row.segment >= 0 || row.first != row.last || !c.elastic() || c.damping() != 0) return false;
     double inverseMass = 0;  // J0 W(:, r)
     for (const auto& e : c.spanKinematics(row.first).jacobian)
       if (const int d = ws.dofs.ofBody[e.body]; d >= 0)

@@ -53,9 +53,9 @@ struct LcpWorkspace {
   Eigen::PartialPivLU<Eigen::MatrixXd> lu;  ///< for a non-symmetric K (sliding capstans)
   bool symmetric = true;                    ///< K is (LDLT), else LU
   Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod;  ///< rank-deficient active sets
-  Eigen::MatrixXd plain, sub;      ///< a redundant K made symmetric; its pulling rows' block
-  Eigen::VectorXd subB, subX;      ///< that block's targets and least-squares solution
-  std::vector<char> pulling;       ///< the rows whose targets are made consistent
+  Eigen::MatrixXd plain, sub;  ///< a redundant K made symmetric; its pulling rows' block
+  Eigen::VectorXd subB, subX;  ///< that block's targets and least-squares solution
+  std::vector<char> pulling;   ///< the rows whose targets are made consistent
   std::vector<char> active, blocked;
   std::vector<int> idx;
 };
