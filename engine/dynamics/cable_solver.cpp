@@ -445,6 +445,7 @@ void projectOntoJoints(Workspace& ws, const CableSolveInput& in) {
 // hexagon swinging on its pivot (0.025 rad a step), for the worse as often as not. At 1 m/s
 // (0.033 rad) the puck's catch gains 1.1%.
 constexpr double kFastJoinTurn = 0.1;
+constexpr double kJoinSay = 100;
 
 // Whether path point i (a point pulley or polygon vertex on a moving body, wrapped) bends the
 // cable by almost nothing: it has just joined, or is about to leave.
@@ -507,13 +508,13 @@ bool redirectBlockedRows(Workspace& ws, const CableSolveInput& in, std::span<con
         joining = static_cast<int>(i);
     }
     double authority = 0;  // J0 W(:, r)
-    if (joining < 0)
-      forStartJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
-        for (const auto& e : jacobian)
-          if (const int d = ws.dofs.ofBody[e.body]; d >= 0)
-            authority += e.d.dot(ws.W.block<3, 1>(d, r));
-      });
-    if (joining < 0 && !(authority <= 1e-9 * reach)) continue;
+    forStartJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
+      for (const auto& e : jacobian)
+        if (const int d = ws.dofs.ofBody[e.body]; d >= 0)
+          authority += e.d.dot(ws.W.block<3, 1>(d, r));
+    });
+    const bool blocked = authority <= 1e-9 * reach;
+    if (joining < 0 && !blocked) continue;
     if (!moved) {
       ws.free.assign(ws.predicted.begin(), ws.predicted.end());
       for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
@@ -543,14 +544,20 @@ bool redirectBlockedRows(Workspace& ws, const CableSolveInput& in, std::span<con
     if (kept == ws.path.end() || kept == ws.path.begin() || kept + 1 == ws.path.end()) continue;
     const size_t i = static_cast<size_t>(kept - ws.path.begin());
     const Vec2 pull = ws.kin.directions[i - 1] - ws.kin.directions[i];
-    const double turn = std::abs(cross(ws.kin.directions[i - 1], ws.kin.directions[i]));
-    if (turn <= std::abs(cross(directions[joining - 1], directions[joining])) ||
-        turn < kFastJoinTurn * in.share)
-      continue;
     const Vec2 arm = kept->world - ws.free[w.body].position;
+    const Vec3 share = 0.5 * Vec3(pull.x(), pull.y(), pull.dot(perp(arm)));
+    // Slow joins keep J0, unless the rest of the row has less than kJoinSay times the say the
+    // point would have (its share's M^-1 norm): a rope whose far end is on an arm pivoted 1 cm
+    // beside its pulley (3e-4 against 3e-4) caught a puck at 1 m/s and gained 9 times the throw's
+    // energy; a hexagon's vertex joining its rope holds 1e-4 against the weight's 1.
+    const double turn = std::abs(cross(ws.kin.directions[i - 1], ws.kin.directions[i]));
+    const Vec3 inverse = ws.invM.segment<3>(ws.dofs.ofBody[w.body]);
+    if (turn <= std::abs(cross(directions[joining - 1], directions[joining])) ||
+        (turn < kFastJoinTurn * in.share &&
+         authority >= kJoinSay * share.dot(inverse.cwiseProduct(share))))
+      continue;
     std::vector<BodyJacobian>& jacobian = ws.aheadJacobian[r];
     jacobian = cable.spanKinematics(row.first).jacobian;
-    const Vec3 share = 0.5 * Vec3(pull.x(), pull.y(), pull.dot(perp(arm)));
     const auto entry = std::find_if(jacobian.begin(), jacobian.end(),
                                     [&](const BodyJacobian& e) { return e.body == w.body; });
     if (entry == jacobian.end())

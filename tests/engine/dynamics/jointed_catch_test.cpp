@@ -4,10 +4,12 @@
 // needed unbounded impulses (1.4e24 N, the puck thrown back at 120 m/s from 20) or spun the arm
 // up (236 rad/s, 13.5 kJ from a 200 J throw). Such a row pulls along J at the pose the free
 // motion reaches, or gives a fast-joining point half its share there (cable_solver.cpp, stage
-// 4b). Slow joins (under kFastJoinTurn a step, 1 m/s here) keep J0 and gain up to 1.1%.
+// 4b).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "engine/dynamics/world.h"
 #include "tests/support/engine_test_support.h"
@@ -64,25 +66,29 @@ SceneDef pivotedArmCatch(double speed, double pivotOffset) {
 }
 
 TEST(JointedCatch, APuckCaughtByARopeOnAPivotedArmGainsNoEnergy) {
-  for (const double offset : {0.0, 0.1, 0.3})
-    for (const double speed : {5.0, 20.0, 50.0}) {
-      SCOPED_TRACE("pivot " + std::to_string(offset) + " m beside the pulley, " +
-                   std::to_string(speed) + " m/s");
-      World world(pivotedArmCatch(speed, offset));
-      const double thrown = world.energy();
-      const double rest = world.cable(0).restLength();
-      double highest = thrown, stretch = 0;
-      bool engaged = false;
-      for (int step = 0; step < 120; ++step) {
-        world.step(test::kDt, 1);
-        highest = std::max(highest, world.energy());
-        stretch = std::max(stretch, world.cable(0).length() - rest);
-        engaged |= world.cable(0).wraps() > 1;
-      }
-      EXPECT_TRUE(engaged);
-      EXPECT_LE(highest, 1.01 * thrown) << highest / thrown;
-      EXPECT_LT(stretch, 1e-2);
+  // Slow catches too where the arm has next to no say (1 m/s, pivot within 1 cm of the pulley:
+  // 7.2 kJ and 4.6 J from 0.5 J before); 1 m/s with the pivot 10 cm away keeps J0 and gains 1.1%.
+  std::vector<std::pair<double, double>> cases = {{0.0, 1.0}, {0.001, 1.0}, {0.01, 1.0}};
+  for (const double offset : {0.0, 0.001, 0.01, 0.1, 0.3})
+    for (const double speed : {5.0, 20.0, 50.0}) cases.push_back({offset, speed});
+  for (const auto& [offset, speed] : cases) {
+    SCOPED_TRACE("pivot " + std::to_string(offset) + " m beside the pulley, " +
+                 std::to_string(speed) + " m/s");
+    World world(pivotedArmCatch(speed, offset));
+    const double thrown = world.energy();
+    const double rest = world.cable(0).restLength();
+    double highest = thrown, stretch = 0;
+    bool engaged = false;
+    for (int step = 0; step < 120; ++step) {
+      world.step(test::kDt, 1);
+      highest = std::max(highest, world.energy());
+      stretch = std::max(stretch, world.cable(0).length() - rest);
+      engaged |= world.cable(0).wraps() > 1;
     }
+    EXPECT_TRUE(engaged);
+    EXPECT_LE(highest, 1.01 * thrown) << highest / thrown;
+    EXPECT_LT(stretch, 1e-2);
+  }
 }
 
 }  // namespace
