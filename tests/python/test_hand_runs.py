@@ -186,7 +186,7 @@ def ticks_while(call):
 
 
 @pytest.mark.parametrize("call", [
-    lambda: cablelab.track(target=(0.2, 0.1), time=120),
+    lambda: cablelab.track(target=(0.2, 0.1), time=400),
     lambda: cablelab.reach(grid=12, model="quasi-static", threads=1),
 ], ids=["track", "reach"])
 def test_runs_release_the_gil(call):
