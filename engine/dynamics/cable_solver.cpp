@@ -101,7 +101,7 @@ struct CableSolverWorkspace {
   JointProjection projection;
 
   // Newton on the end-of-step lengths. pull: the midpoint rule's rows' right-hand side (stage 5).
-  Eigen::VectorXd target, compliance, damped, pull, P, phi1, b, WP, v1, v0;
+  Eigen::VectorXd target, compliance, damped, pull, phi0, P, phi1, b, WP, v1, v0;
   bool midpoint = false;  // the island takes the implicit midpoint rule (stage 5)
   Eigen::MatrixXd JW, K, JW0;
   Eigen::LDLT<Eigen::MatrixXd> redundancy;  // of J0 W: are there redundant cables?
@@ -447,6 +447,18 @@ void projectOntoJoints(Workspace& ws, const CableSolveInput& in) {
 constexpr double kFastJoinTurn = 0.1;
 constexpr double kJoinSay = 100;
 
+// J0 W(:, r): how far a unit impulse of row r moves its own length (1/kg), W as stages 2-4 left
+// it. 0 where the joints leave the row no say.
+double rowSay(Workspace& ws, std::span<const BodyState> bodies, std::span<const Cable> cables,
+              int r) {
+  double say = 0;
+  forStartJacobians(ws, bodies, cables, r, [&](const auto& jacobian, double) {
+    for (const auto& e : jacobian)
+      if (const int d = ws.dofs.ofBody[e.body]; d >= 0) say += e.d.dot(ws.W.block<3, 1>(d, r));
+  });
+  return say;
+}
+
 // Whether path point i (a point pulley or polygon vertex on a moving body, wrapped) bends the
 // cable by almost nothing: it has just joined, or is about to leave.
 bool nearlyStraight(const Cable& cable, std::span<const WrapPoint> path,
@@ -507,12 +519,7 @@ bool redirectBlockedRows(Workspace& ws, const CableSolveInput& in, std::span<con
       if (i > 0 && i + 1 < span.size() && nearlyStraight(cable, span, directions, i))
         joining = static_cast<int>(i);
     }
-    double authority = 0;  // J0 W(:, r)
-    forStartJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
-      for (const auto& e : jacobian)
-        if (const int d = ws.dofs.ofBody[e.body]; d >= 0)
-          authority += e.d.dot(ws.W.block<3, 1>(d, r));
-    });
+    const double authority = rowSay(ws, in.bodies, cables, r);
     const bool blocked = authority <= 1e-9 * reach;
     if (joining < 0 && !blocked) continue;
     if (!moved) {
@@ -583,6 +590,7 @@ void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable>
   ws.compliance.setZero(m);
   ws.damped.setZero(m);
   ws.pull.setZero(m);
+  ws.phi0.resize(m);
   for (int r = 0; r < m; ++r) {
     const Workspace::Row& row = ws.rows[r];
     const Cable& c = cables[row.cable];
@@ -597,7 +605,7 @@ void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable>
                      : phi > kLengthSlop ? phi - beta * (phi - kLengthSlop)
                                          : phi;
     } else if (ws.midpoint) {
-      ws.damped[r] = phi;  // phi0, for midpointSpringRows
+      ws.phi0[r] = phi;  // midpointSpringRows pulls with the energy's discrete gradient
     } else {
       const double stiffK = c.stiffness(), damp = c.damping();
       ws.compliance[r] = 1.0 / (h * (stiffK * h + damp));
@@ -615,8 +623,7 @@ void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable>
 // (v0 + v1) / 2 and World adding the rest after its step (kicks). The joints allow v0 and v1
 // alike, so they allow every velocity Box2D sees. The midpoint solver's rule (docs/cables.md,
 // "Energy"), here with the joint projection of stages 2-4.
-bool takesMidpointRule(const Workspace& ws, const CableSolveInput& in,
-                       std::span<const Cable> cables) {
+bool takesMidpointRule(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
   if (in.kicks.empty() || ws.stiff || ws.rows.empty()) return false;
   for (size_t k = 0; k < ws.dofs.body.size(); ++k)
     if (!in.touching.empty() && in.touching[ws.dofs.body[k]]) return false;
@@ -624,11 +631,8 @@ bool takesMidpointRule(const Workspace& ws, const CableSolveInput& in,
     const Workspace::Row& row = ws.rows[r];
     const Cable& c = cables[row.cable];
     if (row.segment >= 0 || row.first != row.last || !c.elastic() || c.damping() != 0) return false;
-    double inverseMass = 0;  // J0 W(:, r)
-    for (const auto& e : c.spanKinematics(row.first).jacobian)
-      if (const int d = ws.dofs.ofBody[e.body]; d >= 0)
-        inverseMass += e.d.dot(ws.W.block<3, 1>(d, static_cast<Eigen::Index>(r)));
-    if (!(c.stiffness() * inverseMass * in.h * in.h <= 4)) return false;
+    const double say = rowSay(ws, in.bodies, cables, static_cast<int>(r));
+    if (!(c.stiffness() * say * in.h * in.h <= 4)) return false;
   }
   return true;
 }
@@ -641,7 +645,7 @@ bool takesMidpointRule(const Workspace& ws, const CableSolveInput& in,
 void midpointSpringRows(Workspace& ws, std::span<const Cable> cables, double h) {
   for (size_t r = 0; r < ws.rows.size(); ++r) {
     const double k = cables[ws.rows[r].cable].stiffness();
-    const double p0 = ws.damped[r], p1 = ws.phi1[r], d = p1 - p0;
+    const double p0 = ws.phi0[r], p1 = ws.phi1[r], d = p1 - p0;
     double g, s;
     if ((p0 >= 0 && p1 >= 0) || (p0 <= 0 && p1 <= 0) || std::abs(d) < 1e-300) {
       g = 0.5 * k * (p0 + p1), s = 0.5 * k;  // slack throughout: g < 0, the LCP leaves it slack

@@ -74,6 +74,26 @@ bool makeMinimumNorm(Eigen::MatrixXd& K, LcpWorkspace& work) {
   return true;
 }
 
+// The indices of the rows flagged in `set`, into idx; returns their count.
+int rowsOf(const std::vector<char>& set, std::vector<int>& idx) {
+  idx.clear();
+  for (int i = 0; i < static_cast<int>(set.size()); ++i)
+    if (set[i]) idx.push_back(i);
+  return static_cast<int>(idx.size());
+}
+
+// K_SS and b_S of the rows idx.
+void gatherSet(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, const std::vector<int>& idx,
+               Eigen::MatrixXd& Ks, Eigen::VectorXd& bs) {
+  const int m = static_cast<int>(idx.size());
+  Ks.resize(m, m);
+  bs.resize(m);
+  for (int r = 0; r < m; ++r) {
+    bs[r] = b[idx[r]];
+    for (int c = 0; c < m; ++c) Ks(r, c) = K(idx[r], idx[c]);
+  }
+}
+
 // b with its part on the rows in `set` projected onto the range of K_SS (K_SS K_SS^+ b_S, by a
 // complete orthogonal decomposition), the other rows as they are: the targets of the rows that
 // pull, made consistent among themselves. The slack rows' targets (a cable slack by centimetres)
@@ -81,36 +101,24 @@ bool makeMinimumNorm(Eigen::MatrixXd& K, LcpWorkspace& work) {
 // a ring on 5 spokes 17 mm long.
 void projectTargets(const Eigen::MatrixXd& K, const Eigen::VectorXd& b,
                     const std::vector<char>& set, LcpWorkspace& work) {
-  std::vector<int>& idx = work.idx;
-  idx.clear();
-  for (int i = 0; i < static_cast<int>(set.size()); ++i)
-    if (set[i]) idx.push_back(i);
   work.projected = b;
-  const int m = static_cast<int>(idx.size());
+  const int m = rowsOf(set, work.idx);
   if (m == 0) return;
-  work.sub.resize(m, m);
-  work.subB.resize(m);
-  for (int r = 0; r < m; ++r) {
-    work.subB[r] = b[idx[r]];
-    for (int c = 0; c < m; ++c) work.sub(r, c) = K(idx[r], idx[c]);
-  }
+  gatherSet(K, b, work.idx, work.sub, work.subB);
   work.cod.setThreshold(kRankTolerance);
   work.cod.compute(work.sub);
   work.subX = work.cod.solve(work.subB);
   work.subB.noalias() = work.sub * work.subX;
-  for (int r = 0; r < m; ++r) work.projected[idx[r]] = work.subB[r];
+  for (int r = 0; r < m; ++r) work.projected[work.idx[r]] = work.subB[r];
 }
 
 // x_S = K_SS^-1 b_S on the rows flagged in `set`, 0 elsewhere.
 void solveOnSet(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, const std::vector<char>& set,
                 LcpWorkspace& work, Eigen::VectorXd& x) {
   std::vector<int>& idx = work.idx;
-  idx.clear();
-  for (int i = 0; i < static_cast<int>(set.size()); ++i)
-    if (set[i]) idx.push_back(i);
+  const int m = rowsOf(set, idx);
   x.setZero(b.size());
-  if (idx.empty()) return;
-  const int m = static_cast<int>(idx.size());
+  if (m == 0) return;
   // One or two rows (a hand's two membranes): closed form, well away from singular. Eigen's
   // factorisations cost more than the rest of the solve at these sizes.
   if (m == 1 && K(idx[0], idx[0]) > 0) {
@@ -118,12 +126,7 @@ void solveOnSet(const Eigen::MatrixXd& K, const Eigen::VectorXd& b, const std::v
     return;
   }
   if (m == 2 && solveTwoRows(K, b, idx[0], idx[1], x[idx[0]], x[idx[1]])) return;
-  work.Ks.resize(m, m);
-  work.bs.resize(m);
-  for (int r = 0; r < m; ++r) {
-    work.bs[r] = b[idx[r]];
-    for (int c = 0; c < m; ++c) work.Ks(r, c) = K(idx[r], idx[c]);
-  }
+  gatherSet(K, b, idx, work.Ks, work.bs);
   if (work.symmetric) {
     work.ldlt.compute(work.Ks);
     work.xs = work.ldlt.solve(work.bs);

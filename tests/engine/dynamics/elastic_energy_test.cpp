@@ -6,6 +6,7 @@
 
 #include "engine/dynamics/world.h"
 #include "engine/scenes/scene_registry.h"
+#include "tests/support/scene_parts.h"
 #include "tests/support/sling_scene.h"
 
 namespace cablelab {
@@ -150,19 +151,9 @@ SceneDef pivotedArmOnASpring() {
   arm.position = Vec2(0.5, 0);
   arm.velocity = Vec2(0, 1);
   arm.angularVelocity = 2;
-  ShapeDef bar;
-  bar.kind = ShapeDef::Kind::Polygon;
-  bar.vertices = {Vec2(-0.5, -0.03), Vec2(0.5, -0.03), Vec2(0.5, 0.03), Vec2(-0.5, 0.03)};
-  bar.sensor = true;
-  arm.shapes = {bar};
+  arm.shapes = {test::sensorBox(0.5, 0.03)};
   s.bodies = {arm};
-  JointDef pivot;
-  pivot.name = "pivot";
-  pivot.kind = JointDef::Kind::Revolute;
-  pivot.bodyA = "world";
-  pivot.bodyB = "arm";
-  pivot.anchor = Vec2::Zero();
-  s.joints = {pivot};
+  s.joints = {test::worldPivot("arm", Vec2::Zero())};
   CableDef spring;
   spring.name = "spring";
   spring.start = {"world", Vec2(1, -1)};

@@ -13,6 +13,7 @@
 
 #include "engine/dynamics/world.h"
 #include "tests/support/engine_test_support.h"
+#include "tests/support/scene_parts.h"
 
 namespace cablelab {
 namespace {
@@ -37,19 +38,9 @@ SceneDef pivotedArmCatch(double speed, double pivotOffset) {
   arm.mass = 1;
   arm.inertia = 1.0 / 12;
   arm.position = Vec2(1 + pivotOffset, -0.5);  // off the pulley's vertical: it can give rope
-  ShapeDef bar;
-  bar.kind = ShapeDef::Kind::Polygon;
-  bar.vertices = {Vec2(-0.03, -0.5), Vec2(0.03, -0.5), Vec2(0.03, 0.5), Vec2(-0.03, 0.5)};
-  bar.sensor = true;
-  arm.shapes = {bar};
+  arm.shapes = {test::sensorBox(0.03, 0.5)};
   s.bodies = {puck, arm};
-  JointDef pivot;
-  pivot.name = "pivot";
-  pivot.kind = JointDef::Kind::Revolute;
-  pivot.bodyA = "world";
-  pivot.bodyB = "arm";
-  pivot.anchor = Vec2(1 + pivotOffset, 0);
-  s.joints = {pivot};
+  s.joints = {test::worldPivot("arm", Vec2(1 + pivotOffset, 0))};
   CableDef rope;
   rope.name = "rope";
   rope.start = {"world", Vec2(-1, 0)};
