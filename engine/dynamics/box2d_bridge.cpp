@@ -190,6 +190,10 @@ void Box2DBridge::setTransform(int body, const Vec2& position, double angle) {
   impl_->bodies[body]->SetTransform(toB2(position), static_cast<float>(angle));
 }
 
+void Box2DBridge::placeBody(int body, const Vec2& position, double angle) {
+  impl_->bodies[body]->SetTransform(toB2(position), static_cast<float>(angle - impl_->turns[body]));
+}
+
 void Box2DBridge::setVelocity(int body, const Vec2& velocity, double angularVelocity) {
   impl_->bodies[body]->SetLinearVelocity(toB2(velocity));
   impl_->bodies[body]->SetAngularVelocity(static_cast<float>(angularVelocity));
@@ -272,6 +276,7 @@ void Box2DBridge::jointFrames(std::span<const JointDef> defs,
     f.bodyA = bodies[j][0];
     f.bodyB = bodies[j][1];
     f.anchor = anchorB(static_cast<int>(j));
+    f.anchorA = anchorA(static_cast<int>(j));
     if (f.kind == JointDef::Kind::Prismatic) f.axis = prismaticAxis(static_cast<int>(j));
   }
 }

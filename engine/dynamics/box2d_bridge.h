@@ -23,9 +23,10 @@ struct JointCoordinate {
 /// A Box2D joint as the cable solver sees it this sub-step.
 struct JointFrame {
   JointDef::Kind kind = JointDef::Kind::Revolute;
-  int bodyA = -1, bodyB = -1;  ///< indices into the scene's bodies, -1: the world
-  Vec2 anchor = Vec2::Zero();  ///< Box2D's anchor on body B, world (m)
-  Vec2 axis = Vec2(1, 0);      ///< prismatic: sliding axis, world, unit (turns with body A)
+  int bodyA = -1, bodyB = -1;   ///< indices into the scene's bodies, -1: the world
+  Vec2 anchor = Vec2::Zero();   ///< Box2D's anchor on body B, world (m)
+  Vec2 anchorA = Vec2::Zero();  ///< ... and on body A (the same point while the joint holds)
+  Vec2 axis = Vec2(1, 0);       ///< prismatic: sliding axis, world, unit (turns with body A)
 };
 
 class Box2DBridge {
@@ -39,6 +40,8 @@ class Box2DBridge {
   /// Pose, velocity and inverse mass of every body, in double precision.
   void readBodies(std::vector<BodyState>& bodies) const;
   void setTransform(int body, const Vec2& position, double angle);
+  /// Moves a body to a pose within a run (setTransform restarts its turn count).
+  void placeBody(int body, const Vec2& position, double angle);
   void setVelocity(int body, const Vec2& velocity, double angularVelocity);
   void setGravity(const Vec2& g);
 

@@ -14,6 +14,7 @@
 #include "engine/dynamics/joint_tree.h"
 #include "engine/dynamics/length_targets.h"
 #include "engine/dynamics/sparse_island.h"
+#include "engine/dynamics/step_pose.h"
 #include "engine/dynamics/tension_solver.h"
 
 namespace cablelab {
@@ -62,6 +63,8 @@ struct CableSolverWorkspace {
   std::vector<int> jointIndex;  // the island's joints (indices into the input's joints)
 
   DofMap dofs;
+  std::vector<StepMotion> motions;  // per dof body: how Box2D moves it (step_pose.h)
+  std::vector<int> jointCount;      // stepMotions' scratch
   std::vector<int> cablesWithRows;  // every cable that pulls on a moving body, in cable order
   // One LCP row per cable span (wheels that grip a cable split it, docs/wheels.md); a row over
   // several spans is a cable sliding on capstans between them: its constraint is their summed
@@ -286,6 +289,8 @@ void buildRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
   for (size_t k = 0; k < ws.dofs.body.size(); ++k)
     for (int other : in.jointNeighbours[ws.dofs.body[k]])
       if (moves(in.bodies[other])) ws.dofs.add(other);
+  ws.motions.assign(ws.dofs.body.size(), StepMotion{});
+  stepMotions(in.joints, ws.jointIndex, in.bodies, ws.dofs.ofBody, ws.motions, ws.jointCount);
   // Floors (floors.h): a short segment on a moving body gets a row of its own after the cables.
   for (int cable : ws.islandRows[island]) {
     const auto& path = cables[cable].path();
@@ -423,7 +428,8 @@ void jointRows(Workspace& ws, const CableSolveInput& in) {
 // cables must already see them (a pulley on a pivoted body turns, it does not translate).
 void projectOntoJoints(Workspace& ws, const CableSolveInput& in) {
   if (ws.jointIndex.empty()) return;
-  if (!ws.stiff && ws.tree.build(in.joints, ws.jointIndex, in.bodies, ws.dofs.ofBody, ws.invM)) {
+  if (!ws.stiff && jointTreeProjection() &&
+      ws.tree.build(in.joints, ws.jointIndex, in.bodies, ws.dofs.ofBody, ws.invM)) {
     ws.tree.project(ws.W, ws.vStar);
     return;
   }
@@ -696,10 +702,7 @@ void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
     // The velocity Box2D moves the body with: v1, or (v0 + v1) / 2 under the midpoint rule.
     const Vec3 moved = ws.midpoint ? Vec3(0.5 * (ws.v0.segment<3>(3 * k) + ws.v1.segment<3>(3 * k)))
                                    : Vec3(ws.v1.segment<3>(3 * k));
-    p.velocity = moved.head<2>();
-    p.angularVelocity = moved[2];
-    p.position = s.position + h * p.velocity;
-    p.angle = s.angle + h * p.angularVelocity;
+    stepPose(s, moved, h, ws.motions[k], p);
   }
   for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
     const Workspace::Row& row = ws.rows[r];
@@ -838,11 +841,18 @@ bool solveLinearised(Workspace& ws, const CableSolveInput& in, std::span<const C
   solveLcp(ws.K, ws.b, ws.lcp, sol, redundant);
   timesImpulses(ws.W, sol.x, ws.WP);
   ws.v1 = ws.vStar - ws.WP;
+  // The remainder bound measures from the linear motion; a jointed body's turn about its
+  // pivot (stepPose) must leave it by far less than the tolerance too.
   for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
     const BodyState& s = in.bodies[ws.dofs.body[k]];
     BodyState& p = ws.predicted[ws.dofs.body[k]];
     p.position = s.position + h * ws.v1.segment<2>(3 * k);
     p.angle = s.angle + h * ws.v1[3 * k + 2];
+    if (ws.motions[k].kind != StepMotion::Kind::Free) {
+      BodyState turned;
+      stepPose(s, ws.v1.segment<3>(3 * k), h, ws.motions[k], turned);
+      if (!((turned.position - p.position).norm() <= 0.1 * kLinearTolerance)) return false;
+    }
   }
   for (const Workspace::Row& row : ws.rows)
     for (int k = row.first; k <= row.last; ++k)
@@ -893,10 +903,43 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
   iterateNewton(ws, in, cables, redundant, stats);
 }
 
+constexpr int kBalancePasses = 4;
+
+// 6a. The midpoint rule's energy balance. Row r's impulse does work P_r J_r (v0 + v1) / 2 on the
+// bodies (J_r the Jacobian it pulls along; the joints' reactions do none), and the cable's energy
+// changes by V(phi1) - V(phi0). Newton's discrete gradient makes the two equal where phi1 -
+// phi0 = h J_r (v0 + v1) / 2; the length's curvature and a jointed body's turn (stepPose) leave
+// a second-order difference, which a swinging arm's spring turned into a steady gain (2% of its
+// energy over 60 s at 60 Hz). Each pulling row's impulse is scaled to match the two exactly,
+// where that is a small change.
+void balanceMidpointWork(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  for (int pass = 0; pass < kBalancePasses; ++pass) {
+    linearise(ws, in, cables);  // phi1 and v1 at these impulses
+    const Eigen::VectorXd mean = 0.5 * (ws.v0 + ws.v1);
+    double worst = 0;
+    for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
+      if (!(ws.P[r] > 0)) continue;
+      double rate = 0;
+      forForceJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
+        for (const auto& e : jacobian)
+          if (const int d = ws.dofs.ofBody[e.body]; d >= 0) rate += e.d.dot(mean.segment<3>(d));
+      });
+      const double k = cables[ws.rows[r].cable].stiffness();
+      auto energy = [&](double phi) { return phi > 0 ? 0.5 * k * phi * phi : 0.0; };
+      const double scale = (energy(ws.phi1[r]) - energy(ws.phi0[r])) / (ws.P[r] * rate);
+      if (!(scale > 0.5 && scale < 2)) continue;
+      ws.P[r] *= scale;
+      worst = std::max(worst, std::abs(scale - 1));
+    }
+    if (worst < 1e-9) return;
+  }
+}
+
 // 7. The tensions, and the force that gives the end-of-step velocity solved for (cable pull,
 // geometric stiffness and joint reactions together): Box2D integrates v += h M^-1 F.
-void applyForces(Workspace& ws, double h, std::span<Cable> cables, std::span<Vec3> loads,
-                 std::span<Vec3> kicks) {
+void applyForces(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables,
+                 std::span<Vec3> loads) {
+  const double h = in.h;
   for (size_t r = 0; r < ws.rows.size(); ++r) {
     const Workspace::Row& row = ws.rows[r];
     if (row.segment >= 0) continue;  // a floor pushes; it is no cable's tension
@@ -917,7 +960,23 @@ void applyForces(Workspace& ws, double h, std::span<Cable> cables, std::span<Vec
       const double reached = ws.midpoint ? 0.5 * (ws.v0[d] + v1) : v1;
       if (ws.invM[d] == 0) continue;
       loads[ws.dofs.body[k]][c] += (reached - ws.vFree[d]) / (h * ws.invM[d]);
-      if (ws.midpoint) kicks[ws.dofs.body[k]][c] += v1 - reached;
+      if (ws.midpoint) in.kicks[ws.dofs.body[k]][c] += v1 - reached;
+    }
+  // A link pivoted on a body that does not move ends where the lengths were solved for, its
+  // anchor on the pivot (stepPose), not where Box2D's joint correction puts it, (h omega)^3 or
+  // so away (at a fast catch, as far as 1 cm of rope). Other jointed bodies keep Box2D's pose,
+  // whose correction holds their joints together; so does a touching one, for its contacts.
+  if (!in.placements.empty())
+    for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
+      const int body = ws.dofs.body[k];
+      if (ws.motions[k].kind != StepMotion::Kind::Pivoted ||
+          (!in.touching.empty() && in.touching[body]))
+        continue;
+      const Vec3 v1 = ws.vStar.segment<3>(3 * k) - ws.WP.segment<3>(3 * k);
+      const Vec3 moved = ws.midpoint ? Vec3(0.5 * (ws.v0.segment<3>(3 * k) + v1)) : v1;
+      BodyState& p = ws.predicted[body];
+      stepPose(in.bodies[body], moved, h, ws.motions[k], p);
+      in.placements[body] = {true, p.position, p.angle};
     }
 }
 
@@ -987,10 +1046,11 @@ void CableSolver::solve(const CableSolveInput& in, std::span<Cable> cables, std:
       ws.midpoint = takesMidpointRule(ws, in, cables);
       lengthTargets(ws, in.h, in.share, cables);
       newtonOnLengths(ws, in, cables, stats);
+      if (ws.midpoint) balanceMidpointWork(ws, in, cables);
       again = mergeSlidingSpans(ws, cables);
       if (again) ws.ahead.clear();  // the rows changed: measure them again
     }
-    applyForces(ws, in.h, cables, loads, in.kicks);
+    applyForces(ws, in, cables, loads);
   }
   ws.dofs.clear();
 }

@@ -1,6 +1,7 @@
 // The cable solver: the tensions of every cable for one sub-step, as forces Box2D then applies.
 //
-// Box2D integrates v1 = v0 + h M^-1 F and q1 = q0 + h v1. The solver picks the cable forces so
+// Box2D integrates v1 = v0 + h M^-1 F and q1 = q0 + h v1 (a jointed body turns about its
+// pivot: step_pose.h, and World leaves it there). The solver picks the cable forces so
 // that the cable lengths at the END of the sub-step are right (a SHAKE-like position-level
 // condition, docs/model.md). Cables and the moving bodies they connect (through cables or
 // joints) form islands, solved one after the other, so the cost grows with the islands' sizes,
@@ -16,8 +17,11 @@
 //   6. newtonOnLengths      Newton on the end-of-step lengths, one LCP per iteration; one
 //                           LCP on the start-of-step linearisation where its remainder bound
 //                           (lengthRemainderBound) shows it is exact to 1e-12 m
+//   6a. balanceMidpointWork under the midpoint rule (stage 5a): each row's work equal to its
+//                           cable's energy change
 //   6b. mergeSlidingSpans   capstans past e^(mu theta): merge their spans, run 2-6 again
-//   7. applyForces          the force that gives the solved end-of-step velocity
+//   7. applyForces          the force that gives the solved end-of-step velocity, and the
+//                           jointed bodies' end poses (CableSolveInput::placements)
 // Private to engine/dynamics.
 #pragma once
 
@@ -31,6 +35,13 @@
 #include "engine/dynamics/world.h"
 
 namespace cablelab {
+
+/// A pose to put a body at after Box2D's step (`place`), or none.
+struct Placement {
+  bool place = false;
+  Vec2 position = Vec2::Zero();
+  double angle = 0;
+};
 
 /// What one solve reads: the sub-step, the bodies now, and the joints among them.
 struct CableSolveInput {
@@ -50,6 +61,10 @@ struct CableSolveInput {
   /// Per body, a velocity World adds after Box2D's step (empty: none). An island of undamped
   /// elastic cables on jointed bodies takes the implicit midpoint rule through it (stage 5).
   std::span<Vec3> kicks;
+  /// Per body, the pose World gives it after Box2D's step (empty: none): where the midpoint rule
+  /// balanced the cable's energy for a jointed body, which Box2D's joint correction would miss
+  /// by (h omega)^3 or so.
+  std::span<Placement> placements;
 };
 
 struct CableSolverWorkspace;  // the stages' buffers (cable_solver.cpp)

@@ -2,21 +2,27 @@
 #include "engine/dynamics/joint_tree.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace cablelab {
 
 namespace {
 bool treeProjection = true;
+// reproject() restores at most this ratio of a tree's kinetic energy.
+constexpr double kMaxReprojectionLoss = 1.05;
 }  // namespace
 
 void setJointTreeProjection(bool on) {
   treeProjection = on;
 }
 
+bool jointTreeProjection() {
+  return treeProjection;
+}
+
 bool JointTree::build(std::span<const JointFrame> joints, std::span<const int> island,
                       std::span<const BodyState> bodies, std::span<const int> dofOfBody,
                       const Eigen::VectorXd& invM) {
-  if (!treeProjection) return false;
   auto dofOf = [&](int body) { return body >= 0 ? dofOfBody[body] : -1; };
   key_.clear();
   for (int j : island) key_.push_back({j, dofOf(joints[j].bodyA), dofOf(joints[j].bodyB)});
@@ -131,8 +137,7 @@ void JointTree::project(Eigen::MatrixXd& W, Eigen::VectorXd& vStar) const {
   for (const Link& link : links_) vStar.segment<3>(link.dof) -= link.root;
   for (const Tree& tree : trees_) {
     // The columns to project: the cables that pull on this tree (a finger's own membrane, not
-    // the other finger's), then v*. Plain loops over 3: Eigen's 3-vectors cost twice the
-    // arithmetic at these sizes.
+    // the other finger's), then v*.
     columns_.clear();
     for (int c = 0; c < m; ++c)
       for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l) {
@@ -143,47 +148,76 @@ void JointTree::project(Eigen::MatrixXd& W, Eigen::VectorXd& vStar) const {
         }
       }
     columns_.push_back(vStar.data());
-    const int k = tree.coordinates, cols = static_cast<int>(columns_.size());
-    mass_.assign(static_cast<size_t>(k) * k, 0.0);
-    rhs_.assign(static_cast<size_t>(k) * cols, 0.0);
-    // S^T M S (lower triangle) and S^T M [W | v*].
-    for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l) {
-      const Link& link = links_[l];
-      for (int e = entryStart_[l]; e < entryStart_[l + 1]; ++e) {
-        const double* s = entries_[e].s.data();
-        const double ms[3] = {link.mass[0] * s[0], link.mass[1] * s[1], link.mass[2] * s[2]};
-        const int ce = entries_[e].coordinate;
-        for (int f = e; f < entryStart_[l + 1]; ++f) {
-          const double* t = entries_[f].s.data();
-          const int cf = entries_[f].coordinate;
-          mass_[std::max(ce, cf) + std::min(ce, cf) * k] +=
-              ms[0] * t[0] + ms[1] * t[1] + ms[2] * t[2];
-        }
-        for (int i = 0; i < cols; ++i) {
-          const double* x = columns_[i] + link.dof;
-          rhs_[ce + i * k] += ms[0] * x[0] + ms[1] * x[1] + ms[2] * x[2];
-        }
-      }
-    }
-    for (int i = 0; i < k; ++i) mass_[i + i * k] += 1e-10 * (1 + mass_[i + i * k]);
-    if (k > 0) {
-      ldlt_.factor(mass_.data(), k);
-      ldlt_.solveInPlace(mass_.data(), k, rhs_.data(), cols);
-    }
-    // [W | v*] <- S qdot (a column left out stays 0 on the tree).
-    for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l)
-      for (int i = 0; i < cols; ++i) {
-        double x0 = 0, x1 = 0, x2 = 0;
-        for (int e = entryStart_[l]; e < entryStart_[l + 1]; ++e) {
-          const double* s = entries_[e].s.data();
-          const double q = rhs_[entries_[e].coordinate + i * k];
-          x0 += s[0] * q, x1 += s[1] * q, x2 += s[2] * q;
-        }
-        double* x = columns_[i] + links_[l].dof;
-        x[0] = x0, x[1] = x1, x[2] = x2;
-      }
+    projectColumns(tree);
   }
   for (const Link& link : links_) vStar.segment<3>(link.dof) += link.root;
+}
+
+void JointTree::reproject(Eigen::VectorXd& v) const {
+  for (const Link& link : links_) v.segment<3>(link.dof) -= link.root;
+  for (const Tree& tree : trees_) {
+    auto energy = [&] {
+      double twice = 0;
+      for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l)
+        twice += links_[l].mass.dot(v.segment<3>(links_[l].dof).cwiseAbs2());
+      return twice;
+    };
+    const double before = energy();
+    columns_.assign(1, v.data());
+    projectColumns(tree);
+    const double after = energy();
+    // The projection takes out (h omega)^2 / 2 or so of the energy; more is an impact or joints
+    // Box2D left apart, whose loss stays.
+    if (after > 0 && after < before && before < kMaxReprojectionLoss * after) {
+      const double scale = std::sqrt(before / after);
+      for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l)
+        v.segment<3>(links_[l].dof) *= scale;
+    }
+  }
+  for (const Link& link : links_) v.segment<3>(link.dof) += link.root;
+}
+
+// Plain loops over 3: Eigen's 3-vectors cost twice the arithmetic at these sizes.
+void JointTree::projectColumns(const Tree& tree) const {
+  const int k = tree.coordinates, cols = static_cast<int>(columns_.size());
+  mass_.assign(static_cast<size_t>(k) * k, 0.0);
+  rhs_.assign(static_cast<size_t>(k) * cols, 0.0);
+  // S^T M S (lower triangle) and S^T M [W | v*].
+  for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l) {
+    const Link& link = links_[l];
+    for (int e = entryStart_[l]; e < entryStart_[l + 1]; ++e) {
+      const double* s = entries_[e].s.data();
+      const double ms[3] = {link.mass[0] * s[0], link.mass[1] * s[1], link.mass[2] * s[2]};
+      const int ce = entries_[e].coordinate;
+      for (int f = e; f < entryStart_[l + 1]; ++f) {
+        const double* t = entries_[f].s.data();
+        const int cf = entries_[f].coordinate;
+        mass_[std::max(ce, cf) + std::min(ce, cf) * k] +=
+            ms[0] * t[0] + ms[1] * t[1] + ms[2] * t[2];
+      }
+      for (int i = 0; i < cols; ++i) {
+        const double* x = columns_[i] + link.dof;
+        rhs_[ce + i * k] += ms[0] * x[0] + ms[1] * x[1] + ms[2] * x[2];
+      }
+    }
+  }
+  for (int i = 0; i < k; ++i) mass_[i + i * k] += 1e-10 * (1 + mass_[i + i * k]);
+  if (k > 0) {
+    ldlt_.factor(mass_.data(), k);
+    ldlt_.solveInPlace(mass_.data(), k, rhs_.data(), cols);
+  }
+  // [W | v*] <- S qdot (a column left out stays 0 on the tree).
+  for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l)
+    for (int i = 0; i < cols; ++i) {
+      double x0 = 0, x1 = 0, x2 = 0;
+      for (int e = entryStart_[l]; e < entryStart_[l + 1]; ++e) {
+        const double* s = entries_[e].s.data();
+        const double q = rhs_[entries_[e].coordinate + i * k];
+        x0 += s[0] * q, x1 += s[1] * q, x2 += s[2] * q;
+      }
+      double* x = columns_[i] + links_[l].dof;
+      x[0] = x0, x[1] = x1, x[2] = x2;
+    }
 }
 
 }  // namespace cablelab

@@ -21,8 +21,9 @@
 
 namespace cablelab {
 
-/// Off: every island takes the Schur complement (tests and benchmarks compare the two).
+/// Off: every cable island takes the Schur complement (tests and benchmarks compare the two).
 void setJointTreeProjection(bool on);
+bool jointTreeProjection();
 
 class JointTree {
  public:
@@ -37,6 +38,12 @@ class JointTree {
   /// W = M^-1 J^T and v* restricted to what the joints allow (M: build's diag(invM)^-1).
   void project(Eigen::MatrixXd& W, Eigen::VectorXd& vStar) const;
 
+  /// v projected onto what the joints allow at this pose, each tree keeping its kinetic energy
+  /// relative to its root: after Box2D's step the joints have turned, and v, which they allowed
+  /// at the step's start, has a part across them that Box2D's next solve would take out (about
+  /// (h omega)^2 / 2 of the energy a step: a pendulum lost 17% of it in a minute at 60 Hz).
+  void reproject(Eigen::VectorXd& v) const;
+
  private:
   // The trees' shape: which body hangs from which, through which joint. Kept while the island's
   // joints and dofs stay the same (every sub-step of a hand); only the values below change.
@@ -46,6 +53,10 @@ class JointTree {
   // The anchors, axes and root motions of this pose, S's entries, each body's mass.
   bool measure(std::span<const JointFrame> joints, std::span<const BodyState> bodies,
                const Eigen::VectorXd& invM);
+
+  struct Tree;
+  // One tree's projection of the columns_ (less the roots' motion).
+  void projectColumns(const Tree& tree) const;
 
   // A jointed dof body, listed parents first within its tree.
   struct Link {

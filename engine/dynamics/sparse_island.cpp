@@ -11,6 +11,7 @@
 #include "engine/dynamics/floors.h"
 #include "engine/dynamics/geometric_stiffness.h"
 #include "engine/dynamics/length_targets.h"
+#include "engine/dynamics/step_pose.h"
 #include "engine/dynamics/tension_solver.h"
 
 namespace cablelab {
@@ -203,6 +204,8 @@ void SparseIsland::warmStart(double h, std::span<const Cable> cables) {
 void SparseIsland::jointRows(const CableSolveInput& in, std::span<const int> islandJoints) {
   joints_.clear();
   for (int j : islandJoints) appendJointRows(in.joints[j], in.bodies, dofOfBody_, joints_);
+  motions_.assign(bodyOfDof_.size(), StepMotion{});
+  stepMotions(in.joints, islandJoints, in.bodies, dofOfBody_, motions_, jointCount_);
   q_ = static_cast<int>(joints_.size());
 }
 
@@ -227,7 +230,7 @@ void SparseIsland::velocitiesAt(const Eigen::VectorXd& P) {
   }
 }
 
-// Dense linearise(): the end-of-step state for v1 (Box2D: q1 = q0 + h v1), each row's
+// Dense linearise(): the end-of-step state for v1 (stepPose), each row's
 // end-of-step length error and its J1, with the dense guard (a row whose J1 has turned against
 // its J0 uses J0; measured here with M^-1, the dense path uses M'^-1).
 void SparseIsland::linearise(const CableSolveInput& in, std::span<const Cable> cables,
@@ -235,11 +238,7 @@ void SparseIsland::linearise(const CableSolveInput& in, std::span<const Cable> c
   const double h = in.h;
   for (size_t k = 0; k < bodyOfDof_.size(); ++k) {
     const BodyState& s = in.bodies[bodyOfDof_[k]];
-    BodyState& p = predicted[bodyOfDof_[k]];
-    p.velocity = v1k_.segment<2>(3 * k);
-    p.angularVelocity = v1k_[3 * k + 2];
-    p.position = s.position + h * p.velocity;
-    p.angle = s.angle + h * p.angularVelocity;
+    stepPose(s, v1k_.segment<3>(3 * k), h, motions_[k], predicted[bodyOfDof_[k]]);
   }
   j1_.clear();
   j1Start_.assign(1, 0);
@@ -444,6 +443,18 @@ bool SparseIsland::solve(const CableSolveInput& in, std::span<Cable> cables,
   }
   if (failed_) return false;  // a singular KKT matrix: the dense path's guards take the island
   applyForces(in.h, cables, loads);
+  // As the dense path (cable_solver.cpp, stage 7): pivoted links end where the lengths were
+  // solved for.
+  if (!in.placements.empty())
+    for (size_t k = 0; k < bodyOfDof_.size(); ++k) {
+      const int body = bodyOfDof_[k];
+      if (motions_[k].kind != StepMotion::Kind::Pivoted ||
+          (!in.touching.empty() && in.touching[body]))
+        continue;
+      BodyState& p = predicted[body];
+      stepPose(in.bodies[body], v1_.segment<3>(3 * k), in.h, motions_[k], p);
+      in.placements[body] = {true, p.position, p.angle};
+    }
   ++stats.sparseIslands;
   return true;
 }

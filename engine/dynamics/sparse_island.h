@@ -35,6 +35,7 @@
 #include "engine/dynamics/cable_solver.h"
 #include "engine/dynamics/geometric_stiffness.h"
 #include "engine/dynamics/joint_projection.h"
+#include "engine/dynamics/step_pose.h"
 
 namespace cablelab {
 
@@ -84,6 +85,8 @@ class SparseIsland {
   std::vector<int> rows_;
   std::vector<char> turns_;                 // per body: some cable has turned it (entered())
   std::vector<int> dofOfBody_, bodyOfDof_;  // body -> first dof (-1: not in this island)
+  std::vector<StepMotion> motions_;         // per dof body: how Box2D moves it (step_pose.h)
+  std::vector<int> jointCount_;             // stepMotions' scratch
   int n_ = 0, m_ = 0, q_ = 0;               // dofs, cable rows, joint rows
   std::vector<JointRow> joints_;            // C, as the dense path builds it (joint_projection.h)
   const Eigen::VectorXd* fixed_ = nullptr;  // factorAndSolve(): P given, not solved for

@@ -11,6 +11,7 @@
 #include "engine/dynamics/box2d_bridge.h"
 #include "engine/dynamics/cable_islands.h"
 #include "engine/dynamics/cable_solver.h"
+#include "engine/dynamics/joint_energy.h"
 #include "engine/dynamics/midpoint_solver.h"
 
 namespace cablelab {
@@ -41,6 +42,7 @@ World::World(SceneDef scene, const std::string& source)
       solver_(std::make_unique<CableSolver>()),
       midpoint_(std::make_unique<MidpointSolver>()),
       islands_(std::make_unique<CableIslands>()),
+      jointEnergy_(std::make_unique<JointEnergy>()),
       gravity_(scene_.gravity) {
   jointNeighbours_.assign(scene_.bodies.size(), {});
   for (const JointDef& jd : scene_.joints) {
@@ -256,6 +258,7 @@ void World::solveForces(double dt, double h) {
   forces_ = pendingForces_;
   applyServos();
   kicks_.assign(bodies_.size(), Vec3::Zero());
+  placements_.assign(bodies_.size(), Placement{});
   excluded_.assign(bodies_.size(), 0);
   for (const auto& [a, b] : jointBodies_)
     for (int body : {a, b})
@@ -300,7 +303,7 @@ void World::solveForces(double dt, double h) {
   b2_->jointFrames(scene_.joints, jointBodies_, jointFrames_);
   solver_->solve({dt, share, gravity_, bodies_, jointFrames_, jointNeighbours_,
                   midpointUsed_ ? std::span<const char>(midpointCable_) : std::span<const char>(),
-                  touching_, kicks_},
+                  touching_, kicks_, placements_},
                  cables_, forces_, stats_);
 }
 
@@ -363,12 +366,23 @@ double World::advance(double left, double h, bool locate) {
   b2_->applyLoads(forces_);
   b2_->step(dt);
   b2_->addVelocities(kicks_);
+  for (size_t b = 0; b < placements_.size(); ++b)
+    if (placements_[b].place)
+      b2_->placeBody(static_cast<int>(b), placements_[b].position, placements_[b].angle);
   b2_->readBodies(bodies_);
+  keepJointEnergy();
   time_ += dt;
   // A servo with a speed drives its joint at that rate: the target moves.
   for (size_t j = 0; j < scene_.joints.size(); ++j)
     servoTargets_[j] += scene_.joints[j].servo.speed * dt;
   return dt;
+}
+
+void World::keepJointEnergy() {
+  if (!keepsJointEnergy_ || scene_.joints.empty()) return;
+  b2_->jointFrames(scene_.joints, jointBodies_, jointFrames_);
+  jointEnergy_->keep(jointFrames_, bodies_, reprojected_);
+  for (int b : reprojected_) b2_->setVelocity(b, bodies_[b].velocity, bodies_[b].angularVelocity);
 }
 
 void World::step(double dt, int substeps) {

@@ -33,9 +33,11 @@ namespace cablelab {
 
 class Box2DBridge;
 class CableIslands;
+class JointEnergy;
 class CableSolver;
 class MidpointSolver;
 struct JointFrame;
+struct Placement;
 
 /// Per-joint state read back from Box2D.
 struct JointState {
@@ -123,6 +125,9 @@ class World {
   /// The energy-consistent solve chosen per cable island (on by default) or, off, for the whole
   /// world at once (every cable or none: the engine before islands, kept for comparison).
   void setMidpointPerIsland(bool on) { midpointPerIsland_ = on; }
+  /// Joint trees carried onto each new pose keeping their kinetic energy (on by default;
+  /// off: Box2D's own joint solve alone, which loses about (h omega)^2 / 2 of it a step).
+  void setJointEnergyKept(bool on) { keepsJointEnergy_ = on; }
   Vec2 gravity() const { return gravity_; }
 
   /// Kinetic + gravitational + elastic (membrane) energy (J).
@@ -138,17 +143,23 @@ class World {
   void predictMotion(double dt);
   void solveForces(double dt, double h);
   double advance(double left, double h, bool locate);
+  void keepJointEnergy();
 
   const SceneDef scene_;                      ///< the model: never edited after construction
   std::unique_ptr<Box2DBridge> b2_;           ///< bodies, joints, contacts
   std::unique_ptr<CableSolver> solver_;       ///< tensions, one solve per sub-step
   std::unique_ptr<MidpointSolver> midpoint_;  ///< the energy-consistent solve, where it applies
   std::unique_ptr<CableIslands> islands_;     ///< which solve takes which cables
+  std::unique_ptr<JointEnergy> jointEnergy_;  ///< joint velocities carried to the new pose
+  bool keepsJointEnergy_ = true;              ///< setJointEnergyKept()
+  std::vector<int> reprojected_;              ///< bodies whose velocities that changed
   std::vector<BodyState> motion_;             ///< look-ahead or predicted body states (wrap events)
-  std::vector<char> excluded_;       ///< bodies the midpoint solve leaves alone (joints, contacts)
-  std::vector<char> touching_;       ///< bodies in a touching contact this sub-step
-  std::vector<Vec3> kicks_;          ///< velocity added after Box2D's step (midpoint solve)
-  bool midpointUsed_ = false;        ///< the last solveForces() solved some midpoint island
+  std::vector<char> excluded_;  ///< bodies the midpoint solve leaves alone (joints, contacts)
+  std::vector<char> touching_;  ///< bodies in a touching contact this sub-step
+  std::vector<Vec3> kicks_;     ///< velocity added after Box2D's step (midpoint solve)
+  std::vector<Placement>
+      placements_;             ///< poses given after Box2D's step (the main solve's midpoint rule)
+  bool midpointUsed_ = false;  ///< the last solveForces() solved some midpoint island
   bool midpointUnsettled_ = false;   ///< ... and in some island its Newton did not settle
   bool midpointPerIsland_ = true;    ///< setMidpointPerIsland()
   std::vector<char> midpointCable_;  ///< per cable: the midpoint solve took it (main solve skips)

@@ -6,11 +6,12 @@
 #include <random>
 
 #include "engine/statics/statics.h"
+#include "tests/support/finite_differences.h"
 
 namespace cablelab {
 namespace {
 
-constexpr double kFdStep = 1e-6;
+using test::kFdStep;
 constexpr double kDerivativeTolerance = 1e-5;  // relative to the derivative's scale
 constexpr double kPoseTolerance = 1e-9;
 

@@ -1,0 +1,117 @@
+// Jointed bodies keep their energy (joint_energy.h, step_pose.h): Box2D's joint solve took about
+// (h omega)^2 / 2 of a swinging link's kinetic energy every step, and a rigid cable over a pulley
+// on a swinging arm was held at a pose Box2D's joint correction never reached.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/dynamics/world.h"
+#include "tests/support/engine_test_support.h"
+#include "tests/support/scene_parts.h"
+
+namespace cablelab {
+namespace {
+
+// A 3 kg bar, 1 m long, on a pivot at its top end, let go `angle` from hanging; with `chain`, a
+// second bar hangs from its lower end by another revolute joint (the first's turn moves the
+// second's pivot: a double pendulum, whose links pull on each other as they swing).
+SceneDef pendulum(bool chain, double angle = 0.6) {
+  SceneDef s;
+  s.name = chain ? "double pendulum" : "pendulum";
+  BodyDef bar;
+  bar.name = "upper";
+  bar.mass = 3;
+  bar.inertia = 0.25;
+  bar.angle = angle;
+  bar.position = Vec2(0.5 * std::sin(angle), -0.5 * std::cos(angle));
+  bar.shapes = {test::sensorBox(0.03, 0.5)};
+  s.bodies = {bar};
+  s.joints = {test::worldPivot("upper", Vec2::Zero())};
+  if (chain) {
+    BodyDef lower = bar;
+    lower.name = "lower";
+    lower.mass = 1;
+    lower.inertia = 1.0 / 12;
+    lower.angle = -0.3;
+    const Vec2 knee(std::sin(angle), -std::cos(angle));
+    lower.position = knee + 0.5 * Vec2(std::sin(-0.3), -std::cos(-0.3));
+    s.bodies.push_back(lower);
+    JointDef hinge = test::worldPivot("lower", knee);
+    hinge.name = "knee";
+    hinge.bodyA = "upper";
+    s.joints.push_back(hinge);
+  }
+  return s;
+}
+
+double kinetic(const World& world) {
+  double e = 0;
+  for (int b = 0; b < world.bodyCount(); ++b) {
+    const BodyState& s = world.body(b);
+    if (s.invMass > 0) e += 0.5 * s.velocity.squaredNorm() / s.invMass;
+    if (s.invInertia > 0) e += 0.5 * s.angularVelocity * s.angularVelocity / s.invInertia;
+  }
+  return e;
+}
+
+// Largest |E - E0| over 60 s at 60 Hz, over the largest kinetic energy.
+double drift(World& world, int substeps) {
+  const double e0 = world.energy();
+  double worst = 0, scale = 0;
+  for (int step = 0; step < 3600; ++step) {
+    world.step(test::kDt, substeps);
+    worst = std::max(worst, std::abs(world.energy() - e0));
+    scale = std::max(scale, kinetic(world));
+  }
+  return worst / scale;
+}
+
+TEST(JointEnergy, PendulumsOnRevoluteJointsKeepTheirEnergy) {
+  // Measured at 4 sub-steps: 0.8% (single), 1.3% (double); with Box2D's joints alone 4.7%
+  // and 9.4%, lost for good (at 1 sub-step 17% and 31%: the loss is (h omega)^2 a step).
+  for (const bool chain : {false, true}) {
+    SCOPED_TRACE(chain ? "double pendulum" : "pendulum");
+    World kept(pendulum(chain)), lost(pendulum(chain));
+    lost.setJointEnergyKept(false);
+    EXPECT_LT(drift(kept, 4), 0.02);
+    EXPECT_GT(drift(lost, 4), 0.04);  // the test tells the two apart
+  }
+}
+
+TEST(JointEnergy, ARigidRopeOverAPulleyOnASwingingArmHoldsItsLength) {
+  // The pendulum, let go 0.2 rad out, carries a threaded pulley at its lower end; a rope runs
+  // from a fixed point over it to a 0.5 kg weight hanging under the pulley, taut throughout.
+  // Measured at 1 sub-step: stretch 0.04 mm (1.3 mm before), energy within 4.1% of the largest
+  // kinetic energy (35% lost before); at 4 sub-steps 1.0% (10%).
+  SceneDef s = pendulum(false, 0.2);
+  BodyDef weight;
+  weight.name = "weight";
+  weight.mass = 0.5;
+  weight.fixedRotation = true;
+  weight.position = Vec2(std::sin(0.2), -std::cos(0.2) - 1);
+  s.bodies.push_back(weight);
+  CableDef rope;
+  rope.name = "rope";
+  rope.start = {"world", Vec2(-1.5, -1)};
+  PulleyDef eyelet;
+  eyelet.body = "upper";
+  eyelet.point = Vec2(0, -0.5);
+  eyelet.side = WrapSide::Threaded;
+  rope.pulleys = {eyelet};
+  rope.end = {"weight", Vec2::Zero()};
+  s.cables = {rope};
+  World one(s);
+  const double rest = one.cable(0).restLength();
+  double stretch = 0;
+  for (int step = 0; step < 3600; ++step) {
+    one.step(test::kDt, 1);
+    stretch = std::max(stretch, one.cable(0).length() - rest);
+  }
+  EXPECT_LT(stretch, 1e-4);
+  World four(s);
+  EXPECT_LT(drift(four, 4), 0.02);
+}
+
+}  // namespace
+}  // namespace cablelab
