@@ -406,9 +406,11 @@ void inverseMass(Workspace& ws, double h, std::span<const Cable> cables) {
   ws.blocks.clear();
   ws.stiff = false;
   for (const Workspace::Row& row : ws.rows)
-    if (row.segment < 0 && row.first == 0)  // once per cable: not a floor, not a later span
-      addGeometricStiffness(cables[row.cable], h, ws.dofs.ofBody, ws.invM, ws.blocks, ws.taut,
-                            ws.stiff);
+    if (row.segment < 0 && row.first == 0) {  // once per cable: not a floor, not a later span
+      const Cable& c = cables[row.cable];
+      const double pulling = pullingTension(c.tension(), ws.warm[row.cable].h, h);
+      addGeometricStiffness(c, pulling, h, ws.dofs.ofBody, ws.invM, ws.blocks, ws.taut, ws.stiff);
+    }
   if (ws.stiff) ws.factorStiffMass(h);
   ws.applyInverseMass(ws.W);
   if (ws.stiff) {

@@ -26,11 +26,12 @@ bool mayBeStiff(double h2Tension, std::span<const WrapPoint> path, std::span<con
 
 }  // namespace
 
-void addGeometricStiffness(const Cable& cable, double h, std::span<const int> dofOfBody,
-                           const Eigen::VectorXd& invM, std::vector<StiffnessBlock>& blocks,
-                           std::vector<TautCable>& taut, bool& stiff) {
-  const double tension = std::max(
-      cable.tension(), cable.elastic() ? cable.stiffness() * std::max(0.0, cable.stretch()) : 0.0);
+void addGeometricStiffness(const Cable& cable, double pulling, double h,
+                           std::span<const int> dofOfBody, const Eigen::VectorXd& invM,
+                           std::vector<StiffnessBlock>& blocks, std::vector<TautCable>& taut,
+                           bool& stiff) {
+  const double tension =
+      std::max(pulling, cable.elastic() ? cable.stiffness() * std::max(0.0, cable.stretch()) : 0.0);
   if (tension <= 0 || !mayBeStiff(h * h * tension, cable.path(), dofOfBody, invM)) return;
   const size_t begin = blocks.size();
   appendLengthHessianTranslation(cable.path(), blocks);

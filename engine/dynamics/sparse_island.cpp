@@ -126,8 +126,10 @@ void SparseIsland::buildStiffMass(double h, std::span<const Cable> cables) {
   stiffTriplets_.clear();
   stiff_ = false;
   taut_.clear();
-  for (int cable : rows_)
-    addGeometricStiffness(cables[cable], h, dofOfBody_, invM_, blocks_, taut_, stiff_);
+  for (int cable : rows_) {
+    const double pulling = pullingTension(cables[cable].tension(), warm_[cable].h, h);
+    addGeometricStiffness(cables[cable], pulling, h, dofOfBody_, invM_, blocks_, taut_, stiff_);
+  }
   momentum_.resize(n_);
   for (int d = 0; d < n_; ++d)  // an immovable dof keeps v* (dense: 0 once stiff)
     momentum_[d] = invM_[d] > 0 ? vRaw_[d] / invM_[d] : (stiff_ ? 0.0 : vRaw_[d]);
