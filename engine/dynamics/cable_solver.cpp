@@ -408,7 +408,9 @@ void inverseMass(Workspace& ws, double h, std::span<const Cable> cables) {
   for (const Workspace::Row& row : ws.rows)
     if (row.segment < 0 && row.first == 0) {  // once per cable: not a floor, not a later span
       const Cable& c = cables[row.cable];
-      const double pulling = pullingTension(c.tension(), ws.warm[row.cable].h, h);
+      const Workspace::WarmStart& last = ws.warm[row.cable];
+      const double pulling =
+          pullingTension(c.tension(), last.tension == c.tension() ? last.h : 0, h);
       addGeometricStiffness(c, pulling, h, ws.dofs.ofBody, ws.invM, ws.blocks, ws.taut, ws.stiff);
     }
   if (ws.stiff) ws.factorStiffMass(h);

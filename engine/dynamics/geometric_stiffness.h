@@ -29,11 +29,11 @@ void addGeometricStiffness(const Cable& cable, double tension, double h,
                            bool& stiff);
 
 /// The tension a cable pulls with over a sub-step of h, from its last solve's `tension` over a
-/// step of `lastH`. A step cut short at a wrap event ends on an impulse that takes out what is
-/// left of the cable's length rate: as a tension, impulse / lastH, it says nothing of the force
-/// (309 N on an 11 N rope after a cut of 6e-5 s, whose next step then damped a weight swinging on
-/// it of 14% of its energy through a geometric stiffness 28 times too large); spread over h it
-/// does.
+/// step of `lastH` (0: `tension` is already a force, World's average over a cut sub-step). A step
+/// cut short at a wrap event ends on an impulse that takes out what is left of the cable's length
+/// rate: as a tension, impulse / lastH, it says nothing of the force (309 N on an 11 N rope after a
+/// cut of 6e-5 s, whose next step then damped a weight swinging on it of 14% of its energy through
+/// a geometric stiffness 28 times too large); spread over h it does.
 inline double pullingTension(double tension, double lastH, double h) {
   return lastH > 0 && lastH < h ? tension * lastH / h : tension;
 }

@@ -127,7 +127,9 @@ void SparseIsland::buildStiffMass(double h, std::span<const Cable> cables) {
   stiff_ = false;
   taut_.clear();
   for (int cable : rows_) {
-    const double pulling = pullingTension(cables[cable].tension(), warm_[cable].h, h);
+    const Warm& last = warm_[cable];
+    const double tension = cables[cable].tension();
+    const double pulling = pullingTension(tension, last.tension == tension ? last.h : 0, h);
     addGeometricStiffness(cables[cable], pulling, h, dofOfBody_, invM_, blocks_, taut_, stiff_);
   }
   momentum_.resize(n_);

@@ -385,6 +385,29 @@ void World::keepJointEnergy() {
   for (int b : reprojected_) b2_->setVelocity(b, bodies_[b].velocity, bodies_[b].angularVelocity);
 }
 
+// A sub-step cut at wrap events: each cable's tension over it is its impulses over its length. The
+// last piece's own (impulse over a piece that may last 1e-6 s) is mostly what took out the rest
+// of the cable's length rate at the event, and read 1951 N on a rope pulling 105.
+void World::addImpulses(double dt, bool first) {
+  if (first) impulses_.resize(cables_.size());
+  for (size_t c = 0; c < cables_.size(); ++c) {
+    std::vector<double>& sum = impulses_[c];
+    const int spans = cables_[c].spanCount();
+    if (first) sum.assign(spans, 0.0);
+    if (static_cast<int>(sum.size()) != spans) {
+      sum.clear();  // a wheel split or joined the cable: its last tensions stand
+      continue;
+    }
+    for (int k = 0; k < spans; ++k) sum[k] += cables_[c].spanTension(k) * dt;
+  }
+}
+
+void World::averageTensions(double h) {
+  for (size_t c = 0; c < cables_.size(); ++c)
+    for (size_t k = 0; k < impulses_[c].size(); ++k)
+      cables_[c].setSpanTension(static_cast<int>(k), impulses_[c][k] / h);
+}
+
 void World::step(double dt, int substeps) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
@@ -398,8 +421,13 @@ void World::step(double dt, int substeps) {
   for (int s = 0; s < std::max(1, substeps); ++s) {
     // Wrap events cut the sub-step; a bounded number per sub-step bounds the cost.
     double left = h;
-    for (int steps = 0; left > 1e-9 * h; ++steps)
-      left -= advance(left, h, steps < kMaxEventsPerSubstep);
+    int steps = 0;
+    for (; left > 1e-9 * h; ++steps) {
+      const double taken = advance(left, h, steps < kMaxEventsPerSubstep);
+      left -= taken;
+      addImpulses(taken, steps == 0);
+    }
+    if (steps > 1) averageTensions(h);
   }
   pendingForces_.assign(bodies_.size(), Vec3::Zero());
   // Lengths reported (and energy) belong to the end-of-step state; the wrap points are

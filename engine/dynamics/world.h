@@ -144,6 +144,8 @@ class World {
   void solveForces(double dt, double h);
   double advance(double left, double h, bool locate);
   void keepJointEnergy();
+  void addImpulses(double dt, bool first);
+  void averageTensions(double h);
 
   const SceneDef scene_;                      ///< the model: never edited after construction
   std::unique_ptr<Box2DBridge> b2_;           ///< bodies, joints, contacts
@@ -170,6 +172,7 @@ class World {
   std::vector<Vec3> forces_;         ///< (fx, fy, torque) per body for the current sub-step
   std::vector<Vec3> pendingForces_;  ///< applyForce() loads for the next step
   std::vector<Cable> cables_;
+  std::vector<std::vector<double>> impulses_;  ///< per cable and span, over this sub-step (N s)
   std::vector<std::string> warnings_;
   std::vector<std::vector<int>> jointNeighbours_;  ///< bodies jointed to each body
   std::vector<std::array<int, 2>> jointBodies_;    ///< (body A, body B) per joint, -1: world
