@@ -208,8 +208,8 @@ void SparseIsland::warmStart(double h, std::span<const Cable> cables) {
 void SparseIsland::jointRows(const CableSolveInput& in, std::span<const int> islandJoints) {
   joints_.clear();
   for (int j : islandJoints) appendJointRows(in.joints[j], in.bodies, dofOfBody_, joints_);
-  motions_.assign(bodyOfDof_.size(), StepMotion{});
-  stepMotions(in.joints, islandJoints, in.bodies, dofOfBody_, motions_, jointCount_);
+  motions_.resize(bodyOfDof_.size());
+  stepMotions(in.joints, islandJoints, in.bodies, dofOfBody_, motions_);
   q_ = static_cast<int>(joints_.size());
 }
 

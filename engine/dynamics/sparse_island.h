@@ -86,7 +86,6 @@ class SparseIsland {
   std::vector<char> turns_;                 // per body: some cable has turned it (entered())
   std::vector<int> dofOfBody_, bodyOfDof_;  // body -> first dof (-1: not in this island)
   std::vector<StepMotion> motions_;         // per dof body: how Box2D moves it (step_pose.h)
-  std::vector<int> jointCount_;             // stepMotions' scratch
   int n_ = 0, m_ = 0, q_ = 0;               // dofs, cable rows, joint rows
   std::vector<JointRow> joints_;            // C, as the dense path builds it (joint_projection.h)
   const Eigen::VectorXd* fixed_ = nullptr;  // factorAndSolve(): P given, not solved for

@@ -21,6 +21,7 @@ struct StepMotion {
   enum class Kind { Free, Jointed, Pivoted };
   Kind kind = Kind::Free;
   Vec2 anchor = Vec2::Zero(), arm = Vec2::Zero();
+  int joint = -1;  ///< the one joint it is on (stepMotions; -2: several)
 };
 
 /// The pose after a step of h from s at velocity v = (vx, vy, omega), into p (its velocity too).
@@ -55,30 +56,30 @@ inline void stepPose(const BodyState& s, const Vec3& v, double h, const StepMoti
   }
 }
 
-/// How each dof body moves (`motions`, one per body, all Free on entry; `dofOfBody`: body ->
-/// first dof, -1 if none): from the joints among `joints` (indices `island`) it is on, and
-/// whether the bodies at their other ends move. `count`: scratch.
+/// How each dof body moves (`motions`, one per dof body; `dofOfBody`: body -> first dof, -1 if
+/// none): from the joints among `joints` (indices `island`) it is on. Pivoted: on exactly one,
+/// as its body B, a revolute joint whose body A does not move.
 inline void stepMotions(std::span<const JointFrame> joints, std::span<const int> island,
                         std::span<const BodyState> bodies, std::span<const int> dofOfBody,
-                        std::vector<StepMotion>& motions, std::vector<int>& count) {
-  count.assign(motions.size(), 0);
+                        std::vector<StepMotion>& motions) {
+  for (StepMotion& m : motions) m = StepMotion{};
   for (int j : island)
-    for (int b : {joints[j].bodyA, joints[j].bodyB})
-      if (b >= 0 && dofOfBody[b] >= 0) ++count[dofOfBody[b] / 3];
+    for (const int b : {joints[j].bodyA, joints[j].bodyB})
+      if (b >= 0 && dofOfBody[b] >= 0) {
+        StepMotion& m = motions[dofOfBody[b] / 3];
+        m.joint = m.kind == StepMotion::Kind::Free ? j : -2;
+        m.kind = StepMotion::Kind::Jointed;
+      }
   for (int j : island) {
-    const auto& joint = joints[j];
-    const int b = joint.bodyB, a = joint.bodyA;
-    if (b < 0 || dofOfBody[b] < 0) continue;
+    const JointFrame& joint = joints[j];
+    const int a = joint.bodyA, b = joint.bodyB;
+    if (joint.kind != JointDef::Kind::Revolute || b < 0 || dofOfBody[b] < 0) continue;
     StepMotion& m = motions[dofOfBody[b] / 3];
-    m.kind = StepMotion::Kind::Jointed;
-    const bool fixedParent = a < 0 || (!moves(bodies[a]) && bodies[a].velocity.isZero() &&
-                                       bodies[a].angularVelocity == 0);
-    if (joint.kind == JointDef::Kind::Revolute && fixedParent && count[dofOfBody[b] / 3] == 1)
-      m = {StepMotion::Kind::Pivoted, joint.anchorA, joint.anchor - bodies[b].position};
+    const bool still = a < 0 || (!moves(bodies[a]) && bodies[a].velocity.isZero() &&
+                                 bodies[a].angularVelocity == 0);
+    if (m.joint == j && still)
+      m = {StepMotion::Kind::Pivoted, joint.anchorA, joint.anchor - bodies[b].position, j};
   }
-  for (int j : island)
-    if (const int a = joints[j].bodyA; a >= 0 && dofOfBody[a] >= 0)
-      motions[dofOfBody[a] / 3].kind = StepMotion::Kind::Jointed;
 }
 
 }  // namespace cablelab

@@ -28,6 +28,7 @@ constexpr double kMinEventStep = 1e-4;  // events closer than this are taken at 
 constexpr double kCutReach = 0.05;
 constexpr int kMaxEventsPerSubstep = 16;
 constexpr double kMaxOmegaDt = 0.3;  // longest midpoint step over the fastest transverse mode
+constexpr double kStillTurn = 1e-5;  // rad a step: joints that turn less keep Box2D's solve
 
 SceneDef validated(SceneDef scene, const std::string& source) {
   validateScene(scene, source);
@@ -370,7 +371,7 @@ double World::advance(double left, double h, bool locate) {
     if (placements_[b].place)
       b2_->placeBody(static_cast<int>(b), placements_[b].position, placements_[b].angle);
   b2_->readBodies(bodies_);
-  keepJointEnergy();
+  keepJointEnergy(dt);
   time_ += dt;
   // A servo with a speed drives its joint at that rate: the target moves.
   for (size_t j = 0; j < scene_.joints.size(); ++j)
@@ -378,8 +379,15 @@ double World::advance(double left, double h, bool locate) {
   return dt;
 }
 
-void World::keepJointEnergy() {
+void World::keepJointEnergy(double dt) {
   if (!keepsJointEnergy_ || scene_.joints.empty()) return;
+  // Joints that turn by less than kStillTurn a step lose less than kStillTurn^2 / 2 of their
+  // energy to Box2D's solve (a hand holding still): not worth the projection.
+  bool turning = false;
+  for (const auto& [a, b] : jointBodies_)
+    for (const int body : {a, b})
+      turning |= body >= 0 && std::abs(bodies_[body].angularVelocity) * dt > kStillTurn;
+  if (!turning) return;
   b2_->jointFrames(scene_.joints, jointBodies_, jointFrames_);
   jointEnergy_->keep(jointFrames_, bodies_, reprojected_);
   for (int b : reprojected_) b2_->setVelocity(b, bodies_[b].velocity, bodies_[b].angularVelocity);
@@ -420,12 +428,16 @@ void World::step(double dt, int substeps) {
   if (pendingForces_.size() != bodies_.size()) pendingForces_.assign(bodies_.size(), Vec3::Zero());
   for (int s = 0; s < std::max(1, substeps); ++s) {
     // Wrap events cut the sub-step; a bounded number per sub-step bounds the cost.
-    double left = h;
+    double left = h, first = 0;
     int steps = 0;
     for (; left > 1e-9 * h; ++steps) {
+      if (steps == 1) addImpulses(first, true);  // a cut: the first piece's, before they change
       const double taken = advance(left, h, steps < kMaxEventsPerSubstep);
       left -= taken;
-      addImpulses(taken, steps == 0);
+      if (steps == 0)
+        first = taken;
+      else
+        addImpulses(taken, false);
     }
     if (steps > 1) averageTensions(h);
   }

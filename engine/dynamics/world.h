@@ -143,7 +143,7 @@ class World {
   void predictMotion(double dt);
   void solveForces(double dt, double h);
   double advance(double left, double h, bool locate);
-  void keepJointEnergy();
+  void keepJointEnergy(double dt);
   void addImpulses(double dt, bool first);
   void averageTensions(double h);
 

@@ -69,14 +69,15 @@ double drift(World& world, int substeps) {
 }
 
 TEST(JointEnergy, PendulumsOnRevoluteJointsKeepTheirEnergy) {
-  // Measured at 4 sub-steps: 0.8% (single), 1.3% (double); with Box2D's joints alone 4.7%
-  // and 9.4%, lost for good (at 1 sub-step 17% and 31%: the loss is (h omega)^2 a step).
+  // Largest |E - E0| over the largest kinetic energy, measured at 4 sub-steps: 0.79% (single),
+  // 0.88% (double); with Box2D's joints alone 27% and 69%, lost for good. At 1 sub-step 3.2%
+  // and 3.4%, a swing that comes back (Box2D's semi-implicit Euler), against 61% and 100%.
   for (const bool chain : {false, true}) {
     SCOPED_TRACE(chain ? "double pendulum" : "pendulum");
     World kept(pendulum(chain)), lost(pendulum(chain));
     lost.setJointEnergyKept(false);
     EXPECT_LT(drift(kept, 4), 0.02);
-    EXPECT_GT(drift(lost, 4), 0.04);  // the test tells the two apart
+    EXPECT_GT(drift(lost, 4), 0.1);  // the test tells the two apart
   }
 }
 
