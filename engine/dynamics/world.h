@@ -154,7 +154,7 @@ class World {
   std::unique_ptr<CableIslands> islands_;     ///< which solve takes which cables
   std::unique_ptr<JointEnergy> jointEnergy_;  ///< joint velocities carried to the new pose
   bool keepsJointEnergy_ = true;              ///< setJointEnergyKept()
-  std::vector<int> reprojected_;              ///< bodies whose velocities that changed
+  std::vector<int> reprojected_;              ///< bodies whose velocities keepJointEnergy() changed
   std::vector<BodyState> motion_;             ///< look-ahead or predicted body states (wrap events)
   std::vector<char> excluded_;  ///< bodies the midpoint solve leaves alone (joints, contacts)
   std::vector<char> touching_;  ///< bodies in a touching contact this sub-step
