@@ -277,6 +277,7 @@ void Box2DBridge::jointFrames(std::span<const JointDef> defs,
     f.bodyB = bodies[j][1];
     f.anchor = anchorB(static_cast<int>(j));
     f.anchorA = anchorA(static_cast<int>(j));
+    f.limited = defs[j].enableLimit;
     if (f.kind == JointDef::Kind::Prismatic) f.axis = prismaticAxis(static_cast<int>(j));
   }
 }

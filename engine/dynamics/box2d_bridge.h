@@ -27,6 +27,7 @@ struct JointFrame {
   Vec2 anchor = Vec2::Zero();   ///< Box2D's anchor on body B, world (m)
   Vec2 anchorA = Vec2::Zero();  ///< ... and on body A (the same point while the joint holds)
   Vec2 axis = Vec2(1, 0);       ///< prismatic: sliding axis, world, unit (turns with body A)
+  bool limited = false;         ///< its coordinate has limits (Box2D's joint correction holds them)
 };
 
 class Box2DBridge {

@@ -58,7 +58,8 @@ inline void stepPose(const BodyState& s, const Vec3& v, double h, const StepMoti
 
 /// How each dof body moves (`motions`, one per dof body; `dofOfBody`: body -> first dof, -1 if
 /// none): from the joints among `joints` (indices `island`) it is on. Pivoted: on exactly one,
-/// as its body B, a revolute joint whose body A does not move.
+/// as its body B, a revolute joint without limits whose body A does not move (a limit is Box2D's
+/// to hold: placed past it, an arm that a rope pulled against its -0.5 rad stop swung to -1.8).
 inline void stepMotions(std::span<const JointFrame> joints, std::span<const int> island,
                         std::span<const BodyState> bodies, std::span<const int> dofOfBody,
                         std::vector<StepMotion>& motions) {
@@ -73,7 +74,8 @@ inline void stepMotions(std::span<const JointFrame> joints, std::span<const int>
   for (int j : island) {
     const JointFrame& joint = joints[j];
     const int a = joint.bodyA, b = joint.bodyB;
-    if (joint.kind != JointDef::Kind::Revolute || b < 0 || dofOfBody[b] < 0) continue;
+    if (joint.kind != JointDef::Kind::Revolute || joint.limited || b < 0 || dofOfBody[b] < 0)
+      continue;
     StepMotion& m = motions[dofOfBody[b] / 3];
     const bool still = a < 0 || (!moves(bodies[a]) && bodies[a].velocity.isZero() &&
                                  bodies[a].angularVelocity == 0);
