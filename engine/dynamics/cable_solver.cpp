@@ -693,6 +693,12 @@ void timesImpulses(const Eigen::MatrixXd& W, const Eigen::VectorXd& P, Eigen::Ve
   }
 }
 
+// The velocity Box2D moves dof k with when it ends the step at v1: v1, or (v0 + v1) / 2 under the
+// midpoint rule (World adds the rest after Box2D's step).
+Vec3 movedWith(const Workspace& ws, size_t k, const Vec3& v1) {
+  return ws.midpoint ? Vec3(0.5 * (ws.v0.segment<3>(3 * k) + v1)) : v1;
+}
+
 // The end-of-step state for impulses P (Box2D integrates q1 = q0 + h v1), then each row's
 // end-of-step length error phi1 and its linearisation J1 W.
 void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
@@ -702,10 +708,7 @@ void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
   for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
     const BodyState& s = in.bodies[ws.dofs.body[k]];
     BodyState& p = ws.predicted[ws.dofs.body[k]];
-    // The velocity Box2D moves the body with: v1, or (v0 + v1) / 2 under the midpoint rule.
-    const Vec3 moved = ws.midpoint ? Vec3(0.5 * (ws.v0.segment<3>(3 * k) + ws.v1.segment<3>(3 * k)))
-                                   : Vec3(ws.v1.segment<3>(3 * k));
-    stepPose(s, moved, h, ws.motions[k], p);
+    stepPose(s, movedWith(ws, k, ws.v1.segment<3>(3 * k)), h, ws.motions[k], p);
   }
   for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
     const Workspace::Row& row = ws.rows[r];
@@ -957,32 +960,27 @@ void applyForces(Workspace& ws, const CableSolveInput& in, std::span<Cable> cabl
     ws.warm[row.cable] = {h, c.tension(), c.spanCount()};
   }
   timesImpulses(ws.W, ws.P, ws.WP);
-  for (size_t k = 0; k < ws.dofs.body.size(); ++k)
+  // Under the midpoint rule Box2D reaches (v0 + v1) / 2 and the rest comes after its step. A link
+  // pivoted on a body that does not move ends where the lengths were solved for, its anchor on
+  // the pivot (stepPose), not where Box2D's joint correction puts it, (h omega)^3 or so away (at
+  // a fast catch, as far as 1 cm of rope). Other jointed bodies keep Box2D's pose, whose
+  // correction holds their joints together; so does a touching one, for its contacts.
+  for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
+    const int body = ws.dofs.body[k];
+    const Vec3 v1 = ws.vStar.segment<3>(3 * k) - ws.WP.segment<3>(3 * k);
+    const Vec3 reached = movedWith(ws, k, v1);
     for (int c = 0; c < 3; ++c) {
       const int d = 3 * static_cast<int>(k) + c;
-      const double v1 = ws.vStar[d] - ws.WP[d];
-      // Under the midpoint rule Box2D reaches (v0 + v1) / 2 and the rest comes after its step.
-      const double reached = ws.midpoint ? 0.5 * (ws.v0[d] + v1) : v1;
       if (ws.invM[d] == 0) continue;
-      loads[ws.dofs.body[k]][c] += (reached - ws.vFree[d]) / (h * ws.invM[d]);
-      if (ws.midpoint) in.kicks[ws.dofs.body[k]][c] += v1 - reached;
+      loads[body][c] += (reached[c] - ws.vFree[d]) / (h * ws.invM[d]);
+      if (ws.midpoint) in.kicks[body][c] += v1[c] - reached[c];
     }
-  // A link pivoted on a body that does not move ends where the lengths were solved for, its
-  // anchor on the pivot (stepPose), not where Box2D's joint correction puts it, (h omega)^3 or
-  // so away (at a fast catch, as far as 1 cm of rope). Other jointed bodies keep Box2D's pose,
-  // whose correction holds their joints together; so does a touching one, for its contacts.
-  if (!in.placements.empty())
-    for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
-      const int body = ws.dofs.body[k];
-      if (ws.motions[k].kind != StepMotion::Kind::Pivoted ||
-          (!in.touching.empty() && in.touching[body]))
-        continue;
-      const Vec3 v1 = ws.vStar.segment<3>(3 * k) - ws.WP.segment<3>(3 * k);
-      const Vec3 moved = ws.midpoint ? Vec3(0.5 * (ws.v0.segment<3>(3 * k) + v1)) : v1;
+    if (!in.placements.empty() && placedAfterStep(ws.motions[k], in.touching, body)) {
       BodyState& p = ws.predicted[body];
-      stepPose(in.bodies[body], moved, h, ws.motions[k], p);
+      stepPose(in.bodies[body], reached, h, ws.motions[k], p);
       in.placements[body] = {true, p.position, p.angle};
     }
+  }
 }
 
 // 6b. Capstans: where the sticking tensions break T_high <= T_low e^(mu theta), the cable slides

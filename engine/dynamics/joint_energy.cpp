@@ -1,6 +1,8 @@
 // Joint velocities carried onto the new pose (joint_energy.h).
 #include "engine/dynamics/joint_energy.h"
 
+#include <numeric>
+
 namespace cablelab {
 
 void JointEnergy::keep(std::span<const JointFrame> joints, std::vector<BodyState>& bodies,
@@ -10,9 +12,11 @@ void JointEnergy::keep(std::span<const JointFrame> joints, std::vector<BodyState
   // Every dynamic body on a joint is a dof (3 each: x, y, angle).
   dofOfBody_.assign(bodies.size(), -1);
   bodyOfDof_.clear();
-  jointIndex_.clear();
+  if (jointIndex_.size() != joints.size()) {  // every joint: the world's are one island
+    jointIndex_.resize(joints.size());
+    std::iota(jointIndex_.begin(), jointIndex_.end(), 0);
+  }
   for (size_t j = 0; j < joints.size(); ++j) {
-    jointIndex_.push_back(static_cast<int>(j));
     for (int b : {joints[j].bodyA, joints[j].bodyB})
       if (b >= 0 && dofOfBody_[b] < 0 && moves(bodies[b])) {
         dofOfBody_[b] = 3 * static_cast<int>(bodyOfDof_.size());

@@ -452,9 +452,7 @@ bool SparseIsland::solve(const CableSolveInput& in, std::span<Cable> cables,
   if (!in.placements.empty())
     for (size_t k = 0; k < bodyOfDof_.size(); ++k) {
       const int body = bodyOfDof_[k];
-      if (motions_[k].kind != StepMotion::Kind::Pivoted ||
-          (!in.touching.empty() && in.touching[body]))
-        continue;
+      if (!placedAfterStep(motions_[k], in.touching, body)) continue;
       BodyState& p = predicted[body];
       stepPose(in.bodies[body], v1_.segment<3>(3 * k), in.h, motions_[k], p);
       in.placements[body] = {true, p.position, p.angle};

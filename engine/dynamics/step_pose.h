@@ -56,6 +56,12 @@ inline void stepPose(const BodyState& s, const Vec3& v, double h, const StepMoti
   }
 }
 
+/// Whether World puts a body that moved this way at its predicted pose after Box2D's step: a
+/// pivoted link that touches nothing (contacts need Box2D's correction; `touching` empty: none).
+inline bool placedAfterStep(const StepMotion& motion, std::span<const char> touching, int body) {
+  return motion.kind == StepMotion::Kind::Pivoted && (touching.empty() || !touching[body]);
+}
+
 /// How each dof body moves (`motions`, one per dof body; `dofOfBody`: body -> first dof, -1 if
 /// none): from the joints among `joints` (indices `island`) it is on. Pivoted: on exactly one,
 /// as its body B, a revolute joint without limits whose body A does not move (a limit is Box2D's

@@ -17,6 +17,15 @@ inline ShapeDef sensorBox(double hx, double hy) {
   return box;
 }
 
+/// A disc of `radius` about the body origin, a sensor.
+inline ShapeDef sensorDisc(double radius) {
+  ShapeDef disc;
+  disc.kind = ShapeDef::Kind::Circle;
+  disc.radius = radius;
+  disc.sensor = true;
+  return disc;
+}
+
 /// A revolute joint "pivot" from the world to `body` at the world point `anchor`.
 inline JointDef worldPivot(const std::string& body, const Vec2& anchor) {
   JointDef pivot;

@@ -28,11 +28,7 @@ SceneDef pivotedArmCatch(double speed, double pivotOffset) {
   puck.position = Vec2(0, -0.2);
   puck.velocity = Vec2(0, speed);
   puck.fixedRotation = true;
-  ShapeDef dot;
-  dot.kind = ShapeDef::Kind::Circle;
-  dot.radius = 0.03;
-  dot.sensor = true;
-  puck.shapes = {dot};
+  puck.shapes = {test::sensorDisc(0.03)};
   BodyDef arm;
   arm.name = "arm";
   arm.mass = 1;

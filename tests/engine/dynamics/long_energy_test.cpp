@@ -8,6 +8,7 @@
 #include <string>
 
 #include "engine/dynamics/world.h"
+#include "tests/support/scene_parts.h"
 #include "tests/support/sling_scene.h"
 
 namespace cablelab {
@@ -80,10 +81,7 @@ TEST(LongEnergy, AWeightSwingingOnAndOffAHungSquareKeepsItsEnergyFor60s) {
   weight.position = Vec2(1.5, -2.8);
   weight.mass = 10;
   weight.inertia = 0.01;
-  ShapeDef dot;
-  dot.radius = 0.05;
-  dot.sensor = true;
-  weight.shapes = {dot};
+  weight.shapes = {test::sensorDisc(0.05)};
   scene.bodies = {square, weight};
   CableDef rope, hanger;
   rope.name = "rope";

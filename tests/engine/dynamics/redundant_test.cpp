@@ -10,6 +10,7 @@
 
 #include "engine/dynamics/world.h"
 #include "tests/support/engine_test_support.h"
+#include "tests/support/scene_parts.h"
 
 namespace cablelab {
 namespace {
@@ -26,10 +27,7 @@ SceneDef ring(int cables, double restLength = -1) {
   b.name = "ring";
   b.mass = kRingMass;
   b.inertia = kRingMass * kRingRadius * kRingRadius;
-  ShapeDef shape;
-  shape.radius = kRingRadius;
-  shape.sensor = true;
-  b.shapes = {shape};
+  b.shapes = {test::sensorDisc(kRingRadius)};
   s.bodies = {b};
   for (int k = 0; k < cables; ++k) {
     const double angle = std::numbers::pi / 6 + 2 * std::numbers::pi * k / cables;
@@ -137,10 +135,7 @@ TEST(RedundantCables, SlackSpokesLeaveTheTautOnesAtTheirLength) {
     b.name = "ring";
     b.mass = 2;
     b.inertia = 0.18;
-    ShapeDef shape;
-    shape.radius = 0.3;
-    shape.sensor = true;
-    b.shapes = {shape};
+    b.shapes = {test::sensorDisc(0.3)};
     s.bodies = {b};
     for (int k = 0; k < cables; ++k) {
       const double angle = 0.1 + 2 * std::numbers::pi * k / cables;
