@@ -277,8 +277,13 @@ void Box2DBridge::jointFrames(std::span<const JointDef> defs,
     f.bodyB = bodies[j][1];
     f.anchor = anchorB(static_cast<int>(j));
     f.anchorA = anchorA(static_cast<int>(j));
-    f.limited = defs[j].enableLimit;
+    f.limited = defs[j].enableLimit && f.kind != JointDef::Kind::Weld;
     if (f.kind == JointDef::Kind::Prismatic) f.axis = prismaticAxis(static_cast<int>(j));
+    if (f.limited) {
+      f.value = jointCoordinate(static_cast<int>(j)).value;
+      f.lower = defs[j].lower;
+      f.upper = defs[j].upper;
+    }
   }
 }
 

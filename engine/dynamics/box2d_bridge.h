@@ -28,6 +28,8 @@ struct JointFrame {
   Vec2 anchorA = Vec2::Zero();  ///< ... and on body A (the same point while the joint holds)
   Vec2 axis = Vec2(1, 0);       ///< prismatic: sliding axis, world, unit (turns with body A)
   bool limited = false;         ///< its coordinate has limits (Box2D's joint correction holds them)
+  double value = 0;             ///< limited joints: the coordinate now (rad or m)
+  double lower = 0, upper = 0;  ///< ... and its limits
 };
 
 class Box2DBridge {

@@ -10,6 +10,7 @@
 #include "engine/dynamics/disjoint_sets.h"
 #include "engine/dynamics/floors.h"
 #include "engine/dynamics/geometric_stiffness.h"
+#include "engine/dynamics/joint_limits.h"
 #include "engine/dynamics/joint_projection.h"
 #include "engine/dynamics/joint_tree.h"
 #include "engine/dynamics/length_targets.h"
@@ -101,6 +102,8 @@ struct CableSolverWorkspace {
   JointTree tree;
   std::vector<JointRow> joints;
   JointProjection projection;
+  JointLimits limits;     // limited joints that the step would take past a bound
+  Eigen::VectorXd vEnd;   // stage 6c's end-of-step velocities
 
   // Newton on the end-of-step lengths. pull: the midpoint rule's rows' right-hand side (stage 5).
   Eigen::VectorXd target, compliance, damped, pull, phi0, P, phi1, b, WP, v1, v0;
@@ -424,7 +427,8 @@ void inverseMass(Workspace& ws, double h, std::span<const Cable> cables) {
 // Stage 4's rows: the island's joints among its dofs (joint_projection.h).
 void jointRows(Workspace& ws, const CableSolveInput& in) {
   ws.joints.clear();
-  for (int j : ws.jointIndex) appendJointRows(in.joints[j], in.bodies, ws.dofs.ofBody, ws.joints);
+  for (int j : ws.jointIndex)
+    appendJointRows(in.joints[j], in.bodies, ws.dofs.ofBody, ws.joints, ws.limits.lock(j));
 }
 
 // 4. W and v* projected onto what the joints allow: Box2D's joints act after our forces, so the
@@ -433,7 +437,7 @@ void projectOntoJoints(Workspace& ws, const CableSolveInput& in) {
   if (ws.jointIndex.empty()) return;
   if (!ws.stiff && jointTreeProjection() &&
       ws.tree.build(in.joints, ws.jointIndex, in.bodies, ws.dofs.ofBody, ws.invM)) {
-    ws.tree.project(ws.W, ws.vStar);
+    ws.tree.project(ws.W, ws.vStar, ws.limits);
     return;
   }
   jointRows(ws, in);
@@ -943,6 +947,18 @@ void balanceMidpointWork(Workspace& ws, const CableSolveInput& in, std::span<con
   }
 }
 
+// 6c. Joint limits (joint_limits.h): true if the solved step takes a limited joint past its
+// bound, which it then locks (stages 2-6 run again).
+bool lockCrossingLimits(Workspace& ws, const CableSolveInput& in) {
+  if (std::none_of(ws.jointIndex.begin(), ws.jointIndex.end(),
+                   [&](int j) { return in.joints[j].limited; }))
+    return false;
+  timesImpulses(ws.W, ws.P, ws.WP);
+  ws.vEnd = ws.vStar - ws.WP;
+  return ws.limits.lockCrossing(in.joints, ws.jointIndex, in.bodies, ws.dofs.ofBody, ws.vEnd,
+                                in.h);
+}
+
 // 7. The tensions, and the force that gives the end-of-step velocity solved for (cable pull,
 // geometric stiffness and joint reactions together): Box2D integrates v += h M^-1 F.
 void applyForces(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables,
@@ -1037,6 +1053,7 @@ void CableSolver::solve(const CableSolveInput& in, std::span<Cable> cables, std:
       continue;
     buildRows(ws, in, cables, island);
     ws.ahead.clear();
+    ws.limits.free(ws.jointIndex, static_cast<int>(in.joints.size()));
     for (bool again = true; again;) {
       predictVelocities(ws, in, cables, loads);
       inverseMass(ws, in.h, cables);
@@ -1052,6 +1069,7 @@ void CableSolver::solve(const CableSolveInput& in, std::span<Cable> cables, std:
       if (ws.midpoint) balanceMidpointWork(ws, in, cables);
       again = mergeSlidingSpans(ws, cables);
       if (again) ws.ahead.clear();  // the rows changed: measure them again
+      else again = lockCrossingLimits(ws, in);
     }
     applyForces(ws, in, cables, loads);
   }

@@ -20,6 +20,8 @@
 //   6a. balanceMidpointWork under the midpoint rule (stage 5a): each row's work equal to its
 //                           cable's energy change
 //   6b. mergeSlidingSpans   capstans past e^(mu theta): merge their spans, run 2-6 again
+//   6c. lockCrossingLimits  a limited joint the step takes past its bound: lock it at the
+//                           rate that reaches the bound (joint_limits.h), run 2-6 again
 //   7. applyForces          the force that gives the solved end-of-step velocity, and the
 //                           jointed bodies' end poses (CableSolveInput::placements)
 // Private to engine/dynamics.

@@ -96,46 +96,79 @@ void SmallLdlt::solveInPlace(const double* a, int n, double* x, int cols) const 
   withBlockSize(n, [&]<int kN>() { solveLdlt<kN>(a, n, dInv.data(), x, cols); });
 }
 
-void appendJointRows(const JointFrame& joint, std::span<const BodyState> bodies,
-                     std::span<const int> dofOfBody, std::vector<JointRow>& rows) {
-  const int a = joint.bodyA, b = joint.bodyB;
-  const int da = a >= 0 ? dofOfBody[a] : -1, db = b >= 0 ? dofOfBody[b] : -1;
-  if (da < 0 && db < 0) return;
-  const Vec2 rA = a >= 0 ? Vec2(joint.anchor - bodies[a].position) : Vec2::Zero();
-  const Vec2 rB = b >= 0 ? Vec2(joint.anchor - bodies[b].position) : Vec2::Zero();
+namespace {
+
+// Builds the rows of one joint: the relative velocity of its anchor point along a direction, or
+// its bodies' relative turn.
+class JointRowBuilder {
+ public:
+  JointRowBuilder(const JointFrame& joint, std::span<const BodyState> bodies,
+                  std::span<const int> dofOfBody)
+      : a_(joint.bodyA), b_(joint.bodyB) {
+    da_ = a_ >= 0 ? dofOfBody[a_] : -1;
+    db_ = b_ >= 0 ? dofOfBody[b_] : -1;
+    rA_ = a_ >= 0 ? Vec2(joint.anchor - bodies[a_].position) : Vec2::Zero();
+    rB_ = b_ >= 0 ? Vec2(joint.anchor - bodies[b_].position) : Vec2::Zero();
+    vA_ = prescribed(bodies, a_, da_);
+    vB_ = prescribed(bodies, b_, db_);
+  }
+  bool onDofs() const { return da_ >= 0 || db_ >= 0; }
+  JointRow point(const Vec2& t) const {
+    return row(Vec3(t.x(), t.y(), t.dot(perp(rB_))), -Vec3(t.x(), t.y(), t.dot(perp(rA_))));
+  }
+  JointRow turn() const { return row(Vec3(0, 0, 1), Vec3(0, 0, -1)); }
+
+ private:
   // A body that is not a dof enters through its prescribed velocity (the row's bias).
-  auto velocity = [&](int body, int dof) {
-    if (body < 0 || dof >= 0) return Vec3(Vec3::Zero());
+  static Vec3 prescribed(std::span<const BodyState> bodies, int body, int dof) {
+    if (body < 0 || dof >= 0) return Vec3::Zero();
     const BodyState& s = bodies[body];
     return Vec3(s.velocity.x(), s.velocity.y(), s.angularVelocity);
-  };
-  const Vec3 vA = velocity(a, da), vB = velocity(b, db);
-  auto push = [&](const Vec3& cb, const Vec3& ca) {
-    JointRow row;
-    row.dof = {db, da};
-    row.coeff = {cb, ca};
-    row.bias = cb.dot(vB) + ca.dot(vA);
-    rows.push_back(row);
-  };
-  // A row on the relative velocity of the anchor point along direction t.
-  auto pointRow = [&](const Vec2& t) {
-    push(Vec3(t.x(), t.y(), t.dot(perp(rB))), -Vec3(t.x(), t.y(), t.dot(perp(rA))));
-  };
-  auto angleRow = [&] { push(Vec3(0, 0, 1), Vec3(0, 0, -1)); };
+  }
+  JointRow row(const Vec3& cb, const Vec3& ca) const {
+    JointRow r;
+    r.dof = {db_, da_};
+    r.coeff = {cb, ca};
+    r.bias = cb.dot(vB_) + ca.dot(vA_);
+    return r;
+  }
+  int a_, b_, da_ = -1, db_ = -1;
+  Vec2 rA_, rB_;
+  Vec3 vA_, vB_;
+};
+
+}  // namespace
+
+JointRow coordinateRow(const JointFrame& joint, std::span<const BodyState> bodies,
+                       std::span<const int> dofOfBody) {
+  const JointRowBuilder build(joint, bodies, dofOfBody);
+  return joint.kind == JointDef::Kind::Prismatic ? build.point(joint.axis) : build.turn();
+}
+
+void appendJointRows(const JointFrame& joint, std::span<const BodyState> bodies,
+                     std::span<const int> dofOfBody, std::vector<JointRow>& rows,
+                     std::optional<double> lock) {
+  const JointRowBuilder build(joint, bodies, dofOfBody);
+  if (!build.onDofs()) return;
   switch (joint.kind) {
     case JointDef::Kind::Revolute:
-      pointRow(Vec2(1, 0));
-      pointRow(Vec2(0, 1));
+      rows.push_back(build.point(Vec2(1, 0)));
+      rows.push_back(build.point(Vec2(0, 1)));
       break;
     case JointDef::Kind::Prismatic:
-      pointRow(perp(joint.axis));
-      angleRow();
+      rows.push_back(build.point(perp(joint.axis)));
+      rows.push_back(build.turn());
       break;
     case JointDef::Kind::Weld:
-      pointRow(Vec2(1, 0));
-      pointRow(Vec2(0, 1));
-      angleRow();
+      rows.push_back(build.point(Vec2(1, 0)));
+      rows.push_back(build.point(Vec2(0, 1)));
+      rows.push_back(build.turn());
       break;
+  }
+  if (lock && joint.kind != JointDef::Kind::Weld) {
+    // dot(v) + bias = *lock: the coordinate moves at the locked rate.
+    rows.push_back(coordinateRow(joint, bodies, dofOfBody));
+    rows.back().bias -= *lock;
   }
 }
 

@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <functional>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -39,10 +40,18 @@ struct JointRow {
 /// Appends the velocity-level rows of one Box2D joint among an island's dofs (`dofOfBody`: body
 /// -> first dof, -1 if not a dof), the constrained relative motions: revolute, the anchor points
 /// move together (2 rows); prismatic, no motion across the axis and no relative turn (2); weld,
-/// all three. Limits and motors are left to Box2D. A body that is not a dof enters through its
+/// all three. A `lock` (joint_limits.h: a limit the step would cross) adds the coordinate's row,
+/// its rate held at *lock. Motors are left to Box2D. A body that is not a dof enters through its
 /// prescribed velocity (the rows' bias); a joint on no dof adds nothing.
 void appendJointRows(const JointFrame& joint, std::span<const BodyState> bodies,
-                     std::span<const int> dofOfBody, std::vector<JointRow>& rows);
+                     std::span<const int> dofOfBody, std::vector<JointRow>& rows,
+                     std::optional<double> lock = std::nullopt);
+
+/// The rate of a revolute or prismatic joint's coordinate (its relative turn; its slide along
+/// the axis, as Box2D's GetJointSpeed) as a row: dot(v) + bias, bias from bodies that are not
+/// dofs. Dof -1 on both sides if neither body is a dof.
+JointRow coordinateRow(const JointFrame& joint, std::span<const BodyState> bodies,
+                       std::span<const int> dofOfBody);
 
 /// A small dense symmetric positive definite factorisation L D L^T without pivoting, in place in
 /// a column-major n x n array's lower triangle (L's unit diagonal implied). A pivot that rounding

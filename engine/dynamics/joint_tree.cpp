@@ -59,7 +59,7 @@ bool JointTree::findTrees(std::span<const JointFrame> joints, std::span<const in
     linkOfBody_[dof / 3] = static_cast<int>(links_.size());
     const bool rate = joints[joint].kind != JointDef::Kind::Weld;
     links_.push_back({body, dof, parent, joint, rootBody, rate ? tree.coordinates++ : -1,
-                      Vec3::Zero(), Vec3::Zero()});
+                      joints[joint].bodyB == body ? 1.0 : -1.0, Vec3::Zero(), Vec3::Zero()});
     ++tree.links;
     return true;
   };
@@ -130,7 +130,8 @@ bool JointTree::measure(std::span<const JointFrame> joints, std::span<const Body
   return true;
 }
 
-void JointTree::project(Eigen::MatrixXd& W, Eigen::VectorXd& vStar) const {
+void JointTree::project(Eigen::MatrixXd& W, Eigen::VectorXd& vStar,
+                        const JointLimits& limits) const {
   const int m = static_cast<int>(W.cols());
   const Eigen::Index n = W.rows();
   // v* less the roots' motion is projected like W's columns; the motion goes back on after.
@@ -148,7 +149,7 @@ void JointTree::project(Eigen::MatrixXd& W, Eigen::VectorXd& vStar) const {
         }
       }
     columns_.push_back(vStar.data());
-    projectColumns(tree);
+    projectColumns(tree, &limits);
   }
   for (const Link& link : links_) vStar.segment<3>(link.dof) += link.root;
 }
@@ -178,7 +179,7 @@ void JointTree::reproject(Eigen::VectorXd& v) const {
 }
 
 // Plain loops over 3: Eigen's 3-vectors cost twice the arithmetic at these sizes.
-void JointTree::projectColumns(const Tree& tree) const {
+void JointTree::projectColumns(const Tree& tree, const JointLimits* limits) const {
   const int k = tree.coordinates, cols = static_cast<int>(columns_.size());
   mass_.assign(static_cast<size_t>(k) * k, 0.0);
   rhs_.assign(static_cast<size_t>(k) * cols, 0.0);
@@ -201,6 +202,18 @@ void JointTree::projectColumns(const Tree& tree) const {
       }
     }
   }
+  // A locked joint's rate by a penalty on its coordinate: held to 1e-12 of the locked rate, W's
+  // columns (its rhs untouched) leave it still.
+  if (limits)
+    for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l) {
+      const Link& link = links_[l];
+      const std::optional<double> rate = limits->lock(link.joint);
+      if (link.coordinate < 0 || !rate) continue;
+      const int c = link.coordinate;
+      const double penalty = 1e12 * (1 + mass_[c + c * k]);
+      mass_[c + c * k] += penalty;
+      rhs_[c + (cols - 1) * k] += penalty * link.sign * *rate;
+    }
   for (int i = 0; i < k; ++i) mass_[i + i * k] += 1e-10 * (1 + mass_[i + i * k]);
   if (k > 0) {
     ldlt_.factor(mass_.data(), k);

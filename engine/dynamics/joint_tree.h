@@ -17,6 +17,7 @@
 
 #include "engine/cable/cable.h"
 #include "engine/dynamics/box2d_bridge.h"
+#include "engine/dynamics/joint_limits.h"
 #include "engine/dynamics/joint_projection.h"
 
 namespace cablelab {
@@ -35,8 +36,9 @@ class JointTree {
              std::span<const BodyState> bodies, std::span<const int> dofOfBody,
              const Eigen::VectorXd& invM);
 
-  /// W = M^-1 J^T and v* restricted to what the joints allow (M: build's diag(invM)^-1).
-  void project(Eigen::MatrixXd& W, Eigen::VectorXd& vStar) const;
+  /// W = M^-1 J^T and v* restricted to what the joints allow (M: build's diag(invM)^-1), a
+  /// locked joint's coordinate held at its rate (`limits`, joint_limits.h).
+  void project(Eigen::MatrixXd& W, Eigen::VectorXd& vStar, const JointLimits& limits) const;
 
   /// v projected onto what the joints allow at this pose, each tree keeping its kinetic energy
   /// relative to its root: after Box2D's step the joints have turned, and v, which they allowed
@@ -55,8 +57,9 @@ class JointTree {
                const Eigen::VectorXd& invM);
 
   struct Tree;
-  // One tree's projection of the columns_ (less the roots' motion).
-  void projectColumns(const Tree& tree) const;
+  // One tree's projection of the columns_ (less the roots' motion); with `limits`, the last
+  // column is v*, which takes the locked joints' rates.
+  void projectColumns(const Tree& tree, const JointLimits* limits = nullptr) const;
 
   // A jointed dof body, listed parents first within its tree.
   struct Link {
@@ -65,6 +68,7 @@ class JointTree {
     int joint;       // the joint it hangs by (index into the joints)
     int rootBody;    // the tree's root: a body that does not move, -1 the world
     int coordinate;  // its joint's rate within the tree, -1: a weld (none)
+    double sign;     // the joint coordinate's rate per unit of that rate (-1: the body is side A)
     Vec3 mass;       // M's diagonal (m, m, I)
     Vec3 root;  // the root's prescribed motion at this body (v + omega perp(x - x_root), omega)
   };

@@ -207,7 +207,8 @@ void SparseIsland::warmStart(double h, std::span<const Cable> cables) {
 // projection through S = C M'^-1 C^T.
 void SparseIsland::jointRows(const CableSolveInput& in, std::span<const int> islandJoints) {
   joints_.clear();
-  for (int j : islandJoints) appendJointRows(in.joints[j], in.bodies, dofOfBody_, joints_);
+  for (int j : islandJoints)
+    appendJointRows(in.joints[j], in.bodies, dofOfBody_, joints_, limits_.lock(j));
   motions_.resize(bodyOfDof_.size());
   stepMotions(in.joints, islandJoints, in.bodies, dofOfBody_, motions_);
   q_ = static_cast<int>(joints_.size());
@@ -427,25 +428,29 @@ bool SparseIsland::solve(const CableSolveInput& in, std::span<Cable> cables,
   m_ = static_cast<int>(rows_.size());
   if (warm_.size() != cables.size()) warm_.assign(cables.size(), {});
   buildDofs(in, cables, loads);
-  jointRows(in, islandJoints);
-  j1_ = j0_;  // J1's pattern until the first linearisation (velocitiesAt() with joints)
-  j1Start_ = j0Start_;
   lengthTargets(in.h, in.share, cables);
-  if (redundant()) return false;  // the dense path's minimum-norm solve
   buildStiffMass(in.h, cables);
-  active_.resize(m_);
-  for (int r = 0; r < m_; ++r) active_[r] = warm_[rows_[r]].active;
-  warmStart(in.h, cables);
-  failed_ = false;
-  StepStats warm;
-  if (P_.lpNorm<Eigen::Infinity>() > 0 && iterateNewton(in, cables, predicted, warm)) {
-    stats.solverIterations += warm.solverIterations;
-    stats.linearisationFallbacks += warm.linearisationFallbacks;
-  } else {
-    P_.setZero(m_);
-    iterateNewton(in, cables, predicted, stats);
-  }
-  if (failed_) return false;  // a singular KKT matrix: the dense path's guards take the island
+  limits_.free(islandJoints, static_cast<int>(in.joints.size()));
+  // Solved again with each limited joint the step takes past its bound locked (dense 6c).
+  do {
+    jointRows(in, islandJoints);
+    j1_ = j0_;  // J1's pattern until the first linearisation (velocitiesAt() with joints)
+    j1Start_ = j0Start_;
+    if (redundant()) return false;  // the dense path's minimum-norm solve
+    active_.resize(m_);
+    for (int r = 0; r < m_; ++r) active_[r] = warm_[rows_[r]].active;
+    warmStart(in.h, cables);
+    failed_ = false;
+    StepStats warm;
+    if (P_.lpNorm<Eigen::Infinity>() > 0 && iterateNewton(in, cables, predicted, warm)) {
+      stats.solverIterations += warm.solverIterations;
+      stats.linearisationFallbacks += warm.linearisationFallbacks;
+    } else {
+      P_.setZero(m_);
+      iterateNewton(in, cables, predicted, stats);
+    }
+    if (failed_) return false;  // a singular KKT matrix: the dense path's guards take the island
+  } while (limits_.lockCrossing(in.joints, islandJoints, in.bodies, dofOfBody_, v1_, in.h));
   applyForces(in.h, cables, loads);
   // As the dense path (cable_solver.cpp, stage 7): pivoted links end where the lengths were
   // solved for.

@@ -34,6 +34,7 @@
 #include "engine/cable/cable.h"
 #include "engine/dynamics/cable_solver.h"
 #include "engine/dynamics/geometric_stiffness.h"
+#include "engine/dynamics/joint_limits.h"
 #include "engine/dynamics/joint_projection.h"
 #include "engine/dynamics/step_pose.h"
 
@@ -88,6 +89,7 @@ class SparseIsland {
   std::vector<StepMotion> motions_;         // per dof body: how Box2D moves it (step_pose.h)
   int n_ = 0, m_ = 0, q_ = 0;               // dofs, cable rows, joint rows
   std::vector<JointRow> joints_;            // C, as the dense path builds it (joint_projection.h)
+  JointLimits limits_;                      // joints locked at a limit (joint_limits.h)
   const Eigen::VectorXd* fixed_ = nullptr;  // factorAndSolve(): P given, not solved for
   Eigen::VectorXd invM_, vRaw_, vFree_, momentum_;  // momentum_ = M v* (M v* = M' v*' if stiff)
   // Jacobians as (row, dof, value) lists: J0 at the start of the step, J1 at the prediction.

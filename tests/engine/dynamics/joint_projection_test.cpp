@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 
+#include "engine/dynamics/joint_limits.h"
 #include "engine/dynamics/joint_projection.h"
 #include "engine/dynamics/joint_tree.h"
 #include "engine/dynamics/world.h"
@@ -76,12 +77,48 @@ struct RandomTree {
       invM.segment<3>(3 * b) = Vec3(bodies[b].invMass, bodies[b].invMass, bodies[b].invInertia);
   }
 
-  std::vector<JointRow> rows() const {
+  std::vector<JointRow> rows(const JointLimits& limits = JointLimits()) const {
     std::vector<JointRow> r;
-    for (const JointFrame& j : joints) appendJointRows(j, bodies, dofOfBody, r);
+    for (size_t j = 0; j < joints.size(); ++j)
+      appendJointRows(joints[j], bodies, dofOfBody, r, limits.lock(static_cast<int>(j)));
     return r;
   }
 };
+
+TEST(JointTree, LockedJointsMoveAtTheirRateInBothProjections) {
+  // A joint at a limit (joint_limits.h) is locked at a rate: the tree's penalty on its
+  // coordinate and the Schur complement's extra row give the same velocities, the locked
+  // coordinates move at their rates and W's columns leave them still.
+  test::Random random(12);
+  int locks = 0;
+  for (int trial = 0; trial < 40; ++trial) {
+    RandomTree t(random, random.integer(1, 7));
+    const int n = static_cast<int>(t.invM.size()), m = random.integer(1, 3);
+    Eigen::MatrixXd W = Eigen::MatrixXd::Random(n, m);
+    Eigen::VectorXd v = 3 * Eigen::VectorXd::Random(n);
+    JointLimits limits;
+    for (size_t j = 0; j < t.joints.size(); ++j)
+      if (t.joints[j].kind != JointDef::Kind::Weld && random.integer(0, 1))
+        limits.lockAt(static_cast<int>(j), random.uniform(-2, 2)), ++locks;
+    Eigen::MatrixXd schurW = W;
+    Eigen::VectorXd schurV = v;
+    JointProjection schur;
+    schur.projectDiagonal(t.rows(limits), t.invM, schurW, schurV);
+    JointTree tree;
+    ASSERT_TRUE(tree.build(t.joints, t.island, t.bodies, t.dofOfBody, t.invM)) << trial;
+    tree.project(W, v, limits);
+    EXPECT_LT((W - schurW).norm(), 1e-6 * (1 + schurW.norm())) << trial;
+    EXPECT_LT((v - schurV).norm(), 1e-6 * (1 + schurV.norm())) << trial;
+    for (size_t j = 0; j < t.joints.size(); ++j) {
+      const std::optional<double> rate = limits.lock(static_cast<int>(j));
+      if (!rate) continue;
+      const JointRow row = coordinateRow(t.joints[j], t.bodies, t.dofOfBody);
+      EXPECT_NEAR(row.dot(v) + row.bias, *rate, 1e-9) << trial;
+      for (int c = 0; c < m; ++c) EXPECT_NEAR(row.dot(W.col(c)), 0, 1e-9) << trial;
+    }
+  }
+  EXPECT_GT(locks, 40);
+}
 
 TEST(JointTree, ProjectsLikeTheSchurComplementAndTheJointsHold) {
   test::Random random(11);
@@ -102,7 +139,7 @@ TEST(JointTree, ProjectsLikeTheSchurComplementAndTheJointsHold) {
     schur.projectDiagonal(rows, t.invM, schurW, schurV);
     JointTree tree;
     ASSERT_TRUE(tree.build(t.joints, t.island, t.bodies, t.dofOfBody, t.invM)) << trial;
-    tree.project(W, v);
+    tree.project(W, v, JointLimits());
     EXPECT_LT((W - schurW).norm(), 1e-6 * (1 + schurW.norm())) << trial;  // S's regularisation
     EXPECT_LT((v - schurV).norm(), 1e-6 * (1 + schurV.norm())) << trial;
     // What the joints allow: no joint row moves (W's columns), v* moves as the kinematic root.
