@@ -327,7 +327,8 @@ py::dict stepStats(const PyWorld& self) {
   return py::dict("step_us"_a = s.stepMicros, "cable_us"_a = s.cableMicros,
                   "wrap_points"_a = s.wrapPoints, "solver_iterations"_a = s.solverIterations,
                   "residual"_a = s.residual,
-                  "linearisation_fallbacks"_a = s.linearisationFallbacks);
+                  "linearisation_fallbacks"_a = s.linearisationFallbacks,
+                  "newton_divergences"_a = s.newtonDivergences);
 }
 
 }  // namespace

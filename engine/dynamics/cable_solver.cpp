@@ -5,6 +5,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 
 #include "engine/cable/wrap.h"
 #include "engine/dynamics/disjoint_sets.h"
@@ -22,6 +24,9 @@ namespace cablelab {
 
 namespace {
 
+// The most Box2D moves a body in a step (b2_maxTranslation, b2_maxRotation in b2_settings.h).
+constexpr double kMaxStepTranslation = 2.0;  // m
+constexpr double kMaxStepTurn = 0.5 * std::numbers::pi;  // rad
 constexpr int kNewtonIterations = 3;  // on the end-of-step lengths; geometry is nearly linear
 // With redundant rows Newton runs on J0 W (a chord method): it converges linearly, not
 // quadratically, and a fast catch needs more steps (a puck at 50 m/s: 29 mm stretch after 3).
@@ -613,13 +618,12 @@ void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable>
       phi = kFloorLength - floorGap(c.path()[seg], c.path()[seg + 1]);
     else
       for (int k = row.first; k <= row.last; ++k) phi += c.spanStretch(k);
+    ws.phi0[r] = phi;
     if (!c.elastic() || seg >= 0) {
       ws.target[r] = phi < -kLengthSlop  ? 0.0
                      : phi > kLengthSlop ? phi - beta * (phi - kLengthSlop)
                                          : phi;
-    } else if (ws.midpoint) {
-      ws.phi0[r] = phi;  // midpointSpringRows pulls with the energy's discrete gradient
-    } else {
+    } else if (!ws.midpoint) {  // (midpointSpringRows pulls with the energy's discrete gradient)
       const double stiffK = c.stiffness(), damp = c.damping();
       ws.compliance[r] = 1.0 / (h * (stiffK * h + damp));
       ws.damped[r] = damp * phi / (stiffK * h + damp);
@@ -755,10 +759,16 @@ bool warmStart(Workspace& ws, double h, std::span<const Cable> cables) {
 
 // Newton iterations from ws.P, each linearisation an LCP over all rows. True once the impulses
 // have settled (the linearisation at a point the LCP keeps is exact there: it is the solution).
-bool iterateNewton(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
-                   bool redundant, StepStats& stats) {
+enum class Newton { Converged, Stopped, Diverged };
+
+// Newton's iterations from ws.P. Stopped: the iterations ran out while the steps still shrank
+// (ws.P is the last iterate, as good as it got). Diverged: a step grew instead (ws.P is not an
+// answer).
+Newton iterateNewton(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
+                     bool redundant, StepStats& stats) {
   const int m = static_cast<int>(ws.rows.size());
   const double h = in.h;
+  double lastChange = std::numeric_limits<double>::infinity();
   for (int iteration = 0; iteration < (redundant ? kChordIterations : kNewtonIterations);
        ++iteration) {
     linearise(ws, in, cables);
@@ -788,9 +798,13 @@ bool iterateNewton(Workspace& ws, const CableSolveInput& in, std::span<const Cab
     ws.P = sol.x;
     stats.solverIterations += sol.iterations;
     stats.residual = std::max(stats.residual, sol.residual);
-    if (change <= 1e-9 * (1e-9 + ws.P.lpNorm<Eigen::Infinity>())) return true;
+    if (change <= 1e-9 * (1e-9 + ws.P.lpNorm<Eigen::Infinity>())) return Newton::Converged;
+    // Steps that grow, and not by rounding (a converged iterate's change of 1e-8 |P|).
+    if (!(change < lastChange) && change > 1e-3 * ws.P.lpNorm<Eigen::Infinity>())
+      return Newton::Diverged;
+    lastChange = change;
   }
-  return false;
+  return Newton::Stopped;
 }
 
 // Newton's shortcut. Where every row is a sum of distances between points fixed on bodies (no
@@ -812,20 +826,44 @@ bool pointRowsOnly(const Workspace& ws, std::span<const Cable> cables) {
   return true;
 }
 
-// J0 v for one row at the start of the step: v* on the dofs, the prescribed motion elsewhere.
+// J v* for one row at the start of the step along the Jacobians it pulls along (W's): v* on the
+// dofs, the prescribed motion elsewhere.
 double startRate(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables, int r) {
   double rate = 0;
-  forStartJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
+  forForceJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double weight) {
     for (const auto& e : jacobian) {
       if (const int d = ws.dofs.ofBody[e.body]; d >= 0) {
-        rate += e.d.dot(ws.vStar.segment<3>(d));
+        rate += weight * e.d.dot(ws.vStar.segment<3>(d));
       } else {
         const BodyState& b = in.bodies[e.body];
-        rate += e.d.dot(Vec3(b.velocity.x(), b.velocity.y(), b.angularVelocity));
+        rate += weight * e.d.dot(Vec3(b.velocity.x(), b.velocity.y(), b.angularVelocity));
       }
     }
   });
   return rate;
+}
+
+// The LCP on the start-of-step linearisation phi1 = phi0 + h J v1 (ws.lcpSolution): the
+// shortcut's, and the answer where Newton on the end-of-step lengths diverges. Its J W is
+// positive semidefinite, so its impulses are bounded by the motion they stop.
+void solveStartOfStep(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
+                      bool redundant) {
+  const int m = static_cast<int>(ws.rows.size());
+  const double h = in.h;
+  ws.K = ws.JW0;
+  ws.b.resize(m);
+  for (int r = 0; r < m; ++r) {
+    const Workspace::Row& row = ws.rows[r];
+    const Cable& c = cables[row.cable];
+    double goal = ws.target[r];
+    if (c.elastic() && row.segment < 0) {  // the implicit spring-damper (lengthTargets)
+      const double k = c.stiffness(), damp = c.damping();
+      ws.K(r, r) += 1.0 / (h * (k * h + damp));
+      goal = damp * ws.phi0[r] / (k * h + damp);
+    }
+    ws.b[r] = (ws.phi0[r] - goal) / h + startRate(ws, in, cables, r);
+  }
+  solveLcp(ws.K, ws.b, ws.lcp, ws.lcpSolution, redundant);
 }
 
 // The shortcut's LCP on the start-of-step linearisation; true (ws.P set) if its remainder bound
@@ -835,20 +873,9 @@ bool solveLinearised(Workspace& ws, const CableSolveInput& in, std::span<const C
   if (!linearShortcut || ws.midpoint || !pointRowsOnly(ws, cables) ||
       std::find(ws.ahead.begin(), ws.ahead.end(), 1) != ws.ahead.end())
     return false;
-  const int m = static_cast<int>(ws.rows.size());
   const double h = in.h;
-  ws.K = ws.JW0;
-  ws.K.diagonal() += ws.compliance;
-  ws.b.resize(m);
-  for (int r = 0; r < m; ++r) {
-    const Workspace::Row& row = ws.rows[r];
-    double phi0 = 0;
-    for (int k = row.first; k <= row.last; ++k) phi0 += cables[row.cable].spanStretch(k);
-    ws.b[r] = (phi0 - (cables[row.cable].elastic() ? ws.damped[r] : ws.target[r])) / h +
-              startRate(ws, in, cables, r);
-  }
-  LcpSolution& sol = ws.lcpSolution;
-  solveLcp(ws.K, ws.b, ws.lcp, sol, redundant);
+  solveStartOfStep(ws, in, cables, redundant);
+  const LcpSolution& sol = ws.lcpSolution;
   timesImpulses(ws.W, sol.x, ws.WP);
   ws.v1 = ws.vStar - ws.WP;
   // The remainder bound measures from the straight-line motion. A jointed body turns off it
@@ -874,6 +901,19 @@ bool solveLinearised(Workspace& ws, const CableSolveInput& in, std::span<const C
   stats.solverIterations += sol.iterations;
   stats.residual = std::max(stats.residual, sol.residual);
   ++stats.linearSolves;
+  return true;
+}
+
+// Whether Box2D can move the bodies as the impulses ws.P say: it moves no body further than
+// b2_maxTranslation (2 m) or b2_maxRotation (pi / 2) a step, and an answer that needs more (a
+// root of the end-of-step lengths a whole turn of a drum away) is none.
+bool realisable(Workspace& ws, double h) {
+  timesImpulses(ws.W, ws.P, ws.WP);
+  for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
+    const Vec3 v1 = ws.vStar.segment<3>(3 * k) - ws.WP.segment<3>(3 * k);
+    if (!(h * v1.head<2>().norm() <= kMaxStepTranslation && h * std::abs(v1[2]) <= kMaxStepTurn))
+      return false;
+  }
   return true;
 }
 
@@ -903,7 +943,8 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
   if (solveLinearised(ws, in, cables, redundant, stats)) return;
   if (warmStart(ws, in.h, cables)) {
     StepStats warm;
-    if (iterateNewton(ws, in, cables, redundant, warm)) {
+    if (iterateNewton(ws, in, cables, redundant, warm) == Newton::Converged &&
+        realisable(ws, in.h)) {
       stats.solverIterations += warm.solverIterations;
       stats.residual = std::max(stats.residual, warm.residual);
       stats.linearisationFallbacks += warm.linearisationFallbacks;
@@ -911,7 +952,18 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
     }
     ws.P.setZero(m);
   }
-  iterateNewton(ws, in, cables, redundant, stats);
+  if (iterateNewton(ws, in, cables, redundant, stats) != Newton::Diverged && realisable(ws, in.h))
+    return;
+  // Far from linear over the step: a segment the predicted motion folds past a wrap point, where
+  // pulling harder makes the end-of-step length grow (Newton's impulses grew threefold an
+  // iteration, to 8e4 N on a hand's band, and the soak's fingers were thrown), or a root a whole
+  // turn of a drum away (the built-in winch, stalled with its weight at the drum, found one at
+  // 1e5 N, then 1e7, 1e9, ... a step). The start-of-step linearisation answers instead; the next
+  // sub-step corrects what it leaves.
+  solveStartOfStep(ws, in, cables, redundant);
+  ws.P = ws.lcpSolution.x;
+  stats.solverIterations += ws.lcpSolution.iterations;
+  ++stats.newtonDivergences;
 }
 
 constexpr int kBalancePasses = 4;

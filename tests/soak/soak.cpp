@@ -3,7 +3,8 @@
 // including switching a membrane to a rigid cable and back. Every step checks:
 //   * no NaN (World::step throws SimulationError on a non-finite state; that fails the soak),
 //   * energy finite and below --max-energy (J),
-//   * rigid cables: length - rest length below --max-residual (m) one step after they became rigid,
+//   * rigid cables: length - rest length below --max-residual (m) one step after they became rigid
+//     or a guard's wrap change (a warning) moved their length,
 //   * no negative tension.
 // Prints one JSON object with steps/s and the extremes seen; exit 0 pass, 1 fail.
 //
@@ -22,6 +23,7 @@
 
 #include "engine/core/error.h"
 #include "engine/dynamics/world.h"
+#include "engine/model/scene_json.h"
 #include "engine/scenes/scene_registry.h"
 
 namespace {
@@ -37,12 +39,47 @@ struct Args {
                       // for good)
   double maxResidual = 0.1;  // m; Box2D's joint limits and the mouse joint act after the cable
                              // solve (6 cm seen: seed 1, step 362146)
+  long dumpAt = -1;          // --dump-at: write the world as a scene before this step
+  std::string dumpPath;
 };
+
+// The world now as a scene that starts from this state: poses, velocities, cable parameters and
+// servo targets (the mouse drag and the solver's warm starts are not kept). Joints are made anew
+// at the current pose, where their coordinate restarts at 0: limits and targets move with it.
+SceneDef snapshot(const World& world) {
+  SceneDef s = world.scene();
+  for (int b = 0; b < world.bodyCount(); ++b) {
+    BodyDef& def = s.bodies[b];
+    const BodyState& now = world.body(b);
+    def.position = now.position;
+    def.angle = now.angle;
+    def.velocity = now.velocity;
+    def.angularVelocity = now.angularVelocity;
+  }
+  for (int j = 0; j < world.jointCount(); ++j) {
+    JointDef& def = s.joints[j];
+    const JointState now = world.joint(j);
+    const int a = world.findBody(def.bodyA);
+    if (a >= 0) def.axis = rotate(def.axis, world.body(a).angle - world.scene().bodies[a].angle);
+    def.anchor = now.anchorB;
+    def.lower -= now.value;
+    def.upper -= now.value;
+    def.servo.target = now.servoTarget - now.value;
+  }
+  for (int c = 0; c < world.cableCount(); ++c) {
+    const CableParameters& p = world.cable(c).parameters();
+    s.cables[c].restLength = p.restLength;
+    s.cables[c].stiffness = p.stiffness;
+    s.cables[c].preload = p.preload;
+    s.cables[c].damping = p.damping;
+  }
+  return s;
+}
 
 int usage() {
   std::fprintf(stderr,
                "usage: cablelab_soak [--steps N] [--seed S] [--max-energy J] [--max-residual M] "
-               "[--epoch N] [--verbose] [--ctest]\n");
+               "[--epoch N] [--dump-at STEP FILE] [--verbose] [--ctest]\n");
   return 2;
 }
 
@@ -67,6 +104,12 @@ int main(int argc, char** argv) {
       const char* v = value();
       if (!v) return usage();
       a.steps = std::atol(v);
+    } else if (arg == "--dump-at") {
+      const char* at = value();
+      const char* path = value();
+      if (!at || !path) return usage();
+      a.dumpAt = std::atol(at);
+      a.dumpPath = path;
     } else if (arg == "--epoch") {
       const char* v = value();
       if (!v) return usage();
@@ -172,7 +215,17 @@ int main(int argc, char** argv) {
         if (--dragLeft == 0) world.endDrag();
       }
 
+      if (step == a.dumpAt) saveSceneFile(snapshot(world), a.dumpPath);
+      const size_t warned = world.warnings().size();
       world.step(dt, substeps);
+      // A wrap change a guard made moves the length, and says so (World::warnings): a rigid
+      // cable it lengthened gets the same one step to take that back as a new rigid cable.
+      for (size_t w = warned; w < world.warnings().size(); ++w)
+        for (int c = 0; c < world.cableCount(); ++c)
+          if (rigidSince[c] >= 0 &&
+              world.warnings()[w].starts_with("cable '" + world.cable(c).name() +
+                                              "': a wrap change moved the length"))
+            rigidSince[c] = step;
 
       const double e = world.energy();
       if (world.lastStepStats().wrapPoints > 0) ++wrapped;
@@ -191,9 +244,9 @@ int main(int argc, char** argv) {
           for (const WrapPoint& w : world.cable(c).path())
             std::fprintf(stderr, "    path%d pulley %d vertex %d (%.4f %.4f)\n", c, w.pulley,
                          w.vertex, w.world.x(), w.world.y());
-        std::fprintf(stderr, "    box angle %.4f events %d mid %d fb %d lin %d\n",
+        std::fprintf(stderr, "    box angle %.4f events %d mid %d fb %d lin %d div %d\n",
                      world.body(6).angle, st.events, st.midpointSolves, st.midpointFallbacks,
-                     st.linearisationFallbacks);
+                     st.linearisationFallbacks, st.newtonDivergences);
         for (int b = 0; b < world.bodyCount(); ++b)
           std::fprintf(stderr, "    %s (%.4f %.4f %.4f) v (%.3g %.3g %.3g)\n",
                        world.scene().bodies[b].name.c_str(), world.body(b).position.x(),

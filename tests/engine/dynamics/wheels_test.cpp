@@ -1,6 +1,7 @@
 // Wheels, capstans, winches and tackles against their textbook answers (docs/wheels.md).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/dynamics/world.h"
@@ -100,6 +101,31 @@ TEST(Winch, FiveTurnsLiftTheWeightByRadiusTimesAngle) {
   EXPECT_NEAR(rise, wound, 0.005 * wound);
   EXPECT_LT(worstJump, 1e-3);
   EXPECT_NEAR(w.cable(0).path().back().arc, 2 * M_PI * 6, 0.2);  // one turn wound at the start
+}
+
+TEST(Winch, AWeightWoundUpToTheDrumStopsThereAndTheStalledServoHoldsIt) {
+  // The weight reaches the drum at 17 s; the servo's target runs on, so its torque grows by
+  // kp omega = 200 N m a second and the rope holds it: T = torque / r. Newton on the end-of-step
+  // lengths found a root a whole turn of the drum away (which Box2D cannot reach in a step): the
+  // tension went 1e5, 1e7, ... 1e13 N and the drum spun at Box2D's 94 rad/s limit.
+  World w = load("winch", {});
+  const int drum = w.findBody("drum");
+  const ServoDef& servo = w.scene().joints[0].servo;
+  const double r = 0.1;
+  double worst = 0;
+  while (w.time() < 30) {
+    w.step(kDt);
+    if (w.time() < 20) continue;  // stalled from 17 s
+    const JointState axle = w.joint(0);
+    const double torque =
+        std::clamp(servo.kp * (axle.servoTarget - axle.value) + servo.kd * (servo.speed - axle.speed),
+                   -servo.maxForce, servo.maxForce);
+    worst = std::max(worst, std::abs(w.cable(0).tension() * r - torque) / torque);
+    ASSERT_LT(std::abs(w.body(drum).angularVelocity), 1e-3) << w.time();
+    ASSERT_LT(std::abs(w.cable(0).stretch()), 1e-5) << w.time();
+  }
+  EXPECT_LT(worst, 0.01);
+  EXPECT_GT(w.cable(0).tension() * r, 2000);  // the servo at 13 s of lag: 2640 N m
 }
 
 TEST(Tackle, FourFallsGiveAMechanicalAdvantageOfFour) {
