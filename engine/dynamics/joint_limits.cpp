@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "engine/dynamics/joint_projection.h"
+#include "engine/core/math.h"
 
 namespace cablelab {
 
@@ -19,6 +19,33 @@ void JointLimits::lockAt(int j, double rate) {
   rate_[j] = rate;
 }
 
+namespace {
+
+// A body's velocity (vx, vy, omega): v's entries for a dof, else its own (the world: at rest).
+Vec3 velocityOf(int body, std::span<const BodyState> bodies, std::span<const int> dofOfBody,
+                const Eigen::VectorXd& v) {
+  if (body < 0) return Vec3::Zero();
+  if (const int d = dofOfBody[body]; d >= 0) return v.segment<3>(d);
+  const BodyState& s = bodies[body];
+  return Vec3(s.velocity.x(), s.velocity.y(), s.angularVelocity);
+}
+
+// The rate of a revolute or prismatic joint's coordinate (coordinateRow(joint) . v + bias, with
+// the few terms it has written out: this runs for every limited joint every sub-step).
+double coordinateRate(const JointFrame& joint, std::span<const BodyState> bodies,
+                      std::span<const int> dofOfBody, const Eigen::VectorXd& v) {
+  const Vec3 a = velocityOf(joint.bodyA, bodies, dofOfBody, v);
+  const Vec3 b = velocityOf(joint.bodyB, bodies, dofOfBody, v);
+  if (joint.kind != JointDef::Kind::Prismatic) return b[2] - a[2];
+  auto pointVelocity = [&](int body, const Vec3& u) {
+    if (body < 0) return Vec2(Vec2::Zero());
+    return Vec2(u.head<2>() + u[2] * perp(Vec2(joint.anchor - bodies[body].position)));
+  };
+  return joint.axis.dot(pointVelocity(joint.bodyB, b) - pointVelocity(joint.bodyA, a));
+}
+
+}  // namespace
+
 bool JointLimits::lockCrossing(std::span<const JointFrame> joints, std::span<const int> island,
                                std::span<const BodyState> bodies, std::span<const int> dofOfBody,
                                const Eigen::VectorXd& v1, double h) {
@@ -26,9 +53,9 @@ bool JointLimits::lockCrossing(std::span<const JointFrame> joints, std::span<con
   for (int j : island) {
     const JointFrame& joint = joints[j];
     if (!joint.limited || locked_[j]) continue;
-    const JointRow row = coordinateRow(joint, bodies, dofOfBody);
-    if (row.dof[0] < 0 && row.dof[1] < 0) continue;  // on no dof: not this island's to move
-    const double rate = row.dot(v1) + row.bias;
+    const auto moves = [&](int body) { return body >= 0 && dofOfBody[body] >= 0; };
+    if (!moves(joint.bodyA) && !moves(joint.bodyB)) continue;  // not this island's to move
+    const double rate = coordinateRate(joint, bodies, dofOfBody, v1);
     // The rates that reach each bound within h (0 once past it: Box2D's position correction
     // brings the joint back).
     const double down = -std::max(joint.value - joint.lower, 0.0) / h;
