@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <tuple>
 
 #include "engine/cable/wrap.h"
 #include "engine/dynamics/disjoint_sets.h"
@@ -81,6 +82,7 @@ struct CableSolverWorkspace {
     size_t weights = 0;          // offset of span first's weight in rowWeights
     int segment = -1;            // -1: the spans' length; i: a floor on the cable's segment i
     Vec2 normal = Vec2::Zero();  // a floor's direction (floorNormal)
+    bool rim = false;            // a floor on the point's tangent length to a circle (floors.h)
     double weight(const std::vector<double>& w, int k) const { return w[weights + k - first]; }
   };
   std::vector<Row> rows;  // this island's
@@ -305,8 +307,11 @@ void buildRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
       if (needsFloor(path, i, in.bodies, in.h, in.gravity,
                      [&](int b) { return ws.dofs.ofBody[b] >= 0; }) &&
           mayReachFloor(in, path[i], path[i + 1])) {
-        ws.rows.push_back({cable, 0, 0, ws.rowWeights.size(), static_cast<int>(i),
-                           floorNormal(path[i], path[i + 1], in.bodies, in.h, in.gravity)});
+        const Vec2 n = floorNormal(path[i], path[i + 1], in.bodies, in.h, in.gravity);
+        ws.rows.push_back({cable, 0, 0, ws.rowWeights.size(), static_cast<int>(i), n});
+        ws.rowWeights.push_back(1.0);
+        if (rimEnd(path[i], path[i + 1]) < 0) continue;
+        ws.rows.push_back({cable, 0, 0, ws.rowWeights.size(), static_cast<int>(i), n, true});
         ws.rowWeights.push_back(1.0);
       }
   }
@@ -318,8 +323,23 @@ void buildRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
 double floorRow(Workspace& ws, std::span<const BodyState> bodies, const Cable& cable,
                 const Workspace::Row& row) {
   const WrapPoint* ends[2] = {&cable.path()[row.segment], &cable.path()[row.segment + 1]};
-  const Vec2& n = row.normal;
   ws.floorJacobian.clear();
+  // A point's tangent length to a circle (floors.h, tangentLength).
+  if (row.rim) {
+    const int rim = rimEnd(*ends[0], *ends[1]);
+    const WrapPoint &circle = *ends[rim], &point = *ends[1 - rim];
+    const Vec2 c = worldPoint(bodies, circle.body, circle.local);
+    const Vec2 x = worldPoint(bodies, point.body, point.local);
+    Vec2 g;
+    const double length = tangentLength(x, c, circle.radius, g);
+    // d(kFloorLength - L): -g at the point, g at the circle's centre.
+    for (const auto& [body, at, d] : {std::tuple(point.body, x, Vec2(-g)), std::tuple(circle.body, c, g)})
+      if (body >= 0)
+        ws.floorJacobian.push_back(
+            {body, Vec3(d.x(), d.y(), d.dot(perp(Vec2(at - bodies[body].position))))});
+    return kFloorLength - length;
+  }
+  const Vec2& n = row.normal;
   double along = 0;
   for (int e = 0; e < 2; ++e) {
     const double sign = e == 0 ? 1.0 : -1.0;  // d(kFloorLength - n . (q - p))
@@ -615,7 +635,7 @@ void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable>
     const int seg = row.segment;
     double phi = 0;
     if (seg >= 0)
-      phi = kFloorLength - floorGap(c.path()[seg], c.path()[seg + 1]);
+      phi = kFloorLength - floorGap(c.path()[seg], c.path()[seg + 1], ws.rows[r].rim);
     else
       for (int k = row.first; k <= row.last; ++k) phi += c.spanStretch(k);
     ws.phi0[r] = phi;

@@ -27,10 +27,44 @@ inline Vec2 floorTo(const WrapPoint& q) {
   return q.radius == 0 ? q.world : q.tangentIn;
 }
 
+/// Which end of segment (p, q) is a circle when the other is a point (0: p, 1: q), else -1.
+inline int rimEnd(const WrapPoint& p, const WrapPoint& q) {
+  if ((p.radius == 0) == (q.radius == 0)) return -1;
+  return p.radius != 0 ? 0 : 1;
+}
+
+/// The tangent length from point x to the circle (centre c, radius r): sqrt(|x - c|^2 - r^2), the
+/// length of a segment from x that leaves the circle on its tangent. It is zero wherever x meets
+/// the rim (inside, minus the depth). A floor along the segment's direction (floorNormal) stops a
+/// point that runs into the tangent point; one that comes at the rim from the side (a weight
+/// that swung onto a winch drum) it let slide past the tangent point into the drum, where the
+/// cable, left with a segment of no length, let it fall. So a segment between a point and a
+/// circle gets a second floor row, on this length. `gradient` gets dL/dx, which grows as 1 / L at
+/// the rim: it is taken at L >= kFloorLength / 4, exact where a floor holds (L = kFloorLength).
+inline double tangentLength(const Vec2& x, const Vec2& c, double r, Vec2& gradient) {
+  const Vec2 out = x - c;
+  const double d2 = out.squaredNorm(), r2 = r * r;
+  if (d2 > r2) {
+    const double length = std::sqrt(d2 - r2);
+    gradient = out / std::max(length, 0.25 * kFloorLength);
+    return length;
+  }
+  const double d = std::sqrt(d2);
+  gradient = d > 0 ? Vec2(out / d) : Vec2(1, 0);
+  return d - std::abs(r);
+}
+
 /// The gap a floor keeps open: the segment's length as the path has it, between its contact
 /// points (a circle's tangent point). Next to a wheel that is the tangent segment, which goes to
-/// zero where a box hauled up along it reaches the rim.
-inline double floorGap(const WrapPoint& p, const WrapPoint& q) {
+/// zero where a box hauled up along it reaches the rim. With `rim` (a point-circle segment's
+/// second row), the point's tangent length.
+inline double floorGap(const WrapPoint& p, const WrapPoint& q, bool rim = false) {
+  if (rim) {
+    const bool circleFirst = rimEnd(p, q) == 0;
+    const WrapPoint &circle = circleFirst ? p : q, &point = circleFirst ? q : p;
+    Vec2 gradient;
+    return tangentLength(point.world, circle.world, circle.radius, gradient);
+  }
   return (floorTo(q) - floorFrom(p)).norm();
 }
 
