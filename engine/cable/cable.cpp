@@ -247,9 +247,7 @@ bool Cable::leaveRound() {
       // The turn at a point, continuous over time: past half a turn (the cable doubled back round
       // it, e.g. swung round past an end anchor) it stays; it leaves when the turn goes below 0.
       const Vec2 in = p.world[0] - leaving(path_[i - 1]), out = arriving(path_[i + 1]) - p.world[0];
-      const double s = p.side == WrapSide::Right ? -1.0 : 1.0;
-      const double raw = -s * std::atan2(cross(in, out), in.dot(out));
-      p.arc = raw + 2 * M_PI * std::round((p.arc - raw) / (2 * M_PI));
+      p.arc = continuedPointTurn(in, out, p.side, p.arc);
       gone = p.arc < 0;
     }
     if (gone) {

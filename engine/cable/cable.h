@@ -200,6 +200,11 @@ class Cable {
   void refresh(std::span<const BodyState> bodies);
 
   const std::vector<WrapPoint>& path() const { return path_; }
+  /// A point pulley's turn at the last update (rad; continuedPointTurn), 0 for other kinds.
+  double pointTurn(int pulley) const {
+    const PulleyState& p = pulleys_[pulley];
+    return p.polygon || p.circle ? 0.0 : p.arc;
+  }
   /// Length and J of the path (cableLengthJacobian: the solvers need no J v or J-dot v, and
   /// cableKinematics gives them for any path).
   const CableKinematics& kinematics() const { return kin_; }

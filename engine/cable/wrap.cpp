@@ -24,6 +24,12 @@ double wrapSideDistance(const Vec2& a, const Vec2& b, const Vec2& p, WrapSide si
   return side == WrapSide::Right ? -left : left;
 }
 
+double continuedPointTurn(const Vec2& in, const Vec2& out, WrapSide side, double previous) {
+  const double s = side == WrapSide::Right ? -1.0 : 1.0;
+  const double raw = -s * std::atan2(cross(in, out), in.dot(out));
+  return raw + 2 * M_PI * std::round((previous - raw) / (2 * M_PI));
+}
+
 bool segmentCutsPolygon(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon) {
   // Clip the segment against every edge's inner half-plane (Cyrus-Beck).
   double t0 = 0, t1 = 1;

@@ -53,6 +53,12 @@ double chainLength(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,
 /// be wrapped (the cable's right for Left, its left for Right).
 double wrapSideDistance(const Vec2& a, const Vec2& b, const Vec2& p, WrapSide side);
 
+/// The turn (rad) of a cable that arrives along `in` and leaves along `out` round a point pulley
+/// on `side`, continued from `previous` (its turn at the last update) across the +-pi cut: past
+/// half a turn (the cable doubled back round the point, e.g. swung round past an end anchor) it
+/// goes on growing instead of flipping sign. The point leaves the path when it goes below 0.
+double continuedPointTurn(const Vec2& in, const Vec2& out, WrapSide side, double previous);
+
 /// True when the segment a-b passes through the interior of the convex CCW polygon.
 bool segmentCutsPolygon(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon);
 

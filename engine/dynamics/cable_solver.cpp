@@ -5,6 +5,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib> //DBG
 #include <limits>
 #include <numbers>
 #include <tuple>
@@ -520,9 +522,14 @@ void pathAhead(Workspace& ws, const Cable& cable, int span, std::span<const Body
   for (size_t i = 1; i + 1 < ws.path.size(); ++i) {
     const WrapPoint& w = ws.path[i];
     if (w.kind != WrapPoint::Kind::Point || w.pulley < 0 ||
-        cable.wrapSide(w.pulley) == WrapSide::Threaded ||
-        wrapSideDistance(ws.path[i - 1].world, ws.path[i + 1].world, w.world,
-                         cable.wrapSide(w.pulley)) >= 0)
+        cable.wrapSide(w.pulley) == WrapSide::Threaded)
+      continue;
+    // As the cable's own leave rule (Cable::leaveRound): a point that the cable doubled back
+    // round past half a turn stays (with the sign alone, a point that hooked a ballast's cable
+    // beyond its end pulley left the prediction, the solve saw a slack cable and let it go: the
+    // rigid cable grew to 60 m).
+    const Vec2 in = w.world - floorFrom(ws.path[i - 1]), out = floorTo(ws.path[i + 1]) - w.world;
+    if (continuedPointTurn(in, out, cable.wrapSide(w.pulley), cable.pointTurn(w.pulley)) >= 0)
       continue;
     ws.path.erase(ws.path.begin() + static_cast<std::ptrdiff_t>(i));
     cableLengthJacobian(ws.path, bodies, ws.kin);
@@ -1142,6 +1149,7 @@ void CableSolver::solve(const CableSolveInput& in, std::span<Cable> cables, std:
       again = mergeSlidingSpans(ws, cables);
       if (again) ws.ahead.clear();  // the rows changed: measure them again
       else again = lockCrossingLimits(ws, in);
+      if (getenv("DBGL")) { fprintf(stderr, "  iter P:"); for (int r = 0; r < ws.P.size(); ++r) fprintf(stderr, " %g[c%d s%d%s]", ws.P[r], ws.rows[r].cable, ws.rows[r].segment, ws.rows[r].rim ? "rim" : ""); fprintf(stderr, " stiff %d h %g lin %d div %d\n", (int)ws.stiff, in.h, stats.linearSolves, stats.newtonDivergences); for (int r = 0; r < (int)ws.rows.size(); ++r) { fprintf(stderr, "   row %d phi0 %g target %g phi1 %g JW:", r, ws.phi0[r], ws.target[r], ws.phi1.size() > r ? ws.phi1[r] : -1); for (int c = 0; c < (int)ws.rows.size(); ++c) fprintf(stderr, " %g/%g", ws.JW.rows() > r && ws.JW.cols() > c ? ws.JW(r, c) : -1.0, ws.JW0(r,c)); fprintf(stderr, "\n"); } } //DBG
     }
     applyForces(ws, in, cables, loads);
   }
