@@ -1,6 +1,8 @@
 // Block and tackle: two fixed sheaves above, a moving block with two sheaves below, the rope
 // anchored at the top; four falls carry the block, so the effort lifts four times its weight
 // (the effort moves four times as far). Every fall is vertical; the sheaves are frictionless.
+#include <algorithm>
+
 #include "engine/scenes/scene_registry.h"
 
 namespace cablelab {
@@ -25,7 +27,10 @@ SceneDef makeTackleScene(const SceneParams& p) {
   ShapeDef plate;
   plate.kind = ShapeDef::Kind::Polygon;
   plate.sensor = true;
-  plate.vertices = {Vec2(-3 * r, -0.3), Vec2(3 * r, -0.3), Vec2(3 * r, -r), Vec2(-3 * r, -r)};
+  // Under the sheaves, 0.3 m down or 0.15 m below them (a sheave of 0.3 m or more made the plate
+  // a clockwise polygon, and the scene was refused).
+  const double bottom = -std::max(0.3, r + 0.15);
+  plate.vertices = {Vec2(-3 * r, bottom), Vec2(3 * r, bottom), Vec2(3 * r, -r), Vec2(-3 * r, -r)};
   block.shapes = {plate};
   BodyDef effort;
   effort.name = "effort";

@@ -142,14 +142,16 @@ TEST(Winch, AWeightWoundUpToTheDrumStopsThereAndTheStalledServoHoldsIt) {
 }
 
 TEST(Tackle, FourFallsGiveAMechanicalAdvantageOfFour) {
-  for (double mEffort : {1.5, 0.6}) {
-    const double mLoad = 4;
-    World w = load("tackle", {{"m_load", mLoad}, {"m_effort", mEffort}});
-    const double expected = -kG * (mEffort - mLoad / 4) / (mEffort + mLoad / 16);
-    EXPECT_NEAR(verticalAcceleration(w, w.findBody("effort"), 0.5), expected,
-                0.01 * std::abs(expected))
-        << "effort " << mEffort;
-  }
+  // Sheaves of 0.45 m too: from 0.3 m the block's plate was built clockwise and refused.
+  for (double r : {0.15, 0.45})
+    for (double mEffort : {1.5, 0.6}) {
+      const double mLoad = 4;
+      World w = load("tackle", {{"r", r}, {"m_load", mLoad}, {"m_effort", mEffort}});
+      const double expected = -kG * (mEffort - mLoad / 4) / (mEffort + mLoad / 16);
+      EXPECT_NEAR(verticalAcceleration(w, w.findBody("effort"), 0.5), expected,
+                  0.01 * std::abs(expected))
+          << "r " << r << ", effort " << mEffort;
+    }
 }
 
 // Hauled up against the fixed sheaves, the block rests on the floors of its four falls: four
