@@ -326,8 +326,7 @@ py::dict stepStats(const PyWorld& self) {
   using namespace pybind11::literals;
   return py::dict("step_us"_a = s.stepMicros, "cable_us"_a = s.cableMicros,
                   "wrap_points"_a = s.wrapPoints, "solver_iterations"_a = s.solverIterations,
-                  "residual"_a = s.residual,
-                  "linearisation_fallbacks"_a = s.linearisationFallbacks,
+                  "residual"_a = s.residual, "linearisation_fallbacks"_a = s.linearisationFallbacks,
                   "newton_divergences"_a = s.newtonDivergences);
 }
 

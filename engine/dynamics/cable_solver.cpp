@@ -5,8 +5,6 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib> //DBG
 #include <limits>
 #include <numbers>
 #include <tuple>
@@ -28,7 +26,7 @@ namespace cablelab {
 namespace {
 
 // The most Box2D moves a body in a step (b2_maxTranslation, b2_maxRotation in b2_settings.h).
-constexpr double kMaxStepTranslation = 2.0;  // m
+constexpr double kMaxStepTranslation = 2.0;              // m
 constexpr double kMaxStepTurn = 0.5 * std::numbers::pi;  // rad
 constexpr int kNewtonIterations = 3;  // on the end-of-step lengths; geometry is nearly linear
 // With redundant rows Newton runs on J0 W (a chord method): it converges linearly, not
@@ -111,8 +109,8 @@ struct CableSolverWorkspace {
   JointTree tree;
   std::vector<JointRow> joints;
   JointProjection projection;
-  JointLimits limits;     // limited joints that the step would take past a bound
-  Eigen::VectorXd vEnd;   // stage 6c's end-of-step velocities
+  JointLimits limits;    // limited joints that the step would take past a bound
+  Eigen::VectorXd vEnd;  // stage 6c's end-of-step velocities
 
   // Newton on the end-of-step lengths. pull: the midpoint rule's rows' right-hand side (stage 5).
   Eigen::VectorXd target, compliance, damped, pull, phi0, P, phi1, b, WP, v1, v0;
@@ -335,7 +333,8 @@ double floorRow(Workspace& ws, std::span<const BodyState> bodies, const Cable& c
     Vec2 g;
     const double length = tangentLength(x, c, circle.radius, g);
     // d(kFloorLength - L): -g at the point, g at the circle's centre.
-    for (const auto& [body, at, d] : {std::tuple(point.body, x, Vec2(-g)), std::tuple(circle.body, c, g)})
+    for (const auto& [body, at, d] :
+         {std::tuple(point.body, x, Vec2(-g)), std::tuple(circle.body, c, g)})
       if (body >= 0)
         ws.floorJacobian.push_back(
             {body, Vec3(d.x(), d.y(), d.dot(perp(Vec2(at - bodies[body].position))))});
@@ -1034,8 +1033,7 @@ bool lockCrossingLimits(Workspace& ws, const CableSolveInput& in) {
     return false;
   timesImpulses(ws.W, ws.P, ws.WP);
   ws.vEnd = ws.vStar - ws.WP;
-  return ws.limits.lockCrossing(in.joints, ws.jointIndex, in.bodies, ws.dofs.ofBody, ws.vEnd,
-                                in.h);
+  return ws.limits.lockCrossing(in.joints, ws.jointIndex, in.bodies, ws.dofs.ofBody, ws.vEnd, in.h);
 }
 
 // 7. The tensions, and the force that gives the end-of-step velocity solved for (cable pull,
@@ -1147,9 +1145,11 @@ void CableSolver::solve(const CableSolveInput& in, std::span<Cable> cables, std:
       newtonOnLengths(ws, in, cables, stats);
       if (ws.midpoint) balanceMidpointWork(ws, in, cables);
       again = mergeSlidingSpans(ws, cables);
-      if (again) ws.ahead.clear();  // the rows changed: measure them again
-      else again = lockCrossingLimits(ws, in);
-      if (getenv("DBGL")) { fprintf(stderr, "  iter P:"); for (int r = 0; r < ws.P.size(); ++r) fprintf(stderr, " %g[c%d s%d%s]", ws.P[r], ws.rows[r].cable, ws.rows[r].segment, ws.rows[r].rim ? "rim" : ""); fprintf(stderr, " stiff %d h %g lin %d div %d\n", (int)ws.stiff, in.h, stats.linearSolves, stats.newtonDivergences); for (int r = 0; r < (int)ws.rows.size(); ++r) { fprintf(stderr, "   row %d phi0 %g target %g phi1 %g JW:", r, ws.phi0[r], ws.target[r], ws.phi1.size() > r ? ws.phi1[r] : -1); for (int c = 0; c < (int)ws.rows.size(); ++c) fprintf(stderr, " %g/%g", ws.JW.rows() > r && ws.JW.cols() > c ? ws.JW(r, c) : -1.0, ws.JW0(r,c)); fprintf(stderr, "\n"); } } //DBG
+      if (again) {
+        ws.ahead.clear();  // the rows changed: measure them again
+      } else {
+        again = lockCrossingLimits(ws, in);  // 6c
+      }
     }
     applyForces(ws, in, cables, loads);
   }

@@ -59,7 +59,7 @@ struct StepStats {
   int linearisationFallbacks = 0;  ///< cable rows solved on the start-of-step Jacobian (guard)
   int linearSolves = 0;  ///< main-solve islands whose start-of-step linearisation was exact enough
   int newtonDivergences = 0;  ///< islands whose Newton diverged (solved on the start-of-step J)
-  int events = 0;        ///< Box2D steps cut short at a wrap event
+  int events = 0;             ///< Box2D steps cut short at a wrap event
   int midpointSolves = 0;     ///< island solves by the energy-consistent midpoint rule
   int midpointFallbacks = 0;  ///< of those tried, not converged (the main solve took it)
   int midpointRedundant = 0;  ///< of the fallbacks, given up at once: redundant rows pull

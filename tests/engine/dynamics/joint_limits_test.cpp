@@ -52,8 +52,8 @@ SceneDef limitedScene(JointDef::Kind kind, int ropes) {
 }
 
 struct LimitRun {
-  double stretch = 0;  // the largest length - rest length of any rope (m; the arm falls ahead
-                       // of its weight, and its rope goes slack)
+  double stretch = 0;   // the largest length - rest length of any rope (m; the arm falls ahead
+                        // of its weight, and its rope goes slack)
   double furthest = 0;  // the joint's coordinate furthest from 0 (rad or m)
   int sparseSolves = 0;
 };

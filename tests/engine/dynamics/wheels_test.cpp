@@ -129,13 +129,13 @@ TEST(Winch, AWeightWoundUpToTheDrumStopsThereAndTheStalledServoHoldsIt) {
       const double torque = std::clamp(
           servo.kp * (axle.servoTarget - axle.value) + servo.kd * (servo.speed - axle.speed),
           -servo.maxForce, servo.maxForce);
-      worst = std::max(worst, std::abs(w.cable(0).tension() * r - std::abs(torque)) /
-                                  std::abs(torque));
+      worst =
+          std::max(worst, std::abs(w.cable(0).tension() * r - std::abs(torque)) / std::abs(torque));
       ASSERT_LT(std::abs(w.body(drum).angularVelocity), 1e-3) << omega << " " << w.time();
     }
     EXPECT_LT(worst, 0.01) << omega;
     EXPECT_LT(longest, 1e-4) << omega;
-    EXPECT_GT(closest, 0) << omega;  // the anchor never inside the drum
+    EXPECT_GT(closest, 0) << omega;                      // the anchor never inside the drum
     EXPECT_GT(w.cable(0).tension() * r, 1000) << omega;  // the servo after 8 s or more of lag
     EXPECT_TRUE(w.warnings().empty()) << omega << ": " << w.warnings().front();
   }
