@@ -280,7 +280,11 @@ void Box2DBridge::jointFrames(std::span<const JointDef> defs,
     f.limited = defs[j].enableLimit && f.kind != JointDef::Kind::Weld;
     if (f.kind == JointDef::Kind::Prismatic) f.axis = prismaticAxis(static_cast<int>(j));
     if (f.limited) {
-      f.value = jointCoordinate(static_cast<int>(j)).value;
+      // The coordinate alone (no rate): a limited revolute joint is never rewound (rewind()).
+      const b2Joint* joint = impl_->joints[j];
+      f.value = f.kind == JointDef::Kind::Revolute
+                    ? static_cast<const b2RevoluteJoint*>(joint)->GetJointAngle()
+                    : static_cast<const b2PrismaticJoint*>(joint)->GetJointTranslation();
       f.lower = defs[j].lower;
       f.upper = defs[j].upper;
     }
