@@ -127,6 +127,8 @@ struct Box2DBridge::Impl {
   std::vector<char> rewinds;
   std::vector<std::array<int, 2>> jointBodies;  ///< body indices of each joint, -1: the world
   void rewind();
+  /// A joint's coordinate (rad or m, the turns taken out put back; 0 for welds).
+  double jointValue(int joint) const;
 };
 
 // Keeps every body that may be rewound within (-pi, pi] in Box2D; the World sees the angle in
@@ -235,20 +237,26 @@ void Box2DBridge::markTouching(std::vector<char>& touching) const {
   }
 }
 
+double Box2DBridge::Impl::jointValue(int joint) const {
+  const b2Joint* j = joints[joint];
+  auto turnsOf = [&](int body) { return body >= 0 ? turns[body] : 0.0; };
+  if (kinds[joint] == JointDef::Kind::Revolute) {
+    const auto [a, b] = jointBodies[joint];
+    return static_cast<const b2RevoluteJoint*>(j)->GetJointAngle() + turnsOf(b) - turnsOf(a);
+  }
+  if (kinds[joint] == JointDef::Kind::Prismatic)
+    return static_cast<const b2PrismaticJoint*>(j)->GetJointTranslation();
+  return 0;
+}
+
 JointCoordinate Box2DBridge::jointCoordinate(int joint) const {
   const b2Joint* j = impl_->joints[joint];
-  auto turnsOf = [&](int body) { return body >= 0 ? impl_->turns[body] : 0.0; };
   JointCoordinate q;
-  if (impl_->kinds[joint] == JointDef::Kind::Revolute) {
-    auto* r = static_cast<const b2RevoluteJoint*>(j);
-    const auto [a, b] = impl_->jointBodies[joint];
-    q.value = r->GetJointAngle() + turnsOf(b) - turnsOf(a);
-    q.speed = r->GetJointSpeed();
-  } else if (impl_->kinds[joint] == JointDef::Kind::Prismatic) {
-    auto* p = static_cast<const b2PrismaticJoint*>(j);
-    q.value = p->GetJointTranslation();
-    q.speed = p->GetJointSpeed();
-  }
+  q.value = impl_->jointValue(joint);
+  if (impl_->kinds[joint] == JointDef::Kind::Revolute)
+    q.speed = static_cast<const b2RevoluteJoint*>(j)->GetJointSpeed();
+  else if (impl_->kinds[joint] == JointDef::Kind::Prismatic)
+    q.speed = static_cast<const b2PrismaticJoint*>(j)->GetJointSpeed();
   return q;
 }
 
@@ -280,11 +288,7 @@ void Box2DBridge::jointFrames(std::span<const JointDef> defs,
     f.limited = defs[j].enableLimit && f.kind != JointDef::Kind::Weld;
     if (f.kind == JointDef::Kind::Prismatic) f.axis = prismaticAxis(static_cast<int>(j));
     if (f.limited) {
-      // The coordinate alone (no rate): a limited revolute joint is never rewound (rewind()).
-      const b2Joint* joint = impl_->joints[j];
-      f.value = f.kind == JointDef::Kind::Revolute
-                    ? static_cast<const b2RevoluteJoint*>(joint)->GetJointAngle()
-                    : static_cast<const b2PrismaticJoint*>(joint)->GetJointTranslation();
+      f.value = impl_->jointValue(static_cast<int>(j));  // (its rate would cost more)
       f.lower = defs[j].lower;
       f.upper = defs[j].upper;
     }

@@ -30,8 +30,9 @@ Vec3 velocityOf(int body, std::span<const BodyState> bodies, std::span<const int
   return Vec3(s.velocity.x(), s.velocity.y(), s.angularVelocity);
 }
 
-// The rate of a revolute or prismatic joint's coordinate (coordinateRow(joint) . v + bias, with
-// the few terms it has written out: this runs for every limited joint every sub-step).
+// The rate of a revolute or prismatic joint's coordinate: coordinateRow(joint) . v + bias with the
+// few terms it has written out. It runs for every limited joint every sub-step, and through the
+// row (which also fills its coefficients and bias) the hand's step cost 1.7k instructions more.
 double coordinateRate(const JointFrame& joint, std::span<const BodyState> bodies,
                       std::span<const int> dofOfBody, const Eigen::VectorXd& v) {
   const Vec3 a = velocityOf(joint.bodyA, bodies, dofOfBody, v);
