@@ -95,6 +95,12 @@ void Cable::setParameters(const CableParameters& parameters) {
   params_ = parameters;
 }
 
+void Cable::payOut(int k, double length) {
+  if (!spans_.empty()) spans_[k].rest += length;
+  params_.restLength += length;
+  paidOut_ += length;
+}
+
 double Cable::stretch() const {
   return kin_.length - params_.restLength + (elastic() ? params_.preload : 0.0);
 }

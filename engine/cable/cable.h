@@ -250,6 +250,11 @@ class Cable {
   void setSlipped(int k, bool slipped) { links_[k].slipped = slipped; }
   /// Tension on path segment i (path()[i] -> path()[i + 1]): its span's.
   double segmentTension(size_t i) const;
+  /// Lets span k pay out `length` (m): its rest length grows by it. The solver does this where a
+  /// kinematic body hauls a rigid cable that nothing can hold (docs/model.md, "Driven bodies").
+  void payOut(int k, double length);
+  /// Rest length paid out since construction (m).
+  double paidOut() const { return paidOut_; }
 
   /// Skipping (wrap_skip.cpp, docs/cables.md "Skipping"): while no wrap point or candidate vertex
   /// can reach the line it is tested against, update() keeps the wrap set without re-selecting
@@ -363,6 +368,7 @@ class Cable {
   long skippedSelections_ = 0;
   mutable long skippedSearches_ = 0;
   double tension_ = 0;
+  double paidOut_ = 0;
   bool firstUpdate_ = true;
   bool reportedZeroLength_ = false;
 };

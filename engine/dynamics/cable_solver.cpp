@@ -114,9 +114,12 @@ struct CableSolverWorkspace {
 
   // Newton on the end-of-step lengths. pull: the midpoint rule's rows' right-hand side (stage 5).
   Eigen::VectorXd target, compliance, damped, pull, phi0, P, phi1, b, WP, v1, v0;
-  bool midpoint = false;  // the island takes the implicit midpoint rule (stage 5)
+  Eigen::VectorXd haul, unhauledP;  // stage 6d: what kinematic bodies haul each row out (m)
+  bool hauling = false;             // a kinematic body moves this sub-step
+  bool midpoint = false;            // the island takes the implicit midpoint rule (stage 5)
   Eigen::MatrixXd JW, K, JW0;
   Eigen::LDLT<Eigen::MatrixXd> redundancy;  // of J0 W: are there redundant cables?
+  bool redundant = false;                   // ... and its answer
   std::vector<BodyState> predicted;
   std::vector<WrapPoint> path;
   CableKinematics kin;
@@ -388,8 +391,10 @@ void forForceJacobians(Workspace& ws, std::span<const BodyState> bodies,
 // their prescribed velocity. Dofs are overwritten island by island in Newton.
 void predictPrescribed(Workspace& ws, const CableSolveInput& in) {
   ws.predicted.assign(in.bodies.begin(), in.bodies.end());
+  ws.hauling = false;
   for (BodyState& p : ws.predicted)
     if (!moves(p)) {
+      ws.hauling |= p.velocity.squaredNorm() > 0 || p.angularVelocity != 0;
       p.position += in.h * p.velocity;
       p.angle += in.h * p.angularVelocity;
     }
@@ -946,8 +951,8 @@ bool realisable(Workspace& ws, double h) {
 // 6. Newton on the end-of-step lengths phi1(P), each linearisation an LCP over all cables:
 // tension >= 0, slack cables only shorten. A warm start that does not settle (a tiny mass the
 // last impulses throw far) starts again from P = 0, so it only ever saves iterations.
-void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
-                     StepStats& stats) {
+void solveLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
+                  StepStats& stats) {
   const int m = static_cast<int>(ws.rows.size());
   ws.phi1.resize(m);
   ws.JW.resize(m, m);
@@ -961,7 +966,8 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
   // symmetric part indefinite, so the minimum-norm solve (tension_solver.h) would be ill posed.
   // Such an island iterates on J0 W instead (a quasi-Newton step: it still converges to the
   // end-of-step lengths, only more slowly).
-  bool redundant = false;
+  bool& redundant = ws.redundant;
+  redundant = false;
   if (m > 1 && (ws.compliance.array() == 0).any()) {  // elastic rows alone: K is definite
     ws.redundancy.compute(ws.JW0);
     redundant = rankDeficient(ws.redundancy);
@@ -990,6 +996,103 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
   ws.P = ws.lcpSolution.x;
   stats.solverIterations += ws.lcpSolution.iterations;
   ++stats.newtonDivergences;
+}
+
+// 6d. Hauled cables. A kinematic body cannot be stopped. Where it hauls a rigid cable out (its
+// prescribed motion lengthens the row by haul_r in the sub-step) and the bodies along the cable
+// cannot give way (a load already at its pulley, a boom that its stay holds), no tension holds
+// the length: the rows are dependent and their targets inconsistent. Newton then leaves rows
+// unmet (a load driven through its pulley and the cable metres long) or answers with impulses
+// whose work against the kinematic body dwarfs every energy in the island (1e11 N s on a 10 kg
+// load, and Box2D's float joints cannot cancel forces that size). Such rows pay out: solved
+// again with their targets raised by haul_r, kept unless that misses the rows by more, and
+// applyForces lengthens each cable by its end-of-step stretch (Cable::payOut; World warns).
+constexpr double kHaulUnmet = 1e-5;  // m: a row missed by more is not held
+constexpr double kHaulWork = 1e3;    // work against the kinematic bodies, in island energies
+
+// haul_r for the rigid cable rows (h J v over the kinematic bodies); true if any is hauled out.
+bool hauledRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  bool any = false;
+  for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
+    if (ws.rows[r].segment >= 0 || cables[ws.rows[r].cable].elastic()) continue;
+    double rate = 0;
+    forForceJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double weight) {
+      for (const auto& e : jacobian)
+        if (ws.dofs.ofBody[e.body] < 0) {
+          const BodyState& b = in.bodies[e.body];
+          rate += weight * e.d.dot(Vec3(b.velocity.x(), b.velocity.y(), b.angularVelocity));
+        }
+    });
+    ws.haul[r] = std::max(0.0, in.h * rate);
+    any |= ws.haul[r] > 0;
+  }
+  return any;
+}
+
+// How far the rows miss their targets at the end of the step (m): rigid rows too long, floors
+// closed past their length. Leaves phi1 at ws.P.
+double unmetLength(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  linearise(ws, in, cables);
+  double unmet = 0;
+  for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r)
+    if (ws.rows[r].segment >= 0 || !cables[ws.rows[r].cable].elastic())
+      unmet = std::max(unmet, ws.phi1[r] - ws.target[r]);
+  return unmet;
+}
+
+// Whether the impulses do more work against the kinematic bodies (P_r haul_r / h) than
+// kHaulWork times what the island's bodies would have moving at the haul speed on top of their
+// own.
+bool excessiveHaulWork(const Workspace& ws, double h) {
+  const double most = ws.haul.maxCoeff();
+  double energy = 0;
+  for (size_t k = 0; k < ws.dofs.body.size(); ++k)
+    if (ws.invM[3 * k] > 0)
+      energy += std::pow(most / h + ws.vStar.segment<2>(3 * k).norm(), 2) / ws.invM[3 * k];
+  return ws.P.dot(ws.haul) / h > kHaulWork * energy;
+}
+
+void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
+                     StepStats& stats) {
+  ws.haul.setZero(static_cast<Eigen::Index>(ws.rows.size()));
+  solveLengths(ws, in, cables, stats);
+  if (!ws.hauling || !hauledRows(ws, in, cables)) {
+    ws.haul.setZero();
+    return;
+  }
+  const double unmet = unmetLength(ws, in, cables);
+  if (unmet <= kHaulUnmet && !excessiveHaulWork(ws, in.h)) {
+    ws.haul.setZero();
+    return;
+  }
+  // Paying out, the rows the kinematic bodies haul may come slack and the rest stop what they
+  // must (a load arriving at its pulley: an inelastic stop). Where Newton's end-of-step geometry
+  // is still near the dependent one (its impulses as large as before), the start-of-step LCP,
+  // whose J0 W is positive semidefinite, answers.
+  ws.unhauledP = ws.P;
+  ws.target += ws.haul;
+  solveLengths(ws, in, cables, stats);
+  if (excessiveHaulWork(ws, in.h)) {
+    solveStartOfStep(ws, in, cables, ws.redundant);
+    ws.P = ws.lcpSolution.x;
+  }
+  if (unmetLength(ws, in, cables) > std::max(unmet, kHaulUnmet)) {
+    ws.target -= ws.haul;
+    ws.P = ws.unhauledP;
+    ws.haul.setZero();
+    return;
+  }
+  // A cable pays out what it is too long at the end of this answer (phi1 is at it): the 1 cm of
+  // an 8 cm haul that a load arriving at its pulley could not take up, then the haul itself
+  // while the load stays there, and any length error that the dependent rows keep the motion from
+  // taking back. Its length then agrees with the rows it depends on, and the next sub-step's
+  // tensions are the least that hold the load, not a squeeze between the cable and a floor.
+  for (Eigen::Index r = 0; r < ws.haul.size(); ++r) {
+    if (!(ws.haul[r] > 0)) continue;
+    const double paid = std::clamp(ws.phi1[r], 0.0, 2 * ws.haul[r] + std::max(0.0, ws.phi0[r]));
+    ws.target[r] += paid - ws.haul[r];
+    ws.haul[r] = paid;
+  }
 }
 
 constexpr int kBalancePasses = 4;
@@ -1047,6 +1150,7 @@ void applyForces(Workspace& ws, const CableSolveInput& in, std::span<Cable> cabl
     for (int k = row.first; k <= row.last; ++k)
       cables[row.cable].setSpanTension(k, row.weight(ws.rowWeights, k) * ws.P[r] / h);
     for (int k = row.first; k < row.last; ++k) cables[row.cable].setSlipped(k, true);
+    if (ws.haul[r] > 0) cables[row.cable].payOut(row.first, ws.haul[r]);
   }
   for (const Workspace::Row& row : ws.rows) {
     const Cable& c = cables[row.cable];

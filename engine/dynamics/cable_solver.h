@@ -22,6 +22,8 @@
 //   6b. mergeSlidingSpans   capstans past e^(mu theta): merge their spans, run 2-6 again
 //   6c. lockCrossingLimits  a limited joint the step takes past its bound: lock it at the
 //                           rate that reaches the bound (joint_limits.h), run 2-6 again
+//   6d. (newtonOnLengths)   rigid cables a kinematic body hauls out against bodies that cannot
+//                           give way: solve again with them paying out (Cable::payOut)
 //   7. applyForces          the force that gives the solved end-of-step velocity, and the
 //                           jointed bodies' end poses (CableSolveInput::placements)
 // Private to engine/dynamics.

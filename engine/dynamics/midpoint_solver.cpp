@@ -111,11 +111,15 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
   for (const int index : which) {
     const Cable& c = cables[index];
     bool pulls = false;
-    for (const auto& e : c.kinematics().jacobian)
-      if (moves(bodies[e.body])) {
+    for (const auto& e : c.kinematics().jacobian) {
+      const BodyState& b = bodies[e.body];
+      if (moves(b)) {
         if (excluded[e.body]) return false;
         pulls = true;
+      } else if (b.velocity.squaredNorm() > 0 || b.angularVelocity != 0) {
+        return false;  // a kinematic body drives it: the main solve moves it (item "Driven")
       }
+    }
     if (!pulls) continue;
     any = true;
     const auto& path = c.path();

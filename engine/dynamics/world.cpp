@@ -452,8 +452,40 @@ void World::step(double dt, int substeps) {
     stats_.selectionSkips += static_cast<int>(c.skippedSelections());
     stats_.searchSkips += static_cast<int>(c.skippedSearches());
   }
+  reportPayOuts();
   stats_.stepMicros = std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
   checkFinite();
+}
+
+// A rigid cable that a kinematic body hauls out against bodies that cannot give way pays out
+// (cable_solver.cpp, stage 6d): say when it starts, naming the kinematic bodies on it, and how
+// much it paid out when it stops.
+void World::reportPayOuts() {
+  paidOutSeen_.resize(cables_.size(), 0.0);
+  payStart_.resize(cables_.size(), -1.0);
+  for (size_t i = 0; i < cables_.size(); ++i) {
+    const Cable& c = cables_[i];
+    const double paid = c.paidOut();
+    const bool paying = paid != paidOutSeen_[i];
+    if (paying && payStart_[i] < 0) {
+      payStart_[i] = paidOutSeen_[i];
+      std::string haulers;
+      for (const WrapPoint& w : c.path())
+        if (w.body >= 0 && scene_.bodies[w.body].type == BodyType::Kinematic &&
+            haulers.find("'" + scene_.bodies[w.body].name + "'") == std::string::npos)
+          haulers += (haulers.empty() ? "'" : ", '") + scene_.bodies[w.body].name + "'";
+      warnings_.push_back("cable '" + c.name() + "': pays out from t = " + formatNumber(time_) +
+                          " s: kinematic body " + haulers +
+                          " hauls it, and the bodies along it cannot give way (a load at its "
+                          "pulley?), so no tension can hold its length");
+    } else if (!paying && payStart_[i] >= 0) {
+      warnings_.push_back("cable '" + c.name() + "': stopped paying out at t = " +
+                          formatNumber(time_) + " s, " + formatNumber(paid - payStart_[i]) +
+                          " m longer (rest length " + formatNumber(c.restLength()) + " m)");
+      payStart_[i] = -1;
+    }
+    paidOutSeen_[i] = paid;
+  }
 }
 
 }  // namespace cablelab

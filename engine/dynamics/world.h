@@ -140,6 +140,7 @@ class World {
  private:
   void applyServos();
   void checkFinite() const;
+  void reportPayOuts();
   void selectWraps(double h);
   void predictMotion(double dt);
   void solveForces(double dt, double h);
@@ -175,6 +176,8 @@ class World {
   std::vector<Cable> cables_;
   std::vector<std::vector<double>> impulses_;  ///< per cable and span, over this sub-step (N s)
   std::vector<std::string> warnings_;
+  std::vector<double> paidOutSeen_;  ///< per cable: Cable::paidOut() at the last step's end
+  std::vector<double> payStart_;     ///< ... when it began paying out (< 0: it is not)
   std::vector<std::vector<int>> jointNeighbours_;  ///< bodies jointed to each body
   std::vector<std::array<int, 2>> jointBodies_;    ///< (body A, body B) per joint, -1: world
   std::vector<JointFrame> jointFrames_;            ///< the joints as the solver sees them

@@ -67,6 +67,8 @@ TEST(DrivenBodies, AKinematicCraneLiftsWithoutStretchingTheRope) {
     EXPECT_LT(maxStretch(world, 120, substeps), kStretch) << substeps << " sub-steps";
     EXPECT_NEAR(world.body(1).velocity.y(), kLift, 1e-3);
     EXPECT_NEAR(world.body(0).position.y() - world.body(1).position.y(), 3, kStretch);
+    EXPECT_EQ(world.cable(0).paidOut(), 0);  // a lift it can follow is no haul against a stop
+    EXPECT_TRUE(world.warnings().empty());
   }
 }
 
@@ -126,6 +128,88 @@ TEST(DrivenBodies, AServoDrivenCarriageLiftsWithoutStretchingTheRope) {
   EXPECT_LT(worst, kStretch);
   EXPECT_GT(world.cable(0).tension(), 0);  // taut at the end: lifting, not just released
   EXPECT_NEAR(world.body(1).velocity.y(), world.body(0).velocity.y(), 1e-2);
+}
+
+// A kinematic hook hauls a 10 kg load up to its pulley at 5 m/s and keeps going: nothing can
+// give way once the load is there (the pulley on the world, or on a boom that a rigid stay
+// holds), and no tension holds the rope's length. The rope pays out what the hook hauls, with a
+// warning, the load stays at its pulley and the tension is the load's weight. Before: the load
+// was driven through the pulley and the rope stretched to 100 m at 4e5 N, or (on the boom) 1e15
+// N threw the boom round its pivot; no warning either way.
+TEST(DrivenBodies, ARopeHauledIntoItsPulleyPaysOutAndHoldsTheLoadThere) {
+  for (const bool boom : {false, true}) {
+    SceneDef s;
+    BodyDef hook = crane(BodyType::Kinematic);
+    hook.name = "hook";
+    hook.position = Vec2(-1, -0.5);
+    hook.velocity = Vec2(-kLift, 0);
+    BodyDef load = weight(Vec2(1.5, -2));
+    load.velocity = Vec2::Zero();
+    load.fixedRotation = true;
+    s.bodies = {hook, load};
+    CableDef rope;
+    rope.name = "rope";
+    rope.start = {"hook", Vec2::Zero()};
+    rope.end = {"weight", Vec2::Zero()};
+    PulleyDef sheave;
+    sheave.side = WrapSide::Threaded;
+    sheave.point = Vec2(1.5, 0);
+    if (boom) {  // a 20 kg boom pivoted at the origin, its tip held up by a rigid stay
+      BodyDef arm;
+      arm.name = "boom";
+      arm.mass = 20;
+      arm.inertia = 3.75;
+      arm.position = Vec2(0.75, 0);
+      ShapeDef bar;
+      bar.kind = ShapeDef::Kind::Polygon;
+      bar.vertices = {{-0.75, -0.03}, {0.75, -0.03}, {0.75, 0.03}, {-0.75, 0.03}};
+      bar.sensor = true;
+      arm.shapes = {bar};
+      s.bodies.push_back(arm);
+      JointDef pivot;
+      pivot.name = "pivot";
+      pivot.bodyB = "boom";
+      pivot.anchor = Vec2::Zero();
+      s.joints = {pivot};
+      sheave.body = "boom";
+      sheave.point = Vec2(0.75, 0);
+      CableDef stay;
+      stay.name = "stay";
+      stay.start = {"world", Vec2(0, 1)};
+      stay.end = {"boom", Vec2(0.75, 0)};
+      s.cables.push_back(stay);
+    }
+    rope.pulleys = {sheave};
+    s.cables.insert(s.cables.begin(), rope);
+    World world(s);
+    const double weightForce = 10 * 9.81;
+    for (int step = 0; step < 600; ++step) {  // the load arrives after 0.42 s
+      world.step(kDt);
+      const Cable& c = world.cable(0);
+      const Vec2 tip =
+          boom ? Vec2(world.body(2).position +
+                      0.75 * Vec2(std::cos(world.body(2).angle), std::sin(world.body(2).angle)))
+               : sheave.point;
+      const Vec2 below = tip - world.body(1).position;
+      SCOPED_TRACE(testing::Message()
+                   << (boom ? "boom" : "world pulley") << ", t = " << world.time());
+      ASSERT_LT(c.stretch(), 1e-4);  // the rest length follows what is paid out
+      ASSERT_LT(c.tension(), 1e5);   // the arrival is an inelastic stop, no more
+      ASSERT_GT(below.y(), 0.005);   // never through its pulley
+      if (boom) ASSERT_LT(world.cable(1).stretch(), 1e-3);  // the boom knocked up falls back on it
+      if (world.time() > 1) {
+        ASSERT_LT(below.norm(), 0.015);  // held at the pulley (the floor keeps 1 cm)
+        ASSERT_NEAR(c.tension(), weightForce, 1e-3 * weightForce);
+        if (boom) ASSERT_NEAR(world.body(2).angle, 0, 1e-3);
+      }
+    }
+    EXPECT_GT(world.cable(0).paidOut(), 45);  // 50 m hauled, less the 4.5 m the load rose
+    int payOuts = 0;
+    for (const std::string& w : world.warnings())
+      payOuts +=
+          w.find("'rope': pays out") != std::string::npos && w.find("'hook'") != std::string::npos;
+    EXPECT_EQ(payOuts, 1);
+  }
 }
 
 }  // namespace
