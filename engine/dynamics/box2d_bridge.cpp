@@ -111,8 +111,33 @@ b2Joint* createJoint(b2World& w, const JointDef& jd, b2Body* a, b2Body* b) {
 
 }  // namespace
 
+// Sums the impulses Box2D's contact solver gives each body over a step (PostSolve reports each
+// touching contact once per solve, TOI sub-steps included), as (px, py, angular) about the body's
+// origin, the same frame as the loads.
+struct ContactImpulses : b2ContactListener {
+  std::vector<Vec3> perBody;
+  void PostSolve(b2Contact* contact, const b2ContactImpulse* impulse) override {
+    b2WorldManifold m;
+    contact->GetWorldManifold(&m);
+    const b2Vec2 tangent = b2Cross(m.normal, 1.0f);
+    for (int i = 0; i < impulse->count; ++i) {
+      const b2Vec2 p =
+          impulse->normalImpulses[i] * m.normal + impulse->tangentImpulses[i] * tangent;
+      add(contact->GetFixtureA()->GetBody(), -p, m.points[i]);
+      add(contact->GetFixtureB()->GetBody(), p, m.points[i]);
+    }
+  }
+  void add(b2Body* body, const b2Vec2& p, const b2Vec2& at) {
+    const uintptr_t index = body->GetUserData().pointer;  // body index + 1, 0: ground
+    if (index == 0 || index > perBody.size()) return;
+    const b2Vec2 r = at - body->GetPosition();
+    perBody[index - 1] += Vec3(p.x, p.y, b2Cross(r, p));
+  }
+};
+
 struct Box2DBridge::Impl {
   b2World world{b2Vec2(0, 0)};
+  ContactImpulses contacts;
   b2Body* ground = nullptr;
   std::vector<b2Body*> bodies;
   std::vector<b2Joint*> joints;
@@ -150,7 +175,12 @@ Box2DBridge::Box2DBridge(const SceneDef& scene) : impl_(std::make_unique<Impl>()
   w.SetAllowSleeping(false);
   b2BodyDef groundDef;
   impl_->ground = w.CreateBody(&groundDef);
-  for (const BodyDef& bd : scene.bodies) impl_->bodies.push_back(createBody(w, bd));
+  for (const BodyDef& bd : scene.bodies) {
+    impl_->bodies.push_back(createBody(w, bd));
+    impl_->bodies.back()->GetUserData().pointer = impl_->bodies.size();  // index + 1
+  }
+  impl_->contacts.perBody.assign(impl_->bodies.size(), Vec3::Zero());
+  w.SetContactListener(&impl_->contacts);
   auto bodyOf = [&](const std::string& name) {
     const int i = findBodyIndex(scene, name);
     return i < 0 ? impl_->ground : impl_->bodies[i];
@@ -215,6 +245,7 @@ void Box2DBridge::applyLoads(std::span<const Vec3> loads) {
 }
 
 void Box2DBridge::step(double h) {
+  std::fill(impl_->contacts.perBody.begin(), impl_->contacts.perBody.end(), Vec3::Zero());
   impl_->world.Step(static_cast<float>(h), kVelocityIterations, kPositionIterations);
   impl_->rewind();
 }
@@ -226,6 +257,10 @@ void Box2DBridge::addVelocities(std::span<const Vec3> dv) {
     body->SetLinearVelocity(body->GetLinearVelocity() + toB2(dv[b].head<2>()));
     body->SetAngularVelocity(body->GetAngularVelocity() + static_cast<float>(dv[b].z()));
   }
+}
+
+std::span<const Vec3> Box2DBridge::contactImpulses() const {
+  return impl_->contacts.perBody;
 }
 
 void Box2DBridge::markTouching(std::vector<char>& touching) const {

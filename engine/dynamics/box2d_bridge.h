@@ -54,6 +54,9 @@ class Box2DBridge {
   void step(double h);
   /// Adds (dvx, dvy, domega) per body to the velocities Box2D holds; zeros are skipped.
   void addVelocities(std::span<const Vec3> dv);
+  /// Per body, the impulse (px, py, angular about its origin) Box2D's contacts gave it over the
+  /// last step().
+  std::span<const Vec3> contactImpulses() const;
   /// Sets touching[b] = 1 for every body in a touching, non-sensor contact.
   void markTouching(std::vector<char>& touching) const;
 

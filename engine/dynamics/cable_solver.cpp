@@ -417,7 +417,9 @@ void predictVelocities(Workspace& ws, const CableSolveInput& in, std::span<const
     const BodyState& s = in.bodies[dofs.body[k]];
     Vec3 v(s.velocity.x(), s.velocity.y(), s.angularVelocity);
     ws.v0.segment<3>(3 * k) = v;
-    v += in.h * (ws.invM.segment<3>(3 * k).cwiseProduct(loads[dofs.body[k]]));
+    Vec3 load = loads[dofs.body[k]];
+    if (!in.contacts.empty()) load += in.contacts[dofs.body[k]];
+    v += in.h * (ws.invM.segment<3>(3 * k).cwiseProduct(load));
     if (s.invMass > 0) v.head<2>() += in.h * in.gravity;
     ws.vStar.segment<3>(3 * k) = v;
   }
@@ -427,7 +429,7 @@ void predictVelocities(Workspace& ws, const CableSolveInput& in, std::span<const
       for (const auto& e : jacobian)
         if (dofs.ofBody[e.body] >= 0) ws.W.block<3, 1>(dofs.ofBody[e.body], r) += weight * e.d;
     });
-  ws.vFree = ws.vStar;  // what Box2D would reach without cables and joints
+  ws.vFree = ws.vStar;  // what Box2D would reach without cables and joints (contacts as expected)
 }
 
 // 3. W = M'^-1 J^T. M' adds the geometric stiffness h^2 T d^2(length)/dx^2 of taut cables where

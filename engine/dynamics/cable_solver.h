@@ -69,6 +69,9 @@ struct CableSolveInput {
   /// balanced the cable's energy for a jointed body, which Box2D's joint correction would miss
   /// by (h omega)^3 or so.
   std::span<Placement> placements;
+  /// Per body, the contact force (fx, fy, torque) Box2D is expected to apply over the step
+  /// (World::expectContacts; empty: none): part of the predicted motion, not applied.
+  std::span<const Vec3> contacts;
 };
 
 struct CableSolverWorkspace;  // the stages' buffers (cable_solver.cpp)

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <optional>
 #include <span>
 
 #include "engine/cable/cable.h"
@@ -112,6 +113,34 @@ inline Vec2 floorNormal(const WrapPoint& p, const WrapPoint& q, std::span<const 
   const Vec2 d1 = d0 + drift;
   if ((d0 + t * drift).norm() < 1.5 * kFloorLength || !(d1.norm() > 0)) return d0.normalized();
   return d1.normalized();
+}
+
+/// When, within (0, dt], segment (p, q) first closes to its floor if every body moves straight
+/// with its velocity in `motion` from its pose there: its two points come within kFloorLength,
+/// or a point's tangent length to a circle end comes down to kFloorLength. World cuts the step
+/// there (an event, like a wrap change), so that the floor rows meet the arrival from a pose
+/// where they are near linear: a box thrown at 4 m/s at a small wheel passed through its rim in
+/// one sub-step, the tangent length's gradient growing as 1 / L on the way. nullopt if it does
+/// not close within dt, or is within 2 kFloorLength already (resting at its floor).
+inline std::optional<double> floorArrival(const WrapPoint& p, const WrapPoint& q,
+                                          std::span<const BodyState> motion, double dt) {
+  if (p.body == q.body || (p.radius != 0 && q.radius != 0)) return std::nullopt;
+  auto velocity = [&](const WrapPoint& w) -> Vec2 {
+    if (w.body < 0) return Vec2::Zero();
+    const BodyState& b = motion[w.body];
+    return b.velocity + b.angularVelocity * perp(Vec2(w.world - b.position));
+  };
+  // |d + t v|^2 = reach^2, d from p to q (a circle's centre: its world point).
+  const Vec2 d = q.world - p.world, v = velocity(q) - velocity(p);
+  const double r2 = std::max(p.radius * p.radius, q.radius * q.radius);
+  const double reach2 = r2 + kFloorLength * kFloorLength;
+  const double a = v.squaredNorm(), b = d.dot(v), c = d.squaredNorm() - reach2;
+  if (!(b < 0) || d.squaredNorm() <= r2 + 4 * kFloorLength * kFloorLength) return std::nullopt;
+  const double disc = b * b - a * c;
+  if (!(disc >= 0)) return std::nullopt;
+  const double t = (-b - std::sqrt(disc)) / a;
+  if (t > 0 && t <= dt) return t;
+  return std::nullopt;
 }
 
 }  // namespace cablelab

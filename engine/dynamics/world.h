@@ -141,6 +141,7 @@ class World {
   void applyServos();
   void checkFinite() const;
   void reportPayOuts();
+  void expectContacts(double dt);
   void selectWraps(double h);
   void predictMotion(double dt);
   void solveForces(double dt, double h);
@@ -158,9 +159,11 @@ class World {
   bool keepsJointEnergy_ = true;              ///< setJointEnergyKept()
   std::vector<int> reprojected_;              ///< bodies whose velocities keepJointEnergy() changed
   std::vector<BodyState> motion_;             ///< look-ahead or predicted body states (wrap events)
-  std::vector<char> excluded_;  ///< bodies the midpoint solve leaves alone (joints, contacts)
-  std::vector<char> touching_;  ///< bodies in a touching contact this sub-step
-  std::vector<Vec3> kicks_;     ///< velocity added after Box2D's step (midpoint solve)
+  std::vector<char> excluded_;     ///< bodies the midpoint solve leaves alone (joints, contacts)
+  std::vector<char> touching_;     ///< bodies in a touching contact this sub-step
+  std::vector<Vec3> contactLast_;  ///< per body, Box2D's contact force over the last step
+  std::vector<Vec3> contactExpected_;  ///< ... the one the cable solve expects (expectContacts)
+  std::vector<Vec3> kicks_;            ///< velocity added after Box2D's step (midpoint solve)
   std::vector<Placement>
       placements_;             ///< poses given after Box2D's step (the main solve's midpoint rule)
   bool midpointUsed_ = false;  ///< the last solveForces() solved some midpoint island
