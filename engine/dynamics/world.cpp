@@ -13,6 +13,7 @@
 #include "engine/dynamics/cable_solver.h"
 #include "engine/dynamics/floors.h"
 #include "engine/dynamics/joint_energy.h"
+#include "engine/dynamics/length_targets.h"
 #include "engine/dynamics/midpoint_solver.h"
 
 namespace cablelab {
@@ -483,9 +484,28 @@ void World::step(double dt, int substeps) {
     stats_.selectionSkips += static_cast<int>(c.skippedSelections());
     stats_.searchSkips += static_cast<int>(c.skippedSearches());
   }
+  payOutUnheld();
   reportPayOuts();
   stats_.stepMicros = std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
   checkFinite();
+}
+
+// A rigid cable on no body the solve moves, hauled by a kinematic one (a hook pulling a rope tied
+// to the world), has no row in the solve: nothing can hold it, and it pays out what it is too
+// long, as stage 6d of the solve lets a hauled cable do (cable_solver.cpp).
+void World::payOutUnheld() {
+  for (Cable& c : cables_) {
+    if (c.elastic()) continue;
+    bool held = false, hauled = false;
+    for (const auto& e : c.kinematics().jacobian) {
+      const BodyState& b = bodies_[e.body];
+      held |= moves(b);
+      hauled |= b.velocity.squaredNorm() > 0 || b.angularVelocity != 0;
+    }
+    if (held || !hauled) continue;
+    for (int k = 0; k < c.spanCount(); ++k)
+      if (c.spanStretch(k) > kLengthSlop) c.payOut(k, c.spanStretch(k));
+  }
 }
 
 // A rigid cable that a kinematic body hauls out against bodies that cannot give way pays out

@@ -141,6 +141,7 @@ class World {
   void applyServos();
   void checkFinite() const;
   void reportPayOuts();
+  void payOutUnheld();
   void expectContacts(double dt);
   void selectWraps(double h);
   void predictMotion(double dt);
