@@ -520,6 +520,12 @@ step only (call it before every step for a lasting load).)doc");
       [](const PyWorld& s) { return perCable(s, [](const Cable& c) { return c.tension(); }); },
       "cable_tensions() -> ndarray (cables,): tensions of the last step (N); 0 when slack.");
   c.def(
+      "cable_paid_out",
+      [](const PyWorld& s) { return perCable(s, [](const Cable& c) { return c.paidOut(); }); },
+      "cable_paid_out() -> ndarray (cables,): rest length each rigid cable has paid out since the "
+      "start (m): a kinematic body hauled it against bodies that could not give way (a load at its "
+      "pulley), and the World warned.");
+  c.def(
       "cable_wraps",
       [](const PyWorld& s) {
         return perCable(s, [](const Cable& c) { return double(c.wraps()); });

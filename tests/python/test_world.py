@@ -127,6 +127,30 @@ def test_cable_parameters_are_live():
     assert w.cable_parameters("cable")["rest_length"] == rest
 
 
+def test_a_rope_hauled_into_its_pulley_pays_out():
+    # A kinematic hook hauls a 10 kg load up to a pulley at 5 m/s and keeps going: the load stays
+    # there, the rope pays out what the hook hauls (its rest length follows) and the World says so.
+    box = [{"type": "box", "half_size": [0.05, 0.05], "sensor": True}]
+    w = cablelab.World.from_dict({
+        "name": "haul", "dt": 1 / 60,
+        "bodies": [{"name": "hook", "type": "kinematic", "position": [-1, -0.5], "velocity": [-5, 0],
+                    "shapes": box},
+                   {"name": "load", "position": [1.5, -2], "mass": 10, "fixed_rotation": True,
+                    "shapes": box}],
+        "cables": [{"name": "rope", "start": {"body": "hook", "point": [0, 0]},
+                    "end": {"body": "load", "point": [0, 0]},
+                    "pulleys": [{"type": "point", "body": "world", "point": [1.5, 0],
+                                 "side": "threaded"}]}]})
+    length0 = w.cable_lengths()[0]
+    w.run(2.0)
+    assert w.body_states()[1, 1] == pytest.approx(-0.01, abs=2e-3)  # held 1 cm under the pulley
+    assert w.cable_tensions()[0] == pytest.approx(98.1, rel=1e-3)
+    paid = w.cable_paid_out()[0]
+    assert paid == pytest.approx(w.cable_lengths()[0] - length0, abs=1e-4)
+    assert w.cable_parameters("rope")["rest_length"] == pytest.approx(length0 + paid, abs=1e-9)
+    assert any("'rope': pays out" in m for m in w.warnings)
+
+
 def test_run_record_has_the_joints():
     a, b = cablelab.World.load("hand"), cablelab.World.load("hand")
     rec = a.run(steps=20, record=True)
