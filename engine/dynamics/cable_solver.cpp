@@ -114,9 +114,9 @@ struct CableSolverWorkspace {
 
   // Newton on the end-of-step lengths. pull: the midpoint rule's rows' right-hand side (stage 5).
   Eigen::VectorXd target, compliance, damped, pull, phi0, P, phi1, b, WP, v1, v0;
-  Eigen::VectorXd haul, unhauledP;  // stage 6d: what kinematic bodies haul each row out (m)
-  bool hauling = false;             // a kinematic body moves this sub-step
-  bool midpoint = false;            // the island takes the implicit midpoint rule (stage 5)
+  Eigen::VectorXd haul, unhauledP, unhauledTarget;  // stage 6d: the kinematic bodies' haul (m)
+  bool hauling = false;                             // a kinematic body moves this sub-step
+  bool midpoint = false;  // the island takes the implicit midpoint rule (stage 5)
   Eigen::MatrixXd JW, K, JW0;
   Eigen::LDLT<Eigen::MatrixXd> redundancy;  // of J0 W: are there redundant cables?
   bool redundant = false;                   // ... and its answer
@@ -1054,6 +1054,28 @@ bool excessiveHaulWork(const Workspace& ws, double h) {
   return ws.P.dot(ws.haul) / h > kHaulWork * energy;
 }
 
+// Paying out, a hauled row's target is its length error now plus what the kinematic bodies alone
+// lengthen it by over the step, measured on the path (the dofs at their start pose, the kinematic
+// bodies at their end pose), not h J v: it asks the rest to take back nothing, neither the
+// length's curvature over the step nor a length error of before. The rows it depends on (a floor
+// holding the load, a stay holding the boom) then agree with it, and no tension squeezes the load
+// between the cable and its floor (at 4 sub-steps such a squeeze reached 1e7 N, the rows nearly
+// dependent and their targets apart by the curvature).
+void haulTargets(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  for (int body : ws.dofs.body) ws.predicted[body] = in.bodies[body];
+  for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
+    if (!(ws.haul[r] > 0)) continue;
+    const Workspace::Row& row = ws.rows[r];
+    const Cable& c = cables[row.cable];
+    double phi = 0;
+    for (int k = row.first; k <= row.last; ++k) {
+      pathAhead(ws, c, k, ws.predicted);
+      phi += c.spanStretch(k) + ws.kin.length - c.spanKinematics(k).length;
+    }
+    ws.target[r] = std::max(phi, ws.phi0[r] + ws.haul[r]);
+  }
+}
+
 void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
                      StepStats& stats) {
   ws.haul.setZero(static_cast<Eigen::Index>(ws.rows.size()));
@@ -1072,14 +1094,15 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
   // is still near the dependent one (its impulses as large as before), the start-of-step LCP,
   // whose J0 W is positive semidefinite, answers.
   ws.unhauledP = ws.P;
-  ws.target += ws.haul;
+  ws.unhauledTarget = ws.target;
+  haulTargets(ws, in, cables);
   solveLengths(ws, in, cables, stats);
   if (excessiveHaulWork(ws, in.h)) {
     solveStartOfStep(ws, in, cables, ws.redundant);
     ws.P = ws.lcpSolution.x;
   }
   if (unmetLength(ws, in, cables) > std::max(unmet, kHaulUnmet)) {
-    ws.target -= ws.haul;
+    ws.target = ws.unhauledTarget;
     ws.P = ws.unhauledP;
     ws.haul.setZero();
     return;
@@ -1091,9 +1114,7 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
   // tensions are the least that hold the load, not a squeeze between the cable and a floor.
   for (Eigen::Index r = 0; r < ws.haul.size(); ++r) {
     if (!(ws.haul[r] > 0)) continue;
-    const double paid = std::clamp(ws.phi1[r], 0.0, 2 * ws.haul[r] + std::max(0.0, ws.phi0[r]));
-    ws.target[r] += paid - ws.haul[r];
-    ws.haul[r] = paid;
+    ws.haul[r] = std::clamp(ws.phi1[r], 0.0, 2 * ws.haul[r] + std::max(0.0, ws.phi0[r]));
   }
 }
 

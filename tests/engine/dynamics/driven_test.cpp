@@ -137,7 +137,9 @@ TEST(DrivenBodies, AServoDrivenCarriageLiftsWithoutStretchingTheRope) {
 // was driven through the pulley and the rope stretched to 100 m at 4e5 N, or (on the boom) 1e15
 // N threw the boom round its pivot; no warning either way.
 TEST(DrivenBodies, ARopeHauledIntoItsPulleyPaysOutAndHoldsTheLoadThere) {
-  for (const bool boom : {false, true}) {
+  // (At 4 sub-steps the boom's reported tension still spikes now and then: docs/model.md.)
+  for (const auto& [boom, substeps] :
+       {std::pair(false, 1), std::pair(true, 1), std::pair(false, 4), std::pair(true, 2)}) {
     SceneDef s;
     BodyDef hook = crane(BodyType::Kinematic);
     hook.name = "hook";
@@ -184,7 +186,7 @@ TEST(DrivenBodies, ARopeHauledIntoItsPulleyPaysOutAndHoldsTheLoadThere) {
     World world(s);
     const double weightForce = 10 * 9.81;
     for (int step = 0; step < 600; ++step) {  // the load arrives after 0.42 s
-      world.step(kDt);
+      world.step(kDt, substeps);
       const Cable& c = world.cable(0);
       const Vec2 tip =
           boom ? Vec2(world.body(2).position +
