@@ -1007,7 +1007,7 @@ void solveLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cabl
 // unmet (a load driven through its pulley and the cable metres long) or answers with impulses
 // whose work against the kinematic body dwarfs every energy in the island (1e11 N s on a 10 kg
 // load, and Box2D's float joints cannot cancel forces that size). Such rows pay out: solved
-// again with their targets raised by haul_r, kept unless that misses the rows by more, and
+// again with the targets haulTargets gives them, kept unless that misses the rows by more, and
 // applyForces lengthens each cable by its end-of-step stretch (Cable::payOut; World warns).
 constexpr double kHaulUnmet = 1e-5;  // m: a row missed by more is not held
 constexpr double kHaulWork = 1e3;    // work against the kinematic bodies, in island energies

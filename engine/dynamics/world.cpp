@@ -525,6 +525,7 @@ void World::reportPayOuts() {
         if (w.body >= 0 && scene_.bodies[w.body].type == BodyType::Kinematic &&
             haulers.find("'" + scene_.bodies[w.body].name + "'") == std::string::npos)
           haulers += (haulers.empty() ? "'" : ", '") + scene_.bodies[w.body].name + "'";
+      if (haulers.empty()) haulers = "(through a joint)";
       warnings_.push_back("cable '" + c.name() + "': pays out from t = " + formatNumber(time_) +
                           " s: kinematic body " + haulers +
                           " hauls it, and the bodies along it cannot give way (a load at its "
