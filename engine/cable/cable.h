@@ -69,6 +69,11 @@ inline bool moves(const BodyState& b) {
   return b.invMass > 0 || b.invInertia > 0;
 }
 
+/// Whether a body the solve cannot move moves anyway: a kinematic body with a velocity.
+inline bool driven(const BodyState& b) {
+  return !moves(b) && (b.velocity.squaredNorm() > 0 || b.angularVelocity != 0);
+}
+
 /// One point of a cable's current path.
 struct WrapPoint {
   enum class Kind { Anchor, Point, Vertex, Circle };

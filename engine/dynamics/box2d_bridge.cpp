@@ -264,11 +264,12 @@ std::span<const Vec3> Box2DBridge::contactImpulses() const {
 }
 
 void Box2DBridge::markTouching(std::vector<char>& touching) const {
-  for (const b2Contact* c = impl_->world.GetContactList(); c; c = c->GetNext()) {
+  for (b2Contact* c = impl_->world.GetContactList(); c; c = c->GetNext()) {
     if (!c->IsTouching() || c->GetFixtureA()->IsSensor() || c->GetFixtureB()->IsSensor()) continue;
-    for (const b2Body* body : {c->GetFixtureA()->GetBody(), c->GetFixtureB()->GetBody()})
-      for (size_t i = 0; i < impl_->bodies.size() && i < touching.size(); ++i)
-        if (impl_->bodies[i] == body) touching[i] = 1;
+    for (b2Body* body : {c->GetFixtureA()->GetBody(), c->GetFixtureB()->GetBody()})
+      if (const uintptr_t index = body->GetUserData().pointer;  // body index + 1, 0: ground
+          index > 0 && index <= touching.size())
+        touching[index - 1] = 1;
   }
 }
 

@@ -394,7 +394,7 @@ void predictPrescribed(Workspace& ws, const CableSolveInput& in) {
   ws.hauling = false;
   for (BodyState& p : ws.predicted)
     if (!moves(p)) {
-      ws.hauling |= p.velocity.squaredNorm() > 0 || p.angularVelocity != 0;
+      ws.hauling |= driven(p);
       p.position += in.h * p.velocity;
       p.angle += in.h * p.angularVelocity;
     }

@@ -116,7 +116,7 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
       if (moves(b)) {
         if (excluded[e.body]) return false;
         pulls = true;
-      } else if (b.velocity.squaredNorm() > 0 || b.angularVelocity != 0) {
+      } else if (driven(b)) {
         return false;  // a kinematic body drives it: the main solve moves it (item "Driven")
       }
     }

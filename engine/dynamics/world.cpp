@@ -500,7 +500,7 @@ void World::payOutUnheld() {
     for (const auto& e : c.kinematics().jacobian) {
       const BodyState& b = bodies_[e.body];
       held |= moves(b);
-      hauled |= b.velocity.squaredNorm() > 0 || b.angularVelocity != 0;
+      hauled |= driven(b);
     }
     if (held || !hauled) continue;
     for (int k = 0; k < c.spanCount(); ++k)
