@@ -40,9 +40,10 @@ namespace cablelab {
 
 class MidpointSolver {
  public:
-  /// Largest omega h of an elastic cable's axial mode the solve accepts: faster springs are not
-  /// resolved by the step, and the main solve's backward Euler damps them (stable at any k).
-  static constexpr double kMaxElasticOmegaH = 2.0;
+  /// Largest omega h of an elastic cable's axial mode bound (elasticMode, reached only where the
+  /// cable folds back on itself) the solve accepts: faster springs are not resolved by the step,
+  /// and the main solve's backward Euler damps them (stable at any k).
+  static constexpr double kMaxElasticOmegaH = 4.0;
 
   /// Whether this solve should take the step of the cables `which` (an island, cable_islands.h):
   /// some cable is elastic, has a pulley on a moving body (wrapped or not) or a segment short
