@@ -307,7 +307,7 @@ void buildRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
   for (int cable : ws.islandRows[island]) {
     const auto& path = cables[cable].path();
     for (size_t i = 0; i + 1 < path.size(); ++i)
-      if (needsFloor(path, i, in.bodies, in.h, in.gravity,
+      if (needsFloor(cables[cable], i, in.bodies, in.h, in.gravity,
                      [&](int b) { return ws.dofs.ofBody[b] >= 0; }) &&
           mayReachFloor(in, path[i], path[i + 1])) {
         const Vec2 n = floorNormal(path[i], path[i + 1], in.bodies, in.h, in.gravity);

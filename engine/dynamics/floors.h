@@ -19,6 +19,14 @@ namespace cablelab {
 
 inline constexpr double kFloorWatch = 0.5;    ///< m: segments shorter than this get a floor row
 inline constexpr double kFloorLength = 0.01;  ///< m: the closest two points of a segment come
+/// m: a cable no longer than this has no floors. One of kFloorLength fought a rope that short for
+/// its own length: a 5 mm pendulum was held at 7.5 mm, a 1 cm one lost all its swing in 15 s.
+inline constexpr double kShortestFlooredCable = 4 * kFloorLength;
+
+/// Whether `cable` gets floors (kShortestFlooredCable).
+inline bool hasFloors(const Cable& cable) {
+  return cable.restLength() > kShortestFlooredCable;
+}
 
 /// Where segment (p, q) of a path touches p and q: a circle's tangent point, else the point.
 inline Vec2 floorFrom(const WrapPoint& p) {
@@ -83,13 +91,16 @@ inline Vec2 floorDrift(const WrapPoint& p, const WrapPoint& q, std::span<const B
   return h * (velocity(q, floorTo(q)) - velocity(p, floorFrom(p)));
 }
 
-/// Whether segment i (points i and i + 1) of `path` needs a floor row this sub-step: its ends are
-/// on different bodies, one of which the solve moves (`moved(body)`; the world, -1, never moves),
-/// and it is shorter than kFloorWatch or than the way its ends can close within the sub-step
-/// (twice floorDrift: a body at 50 m/s covers 0.8 m in a 60 Hz step).
+/// Whether segment i (points i and i + 1) of `cable`'s path needs a floor row this sub-step: the
+/// cable has floors, the segment's ends are on different bodies, one of which the solve moves
+/// (`moved(body)`; the world, -1, never moves), and it is shorter than kFloorWatch or than the
+/// way its ends can close within the sub-step (twice floorDrift: a body at 50 m/s covers 0.8 m
+/// in a 60 Hz step).
 template <class Moved>
-bool needsFloor(std::span<const WrapPoint> path, size_t i, std::span<const BodyState> bodies,
-                double h, const Vec2& gravity, Moved moved) {
+bool needsFloor(const Cable& cable, size_t i, std::span<const BodyState> bodies, double h,
+                const Vec2& gravity, Moved moved) {
+  if (!hasFloors(cable)) return false;
+  const std::span<const WrapPoint> path = cable.path();
   const int a = path[i].body, b = path[i + 1].body;
   if (a == b || !((a >= 0 && moved(a)) || (b >= 0 && moved(b)))) return false;
   const double gap = floorGap(path[i], path[i + 1]);

@@ -132,7 +132,7 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
     for (int j = 0; j < c.pulleyCount(); ++j)
       wanted |= c.pulleyBody(j) >= 0 && moves(bodies[c.pulleyBody(j)]);
     for (size_t i = 0; i + 1 < path.size(); ++i)
-      wanted |= needsFloor(path, i, bodies, h, Vec2::Zero(), [](int) { return true; });
+      wanted |= needsFloor(c, i, bodies, h, Vec2::Zero(), [](int) { return true; });
     if (c.elastic()) {
       if (elasticMode(c, bodies) * h > kMaxElasticOmegaH) return false;
       wanted = true;
@@ -239,7 +239,8 @@ bool MidpointSolver::buildRows(std::span<const BodyState> bodies, std::span<Cabl
   for (size_t r = 0; r < cableRows; ++r) {
     const auto& path = cables[rows_[r]].path();
     for (size_t i = 0; i + 1 < path.size(); ++i)
-      if (needsFloor(path, i, bodies, h, gravity, [&](int b) { return dofOfBody_[b] >= 0; })) {
+      if (needsFloor(cables[rows_[r]], i, bodies, h, gravity,
+                     [&](int b) { return dofOfBody_[b] >= 0; })) {
         rows_.push_back(rows_[r]);
         segment_.push_back(static_cast<int>(i));
         normals_.push_back(floorNormal(path[i], path[i + 1], bodies, h, gravity));

@@ -354,6 +354,7 @@ double World::advance(double left, double h, bool locate) {
       }
     // A body arriving at its pulley (floors.h, floorArrival): no wrap change, cableless cut.
     for (const Cable& c : cables_) {
+      if (!hasFloors(c)) continue;
       const auto& path = c.path();
       for (size_t i = 0; i + 1 < path.size(); ++i)
         if (auto t = floorArrival(path[i], path[i + 1], motion_, first ? *first : dt)) {

@@ -249,5 +249,27 @@ TEST(Floors, APuckFlyingPastItsAnchorOnASlackRopeFliesStraightOn) {
     }
 }
 
+// A rope no longer than kShortestFlooredCable has no floor, which would hold its segment at 1 cm
+// against the rope itself: a bob swinging on 5 mm and 1 cm ropes from the world, at 1 and 4
+// sub-steps, keeps its rope at its length (it was held at 7.5 mm on the 5 mm rope).
+TEST(Floors, APendulumOnARopeShorterThanAFloorKeepsItsLength) {
+  for (const double length : {0.005, 0.01})
+    for (const int substeps : {1, 4}) {
+      SCOPED_TRACE(std::to_string(length) + " m, " + std::to_string(substeps) + " sub-steps");
+      SceneDef scene;
+      scene.bodies = {puck("bob", length * Vec2(std::sqrt(0.5), -std::sqrt(0.5)), Vec2::Zero(),
+                           0.1)};
+      scene.cables = {rope("world", "bob")};
+      World world(scene);
+      double longest = 0;
+      for (int s = 0; s < 600; ++s) {
+        world.step(scene.dt, substeps);
+        longest = std::max(longest, world.cable(0).length());
+      }
+      EXPECT_LT(longest - length, 1e-5);
+      EXPECT_GT(world.cable(0).tension(), 0);
+    }
+}
+
 }  // namespace
 }  // namespace cablelab
