@@ -209,12 +209,21 @@ namespace {
 
 using Workspace = CableSolverWorkspace;
 
-// Calls f(body) for every body a span of the cable pulls on that moves.
+// Calls f(body) for every body a span of the cable pulls on that moves, then for the moving ends
+// of its segments between two bodies (some twice over), which its floor rows push. A segment of
+// no length (a point inside a drum) is left out of the Jacobian: its point was then no dof, and
+// the rim floor that should push it out acted on the drum alone, which its axle holds (J W J^T
+// 1e-10): a weight swung onto a winch drum went 15 cm into it and its rope 29 cm long.
 template <class F>
 void forMovingBodies(const Cable& cable, const CableSolveInput& in, F&& f) {
   for (int k = 0; k < cable.spanCount(); ++k)
     for (const auto& e : cable.spanKinematics(k).jacobian)
       if (moves(in.bodies[e.body])) f(e.body);
+  const auto& path = cable.path();
+  for (size_t i = 0; i + 1 < path.size(); ++i)
+    if (path[i].body != path[i + 1].body)
+      for (const int body : {path[i].body, path[i + 1].body})
+        if (body >= 0 && moves(in.bodies[body])) f(body);
 }
 
 // 1a. Islands: a cable that pulls on something that moves gets a row; cables sharing a moving
@@ -327,21 +336,21 @@ double floorRow(Workspace& ws, std::span<const BodyState> bodies, const Cable& c
                 const Workspace::Row& row) {
   const WrapPoint* ends[2] = {&cable.path()[row.segment], &cable.path()[row.segment + 1]};
   ws.floorJacobian.clear();
-  // A point's tangent length to a circle (floors.h, tangentLength).
+  // A point's clearance from its floor at a circle (floors.h, rimClearance).
   if (row.rim) {
     const int rim = rimEnd(*ends[0], *ends[1]);
     const WrapPoint &circle = *ends[rim], &point = *ends[1 - rim];
     const Vec2 c = worldPoint(bodies, circle.body, circle.local);
     const Vec2 x = worldPoint(bodies, point.body, point.local);
     Vec2 g;
-    const double length = tangentLength(x, c, circle.radius, g);
-    // d(kFloorLength - L): -g at the point, g at the circle's centre.
+    const double clearance = rimClearance(x, c, circle.radius, g);
+    // d(-clearance): -g at the point, g at the circle's centre.
     for (const auto& [body, at, d] :
          {std::tuple(point.body, x, Vec2(-g)), std::tuple(circle.body, c, g)})
       if (body >= 0)
         ws.floorJacobian.push_back(
             {body, Vec3(d.x(), d.y(), d.dot(perp(Vec2(at - bodies[body].position))))});
-    return kFloorLength - length;
+    return -clearance;
   }
   const Vec2& n = row.normal;
   double along = 0;

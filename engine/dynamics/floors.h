@@ -42,37 +42,36 @@ inline int rimEnd(const WrapPoint& p, const WrapPoint& q) {
   return p.radius != 0 ? 0 : 1;
 }
 
-/// The tangent length from point x to the circle (centre c, radius r): sqrt(|x - c|^2 - r^2), the
-/// length of a segment from x that leaves the circle on its tangent. It is zero wherever x meets
-/// the rim (inside, minus the depth). A floor along the segment's direction (floorNormal) stops a
-/// point that runs into the tangent point; one that comes at the rim from the side (a weight
-/// that swung onto a winch drum) it let slide past the tangent point into the drum, where the
-/// cable, left with a segment of no length, let it fall. So a segment between a point and a
-/// circle gets a second floor row, on this length. `gradient` gets dL/dx, which grows as 1 / L at
-/// the rim: it is taken at L >= kFloorLength / 4, exact where a floor holds (L = kFloorLength).
-inline double tangentLength(const Vec2& x, const Vec2& c, double r, Vec2& gradient) {
+/// How far point x is outside its floor at the circle (centre c, radius r): |x - c| - sqrt(r^2 +
+/// kFloorLength^2), zero where the point's tangent length to the circle, sqrt(|x - c|^2 - r^2)
+/// (the length of a segment from x that leaves the circle on its tangent), is kFloorLength, and
+/// negative closer in or inside. A floor along the segment's direction (floorNormal) stops a point
+/// that runs into the tangent point; one that comes at the rim from the side (a weight that swung
+/// onto a winch drum) it let slide past the tangent point into the drum, where the cable, left
+/// with a segment of no length, let it fall. So a segment between a point and a circle gets a
+/// second floor row, on this clearance. It holds the tangent length at kFloorLength as a row on
+/// that length would, but near linearly: the length's gradient grows as 1 / L at the rim (53 at
+/// the floor of a 0.53 m drum), and Newton on it diverged where a weight rested at a drum; its
+/// start-of-step fallback left the weight 1 mm inside and the rope 2 cm long. `gradient` gets
+/// d/dx: the unit vector from c to x.
+inline double rimClearance(const Vec2& x, const Vec2& c, double r, Vec2& gradient) {
   const Vec2 out = x - c;
-  const double d2 = out.squaredNorm(), r2 = r * r;
-  if (d2 > r2) {
-    const double length = std::sqrt(d2 - r2);
-    gradient = out / std::max(length, 0.25 * kFloorLength);
-    return length;
-  }
-  const double d = std::sqrt(d2);
+  const double d = out.norm();
   gradient = d > 0 ? Vec2(out / d) : Vec2(1, 0);
-  return d - std::abs(r);
+  return d - std::sqrt(r * r + kFloorLength * kFloorLength);
 }
 
 /// The gap a floor keeps open: the segment's length as the path has it, between its contact
 /// points (a circle's tangent point). Next to a wheel that is the tangent segment, which goes to
 /// zero where a box hauled up along it reaches the rim. With `rim` (a point-circle segment's
-/// second row), the point's tangent length.
+/// second row), kFloorLength plus the point's clearance (rimClearance): kFloorLength - gap is then
+/// that row's error, as for the others.
 inline double floorGap(const WrapPoint& p, const WrapPoint& q, bool rim = false) {
   if (rim) {
     const bool circleFirst = rimEnd(p, q) == 0;
     const WrapPoint &circle = circleFirst ? p : q, &point = circleFirst ? q : p;
     Vec2 gradient;
-    return tangentLength(point.world, circle.world, circle.radius, gradient);
+    return kFloorLength + rimClearance(point.world, circle.world, circle.radius, gradient);
   }
   return (floorTo(q) - floorFrom(p)).norm();
 }
