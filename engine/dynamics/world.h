@@ -148,6 +148,7 @@ class World {
   void solveForces(double dt, double h);
   double advance(double left, double h, bool locate);
   void keepJointEnergy(double dt);
+  void flyFreeBodies(double dt);
   void addImpulses(double dt, bool first);
   void averageTensions(double h);
 
@@ -164,7 +165,8 @@ class World {
   std::vector<char> touching_;     ///< bodies in a touching contact this sub-step
   std::vector<Vec3> contactLast_;  ///< per body, Box2D's contact force over the last step
   std::vector<Vec3> contactExpected_;  ///< ... the one the cable solve expects (expectContacts)
-  std::vector<Vec3> kicks_;            ///< velocity added after Box2D's step (midpoint solve)
+  std::vector<Vec3> kicks_;            ///< velocity added after Box2D's step (midpoint rules)
+  std::vector<char> onCable_;          ///< scratch: bodies on some cable's path (flyFreeBodies)
   std::vector<Placement>
       placements_;             ///< poses given after Box2D's step (the main solve's midpoint rule)
   bool midpointUsed_ = false;  ///< the last solveForces() solved some midpoint island

@@ -58,8 +58,7 @@ inline void addPart(SceneDef& into, SceneDef part, const std::string& prefix, co
 // The parts with nothing damped, jointed or touching: a square spinning in an elastic sling and
 // a point bouncing in an undamped elastic band.
 // The built-in membrane with nothing damped, its point pressed 5 cm into the band and let go: it
-// bounces in it for ever, never leaving it (a flight between bounces would lose m (g h)^2 / 2 per
-// step to Box2D's symplectic Euler, which the energy-consistent catch then keeps).
+// bounces in it for ever, never leaving it.
 inline SceneDef undampedBand() {
   SceneDef band = makeScene("membrane", {{"damping", 0.0}});
   band.bodies[0].linearDamping = 0;
