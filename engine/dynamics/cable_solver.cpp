@@ -209,16 +209,22 @@ namespace {
 
 using Workspace = CableSolverWorkspace;
 
-// Calls f(body) for every body a span of the cable pulls on that moves, then for the moving ends
-// of its segments between two bodies (some twice over), which its floor rows push. A segment of
-// no length (a point inside a drum) is left out of the Jacobian: its point was then no dof, and
-// the rim floor that should push it out acted on the drum alone, which its axle holds (J W J^T
-// 1e-10): a weight swung onto a winch drum went 15 cm into it and its rope 29 cm long.
+// Calls f(body) for every body a span of the cable pulls on that moves, then, where a segment of
+// no length is left out of the Jacobian (a point inside a drum), for the moving ends of its
+// segments between two bodies (some twice over), which its floor rows push. Without them that
+// point was no dof, and the rim floor that should push it out acted on the drum alone, which its
+// axle holds (J W J^T 1e-10): a weight swung onto a winch drum went 15 cm into it and its rope
+// 29 cm long.
 template <class F>
 void forMovingBodies(const Cable& cable, const CableSolveInput& in, F&& f) {
-  for (int k = 0; k < cable.spanCount(); ++k)
-    for (const auto& e : cable.spanKinematics(k).jacobian)
+  bool leftOut = false;
+  for (int k = 0; k < cable.spanCount(); ++k) {
+    const CableKinematics& kin = cable.spanKinematics(k);
+    leftOut |= kin.zeroLengthSegments > 0;
+    for (const auto& e : kin.jacobian)
       if (moves(in.bodies[e.body])) f(e.body);
+  }
+  if (!leftOut) return;
   const auto& path = cable.path();
   for (size_t i = 0; i + 1 < path.size(); ++i)
     if (path[i].body != path[i + 1].body)
