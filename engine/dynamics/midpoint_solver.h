@@ -46,9 +46,10 @@ class MidpointSolver {
   static constexpr double kMaxElasticOmegaH = 4.0;
 
   /// Whether this solve should take the step of the cables `which` (an island, cable_islands.h):
-  /// some cable is elastic, has a pulley on a moving body (wrapped or not) or a segment short
-  /// enough to need a floor (a body nearing its pulley) (straight cables between fixed pulleys keep
-  /// Box2D's own integration), no moved body is `excluded` (jointed or in contact), and every
+  /// some cable is elastic, has a pulley on a moving body (wrapped or not), is a loop on one body
+  /// that turns, or has a segment short enough to need a floor (a body nearing its pulley)
+  /// (straight cables between fixed pulleys and different bodies keep Box2D's own integration),
+  /// no moved body is `excluded` (jointed or in contact), and every
   /// mode is resolved at h.
   bool applies(std::span<const BodyState> bodies, std::span<const Cable> cables,
                std::span<const int> which, std::span<const char> excluded, double h);
