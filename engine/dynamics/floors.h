@@ -61,17 +61,41 @@ inline double rimClearance(const Vec2& x, const Vec2& c, double r, Vec2& gradien
   return d - std::sqrt(r * r + kFloorLength * kFloorLength);
 }
 
+/// The tangent length sqrt(|x - c|^2 - r^2) itself (inside: |x - c| - r), `gradient` its d/dx
+/// taken at a length of at least kFloorLength / 4.
+inline double tangentLength(const Vec2& x, const Vec2& c, double r, Vec2& gradient) {
+  const Vec2 out = x - c;
+  const double d2 = out.squaredNorm(), r2 = r * r;
+  if (d2 > r2) {
+    const double length = std::sqrt(d2 - r2);
+    gradient = out / std::max(length, 0.25 * kFloorLength);
+    return length;
+  }
+  const double d = std::sqrt(d2);
+  gradient = d > 0 ? Vec2(out / d) : Vec2(1, 0);
+  return d - std::abs(r);
+}
+
+/// The rim row's gap for point x (on `pointBody`, -1 the world) at the circle (c, r), kFloorLength
+/// at its floor, and its d/dx. A point on a body takes kFloorLength plus its clearance: a weight
+/// swung onto a winch drum. A point fixed in the world takes the tangent length: a trolley that
+/// runs into the end of its zipline, along the clearance, sank 3 mm onto the anchor and its rope
+/// ran 6 cm long (2 mm along the tangent length, whose steep gradient holds the trolley).
+inline double rimGap(int pointBody, const Vec2& x, const Vec2& c, double r, Vec2& gradient) {
+  return pointBody < 0 ? tangentLength(x, c, r, gradient)
+                       : kFloorLength + rimClearance(x, c, r, gradient);
+}
+
 /// The gap a floor keeps open: the segment's length as the path has it, between its contact
 /// points (a circle's tangent point). Next to a wheel that is the tangent segment, which goes to
 /// zero where a box hauled up along it reaches the rim. With `rim` (a point-circle segment's
-/// second row), kFloorLength plus the point's clearance (rimClearance): kFloorLength - gap is then
-/// that row's error, as for the others.
+/// second row), rimGap: kFloorLength - gap is then that row's error, as for the others.
 inline double floorGap(const WrapPoint& p, const WrapPoint& q, bool rim = false) {
   if (rim) {
     const bool circleFirst = rimEnd(p, q) == 0;
     const WrapPoint &circle = circleFirst ? p : q, &point = circleFirst ? q : p;
     Vec2 gradient;
-    return kFloorLength + rimClearance(point.world, circle.world, circle.radius, gradient);
+    return rimGap(point.body, point.world, circle.world, circle.radius, gradient);
   }
   return (floorTo(q) - floorFrom(p)).norm();
 }
@@ -90,20 +114,25 @@ inline Vec2 floorDrift(const WrapPoint& p, const WrapPoint& q, std::span<const B
   return h * (velocity(q, floorTo(q)) - velocity(p, floorFrom(p)));
 }
 
-/// Whether segment i (points i and i + 1) of `cable`'s path needs a floor row this sub-step: the
-/// cable has floors, the segment's ends are on different bodies, one of which the solve moves
-/// (`moved(body)`; the world, -1, never moves), and it is shorter than kFloorWatch or than the
-/// way its ends can close within the sub-step (twice floorDrift: a body at 50 m/s covers 0.8 m
-/// in a 60 Hz step).
+/// Whether segment i (points i and i + 1) of `path` is near its floor this sub-step: its ends are
+/// on different bodies, one of which the solve moves (`moved(body)`; the world, -1, never moves),
+/// and it is shorter than kFloorWatch or than the way its ends can close within the sub-step
+/// (twice floorDrift: a body at 50 m/s covers 0.8 m in a 60 Hz step).
 template <class Moved>
-bool needsFloor(const Cable& cable, size_t i, std::span<const BodyState> bodies, double h,
-                const Vec2& gravity, Moved moved) {
-  if (!hasFloors(cable)) return false;
-  const std::span<const WrapPoint> path = cable.path();
+bool nearFloor(std::span<const WrapPoint> path, size_t i, std::span<const BodyState> bodies,
+               double h, const Vec2& gravity, Moved moved) {
   const int a = path[i].body, b = path[i + 1].body;
   if (a == b || !((a >= 0 && moved(a)) || (b >= 0 && moved(b)))) return false;
   const double gap = floorGap(path[i], path[i + 1]);
   return gap < kFloorWatch || gap < 2 * floorDrift(path[i], path[i + 1], bodies, h, gravity).norm();
+}
+
+/// Whether segment i of `cable`'s path needs a floor row this sub-step: the cable has floors and
+/// the segment is near its floor.
+template <class Moved>
+bool needsFloor(const Cable& cable, size_t i, std::span<const BodyState> bodies, double h,
+                const Vec2& gravity, Moved moved) {
+  return hasFloors(cable) && nearFloor(cable.path(), i, bodies, h, gravity, moved);
 }
 
 /// The direction n a floor row measures segment (p, q) along: its constraint is

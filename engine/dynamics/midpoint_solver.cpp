@@ -132,7 +132,7 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
     for (int j = 0; j < c.pulleyCount(); ++j)
       wanted |= c.pulleyBody(j) >= 0 && moves(bodies[c.pulleyBody(j)]);
     for (size_t i = 0; i + 1 < path.size(); ++i)
-      wanted |= needsFloor(c, i, bodies, h, Vec2::Zero(), [](int) { return true; });
+      wanted |= nearFloor(path, i, bodies, h, Vec2::Zero(), [](int) { return true; });
     // A loop, both ends on one body that turns (a frame hung on a nail): it swings on the loop, a
     // mode whose energy Box2D's integration swings by about omega h / 2 (the frame: 15% of its
     // largest kinetic energy over 60 s at 1 sub-step).
