@@ -94,7 +94,9 @@ Catch throwPuck(double speed, bool square, bool fixedRotation = false) {
       EXPECT_TRUE(world.warnings().empty()) << world.warnings().front();
     }
   }
-  if (!c.hooked) EXPECT_TRUE(world.warnings().empty()) << world.warnings().front();
+  if (!c.hooked) {
+    EXPECT_TRUE(world.warnings().empty()) << world.warnings().front();
+  }
   return c;
 }
 
