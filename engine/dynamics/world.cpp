@@ -32,6 +32,7 @@ constexpr int kMaxEventsPerSubstep = 16;
 constexpr int kFloorRelocations = 3;  // a floor arrival's cut is located again at most this often
 constexpr double kMaxOmegaDt = 0.3;  // longest midpoint step over the fastest transverse mode
 constexpr double kStillTurn = 1e-5;  // rad a step: joints that turn less keep Box2D's solve
+constexpr double kOverstretch = 0.01;  // m: a rigid cable longer than its rest length by this is said
 
 SceneDef validated(SceneDef scene, const std::string& source) {
   validateScene(scene, source);
@@ -529,6 +530,7 @@ void World::step(double dt, int substeps) {
   }
   payOutUnheld();
   reportPayOuts();
+  reportOverstretch();
   stats_.stepMicros = std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
   checkFinite();
 }
@@ -548,6 +550,26 @@ void World::payOutUnheld() {
     if (held || !hauled) continue;
     for (int k = 0; k < c.spanCount(); ++k)
       if (c.spanStretch(k) > kLengthSlop) c.payOut(k, c.spanStretch(k));
+  }
+}
+
+// A rigid cable more than kOverstretch longer than its rest length at the end of a step: the step
+// did not resolve the motion (a box spinning at 80 rad/s on a rope fixed to its corner, 1.4 rad a
+// step: Newton's linearisation was far off, and the rope ran 10.6 cm long with no word). Say so
+// once, until it is back within kLengthSlop of it.
+void World::reportOverstretch() {
+  overstretched_.resize(cables_.size(), 0);
+  for (size_t i = 0; i < cables_.size(); ++i) {
+    const Cable& c = cables_[i];
+    if (c.elastic()) continue;
+    const double stretch = c.stretch();
+    if (stretch <= kLengthSlop) overstretched_[i] = 0;
+    if (stretch <= kOverstretch || overstretched_[i]) continue;
+    overstretched_[i] = 1;
+    warnings_.push_back("cable '" + c.name() + "': rigid and " + formatNumber(stretch) +
+                        " m longer than its rest length at t = " + formatNumber(time_) +
+                        " s: the step did not resolve the motion (a fast turn or impact); more "
+                        "sub-steps hold it");
   }
 }
 

@@ -141,6 +141,7 @@ class World {
   void applyServos();
   void checkFinite() const;
   void reportPayOuts();
+  void reportOverstretch();
   void payOutUnheld();
   void expectContacts(double dt);
   void selectWraps(double h);
@@ -184,6 +185,7 @@ class World {
   std::vector<std::string> warnings_;
   std::vector<double> paidOutSeen_;  ///< per cable: Cable::paidOut() at the last step's end
   std::vector<double> payStart_;     ///< ... when it began paying out (< 0: it is not)
+  std::vector<char> overstretched_;  ///< per cable: reportOverstretch() said so, not yet back
   std::vector<std::vector<int>> jointNeighbours_;  ///< bodies jointed to each body
   std::vector<std::array<int, 2>> jointBodies_;    ///< (body A, body B) per joint, -1: world
   std::vector<JointFrame> jointFrames_;            ///< the joints as the solver sees them
