@@ -2,6 +2,7 @@
 // pivoted on the world.
 #pragma once
 
+#include <cmath>
 #include <string>
 
 #include "engine/model/scene.h"
@@ -24,6 +25,18 @@ inline ShapeDef sensorDisc(double radius) {
   disc.radius = radius;
   disc.sensor = true;
   return disc;
+}
+
+/// A regular polygon of `sides` corners `radius` from the body origin, the first at angle
+/// `phase`, a sensor.
+inline ShapeDef sensorPolygon(int sides, double radius, double phase = 0) {
+  ShapeDef polygon = sensorBox(0, 0);
+  polygon.vertices.clear();
+  for (int k = 0; k < sides; ++k) {
+    const double a = phase + 2 * M_PI * k / sides;
+    polygon.vertices.push_back(radius * Vec2(std::cos(a), std::sin(a)));
+  }
+  return polygon;
 }
 
 /// A revolute joint "pivot" from the world to `body` at the world point `anchor`.

@@ -6,6 +6,7 @@
 
 #include "engine/dynamics/world.h"
 #include "engine/scenes/scene_registry.h"
+#include "tests/support/energy_drift.h"
 #include "tests/support/scene_parts.h"
 #include "tests/support/sling_scene.h"
 
@@ -202,11 +203,7 @@ TEST(ElasticEnergy, ASlingAndATautBandWhoseModeTheStepResolvesKeepTheirEnergy) {
   octagon.mass = 1;
   octagon.position = Vec2(0, -0.3);
   octagon.angularVelocity = 8;
-  ShapeDef outline = test::sensorDisc(0);
-  outline.kind = ShapeDef::Kind::Polygon;
-  for (int k = 0; k < 8; ++k)
-    outline.vertices.push_back(0.2 * Vec2(std::cos(M_PI * k / 4), std::sin(M_PI * k / 4)));
-  octagon.shapes = {outline};
+  octagon.shapes = {test::sensorPolygon(8, 0.2)};
   sling.bodies = {octagon};
   CableDef band;
   band.name = "band";
@@ -245,18 +242,7 @@ TEST(ElasticEnergy, ASlingAndATautBandWhoseModeTheStepResolvesKeepTheirEnergy) {
   for (const SceneDef& scene : {sling, bead}) {
     SCOPED_TRACE(scene.name);
     World world(scene);
-    const double e0 = world.energy();
-    double worst = 0, scale = 0;
-    for (int step = 0; step < 3600; ++step) {
-      world.step(scene.dt, 1);
-      worst = std::max(worst, std::abs(world.energy() - e0));
-      const BodyState& s = world.body(0);
-      scale = std::max(scale, 0.5 * s.velocity.squaredNorm() / s.invMass +
-                                  (s.invInertia > 0 ? 0.5 * s.angularVelocity *
-                                                          s.angularVelocity / s.invInertia
-                                                    : 0.0));
-    }
-    EXPECT_LT(worst, 0.02 * scale);
+    EXPECT_LT(test::energyDriftShare(world, 3600, scene.dt, 1), 0.02);
   }
 }
 
@@ -279,11 +265,7 @@ TEST(ElasticEnergy, AHexagonBouncingOnATrampolineKeepsItsEnergyInFlight) {
   hexagon.mass = 0.5;
   hexagon.position = Vec2(0.1, 0.6);
   hexagon.angularVelocity = 4;
-  ShapeDef outline = test::sensorDisc(0);
-  outline.kind = ShapeDef::Kind::Polygon;
-  for (int k = 0; k < 6; ++k)
-    outline.vertices.push_back(0.15 * Vec2(std::cos(M_PI * k / 3), std::sin(M_PI * k / 3)));
-  hexagon.shapes = {outline};
+  hexagon.shapes = {test::sensorPolygon(6, 0.15)};
   s.bodies = {hexagon};
   CableDef band;
   band.name = "band";
@@ -298,19 +280,11 @@ TEST(ElasticEnergy, AHexagonBouncingOnATrampolineKeepsItsEnergyInFlight) {
   band.stiffness = 500;
   s.cables = {band};
   World world(s);
-  const double e0 = world.energy();
-  double worst = 0, scale = 0;
   int flying = 0;
-  for (int step = 0; step < 3600; ++step) {
-    world.step(s.dt, 1);
-    worst = std::max(worst, std::abs(world.energy() - e0));
-    const BodyState& b = world.body(0);
-    scale = std::max(scale, 0.5 * b.velocity.squaredNorm() / b.invMass +
-                                0.5 * b.angularVelocity * b.angularVelocity / b.invInertia);
-    flying += world.cable(0).wraps() == 0;
-  }
+  const double drift =
+      test::energyDriftShare(world, 3600, s.dt, 1, [&] { flying += world.cable(0).wraps() == 0; });
   EXPECT_GT(flying, 600);  // it spends its time in flight as much as in the band
-  EXPECT_LT(worst, 0.02 * scale);
+  EXPECT_LT(drift, 0.02);
 }
 
 }  // namespace

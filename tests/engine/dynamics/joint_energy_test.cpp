@@ -150,13 +150,7 @@ SceneDef ropesOverASpinningPolygon(int sides, double radius, double phase, doubl
   hub.name = "hub";
   hub.mass = mass;
   hub.angularVelocity = spin;
-  ShapeDef polygon = test::sensorBox(0, 0);
-  polygon.vertices.clear();
-  for (int k = 0; k < sides; ++k) {
-    const double a = phase + 2 * M_PI * k / sides;
-    polygon.vertices.push_back(radius * Vec2(std::cos(a), std::sin(a)));
-  }
-  hub.shapes = {polygon};
+  hub.shapes = {test::sensorPolygon(sides, radius, phase)};
   s.bodies = {hub};
   s.joints = {test::worldPivot("hub", Vec2::Zero())};
   for (size_t i = 0; i < ropes.size(); ++i) {
