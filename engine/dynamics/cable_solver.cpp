@@ -692,8 +692,9 @@ void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable>
 // - no circle, drum or kinematic body on the path, one span;
 // - some pulley of the cable on a moving body (else Box2D's own integration, as the midpoint
 //   solver leaves straight cables over fixed pulleys).
-bool rigidRowTakesMidpointRule(const Workspace& ws, const CableSolveInput& in, const Cable& c) {
-  if (ws.jointIndex.empty() || c.spanCount() != 1) return false;
+// The island's part of the conditions (its joints), then the cable's.
+bool jointsAreAxles(const Workspace& ws, const CableSolveInput& in) {
+  if (ws.jointIndex.empty()) return false;
   for (int j : ws.jointIndex) {
     const JointFrame& f = in.joints[j];
     const bool movesA = f.bodyA >= 0 && moves(in.bodies[f.bodyA]);
@@ -702,6 +703,10 @@ bool rigidRowTakesMidpointRule(const Workspace& ws, const CableSolveInput& in, c
     const Vec2 centre = in.bodies[movesA ? f.bodyA : f.bodyB].position;
     if ((f.anchor - centre).squaredNorm() > 1e-18) return false;
   }
+  return true;
+}
+bool rigidRowTakesMidpointRule(const CableSolveInput& in, const Cable& c) {
+  if (c.spanCount() != 1) return false;
   for (const WrapPoint& w : c.path())
     if (w.radius != 0 || (w.body >= 0 && driven(in.bodies[w.body]))) return false;
   for (int j = 0; j < c.pulleyCount(); ++j)
@@ -722,6 +727,7 @@ bool takesMidpointRule(Workspace& ws, const CableSolveInput& in, std::span<const
   if (in.kicks.empty() || ws.stiff || ws.rows.empty()) return false;
   for (size_t k = 0; k < ws.dofs.body.size(); ++k)
     if (!in.touching.empty() && in.touching[ws.dofs.body[k]]) return false;
+  int axles = -1;  // jointsAreAxles, asked once, where a rigid row needs it
   for (size_t r = 0; r < ws.rows.size(); ++r) {
     const Workspace::Row& row = ws.rows[r];
     const Cable& c = cables[row.cable];
@@ -729,7 +735,8 @@ bool takesMidpointRule(Workspace& ws, const CableSolveInput& in, std::span<const
     if (!c.elastic()) {
       // A row stage 4b redirected joins fast: a puck caught at 50 m/s by a rope on a pivoted
       // arm, under the midpoint rule, was thrown off before it wrapped.
-      if ((r < ws.ahead.size() && ws.ahead[r]) || !rigidRowTakesMidpointRule(ws, in, c))
+      if (axles < 0) axles = jointsAreAxles(ws, in);
+      if (!axles || (r < ws.ahead.size() && ws.ahead[r]) || !rigidRowTakesMidpointRule(in, c))
         return false;
       continue;
     }
@@ -1222,7 +1229,8 @@ bool lockCrossingLimits(Workspace& ws, const CableSolveInput& in) {
 // (G (q1 - q0) = length(q1) - length(q0): the row then does no work). Along the start-of-step J
 // it did work a step on the turning path that added up: the hexagon on its pivot gained 47% of
 // its largest kinetic energy in a minute. True if any row was redirected (stages 2-5 run again).
-bool pullAlongMidpointPose(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+bool pullAlongMidpointPose(Workspace& ws, const CableSolveInput& in,
+                           std::span<const Cable> cables) {
   const int m = static_cast<int>(ws.rows.size());
   if (static_cast<int>(ws.ahead.size()) != m) ws.ahead.assign(m, 0);
   ws.aheadJacobian.resize(m);

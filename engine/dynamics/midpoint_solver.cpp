@@ -137,8 +137,8 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
     // mode whose energy Box2D's integration swings by about omega h / 2 (the frame: 15% of its
     // largest kinetic energy over 60 s at 1 sub-step).
     const int loop = path.front().body;
-    wanted |= loop >= 0 && path.back().body == loop && moves(bodies[loop]) &&
-              bodies[loop].invInertia > 0;
+    wanted |=
+        loop >= 0 && path.back().body == loop && moves(bodies[loop]) && bodies[loop].invInertia > 0;
     if (c.elastic()) {
       if (elasticMode(c, bodies) * h > kMaxElasticOmegaH) return false;
       wanted = true;

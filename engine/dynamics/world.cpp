@@ -29,10 +29,10 @@ constexpr double kMinEventStep = 1e-4;  // events closer than this are taken at 
 // event cost two or three more cuts, each nearer: 1.5 cuts a step where 0.13 were due).
 constexpr double kCutReach = 0.05;
 constexpr int kMaxEventsPerSubstep = 16;
-constexpr int kFloorRelocations = 3;  // a floor arrival's cut is located again at most this often
-constexpr double kMaxOmegaDt = 0.3;  // longest midpoint step over the fastest transverse mode
-constexpr double kStillTurn = 1e-5;  // rad a step: joints that turn less keep Box2D's solve
-constexpr double kOverstretch = 0.01;  // m: a rigid cable longer than its rest length by this is said
+constexpr int kFloorRelocations = 3;   // a floor arrival's cut is located again at most this often
+constexpr double kMaxOmegaDt = 0.3;    // longest midpoint step over the fastest transverse mode
+constexpr double kStillTurn = 1e-5;    // rad a step: joints that turn less keep Box2D's solve
+constexpr double kOverstretch = 0.01;  // m: a rigid cable this far over its rest length is said
 
 SceneDef validated(SceneDef scene, const std::string& source) {
   validateScene(scene, source);

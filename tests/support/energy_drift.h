@@ -18,10 +18,10 @@ double energyDriftShare(World& world, int steps, double dt, int substeps, Each e
     world.step(dt, substeps);
     worst = std::max(worst, std::abs(world.energy() - e0));
     const BodyState& b = world.body(0);
-    scale = std::max(scale, 0.5 * b.velocity.squaredNorm() / b.invMass +
-                                (b.invInertia > 0 ? 0.5 * b.angularVelocity * b.angularVelocity /
-                                                        b.invInertia
-                                                  : 0.0));
+    scale = std::max(
+        scale,
+        0.5 * b.velocity.squaredNorm() / b.invMass +
+            (b.invInertia > 0 ? 0.5 * b.angularVelocity * b.angularVelocity / b.invInertia : 0.0));
     each();
   }
   return worst / scale;

@@ -257,8 +257,8 @@ TEST(Floors, APendulumOnARopeShorterThanAFloorKeepsItsLength) {
     for (const int substeps : {1, 4}) {
       SCOPED_TRACE(std::to_string(length) + " m, " + std::to_string(substeps) + " sub-steps");
       SceneDef scene;
-      scene.bodies = {puck("bob", length * Vec2(std::sqrt(0.5), -std::sqrt(0.5)), Vec2::Zero(),
-                           0.1)};
+      scene.bodies = {
+          puck("bob", length * Vec2(std::sqrt(0.5), -std::sqrt(0.5)), Vec2::Zero(), 0.1)};
       scene.cables = {rope("world", "bob")};
       World world(scene);
       double longest = 0;

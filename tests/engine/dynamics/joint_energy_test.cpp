@@ -142,8 +142,8 @@ struct Rope {
 
 // A regular polygon (`sides`, the first corner `radius` from its centre at angle `phase`, `mass`)
 // spinning at `spin` on a pivot at its centre, with `ropes` over it.
-SceneDef ropesOverASpinningPolygon(int sides, double radius, double phase, double mass,
-                                   double spin, const std::vector<Rope>& ropes) {
+SceneDef ropesOverASpinningPolygon(int sides, double radius, double phase, double mass, double spin,
+                                   const std::vector<Rope>& ropes) {
   SceneDef s;
   s.name = "ropes over a spinning polygon";
   BodyDef hub;
@@ -195,8 +195,7 @@ TEST(JointEnergy, RopesOverASpinningPolygonOnItsPivotKeepTheirEnergy) {
     std::vector<double> rest;
     for (int i = 0; i < world.cableCount(); ++i) rest.push_back(world.cable(i).restLength());
     EXPECT_LT(drift(world, 1), c.bound);
-    for (int i = 0; i < world.cableCount(); ++i)
-      EXPECT_LT(world.cable(i).length() - rest[i], 1e-4);
+    for (int i = 0; i < world.cableCount(); ++i) EXPECT_LT(world.cable(i).length() - rest[i], 1e-4);
   }
 }
 

@@ -142,9 +142,8 @@ TEST(LongEnergy, AFrameSwingingOnANailKeepsItsEnergyFor60s) {
   World world(s);
   const double rest = world.cable(0).restLength();
   double stretch = 0;
-  const double drift = test::energyDriftShare(world, 3600, s.dt, 1, [&] {
-    stretch = std::max(stretch, world.cable(0).length() - rest);
-  });
+  const double drift = test::energyDriftShare(
+      world, 3600, s.dt, 1, [&] { stretch = std::max(stretch, world.cable(0).length() - rest); });
   EXPECT_LT(drift, 0.01);
   EXPECT_LT(stretch, 1e-4);
 }
