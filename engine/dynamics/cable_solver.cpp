@@ -114,6 +114,8 @@ struct CableSolverWorkspace {
 
   // Newton on the end-of-step lengths. pull: the midpoint rule's rows' right-hand side (stage 5).
   Eigen::VectorXd target, compliance, damped, pull, phi0, P, phi1, b, WP, v1, v0;
+  Eigen::VectorXd wpImpulses;  // the P that WP = W P was last taken for (timesImpulses)
+  bool wpFresh = false;        // ... with the W of now (stages 2-4 clear it)
   Eigen::VectorXd haul, unhauledP, unhauledTarget;  // stage 6d: the kinematic bodies' haul (m)
   bool hauling = false;                             // a kinematic body moves this sub-step
   bool midpoint = false;  // the island takes the implicit midpoint rule (stage 5)
@@ -439,6 +441,7 @@ void predictVelocities(Workspace& ws, const CableSolveInput& in, std::span<const
     ws.vStar.segment<3>(3 * k) = v;
   }
   ws.W.setZero(n, m);
+  ws.wpFresh = false;
   for (int r = 0; r < m; ++r)
     forForceJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double weight) {
       for (const auto& e : jacobian)
@@ -783,16 +786,20 @@ void addJacobianTimesW(const Workspace& ws, const std::vector<BodyJacobian>& jac
       }
 }
 
-// out = W P, column by column: W has a few columns (one per row), and Eigen's general product
-// costs more than the arithmetic at these sizes.
-void timesImpulses(const Eigen::MatrixXd& W, const Eigen::VectorXd& P, Eigen::VectorXd& out) {
-  const Eigen::Index n = W.rows(), m = W.cols();
-  out.setZero(n);
+// ws.WP = W P, column by column: W has a few columns (one per row), and Eigen's general product
+// costs more than the arithmetic at these sizes. Kept while W and P stay as they are: the
+// shortcut, the limit check and the forces all ask for the same product.
+void timesImpulses(Workspace& ws, const Eigen::VectorXd& P) {
+  if (ws.wpFresh && ws.wpImpulses.size() == P.size() && ws.wpImpulses == P) return;
+  const Eigen::Index n = ws.W.rows(), m = ws.W.cols();
+  ws.WP.setZero(n);
   for (Eigen::Index s = 0; s < m; ++s) {
     const double p = P[s];
-    const double* w = W.data() + s * n;
-    for (Eigen::Index d = 0; d < n; ++d) out[d] += w[d] * p;
+    const double* w = ws.W.data() + s * n;
+    for (Eigen::Index d = 0; d < n; ++d) ws.WP[d] += w[d] * p;
   }
+  ws.wpImpulses = P;
+  ws.wpFresh = true;
 }
 
 // The velocity Box2D moves dof k with when it ends the step at v1: v1, or (v0 + v1) / 2 under the
@@ -805,7 +812,7 @@ Vec3 movedWith(const Workspace& ws, size_t k, const Vec3& v1) {
 // end-of-step length error phi1 and its linearisation J1 W.
 void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
   const double h = in.h;
-  timesImpulses(ws.W, ws.P, ws.WP);
+  timesImpulses(ws, ws.P);
   ws.v1 = ws.vStar - ws.WP;
   for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
     const BodyState& s = in.bodies[ws.dofs.body[k]];
@@ -971,7 +978,7 @@ bool solveLinearised(Workspace& ws, const CableSolveInput& in, std::span<const C
   const double h = in.h;
   solveStartOfStep(ws, in, cables, redundant);
   const LcpSolution& sol = ws.lcpSolution;
-  timesImpulses(ws.W, sol.x, ws.WP);
+  timesImpulses(ws, sol.x);
   ws.v1 = ws.vStar - ws.WP;
   // The remainder bound measures from the straight-line motion. A jointed body turns off it
   // (stepPose) by h |v| a / 2 or less (a = h omega): by far less than the tolerance too.
@@ -1003,7 +1010,7 @@ bool solveLinearised(Workspace& ws, const CableSolveInput& in, std::span<const C
 // b2_maxTranslation (2 m) or b2_maxRotation (pi / 2) a step, and an answer that needs more (a
 // root of the end-of-step lengths a whole turn of a drum away) is none.
 bool realisable(Workspace& ws, double h) {
-  timesImpulses(ws.W, ws.P, ws.WP);
+  timesImpulses(ws, ws.P);
   for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
     const Vec3 v1 = ws.vStar.segment<3>(3 * k) - ws.WP.segment<3>(3 * k);
     if (!(h * v1.head<2>().norm() <= kMaxStepTranslation && h * std::abs(v1[2]) <= kMaxStepTurn))
@@ -1219,7 +1226,7 @@ bool lockCrossingLimits(Workspace& ws, const CableSolveInput& in) {
   if (std::none_of(ws.jointIndex.begin(), ws.jointIndex.end(),
                    [&](int j) { return in.joints[j].limited; }))
     return false;
-  timesImpulses(ws.W, ws.P, ws.WP);
+  timesImpulses(ws, ws.P);
   ws.vEnd = ws.vStar - ws.WP;
   return ws.limits.lockCrossing(in.joints, ws.jointIndex, in.bodies, ws.dofs.ofBody, ws.vEnd, in.h);
 }
@@ -1234,7 +1241,7 @@ bool pullAlongMidpointPose(Workspace& ws, const CableSolveInput& in,
   const int m = static_cast<int>(ws.rows.size());
   if (static_cast<int>(ws.ahead.size()) != m) ws.ahead.assign(m, 0);
   ws.aheadJacobian.resize(m);
-  timesImpulses(ws.W, ws.P, ws.WP);
+  timesImpulses(ws, ws.P);
   ws.v1 = ws.vStar - ws.WP;
   ws.free.assign(ws.predicted.begin(), ws.predicted.end());
   for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
@@ -1272,7 +1279,7 @@ void applyForces(Workspace& ws, const CableSolveInput& in, std::span<Cable> cabl
     const Cable& c = cables[row.cable];
     ws.warm[row.cable] = {h, c.tension(), c.spanCount()};
   }
-  timesImpulses(ws.W, ws.P, ws.WP);
+  timesImpulses(ws, ws.P);
   // Under the midpoint rule Box2D reaches (v0 + v1) / 2 and the rest comes after its step. A link
   // pivoted on a body that does not move ends where the lengths were solved for, its anchor on
   // the pivot (stepPose), not where Box2D's joint correction puts it, (h omega)^3 or so away (at
