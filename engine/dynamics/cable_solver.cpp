@@ -72,6 +72,11 @@ struct CableSolverWorkspace {
   DofMap dofs;
   std::vector<StepMotion> motions;  // per dof body: how Box2D moves it (step_pose.h)
   std::vector<int> cablesWithRows;  // every cable that pulls on a moving body, in cable order
+  std::vector<int> rowless;         // the other cables not skipped: no tension
+  // What the islands and their rows and dofs were found from (layoutKey): while it stays the
+  // same from one sub-step to the next, so do they, and buildRows restores its cable rows and dofs
+  // from `layouts` (the floors and the step motions depend on the motion: built anew).
+  std::vector<int> layoutKey, lastLayoutKey;
   // One LCP row per cable span (wheels that grip a cable split it, docs/wheels.md); a row over
   // several spans is a cable sliding on capstans between them: its constraint is their summed
   // length and span k pulls with weight k times the row's impulse (the e^(mu theta) ratios).
@@ -87,6 +92,13 @@ struct CableSolverWorkspace {
   };
   std::vector<Row> rows;  // this island's
   std::vector<double> rowWeights;
+  struct IslandLayout {      // an island's cable rows (before floors and merges) and dof bodies
+    std::vector<Row> rows;
+    std::vector<double> rowWeights;
+    std::vector<int> dofBodies;
+    bool kept = false;  // of the present layoutKey
+  };
+  std::vector<IslandLayout> layouts;
   Eigen::VectorXd invM;          // M^-1 diagonal over the dofs
   Eigen::VectorXd vStar, vFree;  // predicted velocities (stage 2)
   Eigen::MatrixXd W;             // M'^-1 J^T, then projected onto the joints (n x m)
@@ -238,11 +250,35 @@ void forMovingBodies(const Cable& cable, const CableSolveInput& in, F&& f) {
 // body, and moving bodies jointed together, are one island. Islands share no moving body, so
 // each is solved on its own (a kinematic or static body in several islands moves as prescribed
 // whatever the tensions). Returns the number of islands.
+// What findIslands and buildRows read (but for the floors and the step motions): per cable
+// whether it is skipped, the moving bodies it pulls on and its spans, and which bodies move.
+void layoutKey(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  std::vector<int>& key = ws.layoutKey;
+  key.clear();
+  for (size_t i = 0; i < cables.size(); ++i) {
+    if (!in.skip.empty() && in.skip[i]) {
+      key.push_back(-2);
+      continue;
+    }
+    forMovingBodies(cables[i], in, [&](int body) { key.push_back(body); });
+    key.push_back(-3 - cables[i].spanCount());
+  }
+  for (const BodyState& b : in.bodies) key.push_back(moves(b));
+}
+
 int findIslands(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables) {
+  layoutKey(ws, in, cables);
+  if (ws.layoutKey == ws.lastLayoutKey) {
+    for (int i : ws.rowless) cables[i].setTension(0);
+    return ws.islands;
+  }
+  std::swap(ws.layoutKey, ws.lastLayoutKey);
+  for (Workspace::IslandLayout& layout : ws.layouts) layout.kept = false;
   const int bodies = static_cast<int>(in.bodies.size());
   ws.parent.resize(bodies);
   for (int b = 0; b < bodies; ++b) ws.parent[b] = b;
   ws.cablesWithRows.clear();
+  ws.rowless.clear();
   for (size_t i = 0; i < cables.size(); ++i) {
     if (!in.skip.empty() && in.skip[i]) continue;
     int first = -1;
@@ -250,11 +286,9 @@ int findIslands(Workspace& ws, const CableSolveInput& in, std::span<Cable> cable
       if (first >= 0) unite(ws.parent, first, body);
       first = body;
     });
-    if (first >= 0)
-      ws.cablesWithRows.push_back(static_cast<int>(i));
-    else
-      cables[i].setTension(0);
+    (first >= 0 ? ws.cablesWithRows : ws.rowless).push_back(static_cast<int>(i));
   }
+  for (int i : ws.rowless) cables[i].setTension(0);
   for (const JointFrame& j : in.joints)
     if (j.bodyA >= 0 && j.bodyB >= 0 && moves(in.bodies[j.bodyA]) && moves(in.bodies[j.bodyB]))
       unite(ws.parent, j.bodyA, j.bodyB);
@@ -305,19 +339,28 @@ bool mayReachFloor(const CableSolveInput& in, const WrapPoint& p, const WrapPoin
 void buildRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
                int island) {
   ws.dofs.clear();
-  ws.rows.clear();
-  ws.rowWeights.clear();
   ws.jointIndex = ws.islandJoints[island];
-  for (int cable : ws.islandRows[island]) {
-    forMovingBodies(cables[cable], in, [&](int body) { ws.dofs.add(body); });
-    for (int k = 0; k < cables[cable].spanCount(); ++k) {
-      ws.rows.push_back({cable, k, k, ws.rowWeights.size()});
-      ws.rowWeights.push_back(1.0);
+  if (static_cast<int>(ws.layouts.size()) <= island) ws.layouts.resize(island + 1);
+  Workspace::IslandLayout& layout = ws.layouts[island];
+  if (layout.kept) {
+    for (int body : layout.dofBodies) ws.dofs.add(body);
+    ws.rows = layout.rows;
+    ws.rowWeights = layout.rowWeights;
+  } else {
+    ws.rows.clear();
+    ws.rowWeights.clear();
+    for (int cable : ws.islandRows[island]) {
+      forMovingBodies(cables[cable], in, [&](int body) { ws.dofs.add(body); });
+      for (int k = 0; k < cables[cable].spanCount(); ++k) {
+        ws.rows.push_back({cable, k, k, ws.rowWeights.size()});
+        ws.rowWeights.push_back(1.0);
+      }
     }
+    for (size_t k = 0; k < ws.dofs.body.size(); ++k)
+      for (int other : in.jointNeighbours[ws.dofs.body[k]])
+        if (moves(in.bodies[other])) ws.dofs.add(other);
+    layout = {ws.rows, ws.rowWeights, ws.dofs.body, true};
   }
-  for (size_t k = 0; k < ws.dofs.body.size(); ++k)
-    for (int other : in.jointNeighbours[ws.dofs.body[k]])
-      if (moves(in.bodies[other])) ws.dofs.add(other);
   ws.motions.resize(ws.dofs.body.size());
   stepMotions(in.joints, ws.jointIndex, in.bodies, ws.dofs.ofBody, ws.motions);
   // Floors (floors.h): a short segment on a moving body gets a row of its own after the cables.
