@@ -631,7 +631,7 @@ bool redirectBlockedRows(Workspace& ws, const CableSolveInput& in, std::span<con
       if (i > 0 && i + 1 < span.size() && nearlyStraight(cable, span, directions, i))
         joining = static_cast<int>(i);
     }
-    const double authority = rowSay(ws, in.bodies, cables, r);
+    const double authority = ws.JW0(r, r);  // the row's say (rowSay: no row pulls ahead yet)
     const bool blocked = authority <= 1e-9 * reach;
     if (joining < 0 && !blocked) continue;
     if (!moved) {
@@ -687,6 +687,33 @@ bool redirectBlockedRows(Workspace& ws, const CableSolveInput& in, std::span<con
     any = true;
   }
   return any;
+}
+
+// J W for a row from a sparse Jacobian (a cable touches a few of the n dofs).
+void addJacobianTimesW(const Workspace& ws, const std::vector<BodyJacobian>& jacobian,
+                       Eigen::Ref<Eigen::RowVectorXd, 0, Eigen::InnerStride<>> out) {
+  const Eigen::Index n = ws.W.rows(), m = ws.W.cols();
+  for (const auto& e : jacobian)
+    if (const int d = ws.dofs.ofBody[e.body]; d >= 0)
+      for (Eigen::Index s = 0; s < m; ++s) {
+        const double* w = ws.W.data() + s * n + d;
+        out[s] += e.d[0] * w[0] + e.d[1] * w[1] + e.d[2] * w[2];
+      }
+}
+
+// Stages 2-4, then J0 W from the Jacobians W pulls along (positive semidefinite): each row's say
+// (stage 4b), the start-of-step linearisation (stage 6) and the guard on Newton's.
+void prepareRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
+                 std::span<const Vec3> loads) {
+  predictVelocities(ws, in, cables, loads);
+  inverseMass(ws, in.h, cables);
+  projectOntoJoints(ws, in);
+  const int m = static_cast<int>(ws.rows.size());
+  ws.JW0.setZero(m, m);
+  for (int r = 0; r < m; ++r)
+    forForceJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
+      addJacobianTimesW(ws, jacobian, ws.JW0.row(r));
+    });
 }
 
 // 5. Position-level targets. Rigid: length at the end of the step = now (the error below the
@@ -815,18 +842,6 @@ void midpointSpringRows(Workspace& ws, std::span<const Cable> cables, double h) 
     ws.compliance[r] = 2 / (h * h * s);
     ws.pull[r] = 2 * g / s;
   }
-}
-
-// J W for a row from a sparse Jacobian (a cable touches a few of the n dofs).
-void addJacobianTimesW(const Workspace& ws, const std::vector<BodyJacobian>& jacobian,
-                       Eigen::Ref<Eigen::RowVectorXd, 0, Eigen::InnerStride<>> out) {
-  const Eigen::Index n = ws.W.rows(), m = ws.W.cols();
-  for (const auto& e : jacobian)
-    if (const int d = ws.dofs.ofBody[e.body]; d >= 0)
-      for (Eigen::Index s = 0; s < m; ++s) {
-        const double* w = ws.W.data() + s * n + d;
-        out[s] += e.d[0] * w[0] + e.d[1] * w[1] + e.d[2] * w[2];
-      }
 }
 
 // ws.WP = W P, column by column: W has a few columns (one per row), and Eigen's general product
@@ -1070,12 +1085,6 @@ void solveLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cabl
   const int m = static_cast<int>(ws.rows.size());
   ws.phi1.resize(m);
   ws.JW.resize(m, m);
-  // J0 W from the Jacobians W pulls along (positive semidefinite), for the guard below.
-  ws.JW0.setZero(m, m);
-  for (int r = 0; r < m; ++r)
-    forForceJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
-      addJacobianTimesW(ws, jacobian, ws.JW0.row(r));
-    });
   // Redundant cables (J0 W singular): J1 W is then singular too, but not symmetric, and its
   // symmetric part indefinite, so the minimum-norm solve (tension_solver.h) would be ill posed.
   // Such an island iterates on J0 W instead (a quasi-Newton step: it still converges to the
@@ -1402,21 +1411,14 @@ void CableSolver::solve(const CableSolveInput& in, std::span<Cable> cables, std:
     ws.ahead.clear();
     ws.limits.free(ws.jointIndex, static_cast<int>(in.joints.size()));
     for (bool again = true; again;) {
-      predictVelocities(ws, in, cables, loads);
-      inverseMass(ws, in.h, cables);
-      projectOntoJoints(ws, in);
-      if (ws.ahead.empty() && redirectBlockedRows(ws, in, cables)) {
-        predictVelocities(ws, in, cables, loads);
-        inverseMass(ws, in.h, cables);
-        projectOntoJoints(ws, in);
-      }
+      prepareRows(ws, in, cables, loads);
+      if (ws.ahead.empty() && redirectBlockedRows(ws, in, cables))
+        prepareRows(ws, in, cables, loads);
       ws.midpoint = takesMidpointRule(ws, in, cables);
       lengthTargets(ws, in.h, in.share, cables);
       newtonOnLengths(ws, in, cables, stats);
       if (ws.midpoint && pullAlongMidpointPose(ws, in, cables)) {
-        predictVelocities(ws, in, cables, loads);
-        inverseMass(ws, in.h, cables);
-        projectOntoJoints(ws, in);
+        prepareRows(ws, in, cables, loads);
         lengthTargets(ws, in.h, in.share, cables);
         newtonOnLengths(ws, in, cables, stats);
       }
