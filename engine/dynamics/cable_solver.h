@@ -8,7 +8,9 @@
 // not with the square of the world's. Per island, in named stages:
 //   1. buildRows            one row per cable span that pulls on a moving body; the dofs
 //                           it moves (wheels that grip a cable split it in spans); a floor
-//                           row per short segment that may close up (floors.h)
+//                           row per short segment that may close up (floors.h). The islands,
+//                           rows and dofs are kept from the last sub-step while the cables pull
+//                           on the same moving bodies (layoutKey); the floors are found anew
 //   2. predictVelocities    v* (gravity and loads, no cables) and J^T at the start of the step
 //   3. inverseMass          W = M'^-1 J^T, M' with the taut cables' geometric stiffness
 //   4. projectOntoJoints    W and v* restricted to what Box2D's joints allow: in the joints'
