@@ -47,10 +47,16 @@ inline void stepPose(const BodyState& s, const Vec3& v, double h, const StepMoti
       return;
     case StepMotion::Kind::Jointed: {
       // x1 - x0 = (R(a) - I) (x0 - c), c = x0 + perp(v) / omega the point at rest.
-      auto sinc = [](double x) { return std::abs(x) < 1e-4 ? 1 - x * x / 6 : std::sin(x) / x; };
-      const double along = h * sinc(a), across = -0.5 * h * a * sinc(0.5 * a) * sinc(0.5 * a);
+      // One cos and sin of the turn serve the turned velocity and sin(a) / a alike (Newton asks
+      // for this pose at every iteration).
+      double cosA, sinA;
+      cosSin(a, cosA, sinA);
+      auto sinc = [](double x, double sinX) { return std::abs(x) < 1e-4 ? 1 - x * x / 6 : sinX / x; };
+      const double halfA = 0.5 * a;
+      const double half = sinc(halfA, std::abs(halfA) < 1e-4 ? 0.0 : std::sin(halfA));
+      const double along = h * sinc(a, sinA), across = -0.5 * h * a * half * half;
       p.position = s.position + Vec2(along * v[0] + across * v[1], along * v[1] - across * v[0]);
-      p.velocity = rotate(v.head<2>(), a);
+      p.velocity = rotate(v.head<2>(), cosA, sinA);
       return;
     }
   }
