@@ -76,9 +76,10 @@ class JointTree {
     Vec3 root;  // the root's prescribed motion at this body (v + omega perp(x - x_root), omega)
   };
   // Entries of S: the motion of a link's body (its first dof `dof`) per unit rate of one of its
-  // tree's coordinates, whose joint is that of link `of`; ms = M s, the link's mass times s.
+  // tree's coordinates, that of `joint` (an ancestor's or its own); ms = M s, the link's mass
+  // times s.
   struct Entry {
-    int coordinate, of, dof;
+    int coordinate, joint, dof;
     Vec3 s, ms;
   };
   // Where S^T M S gets its terms: entry `at` (column-major, lower triangle) of the tree's k x k
