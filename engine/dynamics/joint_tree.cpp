@@ -246,7 +246,7 @@ void JointTree::projectColumns(const Tree& tree, const JointLimits* limits) cons
   }
   // A locked joint's rate by a penalty on its coordinate: held to 1e-12 of the locked rate, W's
   // columns (its rhs untouched) leave it still.
-  if (limits)
+  if (limits && limits->anyLocked())
     for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l) {
       const Link& link = links_[l];
       const std::optional<double> rate = limits->lock(link.joint);
