@@ -367,9 +367,9 @@ void Box2DBridge::jointFrames(std::span<const JointDef> defs,
     f.limited = defs[j].enableLimit && f.kind != JointDef::Kind::Weld;
     if (f.kind == JointDef::Kind::Prismatic) f.axis = prismaticAxis(static_cast<int>(j));
     if (f.limited) {
-      // (its rate would cost more)
+      // The coordinate only: its rate would cost more.
       f.value = f.kind == JointDef::Kind::Prismatic ? prismaticTranslation(joint, anchors)
-                                                     : impl_->jointValue(static_cast<int>(j));
+                                                    : impl_->jointValue(static_cast<int>(j));
       f.lower = defs[j].lower;
       f.upper = defs[j].upper;
     }

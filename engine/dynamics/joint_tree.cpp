@@ -109,8 +109,8 @@ bool JointTree::findTrees(std::span<const JointFrame> joints, std::span<const in
     for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l) {
       for (int a = l; a >= 0; a = links_[a].parent)
         if (links_[a].coordinate >= 0)
-          entries_.push_back({links_[a].coordinate, links_[a].joint, links_[l].dof, Vec3::Zero(),
-                              Vec3::Zero()});
+          entries_.push_back(
+              {links_[a].coordinate, links_[a].joint, links_[l].dof, Vec3::Zero(), Vec3::Zero()});
       const int end = static_cast<int>(entries_.size());
       for (int e = entryStart_[l]; e < end; ++e)
         for (int f = e; f < end; ++f) {

@@ -97,7 +97,7 @@ class JointTree {
   std::vector<int> entryStart_;
   std::vector<MassTerm> massTerms_;
   std::vector<Tree> trees_;
-  bool found_ = false;                          // whether the joints last seen form trees
+  bool found_ = false;                    // whether the joints last seen form trees
   std::vector<std::array<int, 3>> seen_;  // those joints (index, both sides' dofs)
   // findTrees' scratch: which joints are whose, per dof body.
   std::vector<int> linkOfBody_, jointsOfBody_, jointStart_;
