@@ -169,17 +169,17 @@ void JointTree::project(Eigen::MatrixXd& W, Eigen::VectorXd& vStar,
     if (link.rootBody >= 0) vStar.segment<3>(link.dof) -= link.root;
   for (const Tree& tree : trees_) {
     // The columns to project: the cables that pull on this tree (a finger's own membrane, not
-    // the other finger's), then v*.
+    // the other finger's), each from its first link not at 0, then v*.
     columns_.clear();
     for (int c = 0; c < m; ++c)
       for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l) {
         double* x = W.data() + c * n + links_[l].dof;
         if (x[0] != 0 || x[1] != 0 || x[2] != 0) {
-          columns_.push_back(W.data() + c * n);
+          columns_.push_back({W.data() + c * n, entryStart_[l] - tree.firstEntry});
           break;
         }
       }
-    columns_.push_back(vStar.data());
+    columns_.push_back({vStar.data(), 0});
     projectColumns(tree, &limits);
   }
   for (const Link& link : links_)
@@ -197,7 +197,7 @@ void JointTree::reproject(Eigen::VectorXd& v) const {
       return twice;
     };
     const double before = energy();
-    columns_.assign(1, v.data());
+    columns_.assign(1, {v.data(), 0});
     projectColumns(tree);
     const double after = energy();
     // The projection takes out (h omega)^2 / 2 or so of the energy; more is an impact or joints
@@ -236,9 +236,10 @@ void JointTree::projectColumns(const Tree& tree, const JointLimits* limits) cons
     mass[term.at] += ms[0] * s[0] + ms[1] * s[1] + ms[2] * s[2];
   }
   for (int i = 0; i < cols; ++i) {
-    const double* column = columns_[i];
+    const double* column = columns_[i].values;
     double* columnRhs = rhs + i * k;
-    for (int e = 0; e < tree.entries; ++e) {
+    // (The links before `from` add 0 products: sums that start at +0 stay as they are.)
+    for (int e = columns_[i].from; e < tree.entries; ++e) {
       const double* ms = entries[e].ms.data();
       const double* x = column + entries[e].dof;
       columnRhs[entries[e].coordinate] += ms[0] * x[0] + ms[1] * x[1] + ms[2] * x[2];
@@ -271,7 +272,7 @@ void JointTree::projectColumns(const Tree& tree, const JointLimits* limits) cons
         const double q = qdot[entries_[e].coordinate];
         x0 += s[0] * q, x1 += s[1] * q, x2 += s[2] * q;
       }
-      double* x = columns_[i] + links_[l].dof;
+      double* x = columns_[i].values + links_[l].dof;
       x[0] = x0, x[1] = x1, x[2] = x2;
     }
   }

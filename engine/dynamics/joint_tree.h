@@ -105,7 +105,12 @@ class JointTree {
   // Project's scratch: one tree's S^T M S and right-hand sides.
   mutable SmallLdlt ldlt_;
   mutable std::vector<double> mass_, rhs_;
-  mutable std::vector<double*> columns_;  // [W | v*]'s columns that a tree's projection takes
+  // [W | v*]'s columns that a tree's projection takes, each 0 on the tree's entries before `from`.
+  struct Column {
+    double* values;
+    int from;
+  };
+  mutable std::vector<Column> columns_;
 };
 
 }  // namespace cablelab
