@@ -273,24 +273,65 @@ void Box2DBridge::markTouching(std::vector<char>& touching) const {
   }
 }
 
+namespace {
+
+// Box2D's GetAnchorA and GetAnchorB, GetJointAngle and GetJointTranslation written out with its
+// inline accessors: the same float arithmetic without a call into the library (virtual, for the
+// anchors) each, and a prismatic joint's slide from the anchors already read. jointFrames runs
+// twice a sub-step over every joint.
+
+// A joint's anchor points on its bodies A and B, in the world.
+template <class Joint>
+std::array<b2Vec2, 2> worldAnchors(b2Joint* j) {
+  const auto* joint = static_cast<const Joint*>(j);
+  return {j->GetBodyA()->GetWorldPoint(joint->GetLocalAnchorA()),
+          j->GetBodyB()->GetWorldPoint(joint->GetLocalAnchorB())};
+}
+
+std::array<b2Vec2, 2> worldAnchors(b2Joint* j, JointDef::Kind kind) {
+  switch (kind) {
+    case JointDef::Kind::Revolute:
+      return worldAnchors<b2RevoluteJoint>(j);
+    case JointDef::Kind::Prismatic:
+      return worldAnchors<b2PrismaticJoint>(j);
+    case JointDef::Kind::Weld:
+      return worldAnchors<b2WeldJoint>(j);
+  }
+  return {j->GetAnchorA(), j->GetAnchorB()};
+}
+
+// A revolute joint's turn, body B's relative to body A's (Box2D's float angles).
+float revoluteAngle(b2Joint* j) {
+  return j->GetBodyB()->GetAngle() - j->GetBodyA()->GetAngle() -
+         static_cast<const b2RevoluteJoint*>(j)->GetReferenceAngle();
+}
+
+// A prismatic joint's slide along its axis, from its world anchors.
+float prismaticTranslation(b2Joint* j, const std::array<b2Vec2, 2>& anchors) {
+  const b2Vec2& axis = static_cast<const b2PrismaticJoint*>(j)->GetLocalAxisA();
+  return b2Dot(anchors[1] - anchors[0], j->GetBodyA()->GetWorldVector(axis));
+}
+
+}  // namespace
+
 double Box2DBridge::Impl::jointValue(int joint) const {
-  const b2Joint* j = joints[joint];
+  b2Joint* j = joints[joint];
   auto turnsOf = [&](int body) { return body >= 0 ? turns[body] : 0.0; };
   if (kinds[joint] == JointDef::Kind::Revolute) {
     const auto [a, b] = jointBodies[joint];
-    return static_cast<const b2RevoluteJoint*>(j)->GetJointAngle() + turnsOf(b) - turnsOf(a);
+    return revoluteAngle(j) + turnsOf(b) - turnsOf(a);
   }
   if (kinds[joint] == JointDef::Kind::Prismatic)
-    return static_cast<const b2PrismaticJoint*>(j)->GetJointTranslation();
+    return prismaticTranslation(j, worldAnchors<b2PrismaticJoint>(j));
   return 0;
 }
 
 JointCoordinate Box2DBridge::jointCoordinate(int joint) const {
-  const b2Joint* j = impl_->joints[joint];
+  b2Joint* j = impl_->joints[joint];
   JointCoordinate q;
   q.value = impl_->jointValue(joint);
-  if (impl_->kinds[joint] == JointDef::Kind::Revolute)
-    q.speed = static_cast<const b2RevoluteJoint*>(j)->GetJointSpeed();
+  if (impl_->kinds[joint] == JointDef::Kind::Revolute)  // (GetJointSpeed, written out)
+    q.speed = j->GetBodyB()->GetAngularVelocity() - j->GetBodyA()->GetAngularVelocity();
   else if (impl_->kinds[joint] == JointDef::Kind::Prismatic)
     q.speed = static_cast<const b2PrismaticJoint*>(j)->GetJointSpeed();
   return q;
@@ -319,12 +360,16 @@ void Box2DBridge::jointFrames(std::span<const JointDef> defs,
     f.kind = defs[j].kind;
     f.bodyA = bodies[j][0];
     f.bodyB = bodies[j][1];
-    f.anchor = anchorB(static_cast<int>(j));
-    f.anchorA = anchorA(static_cast<int>(j));
+    b2Joint* joint = impl_->joints[j];
+    const std::array<b2Vec2, 2> anchors = worldAnchors(joint, impl_->kinds[j]);
+    f.anchor = fromB2(anchors[1]);
+    f.anchorA = fromB2(anchors[0]);
     f.limited = defs[j].enableLimit && f.kind != JointDef::Kind::Weld;
     if (f.kind == JointDef::Kind::Prismatic) f.axis = prismaticAxis(static_cast<int>(j));
     if (f.limited) {
-      f.value = impl_->jointValue(static_cast<int>(j));  // (its rate would cost more)
+      // The coordinate only: its rate would cost more.
+      f.value = f.kind == JointDef::Kind::Prismatic ? prismaticTranslation(joint, anchors)
+                                                    : impl_->jointValue(static_cast<int>(j));
       f.lower = defs[j].lower;
       f.upper = defs[j].upper;
     }

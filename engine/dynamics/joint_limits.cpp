@@ -10,11 +10,15 @@ namespace cablelab {
 void JointLimits::free(std::span<const int> island, int jointCount) {
   if (static_cast<int>(locked_.size()) < jointCount)
     locked_.resize(jointCount, 0), rate_.resize(jointCount, 0.0);
-  for (int j : island) locked_[j] = 0;
+  for (int j : island) {
+    lockedCount_ -= locked_[j];
+    locked_[j] = 0;
+  }
 }
 
 void JointLimits::lockAt(int j, double rate) {
   if (j >= static_cast<int>(locked_.size())) locked_.resize(j + 1, 0), rate_.resize(j + 1, 0.0);
+  lockedCount_ += !locked_[j];
   locked_[j] = 1;
   rate_[j] = rate;
 }

@@ -33,6 +33,8 @@ class JointLimits {
   }
   /// Holds joint j's coordinate at `rate` (free() to release).
   void lockAt(int j, double rate);
+  /// Whether any joint is held (most sub-steps none: the projections then ask no joint).
+  bool anyLocked() const { return lockedCount_ > 0; }
 
   /// Locks each limited, free joint of `island` whose rate at the end-of-step velocities `v1`
   /// (the dofs as `dofOfBody` numbers them; other bodies at their own velocity) crosses its
@@ -44,6 +46,7 @@ class JointLimits {
  private:
   std::vector<char> locked_;
   std::vector<double> rate_;
+  int lockedCount_ = 0;  // how many of locked_ are set
 };
 
 }  // namespace cablelab

@@ -59,41 +59,15 @@ void solveLdlt(const double* l, int runtimeN, const double* dInv, double* x, int
   }
 }
 
-// Calls f.template operator()<N>() with the block size as a constant up to kFixedBlock, 0 beyond.
-template <class F>
-void withBlockSize(int n, F&& f) {
-  static_assert(SmallLdlt::kFixedBlock == 8);
-  switch (n) {
-    case 1:
-      return f.template operator()<1>();
-    case 2:
-      return f.template operator()<2>();
-    case 3:
-      return f.template operator()<3>();
-    case 4:
-      return f.template operator()<4>();
-    case 5:
-      return f.template operator()<5>();
-    case 6:
-      return f.template operator()<6>();
-    case 7:
-      return f.template operator()<7>();
-    case 8:
-      return f.template operator()<8>();
-    default:
-      return f.template operator()<0>();
-  }
-}
-
 }  // namespace
 
 void SmallLdlt::factor(double* a, int n) {
   if (static_cast<int>(d.size()) < n) d.resize(n), dInv.resize(n), work.resize(n);
-  withBlockSize(n, [&]<int kN>() { factorLdlt<kN>(a, n, d.data(), dInv.data(), work.data()); });
+  withFixedSize(n, [&]<int kN>() { factorLdlt<kN>(a, n, d.data(), dInv.data(), work.data()); });
 }
 
 void SmallLdlt::solveInPlace(const double* a, int n, double* x, int cols) const {
-  withBlockSize(n, [&]<int kN>() { solveLdlt<kN>(a, n, dInv.data(), x, cols); });
+  withFixedSize(n, [&]<int kN>() { solveLdlt<kN>(a, n, dInv.data(), x, cols); });
 }
 
 namespace {

@@ -66,6 +66,33 @@ struct SmallLdlt {
   void solveInPlace(const double* a, int n, double* x, int cols) const;
 };
 
+/// Calls f.template operator()<N>() with n as the constant N up to SmallLdlt::kFixedBlock, N = 0
+/// beyond (the loops then run to n).
+template <class F>
+void withFixedSize(int n, F&& f) {
+  static_assert(SmallLdlt::kFixedBlock == 8);
+  switch (n) {
+    case 1:
+      return f.template operator()<1>();
+    case 2:
+      return f.template operator()<2>();
+    case 3:
+      return f.template operator()<3>();
+    case 4:
+      return f.template operator()<4>();
+    case 5:
+      return f.template operator()<5>();
+    case 6:
+      return f.template operator()<6>();
+    case 7:
+      return f.template operator()<7>();
+    case 8:
+      return f.template operator()<8>();
+    default:
+      return f.template operator()<0>();
+  }
+}
+
 /// The projection's buffers, reused across sub-steps (no allocation once the sizes settle).
 class JointProjection {
  public:

@@ -24,10 +24,16 @@ bool JointTree::build(std::span<const JointFrame> joints, std::span<const int> i
                       std::span<const BodyState> bodies, std::span<const int> dofOfBody,
                       const Eigen::VectorXd& invM) {
   auto dofOf = [&](int body) { return body >= 0 ? dofOfBody[body] : -1; };
-  key_.clear();
-  for (int j : island) key_.push_back({j, dofOf(joints[j].bodyA), dofOf(joints[j].bodyB)});
-  if (key_ != seen_) {
-    seen_.swap(key_);
+  auto key = [&](int j) { return std::array{j, dofOf(joints[j].bodyA), dofOf(joints[j].bodyB)}; };
+  // Element by element, without building the new list: std::array's == is a memcmp call.
+  bool same = seen_.size() == island.size();
+  for (size_t p = 0; same && p < island.size(); ++p) {
+    const std::array<int, 3> now = key(island[p]);
+    same = seen_[p][0] == now[0] && seen_[p][1] == now[1] && seen_[p][2] == now[2];
+  }
+  if (!same) {
+    seen_.clear();
+    for (int j : island) seen_.push_back(key(j));
     found_ = findTrees(joints, island, dofOfBody, static_cast<int>(invM.size()) / 3);
   }
   return found_ && measure(joints, bodies, invM);
@@ -92,25 +98,42 @@ bool JointTree::findTrees(std::span<const JointFrame> joints, std::span<const in
     if (!jointUsed_[p] &&
         (dofOf(joints[island[p]].bodyA) >= 0 || dofOf(joints[island[p]].bodyB) >= 0))
       return false;
-  // S's shape: a link's body moves with its own joint's rate and every ancestor's.
+  // S's shape: a link's body moves with its own joint's rate and every ancestor's. S^T M S sums,
+  // per entry, the products of each link's entries with those after them.
   entries_.clear();
   entryStart_.assign(1, 0);
-  for (size_t l = 0; l < links_.size(); ++l) {
-    for (int a = static_cast<int>(l); a >= 0; a = links_[a].parent)
-      if (links_[a].coordinate >= 0) entries_.push_back({links_[a].coordinate, a, Vec3::Zero()});
-    entryStart_.push_back(static_cast<int>(entries_.size()));
+  massTerms_.clear();
+  for (Tree& tree : trees_) {
+    tree.firstEntry = static_cast<int>(entries_.size());
+    tree.firstTerm = static_cast<int>(massTerms_.size());
+    for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l) {
+      for (int a = l; a >= 0; a = links_[a].parent)
+        if (links_[a].coordinate >= 0)
+          entries_.push_back(
+              {links_[a].coordinate, links_[a].joint, links_[l].dof, Vec3::Zero(), Vec3::Zero()});
+      const int end = static_cast<int>(entries_.size());
+      for (int e = entryStart_[l]; e < end; ++e)
+        for (int f = e; f < end; ++f) {
+          const int ce = entries_[e].coordinate, cf = entries_[f].coordinate;
+          massTerms_.push_back({e, f, std::max(ce, cf) + std::min(ce, cf) * tree.coordinates});
+        }
+      entryStart_.push_back(end);
+    }
+    tree.entries = static_cast<int>(entries_.size()) - tree.firstEntry;
+    tree.terms = static_cast<int>(massTerms_.size()) - tree.firstTerm;
   }
   return true;
 }
 
+// Plain scalar code: through Eigen's 3-vectors it cost a tenth more.
 bool JointTree::measure(std::span<const JointFrame> joints, std::span<const BodyState> bodies,
                         const Eigen::VectorXd& invM) {
   for (Link& link : links_) {
-    const Vec3 inverse = invM.segment<3>(link.dof);
-    if (!(inverse.minCoeff() > 0)) return false;  // cannot move one way: no finite M
-    link.mass = inverse.cwiseInverse();
-    link.root.setZero();  // the world's prescribed motion: none
-    if (link.rootBody >= 0) {
+    const double* inverse = invM.data() + link.dof;
+    // Cannot move one way: no finite M.
+    if (!(std::min(std::min(inverse[0], inverse[1]), inverse[2]) > 0)) return false;
+    link.mass = Vec3(1 / inverse[0], 1 / inverse[1], 1 / inverse[2]);
+    if (link.rootBody >= 0) {  // (the world has none: project leaves it out)
       const BodyState& r = bodies[link.rootBody];
       const Vec2 offset = bodies[link.body].position - r.position;
       const Vec2 v = r.velocity + r.angularVelocity * perp(offset);
@@ -118,13 +141,18 @@ bool JointTree::measure(std::span<const JointFrame> joints, std::span<const Body
     }
   }
   for (size_t l = 0; l < links_.size(); ++l) {
-    const Vec2 x = bodies[links_[l].body].position;
+    const Vec2& x = bodies[links_[l].body].position;
+    const double* mass = links_[l].mass.data();
     for (int e = entryStart_[l]; e < entryStart_[l + 1]; ++e) {
-      const JointFrame& joint = joints[links_[entries_[e].of].joint];
-      const Vec2 arm = x - joint.anchor;
-      entries_[e].s = joint.kind == JointDef::Kind::Prismatic
-                          ? Vec3(joint.axis.x(), joint.axis.y(), 0)
-                          : Vec3(-arm.y(), arm.x(), 1);  // (perp(x - anchor), 1)
+      const JointFrame& joint = joints[entries_[e].joint];
+      double* s = entries_[e].s.data();
+      if (joint.kind == JointDef::Kind::Prismatic) {
+        s[0] = joint.axis.x(), s[1] = joint.axis.y(), s[2] = 0;
+      } else {  // (perp(x - anchor), 1)
+        s[0] = -(x.y() - joint.anchor.y()), s[1] = x.x() - joint.anchor.x(), s[2] = 1;
+      }
+      double* ms = entries_[e].ms.data();
+      ms[0] = mass[0] * s[0], ms[1] = mass[1] * s[1], ms[2] = mass[2] * s[2];
     }
   }
   return true;
@@ -134,28 +162,33 @@ void JointTree::project(Eigen::MatrixXd& W, Eigen::VectorXd& vStar,
                         const JointLimits& limits) const {
   const int m = static_cast<int>(W.cols());
   const Eigen::Index n = W.rows();
-  // v* less the roots' motion is projected like W's columns; the motion goes back on after.
-  for (const Link& link : links_) vStar.segment<3>(link.dof) -= link.root;
+  // v* less the roots' motion is projected like W's columns; the motion goes back on after. The
+  // world's is none: x - 0 is x, and x + 0 too for the projection's x (its sums start at +0,
+  // so they are never -0).
+  for (const Link& link : links_)
+    if (link.rootBody >= 0) vStar.segment<3>(link.dof) -= link.root;
   for (const Tree& tree : trees_) {
     // The columns to project: the cables that pull on this tree (a finger's own membrane, not
-    // the other finger's), then v*.
+    // the other finger's), each from its first link not at 0, then v*.
     columns_.clear();
     for (int c = 0; c < m; ++c)
       for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l) {
         double* x = W.data() + c * n + links_[l].dof;
         if (x[0] != 0 || x[1] != 0 || x[2] != 0) {
-          columns_.push_back(W.data() + c * n);
+          columns_.push_back({W.data() + c * n, entryStart_[l] - tree.firstEntry});
           break;
         }
       }
-    columns_.push_back(vStar.data());
+    columns_.push_back({vStar.data(), 0});
     projectColumns(tree, &limits);
   }
-  for (const Link& link : links_) vStar.segment<3>(link.dof) += link.root;
+  for (const Link& link : links_)
+    if (link.rootBody >= 0) vStar.segment<3>(link.dof) += link.root;
 }
 
 void JointTree::reproject(Eigen::VectorXd& v) const {
-  for (const Link& link : links_) v.segment<3>(link.dof) -= link.root;
+  for (const Link& link : links_)  // (as in project)
+    if (link.rootBody >= 0) v.segment<3>(link.dof) -= link.root;
   for (const Tree& tree : trees_) {
     auto energy = [&] {
       double twice = 0;
@@ -164,7 +197,7 @@ void JointTree::reproject(Eigen::VectorXd& v) const {
       return twice;
     };
     const double before = energy();
-    columns_.assign(1, v.data());
+    columns_.assign(1, {v.data(), 0});
     projectColumns(tree);
     const double after = energy();
     // The projection takes out (h omega)^2 / 2 or so of the energy; more is an impact or joints
@@ -175,62 +208,74 @@ void JointTree::reproject(Eigen::VectorXd& v) const {
         v.segment<3>(links_[l].dof) *= scale;
     }
   }
-  for (const Link& link : links_) v.segment<3>(link.dof) += link.root;
+  for (const Link& link : links_)
+    if (link.rootBody >= 0) v.segment<3>(link.dof) += link.root;
 }
 
-// Plain loops over 3: Eigen's 3-vectors cost twice the arithmetic at these sizes.
 void JointTree::projectColumns(const Tree& tree, const JointLimits* limits) const {
-  const int k = tree.coordinates, cols = static_cast<int>(columns_.size());
-  mass_.assign(static_cast<size_t>(k) * k, 0.0);
-  rhs_.assign(static_cast<size_t>(k) * cols, 0.0);
+  withFixedSize(tree.coordinates, [&]<int kN>() { projectColumns<kN>(tree, limits); });
+}
+
+// Plain loops over 3: Eigen's 3-vectors cost twice the arithmetic at these sizes. Each sum adds
+// its terms in link order, then entry order, whichever loop runs outside.
+template <int kN>
+void JointTree::projectColumns(const Tree& tree, const JointLimits* limits) const {
+  const int k = kN > 0 ? kN : tree.coordinates, cols = static_cast<int>(columns_.size());
+  if (static_cast<int>(mass_.size()) < k * k) mass_.resize(static_cast<size_t>(k) * k);
+  if (static_cast<int>(rhs_.size()) < k * cols) rhs_.resize(static_cast<size_t>(k) * cols);
+  double* const mass = mass_.data();
+  double* const rhs = rhs_.data();
+  std::fill_n(mass, k * k, 0.0);
+  std::fill_n(rhs, k * cols, 0.0);
+  const Entry* const entries = entries_.data() + tree.firstEntry;
   // S^T M S (lower triangle) and S^T M [W | v*].
-  for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l) {
-    const Link& link = links_[l];
-    for (int e = entryStart_[l]; e < entryStart_[l + 1]; ++e) {
-      const double* s = entries_[e].s.data();
-      const double ms[3] = {link.mass[0] * s[0], link.mass[1] * s[1], link.mass[2] * s[2]};
-      const int ce = entries_[e].coordinate;
-      for (int f = e; f < entryStart_[l + 1]; ++f) {
-        const double* t = entries_[f].s.data();
-        const int cf = entries_[f].coordinate;
-        mass_[std::max(ce, cf) + std::min(ce, cf) * k] +=
-            ms[0] * t[0] + ms[1] * t[1] + ms[2] * t[2];
-      }
-      for (int i = 0; i < cols; ++i) {
-        const double* x = columns_[i] + link.dof;
-        rhs_[ce + i * k] += ms[0] * x[0] + ms[1] * x[1] + ms[2] * x[2];
-      }
+  for (int t = tree.firstTerm; t < tree.firstTerm + tree.terms; ++t) {
+    const MassTerm& term = massTerms_[t];
+    const double* ms = entries_[term.e].ms.data();
+    const double* s = entries_[term.f].s.data();
+    mass[term.at] += ms[0] * s[0] + ms[1] * s[1] + ms[2] * s[2];
+  }
+  for (int i = 0; i < cols; ++i) {
+    const double* column = columns_[i].values;
+    double* columnRhs = rhs + i * k;
+    // (The links before `from` add 0 products: sums that start at +0 stay as they are.)
+    for (int e = columns_[i].from; e < tree.entries; ++e) {
+      const double* ms = entries[e].ms.data();
+      const double* x = column + entries[e].dof;
+      columnRhs[entries[e].coordinate] += ms[0] * x[0] + ms[1] * x[1] + ms[2] * x[2];
     }
   }
   // A locked joint's rate by a penalty on its coordinate: held to 1e-12 of the locked rate, W's
   // columns (its rhs untouched) leave it still.
-  if (limits)
+  if (limits && limits->anyLocked())
     for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l) {
       const Link& link = links_[l];
       const std::optional<double> rate = limits->lock(link.joint);
       if (link.coordinate < 0 || !rate) continue;
       const int c = link.coordinate;
-      const double penalty = 1e12 * (1 + mass_[c + c * k]);
-      mass_[c + c * k] += penalty;
-      rhs_[c + (cols - 1) * k] += penalty * link.sign * *rate;
+      const double penalty = 1e12 * (1 + mass[c + c * k]);
+      mass[c + c * k] += penalty;
+      rhs[c + (cols - 1) * k] += penalty * link.sign * *rate;
     }
-  for (int i = 0; i < k; ++i) mass_[i + i * k] += 1e-10 * (1 + mass_[i + i * k]);
+  for (int i = 0; i < k; ++i) mass[i + i * k] += 1e-10 * (1 + mass[i + i * k]);
   if (k > 0) {
-    ldlt_.factor(mass_.data(), k);
-    ldlt_.solveInPlace(mass_.data(), k, rhs_.data(), cols);
+    ldlt_.factor(mass, k);
+    ldlt_.solveInPlace(mass, k, rhs, cols);
   }
   // [W | v*] <- S qdot (a column left out stays 0 on the tree).
-  for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l)
-    for (int i = 0; i < cols; ++i) {
+  for (int i = 0; i < cols; ++i) {
+    const double* qdot = rhs + i * k;
+    for (int l = tree.firstLink; l < tree.firstLink + tree.links; ++l) {
       double x0 = 0, x1 = 0, x2 = 0;
       for (int e = entryStart_[l]; e < entryStart_[l + 1]; ++e) {
         const double* s = entries_[e].s.data();
-        const double q = rhs_[entries_[e].coordinate + i * k];
+        const double q = qdot[entries_[e].coordinate];
         x0 += s[0] * q, x1 += s[1] * q, x2 += s[2] * q;
       }
-      double* x = columns_[i] + links_[l].dof;
+      double* x = columns_[i].values + links_[l].dof;
       x[0] = x0, x[1] = x1, x[2] = x2;
     }
+  }
 }
 
 }  // namespace cablelab

@@ -60,6 +60,9 @@ class JointTree {
   // One tree's projection of the columns_ (less the roots' motion); with `limits`, the last
   // column is v*, which takes the locked joints' rates.
   void projectColumns(const Tree& tree, const JointLimits* limits = nullptr) const;
+  // The same with the tree's coordinates as the constant kN (0: any number, withFixedSize).
+  template <int kN>
+  void projectColumns(const Tree& tree, const JointLimits* limits) const;
 
   // A jointed dof body, listed parents first within its tree.
   struct Link {
@@ -72,28 +75,42 @@ class JointTree {
     Vec3 mass;       // M's diagonal (m, m, I)
     Vec3 root;  // the root's prescribed motion at this body (v + omega perp(x - x_root), omega)
   };
-  // Entries of S: the motion of a link's body per unit rate of one of its tree's coordinates,
-  // whose joint is that of link `of`.
+  // Entries of S: the motion of a link's body (its first dof `dof`) per unit rate of one of its
+  // tree's coordinates, that of `joint` (an ancestor's or its own); ms = M s, the link's mass
+  // times s.
   struct Entry {
-    int coordinate, of;
-    Vec3 s;
+    int coordinate, joint, dof;
+    Vec3 s, ms;
   };
+  // Where S^T M S gets its terms: entry `at` (column-major, lower triangle) of the tree's k x k
+  // array adds entries_[e].ms . entries_[f].s (e and f on one link), in the order of the sums.
+  struct MassTerm {
+    int e, f, at;
+  };
+  // A tree's links, entries and mass terms: links_[firstLink, firstLink + links) and so on.
   struct Tree {
     int firstLink, links, coordinates;
+    int firstEntry = 0, entries = 0, firstTerm = 0, terms = 0;
   };
   std::vector<Link> links_;
   std::vector<Entry> entries_;  // link l's are entries_[entryStart_[l], entryStart_[l + 1])
   std::vector<int> entryStart_;
+  std::vector<MassTerm> massTerms_;
   std::vector<Tree> trees_;
-  bool found_ = false;                          // whether the joints last seen form trees
-  std::vector<std::array<int, 3>> seen_, key_;  // those joints (index, both sides' dofs), now's
+  bool found_ = false;                    // whether the joints last seen form trees
+  std::vector<std::array<int, 3>> seen_;  // those joints (index, both sides' dofs)
   // findTrees' scratch: which joints are whose, per dof body.
   std::vector<int> linkOfBody_, jointsOfBody_, jointStart_;
   std::vector<char> jointUsed_;
   // Project's scratch: one tree's S^T M S and right-hand sides.
   mutable SmallLdlt ldlt_;
   mutable std::vector<double> mass_, rhs_;
-  mutable std::vector<double*> columns_;  // [W | v*]'s columns that a tree's projection takes
+  // [W | v*]'s columns that a tree's projection takes, each 0 on the tree's entries before `from`.
+  struct Column {
+    double* values;
+    int from;
+  };
+  mutable std::vector<Column> columns_;
 };
 
 }  // namespace cablelab
