@@ -443,8 +443,10 @@ void Cable::reportLengthJump(std::span<const BodyState> bodies,
 void Cable::update(std::span<const BodyState> select, std::span<const BodyState> bodies,
                    std::vector<std::string>* warnings) {
   if (skipping_ && skipValid_ && keepWrapSet(select, bodies)) {
+    // All finishUpdate() would do: a kept set has no zero-length segment (keepWrapSet) and no
+    // spans (skipEligible), and the first update is never a kept one.
     ++skippedSelections_;
-    finishUpdate(bodies, warnings);
+    reportedZeroLength_ = false;
     return;
   }
   placePulleys(select);

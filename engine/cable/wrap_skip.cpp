@@ -43,6 +43,7 @@ void Cable::buildSkipCertificate(std::span<const BodyState> pose) {
   skipValid_ = false;
   skipTests_.clear();
   skipBodies_.clear();
+  skipTurns_.clear();
   if (!skipping_ || !skipEligible()) return;
   auto bodyIndex = [&](int body) {
     for (size_t k = 0; k < skipBodies_.size(); ++k)
@@ -81,6 +82,19 @@ void Cable::buildSkipCertificate(std::span<const BodyState> pose) {
     if (pulleys_[path_[i].pulley].side != WrapSide::Threaded &&
         !add(path_[i - 1], path_[i + 1], path_[i].body, path_[i].local))
       return;
+  // The turns keepWrapSet() keeps: each pulley's, from the segment into its first path point to
+  // the one out of its last (a polygon's run of vertices). A threaded pulley never leaves and its
+  // turn is not kept (leaveRound).
+  for (size_t i = 1; i + 1 < path_.size(); ++i) {
+    const int j = path_[i].pulley;
+    const PulleyState& p = pulleys_[j];
+    size_t k = i;
+    while (p.polygon && k + 2 < path_.size() && path_[k + 1].pulley == j) ++k;
+    if (p.side != WrapSide::Threaded)
+      skipTurns_.push_back({j, static_cast<int>(i) - 1, static_cast<int>(k),
+                            p.side == WrapSide::Right ? -1.0 : 1.0, 0.0});
+    i = k;
+  }
   skipValid_ = true;
 }
 
@@ -119,27 +133,15 @@ bool Cable::keepWrapSet(std::span<const BodyState> select, std::span<const BodyS
   if (!wrapSetCertain(select, 0)) return false;
   cableLengthJacobian(path_, bodies, kin_);
   if (kin_.zeroLengthSegments > 0) return false;
-  skipArcs_.resize(pulleys_.size());
-  for (size_t i = 1; i + 1 < path_.size(); ++i) {
-    const int j = path_[i].pulley;
-    const PulleyState& p = pulleys_[j];
-    size_t k = i;  // a polygon's run of vertices i..k
-    while (p.polygon && k + 2 < path_.size() && path_[k + 1].pulley == j) ++k;
-    if (p.side == WrapSide::Threaded) {  // never leaves; its turn is not kept (leaveRound)
-      skipArcs_[j] = p.arc;
-      i = k;
-      continue;
-    }
-    const Vec2& in = kin_.directions[i - 1];
-    const Vec2& out = kin_.directions[k];
-    const double s = p.side == WrapSide::Right ? -1.0 : 1.0;
-    const double raw = -s * std::atan2(cross(in, out), in.dot(out));
-    skipArcs_[j] = raw + 2 * M_PI * std::round((p.arc - raw) / (2 * M_PI));
-    if (p.polygon ? skipArcs_[j] <= kStraightWrapTurn : skipArcs_[j] < 0) return false;
-    i = k;
+  for (SkipTurn& t : skipTurns_) {
+    const PulleyState& p = pulleys_[t.pulley];
+    const Vec2& in = kin_.directions[t.in];
+    const Vec2& out = kin_.directions[t.out];
+    const double raw = -t.sign * std::atan2(cross(in, out), in.dot(out));
+    t.arc = raw + 2 * M_PI * std::round((p.arc - raw) / (2 * M_PI));
+    if (p.polygon ? t.arc <= kStraightWrapTurn : t.arc < 0) return false;
   }
-  for (const WrapPoint& w : path_)
-    if (w.pulley >= 0) pulleys_[w.pulley].arc = skipArcs_[w.pulley];
+  for (const SkipTurn& t : skipTurns_) pulleys_[t.pulley].arc = t.arc;
   return true;
 }
 
