@@ -407,6 +407,7 @@ bool Cable::updateDrumEnd(WrapPoint& end, bool atStart, std::span<const BodyStat
 void Cable::refresh(std::span<const BodyState> bodies) {
   cableLengthJacobian(path_, bodies, kin_);
   for (Span& s : spans_) cableLengthJacobian(s.path, bodies, s.kin);
+  if (skipValid_) noteKinematicsPoses(bodies);
 }
 
 // The length the path before this update has on `bodies`.
@@ -449,6 +450,7 @@ void Cable::update(std::span<const BodyState> select, std::span<const BodyState>
     reportedZeroLength_ = false;
     return;
   }
+  kinPosesValid_ = false;  // the full selection works kin_ out anew
   placePulleys(select);
   if (path_.empty()) path_ = {start_, end_};
   previousPath_ = path_;

@@ -12,7 +12,9 @@
 // are all engaged points or polygons (no circles, auto sides, dropped pulleys, threaded polygons,
 // drum ends, spans, or neighbouring polygons) take part; the others always take the full path.
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "engine/cable/cable.h"
 #include "engine/cable/wrap.h"
@@ -131,7 +133,10 @@ bool Cable::wrapSetCertain(std::span<const BodyState> pose, double h) const {
 // (the full update runs) when the certificate does not cover `select`, or a turn straightens.
 bool Cable::keepWrapSet(std::span<const BodyState> select, std::span<const BodyState> bodies) {
   if (!wrapSetCertain(select, 0)) return false;
-  cableLengthJacobian(path_, bodies, kin_);
+  if (!kinematicsCurrent(bodies)) {
+    cableLengthJacobian(path_, bodies, kin_);
+    noteKinematicsPoses(bodies);
+  }
   if (kin_.zeroLengthSegments > 0) return false;
   for (SkipTurn& t : skipTurns_) {
     const PulleyState& p = pulleys_[t.pulley];
@@ -143,6 +148,34 @@ bool Cable::keepWrapSet(std::span<const BodyState> select, std::span<const BodyS
   }
   for (const SkipTurn& t : skipTurns_) pulleys_[t.pulley].arc = t.arc;
   return true;
+}
+
+namespace {
+
+// Bit for bit: the same inputs give kinematics the same bits (even -0 against +0).
+bool sameBits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+
+}  // namespace
+
+bool Cable::kinematicsCurrent(std::span<const BodyState> bodies) const {
+  if (!kinPosesValid_) return false;
+  for (const SkipBody& k : kinPoses_) {
+    const BodyState& b = bodies[k.body];
+    if (!sameBits(b.position.x(), k.position.x()) || !sameBits(b.position.y(), k.position.y()) ||
+        !sameBits(b.angle, k.angle))
+      return false;
+  }
+  return true;
+}
+
+void Cable::noteKinematicsPoses(std::span<const BodyState> bodies) {
+  kinPoses_.clear();
+  for (const WrapPoint& w : path_)
+    if (w.body >= 0 && (kinPoses_.empty() || kinPoses_.back().body != w.body))
+      kinPoses_.push_back({w.body, bodies[w.body].position, bodies[w.body].angle});
+  kinPosesValid_ = true;
 }
 
 }  // namespace cablelab
