@@ -405,6 +405,8 @@ bool Cable::updateDrumEnd(WrapPoint& end, bool atStart, std::span<const BodyStat
 }
 
 void Cable::refresh(std::span<const BodyState> bodies) {
+  // kin_ is that of these poses already (a cable that skips has no spans).
+  if (skipValid_ && kinematicsCurrent(bodies)) return;
   cableLengthJacobian(path_, bodies, kin_);
   for (Span& s : spans_) cableLengthJacobian(s.path, bodies, s.kin);
   if (skipValid_) noteKinematicsPoses(bodies);

@@ -375,10 +375,11 @@ class Cable {
   mutable std::vector<Vec2> skipMotion_;  ///< scratch: per skip body, (linear, angular) bound
   std::vector<SkipTurn> skipTurns_;      ///< the pulley turns a kept wrap set updates
   /// The poses of the path's bodies that kin_ was last worked out on while a certificate held
-  /// (refresh, keepWrapSet): a kept wrap set on the same poses, the first sub-step after a
-  /// step's refresh, has its length and J already.
+  /// (refresh, keepWrapSet): a refresh or a kept wrap set on the same poses (the first sub-step
+  /// after a step's refresh, a hand at rest) has its length and J already.
   std::vector<SkipBody> kinPoses_;
   bool kinPosesValid_ = false;
+  bool turnsCurrent_ = false;  ///< keepWrapSet kept the pulley turns of kin_ (its poses')
   bool kinematicsCurrent(std::span<const BodyState> bodies) const;
   void noteKinematicsPoses(std::span<const BodyState> bodies);
   bool skipping_ = true;

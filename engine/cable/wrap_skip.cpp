@@ -133,7 +133,10 @@ bool Cable::wrapSetCertain(std::span<const BodyState> pose, double h) const {
 // (the full update runs) when the certificate does not cover `select`, or a turn straightens.
 bool Cable::keepWrapSet(std::span<const BodyState> select, std::span<const BodyState> bodies) {
   if (!wrapSetCertain(select, 0)) return false;
-  if (!kinematicsCurrent(bodies)) {
+  if (kinematicsCurrent(bodies)) {
+    // Nothing moved since this kept the turns: the same directions give the same turns.
+    if (turnsCurrent_) return true;
+  } else {
     cableLengthJacobian(path_, bodies, kin_);
     noteKinematicsPoses(bodies);
   }
@@ -147,6 +150,7 @@ bool Cable::keepWrapSet(std::span<const BodyState> select, std::span<const BodyS
     if (p.polygon ? t.arc <= kStraightWrapTurn : t.arc < 0) return false;
   }
   for (const SkipTurn& t : skipTurns_) pulleys_[t.pulley].arc = t.arc;
+  turnsCurrent_ = true;
   return true;
 }
 
@@ -176,6 +180,7 @@ void Cable::noteKinematicsPoses(std::span<const BodyState> bodies) {
     if (w.body >= 0 && (kinPoses_.empty() || kinPoses_.back().body != w.body))
       kinPoses_.push_back({w.body, bodies[w.body].position, bodies[w.body].angle});
   kinPosesValid_ = true;
+  turnsCurrent_ = false;
 }
 
 }  // namespace cablelab
