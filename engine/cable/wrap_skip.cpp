@@ -11,6 +11,10 @@
 // selection there keeps the wrap set and the search finds nothing. Only cables whose pulleys
 // are all engaged points or polygons (no circles, auto sides, dropped pulleys, threaded polygons,
 // drum ends, spans, or neighbouring polygons) take part; the others always take the full path.
+// While skipping, a length and J (and the turns kept from them) are not worked out again for
+// poses of the path's bodies that are, bit for bit, those they were worked out on (the step's
+// refresh and the next sub-step see the same poses, and so do sub-steps in which Box2D moved no
+// body of the path, as for most of the hand's run).
 #include <algorithm>
 #include <bit>
 #include <cmath>
