@@ -405,8 +405,11 @@ bool Cable::updateDrumEnd(WrapPoint& end, bool atStart, std::span<const BodyStat
 }
 
 void Cable::refresh(std::span<const BodyState> bodies) {
+  // kin_ is that of these poses already (a cable that skips has no spans).
+  if (skipValid_ && kinematicsCurrent(bodies)) return;
   cableLengthJacobian(path_, bodies, kin_);
   for (Span& s : spans_) cableLengthJacobian(s.path, bodies, s.kin);
+  if (skipValid_) noteKinematicsPoses(bodies);
 }
 
 // The length the path before this update has on `bodies`.
@@ -443,10 +446,13 @@ void Cable::reportLengthJump(std::span<const BodyState> bodies,
 void Cable::update(std::span<const BodyState> select, std::span<const BodyState> bodies,
                    std::vector<std::string>* warnings) {
   if (skipping_ && skipValid_ && keepWrapSet(select, bodies)) {
+    // All finishUpdate() would do: a kept set has no zero-length segment (keepWrapSet) and no
+    // spans (skipEligible), and the first update is never a kept one.
     ++skippedSelections_;
-    finishUpdate(bodies, warnings);
+    reportedZeroLength_ = false;
     return;
   }
+  kinPosesValid_ = false;  // the full selection works kin_ out anew
   placePulleys(select);
   if (path_.empty()) path_ = {start_, end_};
   previousPath_ = path_;

@@ -356,6 +356,12 @@ class Cable {
     double margin;       ///< |distance of p from line a-b| (m)
     double arm, length;  ///< |p - a|, |b - a| (m)
   };
+  struct SkipTurn {
+    int pulley;
+    int in, out;  ///< path segments into and out of the pulley
+    double sign;  ///< -1 for WrapSide::Right, else +1
+    double arc;   ///< scratch: the new turn angle (rad)
+  };
   bool skipEligible() const;
   void buildSkipCertificate(std::span<const BodyState> pose);
   bool wrapSetCertain(std::span<const BodyState> pose, double h) const;
@@ -367,7 +373,15 @@ class Cable {
   std::vector<SkipBody> skipBodies_;
   std::vector<SkipTest> skipTests_;
   mutable std::vector<Vec2> skipMotion_;  ///< scratch: per skip body, (linear, angular) bound
-  std::vector<double> skipArcs_;          ///< scratch: the kept wrap's new turn angles
+  std::vector<SkipTurn> skipTurns_;      ///< the pulley turns a kept wrap set updates
+  /// The poses of the path's bodies that kin_ was last worked out on while a certificate held
+  /// (refresh, keepWrapSet): a refresh or a kept wrap set on the same poses (the first sub-step
+  /// after a step's refresh, a hand at rest) has its length and J already.
+  std::vector<SkipBody> kinPoses_;
+  bool kinPosesValid_ = false;
+  bool turnsCurrent_ = false;  ///< keepWrapSet kept the pulley turns of kin_ (its poses')
+  bool kinematicsCurrent(std::span<const BodyState> bodies) const;
+  void noteKinematicsPoses(std::span<const BodyState> bodies);
   bool skipping_ = true;
   bool skipValid_ = false;
   long skippedSelections_ = 0;

@@ -44,6 +44,8 @@ PointMotion motionOf(std::span<const BodyState> bodies, const WrapPoint& p) {
   return m;
 }
 
+// Adds d to the body's entry. The entries stay sorted by body: a new one moves down to its place
+// (a path touches few bodies, so this costs less than sorting them at the end).
 void addJacobian(std::vector<BodyJacobian>& jac, int body, const Vec3& d) {
   if (body < 0) return;
   for (auto& e : jac)
@@ -52,6 +54,7 @@ void addJacobian(std::vector<BodyJacobian>& jac, int body, const Vec3& d) {
       return;
     }
   jac.push_back({body, d});
+  for (size_t i = jac.size() - 1; i > 0 && jac[i - 1].body > body; --i) std::swap(jac[i - 1], jac[i]);
 }
 
 double bodyAngle(std::span<const BodyState> bodies, int body) {
@@ -121,7 +124,7 @@ void kinematics(std::span<WrapPoint> path, std::span<const BodyState> bodies, Ca
     m1 = motionOf<kRates>(bodies, p1);
     double len;
     Vec2 u;
-    if (p0.radius == 0 && p1.radius == 0) {
+    if (!circles || (p0.radius == 0 && p1.radius == 0)) {
       const Vec2 d = p1.world - p0.world;
       len = d.norm();
       u = len >= kZeroLength ? Vec2(d / len) : Vec2(1, 0);
@@ -146,14 +149,12 @@ void kinematics(std::span<WrapPoint> path, std::span<const BodyState> bodies, Ca
     }
     // Two points on one body keep their distance; two circles with different signed radii on
     // one body do too, but their contributions (each -delta omega) do not cancel term by term.
-    if (p0.body != p1.body || p0.radius != p1.radius) {
+    if (p0.body != p1.body || (circles && p0.radius != p1.radius)) {
       addJacobian(k.jacobian, p1.body, Vec3(u.x(), u.y(), u.dot(perp(m1.offset))));
       addJacobian(k.jacobian, p0.body, -Vec3(u.x(), u.y(), u.dot(perp(m0.offset))));
     }
   }
   if (circles) addArcs(path, bodies, k.directions, k);
-  std::sort(k.jacobian.begin(), k.jacobian.end(),
-            [](const BodyJacobian& a, const BodyJacobian& b) { return a.body < b.body; });
 }
 
 }  // namespace
@@ -294,8 +295,6 @@ double lengthDiscreteGradient(std::span<WrapPoint> path, std::span<const BodySta
     }
     a0 = b0, a1 = b1, ta = tb;
   }
-  std::sort(gradient.begin(), gradient.end(),
-            [](const BodyJacobian& a, const BodyJacobian& b) { return a.body < b.body; });
   return length1;
 }
 

@@ -11,8 +11,14 @@
 // selection there keeps the wrap set and the search finds nothing. Only cables whose pulleys
 // are all engaged points or polygons (no circles, auto sides, dropped pulleys, threaded polygons,
 // drum ends, spans, or neighbouring polygons) take part; the others always take the full path.
+// While skipping, a length and J (and the turns kept from them) are not worked out again for
+// poses of the path's bodies that are, bit for bit, those they were worked out on (the step's
+// refresh and the next sub-step see the same poses, and so do sub-steps in which Box2D moved no
+// body of the path, as for most of the hand's run).
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "engine/cable/cable.h"
 #include "engine/cable/wrap.h"
@@ -43,6 +49,7 @@ void Cable::buildSkipCertificate(std::span<const BodyState> pose) {
   skipValid_ = false;
   skipTests_.clear();
   skipBodies_.clear();
+  skipTurns_.clear();
   if (!skipping_ || !skipEligible()) return;
   auto bodyIndex = [&](int body) {
     for (size_t k = 0; k < skipBodies_.size(); ++k)
@@ -81,6 +88,19 @@ void Cable::buildSkipCertificate(std::span<const BodyState> pose) {
     if (pulleys_[path_[i].pulley].side != WrapSide::Threaded &&
         !add(path_[i - 1], path_[i + 1], path_[i].body, path_[i].local))
       return;
+  // The turns keepWrapSet() keeps: each pulley's, from the segment into its first path point to
+  // the one out of its last (a polygon's run of vertices). A threaded pulley never leaves and its
+  // turn is not kept (leaveRound).
+  for (size_t i = 1; i + 1 < path_.size(); ++i) {
+    const int j = path_[i].pulley;
+    const PulleyState& p = pulleys_[j];
+    size_t k = i;
+    while (p.polygon && k + 2 < path_.size() && path_[k + 1].pulley == j) ++k;
+    if (p.side != WrapSide::Threaded)
+      skipTurns_.push_back({j, static_cast<int>(i) - 1, static_cast<int>(k),
+                            p.side == WrapSide::Right ? -1.0 : 1.0, 0.0});
+    i = k;
+  }
   skipValid_ = true;
 }
 
@@ -117,30 +137,54 @@ bool Cable::wrapSetCertain(std::span<const BodyState> pose, double h) const {
 // (the full update runs) when the certificate does not cover `select`, or a turn straightens.
 bool Cable::keepWrapSet(std::span<const BodyState> select, std::span<const BodyState> bodies) {
   if (!wrapSetCertain(select, 0)) return false;
-  cableLengthJacobian(path_, bodies, kin_);
-  if (kin_.zeroLengthSegments > 0) return false;
-  skipArcs_.resize(pulleys_.size());
-  for (size_t i = 1; i + 1 < path_.size(); ++i) {
-    const int j = path_[i].pulley;
-    const PulleyState& p = pulleys_[j];
-    size_t k = i;  // a polygon's run of vertices i..k
-    while (p.polygon && k + 2 < path_.size() && path_[k + 1].pulley == j) ++k;
-    if (p.side == WrapSide::Threaded) {  // never leaves; its turn is not kept (leaveRound)
-      skipArcs_[j] = p.arc;
-      i = k;
-      continue;
-    }
-    const Vec2& in = kin_.directions[i - 1];
-    const Vec2& out = kin_.directions[k];
-    const double s = p.side == WrapSide::Right ? -1.0 : 1.0;
-    const double raw = -s * std::atan2(cross(in, out), in.dot(out));
-    skipArcs_[j] = raw + 2 * M_PI * std::round((p.arc - raw) / (2 * M_PI));
-    if (p.polygon ? skipArcs_[j] <= kStraightWrapTurn : skipArcs_[j] < 0) return false;
-    i = k;
+  if (kinematicsCurrent(bodies)) {
+    // Nothing moved since this kept the turns: the same directions give the same turns.
+    if (turnsCurrent_) return true;
+  } else {
+    cableLengthJacobian(path_, bodies, kin_);
+    noteKinematicsPoses(bodies);
   }
-  for (const WrapPoint& w : path_)
-    if (w.pulley >= 0) pulleys_[w.pulley].arc = skipArcs_[w.pulley];
+  if (kin_.zeroLengthSegments > 0) return false;
+  for (SkipTurn& t : skipTurns_) {
+    const PulleyState& p = pulleys_[t.pulley];
+    const Vec2& in = kin_.directions[t.in];
+    const Vec2& out = kin_.directions[t.out];
+    const double raw = -t.sign * std::atan2(cross(in, out), in.dot(out));
+    t.arc = raw + 2 * M_PI * std::round((p.arc - raw) / (2 * M_PI));
+    if (p.polygon ? t.arc <= kStraightWrapTurn : t.arc < 0) return false;
+  }
+  for (const SkipTurn& t : skipTurns_) pulleys_[t.pulley].arc = t.arc;
+  turnsCurrent_ = true;
   return true;
+}
+
+namespace {
+
+// Bit for bit: the same inputs give kinematics the same bits (even -0 against +0).
+bool sameBits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+
+}  // namespace
+
+bool Cable::kinematicsCurrent(std::span<const BodyState> bodies) const {
+  if (!kinPosesValid_) return false;
+  for (const SkipBody& k : kinPoses_) {
+    const BodyState& b = bodies[k.body];
+    if (!sameBits(b.position.x(), k.position.x()) || !sameBits(b.position.y(), k.position.y()) ||
+        !sameBits(b.angle, k.angle))
+      return false;
+  }
+  return true;
+}
+
+void Cable::noteKinematicsPoses(std::span<const BodyState> bodies) {
+  kinPoses_.clear();
+  for (const WrapPoint& w : path_)
+    if (w.body >= 0 && (kinPoses_.empty() || kinPoses_.back().body != w.body))
+      kinPoses_.push_back({w.body, bodies[w.body].position, bodies[w.body].angle});
+  kinPosesValid_ = true;
+  turnsCurrent_ = false;
 }
 
 }  // namespace cablelab
