@@ -17,6 +17,7 @@
 #include "engine/dynamics/joint_projection.h"
 #include "engine/dynamics/joint_tree.h"
 #include "engine/dynamics/length_targets.h"
+#include "engine/dynamics/newton_stop.h"
 #include "engine/dynamics/sparse_island.h"
 #include "engine/dynamics/step_pose.h"
 #include "engine/dynamics/tension_solver.h"
@@ -958,7 +959,7 @@ Newton iterateNewton(Workspace& ws, const CableSolveInput& in, std::span<const C
     ws.P = sol.x;
     stats.solverIterations += sol.iterations;
     stats.residual = std::max(stats.residual, sol.residual);
-    if (change <= 1e-9 * (1e-9 + ws.P.lpNorm<Eigen::Infinity>())) return Newton::Converged;
+    if (newtonSettled(change, lastChange, ws.P.lpNorm<Eigen::Infinity>())) return Newton::Converged;
     // Steps that grow, and not by rounding (a converged iterate's change of 1e-8 |P|).
     if (!(change < lastChange) && change > 1e-3 * ws.P.lpNorm<Eigen::Infinity>())
       return Newton::Diverged;

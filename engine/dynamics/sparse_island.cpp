@@ -6,11 +6,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "engine/dynamics/box2d_bridge.h"
 #include "engine/dynamics/floors.h"
 #include "engine/dynamics/geometric_stiffness.h"
 #include "engine/dynamics/length_targets.h"
+#include "engine/dynamics/newton_stop.h"
 #include "engine/dynamics/step_pose.h"
 #include "engine/dynamics/tension_solver.h"
 
@@ -389,6 +391,7 @@ int SparseIsland::solveLcp() {
 bool SparseIsland::iterateNewton(const CableSolveInput& in, std::span<const Cable> cables,
                                  std::span<BodyState> predicted, StepStats& stats) {
   velocitiesAt(P_);
+  double lastChange = std::numeric_limits<double>::infinity();
   for (int iteration = 0; iteration < kSparseNewtonIterations; ++iteration) {
     v1k_ = v1_;
     linearise(in, cables, predicted, stats);
@@ -401,7 +404,8 @@ bool SparseIsland::iterateNewton(const CableSolveInput& in, std::span<const Cabl
       velocitiesAt(P_);  // the LCP ran out of pivots: the clamped impulses' velocities
     else
       v1_ = sol_.head(n_);
-    if (change <= 1e-9 * (1e-9 + P_.lpNorm<Eigen::Infinity>())) return true;
+    if (newtonSettled(change, lastChange, P_.lpNorm<Eigen::Infinity>())) return true;
+    lastChange = change;
   }
   return false;
 }
