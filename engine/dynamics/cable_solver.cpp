@@ -93,7 +93,7 @@ struct CableSolverWorkspace {
   };
   std::vector<Row> rows;  // this island's
   std::vector<double> rowWeights;
-  struct IslandLayout {      // an island's cable rows (before floors and merges) and dof bodies
+  struct IslandLayout {  // an island's cable rows (before floors and merges) and dof bodies
     std::vector<Row> rows;
     std::vector<double> rowWeights;
     std::vector<int> dofBodies;

@@ -51,7 +51,9 @@ inline void stepPose(const BodyState& s, const Vec3& v, double h, const StepMoti
       // for this pose at every iteration).
       double cosA, sinA;
       cosSin(a, cosA, sinA);
-      auto sinc = [](double x, double sinX) { return std::abs(x) < 1e-4 ? 1 - x * x / 6 : sinX / x; };
+      auto sinc = [](double x, double sinX) {
+        return std::abs(x) < 1e-4 ? 1 - x * x / 6 : sinX / x;
+      };
       const double halfA = 0.5 * a;
       const double half = sinc(halfA, std::abs(halfA) < 1e-4 ? 0.0 : std::sin(halfA));
       const double along = h * sinc(a, sinA), across = -0.5 * h * a * half * half;
