@@ -247,10 +247,6 @@ void forMovingBodies(const Cable& cable, const CableSolveInput& in, F&& f) {
         if (body >= 0 && moves(in.bodies[body])) f(body);
 }
 
-// 1a. Islands: a cable that pulls on something that moves gets a row; cables sharing a moving
-// body, and moving bodies jointed together, are one island. Islands share no moving body, so
-// each is solved on its own (a kinematic or static body in several islands moves as prescribed
-// whatever the tensions). Returns the number of islands.
 // What findIslands and buildRows read (but for the floors and the step motions): per cable
 // whether it is skipped, the moving bodies it pulls on and its spans, and which bodies move.
 void layoutKey(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
@@ -267,6 +263,11 @@ void layoutKey(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
   for (const BodyState& b : in.bodies) key.push_back(moves(b));
 }
 
+// 1a. Islands: a cable that pulls on something that moves gets a row; cables sharing a moving
+// body, and moving bodies jointed together, are one island. Islands share no moving body, so
+// each is solved on its own (a kinematic or static body in several islands moves as prescribed
+// whatever the tensions). They are found anew only where the layout key changed. Returns the
+// number of islands.
 int findIslands(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables) {
   layoutKey(ws, in, cables);
   if (ws.layoutKey == ws.lastLayoutKey) {
