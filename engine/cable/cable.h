@@ -373,7 +373,7 @@ class Cable {
   std::vector<SkipBody> skipBodies_;
   std::vector<SkipTest> skipTests_;
   mutable std::vector<Vec2> skipMotion_;  ///< scratch: per skip body, (linear, angular) bound
-  std::vector<SkipTurn> skipTurns_;      ///< the pulley turns a kept wrap set updates
+  std::vector<SkipTurn> skipTurns_;       ///< the pulley turns a kept wrap set updates
   /// The poses of the path's bodies that kin_ was last worked out on while a certificate held
   /// (refresh, keepWrapSet): a refresh or a kept wrap set on the same poses (the first sub-step
   /// after a step's refresh, a hand at rest) has its length and J already.

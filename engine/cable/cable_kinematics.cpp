@@ -54,7 +54,8 @@ void addJacobian(std::vector<BodyJacobian>& jac, int body, const Vec3& d) {
       return;
     }
   jac.push_back({body, d});
-  for (size_t i = jac.size() - 1; i > 0 && jac[i - 1].body > body; --i) std::swap(jac[i - 1], jac[i]);
+  for (size_t i = jac.size() - 1; i > 0 && jac[i - 1].body > body; --i)
+    std::swap(jac[i - 1], jac[i]);
 }
 
 double bodyAngle(std::span<const BodyState> bodies, int body) {
