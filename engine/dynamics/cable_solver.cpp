@@ -1079,6 +1079,62 @@ bool realisable(Workspace& ws, double h) {
   return true;
 }
 
+// Whether row r pulls on a kinematic body that moves (it hauls the row, stage 6d).
+bool pullsOnDriven(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables, int r) {
+  bool driving = false;
+  forStartJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
+    for (const auto& e : jacobian) driving |= driven(in.bodies[e.body]);
+  });
+  return driving;
+}
+
+// Whether the impulses ws.P leave an island of rigid rows (cables and floors) with more kinetic
+// energy than such rows can give it. They only stop motion: the start-of-step LCP projects v*
+// onto what they allow, which takes energy out, and the lengths they put right add what putting
+// them right at their rates takes. A root of the end-of-step lengths that needs more is a pose
+// the bodies cannot reach from here: a box whose rope is tied off its centre, turning as it
+// reached its pulley at 9 m/s, had its tie point swung round to the pulley's far side, and the
+// pair gained 190 J of their 470 in one step. Elastic rows store energy and driven bodies do
+// work: their islands are not asked.
+constexpr double kRigidEnergyAllowance = 0.1;  // of the kinetic energy at v*
+bool addsEnergy(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  const int m = static_cast<int>(ws.rows.size());
+  double correction = 0;
+  for (int r = 0; r < m; ++r) {
+    const Workspace::Row& row = ws.rows[r];
+    if (row.segment < 0 && cables[row.cable].elastic()) return false;
+    if (pullsOnDriven(ws, in, cables, r)) return false;
+    const double rate = (ws.phi0[r] - ws.target[r]) / in.h;
+    if (ws.JW0(r, r) > 0) correction += 0.5 * rate * rate / ws.JW0(r, r);
+  }
+  timesImpulses(ws, ws.P);
+  double before = 0, after = 0;
+  for (Eigen::Index d = 0; d < ws.vStar.size(); ++d)
+    if (ws.invM[d] > 0) {
+      const double v1 = ws.vStar[d] - ws.WP[d];
+      before += 0.5 * ws.vStar[d] * ws.vStar[d] / ws.invM[d];
+      after += 0.5 * v1 * v1 / ws.invM[d];
+    }
+  return after > (1 + kRigidEnergyAllowance) * before + correction;
+}
+
+// Whether the impulses ws.P leave a rigid row (a cable or a floor) more than kUnsettledLength
+// past its target at the end of the step: the start-of-step answer, where Newton found none, is
+// then too far off for the step to keep (World tries a shorter one). An island that a driven
+// body hauls is solved again after this (stage 6d), and pays out what it cannot hold.
+constexpr double kUnsettledLength = 1e-3;  // m
+bool missesLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  const int m = static_cast<int>(ws.rows.size());
+  for (int r = 0; r < m; ++r)
+    if (pullsOnDriven(ws, in, cables, r)) return false;
+  linearise(ws, in, cables);
+  for (int r = 0; r < m; ++r)
+    if ((ws.rows[r].segment >= 0 || !cables[ws.rows[r].cable].elastic()) &&
+        ws.phi1[r] > ws.target[r] + kUnsettledLength)
+      return true;
+  return false;
+}
+
 // 6. Newton on the end-of-step lengths phi1(P), each linearisation an LCP over all cables:
 // tension >= 0, slack cables only shorten. A warm start that does not settle (a tiny mass the
 // last impulses throw far) starts again from P = 0, so it only ever saves iterations.
@@ -1101,7 +1157,7 @@ void solveLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cabl
   if (warmStart(ws, in.h, cables)) {
     StepStats warm;
     if (iterateNewton(ws, in, cables, redundant, warm) == Newton::Converged &&
-        realisable(ws, in.h)) {
+        realisable(ws, in.h) && !addsEnergy(ws, in, cables)) {
       stats.solverIterations += warm.solverIterations;
       stats.residual = std::max(stats.residual, warm.residual);
       stats.linearisationFallbacks += warm.linearisationFallbacks;
@@ -1109,18 +1165,20 @@ void solveLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cabl
     }
     ws.P.setZero(m);
   }
-  if (iterateNewton(ws, in, cables, redundant, stats) != Newton::Diverged && realisable(ws, in.h))
+  if (iterateNewton(ws, in, cables, redundant, stats) != Newton::Diverged && realisable(ws, in.h) &&
+      !addsEnergy(ws, in, cables))
     return;
   // Far from linear over the step: a segment the predicted motion folds past a wrap point, where
   // pulling harder makes the end-of-step length grow (Newton's impulses grew threefold an
   // iteration, to 8e4 N on a hand's band, and the soak's fingers were thrown), or a root a whole
   // turn of a drum away (the built-in winch, stalled with its weight at the drum, found one at
-  // 1e5 N, then 1e7, 1e9, ... a step). The start-of-step linearisation answers instead; the next
-  // sub-step corrects what it leaves.
+  // 1e5 N, then 1e7, 1e9, ... a step), or a root no rigid row can reach (addsEnergy). The
+  // start-of-step linearisation answers instead; the next sub-step corrects what it leaves.
   solveStartOfStep(ws, in, cables, redundant);
   ws.P = ws.lcpSolution.x;
   stats.solverIterations += ws.lcpSolution.iterations;
   ++stats.newtonDivergences;
+  if (missesLengths(ws, in, cables)) ++stats.unsettledIslands;
 }
 
 // 6d. Hauled cables. A kinematic body cannot be stopped. Where it hauls a rigid cable out (its

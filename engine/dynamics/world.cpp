@@ -29,6 +29,7 @@ constexpr double kMinEventStep = 1e-4;  // events closer than this are taken at 
 // event cost two or three more cuts, each nearer: 1.5 cuts a step where 0.13 were due).
 constexpr double kCutReach = 0.05;
 constexpr int kMaxEventsPerSubstep = 16;
+constexpr int kMaxUnsettledHalvings = 4;  // of a step whose main-solve Newton found no answer
 constexpr int kFloorRelocations = 3;   // a floor arrival's cut is located again at most this often
 constexpr double kMaxOmegaDt = 0.3;    // longest midpoint step over the fastest transverse mode
 constexpr double kStillTurn = 1e-5;    // rad a step: joints that turn less keep Box2D's solve
@@ -273,6 +274,7 @@ void World::solveForces(double dt, double h) {
   for (size_t b = 0; b < bodies_.size(); ++b) excluded_[b] |= touching_[b];
   midpointCables_.clear();
   midpointUnsettled_ = false;
+  mainUnsettled_ = false;
   bool mainLeft = true;
   if (CableIslands::anyFree(bodies_, cables_, excluded_)) {
     islands_->build(bodies_, cables_, !midpointPerIsland_);
@@ -307,10 +309,12 @@ void World::solveForces(double dt, double h) {
     for (const int c : midpointCables_) midpointCable_[c] = 1;
   }
   b2_->jointFrames(scene_.joints, jointBodies_, jointFrames_);
+  const int unsettled = stats_.unsettledIslands;
   solver_->solve({dt, share, gravity_, bodies_, jointFrames_, jointNeighbours_,
                   midpointUsed_ ? std::span<const char>(midpointCable_) : std::span<const char>(),
                   touching_, kicks_, placements_, contactExpected_},
                  cables_, forces_, stats_);
+  mainUnsettled_ = stats_.unsettledIslands > unsettled;
   flyFreeBodies(dt);
 }
 
@@ -348,6 +352,17 @@ double World::advance(double left, double h, bool locate) {
   // kMinEventStep of the sub-step (shorter steps are nearer linear: a 0.01 kg puck catching at
   // 50 m/s a cable that a 100 kg ballast holds). Past that the main solve keeps the island.
   while (locate && midpointUnsettled_ && dt > 2 * kMinEventStep * h) {
+    dt *= 0.5;
+    solveForces(dt, h);
+    ++stats_.refinements;
+  }
+  // The main solve's Newton found no end-of-step lengths it could keep, and the start-of-step
+  // linearisation it answered with misses them (cable_solver.cpp, stage 6): the motion is far
+  // from linear (a box turning at 10 rad/s as it reached its pulley: its rope 22 cm long). A
+  // shorter step is nearer linear: halved up to kMaxUnsettledHalvings times while that holds.
+  for (int halving = 0;
+       locate && mainUnsettled_ && halving < kMaxUnsettledHalvings && dt > 2 * kMinEventStep * h;
+       ++halving) {
     dt *= 0.5;
     solveForces(dt, h);
     ++stats_.refinements;

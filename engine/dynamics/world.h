@@ -59,6 +59,7 @@ struct StepStats {
   int linearisationFallbacks = 0;  ///< cable rows solved on the start-of-step Jacobian (guard)
   int linearSolves = 0;  ///< main-solve islands whose start-of-step linearisation was exact enough
   int newtonDivergences = 0;  ///< islands whose Newton diverged (solved on the start-of-step J)
+  int unsettledIslands = 0;   ///< of those, answers that miss their lengths (World halves the step)
   int events = 0;             ///< Box2D steps cut short at a wrap event
   int midpointSolves = 0;     ///< island solves by the energy-consistent midpoint rule
   int midpointFallbacks = 0;  ///< of those tried, not converged (the main solve took it)
@@ -172,6 +173,7 @@ class World {
       placements_;             ///< poses given after Box2D's step (the main solve's midpoint rule)
   bool midpointUsed_ = false;  ///< the last solveForces() solved some midpoint island
   bool midpointUnsettled_ = false;   ///< ... and in some island its Newton did not settle
+  bool mainUnsettled_ = false;       ///< the main solve answered some island off its start pose
   bool midpointPerIsland_ = true;    ///< setMidpointPerIsland()
   std::vector<char> midpointCable_;  ///< per cable: the midpoint solve took it (main solve skips)
   std::vector<int> midpointCables_;  ///< those cables
