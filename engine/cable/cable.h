@@ -349,6 +349,7 @@ class Cable {
     int body;
     Vec2 position;
     double angle;
+    double reach = 0;  ///< certificate: the largest |local| of its tested points (m)
   };
   struct SkipTest {
     int a, b, p;         ///< indices into skipBodies_
@@ -372,6 +373,8 @@ class Cable {
   void finishUpdate(std::span<const BodyState> bodies, std::vector<std::string>* warnings);
   std::vector<SkipBody> skipBodies_;
   std::vector<SkipTest> skipTests_;
+  /// Every test holds while each of its points has moved by at most this (m; -1: none).
+  double skipAllowance_ = -1;
   mutable std::vector<Vec2> skipMotion_;  ///< scratch: per skip body, (linear, angular) bound
   std::vector<SkipTurn> skipTurns_;       ///< the pulley turns a kept wrap set updates
   /// The poses of the path's bodies that kin_ was last worked out on while a certificate held
