@@ -370,6 +370,9 @@ class Cable {
   /// The vertex a polygon's chain would grow by at `end`, a chain end on segment (a, b): the one
   /// before its first (end is b, the segment enters the chain) or after its last (end is a).
   int chainEndNeighbour(const WrapPoint& end, bool entering) const;
+  /// nextEvent() without the skip: every watched distance sampled over the sub-step.
+  [[gnu::noinline]] std::optional<WrapEvent> searchEvents(std::span<const BodyState> motion,
+                                                          double h) const;
   void finishUpdate(std::span<const BodyState> bodies, std::vector<std::string>* warnings);
   std::vector<SkipBody> skipBodies_;
   std::vector<SkipTest> skipTests_;

@@ -171,8 +171,10 @@ bool Cable::wrapSetCertain(std::span<const BodyState> pose, double h) const {
     const SkipBody& c = skipBodies_[k];
     if (c.body < 0) continue;
     const BodyState& b = pose[c.body];
-    const Vec2 m((b.position - c.position).norm() + h * b.velocity.norm(),
-                 std::abs(b.angle - c.angle) + h * std::abs(b.angularVelocity));
+    // At h = 0 (a selection pose) the velocities add nothing.
+    const Vec2 m = h == 0 ? Vec2((b.position - c.position).norm(), std::abs(b.angle - c.angle))
+                          : Vec2((b.position - c.position).norm() + h * b.velocity.norm(),
+                                 std::abs(b.angle - c.angle) + h * std::abs(b.angularVelocity));
     skipMotion_[k] = m;
     within &= m.x() + c.reach * m.y() <= skipAllowance_;
   }
@@ -204,7 +206,10 @@ bool Cable::keepWrapSet(std::span<const BodyState> select, std::span<const BodyS
     const Vec2& in = kin_.directions[t.in];
     const Vec2& out = kin_.directions[t.out];
     const double raw = -t.sign * std::atan2(cross(in, out), in.dot(out));
-    t.arc = raw + 2 * M_PI * std::round((p.arc - raw) / (2 * M_PI));
+    // round() of a value within half a turn is +-0 (its sign): the call only off that branch.
+    const double turns = (p.arc - raw) / (2 * M_PI);
+    t.arc =
+        raw + 2 * M_PI * (std::abs(turns) < 0.5 ? std::copysign(0.0, turns) : std::round(turns));
     if (p.polygon ? t.arc <= kStraightWrapTurn : t.arc < 0) return false;
   }
   for (const SkipTurn& t : skipTurns_) pulleys_[t.pulley].arc = t.arc;
