@@ -349,6 +349,7 @@ class Cable {
     int body;
     Vec2 position;
     double angle;
+    double reach = 0;  ///< certificate: the largest |local| of its tested points (m)
   };
   struct SkipTest {
     int a, b, p;         ///< indices into skipBodies_
@@ -369,9 +370,14 @@ class Cable {
   /// The vertex a polygon's chain would grow by at `end`, a chain end on segment (a, b): the one
   /// before its first (end is b, the segment enters the chain) or after its last (end is a).
   int chainEndNeighbour(const WrapPoint& end, bool entering) const;
+  /// nextEvent() without the skip: every watched distance sampled over the sub-step.
+  [[gnu::noinline]] std::optional<WrapEvent> searchEvents(std::span<const BodyState> motion,
+                                                          double h) const;
   void finishUpdate(std::span<const BodyState> bodies, std::vector<std::string>* warnings);
   std::vector<SkipBody> skipBodies_;
   std::vector<SkipTest> skipTests_;
+  /// Every test holds while each of its points has moved by at most this (m; -1: none).
+  double skipAllowance_ = -1;
   mutable std::vector<Vec2> skipMotion_;  ///< scratch: per skip body, (linear, angular) bound
   std::vector<SkipTurn> skipTurns_;       ///< the pulley turns a kept wrap set updates
   /// The poses of the path's bodies that kin_ was last worked out on while a certificate held

@@ -38,13 +38,18 @@ int Cable::chainEndNeighbour(const WrapPoint& end, bool entering) const {
 }
 
 std::optional<WrapEvent> Cable::nextEvent(std::span<const BodyState> motion, double h) const {
-  std::optional<WrapEvent> best;
-  if (path_.size() < 2) return best;
+  if (path_.size() < 2) return std::nullopt;
   // No watched distance can reach zero over the sub-step (wrap_skip.cpp).
   if (skipping_ && skipValid_ && wrapSetCertain(motion, h)) {
     ++skippedSearches_;
-    return best;
+    return std::nullopt;
   }
+  return searchEvents(motion, h);
+}
+
+// Apart from nextEvent(), whose skipped calls (most of them) then set up none of this.
+std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, double h) const {
+  std::optional<WrapEvent> best;
   const int count = static_cast<int>(pulleys_.size());
   BodyFrames frames(motion);
   auto moving = [&](const WrapPoint& w) { return startPoint(motion, frames, w.body, w.local); };

@@ -14,16 +14,56 @@
 // While skipping, a length and J (and the turns kept from them) are not worked out again for
 // poses of the path's bodies that are, bit for bit, those they were worked out on (the step's
 // refresh and the next sub-step see the same poses, and so do sub-steps in which Box2D moved no
-// body of the path, as for most of the hand's run).
+// body of the path, as for most of the hand's run). Most checks take one comparison a body: a
+// certificate's allowance, a displacement that no test's bound can reach.
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
+#include <utility>
 
 #include "engine/cable/cable.h"
 #include "engine/cable/wrap.h"
 
 namespace cablelab {
+
+namespace {
+
+// Whether a test (p's distance from the line a-b) holds with a, b and p moved by at most da, db
+// and dp from the certificate's pose.
+// The bound integrates d/dt cross(n, p - a) as sideCannotChange (crossing.cpp) does, with the
+// displacements in place of speed times h: |n'| <= |b' - a'| / |b - a| along the way. Every
+// operation is monotone in the displacements (IEEE rounding is), so what holds at some
+// displacements holds, computed, at any smaller ones.
+bool testHolds(double length, double arm, double margin, double da, double db, double dp) {
+  const double shortest = length - da - db;
+  if (!(shortest > 0)) return false;
+  const double reach = arm + dp + da;
+  const double bound = dp + da + (da + db) * reach / shortest;
+  return margin > 1.01 * bound + 1e-12;
+}
+
+// A displacement that every point of the test may have (-1: none). With all three equal to a,
+// margin / 1.01 - 1e-12 > bound multiplied out by shortest > 0 is linear in a; the value is
+// checked on the computed test itself, at a little more than the allowance.
+double testAllowance(double length, double arm, double margin) {
+  const double m = (margin - 1e-12) / 1.01;
+  if (!(m > 0)) return -1;
+  double a = 0.999 * m * length / (2 * (m + length + arm));
+  for (int tries = 0; tries < 4; ++tries, a *= 0.5) {
+    const double over = 1.0001 * a;
+    if (testHolds(length, arm, margin, over, over, over)) return a;
+  }
+  return -1;
+}
+
+// Bit for bit: the same inputs give kinematics the same bits (even -0 against +0).
+bool sameBits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+
+}  // namespace
 
 void Cable::setSkipping(bool on) {
   skipping_ = on;
@@ -51,6 +91,7 @@ void Cable::buildSkipCertificate(std::span<const BodyState> pose) {
   skipBodies_.clear();
   skipTurns_.clear();
   if (!skipping_ || !skipEligible()) return;
+  skipAllowance_ = std::numeric_limits<double>::infinity();
   auto bodyIndex = [&](int body) {
     for (size_t k = 0; k < skipBodies_.size(); ++k)
       if (skipBodies_[k].body == body) return static_cast<int>(k);
@@ -64,9 +105,19 @@ void Cable::buildSkipCertificate(std::span<const BodyState> pose) {
     const Vec2 wp = worldPoint(pose, body, local);
     const double length = (wb - wa).norm();
     if (!(length > 0)) return false;
-    skipTests_.push_back({bodyIndex(a.body), bodyIndex(b.body), bodyIndex(body), a.local.norm(),
-                          b.local.norm(), local.norm(), std::abs(cross(wb - wa, wp - wa)) / length,
-                          (wp - wa).norm(), length});
+    const SkipTest t{bodyIndex(a.body),
+                     bodyIndex(b.body),
+                     bodyIndex(body),
+                     a.local.norm(),
+                     b.local.norm(),
+                     local.norm(),
+                     std::abs(cross(wb - wa, wp - wa)) / length,
+                     (wp - wa).norm(),
+                     length};
+    skipTests_.push_back(t);
+    for (const auto& [k, r] : {std::pair{t.a, t.ra}, std::pair{t.b, t.rb}, std::pair{t.p, t.rp}})
+      skipBodies_[k].reach = std::max(skipBodies_[k].reach, r);
+    skipAllowance_ = std::min(skipAllowance_, testAllowance(t.length, t.arm, t.margin));
     return true;
   };
   // The same distances as nextEvent(): chain ends' next vertices against their segments...
@@ -101,32 +152,37 @@ void Cable::buildSkipCertificate(std::span<const BodyState> pose) {
                             p.side == WrapSide::Right ? -1.0 : 1.0, 0.0});
     i = k;
   }
+  // Per-call scratch, sized once; the world never moves.
+  skipMotion_.assign(skipBodies_.size(), Vec2::Zero());
+  // The bodies whose poses kin_ is a function of (kinematicsCurrent).
+  kinPoses_.clear();
+  for (const WrapPoint& w : path_)
+    if (w.body >= 0 && std::none_of(kinPoses_.begin(), kinPoses_.end(),
+                                    [&](const SkipBody& k) { return k.body == w.body; }))
+      kinPoses_.push_back({w.body, pose[w.body].position, pose[w.body].angle});
   skipValid_ = true;
 }
 
-// The bound integrates d/dt cross(n, p - a) as sideCannotChange (crossing.cpp) does, with the
-// displacements in place of speed times h: |n'| <= |b' - a'| / |b - a| along the way.
+// Displacements are bounded per body; a body's bound on its farthest tested point, within the
+// certificate's allowance, covers every test (testHolds is monotone), else each test is checked.
 bool Cable::wrapSetCertain(std::span<const BodyState> pose, double h) const {
-  skipMotion_.resize(skipBodies_.size());
+  bool within = skipAllowance_ >= 0;
   for (size_t k = 0; k < skipBodies_.size(); ++k) {
     const SkipBody& c = skipBodies_[k];
-    if (c.body < 0) {
-      skipMotion_[k] = Vec2::Zero();
-      continue;
-    }
+    if (c.body < 0) continue;
     const BodyState& b = pose[c.body];
-    skipMotion_[k] = Vec2((b.position - c.position).norm() + h * b.velocity.norm(),
-                          std::abs(b.angle - c.angle) + h * std::abs(b.angularVelocity));
+    // At h = 0 (a selection pose) the velocities add nothing.
+    const Vec2 m = h == 0 ? Vec2((b.position - c.position).norm(), std::abs(b.angle - c.angle))
+                          : Vec2((b.position - c.position).norm() + h * b.velocity.norm(),
+                                 std::abs(b.angle - c.angle) + h * std::abs(b.angularVelocity));
+    skipMotion_[k] = m;
+    within &= m.x() + c.reach * m.y() <= skipAllowance_;
   }
+  if (within) return true;
   auto moved = [&](int k, double r) { return skipMotion_[k].x() + r * skipMotion_[k].y(); };
-  for (const SkipTest& t : skipTests_) {
-    const double da = moved(t.a, t.ra), db = moved(t.b, t.rb), dp = moved(t.p, t.rp);
-    const double shortest = t.length - da - db;
-    if (!(shortest > 0)) return false;
-    const double arm = t.arm + dp + da;
-    const double bound = dp + da + (da + db) * arm / shortest;
-    if (!(t.margin > 1.01 * bound + 1e-12)) return false;
-  }
+  for (const SkipTest& t : skipTests_)
+    if (!testHolds(t.length, t.arm, t.margin, moved(t.a, t.ra), moved(t.b, t.rb), moved(t.p, t.rp)))
+      return false;
   return true;
 }
 
@@ -150,22 +206,16 @@ bool Cable::keepWrapSet(std::span<const BodyState> select, std::span<const BodyS
     const Vec2& in = kin_.directions[t.in];
     const Vec2& out = kin_.directions[t.out];
     const double raw = -t.sign * std::atan2(cross(in, out), in.dot(out));
-    t.arc = raw + 2 * M_PI * std::round((p.arc - raw) / (2 * M_PI));
+    // round() of a value within half a turn is +-0 (its sign): the call only off that branch.
+    const double turns = (p.arc - raw) / (2 * M_PI);
+    t.arc =
+        raw + 2 * M_PI * (std::abs(turns) < 0.5 ? std::copysign(0.0, turns) : std::round(turns));
     if (p.polygon ? t.arc <= kStraightWrapTurn : t.arc < 0) return false;
   }
   for (const SkipTurn& t : skipTurns_) pulleys_[t.pulley].arc = t.arc;
   turnsCurrent_ = true;
   return true;
 }
-
-namespace {
-
-// Bit for bit: the same inputs give kinematics the same bits (even -0 against +0).
-bool sameBits(double a, double b) {
-  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
-}
-
-}  // namespace
 
 bool Cable::kinematicsCurrent(std::span<const BodyState> bodies) const {
   if (!kinPosesValid_) return false;
@@ -178,11 +228,12 @@ bool Cable::kinematicsCurrent(std::span<const BodyState> bodies) const {
   return true;
 }
 
+// The path, and so its bodies, stays while the certificate does (buildSkipCertificate).
 void Cable::noteKinematicsPoses(std::span<const BodyState> bodies) {
-  kinPoses_.clear();
-  for (const WrapPoint& w : path_)
-    if (w.body >= 0 && (kinPoses_.empty() || kinPoses_.back().body != w.body))
-      kinPoses_.push_back({w.body, bodies[w.body].position, bodies[w.body].angle});
+  for (SkipBody& k : kinPoses_) {
+    k.position = bodies[k.body].position;
+    k.angle = bodies[k.body].angle;
+  }
   kinPosesValid_ = true;
   turnsCurrent_ = false;
 }
