@@ -1362,7 +1362,12 @@ bool lockCrossingLimits(Workspace& ws, const CableSolveInput& in) {
 // of the step just solved, as near the discrete gradient of its length as a turning path allows
 // (G (q1 - q0) = length(q1) - length(q0): the row then does no work). Along the start-of-step J
 // it did work a step on the turning path that added up: the hexagon on its pivot gained 47% of
-// its largest kinetic energy in a minute. True if any row was redirected (stages 2-5 run again).
+// its largest kinetic energy in a minute. An elastic row pulls there too, whatever stage 4b gave
+// it: along J0 (or 4b's half share for a joining vertex) its work missed its energy change by the
+// first order in the turn (a polygon's lever arm changes across the step), often by more than
+// stage 6a's factors 0.5..2 can balance; four undamped ropes over a hexagon spinning at 10 rad/s
+// gained 25% of their largest kinetic energy in a minute, now 0.2%. True if any row was
+// redirected (stages 2-5 run again).
 bool pullAlongMidpointPose(Workspace& ws, const CableSolveInput& in,
                            std::span<const Cable> cables) {
   const int m = static_cast<int>(ws.rows.size());
@@ -1380,7 +1385,8 @@ bool pullAlongMidpointPose(Workspace& ws, const CableSolveInput& in,
   for (int r = 0; r < m; ++r) {
     const Workspace::Row& row = ws.rows[r];
     const Cable& c = cables[row.cable];
-    if (ws.ahead[r] || row.segment >= 0 || c.elastic() || !(ws.P[r] > 0)) continue;
+    // A rigid row that stage 4b redirected keeps that Jacobian (takesMidpointRule refuses it).
+    if ((ws.ahead[r] && !c.elastic()) || row.segment >= 0 || !(ws.P[r] > 0)) continue;
     pathAhead(ws, c, row.first, ws.free);
     ws.aheadJacobian[r] = ws.kin.jacobian;
     ws.ahead[r] = 1;

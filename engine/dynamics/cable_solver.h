@@ -26,7 +26,7 @@
 //                           rate that reaches the bound (joint_limits.h), run 2-6 again
 //   6d. (newtonOnLengths)   rigid cables a kinematic body hauls out against bodies that cannot
 //                           give way: solve again with them paying out (Cable::payOut)
-//   6e. pullAlongMidpointPose  (right after 6) rigid rows under the midpoint rule (5a): pull
+//   6e. pullAlongMidpointPose  (right after 6) rows under the midpoint rule (5a): pull
 //                           along J at the midpoint pose, run 2-6 once more
 //   7. applyForces          the force that gives the solved end-of-step velocity, and the
 //                           jointed bodies' end poses (CableSolveInput::placements)

@@ -106,11 +106,13 @@ TEST(MidpointIslands, UndampedPartsOfTheBusySceneKeepTheirEnergyBesideJointsAndC
   EXPECT_LT(perIsland.band, 0.02);
   EXPECT_GT(perIsland.stepsWithBothSolves, perIsland.steps * 9 / 10);
   const PartDrift whole = runBusy(false, seconds);
-  // The test tells the two apart: in the main solve the sling, a square spinning in it whose
-  // corners join and leave the cable, loses a fifth of its energy scale (measured 0.22). Both
-  // parts take the main solve's own midpoint rule there (cable_solver.cpp, stage 5a), which
-  // since it balances each row's work (stage 6a) keeps the band's (0.1%; 10% and more before).
-  EXPECT_GT(whole.sling, 0.1);
+  // No step takes both solves there. Both parts take the main solve's own midpoint rule
+  // (cable_solver.cpp, stage 5a), which since it balances each row's work (stage 6a) keeps the
+  // band's energy (0.1%; 10% and more before), and since its elastic rows pull along J at the
+  // midpoint pose (stage 6e) the sling's, a square spinning in it whose corners join and leave
+  // the cable (measured 3e-6; a fifth of its energy scale, 0.22, along J0).
+  EXPECT_LT(whole.sling, 0.02);
+  EXPECT_LT(whole.band, 0.02);
   EXPECT_EQ(whole.stepsWithBothSolves, 0);
   std::printf("per island: sling %.2e band %.2e; whole world: sling %.3f band %.3f\n",
               perIsland.sling, perIsland.band, whole.sling, whole.band);
@@ -210,7 +212,9 @@ TEST(MidpointIslands, AMidpointIslandBesideAMainOneMovesAsItDoesAlone) {
       EXPECT_LT(gap, 1e-12);
     } else {
       EXPECT_EQ(midpointSteps, 0);
-      EXPECT_GT(gap, 1e-4);
+      // The main solve's rule moves the band otherwise (measured 9.9e-5: its springs pull along
+      // J at the midpoint pose, not the discrete gradient).
+      EXPECT_GT(gap, 1e-5);
     }
   }
 }
