@@ -65,7 +65,7 @@ struct StepStats {
   int midpointFallbacks = 0;  ///< of those tried, not converged (the main solve took it)
   int midpointRedundant = 0;  ///< of the fallbacks, given up at once: redundant rows pull
   int midpointFloorHits = 0;  ///< of the fallbacks, a floor pushed (a body at its pulley)
-  int refinements = 0;        ///< Box2D steps shortened to resolve a fast catch
+  int refinements = 0;        ///< Box2D steps shortened: a fast catch, or an unsettled solve
   int selectionSkips = 0;  ///< cable updates that kept the wrap set unsearched (Cable::setSkipping)
   int searchSkips = 0;     ///< event searches skipped: no wrap change can happen in the sub-step
   int sparseIslands = 0;   ///< island solves by the sparse path (big islands, docs/model.md)
@@ -173,7 +173,7 @@ class World {
       placements_;             ///< poses given after Box2D's step (the main solve's midpoint rule)
   bool midpointUsed_ = false;  ///< the last solveForces() solved some midpoint island
   bool midpointUnsettled_ = false;   ///< ... and in some island its Newton did not settle
-  bool mainUnsettled_ = false;       ///< the main solve answered some island off its start pose
+  bool mainUnsettled_ = false;       ///< the main solve's answer missed some island's lengths
   bool midpointPerIsland_ = true;    ///< setMidpointPerIsland()
   std::vector<char> midpointCable_;  ///< per cable: the midpoint solve took it (main solve skips)
   std::vector<int> midpointCables_;  ///< those cables
