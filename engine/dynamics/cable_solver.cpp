@@ -1081,6 +1081,7 @@ bool realisable(Workspace& ws, double h) {
 
 // Whether row r pulls on a kinematic body that moves (it hauls the row, stage 6d).
 bool pullsOnDriven(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables, int r) {
+  if (!ws.hauling) return false;  // no kinematic body moves this sub-step (predictPrescribed)
   bool driving = false;
   forStartJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
     for (const auto& e : jacobian) driving |= driven(in.bodies[e.body]);
@@ -1118,21 +1119,26 @@ bool addsEnergy(Workspace& ws, const CableSolveInput& in, std::span<const Cable>
   return after > (1 + kRigidEnergyAllowance) * before + correction;
 }
 
+// How far the rows miss their targets at the end of the step (m): rigid rows too long, floors
+// closed past their length. Leaves phi1 at ws.P.
+double unmetLength(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  linearise(ws, in, cables);
+  double unmet = 0;
+  for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r)
+    if (ws.rows[r].segment >= 0 || !cables[ws.rows[r].cable].elastic())
+      unmet = std::max(unmet, ws.phi1[r] - ws.target[r]);
+  return unmet;
+}
+
 // Whether the impulses ws.P leave a rigid row (a cable or a floor) more than kUnsettledLength
 // past its target at the end of the step: the start-of-step answer, where Newton found none, is
 // then too far off for the step to keep (World tries a shorter one). An island that a driven
 // body hauls is solved again after this (stage 6d), and pays out what it cannot hold.
 constexpr double kUnsettledLength = 1e-3;  // m
 bool missesLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
-  const int m = static_cast<int>(ws.rows.size());
-  for (int r = 0; r < m; ++r)
+  for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r)
     if (pullsOnDriven(ws, in, cables, r)) return false;
-  linearise(ws, in, cables);
-  for (int r = 0; r < m; ++r)
-    if ((ws.rows[r].segment >= 0 || !cables[ws.rows[r].cable].elastic()) &&
-        ws.phi1[r] > ws.target[r] + kUnsettledLength)
-      return true;
-  return false;
+  return unmetLength(ws, in, cables) > kUnsettledLength;
 }
 
 // 6. Newton on the end-of-step lengths phi1(P), each linearisation an LCP over all cables:
@@ -1210,17 +1216,6 @@ bool hauledRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable>
     any |= ws.haul[r] > 0;
   }
   return any;
-}
-
-// How far the rows miss their targets at the end of the step (m): rigid rows too long, floors
-// closed past their length. Leaves phi1 at ws.P.
-double unmetLength(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
-  linearise(ws, in, cables);
-  double unmet = 0;
-  for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r)
-    if (ws.rows[r].segment >= 0 || !cables[ws.rows[r].cable].elastic())
-      unmet = std::max(unmet, ws.phi1[r] - ws.target[r]);
-  return unmet;
 }
 
 // Whether the impulses do more work against the kinematic bodies (P_r haul_r / h) than
