@@ -1141,6 +1141,23 @@ bool missesLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cab
   return unmetLength(ws, in, cables) > kUnsettledLength;
 }
 
+// Rigid rows whose lengths no pose meets (redundant cables with rest lengths that disagree: a
+// ring on 40 cables, some 1 or 2 cm short). The start-of-step LCP's targets, each row shortened
+// by its Baumgarte share, then ask for a velocity no motion has, and its impulses grow without
+// bound (4e12 N s threw the ring to 400 rad/s). Held at their lengths instead (target phi0), the
+// rows ask for none: v1 = 0 meets them, so the impulses are bounded by the motion they stop.
+// True if some row was let off its correction.
+bool holdOverlongRows(Workspace& ws, std::span<const Cable> cables) {
+  bool held = false;
+  for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
+    const Workspace::Row& row = ws.rows[r];
+    if (row.segment >= 0 || cables[row.cable].elastic() || !(ws.target[r] < ws.phi0[r])) continue;
+    ws.target[r] = ws.phi0[r];
+    held = true;
+  }
+  return held;
+}
+
 // 6. Newton on the end-of-step lengths phi1(P), each linearisation an LCP over all cables:
 // tension >= 0, slack cables only shorten. A warm start that does not settle (a tiny mass the
 // last impulses throw far) starts again from P = 0, so it only ever saves iterations.
@@ -1184,6 +1201,13 @@ void solveLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cabl
   ws.P = ws.lcpSolution.x;
   stats.solverIterations += ws.lcpSolution.iterations;
   ++stats.newtonDivergences;
+  if (addsEnergy(ws, in, cables) && holdOverlongRows(ws, cables)) {
+    solveStartOfStep(ws, in, cables, redundant);
+    ws.P = ws.lcpSolution.x;
+    stats.solverIterations += ws.lcpSolution.iterations;
+    ++stats.heldIslands;
+    return;  // (the rows stay long: halving the step would not shorten them)
+  }
   if (missesLengths(ws, in, cables)) ++stats.unsettledIslands;
 }
 

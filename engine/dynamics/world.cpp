@@ -574,6 +574,7 @@ void World::payOutUnheld() {
 // once, until it is back within kLengthSlop of it.
 void World::reportOverstretch() {
   overstretched_.resize(cables_.size(), 0);
+  if (stats_.heldIslands > 0 && !heldSaid_) reportHeldRows();
   for (size_t i = 0; i < cables_.size(); ++i) {
     const Cable& c = cables_[i];
     if (c.elastic()) continue;
@@ -586,6 +587,26 @@ void World::reportOverstretch() {
                         " s: the step did not resolve the motion (a fast turn or impact); more "
                         "sub-steps hold it");
   }
+}
+
+// Redundant rigid cables whose rest lengths no pose meets: the solve holds them at their lengths
+// (cable_solver.cpp, holdOverlongRows). Said once, naming the cables left long; they are not
+// reported as overstretched after it, as more sub-steps would not shorten them.
+void World::reportHeldRows() {
+  heldSaid_ = true;
+  std::string names;
+  double longest = 0;
+  for (size_t i = 0; i < cables_.size(); ++i) {
+    const Cable& c = cables_[i];
+    if (c.elastic() || c.stretch() <= kLengthSlop) continue;
+    names += (names.empty() ? "'" : ", '") + c.name() + "'";
+    longest = std::max(longest, c.stretch());
+    overstretched_[i] = 1;
+  }
+  warnings_.push_back("rigid cables " + names + ": their rest lengths ask for a pose none meets " +
+                      "(redundant cables that disagree); from t = " + formatNumber(time_) +
+                      " s they are held at their lengths, up to " + formatNumber(longest) +
+                      " m long (fit the rest lengths, or give them stiffness)");
 }
 
 // A rigid cable that a kinematic body hauls out against bodies that cannot give way pays out

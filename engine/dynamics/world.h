@@ -60,6 +60,7 @@ struct StepStats {
   int linearSolves = 0;  ///< main-solve islands whose start-of-step linearisation was exact enough
   int newtonDivergences = 0;  ///< islands whose Newton diverged (solved on the start-of-step J)
   int unsettledIslands = 0;   ///< of those, answers that miss their lengths (World halves the step)
+  int heldIslands = 0;        ///< of those, rows no pose meets, held at their lengths (World warns)
   int events = 0;             ///< Box2D steps cut short at a wrap event
   int midpointSolves = 0;     ///< island solves by the energy-consistent midpoint rule
   int midpointFallbacks = 0;  ///< of those tried, not converged (the main solve took it)
@@ -143,6 +144,7 @@ class World {
   void checkFinite() const;
   void reportPayOuts();
   void reportOverstretch();
+  void reportHeldRows();
   void payOutUnheld();
   void expectContacts(double dt);
   void selectWraps(double h);
@@ -188,6 +190,7 @@ class World {
   std::vector<double> paidOutSeen_;  ///< per cable: Cable::paidOut() at the last step's end
   std::vector<double> payStart_;     ///< ... when it began paying out (< 0: it is not)
   std::vector<char> overstretched_;  ///< per cable: reportOverstretch() said so, not yet back
+  bool heldSaid_ = false;            ///< reportHeldRows() has spoken
   std::vector<std::vector<int>> jointNeighbours_;  ///< bodies jointed to each body
   std::vector<std::array<int, 2>> jointBodies_;    ///< (body A, body B) per joint, -1: world
   std::vector<JointFrame> jointFrames_;            ///< the joints as the solver sees them

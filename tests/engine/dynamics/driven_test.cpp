@@ -226,11 +226,15 @@ TEST(DrivenBodies, ARopeHauledIntoItsPulleyPaysOutAndHoldsTheLoadThere) {
       ASSERT_LT(c.stretch(), 1e-4);  // the rest length follows what is paid out
       ASSERT_LT(c.tension(), 1e5);   // the arrival is an inelastic stop, no more
       ASSERT_GT(below.y(), 0.005);   // never through its pulley
-      if (boom) ASSERT_LT(world.cable(1).stretch(), 1e-3);  // the boom knocked up falls back on it
+      if (boom) {
+        ASSERT_LT(world.cable(1).stretch(), 1e-3);  // the boom knocked up falls back on it
+      }
       if (world.time() > 1) {
         ASSERT_LT(below.norm(), 0.015);  // held at the pulley (the floor keeps 1 cm)
         ASSERT_NEAR(c.tension(), weightForce, 1e-3 * weightForce);
-        if (boom) ASSERT_NEAR(world.body(2).angle, 0, 1e-3);
+        if (boom) {
+          ASSERT_NEAR(world.body(2).angle, 0, 1e-3);
+        }
       }
     }
     EXPECT_GT(world.cable(0).paidOut(), 45);  // 50 m hauled, less the 4.5 m the load rose

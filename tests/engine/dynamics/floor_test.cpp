@@ -364,8 +364,12 @@ TEST(Floors, ARopeTheStepCannotHoldIsReported) {
                       world.warnings().front().find("did not resolve") != std::string::npos;
     EXPECT_EQ(said, longest > 0.01) << longest;
     // 1 sub-step: 7.2 cm, said (if a better step holds it, this test has to find another scene).
-    if (substeps == 1) EXPECT_GT(longest, 0.01);
-    if (substeps == 4) EXPECT_LT(longest, 1e-4);
+    if (substeps == 1) {
+      EXPECT_GT(longest, 0.01);
+    }
+    if (substeps == 4) {
+      EXPECT_LT(longest, 1e-4);
+    }
   }
 }
 
