@@ -20,7 +20,8 @@ namespace cablelab::app {
 namespace {
 
 // Writes t, then NAME.x .y .theta .vx .vy .omega per body, then NAME.length .tension .wraps per
-// cable.
+// cable (and NAME.span<k>.tension where a wheel splits it), then NAME.value .rate .force per named
+// joint (m or rad, m/s or rad/s, the servo's N or N m over the step).
 class CsvWriter {
  public:
   CsvWriter(const std::string& path, const World& world)
@@ -39,6 +40,12 @@ class CsvWriter {
       spans_.push_back(spans > 1 ? spans : 0);
       for (int k = 0; k < spans_.back(); ++k)
         out_ << "," << world.cable(i).name() << ".span" << k << ".tension";
+    }
+    for (int j = 0; j < world.jointCount(); ++j) {
+      const std::string& name = world.scene().joints[j].name;
+      if (name.empty()) continue;
+      joints_.push_back(j);
+      for (const char* c : {".value", ".rate", ".force"}) out_ << "," << name << c;
     }
     out_ << "\n";
   }
@@ -65,6 +72,10 @@ class CsvWriter {
         const Cable& c = world.cable(i);
         num(k < c.spanCount() ? c.spanTension(k) : c.tension());
       }
+    for (const int j : joints_) {
+      const JointState q = world.joint(j);
+      num(q.value), num(q.speed), num(q.force);
+    }
     out_ << "\n";
   }
   void finish() { finishOutputFile(out_, path_, "--csv"); }
@@ -72,7 +83,8 @@ class CsvWriter {
  private:
   std::string path_;
   std::ofstream out_;
-  std::vector<int> spans_;  ///< span tension columns per cable
+  std::vector<int> spans_;   ///< span tension columns per cable
+  std::vector<int> joints_;  ///< the named joints, in column order
 };
 
 const bool runRegistered = registerCommand(

@@ -586,6 +586,11 @@ step only (call it before every step for a lasting load).)doc");
       [](const PyWorld& s) { return perJoint(s, [](const JointState& j) { return j.speed; }); },
       "joint_speeds() -> ndarray (joints,): rad/s or m/s.");
   c.def(
+      "joint_forces",
+      [](const PyWorld& s) { return perJoint(s, [](const JointState& j) { return j.force; }); },
+      "joint_forces() -> ndarray (joints,): each servo's torque (N m, revolute) or force (N, "
+      "prismatic) over the last step; 0 without a servo (docs/servos.md has the units of kp, kd).");
+  c.def(
       "servo_targets",
       [](const PyWorld& s) {
         return perJoint(s, [](const JointState& j) { return j.servoTarget; });

@@ -15,6 +15,7 @@
 #include "engine/dynamics/joint_energy.h"
 #include "engine/dynamics/length_targets.h"
 #include "engine/dynamics/midpoint_solver.h"
+#include "engine/dynamics/servo_drive.h"
 
 namespace cablelab {
 
@@ -33,6 +34,8 @@ constexpr int kMaxUnsettledHalvings = 4;  // of a step whose main-solve Newton f
 constexpr int kFloorRelocations = 3;   // a floor arrival's cut is located again at most this often
 constexpr double kMaxOmegaDt = 0.3;    // longest midpoint step over the fastest transverse mode
 constexpr double kStillTurn = 1e-5;    // rad a step: joints that turn less keep Box2D's solve
+constexpr double kStallRate = 1e-3;     // rad/s or m/s: a servo's joint moving slower is stalled
+constexpr double kStallRelease = 0.9;   // of max_force: a stalled servo pushing less is released
 constexpr double kOverstretch = 0.01;  // m: a rigid cable this far over its rest length is said
 
 SceneDef validated(SceneDef scene, const std::string& source) {
@@ -57,6 +60,10 @@ World::World(SceneDef scene, const std::string& source)
     if (a >= 0 && b >= 0) jointNeighbours_[a].push_back(b), jointNeighbours_[b].push_back(a);
     servoTargets_.push_back(jd.servo.target);
   }
+  servos_ = std::make_unique<ServoDrive>(scene_, jointBodies_);
+  jointForces_.assign(scene_.joints.size(), 0.0);
+  servoImpulses_.assign(scene_.joints.size(), 0.0);
+  stalledSince_.assign(scene_.joints.size(), -1.0);
   cables_.reserve(scene_.cables.size());
   for (int i = 0; i < static_cast<int>(scene_.cables.size()); ++i)
     cables_.emplace_back(scene_, i, source);
@@ -161,6 +168,7 @@ JointState World::joint(int i) const {
   s.value = q.value;
   s.speed = q.speed;
   s.servoTarget = servoTargets_[i];
+  s.force = jointForces_[i];
   return s;
 }
 
@@ -191,27 +199,15 @@ double World::energy() const {
   return e;
 }
 
-// PD servos on joint coordinates, accumulated into forces_ as equal and opposite loads.
-void World::applyServos() {
-  for (size_t i = 0; i < scene_.joints.size(); ++i) {
-    const ServoDef& servo = scene_.joints[i].servo;
-    if (!servo.enabled) continue;
-    const int j = static_cast<int>(i);
-    const JointCoordinate q = b2_->jointCoordinate(j);
-    const double f =
-        std::clamp(servo.kp * (servoTargets_[i] - q.value) + servo.kd * (servo.speed - q.speed),
-                   -servo.maxForce, servo.maxForce);
-    const auto [a, b] = jointBodies_[i];
-    Vec3 load = Vec3::Zero();
-    if (scene_.joints[i].kind == JointDef::Kind::Revolute) {
-      load = Vec3(0, 0, f);
-    } else if (scene_.joints[i].kind == JointDef::Kind::Prismatic) {
-      const Vec2 axis = b2_->prismaticAxis(j);
-      load = Vec3(f * axis.x(), f * axis.y(), 0);
-    }
-    if (b >= 0) forces_[b] += load;
-    if (a >= 0) forces_[a] -= load;
-  }
+// The servos' forces over a Box2D step of dt, implicit in it (servo_drive.h), added to forces_.
+void World::applyServos(double dt) {
+  if (!servos_->any()) return;
+  b2_->jointFrames(scene_.joints, jointBodies_, jointFrames_);
+  jointCoordinates_.resize(scene_.joints.size());
+  for (size_t j = 0; j < scene_.joints.size(); ++j)
+    jointCoordinates_[j] = b2_->jointCoordinate(static_cast<int>(j));
+  servos_->solve(jointFrames_, jointCoordinates_, bodies_, cables_, servoTargets_, gravity_, dt,
+                 forces_);
 }
 
 void World::checkFinite() const {
@@ -262,7 +258,7 @@ void World::predictMotion(double dt) {
 void World::solveForces(double dt, double h) {
   const double share = std::min(1.0, dt / h);
   forces_ = pendingForces_;
-  applyServos();
+  applyServos(dt);
   kicks_.assign(bodies_.size(), Vec3::Zero());
   placements_.assign(bodies_.size(), Placement{});
   excluded_.assign(bodies_.size(), 0);
@@ -445,8 +441,10 @@ double World::advance(double left, double h, bool locate) {
   keepJointEnergy(dt);
   time_ += dt;
   // A servo with a speed drives its joint at that rate: the target moves.
-  for (size_t j = 0; j < scene_.joints.size(); ++j)
+  for (size_t j = 0; j < scene_.joints.size(); ++j) {
     servoTargets_[j] += scene_.joints[j].servo.speed * dt;
+    servoImpulses_[j] += servos_->forces()[j] * dt;
+  }
   return dt;
 }
 
@@ -518,6 +516,7 @@ void World::step(double dt, int substeps) {
   }
   const double h = dt / std::max(1, substeps);
   if (pendingForces_.size() != bodies_.size()) pendingForces_.assign(bodies_.size(), Vec3::Zero());
+  std::fill(servoImpulses_.begin(), servoImpulses_.end(), 0.0);
   for (int s = 0; s < std::max(1, substeps); ++s) {
     // Wrap events cut the sub-step; a bounded number per sub-step bounds the cost.
     double left = h, first = 0;
@@ -543,8 +542,10 @@ void World::step(double dt, int substeps) {
     stats_.selectionSkips += static_cast<int>(c.skippedSelections());
     stats_.searchSkips += static_cast<int>(c.skippedSearches());
   }
+  for (size_t j = 0; j < jointForces_.size(); ++j) jointForces_[j] = servoImpulses_[j] / dt;
   payOutUnheld();
   reportPayOuts();
+  reportStalls(dt);
   reportOverstretch();
   stats_.stepMicros = std::chrono::duration<double, std::micro>(Clock::now() - t0).count();
   checkFinite();
@@ -638,6 +639,28 @@ void World::reportPayOuts() {
       payStart_[i] = -1;
     }
     paidOutSeen_[i] = paid;
+  }
+}
+
+// A servo at its max_force whose joint does not move the way it pushes (kStallRate) for a whole
+// step is stalled: it cannot move what it drives. Said once a stall, naming the joint; the stall
+// ends when its force falls back below kStallRelease of max_force.
+void World::reportStalls(double dt) {
+  for (size_t j = 0; j < scene_.joints.size(); ++j) {
+    const ServoDef& servo = scene_.joints[j].servo;
+    if (!servo.enabled) continue;
+    const double f = jointForces_[j];
+    if (std::abs(f) < kStallRelease * servo.maxForce) stalledSince_[j] = -1;
+    const double rate = b2_->jointCoordinate(static_cast<int>(j)).speed;
+    const bool atMax = std::abs(f) >= (1 - 1e-9) * servo.maxForce;
+    if (stalledSince_[j] >= 0 || !atMax || rate * (f > 0 ? 1 : -1) > kStallRate) continue;
+    stalledSince_[j] = time_ - dt;
+    const bool turns = scene_.joints[j].kind == JointDef::Kind::Revolute;
+    warnings_.push_back("joint '" + scene_.joints[j].name + "': its servo pushes with all it has (" +
+                        "max_force " + formatNumber(servo.maxForce) + (turns ? " N m" : " N") +
+                        ") and cannot move what it drives: stalled from t = " +
+                        formatNumber(stalledSince_[j]) +
+                        " s (a stronger servo or a lighter load moves it)");
   }
 }
 

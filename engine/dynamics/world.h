@@ -36,6 +36,8 @@ class CableIslands;
 class JointEnergy;
 class CableSolver;
 class MidpointSolver;
+class ServoDrive;
+struct JointCoordinate;
 struct JointFrame;
 struct Placement;
 
@@ -47,6 +49,9 @@ struct JointState {
   double value = 0;        ///< angle (rad) or translation (m)
   double speed = 0;        ///< rad/s or m/s
   double servoTarget = 0;  ///< rad or m
+  /// The servo's force (N, prismatic) or torque (N m, revolute) over the last step, positive
+  /// along the coordinate: its impulse over the step's dt; 0 without a servo.
+  double force = 0;
 };
 
 /// Timing and solver figures of the last step() call.
@@ -140,7 +145,8 @@ class World {
   const std::vector<std::string>& warnings() const { return warnings_; }
 
  private:
-  void applyServos();
+  void applyServos(double dt);
+  void reportStalls(double dt);
   void checkFinite() const;
   void reportPayOuts();
   void reportOverstretch();
@@ -162,6 +168,7 @@ class World {
   std::unique_ptr<MidpointSolver> midpoint_;  ///< the energy-consistent solve, where it applies
   std::unique_ptr<CableIslands> islands_;     ///< which solve takes which cables
   std::unique_ptr<JointEnergy> jointEnergy_;  ///< joint velocities carried to the new pose
+  std::unique_ptr<ServoDrive> servos_;        ///< the servos' forces, implicit in each step
   bool keepsJointEnergy_ = true;              ///< setJointEnergyKept()
   std::vector<int> reprojected_;              ///< bodies whose velocities keepJointEnergy() changed
   std::vector<BodyState> motion_;             ///< look-ahead or predicted body states (wrap events)
@@ -197,6 +204,10 @@ class World {
   // State the user edits while the world runs (the scene keeps the authored values).
   Vec2 gravity_ = Vec2::Zero();
   std::vector<double> servoTargets_;  ///< per joint (rad or m)
+  std::vector<JointCoordinate> jointCoordinates_;  ///< scratch: every joint's value and rate
+  std::vector<double> servoImpulses_;  ///< per joint, its servo's impulse over this step (N s)
+  std::vector<double> jointForces_;    ///< ... over the last step (N or N m): JointState::force
+  std::vector<double> stalledSince_;   ///< per joint: when its servo stalled (< 0: it has not)
   StepStats stats_;
   double time_ = 0;
   long steps_ = 0;

@@ -47,6 +47,47 @@ TEST(RunCli, CsvHasTheContractColumnsAndOneRowPerStep) {
   EXPECT_EQ(summary["steps"], 50);
 }
 
+// Splits one CSV line at its commas.
+std::vector<std::string> csvFields(const std::string& line) {
+  std::vector<std::string> fields;
+  std::istringstream in(line);
+  for (std::string f; std::getline(in, f, ',');) fields.push_back(f);
+  return fields;
+}
+
+TEST(RunCli, CsvEndsWithEveryNamedJointsValueRateAndForce) {
+  // The winch's drum on its servo: after the cable's columns, axle.value (rad), axle.rate
+  // (rad/s) and axle.force (N m). Winding steadily, the rate is the servo's speed, the value
+  // grows by it, and the torque is the rope's tension times the drum's radius (0.1 m).
+  const std::string csv = "/tmp/cablelab_run_cli_joint_test.csv";
+  const auto r = test::runCli("run winch --set omega=2 --time 3 --csv " + csv);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::ifstream in(csv);
+  std::string header;
+  std::getline(in, header);
+  const std::vector<std::string> names = csvFields(header);
+  ASSERT_GE(names.size(), 3u);
+  const size_t n = names.size();
+  EXPECT_EQ(names[n - 3], "axle.value");
+  EXPECT_EQ(names[n - 2], "axle.rate");
+  EXPECT_EQ(names[n - 1], "axle.force");
+  EXPECT_EQ(names[n - 6], "cable.length");
+  std::vector<std::vector<double>> rows;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<double> row;
+    for (const std::string& f : csvFields(line)) row.push_back(std::stod(f));
+    ASSERT_EQ(row.size(), n);
+    rows.push_back(row);
+  }
+  ASSERT_EQ(rows.size(), 181u);
+  const std::vector<double>& a = rows[rows.size() - 2];
+  const std::vector<double>& b = rows.back();
+  EXPECT_NEAR(b[n - 2], 2.0, 1e-3);
+  EXPECT_NEAR((b[n - 3] - a[n - 3]) / (b[0] - a[0]), b[n - 2], 1e-3);
+  EXPECT_NEAR(b[n - 1], 0.1 * b[n - 5], 0.01 * 0.1 * b[n - 5]);  // torque = tension r
+  EXPECT_NEAR(rows.front()[n - 1], 0.0, 1e-12);  // no step yet: no force
+}
+
 TEST(RunCli, BadOptionsExitTwo) {
   for (const char* args :
        {"run ballast --time -1", "run ballast --dt 0", "run ballast --substeps 0",

@@ -107,15 +107,14 @@ TEST(Winch, AWeightWoundUpToTheDrumStopsThereAndTheStalledServoHoldsIt) {
   // Winding (omega 2) the weight comes up under the drum's tangent point at 17 s; unwinding
   // (omega -2) the cable runs out after a turn, winds the other way and the weight, swinging,
   // reaches the rim from the side at 25 s. Either way it stops there and the servo stalls: its
-  // target runs on, so its torque grows by kp |omega| = 200 N m a second, and the rope holds it,
-  // T = |torque| / r. Newton on the end-of-step lengths found a root a whole turn of the drum
+  // target runs on, so its torque grows (kp |omega| = 200 N m a second over 1 + h (kp h + kd) / I,
+  // I the drum's and weight's inertia, docs/servos.md), and the rope holds it, T = |torque| / r. Newton on the end-of-step lengths found a root a whole turn of the drum
   // away (which Box2D cannot reach in a step): the tension went 1e5, 1e7, ... 1e13 N. A floor
   // along the segment alone let the weight that came from the side slide into the drum, and the
   // cable, with a segment of no length, let it fall (4.03 -> 4.09 m on a rigid cable).
   for (const double omega : {2.0, -2.0}) {
     World w = load("winch", {{"omega", omega}});
     const int drum = w.findBody("drum"), weight = w.findBody("weight");
-    const ServoDef& servo = w.scene().joints[0].servo;
     const double r = 0.1, stalled = omega > 0 ? 20 : 28;
     double worst = 0, closest = 1, longest = 0;
     while (w.time() < 40) {
@@ -125,10 +124,7 @@ TEST(Winch, AWeightWoundUpToTheDrumStopsThereAndTheStalledServoHoldsIt) {
       closest = std::min(closest, (anchor - w.body(drum).position).norm() - r);
       longest = std::max(longest, w.cable(0).stretch());
       if (w.time() < stalled) continue;
-      const JointState axle = w.joint(0);
-      const double torque = std::clamp(
-          servo.kp * (axle.servoTarget - axle.value) + servo.kd * (servo.speed - axle.speed),
-          -servo.maxForce, servo.maxForce);
+      const double torque = w.joint(0).force;  // the servo's, over the step (docs/servos.md)
       worst =
           std::max(worst, std::abs(w.cable(0).tension() * r - std::abs(torque)) / std::abs(torque));
       ASSERT_LT(std::abs(w.body(drum).angularVelocity), 1e-3) << omega << " " << w.time();
