@@ -122,8 +122,11 @@ void ServoDrive::solve(std::span<const JointFrame> frames,
 
   // f = b - c qdot1 with qdot1 = qdot* + dt K f: (C^-1 + dt K) f = C^-1 b - qdot*, a symmetric
   // positive definite system (K = G W, the servos' inverse effective inertia), under |f| <= max.
-  Eigen::MatrixXd A(count, count);
-  Eigen::VectorXd rhs(count), upper(count);
+  Eigen::MatrixXd& A = A_;
+  Eigen::VectorXd &rhs = rhs_, &upper = upper_, &f = f_;
+  A.resize(count, count);
+  rhs.resize(count);
+  upper.resize(count);
   for (int s = 0; s < count; ++s) {
     const int j = servos_[s];
     const ServoDef& servo = scene_.joints[j].servo;
@@ -136,8 +139,8 @@ void ServoDrive::solve(std::span<const JointFrame> frames,
     rhs(s) = c > 0 ? b / c - (coordinateRows_[s].dot(vStar_) + coordinateRows_[s].bias) : 0.0;
     upper(s) = servo.maxForce;
   }
-  A = 0.5 * (A + A.transpose());
-  Eigen::VectorXd f = A.ldlt().solve(rhs);
+  A = 0.5 * (A + A.transpose()).eval();
+  f = ldlt_.compute(A).solve(rhs);
   if ((f.array().abs() > upper.array()).any()) {
     // Some servos at their max_force: the box-constrained minimum of 1/2 f^T A f - rhs^T f.
     Eigen::MatrixXd C(2 * count, count);

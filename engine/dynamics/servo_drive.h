@@ -55,7 +55,9 @@ class ServoDrive {
   std::vector<JointRow> rows_, coordinateRows_, cableRows_;
   JointProjection projection_;
   Eigen::VectorXd invM_, vStar_;
-  Eigen::MatrixXd W_;
+  Eigen::MatrixXd W_, A_;
+  Eigen::VectorXd rhs_, upper_, f_;
+  Eigen::LDLT<Eigen::MatrixXd> ldlt_;
 };
 
 }  // namespace cablelab

@@ -304,7 +304,8 @@ void World::solveForces(double dt, double h) {
     midpointCable_.assign(cables_.size(), 0);
     for (const int c : midpointCables_) midpointCable_[c] = 1;
   }
-  b2_->jointFrames(scene_.joints, jointBodies_, jointFrames_);
+  // applyServos read the joints' frames at this same pose.
+  if (!servos_->any()) b2_->jointFrames(scene_.joints, jointBodies_, jointFrames_);
   const int unsettled = stats_.unsettledIslands;
   solver_->solve({dt, share, gravity_, bodies_, jointFrames_, jointNeighbours_,
                   midpointUsed_ ? std::span<const char>(midpointCable_) : std::span<const char>(),
