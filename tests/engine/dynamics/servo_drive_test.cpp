@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "engine/dynamics/world.h"
@@ -216,6 +217,65 @@ TEST(ServoDrive, APrismaticServoHoldsAWeightWithItsWeight) {
       EXPECT_NEAR(w.joint(0).value, 0.5 - 3 * kG / kp, 1e-4);
       EXPECT_LE(crossings, 1);
     }
+}
+
+TEST(ServoDrive, TwoServosOnAnArmSettleTogetherWithoutAlternating) {
+  // Two 1 m links in a chain (world - shoulder - upper - elbow - fore), a servo on each joint:
+  // each servo's force moves the other joint too, so the forces solve together (K couples them).
+  // Gains of 500 and 1e5 per kg of link at 30 to 240 Hz, light and heavy links: both joints reach their targets within
+  // 1e-3 rad in 2 s with no step-by-step alternation, never above max_force.
+  for (const double mass : {0.1, 1.0, 10.0})
+    for (const double kpPerKg : {500.0, 1e5})
+      for (const double hz : {30.0, 60.0, 240.0}) {
+        const double kp = kpPerKg * mass;
+        SceneDef s;
+        s.gravity = Vec2::Zero();
+        for (int i = 0; i < 2; ++i) {
+          BodyDef link;
+          link.name = i == 0 ? "upper" : "fore";
+          link.position = Vec2(0.5 + i, 0);
+          link.mass = mass;
+          link.inertia = mass / 12;
+          ShapeDef dot;
+          dot.sensor = true;
+          link.shapes = {dot};
+          s.bodies.push_back(link);
+          JointDef joint;
+          joint.name = i == 0 ? "shoulder" : "elbow";
+          joint.bodyA = i == 0 ? "world" : "upper";
+          joint.bodyB = link.name;
+          joint.anchor = Vec2(i, 0);
+          // Critically damped on the whole arm's inertia about the shoulder (8/3 m l^2).
+          joint.servo = gains(kp, 2 * std::sqrt(kp * mass * 8 / 3), i == 0 ? 0.5 : -0.7, 1e6);
+          joint.servo.enabled = true;
+          s.joints.push_back(joint);
+        }
+        World w(s);
+        std::array<double, 2> previous{0.5, -0.7}, before = previous;
+        int alternations = 0;
+        double largest = 0, settledAt = -1;
+        while (w.time() < 2.5) {
+          w.step(1 / hz);
+          bool outside = false;
+          for (int j = 0; j < 2; ++j) {
+            const double e = w.joint(j).servoTarget - w.joint(j).value;
+            const bool far = std::abs(e) > kSettled;
+            outside |= far;
+            alternations += far && e * previous[j] < 0 && previous[j] * before[j] < 0;
+            largest = std::max(largest, std::abs(w.joint(j).force));
+            before[j] = previous[j];
+            previous[j] = e;
+          }
+          if (outside) settledAt = -1;
+          else if (settledAt < 0) settledAt = w.time();
+        }
+        SCOPED_TRACE("m " + std::to_string(mass) + " kp " + std::to_string(kp) + " at " +
+                     std::to_string(hz) + " Hz");
+        EXPECT_EQ(alternations, 0);
+        EXPECT_GT(settledAt, 0);
+        EXPECT_LT(settledAt, 2.0);
+        EXPECT_LE(largest, 1e6);
+      }
 }
 
 // The winch scene with a light drum and a stiff servo.
