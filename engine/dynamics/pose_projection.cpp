@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "engine/core/small_qp.h"
+#include "engine/dynamics/floors.h"
 #include "engine/dynamics/joint_projection.h"
 
 namespace cablelab {
@@ -16,6 +17,7 @@ namespace {
 
 constexpr double kSubMove = 0.02;   // m: the grabbed point's largest advance a projection
 constexpr int kMaxSubMoves = 100;   // ... and the most projections a call makes
+constexpr double kHeld = 0.01;      // a point that advances less than this share is held back
 constexpr int kMaxSteps = 20;       // Gauss-Newton steps a projection
 constexpr double kPull = 1e4;       // W, in the dragged body's masses: the others give way first
 constexpr double kMaxStep = 0.05;   // m or rad: a longer Gauss-Newton step is cut to this
@@ -26,6 +28,8 @@ constexpr double kStepDone = 1e-6;
 // within the solve's slop (kLengthSlop, 1e-5 m) of it.
 constexpr double kShort = 5e-6;  // m
 constexpr double kTaut = 1e-4;   // m: a span this near its rest length is taut
+constexpr double kMet = 1e-6;    // m or rad: a row missed by no more is met
+constexpr double kInconsistent = 1e-9;  // m or rad: a QP relaxed by more found its rows at odds
 
 class PoseSolver {
  public:
@@ -37,13 +41,18 @@ class PoseSolver {
 
  private:
   void chooseBodies();
-  double step(const Vec2* waypoint);
+  /// One Gauss-Newton step; false (nothing moved) where it would not help: too short a step, or
+  /// rows that no step meets together (then the last pose that met them all is put back).
+  bool step(const Vec2* waypoint);
+  void place(const std::vector<BodyState>& pose);
   void addRow(const Eigen::VectorXd& c, double b) {
     rowsC_.push_back(c);
     rowsB_.push_back(b);
   }
   Eigen::VectorXd row(const JointRow& r) const;
+  Eigen::VectorXd pointRow(int body, const Vec2& at, const Vec2& direction) const;
   void addCableRows();
+  void addFloorRows();
   void addJointRows();
 
   PoseWorld& w_;
@@ -53,6 +62,7 @@ class PoseSolver {
   Eigen::VectorXd mass_;           // M's diagonal (kg, kg, kg m^2)
   std::vector<double> reference_;  // per joint: body B's angle less body A's when it was made
   std::vector<BodyState> start_;   // q0 of the projection under way
+  std::vector<BodyState> met_;     // the last pose of this projection that met every row
   double limit_ = kMaxStep;        // the longest step allowed now (m or rad)
   Eigen::VectorXd previous_;       // the last step taken
   std::vector<JointFrame> frames_;
@@ -148,6 +158,45 @@ void PoseSolver::addCableRows() {
   }
 }
 
+// The motion along `direction` of the point `at` (world) fixed on `body`, as a row over the dofs.
+Eigen::VectorXd PoseSolver::pointRow(int body, const Vec2& at, const Vec2& direction) const {
+  Eigen::VectorXd c = Eigen::VectorXd::Zero(n_);
+  if (const int d = body >= 0 ? dofOf_[body] : -1; d >= 0)
+    c.segment<3>(d) = Vec3(direction.x(), direction.y(),
+                           direction.dot(perp(Vec2(at - w_.bodies[body].position))));
+  return c;
+}
+
+// Floors (floors.h) of the rigid cables: a body pulled up to its pulley stops kFloorLength short
+// of it rather than through it, where the segment's direction, and so the length's Jacobian, would
+// turn over (a ballast dragged up to its pulley). A point-circle segment also keeps its rim gap.
+void PoseSolver::addFloorRows() {
+  for (const Cable& c : w_.cables) {
+    if (c.elastic() || !hasFloors(c)) continue;
+    const std::vector<WrapPoint>& path = c.path();
+    for (size_t i = 0; i + 1 < path.size(); ++i) {
+      const WrapPoint &p = path[i], &q = path[i + 1];
+      const bool dofs = (p.body >= 0 && dofOf_[p.body] >= 0) || (q.body >= 0 && dofOf_[q.body] >= 0);
+      const double gap = floorGap(p, q);
+      if (p.body == q.body || !dofs || !(gap < kFloorWatch)) continue;
+      if (gap > 0) {
+        const Vec2 n = (floorTo(q) - floorFrom(p)) / gap;
+        addRow(pointRow(q.body, floorTo(q), n) - pointRow(p.body, floorFrom(p), n),
+               kFloorLength - gap);
+      }
+      if (const int rim = rimEnd(p, q); rim >= 0) {
+        const WrapPoint &circle = rim == 0 ? p : q, &point = rim == 0 ? q : p;
+        Vec2 gradient;
+        const double rimGapNow =
+            rimGap(point.body, point.world, circle.world, circle.radius, gradient);
+        addRow(pointRow(point.body, point.world, gradient) -
+                   pointRow(circle.body, circle.world, gradient),
+               kFloorLength - rimGapNow);
+      }
+    }
+  }
+}
+
 // Joint rows (joint_projection.h) held at zero position error, C delta = -error, and limited
 // coordinates kept within their limits; a body that may not turn keeps its angle.
 void PoseSolver::addJointRows() {
@@ -196,8 +245,8 @@ void PoseSolver::addJointRows() {
 
 // One Gauss-Newton step: the QP of pose_projection.h linearised at the current pose, then the
 // bodies moved (in Box2D) and the cables updated. Returns the step's largest component.
-double PoseSolver::step(const Vec2* waypoint) {
-  if (n_ == 0) return 0;
+bool PoseSolver::step(const Vec2* waypoint) {
+  if (n_ == 0) return false;
   const std::vector<BodyState>& bodies = w_.bodies;
   Eigen::MatrixXd H = mass_.asDiagonal();
   Eigen::VectorXd f = Eigen::VectorXd::Zero(n_);
@@ -220,14 +269,28 @@ double PoseSolver::step(const Vec2* waypoint) {
   rowsC_.clear();
   rowsB_.clear();
   addCableRows();
+  addFloorRows();
   addJointRows();
   Eigen::MatrixXd C(rowsC_.size(), n_);
   Eigen::VectorXd b(rowsB_.size());
   for (size_t i = 0; i < rowsC_.size(); ++i) C.row(i) = rowsC_[i].transpose(), b[i] = rowsB_[i];
-  Eigen::VectorXd delta = rowsC_.empty() ? Eigen::VectorXd(-H.ldlt().solve(f))
-                                          : solveSmallQp(H, f, C, b, Eigen::VectorXd::Zero(n_)).x;
+  if (b.size() == 0 || b.maxCoeff() <= kMet) met_ = bodies;
+  Eigen::VectorXd delta;
+  if (rowsC_.empty()) {
+    delta = -H.ldlt().solve(f);
+  } else {
+    const SmallQpResult qp = solveSmallQp(H, f, C, b, Eigen::VectorXd::Zero(n_));
+    // No step meets the rows together: they disagree to first order where they meet (a box
+    // pulled up against its wheel, its floor and its span at odds). Relaxed, the QP would loosen
+    // every row, the joints' too, a little more each step: stop at the last pose that met them.
+    if (qp.slack > kInconsistent) {
+      if (!met_.empty()) place(met_);
+      return false;
+    }
+    delta = qp.x;
+  }
   const double largest = delta.cwiseAbs().maxCoeff();
-  if (!std::isfinite(largest)) return 0;
+  if (!std::isfinite(largest)) return false;
   // Far from linear (a long step): a shorter step along the same direction still meets the
   // linearised rows, which the current pose meets. A step that turns back on the last one has
   // overshot along a curved constraint (a weight sliding round its rope's circle): the limit
@@ -235,23 +298,31 @@ double PoseSolver::step(const Vec2* waypoint) {
   if (previous_.size() == delta.size() && previous_.dot(delta) < 0) limit_ *= 0.5;
   if (largest > limit_) delta *= limit_ / largest;
   previous_ = delta;
+  std::vector<BodyState> next = bodies;
   for (size_t i = 0; i < dofOf_.size(); ++i)
     if (const int d = dofOf_[i]; d >= 0) {
-      const BodyState& s = bodies[i];
-      w_.box2d.placeBody(static_cast<int>(i), s.position + delta.segment<2>(d),
-                         s.angle + delta[d + 2]);
+      next[i].position += delta.segment<2>(d);
+      next[i].angle += delta[d + 2];
     }
+  place(next);
+  return std::min(largest, limit_) >= kStepDone;
+}
+
+// Moves the dof bodies to `pose` (in Box2D), reads them back and updates the cables.
+void PoseSolver::place(const std::vector<BodyState>& pose) {
+  for (size_t i = 0; i < dofOf_.size(); ++i)
+    if (dofOf_[i] >= 0) w_.box2d.placeBody(static_cast<int>(i), pose[i].position, pose[i].angle);
   w_.box2d.readBodies(w_.bodies);
   for (Cable& c : w_.cables) c.update(w_.bodies, &w_.warnings);
-  return std::min(largest, limit_);
 }
 
 void PoseSolver::project(const Vec2* waypoint) {
   start_ = w_.bodies;
   limit_ = kMaxStep;
   previous_.resize(0);
+  met_.clear();
   for (int s = 0; s < kMaxSteps; ++s)
-    if (step(waypoint) < kStepDone) break;
+    if (!step(waypoint)) break;
 }
 
 }  // namespace
@@ -266,13 +337,23 @@ PoseResult projectPose(PoseWorld& world, const PoseGoal& asked) {
   PoseSolver solver(world, goal);
   PoseResult result;
   if (dragging) {
-    // Waypoints at most kSubMove apart: the wrap selection sees the bodies move continuously.
-    const Vec2 from = solver.grabbed();
-    const int moves = std::clamp(static_cast<int>(std::ceil((goal.target - from).norm() / kSubMove)),
-                                 1, kMaxSubMoves);
-    for (int k = 1; k <= moves; ++k) {
-      const Vec2 waypoint = from + (goal.target - from) * (static_cast<double>(k) / moves);
+    // Waypoints at most kSubMove ahead of the grabbed point: the wrap selection sees the bodies
+    // move continuously. Once the point no longer advances (held back), one last projection
+    // towards the target itself finds the nearest pose to it.
+    Vec2 at = solver.grabbed();
+    for (int k = 0; k < kMaxSubMoves; ++k) {
+      const Vec2 gap = goal.target - at;
+      const bool last = gap.norm() <= kSubMove;
+      const Vec2 waypoint = last ? goal.target : Vec2(at + gap * (kSubMove / gap.norm()));
       solver.project(&waypoint);
+      const Vec2 now = solver.grabbed();
+      const bool held = (now - at).norm() < kHeld * kSubMove;
+      at = now;
+      if (last) break;
+      if (held) {
+        solver.project(&goal.target);
+        break;
+      }
     }
   }
   solver.project(nullptr);  // whatever the pull left unmet (nothing, as a rule)
