@@ -20,6 +20,7 @@ const char* const kShortcuts[][2] = {{"space", "play / pause"},
                                      {"wheel", "zoom about the cursor"},
                                      {"left click", "select a body or a cable"},
                                      {"left drag", "drag a body (force-limited; paused: pose)"},
+                                     {"Shift + drag", "paused: pose, letting the cable out"},
                                      {"click empty space", "set the target (hand scene)"},
                                      {"Ctrl + click", "set a target anywhere"},
                                      {"right drag", "pan"},
@@ -100,7 +101,7 @@ void mouseUp(Sandbox& sandbox, const SDL_MouseButtonEvent& e) {
 void mouseMotion(Sandbox& sandbox, const SDL_MouseMotionEvent& e) {
   const Vec2 mouse(e.x, e.y);
   if (sandbox.gesture.kind == Gesture::Kind::DragBody && sandbox.world()) {
-    sandbox.dragTo(sandbox.camera.toWorld(mouse));
+    sandbox.dragTo(sandbox.camera.toWorld(mouse), (SDL_GetModState() & KMOD_SHIFT) != 0);
   } else if (sandbox.gesture.kind == Gesture::Kind::Pan) {
     sandbox.camera.panPixels(mouse - sandbox.gesture.lastMouse);
     sandbox.follow = false;

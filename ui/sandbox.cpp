@@ -15,6 +15,8 @@ namespace cablelab::ui {
 namespace {
 
 constexpr double kBannerSeconds = 6;  // a guard's banner stays this long (wall time)
+constexpr double kOverLength = 1e-5;  // m: a rigid cable longer than its rest length by more
+                                      // is settled before a paused world runs again
 
 }  // namespace
 
@@ -145,6 +147,8 @@ void Sandbox::advance(double frameSeconds, bool fixedStep) {
   }
   try {
     if (world_->gravity() != gravity) world_->setGravity(gravity);
+    if (steps > 0 && wasPaused_) settleBeforeRunning();
+    wasPaused_ = paused;
     for (int i = 0; i < steps; ++i) {
       controllerBeforeStep(*this, *world_);
       applyDrag();
@@ -215,15 +219,48 @@ void Sandbox::beginDrag(int body, const Vec2& worldPoint) {
   drag.grabLocal = rotate(worldPoint - s.position, -s.angle);
 }
 
-void Sandbox::dragTo(const Vec2& worldPoint) {
+void Sandbox::dragTo(const Vec2& worldPoint, bool payOut) {
   if (!world_ || drag.body < 0) return;
   drag.target = worldPoint;
   if (!paused) return;
-  // Paused: pose the body, grabbed point on the mouse, at rest.
-  const BodyState& s = world_->body(drag.body);
-  world_->setBodyTransform(drag.body, worldPoint - rotate(drag.grabLocal, s.angle), s.angle);
-  world_->setBodyVelocity(drag.body, Vec2::Zero(), 0);
-  world_->refreshCables();
+  // Paused: pose the body, grabbed point towards the mouse as far as its cables allow, at rest.
+  sayPose(world_->poseBody(drag.body, drag.grabLocal, worldPoint, payOut));
+}
+
+// The status line says, in plain words, what held the body back or how much cable went out.
+void Sandbox::sayPose(const PoseResult& pose) {
+  constexpr double kHeldPixels = 3;  // a pose this far short of the mouse was held back
+  const std::string body = "'" + world_->scene().bodies[drag.body].name + "'";
+  char text[160];
+  if (!pose.paidOut.empty()) {
+    double paid = 0;
+    for (const auto& [cable, length] : pose.paidOut) paid += length;
+    const Cable& c = world_->cable(pose.paidOut.front().first);
+    std::snprintf(text, sizeof text, "let out %.3g m of cable '%s' (now %.3g m long)", paid,
+                  c.name().c_str(), c.restLength());
+    message = text;
+  } else if (pose.miss > kHeldPixels * camera.metresPerPixel) {
+    if (!pose.taut.empty())
+      message = body + " can go no further: cable '" + world_->cable(pose.taut.front()).name() +
+                "' is pulled tight (hold Shift while dragging to let it out)";
+    else
+      message = body + " can go no further: its joints hold it";
+  } else if (message.find(" can go no further") != std::string::npos) {
+    message.clear();
+  }
+}
+
+// A paused world runs again: no rigid cable may start over its rest length (an edit while
+// paused could leave one so), or it would snap back and fling what hangs on it.
+void Sandbox::settleBeforeRunning() {
+  for (int i = 0; i < world_->cableCount(); ++i) {
+    const Cable& c = world_->cable(i);
+    for (int k = 0; k < c.spanCount() && !c.elastic(); ++k)
+      if (c.spanStretch(k) > kOverLength) {
+        world_->settlePose();
+        return;
+      }
+  }
 }
 
 void Sandbox::endDrag() {

@@ -42,7 +42,9 @@ struct Gesture {
 /// The mouse drag: a spring-damper force from the grabbed point to the mouse, applied before
 /// each step (so the cable solver sees it and a rigid cable resists it), clamped to a number
 /// of the body's weights, like the max force of Box2D's mouse joint. While paused a drag poses
-/// the body instead (it follows the mouse exactly, at rest).
+/// the body instead (World::poseBody): it follows the mouse as far as its rigid cables and joints
+/// let it, the bodies on their other ends following, everything at rest; with `payOut` (Shift
+/// held) its rigid cables let out length instead.
 struct Drag {
   int body = -1;                  ///< -1: no drag
   Vec2 target = Vec2::Zero();     ///< mouse point (m)
@@ -98,7 +100,7 @@ class Sandbox {
 
   // Drag (see Drag).
   void beginDrag(int body, const Vec2& worldPoint);
-  void dragTo(const Vec2& worldPoint);
+  void dragTo(const Vec2& worldPoint, bool payOut = false);
   void endDrag();
   /// The drag force limit (N) for `body`: dragWeights times its weight (at least 9.81 m/s^2).
   double dragLimit(int body) const;
@@ -187,10 +189,13 @@ class Sandbox {
   bool adopt(SceneDef def, const std::string& name, bool fitCamera);
   void afterStep();
   void applyDrag();
+  void sayPose(const PoseResult& pose);
+  void settleBeforeRunning();
   void checkWarnings();
   void loadCableEdit();
   std::unique_ptr<World> world_;
   double accumulator_ = 0;
+  bool wasPaused_ = false;  ///< paused at the last advance(): the next steps resume the world
 };
 
 }  // namespace cablelab::ui

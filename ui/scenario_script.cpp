@@ -43,6 +43,17 @@ int rigidCableBody(const World& world, int* cable) {
   return -1;
 }
 
+/// The largest (length - rest length) of any span of any rigid cable (m).
+double longestRigidStretch(const World& world) {
+  double longest = -INFINITY;
+  for (int i = 0; i < world.cableCount(); ++i) {
+    const Cable& c = world.cable(i);
+    for (int k = 0; k < c.spanCount() && !c.elastic(); ++k)
+      longest = std::max(longest, c.spanStretch(k));
+  }
+  return longest;
+}
+
 /// The Inspector's span table as it was shown, with the engine's span tensions of the moment.
 std::string spansJson(const Sandbox& sandbox) {
   const SpanTable& t = sandbox.shownSpans;
@@ -74,8 +85,8 @@ Vec2 freePoint(const Sandbox& sandbox, double fx, double fy) {
 }  // namespace
 
 const std::vector<std::string>& ScenarioScript::names() {
-  static const std::vector<std::string> n = {"describe", "reset-scale", "rigid-drag",
-                                             "drop-box", "author",      "capstan-slip"};
+  static const std::vector<std::string> n = {"describe", "reset-scale",  "rigid-drag", "drop-box",
+                                             "author",   "capstan-slip", "pose-drag"};
   return n;
 }
 
@@ -101,6 +112,7 @@ bool ScenarioScript::beforeFrame(Sandbox& sandbox, int frame) {
   if (name_ == "drop-box") return dropBox(sandbox, frame);
   if (name_ == "author") return author(sandbox, frame);
   if (name_ == "capstan-slip") return capstanSlip(sandbox, frame);
+  if (name_ == "pose-drag") return poseDrag(sandbox, frame);
   report_ = "{\"scenario\": " + jsonQuoted(name_) + ", \"failure\": \"unknown scenario\"}";
   return false;
 }
@@ -180,6 +192,63 @@ bool ScenarioScript::rigidDrag(Sandbox& sandbox, int frame) {
         ", \"largest_drag_force\": " + number(figures_[0]) +
         ", \"drag_limit\": " + number(sandbox.dragLimit(body_)) +
         ", \"frames_at_limit\": " + number(figures_[1]) + "}";
+    return false;
+  }
+  return true;
+}
+
+bool ScenarioScript::poseDrag(Sandbox& sandbox, int frame) {
+  constexpr int kDragFrames = 30;
+  World& world = *sandbox.world();
+  // figures_: 0 largest stretch while paused, 1 stretch at Play, 2 energy posed, 3 time of Play,
+  // 4 top speed after Play, 5 paused when the drag began (1) or not (0).
+  if (frame == 2) {
+    key(SDLK_SPACE);
+  } else if (frame == 4) {
+    figures_[5] = sandbox.paused ? 1 : 0;
+    body_ = rigidCableBody(world, &cable_);
+    if (body_ < 0) {
+      report_ = "{\"scenario\": \"pose-drag\", \"failure\": \"no body on a rigid cable\"}";
+      return false;
+    }
+    // 1 m out along the cable's last segment: the pull a rigid cable resists most directly.
+    const auto& path = world.cable(cable_).path();
+    const bool atEnd = world.findBody(world.cable(cable_).def().end.body) == body_;
+    const Vec2 last = atEnd ? path.back().world : path.front().world;
+    const Vec2 before = atEnd ? path[path.size() - 2].world : path[1].world;
+    to_ = sandbox.camera.toScreen(last + (last - before).normalized());
+    from_ = sandbox.camera.toScreen(last);
+    start_ = world.body(body_).position;
+    figures_[0] = -INFINITY;
+    mouse(SDL_MOUSEMOTION, from_);
+    mouse(SDL_MOUSEBUTTONDOWN, from_);
+  } else if (frame > 4 && frame <= 4 + kDragFrames) {
+    mouse(SDL_MOUSEMOTION, from_ + (to_ - from_) * ((frame - 4.0) / kDragFrames));
+    figures_[0] = std::max(figures_[0], longestRigidStretch(world));
+  } else if (frame == 5 + kDragFrames) {
+    figures_[0] = std::max(figures_[0], longestRigidStretch(world));
+    said_ = sandbox.message;
+    end_ = world.body(body_).position;
+    mouse(SDL_MOUSEBUTTONUP, to_);
+  } else if (frame == 6 + kDragFrames) {
+    figures_[1] = longestRigidStretch(world);
+    figures_[2] = world.energy();
+    figures_[3] = world.time();
+    key(SDLK_SPACE);
+  } else if (frame > 6 + kDragFrames) {
+    figures_[4] = std::max(figures_[4], world.body(body_).velocity.norm());
+    if (world.time() < figures_[3] + 0.1 - 1e-9) return true;
+    report_ = "{\"scenario\": \"pose-drag\", \"body\": " +
+              jsonQuoted(world.scene().bodies[body_].name) +
+              ", \"paused\": " + (figures_[5] > 0 ? "true" : "false") +
+              ", \"largest_paused_stretch\": " + number(figures_[0]) +
+              ", \"stretch_at_play\": " + number(figures_[1]) +
+              ", \"moved\": " + number((end_ - start_).norm()) +
+              ", \"energy_posed\": " + number(figures_[2]) +
+              ", \"energy_after\": " + number(world.energy()) +
+              ", \"seconds_run\": " + number(world.time() - figures_[3]) +
+              ", \"fastest_after_play\": " + number(figures_[4]) +
+              ", \"status\": " + jsonQuoted(said_) + "}";
     return false;
   }
   return true;

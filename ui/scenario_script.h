@@ -13,6 +13,10 @@
 //                panel's slider sets it (slips for 1 s); reports the Inspector's span table both
 //                times with the engine's span tensions of the moment and the Inspector's row
 //                overflow
+//   pose-drag    Space (pause), drags the body at the end of a rigid cable 1 m straight out
+//                along its last segment, releases, Space (play) and runs 0.1 s; reports the
+//                cable's largest stretch while paused and at Play, how far the body went, the
+//                energy posed and 0.1 s later, the body's top speed after Play and the status
 //   author       builds a scene by clicks (a box, a pulley, a cable anchor -> pulley -> box),
 //                saves it to --script-out; reports the counts and the file
 //
@@ -51,12 +55,15 @@ class ScenarioScript {
   bool dropBox(Sandbox& sandbox, int frame);
   bool author(Sandbox& sandbox, int frame);
   bool capstanSlip(Sandbox& sandbox, int frame);
+  bool poseDrag(Sandbox& sandbox, int frame);
 
   std::string name_, out_, report_ = "{}";
   Uint32 windowId_;
   int body_ = -1, cable_ = -1;
-  Vec2 from_ = Vec2::Zero(), to_ = Vec2::Zero();  ///< px
-  double figures_[4] = {0, 0, 0, 0};
+  Vec2 from_ = Vec2::Zero(), to_ = Vec2::Zero();     ///< px
+  Vec2 start_ = Vec2::Zero(), end_ = Vec2::Zero();  ///< body position (m)
+  double figures_[6] = {0, 0, 0, 0, 0, 0};
+  std::string said_;  ///< the status line at a moment the scenario reports
   double largest_ = 0;
 };
 

@@ -22,6 +22,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -52,6 +53,16 @@ struct JointState {
   /// The servo's force (N, prismatic) or torque (N m, revolute) over the last step, positive
   /// along the coordinate: its impulse over the step's dt; 0 without a servo.
   double force = 0;
+};
+
+/// What World::poseBody() or settlePose() did.
+struct PoseResult {
+  Vec2 reached = Vec2::Zero();  ///< poseBody: where the grabbed point ended (world, m)
+  double miss = 0;              ///< poseBody: its distance from the target (m): what was held back
+  std::vector<int> moved;       ///< bodies the pose moved (each now at rest), ascending
+  std::vector<int> taut;        ///< rigid cables at their rest length after the pose
+  std::vector<std::pair<int, double>> paidOut;  ///< (cable, m): rest length let out (payOut)
+  double longest = 0;  ///< the largest rigid span's length over its rest length after it (m)
 };
 
 /// Timing and solver figures of the last step() call.
@@ -111,6 +122,19 @@ class World {
   void endDrag();
   int draggedBody() const { return dragBody_; }
   Vec2 dragTarget() const { return dragTarget_; }
+
+  /// Posing while paused (docs/model.md, "Posing"): moves `body` so that its point `grabLocal`
+  /// (body frame, m) goes to `target` (world, m) as far as the rigid cables, the joints and
+  /// their limits allow; the other dynamic bodies follow with the least mass-weighted motion,
+  /// as a pulley system pulled by hand does. Where the target cannot be reached the body stops
+  /// at the nearest pose that can. With `payOut` the rigid cables do not hold: each one the pose
+  /// lengthens lets out rest length to match. Every body moved ends at rest, and the servos of
+  /// the joints it moved hold the new pose (their targets move to it). Call it with small moves
+  /// (a mouse's), as the wrap points follow the bodies continuously.
+  PoseResult poseBody(int body, const Vec2& grabLocal, const Vec2& target, bool payOut = false);
+  /// Brings every rigid cable back within its rest length and every joint together with the
+  /// least mass-weighted motion (before a paused world runs again); the bodies moved end at rest.
+  PoseResult settlePose();
 
   // Cables, indexed as in scene().cables.
   int cableCount() const { return static_cast<int>(cables_.size()); }
