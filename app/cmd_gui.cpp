@@ -1,5 +1,5 @@
-// `cablelab gui [SCENE] [--frames N] [--screenshot F.png]`: hands off to the sibling
-// executable cablelab-gui. The sandbox links libGL (SDL2 window) while this CLI links libOSMesa
+// `cablelab gui [SCENE] [options of ui/gui_options.h]`: hands off to the sibling executable
+// cablelab-gui. The sandbox links libGL (SDL2 window) while this CLI links libOSMesa
 // (snapshots); one binary linking both renders blank OSMesa images, so they are two programs.
 #include <unistd.h>
 
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "app/command.h"
+#include "ui/gui_options.h"
 
 namespace cablelab::app {
 namespace {
@@ -24,23 +25,16 @@ std::filesystem::path siblingGui() {
 const bool guiRegistered = registerCommand(
     "gui", "The interactive sandbox (SDL2 + Dear ImGui), run as the sibling cablelab-gui",
     [](CLI::App& sub) {
-      auto scene = std::make_shared<std::string>();
-      auto frames = std::make_shared<int>(0);
-      auto screenshot = std::make_shared<std::string>();
-      sub.add_option("scene", *scene, "built-in scene name or scene JSON file (default: hand)");
-      sub.add_option("--frames", *frames, "quit after N frames and print {\"frames\", \"fps\"}")
-          ->check(CLI::NonNegativeNumber);
-      sub.add_option("--screenshot", *screenshot, "save the last frame as PNG");
-      sub.allow_extras();  // further cablelab-gui options pass through (see cablelab-gui --help)
-      return [=, &sub]() {
+      // The same options as cablelab-gui (one definition), so that both --help list them all;
+      // cablelab-gui checks them (bad input: exit 2 before any window when unattended).
+      auto args = std::make_shared<ui::GuiArguments>();
+      ui::addGuiOptions(sub, *args);
+      return [args]() {
         const std::string gui = siblingGui().string();
-        std::vector<std::string> args{gui};
-        if (!scene->empty()) args.push_back(*scene);
-        if (*frames > 0) args.insert(args.end(), {"--frames", std::to_string(*frames)});
-        if (!screenshot->empty()) args.insert(args.end(), {"--screenshot", *screenshot});
-        for (const std::string& extra : sub.remaining()) args.push_back(extra);
+        std::vector<std::string> line{gui};
+        for (std::string& a : ui::guiCommandLine(*args)) line.push_back(std::move(a));
         std::vector<char*> argv;
-        for (std::string& a : args) argv.push_back(a.data());
+        for (std::string& a : line) argv.push_back(a.data());
         argv.push_back(nullptr);
         std::cout.flush();
         execv(gui.c_str(), argv.data());

@@ -1,8 +1,9 @@
 // cablelab-gui: the interactive sandbox (SDL2 window + Dear ImGui + the shared renderer).
 // `cablelab gui` execs this program; it links libGL and never libOSMesa (see README.md).
 //
-//   cablelab-gui [SCENE] [--frames N] [--screenshot F.png] [--size WxH] [--open F]
-//                [--record F.gif] [--ui-scale S] [--script NAME] [--test-input]
+//   cablelab-gui [SCENE] [--set NAME=VALUE]... [--frames N] [--screenshot F.png] [--size WxH]
+//                [--open F] [--record F.gif] [--ui-scale S] [--script NAME] [--test-input]
+// (every option: ui/gui_options.h, shared with `cablelab gui`)
 #include <GL/gl.h>
 #include <imgui.h>
 #include <CLI/CLI.hpp>
@@ -19,6 +20,7 @@
 #include "engine/core/error.h"
 #include "engine/core/file_input.h"
 #include "engine/core/parse.h"
+#include "ui/gui_options.h"
 #include "ui/image.h"
 #include "ui/input.h"
 #include "ui/input_script.h"
@@ -32,42 +34,12 @@
 
 namespace {
 
-struct Options {
-  std::string scene;
-  int frames = 0;
-  std::string screenshot;
-  int width = 0, height = 0;  ///< 0: fitted to the display
-  std::string openLater;
-  std::string record;
-  float uiScale = 0;  ///< 0: from the display
-  bool testInput = false;
-  std::string script, scriptOut = "authored.json";
-};
-
-/// The options, or nullopt after --help. Bad values are InputError ("command line: --size: ...").
-std::optional<Options> parse(int argc, char** argv) {
-  Options o;
-  std::string frames, size;
+/// The checked options, or nullopt after --help. Bad values are InputError
+/// ("command line: --size: ..."); an unattended run's bad scene too (ui/gui_options.h).
+std::optional<cablelab::ui::GuiOptions> parse(int argc, char** argv) {
+  cablelab::ui::GuiArguments args;
   CLI::App cli{"cablelab-gui: the interactive sandbox (SDL2 + Dear ImGui)", "cablelab-gui"};
-  cli.add_option("scene", o.scene, "built-in scene name or scene JSON file (default: hand)");
-  cli.add_option("--frames", frames,
-                 "quit after N frames (one scene time step per frame) and print "
-                 "{\"frames\": N, \"fps\": f} (fps from the median frame time)");
-  cli.add_option("--screenshot", o.screenshot, "save the last frame as PNG");
-  cli.add_option("--size", size, "window size WxH (default: fitted to the display)");
-  cli.add_option("--record", o.record, "record the world view as an animated GIF from frame 1");
-  std::string uiScale, script;
-  cli.add_option("--ui-scale", uiScale, "text and panel scale, 0.5..4 (default: from the display)");
-  cli.add_option("--script", script,
-                 "run an acceptance scenario (describe, reset-scale, rigid-drag, drop-box, author, "
-                 "capstan-slip) "
-                 "with synthetic events and print its JSON report");
-  cli.add_option("--script-out", o.scriptOut, "the scene file the author scenario saves");
-  cli.add_option("--open", o.openLater,
-                 "after 10 frames, open F as if chosen in the Scene menu (for tests)");
-  cli.add_flag("--test-input", o.testInput,
-               "drive the mouse and keys with synthetic SDL events, check the result (with "
-               "--screenshot: the script's last frame)");
+  cablelab::ui::addGuiOptions(cli, args);
   try {
     cli.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -76,30 +48,29 @@ std::optional<Options> parse(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     throw cablelab::commandLineError(e.what(), "see cablelab-gui --help");
   }
-  if (!frames.empty())
-    o.frames = static_cast<int>(
-        cablelab::parseWholeNumber(frames, cablelab::kCommandLine, "--frames", 0, 100000000));
-  if (!size.empty()) {
-    const auto s = cablelab::parsePixelSize(size, cablelab::kCommandLine, "--size", 240, 16384);
-    o.width = s.width;
-    o.height = s.height;
+  return cablelab::ui::checkGuiArguments(args, cablelab::ui::ScenarioScript::names());
+}
+
+/// Opens the first scene with its --set values. A failure (only possible when someone watches
+/// the window: an unattended run checked the scene already) shows its error over the default
+/// scene, or over the scene with its own defaults when only a --set value is wrong.
+void openFirstScene(cablelab::ui::Sandbox& sandbox, const cablelab::ui::GuiOptions& options) {
+  using cablelab::ui::defaultSceneName;
+  if (!sandbox.open(options.scene)) {
+    const std::string error = sandbox.error;  // keep the message visible over the fallback
+    if (options.scene != defaultSceneName()) sandbox.open(defaultSceneName());
+    sandbox.error = error;
+    return;
   }
-  if (!o.screenshot.empty()) cablelab::requireWritable(o.screenshot, "--screenshot");
-  if (!uiScale.empty()) {
-    const auto v = cablelab::parseFiniteNumber(uiScale);
-    if (!v || *v < 0.5 || *v > 4)
-      throw cablelab::InputError(cablelab::kCommandLine, "--ui-scale",
-                                 "must be a number in [0.5, 4] (got " + uiScale + ")");
-    o.uiScale = static_cast<float>(*v);
+  if (options.overrides.empty()) return;
+  auto values = sandbox.parameters;  // the scene's defaults, in the Scene panel's order
+  for (const auto& [name, value] : options.overrides) {
+    auto known = std::find_if(values.begin(), values.end(),
+                              [&key = name](const auto& p) { return p.first == key; });
+    if (known != values.end()) known->second = value;
+    else values.emplace_back(name, value);  // unknown: rebuild() reports it
   }
-  if (!script.empty()) {
-    const auto& names = cablelab::ui::ScenarioScript::names();
-    if (std::find(names.begin(), names.end(), script) == names.end())
-      throw cablelab::InputError(cablelab::kCommandLine, "--script",
-                                 "unknown scenario (got " + script + ")");
-    o.script = script;
-  }
-  return o;
+  sandbox.rebuild(values);
 }
 
 cablelab::ui::PanelRect recordArea;  // the window rectangle the recording crops (px)
@@ -142,7 +113,7 @@ void toggleRecording(cablelab::ui::Sandbox& sandbox, cablelab::ui::Recorder& rec
   }
 }
 
-int run(const Options& options) {
+int run(const cablelab::ui::GuiOptions& options) {
   using namespace cablelab::ui;
   using Clock = std::chrono::steady_clock;
   const bool scripted = options.frames > 0 || options.testInput || !options.script.empty();
@@ -153,12 +124,7 @@ int run(const Options& options) {
   PanelState panelState;
   Recorder recorder;
 
-  const std::string first = options.scene.empty() ? defaultSceneName() : options.scene;
-  if (!sandbox.open(first)) {
-    const std::string error = sandbox.error;  // keep the message visible over the fallback
-    if (first != defaultSceneName()) sandbox.open(defaultSceneName());
-    sandbox.error = error;
-  }
+  openFirstScene(sandbox, options);
   bool startRecording = !options.record.empty();
 
   std::optional<InputScript> script;

@@ -3,11 +3,15 @@
 #include <png.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <memory>
 #include <stdexcept>
+
+#include "engine/core/error.h"
+#include "engine/core/file_input.h"
 
 namespace cablelab::ui {
 namespace {
@@ -57,6 +61,46 @@ Image readPng(const std::string& path) {
   if (!png_image_finish_read(&png, nullptr, image.rgba.data(), 0, nullptr))
     throw std::runtime_error(path + ": PNG read failed: " + png.message);
   return image;
+}
+
+Image readInputPng(const std::string& path) {
+  const std::string bytes = readInputFile(path);  // a missing file or a directory says so
+  png_image png;
+  std::memset(&png, 0, sizeof png);
+  png.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_memory(&png, bytes.data(), bytes.size()))
+    throw InputError(path, "(file)", std::string("not a PNG image: ") + png.message);
+  png.format = PNG_FORMAT_RGBA;
+  Image image;
+  image.width = static_cast<int>(png.width);
+  image.height = static_cast<int>(png.height);
+  image.rgba.resize(PNG_IMAGE_SIZE(png));
+  if (!png_image_finish_read(&png, nullptr, image.rgba.data(), 0, nullptr))
+    throw InputError(path, "(file)", std::string("not a readable PNG image: ") + png.message);
+  return image;
+}
+
+ImageComparison compareImages(const Image& expected, const Image& actual, int threshold) {
+  if (expected.width != actual.width || expected.height != actual.height)
+    throw std::invalid_argument("compareImages: the images differ in size");
+  ImageComparison result;
+  result.pixels = static_cast<long>(expected.width) * expected.height;
+  result.diff = expected;
+  for (int y = 0; y < expected.height; ++y)
+    for (int x = 0; x < expected.width; ++x) {
+      const std::uint8_t *e = expected.pixel(x, y), *a = actual.pixel(x, y);
+      int distance = 0;
+      for (int c = 0; c < 3; ++c) distance = std::max(distance, std::abs(int(e[c]) - int(a[c])));
+      std::uint8_t* out = result.diff.pixel(x, y);
+      if (distance > threshold) {
+        ++result.differing;
+        out[0] = 230, out[1] = 0, out[2] = 0;
+      } else {  // light grey, the reference's brightness kept faintly so that shapes show
+        out[0] = out[1] = out[2] = static_cast<std::uint8_t>(200 + (e[0] + e[1] + e[2]) / 3 / 5);
+      }
+      out[3] = 255;
+    }
+  return result;
 }
 
 void flipRows(Image& image) {

@@ -1,6 +1,7 @@
-// Image: an RGBA8 pixel buffer with PNG reading and writing (libpng).
+// Image: an RGBA8 pixel buffer with PNG reading and writing (libpng), and the one image
+// comparison (`cablelab snapshot --compare`, the golden-image tests).
 //
-// Needs: libpng (linked by cablelab_offscreen). Rows are stored top row first.
+// Needs: libpng (linked by cablelab_render). Rows are stored top row first.
 #pragma once
 
 #include <cstdint>
@@ -25,6 +26,24 @@ void writePng(const Image& image, const std::string& path);
 
 /// Reads any PNG as 8-bit RGBA; throws std::runtime_error naming `path` on failure.
 Image readPng(const std::string& path);
+
+/// Reads a PNG the user named (e.g. `--compare REF.png`) as 8-bit RGBA. A missing file, a
+/// directory or a file that is not a PNG is an InputError: "REF.png: (file): not a PNG image: ...".
+Image readInputPng(const std::string& path);
+
+/// How `actual` differs from `expected` (the same size): a pixel differs when its largest
+/// red, green or blue difference exceeds `threshold` levels of 255 (alpha is not compared).
+struct ImageComparison {
+  long differing = 0;  ///< pixels beyond the threshold
+  long pixels = 0;     ///< width x height
+  /// differing / pixels, in [0, 1]
+  double share() const { return pixels > 0 ? static_cast<double>(differing) / pixels : 0; }
+  /// Where they differ: `expected` dimmed to light grey, differing pixels red (230, 0, 0).
+  Image diff;
+};
+
+/// Compares two images of the same size (throws std::invalid_argument otherwise).
+ImageComparison compareImages(const Image& expected, const Image& actual, int threshold);
 
 /// The w x h rectangle of `image` at (x, y) (top-left origin), clamped to the image.
 Image cropped(const Image& image, int x, int y, int w, int h);

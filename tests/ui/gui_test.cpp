@@ -178,11 +178,41 @@ TEST(Gui, BadSceneFileShowsTheErrorAndKeepsRunning) {
     }
   EXPECT_GT(banner, 2000) << "no error banner in " << shot;
 
-  // A bad scene on the command line: the error, then the default scene, exit 0.
+  // A bad scene on the command line of a scripted run: exit 2, one line, never the default scene.
   const RunResult first =
       run(kXvfb + std::string(CABLELAB_CLI) + " gui " + bad + " --frames 5", "gui_bad_first");
-  EXPECT_EQ(first.exitCode, 0) << first.err;
-  EXPECT_NE(first.err.find(bad), std::string::npos) << first.err;
+  EXPECT_EQ(first.exitCode, 2) << first.err;
+  EXPECT_EQ(first.out, "");
+  EXPECT_EQ(first.err.rfind(bad + ": (json): not valid JSON", 0), 0u) << first.err;
+  EXPECT_EQ(std::count(first.err.begin(), first.err.end(), '\n'), 1) << first.err;
+}
+
+TEST(Gui, ABadSceneInTheInteractiveWindowShowsItsErrorAndKeepsRunning) {
+  REQUIRE_XVFB();
+  if (!onPath("timeout")) GTEST_SKIP() << "timeout (coreutils) not installed";
+  const std::string bad = (outputDir("gui") / "bad-interactive.json").string();
+  std::ofstream(bad) << R"({"bodies": [{"name": "b", "mass": -1.5}]})";
+  // No --frames, no --screenshot: someone watches the window, so the error shows in it and the
+  // sandbox keeps running until it is closed (here by timeout's SIGTERM, which SDL turns into a
+  // quit event).
+  const RunResult r = run(kXvfb + "timeout -s TERM 8 " + std::string(CABLELAB_CLI) + " gui " +
+                              bad + " --size 640x480",
+                          "gui_bad_interactive");
+  EXPECT_NE(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find(bad + ": bodies[0].mass: must be positive (got -1.5)"), std::string::npos)
+      << r.err;
+}
+
+TEST(Gui, SetChangesTheSceneLikeRun) {
+  REQUIRE_XVFB();
+  const std::string plain = (outputDir("gui") / "wheel-default.png").string(),
+                    wide = (outputDir("gui") / "wheel-r.png").string();
+  const std::string gui = kXvfb + std::string(CABLELAB_CLI) + " gui wheel --size 800x600 --frames 2";
+  ASSERT_EQ(run(gui + " --screenshot " + plain, "gui_set_default").exitCode, 0);
+  const RunResult r = run(gui + " --set r=0.5 --screenshot " + wide, "gui_set_r");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  // A wheel of another radius (and boxes hung from its rim elsewhere): a different picture.
+  EXPECT_GT(countDiffering(ui::readPng(plain), ui::readPng(wide), 40), 500);
 }
 
 }  // namespace

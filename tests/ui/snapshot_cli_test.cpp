@@ -1,5 +1,10 @@
-// `cablelab snapshot` and `cablelab gui` argument handling (no display needed).
+// `cablelab snapshot` and `cablelab gui` argument handling (no display needed: with --frames or
+// --screenshot, bad input must fail before the sandbox opens a window, so these run without one).
 #include <gtest/gtest.h>
+
+#include <filesystem>
+#include <regex>
+#include <set>
 
 #include "tests/ui/test_support.h"
 #include "ui/image.h"
@@ -45,6 +50,124 @@ TEST(SnapshotCli, BadInputExitsTwoWithOneLine) {
 TEST(SnapshotCli, HelpWorks) {
   EXPECT_EQ(run(std::string(CABLELAB_CLI) + " snapshot --help", "snapshot_help").exitCode, 0);
   EXPECT_EQ(run(std::string(CABLELAB_CLI) + " gui --help", "gui_help").exitCode, 0);
+}
+
+namespace fs = std::filesystem;
+
+const std::string kCli = CABLELAB_CLI;
+/// The sandbox executable `cablelab gui` hands off to.
+const std::string kGui = (fs::path(CABLELAB_CLI).parent_path() / "cablelab-gui").string();
+/// No display: a program that tried to open a window would fail with another message.
+const std::string kNoDisplay = "env -u DISPLAY -u WAYLAND_DISPLAY ";
+
+std::string data(const std::string& name) {
+  return std::string(CABLELAB_SOURCE_DIR) + "/tests/data/bad/" + name;
+}
+
+/// A bad input (SCENE and options) and the one line every command prints for it, or, where the
+/// line lists the built-in scenes or parameters, its start and end.
+struct BadInput {
+  std::string kind, args, line, lineEnd = {};
+  bool matches(const std::string& err) const {
+    if (lineEnd.empty()) return err == line + "\n";
+    return err.rfind(line, 0) == 0 && err.size() >= lineEnd.size() + 1 &&
+           err.compare(err.size() - lineEnd.size() - 1, lineEnd.size() + 1, lineEnd + "\n") == 0 &&
+           std::count(err.begin(), err.end(), '\n') == 1;
+  }
+};
+
+std::vector<BadInput> badScenes() {
+  const std::string folder = (outputDir("gui-bad") / "a_folder.json").string();
+  fs::create_directories(folder);
+  return {
+      {"negative mass", data("scene_negative_mass.json"),
+       data("scene_negative_mass.json") + ": bodies[0].mass: must be positive (got -1)"},
+      {"bad JSON", data("scene_not_json.json"),
+       data("scene_not_json.json") +
+           ": (json): not valid JSON at line 1, column 28: syntax error while parsing object key - "
+           "unexpected '}'; expected string literal"},
+      {"unknown body in a cable", data("scene_unknown_cable_body.json"),
+       data("scene_unknown_cable_body.json") + ": cables[0].end.body: unknown body (got \"ghost\")"},
+      {"missing file", "/no/such/scene.json",
+       "/no/such/scene.json: (file): cannot open: No such file or directory"},
+      {"a directory", folder, folder + ": (file): is a directory, not a file"},
+      {"unknown scene name", "no_such_scene",
+       "command line: SCENE: no such built-in scene or file; built-in: ", "(got \"no_such_scene\")"},
+      {"bad --set name", "hexagon --set nosuch=1",
+       "command line: --set nosuch: unknown parameter of scene hexagon (known: ", ")"},
+      {"bad --set value", "wheel --set m1=-2", "command line: --set m1: must be positive (got -2)"},
+  };
+}
+
+TEST(GuiCli, EveryBadSceneExitsTwoWithSnapshotsLineAndNoWindowOrPng) {
+  const std::string shot = (outputDir("gui-bad") / "never.png").string();
+  for (const BadInput& bad : badScenes()) {
+    fs::remove(shot);
+    const RunResult snap = run(kCli + " snapshot " + bad.args + " --out " + shot, "bad_snapshot");
+    EXPECT_EQ(snap.exitCode, 2) << bad.kind;
+    EXPECT_EQ(std::count(snap.err.begin(), snap.err.end(), '\n'), 1) << bad.kind << ": " << snap.err;
+    EXPECT_TRUE(bad.matches(snap.err)) << bad.kind << ": " << snap.err;
+    EXPECT_FALSE(fs::exists(shot)) << bad.kind;
+    // `cablelab gui` (handing off) and cablelab-gui itself, with --frames and --screenshot, with
+    // --frames alone and with --screenshot alone: the same line, exit 2, no window, no PNG.
+    for (const std::string& command :
+         {kCli + " gui " + bad.args + " --frames 30 --screenshot " + shot,
+          kCli + " gui " + bad.args + " --frames 30", kGui + " " + bad.args + " --screenshot " + shot,
+          kGui + " " + bad.args + " --frames 5"}) {
+      const RunResult gui = run(kNoDisplay + command, "bad_gui");
+      EXPECT_EQ(gui.exitCode, 2) << command;
+      EXPECT_EQ(gui.err, snap.err) << command;
+      EXPECT_EQ(gui.out, "") << command;
+      EXPECT_FALSE(fs::exists(shot)) << command;
+    }
+  }
+}
+
+TEST(GuiCli, BadOptionValuesExitTwoWithOneLine) {
+  const std::string shot = (outputDir("gui-bad") / "never.png").string();
+  fs::remove(shot);
+  const std::pair<std::string, std::string> cases[] = {
+      {"--size axb", "command line: --size: must be WxH, each a whole number in [240, 16384] (got \"axb\")"},
+      {"--size 100x100", "command line: --size: must be WxH, each a whole number in [240, 16384] (got \"100x100\")"},
+      {"--ui-scale 9", "command line: --ui-scale: must be a number in [0.5, 4] (got \"9\")"},
+      {"--set m1", "command line: --set: must be NAME=VALUE (got \"m1\")"},
+      {"--record /no/such/dir/clip.gif",
+       "command line: --record: cannot write the file: no folder /no/such/dir (got \"/no/such/dir/clip.gif\")"},
+  };
+  for (const auto& [args, line] : cases)
+    for (const std::string& program : {kCli + " gui", kGui}) {
+      const RunResult r =
+          run(kNoDisplay + program + " wheel " + args + " --frames 3 --screenshot " + shot, "bad_gui_option");
+      EXPECT_EQ(r.exitCode, 2) << program << " " << args;
+      EXPECT_EQ(r.err, line + "\n") << program << " " << args;
+      EXPECT_FALSE(fs::exists(shot));
+    }
+  // The snapshot says the same of a bad --set.
+  const RunResult snap = run(kCli + " snapshot wheel --set m1 --out " + shot, "bad_snapshot_set");
+  EXPECT_EQ(snap.err, "command line: --set: must be NAME=VALUE (got \"m1\")\n");
+}
+
+/// The long options a --help text lists.
+std::set<std::string> optionsIn(const std::string& help) {
+  static const std::regex option(R"(--[a-z][a-z-]*)");
+  std::set<std::string> found;
+  for (std::sregex_iterator i(help.begin(), help.end(), option), end; i != end; ++i)
+    found.insert(i->str());
+  return found;
+}
+
+TEST(GuiCli, HelpListsEveryOptionOfTheSandboxInBothPrograms) {
+  const RunResult cli = run(kCli + " gui --help", "gui_help_all");
+  const RunResult gui = run(kGui + " --help", "gui_help_sibling");
+  ASSERT_EQ(cli.exitCode, 0);
+  ASSERT_EQ(gui.exitCode, 0);
+  const std::set<std::string> listed = optionsIn(cli.out);
+  for (const char* option : {"--set", "--frames", "--screenshot", "--size", "--ui-scale",
+                             "--record", "--script", "--script-out", "--open", "--test-input",
+                             "--help"})
+    EXPECT_TRUE(listed.count(option)) << option << " missing from `cablelab gui --help`:\n"
+                                      << cli.out;
+  EXPECT_EQ(listed, optionsIn(gui.out)) << cli.out << "\n---\n" << gui.out;
 }
 
 }  // namespace

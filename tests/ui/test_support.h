@@ -56,29 +56,15 @@ inline bool onPath(const std::string& program) {
   return false;
 }
 
-/// Pixels whose largest channel difference exceeds `threshold`; writes a diff image (the
-/// expected image greyed out, differing pixels red) to `diffPath` when it is not empty.
+/// Pixels whose largest channel difference exceeds `threshold` (ui::compareImages); writes the
+/// diff image (the expected image greyed out, differing pixels red) to `diffPath` when it is
+/// not empty. Images of different sizes differ everywhere.
 inline long countDiffering(const ui::Image& a, const ui::Image& b, int threshold,
                            const std::string& diffPath = {}) {
   if (a.width != b.width || a.height != b.height) return static_cast<long>(a.width) * a.height;
-  ui::Image diff = a;
-  long count = 0;
-  for (int y = 0; y < a.height; ++y)
-    for (int x = 0; x < a.width; ++x) {
-      const auto *p = a.pixel(x, y), *q = b.pixel(x, y);
-      int d = 0;
-      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(p[c]) - int(q[c])));
-      auto* o = diff.pixel(x, y);
-      const auto grey = static_cast<std::uint8_t>(200 + (p[0] + p[1] + p[2]) / 3 / 5);
-      if (d > threshold) {
-        ++count;
-        o[0] = 230, o[1] = 0, o[2] = 0;
-      } else {
-        o[0] = o[1] = o[2] = grey;
-      }
-    }
-  if (!diffPath.empty()) ui::writePng(diff, diffPath);
-  return count;
+  const ui::ImageComparison c = ui::compareImages(a, b, threshold);
+  if (!diffPath.empty()) ui::writePng(c.diff, diffPath);
+  return c.differing;
 }
 
 /// A built-in scene stepped for `seconds` at its own dt and substeps (as `cablelab snapshot`).
