@@ -15,6 +15,8 @@
 //                overflow
 //   author       builds a scene by clicks (a box, a pulley, a cable anchor -> pulley -> box),
 //                saves it to --script-out; reports the counts and the file
+//   build-...    a new scene, one element built by clicks and keys (ui/build_scenarios.h), saved
+//                to --script-out; reports the counts, the error and the message shown
 //
 // Needs: an SDL video subsystem (the sandbox's Window), a Sandbox with a loaded scene.
 #pragma once
@@ -51,6 +53,7 @@ class ScenarioScript {
   bool dropBox(Sandbox& sandbox, int frame);
   bool author(Sandbox& sandbox, int frame);
   bool capstanSlip(Sandbox& sandbox, int frame);
+  bool build(Sandbox& sandbox, int frame);
 
   std::string name_, out_, report_ = "{}";
   Uint32 windowId_;
@@ -58,6 +61,7 @@ class ScenarioScript {
   Vec2 from_ = Vec2::Zero(), to_ = Vec2::Zero();  ///< px
   double figures_[4] = {0, 0, 0, 0};
   double largest_ = 0;
+  size_t step_ = 0;  ///< build: the next step
 };
 
 }  // namespace cablelab::ui
