@@ -1,19 +1,14 @@
 #include "ui/authoring.h"
 
-#include <imgui.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 
 #include "engine/model/scene_json.h"
-#include "ui/panels.h"
 
 namespace cablelab::ui {
 namespace {
-
-constexpr Colour kDraft{0.1f, 0.45f, 0.2f, 1.0f};
 
 Authoring& state(Sandbox& sandbox) {
   return *sandbox.authoring;
@@ -39,7 +34,8 @@ std::string freshCableName(const SceneDef& scene) {
 std::vector<Vec2> regularPolygon(int n, double radius) {
   std::vector<Vec2> v;
   for (int k = 0; k < n; ++k)
-    v.push_back(radius * Vec2(std::cos(2 * M_PI * k / n), std::sin(2 * M_PI * k / n)));
+    v.push_back(snapped(radius * Vec2(std::cos(2 * M_PI * k / n), std::sin(2 * M_PI * k / n)),
+                        kFineSnap));
   return v;
 }
 
@@ -63,11 +59,11 @@ std::vector<Vec2> convexHull(std::vector<Vec2> p) {
   return h;
 }
 
-BodyDef makeBody(const SceneDef& scene, const std::string& prefix, const Vec2& at, bool isStatic,
+BodyDef makeBody(const SceneDef& scene, const std::string& prefix, const Vec2& at, BodyType type,
                  double mass, ShapeDef shape) {
   BodyDef b;
   b.name = freshBodyName(scene, prefix);
-  b.type = isStatic ? BodyType::Static : BodyType::Dynamic;
+  b.type = type;
   b.position = at;
   b.mass = mass;
   b.shapes = {std::move(shape)};
@@ -81,90 +77,159 @@ ShapeDef polygonShape(std::vector<Vec2> vertices) {
   return s;
 }
 
+/// A body the pulley tools made (clicked with the cable tool, it is a pulley, not an end).
 bool isPulleyBody(const BodyDef& b) {
-  return b.name.rfind("pulley", 0) == 0 && b.type == BodyType::Static;
+  return b.name.rfind("pulley", 0) == 0;
 }
 
-/// The clicked end of a cable: a body-frame point on the body under it, else a world point.
+/// The body under a click, any type; -1 for none.
+int bodyUnder(const Sandbox& sandbox, const Vec2& p) {
+  return sandbox.bodyAt(p, true);
+}
+
+/// The clicked end of a cable: the clicked point of the body under it, else a world point. With
+/// drum ends on, an end clicked on a round body winds on it (a drum round its centre).
 AnchorDef anchorAt(const Sandbox& sandbox, const Vec2& p) {
-  const int body = sandbox.bodyAt(p, true);
+  const int body = bodyUnder(sandbox, p);
   if (body < 0) return {"world", p};
   const BodyState& s = sandbox.world()->body(body);
-  return {sandbox.scene.bodies[body].name, rotate(p - s.position, -s.angle)};
-}
-
-/// The cable from the clicked route; polygon pulleys wrap on the side the route turns away from.
-CableDef routedCable(const Sandbox& sandbox, const Authoring& a, const AnchorDef& end,
-                     const Vec2& endWorld) {
-  CableDef c;
-  c.name = freshCableName(sandbox.scene);
-  c.start = a.start;
-  c.end = end;
-  for (size_t k = 0; k < a.pulleyBodies.size(); ++k) {
-    const BodyDef& body = sandbox.scene.bodies[findBodyIndex(sandbox.scene, a.pulleyBodies[k])];
-    PulleyDef p;
-    p.body = body.name;
-    const bool point = body.shapes.front().kind == ShapeDef::Kind::Circle;
-    if (point) {
-      p.kind = PulleyDef::Kind::Point;
-      p.point = Vec2::Zero();
-      p.side = WrapSide::Threaded;
-    } else {
-      p.kind = PulleyDef::Kind::Polygon;  // the body's own polygon
-      const Vec2 before = k == 0 ? a.startWorld : a.pulleyCentres[k - 1];
-      const Vec2 after = k + 1 < a.pulleyCentres.size() ? a.pulleyCentres[k + 1] : endWorld;
-      const Vec2 c0 = a.pulleyCentres[k];
-      // Turning left round the pulley puts it on the cable's left: the cable passes its right.
-      p.side = cross(c0 - before, after - c0) > 0 ? WrapSide::Right : WrapSide::Left;
-    }
-    c.pulleys.push_back(p);
+  const BodyDef& def = sandbox.scene.bodies[body];
+  AnchorDef a{def.name, snapped(rotate(p - s.position, -s.angle), kSnap)};
+  const ShapeDef& shape = def.shapes.front();
+  if (sandbox.authoring->drumEnds && shape.kind == ShapeDef::Kind::Circle &&
+      shape.radius > kEyeletRadius) {
+    a.point = shape.center;
+    a.radius = shape.radius;
   }
-  return c;
+  return a;
 }
 
-bool cableClick(Sandbox& sandbox, Authoring& a, const Vec2& p) {
-  const int body = sandbox.bodyAt(p, true);
+/// The rope leaves (isStart) or reaches the drum on its side facing `toward` horizontally, as a
+/// rope hangs off a winch: the drum is on the cable's right (Left) or left (Right).
+void drumSide(AnchorDef& a, const Vec2& centre, const Vec2& toward, bool isStart) {
+  if (a.radius <= 0) return;
+  const Vec2 d = toward - centre;
+  const double facing = d.x() >= 0 ? 1 : -1;
+  a.side = (isStart ? -d.y() : d.y()) * facing > 0 ? WrapSide::Left : WrapSide::Right;
+}
+
+Vec2 anchorWorld(const Sandbox& sandbox, const AnchorDef& a) {
+  const int b = findBodyIndex(sandbox.scene, a.body);
+  if (b < 0) return a.point;
+  const BodyState& s = sandbox.world()->body(b);
+  return s.position + rotate(a.point, s.angle);
+}
+
+bool cableClick(Sandbox& sandbox, Authoring& a, const Vec2& p, bool shift, bool alt) {
+  const int body = bodyUnder(sandbox, p);
   if (!a.cableStarted) {
     a.start = anchorAt(sandbox, p);
-    a.startWorld = p;
-    a.pulleyBodies.clear();
-    a.pulleyCentres.clear();
+    a.startWorld = a.start.radius > 0 ? anchorWorld(sandbox, a.start) : p;
+    a.route.clear();
     a.cableStarted = true;
-    sandbox.message = "cable: click pulleys in order, then the end anchor (right click cancels)";
+    sandbox.message =
+        "cable: click the pulleys in order, then the end (right click cancels; Shift+click uses "
+        "any body as a pulley, Alt+click puts an eyelet on it)";
     return true;
   }
-  if (body >= 0 && isPulleyBody(sandbox.scene.bodies[body])) {
-    a.pulleyBodies.push_back(sandbox.scene.bodies[body].name);
-    a.pulleyCentres.push_back(sandbox.world()->body(body).position);
+  if (body >= 0 && (shift || alt || isPulleyBody(sandbox.scene.bodies[body]))) {
+    if (!a.route.empty() && a.route.back().body == sandbox.scene.bodies[body].name && !alt)
+      return true;  // clicked twice: one stop
+    a.route.push_back(
+        routeStop(sandbox.scene.bodies[body], sandbox.world()->body(body), p, alt));
     return true;
   }
+  AnchorDef end = anchorAt(sandbox, p);
+  const Vec2 endWorld = end.radius > 0 ? anchorWorld(sandbox, end) : p;
+  drumSide(a.start, a.startWorld, a.route.empty() ? endWorld : a.route.front().world, true);
+  drumSide(end, endWorld, a.route.empty() ? a.startWorld : a.route.back().world, false);
   SceneDef next = sandbox.scene;
-  next.cables.push_back(routedCable(sandbox, a, anchorAt(sandbox, p), p));
+  next.cables.push_back(routedCable(sandbox.scene, freshCableName(sandbox.scene), a.start,
+                                    a.startWorld, a.route, end, endWorld));
   a.cableStarted = false;
-  if (applyEdit(sandbox, std::move(next)))
-    sandbox.message = "added " + sandbox.scene.cables.back().name;
+  a.route.clear();
+  if (!applyEdit(sandbox, std::move(next))) return true;
+  const std::string problem =
+      routeProblem(*sandbox.world(), static_cast<int>(sandbox.scene.cables.size()) - 1);
+  if (!problem.empty()) {  // take the cable back: it would not run where it was clicked
+    undoEdit(sandbox);
+    a.redo.clear();
+    sandbox.error = problem;
+    return true;
+  }
+  sandbox.message = "added " + sandbox.scene.cables.back().name;
   return true;
 }
 
-void deleteAt(Sandbox& sandbox, const Vec2& p) {
+/// Revolute, prismatic or weld between the two clicked bodies (empty space: the world), at the
+/// second click.
+bool jointClick(Sandbox& sandbox, Authoring& a, const Vec2& p) {
+  const int body = bodyUnder(sandbox, p);
+  const std::string name = body >= 0 ? sandbox.scene.bodies[body].name : "world";
+  if (!a.jointStarted) {
+    a.jointStarted = true;
+    a.jointBodyA = name;
+    sandbox.message = std::string(toolName(a.tool)) + " joint: now click the second body at the "
+                      "point where they are joined (empty space: the ground)";
+    return true;
+  }
+  a.jointStarted = false;
+  JointDef j;
+  j.kind = a.tool == Authoring::Tool::Revolute    ? JointDef::Kind::Revolute
+           : a.tool == Authoring::Tool::Prismatic ? JointDef::Kind::Prismatic
+                                                  : JointDef::Kind::Weld;
+  j.bodyA = a.jointBodyA;
+  j.bodyB = name;
+  if (j.bodyB == "world") std::swap(j.bodyA, j.bodyB);
+  if (j.bodyB == "world" || j.bodyA == j.bodyB) {
+    sandbox.error = "A joint needs two different bodies (or a body and the ground): click a "
+                    "body, then another one.";
+    return true;
+  }
+  j.anchor = p;
   SceneDef next = sandbox.scene;
-  const int body = sandbox.bodyAt(p, true);
+  for (int n = 1;; ++n) {
+    j.name = "joint" + std::to_string(n);
+    if (std::none_of(next.joints.begin(), next.joints.end(),
+                     [&](const JointDef& k) { return k.name == j.name; }))
+      break;
+  }
+  next.joints.push_back(j);
+  if (applyEdit(sandbox, std::move(next))) sandbox.message = "added " + j.name;
+  return true;
+}
+
+/// A pulley body at `p`: fixed in empty space; on a body, mounted on it (revolute axle at its
+/// centre, an eyelet welded), so it moves with that body.
+void addPulley(Sandbox& sandbox, Authoring& a, SceneDef& next, const Vec2& p, ShapeDef shape,
+               bool eyelet) {
+  int host = bodyUnder(sandbox, p);
+  if (host >= 0 && sandbox.scene.bodies[host].type == BodyType::Static) host = -1;
+  shape.sensor = true;  // the cable wraps it; bodies pass through
+  BodyDef b = makeBody(next, "pulley", p, host < 0 ? BodyType::Static : BodyType::Dynamic,
+                       host < 0 ? 1.0 : a.mass, std::move(shape));
+  if (host >= 0) {
+    JointDef j;
+    j.kind = eyelet ? JointDef::Kind::Weld : JointDef::Kind::Revolute;
+    j.name = b.name + "_mount";
+    j.bodyA = next.bodies[host].name;
+    j.bodyB = b.name;
+    j.anchor = p;
+    next.joints.push_back(j);
+  }
+  next.bodies.push_back(std::move(b));
+}
+
+void deleteAt(Sandbox& sandbox, const Vec2& p) {
+  const int body = bodyUnder(sandbox, p);
   if (body >= 0) {
-    const std::string name = next.bodies[body].name;
-    auto uses = [&](const CableDef& c) {
-      if (c.start.body == name || c.end.body == name) return true;
-      return std::any_of(c.pulleys.begin(), c.pulleys.end(),
-                         [&](const PulleyDef& q) { return q.body == name; });
-    };
-    next.bodies.erase(next.bodies.begin() + body);
-    std::erase_if(next.cables, uses);
-    std::erase_if(next.joints,
-                  [&](const JointDef& j) { return j.bodyA == name || j.bodyB == name; });
-    if (applyEdit(sandbox, std::move(next))) sandbox.message = "deleted " + name;
+    const std::string name = sandbox.scene.bodies[body].name;
+    if (applyEdit(sandbox, withoutBody(sandbox.scene, name))) sandbox.message = "deleted " + name;
     return;
   }
   const int cable = sandbox.cableAt(p, 6 * sandbox.camera.metresPerPixel);
   if (cable < 0) return;
+  SceneDef next = sandbox.scene;
   const std::string name = next.cables[cable].name;
   next.cables.erase(next.cables.begin() + cable);
   if (applyEdit(sandbox, std::move(next))) sandbox.message = "deleted " + name;
@@ -190,6 +255,12 @@ const char* toolName(Authoring::Tool tool) {
       return "circle pulley";
     case Authoring::Tool::Cable:
       return "cable";
+    case Authoring::Tool::Revolute:
+      return "hinge";
+    case Authoring::Tool::Prismatic:
+      return "slider";
+    case Authoring::Tool::Weld:
+      return "weld";
     case Authoring::Tool::Delete:
       return "delete";
   }
@@ -249,17 +320,19 @@ bool finishPolygon(Sandbox& sandbox) {
   for (const Vec2& v : hull) centre += v / static_cast<double>(hull.size());
   for (Vec2& v : hull) v -= centre;
   SceneDef next = sandbox.scene;
-  next.bodies.push_back(makeBody(next, "polygon", centre, a.isStatic, a.mass, polygonShape(hull)));
+  next.bodies.push_back(makeBody(next, "polygon", centre, a.bodyType, a.mass, polygonShape(hull)));
   return applyEdit(sandbox, std::move(next));
 }
 
-bool authoringClick(Sandbox& sandbox, const Vec2& p, bool right) {
+bool authoringClick(Sandbox& sandbox, const Vec2& clicked, bool right, bool shift, bool alt) {
   Authoring& a = state(sandbox);
+  const Vec2 p = snapped(clicked, kSnap);
   using Tool = Authoring::Tool;
-  if (a.tool == Tool::None) return false;
-  if (right) {  // finishes a polygon, cancels a cable
+  if (a.tool == Tool::None || !sandbox.world()) return false;
+  if (right) {  // finishes a polygon, cancels a cable or a joint
     if (a.tool == Tool::Polygon) finishPolygon(sandbox);
-    a.cableStarted = false;
+    a.cableStarted = a.jointStarted = false;
+    a.route.clear();
     return true;
   }
   SceneDef next = sandbox.scene;
@@ -267,13 +340,13 @@ bool authoringClick(Sandbox& sandbox, const Vec2& p, bool right) {
   switch (a.tool) {
     case Tool::Box:
       next.bodies.push_back(
-          makeBody(next, "box", p, a.isStatic, a.mass,
+          makeBody(next, "box", p, a.bodyType, a.mass,
                    polygonShape({Vec2(-r, -r), Vec2(r, -r), Vec2(r, r), Vec2(-r, r)})));
       break;
     case Tool::Circle: {
       ShapeDef c;
       c.radius = r;
-      next.bodies.push_back(makeBody(next, "circle", p, a.isStatic, a.mass, c));
+      next.bodies.push_back(makeBody(next, "circle", p, a.bodyType, a.mass, c));
       break;
     }
     case Tool::Polygon:
@@ -281,20 +354,25 @@ bool authoringClick(Sandbox& sandbox, const Vec2& p, bool right) {
       return true;
     case Tool::PointPulley: {
       ShapeDef c;
-      c.radius = 0.03;
-      c.sensor = true;
-      next.bodies.push_back(makeBody(next, "pulley", p, true, 1, c));
+      c.radius = kEyeletRadius;
+      addPulley(sandbox, a, next, p, c, true);
       break;
     }
     case Tool::PolygonPulley:
+      addPulley(sandbox, a, next, p, polygonShape(regularPolygon(6, r)), false);
+      break;
     case Tool::CirclePulley: {
-      ShapeDef s = polygonShape(regularPolygon(a.tool == Tool::PolygonPulley ? 6 : 16, r));
-      s.sensor = true;  // the cable wraps it; bodies pass through
-      next.bodies.push_back(makeBody(next, "pulley", p, true, 1, s));
+      ShapeDef c;
+      c.radius = r;
+      addPulley(sandbox, a, next, p, c, false);
       break;
     }
     case Tool::Cable:
-      return cableClick(sandbox, a, p);
+      return cableClick(sandbox, a, p, shift, alt);
+    case Tool::Revolute:
+    case Tool::Prismatic:
+    case Tool::Weld:
+      return jointClick(sandbox, a, p);
     case Tool::Delete:
       deleteAt(sandbox, p);
       return true;
@@ -304,6 +382,29 @@ bool authoringClick(Sandbox& sandbox, const Vec2& p, bool right) {
   if (applyEdit(sandbox, std::move(next)))
     sandbox.message = "added " + sandbox.scene.bodies.back().name;
   return true;
+}
+
+bool editPulley(Sandbox& sandbox, int cable, int k, PulleyDef p) {
+  if (p.side == WrapSide::Auto) p.turns = 0;
+  SceneDef next = sandbox.scene;
+  next.cables[cable].pulleys[k] = p;
+  if (!applyEdit(sandbox, std::move(next))) return false;
+  const std::string problem = routeProblem(*sandbox.world(), cable);
+  if (!problem.empty()) sandbox.error = problem;
+  return true;
+}
+
+SceneDef withoutBody(const SceneDef& scene, const std::string& name) {
+  SceneDef next = scene;
+  auto uses = [&](const CableDef& c) {
+    if (c.start.body == name || c.end.body == name) return true;
+    return std::any_of(c.pulleys.begin(), c.pulleys.end(),
+                       [&](const PulleyDef& q) { return q.body == name; });
+  };
+  std::erase_if(next.bodies, [&](const BodyDef& b) { return b.name == name; });
+  std::erase_if(next.cables, uses);
+  std::erase_if(next.joints, [&](const JointDef& j) { return j.bodyA == name || j.bodyB == name; });
+  return next;
 }
 
 SceneDef sceneToSave(const Sandbox& sandbox) {
@@ -327,70 +428,6 @@ SceneDef sceneToSave(const Sandbox& sandbox) {
 
 void saveScene(const Sandbox& sandbox, const std::string& path) {
   saveSceneFile(sceneToSave(sandbox), path);
-}
-
-void authoringPanel(Sandbox& sandbox) {
-  Authoring& a = state(sandbox);
-  using Tool = Authoring::Tool;
-  static const std::array<std::pair<Tool, const char*>, 9> tools = {{
-      {Tool::None, "Clicks select and drag, as usual."},
-      {Tool::Box, "Click to add a box."},
-      {Tool::Circle, "Click to add a circle."},
-      {Tool::Polygon, "Click the vertices, then Finish (or right click): their convex hull."},
-      {Tool::PointPulley, "Click to add a point pulley the cable threads through."},
-      {Tool::PolygonPulley, "Click to add a hexagonal pulley the cable wraps."},
-      {Tool::CirclePulley, "Click to add a round pulley (a 16-gon) the cable wraps."},
-      {Tool::Cable, "Click the start (a body or empty space), the pulleys in order, then the end."},
-      {Tool::Delete, "Click a body or a cable to delete it (with its cables and joints)."},
-  }};
-  for (const auto& [tool, tip] : tools) {
-    if (tool != Tool::None) sameLineIfRoom(checkboxWidth(toolName(tool)));
-    if (ImGui::RadioButton(toolName(tool), a.tool == tool)) {
-      a.tool = tool;
-      a.polygon.clear();
-      a.cableStarted = false;
-    }
-    tooltip(tip);
-  }
-  float size = static_cast<float>(a.size), mass = static_cast<float>(a.mass);
-  ImGui::SetNextItemWidth(fieldWidth("size (m)", ImGui::GetFontSize() * 5));
-  if (ImGui::DragFloat("size (m)", &size, 0.01f, 0.02f, 10.0f, "%.2f")) a.size = size;
-  tooltip("Box side, circle and pulley diameter.");
-  sameLineIfRoom(ImGui::GetFontSize() * 4 + checkboxWidth("kg") - ImGui::GetFrameHeight());
-  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 4);
-  if (ImGui::DragFloat("kg", &mass, 0.05f, 0.01f, 1000.0f, "%.2f")) a.mass = mass;
-  tooltip("Mass of the next body.");
-  ImGui::Checkbox("static", &a.isStatic);
-  tooltip("The next body is fixed (a wall, a ground).");
-  if (a.tool == Tool::Polygon) {
-    ImGui::SameLine();
-    if (ImGui::SmallButton("Finish")) finishPolygon(sandbox);
-    tooltip("Make the polygon from the vertices clicked so far.");
-  }
-  if (ImGui::Button("Undo")) undoEdit(sandbox);
-  tooltip("Undo the last edit.");
-  sameLineIfRoom(buttonWidth("Redo"));
-  if (ImGui::Button("Redo")) redoEdit(sandbox);
-  tooltip("Redo the edit undone last.");
-  sameLineIfRoom(buttonWidth("New"));
-  if (ImGui::Button("New")) newScene(sandbox);
-  tooltip("An empty scene with a ground (undo brings the old one back).");
-  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-  ImGui::TextWrapped("%zu undo, %zu redo; Scene > Save scene as...", a.undo.size(), a.redo.size());
-  ImGui::PopStyleColor();
-}
-
-void authoringOverlay(const Sandbox& sandbox, Overlay& overlay) {
-  const Authoring& a = *sandbox.authoring;
-  for (const Vec2& p : a.polygon) overlay.targets.push_back({p, "", kDraft});
-  if (!a.cableStarted) return;
-  Vec2 from = a.startWorld;
-  for (const Vec2& c : a.pulleyCentres) {
-    overlay.arrows.push_back({from, c, "", kDraft});
-    from = c;
-  }
-  overlay.targets.push_back({a.startWorld, "cable start", kDraft});
-  overlay.keys.push_back({Overlay::Key::Marker::Cross, "cable being routed", kDraft});
 }
 
 }  // namespace cablelab::ui

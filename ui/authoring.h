@@ -3,13 +3,19 @@
 // Needs: ui/sandbox.h. Every edit makes a new SceneDef from the sandbox's scene and rebuilds the
 // world from it (Sandbox::replaceScene: the simulation restarts from the edited initial state);
 // the previous SceneDef goes on the undo stack. Tools (one click each unless said):
-//   Box, Circle         a body of the set size and mass at the click (dynamic, or static)
+//   Box, Circle         a body of the set size and mass at the click (dynamic, static, kinematic)
 //   Polygon             clicks add vertices, Finish (or a right click) makes the convex hull body
-//   PointPulley         a small static sensor disc the cable tool threads through
-//   PolygonPulley       a static hexagon the cable wraps (side chosen from the cable's turn)
-//   CirclePulley        a static 16-gon, the circle the cable wraps
-//   Cable               click the start anchor (on a body or the world), then pulleys in order,
-//                       then the end anchor (anywhere that is not a pulley); a right click cancels
+//   PointPulley         an eyelet (a small sensor disc) the cable threads through
+//   PolygonPulley       a hexagon the cable wraps
+//   CirclePulley        a wheel (a circle) the cable wraps; no-slip and capstan grip in the Inspector
+//                       Pulleys clicked in empty space are fixed (static); clicked on a body they
+//                       are mounted on it (a revolute axle at their centre; an eyelet is welded).
+//   Cable               click the start (a point of a body, or empty space), then pulleys in order
+//                       (Shift+click: any body as a pulley round its shape; Alt+click: an eyelet at
+//                       the clicked point of any body), then the end; a right click cancels.
+//                       The cable runs over the pulleys in click order (ui/authoring_route.h).
+//   Revolute, Prismatic, Weld  click two bodies (empty space = the world); the joint sits at the
+//                       second click. Limits, motor and servo in the Inspector.
 //   Delete              removes the body (and its joints and cables) or the cable clicked
 // Save writes the scene JSON that `cablelab run FILE` loads (engine/model/scene_json.h).
 #pragma once
@@ -18,6 +24,7 @@
 #include <vector>
 
 #include "engine/model/scene.h"
+#include "ui/authoring_route.h"
 #include "ui/sandbox.h"
 
 namespace cablelab::ui {
@@ -32,19 +39,27 @@ struct Authoring {
     PolygonPulley,
     CirclePulley,
     Cable,
+    Revolute,
+    Prismatic,
+    Weld,
     Delete
   };
+  static constexpr int kToolCount = 12;
   Tool tool = Tool::None;
   double size = 0.4;  ///< box side, circle diameter, pulley diameter (m)
   double mass = 1.0;  ///< kg
-  bool isStatic = false;
+  BodyType bodyType = BodyType::Dynamic;  ///< of the next box, circle or polygon
+  bool drumEnds = false;      ///< cable ends clicked on a round body wind on it (a drum)
   std::vector<Vec2> polygon;  ///< polygon vertices clicked so far (world, m)
   // The cable in progress.
   bool cableStarted = false;
   AnchorDef start;
-  std::vector<std::string> pulleyBodies;  ///< pulley bodies clicked so far, in order
-  std::vector<Vec2> pulleyCentres;        ///< their centres (world) for the wrap sides
   Vec2 startWorld = Vec2::Zero();
+  std::vector<RouteStop> route;  ///< pulleys clicked so far, in order
+  // The joint in progress: its first click.
+  bool jointStarted = false;
+  std::string jointBodyA;
+  int selectedJoint = 0;  ///< the joint the Inspector edits
   std::vector<SceneDef> undo, redo;
 };
 
@@ -52,7 +67,9 @@ struct Authoring {
 const char* toolName(Authoring::Tool tool);
 
 /// Handles a click at world point `p` (right = right button); true if the tool used it.
-bool authoringClick(Sandbox& sandbox, const Vec2& p, bool right);
+/// `shift`, `alt`: the cable tool's Shift+click and Alt+click (see above).
+bool authoringClick(Sandbox& sandbox, const Vec2& p, bool right, bool shift = false,
+                    bool alt = false);
 /// Makes the convex hull of the clicked polygon vertices a body; false if fewer than three.
 bool finishPolygon(Sandbox& sandbox);
 /// Applies `next` as an edit (undo remembers the current scene); false + sandbox.error if the
@@ -62,6 +79,11 @@ bool undoEdit(Sandbox& sandbox);
 bool redoEdit(Sandbox& sandbox);
 /// Replaces the scene by an empty one (a ground and nothing else), as an edit.
 void newScene(Sandbox& sandbox);
+/// Replaces pulley `k` of cable `cable` by `p` as an edit (side auto: it joins when the cable
+/// touches it, so no wrap at the start); says so in `error` when the cable then misses a pulley.
+bool editPulley(Sandbox& sandbox, int cable, int k, PulleyDef p);
+/// The scene without body `name`, its joints and the cables that use it.
+SceneDef withoutBody(const SceneDef& scene, const std::string& name);
 /// The scene as edited, with the live settings: dt, substeps, gravity and every cable's live
 /// parameters (rest length, stiffness, preload, damping, as the inspector or a fit set them).
 SceneDef sceneToSave(const Sandbox& sandbox);

@@ -49,7 +49,8 @@ bool overPanel(const Sandbox& sandbox, const Vec2& mouse) {
 }
 
 void leftDown(Sandbox& sandbox, World& world, const Vec2& mouse, const Vec2& point) {
-  if (authoringClick(sandbox, point, false)) return;
+  const SDL_Keymod mods = SDL_GetModState();
+  if (authoringClick(sandbox, point, false, mods & KMOD_SHIFT, mods & KMOD_ALT)) return;
   const int body = sandbox.bodyAt(point, true);
   const bool ctrl = (SDL_GetModState() & KMOD_CTRL) != 0;
   if (ctrl) {

@@ -135,6 +135,7 @@ void cableInspector(Sandbox& sandbox, const World& world) {
                        cable.length() - cable.restLength());
   spanSection(sandbox, cable);
   cableEdits(sandbox);
+  pulleyEdits(sandbox, i);
   if (i < static_cast<int>(sandbox.tensionHistory.size())) {
     const auto& h = sandbox.tensionHistory[i];
     char overlay[64];
@@ -153,7 +154,7 @@ void bodyEdits(Sandbox& sandbox, int b) {
   if (b >= static_cast<int>(sandbox.scene.bodies.size())) return;
   const BodyDef& def = sandbox.scene.bodies[b];
   double mass = def.mass, x = def.position.x(), y = def.position.y();
-  bool isStatic = def.type == BodyType::Static;
+  double vx = def.velocity.x(), vy = def.velocity.y(), omega = def.angularVelocity;
   ImGui::PushItemWidth(fieldWidth("start x (m)", ImGui::GetFontSize() * 7));
   const bool m =
       ImGui::InputDouble("mass (kg)", &mass, 0, 0, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue);
@@ -164,31 +165,41 @@ void bodyEdits(Sandbox& sandbox, int b) {
   const bool py =
       ImGui::InputDouble("start y (m)", &y, 0, 0, "%.4f", ImGuiInputTextFlags_EnterReturnsTrue);
   tooltip("The body's starting position, y.");
+  bool v = false;
+  if (def.type != BodyType::Static) {
+    v |= ImGui::InputDouble("speed x (m/s)", &vx, 0, 0, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue);
+    tooltip("Starting speed, x. A driven body keeps its speed whatever pushes on it.");
+    v |= ImGui::InputDouble("speed y (m/s)", &vy, 0, 0, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue);
+    tooltip("Starting speed, y.");
+    v |= ImGui::InputDouble("spin (rad/s)", &omega, 0, 0, "%.4g",
+                            ImGuiInputTextFlags_EnterReturnsTrue);
+    tooltip("Starting turning speed, anticlockwise.");
+  }
   ImGui::PopItemWidth();
-  const bool st = ImGui::Checkbox("static", &isStatic);
-  tooltip("A static body does not move.");
-  sameLineIfRoom(buttonWidth("Delete body"));
+  static const char* const types[] = {"moves", "fixed", "driven"};
+  static const BodyType kinds[] = {BodyType::Dynamic, BodyType::Static, BodyType::Kinematic};
+  int type = static_cast<int>(std::find(kinds, kinds + 3, def.type) - kinds);
+  bool t = false;
+  for (int k = 0; k < 3; ++k) {
+    if (k) sameLineIfRoom(checkboxWidth(types[k]));
+    if (ImGui::RadioButton(types[k], type == k)) t = type != k, type = k;
+    tooltip("moves: falls and is pulled by cables. fixed: never moves. driven: moves at its set "
+            "speed whatever pushes on it.");
+  }
   const bool del = ImGui::SmallButton("Delete body");
   tooltip("Remove the body with its cables and joints (Delete key; Ctrl+Z undoes it).");
   if (del) {
-    SceneDef next = sandbox.scene;
-    const std::string name = def.name;
-    next.bodies.erase(next.bodies.begin() + b);
-    std::erase_if(next.cables, [&](const CableDef& c) {
-      return c.start.body == name || c.end.body == name ||
-             std::any_of(c.pulleys.begin(), c.pulleys.end(),
-                         [&](const PulleyDef& p) { return p.body == name; });
-    });
-    std::erase_if(next.joints,
-                  [&](const JointDef& j) { return j.bodyA == name || j.bodyB == name; });
-    applyEdit(sandbox, std::move(next));
+    applyEdit(sandbox, withoutBody(sandbox.scene, def.name));
     return;
   }
-  if (!(m || px || py || st)) return;
+  if (!(m || px || py || v || t)) return;
   SceneDef next = sandbox.scene;
-  next.bodies[b].mass = mass;
-  next.bodies[b].position = Vec2(x, y);
-  if (st) next.bodies[b].type = isStatic ? BodyType::Static : BodyType::Dynamic;
+  BodyDef& edited = next.bodies[b];
+  edited.mass = mass;
+  edited.position = Vec2(x, y);
+  edited.velocity = Vec2(vx, vy);
+  edited.angularVelocity = omega;
+  edited.type = kinds[type];
   if (applyEdit(sandbox, std::move(next))) sandbox.selectedBody = b;
 }
 
@@ -215,6 +226,7 @@ void inspectorContents(Sandbox& sandbox) {
                   sandbox.drag.limited ? " (at the limit)" : "");
     bodyEdits(sandbox, b);
   }
+  jointEdits(sandbox);
   if (!world->warnings().empty()) {
     section("Engine warnings (guards)");
     const auto& w = world->warnings();

@@ -22,5 +22,9 @@ void integrationPanel(Sandbox& sandbox);
 void viewPanel(Sandbox& sandbox);
 /// The Inspector's contents: cables, selected body, engine warnings.
 void inspectorContents(Sandbox& sandbox);
+/// Side and grip of each pulley of scene cable `cable` (ui/inspector_edits.cpp).
+void pulleyEdits(Sandbox& sandbox, int cable);
+/// The joints: pick one, edit its limits, motor and servo.
+void jointEdits(Sandbox& sandbox);
 
 }  // namespace cablelab::ui

@@ -141,6 +141,8 @@ void simulationPanel(Sandbox& sandbox, PanelState& state, float top) {
     if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) scenePanel(sandbox);
     if (ImGui::CollapsingHeader("Controller", ImGuiTreeNodeFlags_DefaultOpen))
       drawControllerPanel(sandbox);
+    // Open while a tool is chosen (a script or a shortcut can choose one with the section shut).
+    if (sandbox.authoring->tool != Authoring::Tool::None) ImGui::SetNextItemOpen(true);
     if (ImGui::CollapsingHeader("Build")) authoringPanel(sandbox);
     tooltip("Add bodies, pulleys and cables by clicks; undo, redo; save as scene JSON.");
     if (ImGui::CollapsingHeader("View")) viewPanel(sandbox);

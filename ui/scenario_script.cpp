@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "ui/authoring.h"
+#include "ui/build_scenarios.h"
 #include "ui/controller_panel.h"
 #include "ui/synthetic_events.h"
 #include "ui/tension_scale.h"
@@ -85,8 +86,12 @@ Vec2 freePoint(const Sandbox& sandbox, double fx, double fy) {
 }  // namespace
 
 const std::vector<std::string>& ScenarioScript::names() {
-  static const std::vector<std::string> n = {"describe", "reset-scale",  "rigid-drag", "drop-box",
-                                             "author",   "capstan-slip", "pose-drag"};
+  static const std::vector<std::string> n = [] {
+    std::vector<std::string> all = {"describe", "reset-scale", "rigid-drag",
+                                     "drop-box", "author",      "capstan-slip", "pose-drag"};
+    for (const BuildScenario& b : buildScenarios()) all.push_back(b.name);
+    return all;
+  }();
   return n;
 }
 
@@ -113,6 +118,7 @@ bool ScenarioScript::beforeFrame(Sandbox& sandbox, int frame) {
   if (name_ == "author") return author(sandbox, frame);
   if (name_ == "capstan-slip") return capstanSlip(sandbox, frame);
   if (name_ == "pose-drag") return poseDrag(sandbox, frame);
+  if (name_.rfind("build-", 0) == 0) return build(sandbox, frame);
   report_ = "{\"scenario\": " + jsonQuoted(name_) + ", \"failure\": \"unknown scenario\"}";
   return false;
 }
@@ -356,6 +362,78 @@ bool ScenarioScript::author(Sandbox& sandbox, int frame) {
       break;
   }
   return true;
+}
+
+// One step every 3 frames (a click's events are handled in the frame they are pushed); modifier
+// keys are held for one frame through SDL's modifier state, which the handlers read.
+bool ScenarioScript::build(Sandbox& sandbox, int frame) {
+  const auto& all = buildScenarios();
+  const auto it = std::find_if(all.begin(), all.end(),
+                               [&](const BuildScenario& b) { return b.name == name_; });
+  SDL_SetModState(KMOD_NONE);
+  if (frame == 2) {
+    newScene(sandbox);
+    sandbox.paused = true;
+  }
+  if (frame < 6 || frame % 3 != 0) return true;
+  if (step_ < it->steps.size()) {
+    const BuildStep& s = it->steps[step_++];
+    const Vec2 at = sandbox.camera.toScreen(s.at);
+    auto clickAt = [&](Uint8 button) {
+      mouse(SDL_MOUSEMOTION, at);
+      mouse(SDL_MOUSEBUTTONDOWN, at, button);
+      mouse(SDL_MOUSEBUTTONUP, at, button);
+    };
+    switch (s.kind) {
+      case BuildStep::Kind::Tool:
+        sandbox.authoring->tool = s.tool;
+        break;
+      case BuildStep::Kind::Click:
+        clickAt(SDL_BUTTON_LEFT);
+        break;
+      case BuildStep::Kind::ShiftClick:
+        SDL_SetModState(KMOD_LSHIFT);
+        clickAt(SDL_BUTTON_LEFT);
+        break;
+      case BuildStep::Kind::AltClick:
+        SDL_SetModState(KMOD_LALT);
+        clickAt(SDL_BUTTON_LEFT);
+        break;
+      case BuildStep::Kind::RightClick:
+        clickAt(SDL_BUTTON_RIGHT);
+        break;
+      case BuildStep::Kind::Undo:
+        SDL_SetModState(KMOD_LCTRL);
+        key(SDLK_z);
+        break;
+      case BuildStep::Kind::Redo:
+        SDL_SetModState(KMOD_LCTRL);
+        key(SDLK_y);
+        break;
+      case BuildStep::Kind::Setting:
+        s.set(sandbox);
+        break;
+    }
+    return true;
+  }
+  std::string saveError;
+  try {
+    saveScene(sandbox, out_);
+  } catch (const std::exception& e) {
+    saveError = e.what();
+  }
+  const SceneDef& scene = sandbox.scene;
+  const World& world = *sandbox.world();
+  int wraps = 0;
+  for (int i = 0; i < world.cableCount(); ++i) wraps += world.cable(i).wraps();
+  report_ = "{\"scenario\": " + jsonQuoted(name_) + ", \"bodies\": " +
+            number(scene.bodies.size()) + ", \"cables\": " + number(scene.cables.size()) +
+            ", \"joints\": " + number(scene.joints.size()) + ", \"wraps\": " + number(wraps) +
+            ", \"undo\": " + number(sandbox.authoring->undo.size()) +
+            ", \"redo\": " + number(sandbox.authoring->redo.size()) +
+            ", \"error\": " + jsonQuoted(sandbox.error) + ", \"save_error\": " +
+            jsonQuoted(saveError) + ", \"file\": " + jsonQuoted(out_) + "}";
+  return false;
 }
 
 }  // namespace cablelab::ui

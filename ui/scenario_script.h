@@ -19,6 +19,8 @@
 //                energy posed and 0.1 s later, the body's top speed after Play and the status
 //   author       builds a scene by clicks (a box, a pulley, a cable anchor -> pulley -> box),
 //                saves it to --script-out; reports the counts and the file
+//   build-...    a new scene, one element built by clicks and keys (ui/build_scenarios.h), saved
+//                to --script-out; reports the counts, the error and the message shown
 //
 // Needs: an SDL video subsystem (the sandbox's Window), a Sandbox with a loaded scene.
 #pragma once
@@ -56,6 +58,7 @@ class ScenarioScript {
   bool author(Sandbox& sandbox, int frame);
   bool capstanSlip(Sandbox& sandbox, int frame);
   bool poseDrag(Sandbox& sandbox, int frame);
+  bool build(Sandbox& sandbox, int frame);
 
   std::string name_, out_, report_ = "{}";
   Uint32 windowId_;
@@ -65,6 +68,7 @@ class ScenarioScript {
   double figures_[6] = {0, 0, 0, 0, 0, 0};
   std::string said_;  ///< the status line at a moment the scenario reports
   double largest_ = 0;
+  size_t step_ = 0;  ///< build: the next step
 };
 
 }  // namespace cablelab::ui

@@ -196,13 +196,14 @@ void validateScene(const SceneDef& scene, const std::string& source) {
         check.fail(fp + ".vertices", "polygon must be convex and counter-clockwise");
       if (pd.kind == PulleyDef::Kind::Point && pd.side == WrapSide::Auto)
         check.fail(fp + ".side", "a point pulley cannot be auto (use left, right or threaded)");
+      if (pd.kind == PulleyDef::Kind::Point) continue;
+      check.nonNegative(pd.turns, fp + ".turns");
+      if (pd.side == WrapSide::Auto && pd.turns > 0)
+        check.fail(fp + ".side", "a pulley wound at the start needs side left or right");
       if (pd.kind != PulleyDef::Kind::Circle) continue;
       check.positive(pd.radius, fp + ".radius");
       if (pd.side == WrapSide::Threaded)
         check.fail(fp + ".side", "a circle pulley cannot be threaded (use left, right or auto)");
-      if (pd.side == WrapSide::Auto && pd.turns > 0)
-        check.fail(fp + ".side", "a circle wound at the start needs side left or right");
-      check.nonNegative(pd.turns, fp + ".turns");
       if (pd.grip == Grip::Capstan) check.positive(pd.mu, fp + ".mu");
       if (gripsCable(pd) && c.stiffness > 0)
         check.fail(fp + (pd.grip == Grip::Capstan ? ".mu" : ".no_slip"),

@@ -182,6 +182,7 @@ CableDef readCable(Reader&& r) {
       pd.kind = PulleyDef::Kind::Polygon;
       pd.vertices = p.points("vertices");
       pd.side = readSide(p, WrapSide::Left);
+      pd.turns = p.number("turns", 0);
     } else if (type == "circle") {
       readCircle(p, pd);
     } else {
@@ -325,6 +326,7 @@ json sceneToJson(const SceneDef& s) {
       }
       if (p.kind == PulleyDef::Kind::Polygon && !p.vertices.empty())
         jp["vertices"] = polygonJson(p.vertices);
+      if (p.kind == PulleyDef::Kind::Polygon && p.turns > 0) jp["turns"] = p.turns;
       jc["pulleys"].push_back(jp);
     }
     j["cables"].push_back(jc);

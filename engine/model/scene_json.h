@@ -19,7 +19,7 @@
 //               "pulleys": [{"type": "point", "body": "world", "point": [x, y],
 //                            "side": "left|right|threaded"},
 //                           {"type": "polygon", "body": "hex", "vertices": [[x, y], ...],
-//                            "side": "left|right"}],
+//                            "side": "left|right", "turns": 0}],
 //               "rest_length": L, "stiffness": 0, "preload": 0, "damping": 0}] }
 // Body-attached points are in the body frame; "world" points in the world frame. A box shape is
 // stored as a polygon. rest_length omitted = the length at the initial pose.

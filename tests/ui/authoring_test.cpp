@@ -86,5 +86,81 @@ TEST(SaveScene, UneditedCablesKeepTheirFileRestLength) {
   }
 }
 
+/// A new scene, then `clicks` with `tool` each (the same calls a mouse click makes).
+void clickWith(Sandbox& sandbox, Authoring::Tool tool, std::initializer_list<Vec2> clicks) {
+  sandbox.authoring->tool = tool;
+  for (const Vec2& p : clicks) ASSERT_TRUE(authoringClick(sandbox, p, false)) << sandbox.error;
+}
+
+TEST(Authoring, CableOverAnEyeletHasTheRoutedLength) {
+  Sandbox sandbox(800, 600);
+  ASSERT_TRUE(sandbox.open("hexagon"));
+  newScene(sandbox);
+  using Tool = Authoring::Tool;
+  clickWith(sandbox, Tool::Box, {Vec2(-0.6, 1), Vec2(0.6, 1)});
+  clickWith(sandbox, Tool::PointPulley, {Vec2(0, 2.5)});
+  clickWith(sandbox, Tool::Cable, {Vec2(-0.6, 1.1), Vec2(0, 2.5), Vec2(0.6, 1.1)});
+  ASSERT_EQ(sandbox.world()->cableCount(), 1) << sandbox.error;
+  const Cable& c = sandbox.world()->cable(0);
+  EXPECT_NEAR(c.restLength(), 2 * std::hypot(0.6, 1.4), 1e-12);
+  EXPECT_EQ(c.def().start.point, Vec2(0, 0.1));  // the clicked point, not the centre
+  EXPECT_EQ(c.def().pulleys.at(0).side, WrapSide::Threaded);
+}
+
+// A route that dips under a hexagon (start and end above it) turns left there: side right, and
+// the cable touches the hexagon's lower corners. Over it (ends below): side left, upper corners.
+TEST(Authoring, PulleySideFollowsTheRoutesTurn) {
+  for (const double ends : {2.5, 0.5}) {
+    Sandbox sandbox(800, 600);
+    ASSERT_TRUE(sandbox.open("hexagon"));
+    newScene(sandbox);
+    using Tool = Authoring::Tool;
+    clickWith(sandbox, Tool::PolygonPulley, {Vec2(0, 1.5)});
+    clickWith(sandbox, Tool::Cable, {Vec2(-1, ends), Vec2(0, 1.5), Vec2(1, ends)});
+    ASSERT_EQ(sandbox.world()->cableCount(), 1) << sandbox.error;
+    const Cable& c = sandbox.world()->cable(0);
+    const bool under = ends > 1.5;
+    EXPECT_EQ(c.def().pulleys.at(0).side, under ? WrapSide::Right : WrapSide::Left);
+    ASSERT_GE(c.wraps(), 2);
+    double length = 0;
+    for (size_t k = 0; k + 1 < c.path().size(); ++k) {
+      length += (c.path()[k + 1].world - c.path()[k].world).norm();
+      if (k > 0) EXPECT_EQ(c.path()[k].world.y() < 1.5, under) << k;
+    }
+    EXPECT_NEAR(c.restLength(), length, 1e-12);  // the routed length
+    EXPECT_GT(length, 2.0 + 0.5);                // well over the straight 2 m
+  }
+}
+
+// Every kind of edit undoes back to the scene before it and redoes to the one after it.
+TEST(Authoring, EveryEditUndoesAndRedoes) {
+  Sandbox sandbox(800, 600);
+  ASSERT_TRUE(sandbox.open("hexagon"));
+  newScene(sandbox);
+  using Tool = Authoring::Tool;
+  std::vector<nlohmann::json> states = {sceneToJson(sandbox.scene)};
+  auto edit = [&](Tool tool, std::initializer_list<Vec2> clicks) {
+    clickWith(sandbox, tool, clicks);
+    states.push_back(sceneToJson(sandbox.scene));
+  };
+  edit(Tool::Box, {Vec2(0, 1.5)});
+  edit(Tool::Circle, {Vec2(1, 1.5)});
+  edit(Tool::CirclePulley, {Vec2(0, 1.5)});  // on the box: an axle on it
+  edit(Tool::Revolute, {Vec2(-1, 3), Vec2(-0.1, 1.5)});
+  edit(Tool::Cable, {Vec2(-1, 2.5), Vec2(0, 1.5), Vec2(1, 1.6)});
+  edit(Tool::Delete, {Vec2(1, 1.5)});
+  EXPECT_EQ(states[3]["joints"].size(), 1u);  // the pulley's axle
+  EXPECT_EQ(states[5]["cables"].size(), 1u);
+  EXPECT_EQ(states[6]["cables"].size(), 0u);  // went with the circle it ended on
+  for (size_t k = states.size() - 1; k > 0; --k) {
+    ASSERT_TRUE(undoEdit(sandbox));
+    EXPECT_EQ(sceneToJson(sandbox.scene), states[k - 1]) << k;
+  }
+  for (size_t k = 1; k < states.size(); ++k) {
+    ASSERT_TRUE(redoEdit(sandbox));
+    EXPECT_EQ(sceneToJson(sandbox.scene), states[k]) << k;
+  }
+}
+
 }  // namespace
 }  // namespace cablelab::ui

@@ -82,6 +82,24 @@ TEST(CableGuards, AtCreationEveryPulleyTheSegmentCutsJoins) {
   EXPECT_NEAR(square.cable.length(), 2 * std::hypot(0.9, 0.15) + 0.2, kTight);
 }
 
+// A polygon given turns > 0 is in the path from the start wherever it lies (docs/model.md,
+// Guards): a rope laid over a square above the straight cable runs over its two upper corners.
+// Without turns the same square stays out and the cable runs straight under it.
+TEST(CableGuards, APolygonWoundAtTheStartIsInThePathEvenAboveTheCable) {
+  PulleyDef laid = squarePulley(0.1);
+  laid.turns = 0.1;
+  Rig rig(sceneWith({laid}));
+  rig.at(Vec2(0, 0.5));
+  EXPECT_TRUE(rig.cable.engaged(0));
+  EXPECT_EQ(rig.cable.wraps(), 2);
+  EXPECT_NEAR(rig.cable.length(), 2 * std::hypot(0.9, 0.6) + 0.2, kTight);
+
+  Rig loose(sceneWith({squarePulley(0.1)}));
+  loose.at(Vec2(0, 0.5));
+  EXPECT_EQ(loose.cable.wraps(), 0);
+  EXPECT_NEAR(loose.cable.length(), 2, kTight);
+}
+
 TEST(CableGuards, APointPulleyJoinsWhenItCrossesTheSegmentFromOutside) {
   Rig rig(sceneWith({pointPulley()}));
   rig.at(Vec2(0, -0.2));  // below: the non-wrap side

@@ -1,0 +1,112 @@
+// The Build section of the Simulation panel and the authoring overlay (ui/authoring.h).
+#include <imgui.h>
+
+#include <array>
+#include <utility>
+
+#include "ui/authoring.h"
+#include "ui/panels.h"
+
+namespace cablelab::ui {
+namespace {
+
+constexpr Colour kDraft{0.1f, 0.45f, 0.2f, 1.0f};
+
+void toolButtons(Authoring& a) {
+  using Tool = Authoring::Tool;
+  static const std::array<std::pair<Tool, const char*>, Authoring::kToolCount> tools = {{
+      {Tool::None, "Clicks select and drag, as usual."},
+      {Tool::Box, "Click to add a box."},
+      {Tool::Circle, "Click to add a circle (a ball, a wheel)."},
+      {Tool::Polygon, "Click the corners, then Finish (or right click): their convex hull."},
+      {Tool::PointPulley,
+       "Click to add an eyelet the cable runs through. On a body it moves with the body."},
+      {Tool::PolygonPulley,
+       "Click to add a hexagon the cable wraps. On a body it turns on an axle there."},
+      {Tool::CirclePulley,
+       "Click to add a round pulley the cable wraps. On a body it turns on an axle there."},
+      {Tool::Cable,
+       "Click the start (a point on a body, or empty space), the pulleys in order, then the end. "
+       "Shift+click: any body as a pulley. Alt+click: an eyelet on any body. Right click "
+       "cancels."},
+      {Tool::Revolute, "Click two bodies: they turn about the second click (empty space: the "
+                       "ground)."},
+      {Tool::Prismatic, "Click two bodies: they slide along a line through the second click."},
+      {Tool::Weld, "Click two bodies: they are glued together at the second click."},
+      {Tool::Delete, "Click a body or a cable to delete it (with its cables and joints)."},
+  }};
+  for (const auto& [tool, tip] : tools) {
+    if (tool != Tool::None) sameLineIfRoom(checkboxWidth(toolName(tool)));
+    if (ImGui::RadioButton(toolName(tool), a.tool == tool)) {
+      a.tool = tool;
+      a.polygon.clear();
+      a.route.clear();
+      a.cableStarted = a.jointStarted = false;
+    }
+    tooltip(tip);
+  }
+}
+
+void bodySettings(Authoring& a) {
+  float size = static_cast<float>(a.size), mass = static_cast<float>(a.mass);
+  ImGui::SetNextItemWidth(fieldWidth("size (m)", ImGui::GetFontSize() * 5));
+  if (ImGui::DragFloat("size (m)", &size, 0.01f, 0.02f, 10.0f, "%.2f")) a.size = size;
+  tooltip("Box side, circle and pulley diameter.");
+  sameLineIfRoom(ImGui::GetFontSize() * 4 + checkboxWidth("kg") - ImGui::GetFrameHeight());
+  ImGui::SetNextItemWidth(ImGui::GetFontSize() * 4);
+  if (ImGui::DragFloat("kg", &mass, 0.05f, 0.01f, 1000.0f, "%.2f")) a.mass = mass;
+  tooltip("Mass of the next body (and of a pulley put on a body).");
+  static const std::array<std::pair<BodyType, const char*>, 3> types = {
+      {{BodyType::Dynamic, "moves"}, {BodyType::Static, "fixed"}, {BodyType::Kinematic, "driven"}}};
+  static const char* const tips[] = {
+      "The next body falls, swings and is pulled by cables.",
+      "The next body never moves (a wall, a ground).",
+      "The next body moves at the speed you give it in the Inspector, whatever pushes on it."};
+  for (size_t k = 0; k < types.size(); ++k) {
+    if (k) sameLineIfRoom(checkboxWidth(types[k].second));
+    if (ImGui::RadioButton(types[k].second, a.bodyType == types[k].first))
+      a.bodyType = types[k].first;
+    tooltip(tips[k]);
+  }
+  ImGui::Checkbox("wind ends on round bodies", &a.drumEnds);
+  tooltip("A cable end clicked on a circle is wound round it, like a rope on a winch drum.");
+}
+
+}  // namespace
+
+void authoringPanel(Sandbox& sandbox) {
+  Authoring& a = *sandbox.authoring;
+  toolButtons(a);
+  bodySettings(a);
+  if (a.tool == Authoring::Tool::Polygon) {
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Finish")) finishPolygon(sandbox);
+    tooltip("Make the polygon from the corners clicked so far.");
+  }
+  if (ImGui::Button("Undo")) undoEdit(sandbox);
+  tooltip("Undo the last edit (Ctrl+Z).");
+  sameLineIfRoom(buttonWidth("Redo"));
+  if (ImGui::Button("Redo")) redoEdit(sandbox);
+  tooltip("Redo the edit undone last (Ctrl+Y).");
+  sameLineIfRoom(buttonWidth("New"));
+  if (ImGui::Button("New")) newScene(sandbox);
+  tooltip("An empty scene with a ground (undo brings the old one back).");
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  ImGui::TextWrapped("%zu undo, %zu redo; Scene > Save scene as...", a.undo.size(), a.redo.size());
+  ImGui::PopStyleColor();
+}
+
+void authoringOverlay(const Sandbox& sandbox, Overlay& overlay) {
+  const Authoring& a = *sandbox.authoring;
+  for (const Vec2& p : a.polygon) overlay.targets.push_back({p, "", kDraft});
+  if (!a.cableStarted) return;
+  Vec2 from = a.startWorld;
+  for (const RouteStop& stop : a.route) {
+    overlay.arrows.push_back({from, stop.world, "", kDraft});
+    from = stop.world;
+  }
+  overlay.targets.push_back({a.startWorld, "cable start", kDraft});
+  overlay.keys.push_back({Overlay::Key::Marker::Cross, "cable being routed", kDraft});
+}
+
+}  // namespace cablelab::ui

@@ -1,0 +1,129 @@
+#include "ui/build_scenarios.h"
+
+
+namespace cablelab::ui {
+namespace {
+
+using Kind = BuildStep::Kind;
+using Tool = Authoring::Tool;
+
+BuildStep tool(Tool t) {
+  return {Kind::Tool, t, Vec2::Zero(), {}};
+}
+BuildStep click(double x, double y, Kind kind = Kind::Click) {
+  return {kind, Tool::None, Vec2(x, y), {}};
+}
+BuildStep setting(std::function<void(Sandbox&)> set) {
+  return {Kind::Setting, Tool::None, Vec2::Zero(), std::move(set)};
+}
+/// The Build panel's kg field.
+BuildStep mass(double kg) {
+  return setting([kg](Sandbox& s) { s.authoring->mass = kg; });
+}
+/// The Inspector's fields of the last joint (an authoring edit, as jointEdits makes it).
+BuildStep jointSetting(std::function<void(JointDef&)> edit) {
+  return setting([edit](Sandbox& s) {
+    SceneDef next = s.scene;
+    edit(next.joints.back());
+    applyEdit(s, std::move(next));
+  });
+}
+
+std::vector<BuildScenario> makeScenarios() {
+  return {
+      // An Atwood machine over a round pulley fixed in space (1 kg and 2 kg).
+      {"build-circle-pulley",
+       {tool(Tool::Box), click(-0.5, 1), mass(2), click(0.5, 1), tool(Tool::CirclePulley),
+        click(0, 2.5), tool(Tool::Cable), click(-0.5, 1.1), click(0, 2.5), click(0.5, 1.1)}},
+      // Two equal boxes over a hexagon above them: the cable goes over it and holds them.
+      {"build-polygon-route",
+       {tool(Tool::Box), click(-0.6, 1), click(0.6, 1), tool(Tool::PolygonPulley), click(0, 2.5),
+        tool(Tool::Cable), click(-0.6, 1.1), click(0, 2.5), click(0.6, 1.1)}},
+      // A box hung by its top-right corner from a point in space.
+      {"build-cable-corner",
+       {tool(Tool::Box), click(0, 1), tool(Tool::Cable), click(0, 2.5), click(0.19, 1.19)}},
+      // The hexagon route, then the Inspector's side "auto": the straight cable misses the
+      // hexagon, and the window says so.
+      {"build-route-auto",
+       {tool(Tool::Box), click(-0.6, 1), click(0.6, 1), tool(Tool::PolygonPulley), click(0, 2.5),
+        tool(Tool::Cable), click(-0.6, 1.1), click(0, 2.5), click(0.6, 1.1),
+        setting([](Sandbox& s) {
+          PulleyDef p = s.scene.cables.back().pulleys.front();
+          p.side = WrapSide::Auto;
+          editPulley(s, 0, 0, p);
+        })}},
+      // A bar on a hinge at its left end, driven by a motor at 1 rad/s.
+      {"build-hinge-motor",
+       {setting([](Sandbox& s) { s.authoring->size = 0.4; }), tool(Tool::Box), click(0, 1.5),
+        tool(Tool::Revolute), click(-1, 2.5), click(-0.15, 1.5), jointSetting([](JointDef& j) {
+          j.servo.enabled = true;
+          j.servo.speed = 1;
+        })}},
+      // A box on a slider (left-right) with limits, pulled by a sloping cable.
+      {"build-slider-limits",
+       {tool(Tool::Box), click(0, 1.5), tool(Tool::Prismatic), click(-1, 2.5), click(0, 1.5),
+        jointSetting([](JointDef& j) {
+          j.enableLimit = true;
+          j.lower = -0.5;
+          j.upper = 0.3;
+        }),
+        tool(Tool::Box), click(1.2, 1), tool(Tool::PointPulley), click(1.2, 2.5),
+        tool(Tool::Cable), click(0.1, 1.5), click(1.2, 2.5), click(1.2, 1.1)}},
+      // Two boxes glued by a weld, the pair hung from one cable.
+      {"build-weld",
+       {tool(Tool::Box), click(0, 1.5), click(0.4, 1.5), tool(Tool::Weld), click(0, 1.5),
+        click(0.3, 1.5), tool(Tool::Cable), click(0, 2.8), click(0, 1.6)}},
+      // A round pulley on a swinging arm (an axle on the arm), a box hanging over it.
+      {"build-pulley-on-body",
+       {tool(Tool::Box), click(0, 2.4), tool(Tool::Revolute), click(-1, 3), click(-0.1, 2.4),
+        tool(Tool::CirclePulley), click(0.1, 2.4), tool(Tool::Box), click(0.6, 1),
+        tool(Tool::Cable), click(-1, 2.6), click(0.1, 2.4), click(0.6, 1.1)}},
+      // A winch drum (a circle on an axle) with the cable's start wound on it, a box below.
+      {"build-drum",
+       {setting([](Sandbox& s) { s.authoring->drumEnds = true; }), tool(Tool::Circle),
+        click(0, 2.5), tool(Tool::Revolute), click(-1, 3), click(0, 2.5), tool(Tool::Box),
+        click(0.2, 1), tool(Tool::Cable), click(0.05, 2.5), click(0.2, 1.1)}},
+      // A circle on an axle, Shift+clicked as a pulley, with capstan friction: an Atwood machine.
+      {"build-capstan",
+       {tool(Tool::Circle), click(0, 2.5), tool(Tool::Revolute), click(-1, 3), click(0, 2.5),
+        tool(Tool::Box), click(-0.5, 1), mass(2), click(0.5, 1), tool(Tool::Cable),
+        click(-0.5, 1.1), click(0, 2.5, Kind::ShiftClick), click(0.5, 1.1),
+        setting([](Sandbox& s) {  // the Inspector's grip and mu
+          SceneDef next = s.scene;
+          next.cables.back().pulleys.front().grip = Grip::Capstan;
+          next.cables.back().pulleys.front().mu = 0.1;
+          applyEdit(s, std::move(next));
+        })}},
+      // An elastic cord: a box on a spring of 200 N/m with some damping (the Inspector's fields).
+      {"build-elastic",
+       {tool(Tool::Box), click(0, 1.5), tool(Tool::Cable), click(0, 2.8), click(0, 1.6),
+        setting([](Sandbox& s) {
+          s.selectedCable = 0;
+          s.cableEdit = {s.world()->cable(0).restLength(), 200, 0, 2};
+          s.applyCableEdit();
+        })}},
+      // A driven (kinematic) box moving right at 0.2 m/s, dragging a box on a cable.
+      {"build-kinematic",
+       {setting([](Sandbox& s) { s.authoring->bodyType = BodyType::Kinematic; }), tool(Tool::Box),
+        click(-1, 2.5), setting([](Sandbox& s) {  // the Inspector's speed field
+          SceneDef next = s.scene;
+          next.bodies.back().velocity = Vec2(0.2, 0);
+          applyEdit(s, std::move(next));
+        }),
+        setting([](Sandbox& s) { s.authoring->bodyType = BodyType::Dynamic; }), click(-1, 1),
+        tool(Tool::Cable), click(-1, 2.4), click(-1, 1.1)}},
+      // Delete, undo and redo with Ctrl+Z and Ctrl+Y.
+      {"build-undo-redo",
+       {tool(Tool::Box), click(-0.5, 1), click(0.5, 1), tool(Tool::Delete), click(-0.5, 1),
+        {Kind::Undo}, {Kind::Redo}, {Kind::Undo}, tool(Tool::Circle), click(0, 2), {Kind::Undo}}},
+  };
+}
+
+}  // namespace
+
+const std::vector<BuildScenario>& buildScenarios() {
+  static const std::vector<BuildScenario> all = makeScenarios();
+  return all;
+}
+
+}  // namespace cablelab::ui
