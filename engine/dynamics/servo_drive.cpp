@@ -114,8 +114,7 @@ void ServoDrive::solve(std::span<const JointFrame> frames,
     const JointRow row = coordinateRow(frames[servos_[s]], bodies, dofOfBody_);
     for (int k = 0; k < 2; ++k)
       if (row.dof[k] >= 0)
-        W_.col(s).segment<3>(row.dof[k]) =
-            row.coeff[k].cwiseProduct(invM_.segment<3>(row.dof[k]));
+        W_.col(s).segment<3>(row.dof[k]) = row.coeff[k].cwiseProduct(invM_.segment<3>(row.dof[k]));
     coordinateRows_.push_back(row);
   }
   if (!rows_.empty()) projection_.projectDiagonal(rows_, invM_, W_, vStar_);
@@ -131,8 +130,8 @@ void ServoDrive::solve(std::span<const JointFrame> frames,
     const int j = servos_[s];
     const ServoDef& servo = scene_.joints[j].servo;
     const double c = servo.kp * dt + servo.kd;
-    const double b = servo.kp * (targets[j] + dt * servo.speed - coordinates[j].value) +
-                     servo.kd * servo.speed;
+    const double b =
+        servo.kp * (targets[j] + dt * servo.speed - coordinates[j].value) + servo.kd * servo.speed;
     for (int t = 0; t < count; ++t) A(s, t) = dt * coordinateRows_[s].dot(W_.col(t));
     // A servo without gains (c = 0) pushes with nothing: f = 0 through an infinite C^-1.
     A(s, s) += c > 0 ? 1.0 / c : 1.0;

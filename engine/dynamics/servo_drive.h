@@ -4,9 +4,10 @@
 // with q(t + h) = q + h qdot(t + h) as Box2D integrates. The end-of-step rates follow from the
 // forces through the joints' effective inertia: the mass of the jointed bodies seen along each
 // servo's coordinate once the joints (and taut rigid cables) hold (the joint projection,
-// joint_projection.h), with gravity, the user's loads and the elastic cables' pull. So the force is the root of a small linear system, clamped to
-// max_force: stable at any kp, kd and step, where the PD on the start-of-step state alternated
-// once kd h / I or kp h^2 / I passed 2. Private to engine/dynamics.
+// joint_projection.h), with gravity, the user's loads and the elastic cables' pull. So the force is
+// the root of a small linear system, clamped to max_force: stable at any kp, kd and step, where the
+// PD on the start-of-step state alternated once kd h / I or kp h^2 / I passed 2. Private to
+// engine/dynamics.
 #pragma once
 
 #include <Eigen/Core>
@@ -45,10 +46,10 @@ class ServoDrive {
   void addCables(std::span<const Cable> cables, std::span<const BodyState> bodies);
 
   const SceneDef& scene_;
-  std::vector<int> servos_;      // joints with a servo
-  std::vector<int> joints_;      // every joint jointed to a servo's bodies (the rows)
-  std::vector<int> dofBodies_;   // the dynamic bodies those joints tie together
-  std::vector<double> forces_;   // per joint
+  std::vector<int> servos_;     // joints with a servo
+  std::vector<int> joints_;     // every joint jointed to a servo's bodies (the rows)
+  std::vector<int> dofBodies_;  // the dynamic bodies those joints tie together
+  std::vector<double> forces_;  // per joint
   // Scratch, reused.
   std::vector<int> dofOfBody_, dofList_;  // this solve's dofs: dofBodies_, then cables' bodies
   std::vector<Vec3> cableLoads_;          // per body: the elastic cables' pull

@@ -60,10 +60,10 @@ int continuousCrossings(double kp, double kd, double inertia, double e0, double 
 }
 
 struct RodRun {
-  int crossings = 0;          // sign changes of the error while outside the band
-  double settledAt = -1;      // s: from when the error stays inside the band (-1: never)
-  double largestForce = 0;    // N m
-  int alternations = 0;       // steps whose error changed sign twice in a row outside the band
+  int crossings = 0;        // sign changes of the error while outside the band
+  double settledAt = -1;    // s: from when the error stays inside the band (-1: never)
+  double largestForce = 0;  // N m
+  int alternations = 0;     // steps whose error changed sign twice in a row outside the band
 };
 
 RodRun runRod(double mass, double length, const ServoDef& servo, double dt, double seconds) {
@@ -79,8 +79,10 @@ RodRun runRod(double mass, double length, const ServoDef& servo, double dt, doub
     const bool outside = std::abs(e) > kSettled;
     if (outside && e * previous < 0) ++run.crossings;
     if (outside && e * previous < 0 && previous * before < 0) ++run.alternations;
-    if (outside) run.settledAt = -1;
-    else if (run.settledAt < 0) run.settledAt = w.time();
+    if (outside)
+      run.settledAt = -1;
+    else if (run.settledAt < 0)
+      run.settledAt = w.time();
     before = previous;
     previous = e;
   }
@@ -222,8 +224,8 @@ TEST(ServoDrive, APrismaticServoHoldsAWeightWithItsWeight) {
 TEST(ServoDrive, TwoServosOnAnArmSettleTogetherWithoutAlternating) {
   // Two 1 m links in a chain (world - shoulder - upper - elbow - fore), a servo on each joint:
   // each servo's force moves the other joint too, so the forces solve together (K couples them).
-  // Gains of 500 and 1e5 per kg of link at 30 to 240 Hz, light and heavy links: both joints reach their targets within
-  // 1e-3 rad in 2 s with no step-by-step alternation, never above max_force.
+  // Gains of 500 and 1e5 per kg of link at 30 to 240 Hz, light and heavy links: both joints reach
+  // their targets within 1e-3 rad in 2 s with no step-by-step alternation, never above max_force.
   for (const double mass : {0.1, 1.0, 10.0})
     for (const double kpPerKg : {500.0, 1e5})
       for (const double hz : {30.0, 60.0, 240.0}) {
@@ -266,8 +268,10 @@ TEST(ServoDrive, TwoServosOnAnArmSettleTogetherWithoutAlternating) {
             before[j] = previous[j];
             previous[j] = e;
           }
-          if (outside) settledAt = -1;
-          else if (settledAt < 0) settledAt = w.time();
+          if (outside)
+            settledAt = -1;
+          else if (settledAt < 0)
+            settledAt = w.time();
         }
         SCOPED_TRACE("m " + std::to_string(mass) + " kp " + std::to_string(kp) + " at " +
                      std::to_string(hz) + " Hz");
