@@ -85,9 +85,9 @@ Vec2 freePoint(const Sandbox& sandbox, double fx, double fy) {
 }  // namespace
 
 const std::vector<std::string>& ScenarioScript::names() {
-  static const std::vector<std::string> n = {"describe", "reset-scale",  "rigid-drag", "drop-box",
-                                             "author",   "capstan-slip", "pose-drag",
-                                             "pose-payout"};
+  static const std::vector<std::string> n = {"describe",  "reset-scale", "rigid-drag",
+                                             "drop-box",  "author",      "capstan-slip",
+                                             "pose-drag", "pose-payout"};
   return n;
 }
 
@@ -243,8 +243,8 @@ bool ScenarioScript::poseDrag(Sandbox& sandbox, int frame) {
   } else if (frame > 6 + kDragFrames) {
     figures_[4] = std::max(figures_[4], world.body(body_).velocity.norm());
     if (world.time() < figures_[3] + 0.1 - 1e-9) return true;
-    report_ = "{\"scenario\": " + jsonQuoted(name_) + ", \"body\": " +
-              jsonQuoted(world.scene().bodies[body_].name) +
+    report_ = "{\"scenario\": " + jsonQuoted(name_) +
+              ", \"body\": " + jsonQuoted(world.scene().bodies[body_].name) +
               ", \"paused\": " + (figures_[5] > 0 ? "true" : "false") +
               ", \"largest_paused_stretch\": " + number(figures_[0]) +
               ", \"stretch_at_play\": " + number(figures_[1]) +
@@ -255,8 +255,8 @@ bool ScenarioScript::poseDrag(Sandbox& sandbox, int frame) {
               ", \"fastest_after_play\": " + number(figures_[4]) +
               ", \"rest_before\": " + number(restBefore_) +
               ", \"rest_after\": " + number(world.cable(cable_).restLength()) +
-              ", \"status\": " + jsonQuoted(said_) +
-              ", \"banner\": " + jsonQuoted(sandbox.banner) + "}";
+              ", \"status\": " + jsonQuoted(said_) + ", \"banner\": " + jsonQuoted(sandbox.banner) +
+              "}";
     return false;
   }
   return true;

@@ -63,7 +63,7 @@ class ScenarioScript {
   std::string name_, out_, report_ = "{}";
   Uint32 windowId_;
   int body_ = -1, cable_ = -1;
-  Vec2 from_ = Vec2::Zero(), to_ = Vec2::Zero();     ///< px
+  Vec2 from_ = Vec2::Zero(), to_ = Vec2::Zero();    ///< px
   Vec2 start_ = Vec2::Zero(), end_ = Vec2::Zero();  ///< body position (m)
   double figures_[6] = {0, 0, 0, 0, 0, 0};
   std::string said_;  ///< the status line at a moment the scenario reports

@@ -283,7 +283,8 @@ TEST(GuiAcceptance, ShiftDragLetsTheRopeOut) {
   const auto j = scenario("hexagon", "pose-payout", "--screenshot " + shot);
   ASSERT_TRUE(j.contains("rest_after")) << j.dump();
   std::cout << j.dump() << "\n";
-  const double moved = j["moved"], grown = j["rest_after"].get<double>() - j["rest_before"].get<double>();
+  const double moved = j["moved"],
+               grown = j["rest_after"].get<double>() - j["rest_before"].get<double>();
   EXPECT_NEAR(moved, 1.0, 0.01) << "the weight should follow the mouse 1 m out";
   EXPECT_NEAR(grown, moved, 0.01) << "the rope lets out what the weight moved along it";
   EXPECT_LE(j["stretch_at_play"].get<double>(), 1e-5);
