@@ -233,12 +233,11 @@ void Sandbox::sayPose(const PoseResult& pose) {
   const std::string body = "'" + world_->scene().bodies[drag.body].name + "'";
   char text[160];
   if (!pose.paidOut.empty()) {
-    double paid = 0;
-    for (const auto& [cable, length] : pose.paidOut) paid += length;
     const Cable& c = world_->cable(pose.paidOut.front().first);
-    std::snprintf(text, sizeof text, "let out %.3g m of cable '%s' (now %.3g m long)", paid,
-                  c.name().c_str(), c.restLength());
+    std::snprintf(text, sizeof text, "cable '%s' let out to %.4g m (Shift held)", c.name().c_str(),
+                  c.restLength());
     message = text;
+    loadCableEdit();  // the Inspector shows the new rest length
   } else if (pose.miss > kHeldPixels * camera.metresPerPixel) {
     if (!pose.taut.empty())
       message = body + " can go no further: cable '" + world_->cable(pose.taut.front()).name() +

@@ -88,7 +88,8 @@ Vec2 freePoint(const Sandbox& sandbox, double fx, double fy) {
 const std::vector<std::string>& ScenarioScript::names() {
   static const std::vector<std::string> n = [] {
     std::vector<std::string> all = {"describe", "reset-scale", "rigid-drag",
-                                     "drop-box", "author",      "capstan-slip", "pose-drag"};
+                                     "drop-box", "author",      "capstan-slip", "pose-drag",
+                                     "pose-payout"};
     for (const BuildScenario& b : buildScenarios()) all.push_back(b.name);
     return all;
   }();
@@ -117,7 +118,7 @@ bool ScenarioScript::beforeFrame(Sandbox& sandbox, int frame) {
   if (name_ == "drop-box") return dropBox(sandbox, frame);
   if (name_ == "author") return author(sandbox, frame);
   if (name_ == "capstan-slip") return capstanSlip(sandbox, frame);
-  if (name_ == "pose-drag") return poseDrag(sandbox, frame);
+  if (name_ == "pose-drag" || name_ == "pose-payout") return poseDrag(sandbox, frame);
   if (name_.rfind("build-", 0) == 0) return build(sandbox, frame);
   report_ = "{\"scenario\": " + jsonQuoted(name_) + ", \"failure\": \"unknown scenario\"}";
   return false;
@@ -206,6 +207,7 @@ bool ScenarioScript::rigidDrag(Sandbox& sandbox, int frame) {
 bool ScenarioScript::poseDrag(Sandbox& sandbox, int frame) {
   constexpr int kDragFrames = 30;
   World& world = *sandbox.world();
+  const bool payOut = name_ == "pose-payout";
   // figures_: 0 largest stretch while paused, 1 stretch at Play, 2 energy posed, 3 time of Play,
   // 4 top speed after Play, 5 paused when the drag began (1) or not (0).
   if (frame == 2) {
@@ -225,13 +227,16 @@ bool ScenarioScript::poseDrag(Sandbox& sandbox, int frame) {
     to_ = sandbox.camera.toScreen(last + (last - before).normalized());
     from_ = sandbox.camera.toScreen(last);
     start_ = world.body(body_).position;
+    restBefore_ = world.cable(cable_).restLength();
     figures_[0] = -INFINITY;
     mouse(SDL_MOUSEMOTION, from_);
     mouse(SDL_MOUSEBUTTONDOWN, from_);
   } else if (frame > 4 && frame <= 4 + kDragFrames) {
+    if (payOut) SDL_SetModState(KMOD_LSHIFT);  // held while the motion events are handled
     mouse(SDL_MOUSEMOTION, from_ + (to_ - from_) * ((frame - 4.0) / kDragFrames));
     figures_[0] = std::max(figures_[0], longestRigidStretch(world));
   } else if (frame == 5 + kDragFrames) {
+    SDL_SetModState(KMOD_NONE);
     figures_[0] = std::max(figures_[0], longestRigidStretch(world));
     said_ = sandbox.message;
     end_ = world.body(body_).position;
@@ -244,8 +249,8 @@ bool ScenarioScript::poseDrag(Sandbox& sandbox, int frame) {
   } else if (frame > 6 + kDragFrames) {
     figures_[4] = std::max(figures_[4], world.body(body_).velocity.norm());
     if (world.time() < figures_[3] + 0.1 - 1e-9) return true;
-    report_ = "{\"scenario\": \"pose-drag\", \"body\": " +
-              jsonQuoted(world.scene().bodies[body_].name) +
+    report_ = "{\"scenario\": " + jsonQuoted(name_) +
+              ", \"body\": " + jsonQuoted(world.scene().bodies[body_].name) +
               ", \"paused\": " + (figures_[5] > 0 ? "true" : "false") +
               ", \"largest_paused_stretch\": " + number(figures_[0]) +
               ", \"stretch_at_play\": " + number(figures_[1]) +
@@ -254,7 +259,10 @@ bool ScenarioScript::poseDrag(Sandbox& sandbox, int frame) {
               ", \"energy_after\": " + number(world.energy()) +
               ", \"seconds_run\": " + number(world.time() - figures_[3]) +
               ", \"fastest_after_play\": " + number(figures_[4]) +
-              ", \"status\": " + jsonQuoted(said_) + "}";
+              ", \"rest_before\": " + number(restBefore_) +
+              ", \"rest_after\": " + number(world.cable(cable_).restLength()) +
+              ", \"status\": " + jsonQuoted(said_) + ", \"banner\": " + jsonQuoted(sandbox.banner) +
+              "}";
     return false;
   }
   return true;

@@ -16,7 +16,10 @@
 //   pose-drag    Space (pause), drags the body at the end of a rigid cable 1 m straight out
 //                along its last segment, releases, Space (play) and runs 0.1 s; reports the
 //                cable's largest stretch while paused and at Play, how far the body went, the
-//                energy posed and 0.1 s later, the body's top speed after Play and the status
+//                energy posed and 0.1 s later, the body's top speed after Play, the status
+//                line at the end of the drag and the guard banner at the end
+//   pose-payout  the same with Shift held while dragging (the cable lets out length); reports
+//                the cable's rest length before and after as well
 //   author       builds a scene by clicks (a box, a pulley, a cable anchor -> pulley -> box),
 //                saves it to --script-out; reports the counts and the file
 //   build-...    a new scene, one element built by clicks and keys (ui/build_scenarios.h), saved
@@ -63,12 +66,13 @@ class ScenarioScript {
   std::string name_, out_, report_ = "{}";
   Uint32 windowId_;
   int body_ = -1, cable_ = -1;
-  Vec2 from_ = Vec2::Zero(), to_ = Vec2::Zero();     ///< px
+  Vec2 from_ = Vec2::Zero(), to_ = Vec2::Zero();    ///< px
   Vec2 start_ = Vec2::Zero(), end_ = Vec2::Zero();  ///< body position (m)
   double figures_[6] = {0, 0, 0, 0, 0, 0};
   std::string said_;  ///< the status line at a moment the scenario reports
   double largest_ = 0;
-  size_t step_ = 0;  ///< build: the next step
+  size_t step_ = 0;         ///< build: the next step
+  double restBefore_ = 0;  ///< pose scenarios: the cable's rest length before the drag (m)
 };
 
 }  // namespace cablelab::ui

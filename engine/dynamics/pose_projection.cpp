@@ -15,20 +15,20 @@ namespace cablelab {
 
 namespace {
 
-constexpr double kSubMove = 0.02;   // m: the grabbed point's largest advance a projection
-constexpr int kMaxSubMoves = 100;   // ... and the most projections a call makes
-constexpr double kHeld = 0.01;      // a point that advances less than this share is held back
-constexpr int kMaxSteps = 20;       // Gauss-Newton steps a projection
-constexpr double kPull = 1e4;       // W, in the dragged body's masses: the others give way first
-constexpr double kMaxStep = 0.05;   // m or rad: a longer Gauss-Newton step is cut to this
+constexpr double kSubMove = 0.02;  // m: the grabbed point's largest advance a projection
+constexpr int kMaxSubMoves = 100;  // ... and the most projections a call makes
+constexpr double kHeld = 0.01;     // a point that advances less than this share is held back
+constexpr int kMaxSteps = 20;      // Gauss-Newton steps a projection
+constexpr double kPull = 1e4;      // W, in the dragged body's masses: the others give way first
+constexpr double kMaxStep = 0.05;  // m or rad: a longer Gauss-Newton step is cut to this
 // m or rad: a step this short has converged (Box2D keeps poses in float: 1e-6 m is its
 // resolution at 10 m).
 constexpr double kStepDone = 1e-6;
 // Spans are posed this much within their rest length, so that Box2D's float poses leave them
 // within the solve's slop (kLengthSlop, 1e-5 m) of it.
-constexpr double kShort = 5e-6;  // m
-constexpr double kTaut = 1e-4;   // m: a span this near its rest length is taut
-constexpr double kMet = 1e-6;    // m or rad: a row missed by no more is met
+constexpr double kShort = 5e-6;         // m
+constexpr double kTaut = 1e-4;          // m: a span this near its rest length is taut
+constexpr double kMet = 1e-6;           // m or rad: a row missed by no more is met
 constexpr double kInconsistent = 1e-9;  // m or rad: a QP relaxed by more found its rows at odds
 
 class PoseSolver {
@@ -176,7 +176,8 @@ void PoseSolver::addFloorRows() {
     const std::vector<WrapPoint>& path = c.path();
     for (size_t i = 0; i + 1 < path.size(); ++i) {
       const WrapPoint &p = path[i], &q = path[i + 1];
-      const bool dofs = (p.body >= 0 && dofOf_[p.body] >= 0) || (q.body >= 0 && dofOf_[q.body] >= 0);
+      const bool dofs =
+          (p.body >= 0 && dofOf_[p.body] >= 0) || (q.body >= 0 && dofOf_[q.body] >= 0);
       const double gap = floorGap(p, q);
       if (p.body == q.body || !dofs || !(gap < kFloorWatch)) continue;
       if (gap > 0) {
@@ -399,6 +400,9 @@ PoseResult World::poseBody(int body, const Vec2& grabLocal, const Vec2& target, 
   for (size_t j = 0; j < scene_.joints.size(); ++j)
     if (scene_.joints[j].servo.enabled && (moved(jointBodies_[j][0]) || moved(jointBodies_[j][1])))
       servoTargets_[j] = b2_->jointCoordinate(static_cast<int>(j)).value;
+  // What the pose let out is the user's, not a kinematic body's haul: reportPayOuts leaves it.
+  paidOutSeen_.resize(cables_.size(), 0.0);
+  for (size_t c = 0; c < cables_.size(); ++c) paidOutSeen_[c] = cables_[c].paidOut();
   // The contact forces of the steps before are not those of the new pose (expectContacts).
   std::fill(contactLast_.begin(), contactLast_.end(), Vec3::Zero());
   std::fill(contactExpected_.begin(), contactExpected_.end(), Vec3::Zero());

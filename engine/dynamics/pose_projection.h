@@ -37,7 +37,7 @@ struct PoseWorld {
   const SceneDef& scene;
   Box2DBridge& box2d;
   std::vector<Cable>& cables;
-  std::vector<BodyState>& bodies;                    ///< read back after every step
+  std::vector<BodyState>& bodies;                   ///< read back after every step
   std::span<const std::array<int, 2>> jointBodies;  ///< (body A, body B) per joint, -1: world
   std::vector<std::string>& warnings;
 };

@@ -305,6 +305,25 @@ TEST(GuiAcceptance, PausedDragPosesTheWeightWithinItsRope) {
   EXPECT_EQ(ui::readPng(shot).width, 1280);
 }
 
+// The same drag with Shift held: the rope lets out as far as the weight went, the status says
+// so, and Play starts with the rope at its new length.
+TEST(GuiAcceptance, ShiftDragLetsTheRopeOut) {
+  REQUIRE_XVFB();
+  const std::string shot = (outputDir("gui") / "hexagon-paid-out.png").string();
+  const auto j = scenario("hexagon", "pose-payout", "--screenshot " + shot);
+  ASSERT_TRUE(j.contains("rest_after")) << j.dump();
+  std::cout << j.dump() << "\n";
+  const double moved = j["moved"],
+               grown = j["rest_after"].get<double>() - j["rest_before"].get<double>();
+  EXPECT_NEAR(moved, 1.0, 0.01) << "the weight should follow the mouse 1 m out";
+  EXPECT_NEAR(grown, moved, 0.01) << "the rope lets out what the weight moved along it";
+  EXPECT_LE(j["stretch_at_play"].get<double>(), 1e-5);
+  EXPECT_NE(j["status"].get<std::string>().find("let out to"), std::string::npos) << j["status"];
+  EXPECT_EQ(j["banner"], "") << "the user's pay-out is no guard's";
+  EXPECT_LT(j["fastest_after_play"].get<double>(), 9.81 * 0.1 * 1.05);
+  EXPECT_EQ(ui::readPng(shot).width, 1280);
+}
+
 TEST(GuiAcceptance, DroppedBoxShowsTheGraspLostState) {
   REQUIRE_XVFB();
   const auto j = scenario("hand", "drop-box");

@@ -117,6 +117,12 @@ TEST(PoseProjection, WithPayOutTheRopeLetsOutToTheTarget) {
   EXPECT_NEAR(world.cable(0).restLength(), 3, 1e-4);
   EXPECT_NEAR(world.cable(0).paidOut(), 2, 1e-4);
   EXPECT_LE(longestRigidStretch(world), kSlop);
+  // Play: the rope holds at its new length, and the World does not report the user's pay-out
+  // as one a kinematic body hauled.
+  const size_t warned = world.warnings().size();
+  for (int i = 0; i < 6; ++i) world.step(1.0 / 60);
+  EXPECT_EQ(world.warnings().size(), warned) << world.warnings().back();
+  EXPECT_NEAR(world.body(0).position.y(), -3, 1e-3);
 }
 
 TEST(PoseProjection, SettleShortensAnOverlongRopeByMovingTheBoxUp) {
