@@ -104,14 +104,17 @@ const bool snapshotRegistered = registerCommand(
     [](CLI::App& sub) {
       auto o = std::make_shared<SnapshotOptions>();
       sub.add_option("scene", o->scene, "built-in scene name or scene JSON file")->required();
-      sub.add_option("--out", o->out, "PNG file to write")->required();
+      sub.add_option("--out", o->out, "PNG file to write")->required()->type_name("F.png");
       sub.add_option("--size", o->size,
-                     "image size WxH in pixels (default 800x600, or the --compare image's)");
+                     "image size WxH in pixels (default 800x600, or the --compare image's)")
+          ->type_name("WxH");
       sub.add_option("--time", o->time, "seconds to simulate before the snapshot (default 0)");
-      sub.add_option("--set", o->sets, "scene parameter NAME=VALUE (repeatable; as `run`)");
+      sub.add_option("--set", o->sets, "scene parameter NAME=VALUE (repeatable; as `run`)")
+          ->type_name("NAME=VALUE");
       sub.add_option("--compare", o->compare,
                      "reference PNG: exit 0 if the snapshot matches it within --tolerance, 1 if "
-                     "not (and write F.diff.png: the reference in grey, differing pixels red)");
+                     "not (and write F.diff.png: the reference in grey, differing pixels red)")
+          ->type_name("REF.png");
       CLI::Option* tolerance = sub.add_option(
           "--tolerance", o->tolerance,
           "share of pixels (0..1) allowed to differ from --compare; a pixel differs when its "

@@ -12,26 +12,35 @@
 namespace cablelab::ui {
 
 void addGuiOptions(CLI::App& app, GuiArguments& args) {
-  app.add_option("scene", args.scene, "built-in scene name or scene JSON file (default: hand)");
+  app.add_option("scene", args.scene, "built-in scene name or scene JSON file (default: hand)")
+      ->type_name("SCENE");
   app.add_option("--set", args.sets,
-                 "scene parameter NAME=VALUE of a built-in scene (repeatable; as `cablelab run`)");
+                 "scene parameter NAME=VALUE of a built-in scene (repeatable; as `cablelab run`)")
+      ->type_name("NAME=VALUE");
   app.add_option("--frames", args.frames,
                  "quit after N frames (one scene time step per frame) and print "
-                 "{\"frames\": N, \"fps\": f} (fps from the median frame time)");
-  app.add_option("--screenshot", args.screenshot, "save the last frame as PNG");
-  app.add_option("--size", args.size, "window size WxH (default: fitted to the display)");
+                 "{\"frames\": N, \"fps\": f} (fps from the median frame time)")
+      ->type_name("N");
+  app.add_option("--screenshot", args.screenshot, "save the last frame as PNG")->type_name("F.png");
+  app.add_option("--size", args.size, "window size WxH (default: fitted to the display)")
+      ->type_name("WxH");
   app.add_option("--ui-scale", args.uiScale,
-                 "text and panel scale, 0.5..4 (default: from the display)");
+                 "text and panel scale, 0.5..4 (default: from the display)")
+      ->type_name("S");
   app.add_option("--record", args.record,
-                 "record the world view as an animated GIF from frame 1");
+                 "record the world view as an animated GIF from frame 1")
+      ->type_name("F.gif");
   app.add_option("--script", args.script,
                  "run the acceptance scenario NAME with synthetic mouse and key events and print "
-                 "its JSON report (an unknown NAME lists them)");
+                 "its JSON report (an unknown NAME lists them)")
+      ->type_name("NAME");
   app.add_option("--script-out", args.scriptOut, "the scene file the author scenario saves")
+      ->type_name("F.json")
       ->capture_default_str();
   app.add_option("--open", args.open,
                  "after 10 frames, open F as if chosen in the Scene menu (for tests: a bad F "
-                 "shows its error in the window)");
+                 "shows its error in the window)")
+      ->type_name("F");
   app.add_flag("--test-input", args.testInput,
                "drive the mouse and keys with synthetic SDL events, check the result (with "
                "--screenshot: the script's last frame)");

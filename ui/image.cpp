@@ -95,8 +95,8 @@ ImageComparison compareImages(const Image& expected, const Image& actual, int th
       if (distance > threshold) {
         ++result.differing;
         out[0] = 230, out[1] = 0, out[2] = 0;
-      } else {  // light grey, the reference's brightness kept faintly so that shapes show
-        out[0] = out[1] = out[2] = static_cast<std::uint8_t>(200 + (e[0] + e[1] + e[2]) / 3 / 5);
+      } else {  // grey in [140, 254]: the reference's shapes still show, none as dark as red
+        out[0] = out[1] = out[2] = static_cast<std::uint8_t>(140 + (e[0] + e[1] + e[2]) * 45 / 300);
       }
       out[3] = 255;
     }

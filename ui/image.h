@@ -38,7 +38,7 @@ struct ImageComparison {
   long pixels = 0;     ///< width x height
   /// differing / pixels, in [0, 1]
   double share() const { return pixels > 0 ? static_cast<double>(differing) / pixels : 0; }
-  /// Where they differ: `expected` dimmed to light grey, differing pixels red (230, 0, 0).
+  /// Where they differ: `expected` as grey in [140, 254], differing pixels red (230, 0, 0).
   Image diff;
 };
 
