@@ -97,11 +97,13 @@ int World::findJoint(std::string_view name) const {
 }
 
 void World::setBodyTransform(int i, const Vec2& position, double angle) {
+  history_.add({WorldInput::Kind::BodyTransform, i, 1, {position.x(), position.y(), angle}});
   b2_->setTransform(i, position, angle);
   b2_->readBodies(bodies_);
 }
 
 void World::refreshCables() {
+  history_.add({WorldInput::Kind::RefreshCables});
   b2_->readBodies(bodies_);
   for (Cable& c : cables_) {
     c.update(bodies_, &warnings_);
@@ -110,11 +112,13 @@ void World::refreshCables() {
 }
 
 void World::setBodyVelocity(int i, const Vec2& velocity, double angularVelocity) {
+  history_.add({WorldInput::Kind::BodyVelocity, i, 1, {velocity.x(), velocity.y(), angularVelocity}});
   b2_->setVelocity(i, velocity, angularVelocity);
   b2_->readBodies(bodies_);
 }
 
 void World::applyForce(int i, const Vec2& force, const Vec2& worldPoint) {
+  history_.add({WorldInput::Kind::Force, i, 1, {force.x(), force.y(), worldPoint.x(), worldPoint.y()}});
   if (pendingForces_.size() != bodies_.size()) pendingForces_.assign(bodies_.size(), Vec3::Zero());
   const Vec2 r = worldPoint - bodies_[i].position;
   pendingForces_[i] += Vec3(force.x(), force.y(), cross(r, force));
@@ -122,6 +126,7 @@ void World::applyForce(int i, const Vec2& force, const Vec2& worldPoint) {
 
 void World::beginDrag(int body, const Vec2& worldPoint, double stiffnessHz) {
   endDrag();
+  history_.add({WorldInput::Kind::BeginDrag, body, 1, {worldPoint.x(), worldPoint.y(), stiffnessHz}});
   if (!b2_->beginDrag(body, worldPoint, stiffnessHz, gravity_.norm())) return;
   dragBody_ = body;
   dragTarget_ = worldPoint;
@@ -129,11 +134,13 @@ void World::beginDrag(int body, const Vec2& worldPoint, double stiffnessHz) {
 
 void World::dragTo(const Vec2& target) {
   if (dragBody_ < 0) return;
+  history_.add({WorldInput::Kind::DragTo, 0, 1, {target.x(), target.y()}});
   b2_->dragTo(target);
   dragTarget_ = target;
 }
 
 void World::endDrag() {
+  if (dragBody_ >= 0) history_.add({WorldInput::Kind::EndDrag});
   b2_->endDrag();
   dragBody_ = -1;
 }
@@ -152,6 +159,7 @@ void World::setCableParameters(int i, double restLength, double stiffness, doubl
   check(preload, "preload", false);
   check(damping, "damping", false);
   cables_[i].setParameters({restLength, stiffness, preload, damping});
+  history_.add({WorldInput::Kind::CableParameters, i, 1, {restLength, stiffness, preload, damping}});
 }
 
 JointState World::joint(int i) const {
@@ -161,20 +169,28 @@ JointState World::joint(int i) const {
   s.value = q.value;
   s.speed = q.speed;
   s.servoTarget = servoTargets_[i];
+  s.force = jointForces_.empty() ? 0.0 : jointForces_[i];
   return s;
 }
 
 void World::setServoTarget(int i, double target) {
   servoTargets_[i] = target;
+  history_.add({WorldInput::Kind::ServoTarget, i, 1, {target}});
 }
 
 void World::setWrapSkipping(bool on) {
   for (Cable& c : cables_) c.setSkipping(on);
+  history_.add({WorldInput::Kind::WrapSkipping, on});
 }
 
 void World::setGravity(const Vec2& g) {
   gravity_ = g;
   b2_->setGravity(g);
+  history_.add({WorldInput::Kind::Gravity, 0, 1, {g.x(), g.y()}});
+}
+
+std::vector<ContactForce> World::contactForces() const {
+  return b2_->contactForces();
 }
 
 double World::energy() const {
@@ -201,6 +217,7 @@ void World::applyServos() {
     const double f =
         std::clamp(servo.kp * (servoTargets_[i] - q.value) + servo.kd * (servo.speed - q.speed),
                    -servo.maxForce, servo.maxForce);
+    servoForces_[i] = f;
     const auto [a, b] = jointBodies_[i];
     Vec3 load = Vec3::Zero();
     if (scene_.joints[i].kind == JointDef::Kind::Revolute) {
@@ -445,8 +462,10 @@ double World::advance(double left, double h, bool locate) {
   keepJointEnergy(dt);
   time_ += dt;
   // A servo with a speed drives its joint at that rate: the target moves.
-  for (size_t j = 0; j < scene_.joints.size(); ++j)
+  for (size_t j = 0; j < scene_.joints.size(); ++j) {
     servoTargets_[j] += scene_.joints[j].servo.speed * dt;
+    servoImpulses_[j] += servoForces_[j] * dt;
+  }
   return dt;
 }
 
@@ -512,12 +531,15 @@ void World::step(double dt, int substeps) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   stats_ = {};
+  history_.add({WorldInput::Kind::Step, substeps, 1, {dt}});
   for (const Cable& c : cables_) {
     stats_.selectionSkips -= static_cast<int>(c.skippedSelections());
     stats_.searchSkips -= static_cast<int>(c.skippedSearches());
   }
   const double h = dt / std::max(1, substeps);
   if (pendingForces_.size() != bodies_.size()) pendingForces_.assign(bodies_.size(), Vec3::Zero());
+  servoForces_.assign(scene_.joints.size(), 0.0);
+  servoImpulses_.assign(scene_.joints.size(), 0.0);
   for (int s = 0; s < std::max(1, substeps); ++s) {
     // Wrap events cut the sub-step; a bounded number per sub-step bounds the cost.
     double left = h, first = 0;
@@ -534,6 +556,8 @@ void World::step(double dt, int substeps) {
     if (steps > 1) averageTensions(h);
   }
   pendingForces_.assign(bodies_.size(), Vec3::Zero());
+  jointForces_ = servoImpulses_;
+  for (double& f : jointForces_) f /= dt;
   // Lengths reported (and energy) belong to the end-of-step state; the wrap points are
   // re-selected at the start of the next step.
   for (Cable& c : cables_) c.refresh(bodies_);
