@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import cablelab
-from conftest import cli_error, cli_json, read_csv
+from conftest import cli_error, cli_json, in_python_words, read_csv
 
 # Each case: CLI arguments, the same as track() keywords. Short runs (the hand scene steps at
 # 60 Hz), starts off the target so that control has work to do.
@@ -165,9 +165,7 @@ def test_bad_options_same_message_as_cli(case):
         getattr(cablelab, command)(**kwargs)
     # The same words, with the option named as the keyword (issue 39: never "--" or
     # "command line" in Python).
-    source, option, detail = expected.split(": ", 2)
-    assert source == "command line"
-    assert str(e.value) == "argument: " + option.lstrip("-").replace("-", "_") + ": " + detail
+    assert str(e.value) == in_python_words(expected)
     assert str(e.value).startswith(e.value.source + ": " + e.value.field + ": ")
 
 
