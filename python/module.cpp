@@ -39,10 +39,14 @@ void addTextSignature(py::handle function, bool method, const py::object& signat
   for (; close < doc.size(); ++close) {
     if (doc[close] == '(') ++depth;
     if (doc[close] == ')' && --depth == 0) break;
-    if (doc[close] == '\n') return;
   }
   if (close >= doc.size()) return;
-  const std::string args = doc.substr(name.size() + 1, close - name.size() - 1);
+  // A first line wrapped inside the parentheses is one signature: runs of blanks become one.
+  std::string args;
+  for (char ch : doc.substr(name.size() + 1, close - name.size() - 1)) {
+    const bool blank = ch == ' ' || ch == '\n';
+    if (!blank || (!args.empty() && args.back() != ' ')) args += blank ? ' ' : ch;
+  }
   const std::string text = name + "(" + (method ? (args.empty() ? "self" : "self, " + args) : args) +
                            ")\n--\n\n" + doc;
   const char* old = def->ml_doc;

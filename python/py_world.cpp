@@ -614,8 +614,9 @@ step only (call it before every step for a lasting load).)doc");
   c.def("set_cable_parameters", &setCableParameters, "cable"_a, py::kw_only(),
         "rest_length"_a = py::none(), "stiffness"_a = py::none(), "preload"_a = py::none(),
         "damping"_a = py::none(),
-        "set_cable_parameters(cable, *, rest_length=None (m), stiffness=None (N/m, 0 = rigid), "
-        "preload=None (m), damping=None (N s/m)): live edits; None keeps the current value.");
+        "set_cable_parameters(cable, *, rest_length=None, stiffness=None, preload=None, "
+        "damping=None): live edits of rest_length (m), stiffness (N/m, 0 = rigid), preload (m) "
+        "and damping (N s/m); None keeps the current value.");
 
   c.def(
       "joint_values",
