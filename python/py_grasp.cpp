@@ -89,21 +89,25 @@ void stepGrasp(PyGrasp& g, py::handle target, py::handle law) {
 }
 
 void bindOptions(py::module_& m) {
-  py::class_<GraspOptions>(m, "GraspOptions",
-                           "GraspOptions(**fields): timing of the hand's grasp sequence (s); "
-                           "read/write attributes.")
-      .def(py::init(
-          [](const py::kwargs& kw) { return fromFields<GraspOptions>("GraspOptions", kw); }))
-      .def_readwrite("open_time", &GraspOptions::openTime, "s to swing open before a re-grasp")
-      .def_readwrite("close_time", &GraspOptions::closeTime,
-                     "s to swing from the open pose to the pinch")
-      .def_readwrite("settle_time", &GraspOptions::settleTime,
-                     "s after the closing ramp before the outer loop starts")
-      .def_readwrite("stop_time", &GraspOptions::stopTime,
-                     "s held still after losing the box, before re-grasping")
-      .def_readwrite("max_regrasps", &GraspOptions::maxRegrasps,
-                     "re-grasps before giving up (phase 'failed')")
-      .def("__repr__", [](py::handle self) { return fieldsRepr(self, "GraspOptions"); });
+  py::class_<GraspOptions> c(m, "GraspOptions",
+                             "GraspOptions(**fields): timing of the hand's grasp sequence (s); "
+                             "read/write attributes.");
+  c.def(py::init(
+      [](const py::kwargs& kw) { return fromFields<GraspOptions>("GraspOptions", kw); }));
+  using R = FieldRule;
+  const char* n = "GraspOptions";
+  addField(c, n, "open_time", &GraspOptions::openTime, R::NonNegative,
+           "s to swing open before a re-grasp");
+  addField(c, n, "close_time", &GraspOptions::closeTime, R::Positive,
+           "s to swing from the open pose to the pinch");
+  addField(c, n, "settle_time", &GraspOptions::settleTime, R::NonNegative,
+           "s after the closing ramp before the outer loop starts");
+  addField(c, n, "stop_time", &GraspOptions::stopTime, R::NonNegative,
+           "s held still after losing the box, before re-grasping");
+  addField(c, n, "max_regrasps", &GraspOptions::maxRegrasps, R::NonNegative,
+           "re-grasps before giving up (phase 'failed')");
+  addFieldsPickle(c, n);
+  c      .def("__repr__", [](py::handle self) { return fieldsRepr(self, "GraspOptions"); });
 }
 
 }  // namespace

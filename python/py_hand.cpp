@@ -2,6 +2,9 @@
 // and the hand's joints in a World (engine/hand/). The experiments are in py_hand_runs.cpp, the
 // grasp sequence in py_grasp.cpp.
 #include "python/py_hand.h"
+
+#include <cmath>
+
 #include "engine/core/error.h"
 #include "engine/hand/hand_controller.h"
 #include "engine/hand/hand_grasp.h"
@@ -20,18 +23,33 @@ py::array_t<double> jointsArray(const HandJoints& q) {
   return py::array_t<double>(6, q.data());
 }
 
+std::vector<std::string> fieldNames(py::handle self) {
+  std::vector<std::string> out;
+  const py::handle type = py::type::handle_of(self);
+  for (py::handle key : py::module_::import("builtins").attr("sorted")(type.attr("__dict__"))) {
+    const std::string k = key.cast<std::string>();
+    const py::object attr = type.attr(key);
+    if (k.rfind("_", 0) != 0 && py::hasattr(attr, "fset") && !attr.attr("fset").is_none())
+      out.push_back(k);
+  }
+  return out;
+}
+
 std::string fieldsRepr(py::handle self, const char* name) {
   std::string out = std::string(name) + "(";
-  bool first = true;
-  for (py::handle key :
-       py::module_::import("builtins").attr("sorted")(py::type::handle_of(self).attr("__dict__"))) {
-    const std::string k = key.cast<std::string>();
-    if (k.rfind("_", 0) == 0 || !py::hasattr(py::type::handle_of(self).attr(key), "__set__"))
-      continue;
-    out += (first ? "" : ", ") + k + "=" + py::repr(self.attr(key)).cast<std::string>();
-    first = false;
-  }
+  for (const std::string& k : fieldNames(self))
+    out += (out.back() == '(' ? "" : ", ") + k + "=" +
+           py::repr(self.attr(k.c_str())).cast<std::string>();
   return out + ")";
+}
+
+double checkedField(double v, FieldRule rule, const char* className, const char* field) {
+  if (!std::isfinite(v)) throw InputError(className, field, "must be finite" + gotValue(v));
+  if (rule == FieldRule::NonNegative && v < 0)
+    throw InputError(className, field, "must be >= 0" + gotValue(v));
+  if (rule == FieldRule::Positive && !(v > 0))
+    throw InputError(className, field, "must be positive" + gotValue(v));
+  return v;
 }
 
 void requireHand(const PyWorld& w, const std::string& source) {
@@ -49,30 +67,38 @@ The two-finger hand of chapter 4: dimensions (m), masses (kg), membrane stiffnes
 damping (N s/m) and preload (m), servo gain, joint limits (rad, m). One model feeds the
 hand scene, the controller and the experiments. Fields are read/write attributes;
 HandModel(stiffness=300) changes one from the default.)doc");
-  model.def(py::init([](const py::kwargs& kw) { return fromFields<HandModel>("HandModel", kw); }))
-      .def_readwrite("base_x", &HandModel::baseX, "x of both proximal joints (m)")
-      .def_readwrite("base_y", &HandModel::baseY,
-                     "|y| of the proximal joints and paddle centres at q = 0 (m)")
-      .def_readwrite("link_length", &HandModel::linkLength, "base to distal joint at slide 0 (m)")
-      .def_readwrite("paddle_half_width", &HandModel::paddleHalfWidth,
-                     "membrane corners at +/- this along the paddle (m)")
-      .def_readwrite("paddle_offset", &HandModel::paddleOffset,
-                     "corner offset from the distal joint towards the box (m)")
-      .def_readwrite("box_half_size", &HandModel::boxHalfSize,
-                     "the square manipuland's half side (m)")
-      .def_readwrite("box_mass", &HandModel::boxMass, "kg")
-      .def_readwrite("box_damping", &HandModel::boxDamping,
-                     "box linear damping, the table's drag (1/s)")
-      .def_readwrite("link_mass", &HandModel::linkMass, "kg")
-      .def_readwrite("slider_mass", &HandModel::sliderMass, "kg")
-      .def_readwrite("paddle_mass", &HandModel::paddleMass, "kg")
-      .def_readwrite("stiffness", &HandModel::stiffness, "membrane stiffness (N/m)")
-      .def_readwrite("damping", &HandModel::damping, "membrane damping (N s/m)")
-      .def_readwrite("preload", &HandModel::preload, "membrane pre-stretch (m)")
-      .def_readwrite("servo_kp", &HandModel::servoKp,
-                     "inner PD stiffness per unit effective inertia (1/s^2)")
-      .def_readwrite("lower", &HandModel::lower, "joint lower limits, 6 (rad, m), controller order")
-      .def_readwrite("upper", &HandModel::upper, "joint upper limits, 6 (rad, m)")
+  model.def(py::init([](const py::kwargs& kw) { return fromFields<HandModel>("HandModel", kw); }));
+  {
+    using R = FieldRule;
+    const char* n = "HandModel";
+    addField(model, n, "base_x", &HandModel::baseX, R::Finite, "x of both proximal joints (m)");
+    addField(model, n, "base_y", &HandModel::baseY, R::Positive,
+             "|y| of the proximal joints and paddle centres at q = 0 (m)");
+    addField(model, n, "link_length", &HandModel::linkLength, R::Positive,
+             "base to distal joint at slide 0 (m)");
+    addField(model, n, "paddle_half_width", &HandModel::paddleHalfWidth, R::Positive,
+             "membrane corners at +/- this along the paddle (m)");
+    addField(model, n, "paddle_offset", &HandModel::paddleOffset, R::Finite,
+             "corner offset from the distal joint towards the box (m)");
+    addField(model, n, "box_half_size", &HandModel::boxHalfSize, R::Positive,
+             "the square manipuland's half side (m)");
+    addField(model, n, "box_mass", &HandModel::boxMass, R::Positive, "kg");
+    addField(model, n, "box_damping", &HandModel::boxDamping, R::NonNegative,
+             "box linear damping, the table's drag (1/s)");
+    addField(model, n, "link_mass", &HandModel::linkMass, R::Positive, "kg");
+    addField(model, n, "slider_mass", &HandModel::sliderMass, R::Positive, "kg");
+    addField(model, n, "paddle_mass", &HandModel::paddleMass, R::Positive, "kg");
+    addField(model, n, "stiffness", &HandModel::stiffness, R::Positive, "membrane stiffness (N/m)");
+    addField(model, n, "damping", &HandModel::damping, R::NonNegative, "membrane damping (N s/m)");
+    addField(model, n, "preload", &HandModel::preload, R::NonNegative, "membrane pre-stretch (m)");
+    addField(model, n, "servo_kp", &HandModel::servoKp, R::Positive,
+             "inner PD stiffness per unit effective inertia (1/s^2)");
+    addField(model, n, "lower", &HandModel::lower, R::Finite,
+             "joint lower limits, 6 (rad, m), controller order");
+    addField(model, n, "upper", &HandModel::upper, R::Finite, "joint upper limits, 6 (rad, m)");
+    addFieldsPickle(model, n);
+  }
+  model
       .def(
           "open_pose", [](const HandModel& h) { return jointsArray(h.openPose()); },
           "open_pose() -> ndarray (6,): the non-grasping start pose, joint values (rad, m) in "
@@ -103,23 +129,29 @@ HandModel(stiffness=300) changes one from the default.)doc");
       .def(py::init([](const py::kwargs& kw) {
         return fromFields<HandControllerParams>("ControllerParams", kw);
       }))
-      .def_readwrite("period", &HandControllerParams::period, "outer-loop period (s)")
-      .def_readwrite("kp", &HandControllerParams::kp, "share of the error removed per update")
-      .def_readwrite("kd", &HandControllerParams::kd,
-                     "dimensionless, on the box's change over one period")
-      .def_readwrite("ki", &HandControllerParams::ki, "per update per second (1/s); > 0 for PID")
-      .def_readwrite("lambda_", &HandControllerParams::lambda, "pseudo-inverse damping")
-      .def_readwrite(
-          "lag_share", &HandControllerParams::lagShare,
-          "share of the membranes' room the moving box may lag by (sets the speed limit)")
-      .def_readwrite("wrap_margin", &HandControllerParams::wrapMargin,
-                     "the reference stops this far before the face-on wrap is lost (m)")
-      .def_readwrite("lead_limit", &HandControllerParams::leadLimit,
-                     "the reference slows once the box is this far off the reference model (m)")
-      .def_readwrite("distal_weight", &HandControllerParams::distalWeight,
-                     "joint-space weight of the distal joints")
-      .def_readwrite("face_on_gain", &HandControllerParams::faceOnGain,
-                     "null-space pull to face-on paddles, per update");
+      ;
+  {
+    using R = FieldRule;
+    using P = HandControllerParams;
+    const char* n = "ControllerParams";
+    addField(params, n, "period", &P::period, R::Positive, "outer-loop period (s)");
+    addField(params, n, "kp", &P::kp, R::NonNegative, "share of the error removed per update");
+    addField(params, n, "kd", &P::kd, R::NonNegative,
+             "dimensionless, on the box's change over one period");
+    addField(params, n, "ki", &P::ki, R::NonNegative, "per update per second (1/s); > 0 for PID");
+    addField(params, n, "lambda_", &P::lambda, R::NonNegative, "pseudo-inverse damping");
+    addField(params, n, "lag_share", &P::lagShare, R::Positive,
+             "share of the membranes' room the moving box may lag by (sets the speed limit)");
+    addField(params, n, "wrap_margin", &P::wrapMargin, R::NonNegative,
+             "the reference stops this far before the face-on wrap is lost (m)");
+    addField(params, n, "lead_limit", &P::leadLimit, R::Positive,
+             "the reference slows once the box is this far off the reference model (m)");
+    addField(params, n, "distal_weight", &P::distalWeight, R::Positive,
+             "joint-space weight of the distal joints");
+    addField(params, n, "face_on_gain", &P::faceOnGain, R::NonNegative,
+             "null-space pull to face-on paddles, per update");
+    addFieldsPickle(params, n);
+  }
   params.def("__repr__", [](py::handle self) { return fieldsRepr(self, "ControllerParams"); });
   m.attr("PID_KI") = kHandPidKi;
 

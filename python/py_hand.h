@@ -1,7 +1,10 @@
 // Shared pieces of the hand's bindings (py_hand.cpp, py_hand_runs.cpp, py_grasp.cpp).
 #pragma once
 
+#include <algorithm>
 #include <string>
+#include <type_traits>
+#include <vector>
 
 #include "engine/core/error.h"
 #include "engine/hand/hand_model.h"
@@ -20,18 +23,74 @@ void requireHand(const PyWorld& w, const std::string& source);
 /// "Name(field=value, ...)" over the class's read/write attributes.
 std::string fieldsRepr(py::handle self, const char* name);
 
-/// T(**fields): a default T with the given read/write attributes set; an unknown field is an
-/// InputError(name, field, "no such field").
+/// The read/write attributes of a value class, sorted (what repr, pickle and fromFields use).
+std::vector<std::string> fieldNames(py::handle self);
+
+/// T(**fields): a default T with the given read/write attributes set (each setter validates its
+/// value); an unknown field is an InputError(name, field, "no such field (known: ...)").
 template <typename T>
-T fromFields(const char* name, const py::kwargs& kw) {
+T fromFields(const char* name, const py::dict& kw) {
   py::object self = py::cast(T{});
+  const std::vector<std::string> known = fieldNames(self);
   for (auto [k, v] : kw) {
     const std::string key = py::str(k);
-    if (!py::hasattr(self, key.c_str()) || key.rfind("_", 0) == 0)
-      throw InputError(name, key, "no such field");
+    if (std::find(known.begin(), known.end(), key) == known.end()) {
+      std::string list;
+      for (const std::string& f : known) list += (list.empty() ? "" : ", ") + f;
+      throw InputError(name, key, "no such field (known: " + list + ")");
+    }
     self.attr(key.c_str()) = v;
   }
   return self.template cast<T>();
+}
+
+/// What a value class's field accepts; checked whenever it is set (also by T(**fields)).
+enum class FieldRule { Finite, NonNegative, Positive };
+
+/// Checks `v` against `rule`; throws InputError(className, field, "must be ... (got v)").
+double checkedField(double v, FieldRule rule, const char* className, const char* field);
+
+/// A read/write attribute `name` of a value class whose setter validates (a number, or an array
+/// of numbers each checked; an int field must be given an integer).
+template <typename T, typename V>
+void addField(py::class_<T>& cls, const char* className, const char* name, V T::*member,
+              FieldRule rule, const char* doc) {
+  cls.def_property(
+      name, [member](const T& t) { return t.*member; },
+      [member, rule, className, name](T& t, py::handle value) {
+        if constexpr (std::is_same_v<V, double>) {
+          if (PyBool_Check(value.ptr()) || !PyNumber_Check(value.ptr()))
+            throw InputError(className, name, "must be a number");
+          t.*member = checkedField(py::float_(py::reinterpret_borrow<py::object>(value)), rule,
+                                   className, name);
+        } else if constexpr (std::is_same_v<V, int>) {
+          if (PyBool_Check(value.ptr()) || !PyIndex_Check(value.ptr()))
+            throw InputError(className, name, "must be an integer");
+          const double v = py::int_(py::reinterpret_borrow<py::object>(value)).cast<double>();
+          t.*member = static_cast<int>(checkedField(v, rule, className, name));
+        } else {
+          const auto v = toNumbers(value, std::tuple_size_v<V>, className, name);
+          V out;
+          for (size_t i = 0; i < out.size(); ++i)
+            out[i] = checkedField(v[i], rule, className, name);
+          t.*member = out;
+        }
+      },
+      doc);
+}
+
+/// Pickling and copy.copy / deepcopy of a value class, through its read/write attributes.
+template <typename T>
+void addFieldsPickle(py::class_<T>& cls, const char* className) {
+  cls.def(py::pickle(
+      [](py::handle self) {
+        py::dict d;
+        for (const std::string& f : fieldNames(self)) d[f.c_str()] = self.attr(f.c_str());
+        return d;
+      },
+      [className](const py::dict& d) { return fromFields<T>(className, d); }));
+  cls.def("__copy__", [](const T& t) { return T(t); });
+  cls.def("__deepcopy__", [](const T& t, py::handle) { return T(t); });
 }
 
 void bindHandRuns(py::module_& m);

@@ -2,6 +2,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <algorithm>
 #include <memory>
 
 #include "engine/core/error.h"
@@ -97,7 +98,10 @@ SceneDef currentScene(const World& world) {
 }  // namespace
 
 PyWorld::PyWorld(SceneDef scene, const std::string& source)
-    : world(std::make_unique<World>(std::move(scene), source)), source(source) {
+    : PyWorld(std::make_unique<World>(std::move(scene), source), source) {}
+
+PyWorld::PyWorld(std::unique_ptr<World> built, const std::string& source)
+    : world(std::move(built)), source(source) {
   for (const BodyDef& b : world->scene().bodies) bodyNames.push_back(b.name);
   for (int i = 0; i < world->cableCount(); ++i) cableNames.push_back(world->cable(i).name());
   for (const JointDef& j : world->scene().joints) jointNames.push_back(j.name);
@@ -123,18 +127,49 @@ PyWorld::Busy::~Busy() {
 
 namespace {
 
-std::unique_ptr<PyWorld> loadWorld(py::handle scene, const py::kwargs& params) {
-  const std::string name = pathString(scene, "World.load", "scene");
-  std::vector<std::pair<std::string, double>> overrides;
+/// The keywords of World.load checked in Python's words (the CLI says "--set NAME").
+std::vector<std::pair<std::string, double>> loadKeywords(const std::string& scene,
+                                                         const py::kwargs& params) {
+  constexpr const char* kSource = "World.load";
+  const SceneInfo* info = findBuiltinScene(scene);
+  std::vector<std::pair<std::string, double>> out;
   for (auto [key, value] : params) {
     const std::string k = key.cast<std::string>();
+    if (!info)
+      throw InputError(kSource, k,
+                       "a scene file takes no keywords (edit the file, or change the dict from "
+                       "to_dict() and use World.from_dict)");
+    const auto param = std::find_if(info->params.begin(), info->params.end(),
+                                    [&k](const SceneParam& p) { return p.name == k; });
+    if (param == info->params.end()) {
+      std::string known;
+      for (const SceneParam& p : info->params) known += (known.empty() ? "" : ", ") + p.name;
+      throw InputError(kSource, k,
+                       "no such keyword for scene '" + scene + "' (known: " +
+                           (known.empty() ? "none" : known) + ")");
+    }
     if (PyBool_Check(value.ptr()) || !PyNumber_Check(value.ptr()))
-      throw InputError("--set", k, "must be a number");
+      throw InputError(kSource, k, "must be a number");
     const double v = py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
-    if (!std::isfinite(v)) throw InputError("--set", k, "must be finite");
-    overrides.emplace_back(k, v);
+    if (!std::isfinite(v)) throw InputError(kSource, k, "must be finite" + gotValue(v));
+    if (param->range == SceneParam::Range::Positive && !(v > 0))
+      throw InputError(kSource, k, "must be positive" + gotValue(v));
+    if (param->range == SceneParam::Range::NonNegative && v < 0)
+      throw InputError(kSource, k, "must be >= 0" + gotValue(v));
+    out.emplace_back(k, v);
   }
-  return std::make_unique<PyWorld>(makeScene(name, overrides), name);
+  return out;
+}
+
+std::unique_ptr<PyWorld> loadWorld(py::handle scene, const py::kwargs& params) {
+  const std::string name = pathString(scene, "World.load", "scene");
+  const auto overrides = loadKeywords(name, params);
+  try {
+    return std::make_unique<PyWorld>(makeScene(name, overrides), name);
+  } catch (const InputError& e) {
+    if (e.source() != kCommandLine) throw;
+    throw InputError("World.load", "scene", e.detail());  // "SCENE: no such built-in scene"
+  }
 }
 
 std::unique_ptr<PyWorld> worldFromDict(py::handle dict, const std::string& source) {
@@ -251,6 +286,7 @@ void setBodyState(PyWorld& self, py::handle body, py::handle state) {
   for (int k = 0; k < 6; ++k) checkedValue(v[k], "set_body_state", fields[k]);
   self.world->setBodyTransform(i, Vec2(v[0], v[1]), v[2]);
   self.world->setBodyVelocity(i, Vec2(v[3], v[4]), v[5]);
+  self.world->refreshCables();
 }
 
 void setBodyStates(PyWorld& self, py::handle states) {
@@ -269,6 +305,7 @@ void setBodyStates(PyWorld& self, py::handle states) {
     w.setBodyTransform(i, Vec2(d[0], d[1]), d[2]);
     w.setBodyVelocity(i, Vec2(d[3], d[4]), d[5]);
   }
+  w.refreshCables();  // lengths, paths and Jacobians of the new poses
 }
 
 template <typename F>
@@ -349,7 +386,9 @@ takes one accepts the index or the name.)doc");
 
 A built-in scene by name ("hand", "pulley", ...) or a scene JSON file (str or path).
 params are the scene's parameters, as `cablelab run --set NAME=VALUE` takes them,
-e.g. World.load("pulley", m1=2.0). Bad input raises InputError with the CLI's message.)doc");
+e.g. World.load("pulley", m_left=2.0) (cablelab.scenes() lists them). Bad input raises
+InputError naming the keyword, e.g. "World.load: m1: no such keyword for scene 'pulley'
+(known: L, m_left, m_right)".)doc");
   c.def_static("from_dict", &worldFromDict, "scene"_a, "source"_a = "dict",
                R"doc(from_dict(scene, source="dict") -> World
 
@@ -366,8 +405,9 @@ numpy arrays are accepted for lists). source names the dict in InputError messag
 
 The scene JSON as a dict. current=False: the scene as it was built (initial state);
 current=True: with the bodies' present poses and velocities, servo targets, cable
-parameters and gravity, so World.from_dict(w.to_dict(current=True)) continues from here
-(Box2D's contact caches are not carried over).)doc");
+parameters and gravity in place of the initial ones. That is a scene, not a state: Box2D's
+contact caches are not carried over, and joint coordinates start again from zero at the
+present pose. To continue exactly, use get_state() / set_state() or copy().)doc");
 
   c.def(
       "step",
@@ -464,7 +504,7 @@ array of that shape) to fill it in place with no allocation.)doc");
         "(m, rad, m/s, rad/s).");
   c.def("set_body_states", &setBodyStates, "states"_a,
         "set_body_states(states): every body at once from a (bodies, 6) array as body_states() "
-        "returns it.");
+        "returns it; cable lengths, paths and Jacobians follow at once.");
   c.def(
       "apply_force",
       [](PyWorld& self, py::handle body, py::handle force, py::handle point) {
@@ -574,8 +614,9 @@ step only (call it before every step for a lasting load).)doc");
   c.def("set_cable_parameters", &setCableParameters, "cable"_a, py::kw_only(),
         "rest_length"_a = py::none(), "stiffness"_a = py::none(), "preload"_a = py::none(),
         "damping"_a = py::none(),
-        "set_cable_parameters(cable, *, rest_length=None (m), stiffness=None (N/m, 0 = rigid), "
-        "preload=None (m), damping=None (N s/m)): live edits; None keeps the current value.");
+        "set_cable_parameters(cable, *, rest_length=None, stiffness=None, preload=None, "
+        "damping=None): live edits of rest_length (m), stiffness (N/m, 0 = rigid), preload (m) "
+        "and damping (N s/m); None keeps the current value.");
 
   c.def(
       "joint_values",
@@ -585,11 +626,6 @@ step only (call it before every step for a lasting load).)doc");
       "joint_speeds",
       [](const PyWorld& s) { return perJoint(s, [](const JointState& j) { return j.speed; }); },
       "joint_speeds() -> ndarray (joints,): rad/s or m/s.");
-  c.def(
-      "joint_forces",
-      [](const PyWorld& s) { return perJoint(s, [](const JointState& j) { return j.force; }); },
-      "joint_forces() -> ndarray (joints,): each servo's torque (N m, revolute) or force (N, "
-      "prismatic) over the last step; 0 without a servo (docs/servos.md has the units of kp, kd).");
   c.def(
       "servo_targets",
       [](const PyWorld& s) {
@@ -607,6 +643,8 @@ step only (call it before every step for a lasting load).)doc");
       "joint"_a, "target"_a, "set_servo_target(joint, target): the servo's target (rad or m).");
   c.def("set_servo_targets", &setServoTargets, "targets"_a,
         "set_servo_targets(targets): every joint's servo target at once (rad or m).");
+  bindState(m, c);
+  bindSensors(c);
   c.def("__repr__", [](const PyWorld& self) {
     return "<cablelab.World '" + self.world->scene().name +
            "' t=" + std::to_string(self.world->time()) + " s, " +

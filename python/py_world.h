@@ -14,6 +14,8 @@ namespace cablelab::python {
 
 struct PyWorld {
   PyWorld(SceneDef scene, const std::string& source);
+  /// Takes over a World already built (a fork or a restored state).
+  PyWorld(std::unique_ptr<World> built, const std::string& source);
 
   std::unique_ptr<World> world;
   std::string source;
@@ -34,5 +36,8 @@ struct PyWorld {
   int cableIndex(py::handle which, const std::string& source) const;
   int jointIndex(py::handle which, const std::string& source) const;
 };
+
+void bindState(py::module_& m, py::class_<PyWorld>& world);
+void bindSensors(py::class_<PyWorld>& world);
 
 }  // namespace cablelab::python

@@ -139,6 +139,7 @@ struct Box2DBridge::Impl {
   b2World world{b2Vec2(0, 0)};
   ContactImpulses contacts;
   b2Body* ground = nullptr;
+  double lastStep = 0;  ///< the last step()'s h (s)
   std::vector<b2Body*> bodies;
   std::vector<b2Joint*> joints;
   std::vector<JointDef::Kind> kinds;
@@ -245,6 +246,7 @@ void Box2DBridge::applyLoads(std::span<const Vec3> loads) {
 }
 
 void Box2DBridge::step(double h) {
+  impl_->lastStep = h;
   std::fill(impl_->contacts.perBody.begin(), impl_->contacts.perBody.end(), Vec3::Zero());
   impl_->world.Step(static_cast<float>(h), kVelocityIterations, kPositionIterations);
   impl_->rewind();
@@ -261,6 +263,51 @@ void Box2DBridge::addVelocities(std::span<const Vec3> dv) {
 
 std::span<const Vec3> Box2DBridge::contactImpulses() const {
   return impl_->contacts.perBody;
+}
+
+std::vector<ContactForce> Box2DBridge::contactForces() const {
+  std::vector<ContactForce> out;
+  if (!(impl_->lastStep > 0)) return out;
+  for (b2Contact* c = impl_->world.GetContactList(); c; c = c->GetNext()) {
+    if (!c->IsTouching() || c->GetFixtureA()->IsSensor() || c->GetFixtureB()->IsSensor()) continue;
+    const b2Manifold* manifold = c->GetManifold();
+    b2WorldManifold m;
+    c->GetWorldManifold(&m);
+    const b2Vec2 tangent = b2Cross(m.normal, 1.0f);
+    ContactForce f;
+    f.bodyA = static_cast<int>(c->GetFixtureA()->GetBody()->GetUserData().pointer) - 1;
+    f.bodyB = static_cast<int>(c->GetFixtureB()->GetBody()->GetUserData().pointer) - 1;
+    f.normal = fromB2(m.normal);
+    double weight = 0;
+    for (int i = 0; i < manifold->pointCount; ++i) {
+      const b2ManifoldPoint& p = manifold->points[i];
+      f.force += fromB2(p.normalImpulse * m.normal + p.tangentImpulse * tangent);
+      f.point += p.normalImpulse * fromB2(m.points[i]);
+      weight += p.normalImpulse;
+    }
+    f.force /= impl_->lastStep;
+    if (weight > 0) {
+      f.point /= weight;
+    } else {
+      for (int i = 0; i < manifold->pointCount; ++i) f.point += fromB2(m.points[i]);
+      f.point /= std::max(1, manifold->pointCount);
+    }
+    // One entry per pair, A the lower index (the world first).
+    if (f.bodyA > f.bodyB) std::swap(f.bodyA, f.bodyB), f.force = -f.force, f.normal = -f.normal;
+    auto same = [&f](const ContactForce& g) { return g.bodyA == f.bodyA && g.bodyB == f.bodyB; };
+    if (auto it = std::find_if(out.begin(), out.end(), same); it != out.end()) {
+      const double wa = it->force.norm(), wb = f.force.norm();
+      if (wa + wb > 0) it->point = (wa * it->point + wb * f.point) / (wa + wb);
+      it->force += f.force;
+      it->normal = (it->normal + f.normal).normalized();
+    } else {
+      out.push_back(f);
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const ContactForce& a, const ContactForce& b) {
+    return a.bodyA != b.bodyA ? a.bodyA < b.bodyA : a.bodyB < b.bodyB;
+  });
+  return out;
 }
 
 void Box2DBridge::markTouching(std::vector<char>& touching) const {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "engine/cable/cable.h"
+#include "engine/dynamics/contact_force.h"
 #include "engine/model/scene.h"
 
 namespace cablelab {
@@ -57,6 +58,8 @@ class Box2DBridge {
   /// Per body, the impulse (px, py, angular about its origin) Box2D's contacts gave it over the
   /// last step().
   std::span<const Vec3> contactImpulses() const;
+  /// Per pair of bodies in touch, the force of their contact points over the last step().
+  std::vector<ContactForce> contactForces() const;
   /// Sets touching[b] = 1 for every body in a touching, non-sensor contact.
   void markTouching(std::vector<char>& touching) const;
 

@@ -104,11 +104,13 @@ int World::findJoint(std::string_view name) const {
 }
 
 void World::setBodyTransform(int i, const Vec2& position, double angle) {
+  history_.add({WorldInput::Kind::BodyTransform, i, 1, {position.x(), position.y(), angle}});
   b2_->setTransform(i, position, angle);
   b2_->readBodies(bodies_);
 }
 
 void World::refreshCables() {
+  history_.add({WorldInput::Kind::RefreshCables});
   b2_->readBodies(bodies_);
   for (Cable& c : cables_) {
     c.update(bodies_, &warnings_);
@@ -117,11 +119,13 @@ void World::refreshCables() {
 }
 
 void World::setBodyVelocity(int i, const Vec2& velocity, double angularVelocity) {
+  history_.add({WorldInput::Kind::BodyVelocity, i, 1, {velocity.x(), velocity.y(), angularVelocity}});
   b2_->setVelocity(i, velocity, angularVelocity);
   b2_->readBodies(bodies_);
 }
 
 void World::applyForce(int i, const Vec2& force, const Vec2& worldPoint) {
+  history_.add({WorldInput::Kind::Force, i, 1, {force.x(), force.y(), worldPoint.x(), worldPoint.y()}});
   if (pendingForces_.size() != bodies_.size()) pendingForces_.assign(bodies_.size(), Vec3::Zero());
   const Vec2 r = worldPoint - bodies_[i].position;
   pendingForces_[i] += Vec3(force.x(), force.y(), cross(r, force));
@@ -129,6 +133,7 @@ void World::applyForce(int i, const Vec2& force, const Vec2& worldPoint) {
 
 void World::beginDrag(int body, const Vec2& worldPoint, double stiffnessHz) {
   endDrag();
+  history_.add({WorldInput::Kind::BeginDrag, body, 1, {worldPoint.x(), worldPoint.y(), stiffnessHz}});
   if (!b2_->beginDrag(body, worldPoint, stiffnessHz, gravity_.norm())) return;
   dragBody_ = body;
   dragTarget_ = worldPoint;
@@ -136,11 +141,13 @@ void World::beginDrag(int body, const Vec2& worldPoint, double stiffnessHz) {
 
 void World::dragTo(const Vec2& target) {
   if (dragBody_ < 0) return;
+  history_.add({WorldInput::Kind::DragTo, 0, 1, {target.x(), target.y()}});
   b2_->dragTo(target);
   dragTarget_ = target;
 }
 
 void World::endDrag() {
+  if (dragBody_ >= 0) history_.add({WorldInput::Kind::EndDrag});
   b2_->endDrag();
   dragBody_ = -1;
 }
@@ -159,6 +166,7 @@ void World::setCableParameters(int i, double restLength, double stiffness, doubl
   check(preload, "preload", false);
   check(damping, "damping", false);
   cables_[i].setParameters({restLength, stiffness, preload, damping});
+  history_.add({WorldInput::Kind::CableParameters, i, 1, {restLength, stiffness, preload, damping}});
 }
 
 JointState World::joint(int i) const {
@@ -174,15 +182,22 @@ JointState World::joint(int i) const {
 
 void World::setServoTarget(int i, double target) {
   servoTargets_[i] = target;
+  history_.add({WorldInput::Kind::ServoTarget, i, 1, {target}});
 }
 
 void World::setWrapSkipping(bool on) {
   for (Cable& c : cables_) c.setSkipping(on);
+  history_.add({WorldInput::Kind::WrapSkipping, on});
 }
 
 void World::setGravity(const Vec2& g) {
   gravity_ = g;
   b2_->setGravity(g);
+  history_.add({WorldInput::Kind::Gravity, 0, 1, {g.x(), g.y()}});
+}
+
+std::vector<ContactForce> World::contactForces() const {
+  return b2_->contactForces();
 }
 
 double World::energy() const {
@@ -511,6 +526,7 @@ void World::step(double dt, int substeps) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   stats_ = {};
+  history_.add({WorldInput::Kind::Step, substeps, 1, {dt}});
   for (const Cable& c : cables_) {
     stats_.selectionSkips -= static_cast<int>(c.skippedSelections());
     stats_.searchSkips -= static_cast<int>(c.skippedSearches());

@@ -28,6 +28,8 @@
 #include <Eigen/Core>
 
 #include "engine/cable/cable.h"
+#include "engine/dynamics/contact_force.h"
+#include "engine/dynamics/world_history.h"
 #include "engine/model/scene.h"
 
 namespace cablelab {
@@ -156,17 +158,30 @@ class World {
   void setWrapSkipping(bool on);
   /// The energy-consistent solve chosen per cable island (on by default) or, off, for the whole
   /// world at once (every cable or none: the engine before islands, kept for comparison).
-  void setMidpointPerIsland(bool on) { midpointPerIsland_ = on; }
+  void setMidpointPerIsland(bool on) {
+    midpointPerIsland_ = on;
+    history_.add({WorldInput::Kind::MidpointPerIsland, on});
+  }
   /// Joint trees carried onto each new pose keeping their kinetic energy (on by default;
   /// off: Box2D's own joint solve alone, which loses about (h omega)^2 / 2 of it a step).
-  void setJointEnergyKept(bool on) { keepsJointEnergy_ = on; }
+  void setJointEnergyKept(bool on) {
+    keepsJointEnergy_ = on;
+    history_.add({WorldInput::Kind::JointEnergyKept, on});
+  }
   Vec2 gravity() const { return gravity_; }
+
+  /// Per pair of bodies in touch, Box2D's contact force over its last step (contact_force.h).
+  std::vector<ContactForce> contactForces() const;
 
   /// Kinetic + gravitational + elastic (membrane) energy (J).
   double energy() const;
 
   /// Human-readable notes from the guards (zero-length segments merged, ...), newest last.
   const std::vector<std::string>& warnings() const { return warnings_; }
+
+  /// Every input since the World was built; the scene plus this rebuilds it bit for bit
+  /// (world_state.h).
+  const WorldHistory& history() const { return history_; }
 
  private:
   void applyServos(double dt);
@@ -237,6 +252,7 @@ class World {
   long steps_ = 0;
   int dragBody_ = -1;
   Vec2 dragTarget_ = Vec2::Zero();
+  WorldHistory history_;
 };
 
 }  // namespace cablelab

@@ -11,6 +11,10 @@ Units: metres, kilograms, seconds, radians, newtons (angles in degrees only wher
 says _deg). Arrays are numpy float64.
 
 Simulation   World (load, from_dict, step, run, state as arrays, forces, servos, cables)
+State        World.get_state / set_state / copy, WorldState; World and the value classes
+             pickle (processes, Dask)
+Sensors      cable_span_tensions, cable_jacobian, cable_jdot_v, joint_values / rates /
+             forces, contact_forces; set_body_states, set_joint_values
 Tools        statics, wrap, fit, membrane_data, membrane_model, scenes
 The hand     HandModel, ControllerParams, HandController, hand_joints, place_hand,
              track, reach (`cablelab track` and `reach`; the GIL is released while they
@@ -21,6 +25,19 @@ Pictures     render (numpy RGBA image), snapshot (PNG); offscreen, no display ne
 Errors       InputError (a ValueError; str(e) is the CLI's one-line message, with
              e.source and e.field), SimulationError (a RuntimeError)
 """
+
+import sys as _sys
+
+from ._version import __version__
+
+try:
+    import numpy as _numpy  # noqa: F401  (_core hands out numpy arrays)
+except ImportError as _error:
+    raise ImportError(
+        f"cablelab needs numpy, which this Python cannot import: {_sys.executable} "
+        f"(Python {_sys.version.split()[0]}). Install it for this interpreter (Debian: "
+        f"apt-get install python3-numpy; a venv: python3 -m venv --system-site-packages), "
+        f"or run Debian's /usr/bin/python3.") from _error
 
 from . import _core
 from ._core import (
@@ -37,6 +54,7 @@ from ._core import (
     InputError,
     SimulationError,
     World,
+    WorldState,
     fit,
     hand_joints,
     membrane_data,
@@ -52,7 +70,7 @@ from ._core import (
 )
 
 __all__ = [
-    "World", "statics", "wrap", "fit", "membrane_data", "membrane_model", "scenes",
+    "World", "WorldState", "statics", "wrap", "fit", "membrane_data", "membrane_model", "scenes",
     "HandModel", "ControllerParams", "HandController", "HandGrasp", "GraspOptions",
     "hand_joints", "place_hand",
     "track", "reach", "render", "snapshot", "InputError", "SimulationError",
@@ -67,4 +85,4 @@ for _name in __all__:
             _obj.__module__ = "cablelab"
         except (AttributeError, TypeError):
             pass
-del _name, _obj
+del _name, _obj, _sys

@@ -34,6 +34,14 @@ def cli_error(*args):
     return lines[0]
 
 
+def in_python_words(cli_line):
+    """The CLI's one-line error as the module words it: the option as a keyword ("command line:
+    --sigma-fy: ..." -> "argument: sigma_fy: ...")."""
+    source, option, detail = cli_line.split(": ", 2)
+    assert source == "command line", cli_line
+    return "argument: " + option.lstrip("-").replace("-", "_") + ": " + detail
+
+
 def read_csv(path):
     """header, rows as lists of floats (float() reads %.17g back to the same double)."""
     with open(path) as f:

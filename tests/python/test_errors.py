@@ -87,7 +87,7 @@ def test_bad_world_calls_raise(call):
 def test_unknown_scene_lists_the_builtins():
     text = message(cablelab.World.load, "no_such_scene")
     # The one style (docs/cli.md): SOURCE: FIELD: what is wrong (got VALUE).
-    assert "pulley" in text and text.startswith("command line: SCENE: no such built-in scene")
+    assert "pulley" in text and text.startswith("World.load: scene: no such built-in scene")
     assert text.endswith('(got "no_such_scene")')
 
 
@@ -189,3 +189,38 @@ def test_mutated_scenes_load_or_raise_input_error(scene):
             continue
         assert np.isfinite(w.body_states()).all()  # a run that succeeds never gives NaN
     assert refused > 0 and loaded + refused == 60
+
+
+def test_keyword_errors_name_the_keyword_in_python_words():
+    text = message(cablelab.World.load, "pulley", m1=2.0)
+    assert text == "World.load: m1: no such keyword for scene 'pulley' (known: m_left, m_right, L)"
+    text = message(cablelab.World.load, "pulley", m_left=-1)
+    assert text == "World.load: m_left: must be positive (got -1)"
+    for t in (text, message(cablelab.World.load, "no_such_scene"),
+              message(cablelab.track, target=(1, 2, 3))):
+        assert "--" not in t and "command line" not in t
+    assert cablelab.World.load("pulley", m_left=2.0).to_dict()["bodies"][0]["mass"] == 2.0
+
+
+def test_a_scene_file_takes_no_keywords(tmp_path):
+    path = tmp_path / "s.json"
+    path.write_text(json.dumps(cablelab.World.load("pulley").to_dict()))
+    assert message(cablelab.World.load, path, m_left=2.0).startswith(
+        "World.load: m_left: a scene file takes no keywords")
+
+
+def test_value_classes_check_each_field_when_given():
+    assert message(cablelab.HandModel, stiffness=-5) == \
+        "HandModel: stiffness: must be positive (got -5)"
+    h = cablelab.HandModel()
+    with pytest.raises(cablelab.InputError, match=r"^HandModel: box_mass: must be positive"):
+        h.box_mass = 0.0
+    assert h.box_mass == cablelab.HandModel().box_mass  # unchanged
+    with pytest.raises(cablelab.InputError, match=r"^HandModel: lower\[2\]: must be finite"):
+        h.lower = [0, 0, math.nan, 0, 0, 0]
+    text = message(cablelab.HandModel, stifness=3)
+    assert text.startswith("HandModel: stifness: no such field (known: ") and "stiffness" in text
+    assert message(cablelab.ControllerParams, period=0) == \
+        "ControllerParams: period: must be positive (got 0)"
+    assert "must be an integer" in message(cablelab.GraspOptions, max_regrasps=1.5)
+    assert "must be >= 0" in message(cablelab.GraspOptions, stop_time=-0.1)
