@@ -1,0 +1,178 @@
+// The implicit midpoint rule's stages of the cable solve (cable_solver.cpp): which islands take it
+// (5a), its rows' discrete gradient, the energy balance of its impulses (6a) and the midpoint pose
+// its rows pull at (6e).
+#include "engine/dynamics/cable_solver_stages.h"
+
+#include <cmath>
+
+#include "engine/dynamics/step_pose.h"
+
+namespace cablelab::cable_stages {
+
+namespace {
+
+// A rigid row under the midpoint rule (stage 5a). Box2D's symplectic Euler swings the measured
+// energy of a rope over a spinning pulley by about omega h / 2 (the built-in hexagon on its pivot:
+// 3.2% of its largest kinetic energy at 1 sub-step, a square 11%); the midpoint rule holds it to
+// 0.5% and 2.9%. Only where the rest of the step is exact under that rule too:
+// - every joint is a revolute one without limits at the centre of mass of a body it hangs from
+//   one that does not move (a pulley on its axle). Gravity's torque about an off-centre pivot is
+//   taken at the start pose, and with q1 = q0 + h (v0 + v1) / 2 a start-pose force gains energy
+//   every swing (a pendulum carrying an eyelet: +64% in a minute); without gravity a puck caught
+//   by a rope on an arm pivoted off its centre kept 86% of the energy that Box2D's integration
+//   kept to 1%, and a rope from a carriage on a rail stretched 3.5 mm (1e-6 m);
+// - no circle, drum or kinematic body on the path, one span;
+// - some pulley of the cable on a moving body (else Box2D's own integration, as the midpoint
+//   solver leaves straight cables over fixed pulleys).
+// The island's part of the conditions (its joints), then the cable's.
+bool jointsAreAxles(const Workspace& ws, const CableSolveInput& in) {
+  if (ws.jointIndex.empty()) return false;
+  for (int j : ws.jointIndex) {
+    const JointFrame& f = in.joints[j];
+    const bool movesA = f.bodyA >= 0 && moves(in.bodies[f.bodyA]);
+    const bool movesB = f.bodyB >= 0 && moves(in.bodies[f.bodyB]);
+    if (f.limited || f.kind != JointDef::Kind::Revolute || (movesA && movesB)) return false;
+    const Vec2 centre = in.bodies[movesA ? f.bodyA : f.bodyB].position;
+    if ((f.anchor - centre).squaredNorm() > 1e-18) return false;
+  }
+  return true;
+}
+bool rigidRowTakesMidpointRule(const CableSolveInput& in, const Cable& c) {
+  if (c.spanCount() != 1) return false;
+  for (const WrapPoint& w : c.path())
+    if (w.radius != 0 || (w.body >= 0 && driven(in.bodies[w.body]))) return false;
+  for (int j = 0; j < c.pulleyCount(); ++j)
+    if (c.pulleyBody(j) >= 0 && moves(in.bodies[c.pulleyBody(j)])) return true;
+  return false;
+}
+
+constexpr int kBalancePasses = 4;
+
+}  // namespace
+
+// 5a. Undamped elastic cables on jointed (or touching-free) bodies: the backward-Euler spring of
+// stage 5 damps them (an arm on a pivot pulled by a k = 200 N/m cable lost 90% of its energy in
+// 1 s). Where every row of the island is such a cable, no body touches, and each row's axial
+// mode is resolved (omega h <= 2, omega^2 = k J0 W), the island takes the implicit midpoint rule
+// instead: q1 = q0 + h (v0 + v1) / 2, the spring pulling with its energy's discrete gradient
+// (midpointSpringRows: k (phi0 + phi1) / 2 while taut), Box2D moving the bodies with
+// (v0 + v1) / 2 and World adding the rest after its step (kicks). The joints allow v0 and v1
+// alike, so they allow every velocity Box2D sees. The midpoint solver's rule (docs/cables.md,
+// "Energy"), here with the joint projection of stages 2-4.
+bool takesMidpointRule(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  if (in.kicks.empty() || ws.stiff || ws.rows.empty()) return false;
+  for (size_t k = 0; k < ws.dofs.body.size(); ++k)
+    if (!in.touching.empty() && in.touching[ws.dofs.body[k]]) return false;
+  int axles = -1;  // jointsAreAxles, asked once, where a rigid row needs it
+  for (size_t r = 0; r < ws.rows.size(); ++r) {
+    const Workspace::Row& row = ws.rows[r];
+    const Cable& c = cables[row.cable];
+    if (row.segment >= 0 || row.first != row.last) return false;
+    if (!c.elastic()) {
+      // A row stage 4b redirected joins fast: a puck caught at 50 m/s by a rope on a pivoted
+      // arm, under the midpoint rule, was thrown off before it wrapped.
+      if (axles < 0) axles = jointsAreAxles(ws, in);
+      if (!axles || (r < ws.ahead.size() && ws.ahead[r]) || !rigidRowTakesMidpointRule(in, c))
+        return false;
+      continue;
+    }
+    if (c.damping() != 0) return false;
+    const double say = rowSay(ws, in.bodies, cables, static_cast<int>(r));
+    if (!(c.stiffness() * say * in.h * in.h <= 4)) return false;
+  }
+  return true;
+}
+
+// The midpoint rule's rows at Newton's iterate (phi1 at q0 + h (v0 + v1) / 2): the cable pulls
+// with the discrete gradient of its energy V = k/2 max(0, phi)^2, P = h g, g = (V(phi1) -
+// V(phi0)) / (phi1 - phi0) (k (phi0 + phi1) / 2 while taut throughout; across a slack-taut
+// switch the exact quotient, or the switch gains or loses energy). With s = dg/dphi1 and
+// dphi1/dP = -(h/2) J1 W, Newton's row is (J1 W + 2 / (h^2 s)) P = J1 W P_k + 2 g / (h s).
+void midpointSpringRows(Workspace& ws, std::span<const Cable> cables, double h) {
+  for (size_t r = 0; r < ws.rows.size(); ++r) {
+    if (!cables[ws.rows[r].cable].elastic()) continue;
+    const double k = cables[ws.rows[r].cable].stiffness();
+    const double p0 = ws.phi0[r], p1 = ws.phi1[r], d = p1 - p0;
+    double g, s;
+    if ((p0 >= 0 && p1 >= 0) || (p0 <= 0 && p1 <= 0) || std::abs(d) < 1e-300) {
+      g = 0.5 * k * (p0 + p1), s = 0.5 * k;  // slack throughout: g < 0, the LCP leaves it slack
+    } else if (p1 > 0) {                     // comes taut
+      g = 0.5 * k * p1 * p1 / d, s = 0.5 * k * p1 * (p1 - 2 * p0) / (d * d);
+    } else {  // goes slack
+      g = -0.5 * k * p0 * p0 / d, s = 0.5 * k * p0 * p0 / (d * d);
+    }
+    s = std::max(s, 1e-12 * k);
+    ws.compliance[r] = 2 / (h * h * s);
+    ws.pull[r] = 2 * g / s;
+  }
+}
+
+// 6a. The midpoint rule's energy balance. Row r's impulse does work P_r J_r (v0 + v1) / 2 on the
+// bodies (J_r the Jacobian it pulls along; the joints' reactions do none), and the cable's energy
+// changes by V(phi1) - V(phi0). Newton's discrete gradient makes the two equal where phi1 -
+// phi0 = h J_r (v0 + v1) / 2; the length's curvature and a jointed body's turn (stepPose) leave
+// a second-order difference, which over many swings adds up: an arm on a pivot with an undamped
+// spring, its joint keeping its energy (joint_energy.h), gained 2.3 times its energy in 60 s at
+// 60 Hz. Each pulling row's impulse is scaled until the two match, where the factor is within
+// 0.5..2 (a few passes: the scaling moves the end pose a little).
+void balanceMidpointWork(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  for (int pass = 0; pass < kBalancePasses; ++pass) {
+    linearise(ws, in, cables);  // phi1 and v1 at these impulses
+    double worst = 0;
+    for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
+      if (!(ws.P[r] > 0)) continue;
+      double rate = 0;  // J_r (v0 + v1) / 2
+      forForceJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
+        for (const auto& e : jacobian)
+          if (const int d = ws.dofs.ofBody[e.body]; d >= 0)
+            rate += 0.5 * e.d.dot(ws.v0.segment<3>(d) + ws.v1.segment<3>(d));
+      });
+      const double k = cables[ws.rows[r].cable].stiffness();
+      auto energy = [&](double phi) { return phi > 0 ? 0.5 * k * phi * phi : 0.0; };
+      const double scale = (energy(ws.phi1[r]) - energy(ws.phi0[r])) / (ws.P[r] * rate);
+      if (!(scale > 0.5 && scale < 2)) continue;
+      ws.P[r] *= scale;
+      worst = std::max(worst, std::abs(scale - 1));
+    }
+    if (worst < 1e-9) return;
+  }
+}
+
+// 6e. Under the midpoint rule a rigid row pulls along J at the midpoint pose q0 + h (v0 + v1) / 4
+// of the step just solved, as near the discrete gradient of its length as a turning path allows
+// (G (q1 - q0) = length(q1) - length(q0): the row then does no work). Along the start-of-step J
+// it did work a step on the turning path that added up: the hexagon on its pivot gained 47% of
+// its largest kinetic energy in a minute. An elastic row pulls there too, whatever stage 4b gave
+// it: along J0 (or 4b's half share for a joining vertex) its work missed its energy change by the
+// first order in the turn (a polygon's lever arm changes across the step), often by more than
+// stage 6a's factors 0.5..2 can balance; four undamped ropes over a hexagon spinning at 10 rad/s
+// gained 25% of their largest kinetic energy in a minute, now 0.2%. True if any row was
+// redirected (stages 2-5 run again).
+bool pullAlongMidpointPose(Workspace& ws, const CableSolveInput& in,
+                           std::span<const Cable> cables) {
+  const int m = static_cast<int>(ws.rows.size());
+  if (static_cast<int>(ws.ahead.size()) != m) ws.ahead.assign(m, 0);
+  ws.aheadJacobian.resize(m);
+  timesImpulses(ws, ws.P);
+  ws.v1 = ws.vStar - ws.WP;
+  ws.free.assign(ws.predicted.begin(), ws.predicted.end());
+  for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
+    const int b = ws.dofs.body[k];
+    stepPose(in.bodies[b], movedWith(ws, k, ws.v1.segment<3>(3 * k)), 0.5 * in.h, ws.motions[k],
+             ws.free[b]);
+  }
+  bool any = false;
+  for (int r = 0; r < m; ++r) {
+    const Workspace::Row& row = ws.rows[r];
+    const Cable& c = cables[row.cable];
+    // A rigid row that stage 4b redirected keeps that Jacobian (takesMidpointRule refuses it).
+    if ((ws.ahead[r] && !c.elastic()) || row.segment >= 0 || !(ws.P[r] > 0)) continue;
+    pathAhead(ws, c, row.first, ws.free);
+    ws.aheadJacobian[r] = ws.kin.jacobian;
+    ws.ahead[r] = 1;
+    any = true;
+  }
+  return any;
+}
+
+}  // namespace cablelab::cable_stages

@@ -1,0 +1,226 @@
+// Stages 5 and 6 of the cable solve (cable_solver.cpp): the length targets, and Newton on the
+// end-of-step lengths with its warm start and its fallbacks.
+#include "engine/dynamics/cable_solver_stages.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "engine/dynamics/floors.h"
+#include "engine/dynamics/length_targets.h"
+#include "engine/dynamics/newton_stop.h"
+#include "engine/dynamics/step_pose.h"
+
+namespace cablelab::cable_stages {
+
+namespace {
+
+constexpr int kNewtonIterations = 3;  // on the end-of-step lengths; geometry is nearly linear
+// With redundant rows Newton runs on J0 W (a chord method): it converges linearly, not
+// quadratically, and a fast catch needs more steps (a puck at 50 m/s: 29 mm stretch after 3).
+constexpr int kChordIterations = 12;
+
+// Warm start: a cable's tension changes little from one sub-step to the next, so Newton starts
+// from the impulses of the last solve when it had the same h and nothing has set the tension
+// since (after a step cut at an event the impulse is not force times h: a length correction is
+// m dv whatever h). Floors start at 0. True if any row starts away from 0.
+bool warmStart(Workspace& ws, double h, std::span<const Cable> cables) {
+  const int m = static_cast<int>(ws.rows.size());
+  ws.P.setZero(m);
+  bool warm = false;
+  for (int r = 0; r < m; ++r) {
+    const Workspace::Row& row = ws.rows[r];
+    const Cable& c = cables[row.cable];
+    const Workspace::WarmStart& last = ws.warm[row.cable];
+    if (row.segment >= 0 || last.h != h || last.tension != c.tension() ||
+        last.spans != c.spanCount())
+      continue;
+    ws.P[r] = std::max(0.0, c.spanTension(row.first) / row.weight(ws.rowWeights, row.first)) * h;
+    warm |= ws.P[r] > 0;
+  }
+  return warm;
+}
+
+}  // namespace
+
+// 5. Position-level targets. Rigid: length at the end of the step = now (the error below the
+// slop is float rounding: fixing it would amplify it by 1/h^2), a slack cable may come taut, an
+// over-long one is shortened by a share of the excess per nominal sub-step (a step cut at an
+// event fixes its share of that: fixing it all would ask for a velocity of error / h). Elastic: T =
+// k phi1 + b (phi1 - phi0)/h.
+void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable> cables) {
+  // Floors are rigid rows on kFloorLength - |segment|: they only ever push.
+  const double beta = kBaumgarte * share;
+  const int m = static_cast<int>(ws.rows.size());
+  ws.target.resize(m);
+  ws.compliance.setZero(m);
+  ws.damped.setZero(m);
+  ws.pull.setZero(m);
+  ws.phi0.resize(m);
+  for (int r = 0; r < m; ++r) {
+    const Workspace::Row& row = ws.rows[r];
+    const Cable& c = cables[row.cable];
+    const int seg = row.segment;
+    double phi = 0;
+    if (seg >= 0)
+      phi = kFloorLength - floorGap(c.path()[seg], c.path()[seg + 1], ws.rows[r].rim);
+    else
+      for (int k = row.first; k <= row.last; ++k) phi += c.spanStretch(k);
+    ws.phi0[r] = phi;
+    if (!c.elastic() || seg >= 0) {
+      ws.target[r] = phi < -kLengthSlop  ? 0.0
+                     : phi > kLengthSlop ? phi - beta * (phi - kLengthSlop)
+                                         : phi;
+    } else if (!ws.midpoint) {  // (midpointSpringRows pulls with the energy's discrete gradient)
+      const double stiffK = c.stiffness(), damp = c.damping();
+      ws.compliance[r] = 1.0 / (h * (stiffK * h + damp));
+      ws.damped[r] = damp * phi / (stiffK * h + damp);
+    }
+  }
+}
+
+// ws.WP = W P, column by column: W has a few columns (one per row), and Eigen's general product
+// costs more than the arithmetic at these sizes. Kept while W and P stay as they are: the
+// shortcut, the limit check and the forces all ask for the same product.
+void timesImpulses(Workspace& ws, const Eigen::VectorXd& P) {
+  if (ws.wpFresh && ws.wpImpulses.size() == P.size() && ws.wpImpulses == P) return;
+  const Eigen::Index n = ws.W.rows(), m = ws.W.cols();
+  ws.WP.setZero(n);
+  for (Eigen::Index s = 0; s < m; ++s) {
+    const double p = P[s];
+    const double* w = ws.W.data() + s * n;
+    for (Eigen::Index d = 0; d < n; ++d) ws.WP[d] += w[d] * p;
+  }
+  ws.wpImpulses = P;
+  ws.wpFresh = true;
+}
+
+// The end-of-step state for impulses P (Box2D integrates q1 = q0 + h v1), then each row's
+// end-of-step length error phi1 and its linearisation J1 W.
+void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  const double h = in.h;
+  timesImpulses(ws, ws.P);
+  ws.v1 = ws.vStar - ws.WP;
+  for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
+    const BodyState& s = in.bodies[ws.dofs.body[k]];
+    BodyState& p = ws.predicted[ws.dofs.body[k]];
+    stepPose(s, movedWith(ws, k, ws.v1.segment<3>(3 * k)), h, ws.motions[k], p);
+  }
+  for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
+    const Workspace::Row& row = ws.rows[r];
+    const Cable& c = cables[row.cable];
+    ws.JW.row(r).setZero();
+    if (row.segment >= 0) {
+      ws.phi1[r] = floorRow(ws, ws.predicted, c, row);
+      addJacobianTimesW(ws, ws.floorJacobian, ws.JW.row(r));
+      continue;
+    }
+    ws.phi1[r] = 0;
+    for (int k = row.first; k <= row.last; ++k) {
+      pathAhead(ws, c, k, ws.predicted);
+      ws.phi1[r] += c.spanStretch(k) + ws.kin.length - c.spanKinematics(k).length;
+      addJacobianTimesW(ws, ws.kin.jacobian, ws.JW.row(r));
+    }
+  }
+}
+
+// Newton's iterations from ws.P. Stopped: the iterations ran out while the steps still shrank
+// (ws.P is the last iterate, as good as it got). Diverged: a step grew instead (ws.P is not an
+// answer).
+Newton iterateNewton(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
+                     bool redundant, StepStats& stats) {
+  const int m = static_cast<int>(ws.rows.size());
+  const double h = in.h;
+  double lastChange = std::numeric_limits<double>::infinity();
+  for (int iteration = 0; iteration < (redundant ? kChordIterations : kNewtonIterations);
+       ++iteration) {
+    linearise(ws, in, cables);
+    if (redundant) ws.JW = ws.JW0;
+    // Guard (degenerate geometry): far from the start pose the end-of-step linearisation can lose
+    // positive definiteness (a wrap point the predicted motion carries past its neighbour turns a
+    // row's J1 against its J0: K_ii <= 0), and the LCP then answers with impulses of 1e6 N s.
+    // Such a row falls back to the start-of-step Jacobian, whose J0 W is positive semidefinite.
+    for (int r = 0; r < m; ++r)
+      if (!(ws.JW(r, r) > 1e-3 * ws.JW0(r, r))) {
+        ws.JW.row(r) = ws.JW0.row(r);
+        ++stats.linearisationFallbacks;
+      }
+    if (ws.midpoint) midpointSpringRows(ws, cables, h);
+    ws.K = ws.JW;
+    ws.K.diagonal() += ws.compliance;
+    ws.b.noalias() = ws.JW.lazyProduct(ws.P);  // a few rows: no GEMV kernel call
+    for (int r = 0; r < m; ++r)
+      ws.b[r] += (ws.midpoint && cables[ws.rows[r].cable].elastic() ? ws.pull[r]
+                  : cables[ws.rows[r].cable].elastic() && ws.rows[r].segment < 0
+                      ? ws.phi1[r] - ws.damped[r]
+                      // under the midpoint rule dphi1/dP = -(h/2) J1 W
+                      : (ws.midpoint ? 2 : 1) * (ws.phi1[r] - ws.target[r])) /
+                 h;
+    LcpSolution& sol = ws.lcpSolution;
+    solveLcp(ws.K, ws.b, ws.lcp, sol, redundant);
+    const double change = (sol.x - ws.P).lpNorm<Eigen::Infinity>();
+    ws.P = sol.x;
+    stats.solverIterations += sol.iterations;
+    stats.residual = std::max(stats.residual, sol.residual);
+    if (newtonSettled(change, lastChange, ws.P.lpNorm<Eigen::Infinity>())) return Newton::Converged;
+    // Steps that grow, and not by rounding (a converged iterate's change of 1e-8 |P|).
+    if (!(change < lastChange) && change > 1e-3 * ws.P.lpNorm<Eigen::Infinity>())
+      return Newton::Diverged;
+    lastChange = change;
+  }
+  return Newton::Stopped;
+}
+
+// 6. Newton on the end-of-step lengths phi1(P), each linearisation an LCP over all cables:
+// tension >= 0, slack cables only shorten. A warm start that does not settle (a tiny mass the
+// last impulses throw far) starts again from P = 0, so it only ever saves iterations.
+void solveLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
+                  StepStats& stats) {
+  const int m = static_cast<int>(ws.rows.size());
+  ws.phi1.resize(m);
+  ws.JW.resize(m, m);
+  // Redundant cables (J0 W singular): J1 W is then singular too, but not symmetric, and its
+  // symmetric part indefinite, so the minimum-norm solve (tension_solver.h) would be ill posed.
+  // Such an island iterates on J0 W instead (a quasi-Newton step: it still converges to the
+  // end-of-step lengths, only more slowly).
+  bool& redundant = ws.redundant;
+  redundant = false;
+  if (m > 1 && (ws.compliance.array() == 0).any()) {  // elastic rows alone: K is definite
+    ws.redundancy.compute(ws.JW0);
+    redundant = rankDeficient(ws.redundancy);
+  }
+  if (solveLinearised(ws, in, cables, redundant, stats)) return;
+  if (warmStart(ws, in.h, cables)) {
+    StepStats warm;
+    if (iterateNewton(ws, in, cables, redundant, warm) == Newton::Converged &&
+        realisable(ws, in.h) && !addsEnergy(ws, in, cables)) {
+      stats.solverIterations += warm.solverIterations;
+      stats.residual = std::max(stats.residual, warm.residual);
+      stats.linearisationFallbacks += warm.linearisationFallbacks;
+      return;
+    }
+    ws.P.setZero(m);
+  }
+  if (iterateNewton(ws, in, cables, redundant, stats) != Newton::Diverged && realisable(ws, in.h) &&
+      !addsEnergy(ws, in, cables))
+    return;
+  // Far from linear over the step: a segment the predicted motion folds past a wrap point, where
+  // pulling harder makes the end-of-step length grow (Newton's impulses grew threefold an
+  // iteration, to 8e4 N on a hand's band, and the soak's fingers were thrown), or a root a whole
+  // turn of a drum away (the built-in winch, stalled with its weight at the drum, found one at
+  // 1e5 N, then 1e7, 1e9, ... a step), or a root no rigid row can reach (addsEnergy). The
+  // start-of-step linearisation answers instead; the next sub-step corrects what it leaves.
+  solveStartOfStep(ws, in, cables, redundant);
+  ws.P = ws.lcpSolution.x;
+  stats.solverIterations += ws.lcpSolution.iterations;
+  ++stats.newtonDivergences;
+  if (addsEnergy(ws, in, cables) && holdOverlongRows(ws, cables)) {
+    solveStartOfStep(ws, in, cables, redundant);
+    ws.P = ws.lcpSolution.x;
+    stats.solverIterations += ws.lcpSolution.iterations;
+    ++stats.heldIslands;
+    return;  // (the rows stay long: halving the step would not shorten them)
+  }
+  if (missesLengths(ws, in, cables)) ++stats.unsettledIslands;
+}
+
+}  // namespace cablelab::cable_stages
