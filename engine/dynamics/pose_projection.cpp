@@ -390,6 +390,8 @@ PoseResult projectPose(PoseWorld& world, const PoseGoal& asked) {
 }
 
 PoseResult World::poseBody(int body, const Vec2& grabLocal, const Vec2& target, bool payOut) {
+  history_.add({WorldInput::Kind::Pose, body, payOut ? 1 : 0,
+                {grabLocal.x(), grabLocal.y(), target.x(), target.y()}});
   PoseWorld w{scene_, *b2_, cables_, bodies_, jointBodies_, warnings_};
   const PoseResult result = projectPose(w, {body, grabLocal, target, payOut});
   // A servo holds the pose it was given: its target moves to its joint's new coordinate (else on

@@ -28,7 +28,9 @@ struct WorldInput {
     WrapSkipping,       ///< index = on
     MidpointPerIsland,  ///< index = on
     JointEnergyKept,    ///< index = on
-    Last = JointEnergyKept
+    Pose,  ///< index = body (-1: settlePose), grab x, y (body frame, m), target x, y (m);
+           ///< count = 1 where the pose pays the cables out, else 0
+    Last = Pose
   };
   WorldInput(Kind kind = Kind::Step, int index = 0, long count = 1,
              std::array<double, 4> values = {})

@@ -87,6 +87,10 @@ void replayInputs(World& world, const std::vector<WorldInput>& inputs, const std
       case Kind::JointEnergyKept:
         world.setJointEnergyKept(i != 0);
         break;
+      case Kind::Pose:
+        if (i >= 0) checkIndex(i, world.bodyCount(), "body", n, source);
+        world.poseBody(i, Vec2(v[0], v[1]), Vec2(v[2], v[3]), in.count != 0);
+        break;
     }
   }
 }
