@@ -57,8 +57,10 @@ int snapshot(const SnapshotOptions& o) {
     requireWritable(diffPathFor(o.out), "--out");
   }
   PixelSize size{800, 600};
-  if (!o.size.empty()) size = parsePixelSize(o.size, kCommandLine, "--size", 16, 8192);
-  else if (!o.compare.empty()) size = {reference.width, reference.height};
+  if (!o.size.empty())
+    size = parsePixelSize(o.size, kCommandLine, "--size", 16, 8192);
+  else if (!o.compare.empty())
+    size = {reference.width, reference.height};
   if (!o.compare.empty() && (size.width != reference.width || size.height != reference.height))
     badOption("--size", "must be the reference image's size " + std::to_string(reference.width) +
                             "x" + std::to_string(reference.height) + " (" + o.compare + ")" +
@@ -78,8 +80,10 @@ int snapshot(const SnapshotOptions& o) {
   const bool match = c.share() <= o.tolerance;
   const std::string diff = diffPathFor(o.out);
   std::error_code ignored;
-  if (match) std::filesystem::remove(diff, ignored);  // an old diff would mislead
-  else ui::writePng(c.diff, diff);
+  if (match)
+    std::filesystem::remove(diff, ignored);  // an old diff would mislead
+  else
+    ui::writePng(c.diff, diff);
   nlohmann::json report = {{"out", o.out},
                            {"reference", o.compare},
                            {"match", match},

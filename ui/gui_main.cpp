@@ -67,8 +67,10 @@ void openFirstScene(cablelab::ui::Sandbox& sandbox, const cablelab::ui::GuiOptio
   for (const auto& [name, value] : options.overrides) {
     auto known = std::find_if(values.begin(), values.end(),
                               [&key = name](const auto& p) { return p.first == key; });
-    if (known != values.end()) known->second = value;
-    else values.emplace_back(name, value);  // unknown: rebuild() reports it
+    if (known != values.end())
+      known->second = value;
+    else
+      values.emplace_back(name, value);  // unknown: rebuild() reports it
   }
   sandbox.rebuild(values);
 }

@@ -27,8 +27,7 @@ void addGuiOptions(CLI::App& app, GuiArguments& args) {
   app.add_option("--ui-scale", args.uiScale,
                  "text and panel scale, 0.5..4 (default: from the display)")
       ->type_name("S");
-  app.add_option("--record", args.record,
-                 "record the world view as an animated GIF from frame 1")
+  app.add_option("--record", args.record, "record the world view as an animated GIF from frame 1")
       ->type_name("F.gif");
   app.add_option("--script", args.script,
                  "run the acceptance scenario NAME with synthetic mouse and key events and print "
@@ -55,7 +54,8 @@ GuiOptions checkGuiArguments(const GuiArguments& args,
   GuiOptions o;
   o.scene = args.scene.empty() ? defaultSceneName() : args.scene;
   if (!args.frames.empty())
-    o.frames = static_cast<int>(parseWholeNumber(args.frames, kCommandLine, "--frames", 0, 100000000));
+    o.frames =
+        static_cast<int>(parseWholeNumber(args.frames, kCommandLine, "--frames", 0, 100000000));
   if (!args.size.empty()) {
     const PixelSize s = parsePixelSize(args.size, kCommandLine, "--size", 240, 16384);
     o.width = s.width;
@@ -64,7 +64,8 @@ GuiOptions checkGuiArguments(const GuiArguments& args,
   if (!args.uiScale.empty()) {
     const auto v = parseFiniteNumber(args.uiScale);
     if (!v || *v < 0.5 || *v > 4)
-      throw InputError(kCommandLine, "--ui-scale", "must be a number in [0.5, 4]" + gotValue(args.uiScale));
+      throw InputError(kCommandLine, "--ui-scale",
+                       "must be a number in [0.5, 4]" + gotValue(args.uiScale));
     o.uiScale = static_cast<float>(*v);
   }
   if (!args.script.empty()) {
@@ -81,8 +82,8 @@ GuiOptions checkGuiArguments(const GuiArguments& args,
   o.openLater = args.open;
   o.testInput = args.testInput;
   o.scriptOut = args.scriptOut;
-  o.unattended = !args.frames.empty() || !args.screenshot.empty() || !args.script.empty() ||
-                 args.testInput;
+  o.unattended =
+      !args.frames.empty() || !args.screenshot.empty() || !args.script.empty() || args.testInput;
   if (!o.screenshot.empty()) requireWritable(o.screenshot, "--screenshot");
   for (const std::string& s : args.sets) o.overrides.push_back(parseSetting(s));
   if (o.unattended) {
@@ -99,8 +100,8 @@ std::vector<std::string> guiCommandLine(const GuiArguments& args) {
   // --NAME=VALUE: a value that starts with '-' stays a value.
   for (const std::string& s : args.sets) line.push_back("--set=" + s);
   const std::pair<const char*, const std::string*> valued[] = {
-      {"--frames", &args.frames}, {"--screenshot", &args.screenshot}, {"--size", &args.size},
-      {"--ui-scale", &args.uiScale}, {"--record", &args.record}, {"--script", &args.script},
+      {"--frames", &args.frames},    {"--screenshot", &args.screenshot}, {"--size", &args.size},
+      {"--ui-scale", &args.uiScale}, {"--record", &args.record},         {"--script", &args.script},
       {"--open", &args.open}};
   for (const auto& [option, value] : valued)
     if (!value->empty()) line.push_back(option + ("=" + *value));

@@ -14,7 +14,7 @@ namespace cablelab::ui {
 
 /// The options as typed (text), filled by CLI11; checked by checkGuiArguments.
 struct GuiArguments {
-  std::string scene;  ///< built-in name or scene file; empty: the default scene
+  std::string scene;              ///< built-in name or scene file; empty: the default scene
   std::vector<std::string> sets;  ///< NAME=VALUE, repeatable
   std::string frames, screenshot, size, record, uiScale, script, open;
   std::string scriptOut = "authored.json";

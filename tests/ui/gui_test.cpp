@@ -195,9 +195,9 @@ TEST(Gui, ABadSceneInTheInteractiveWindowShowsItsErrorAndKeepsRunning) {
   // No --frames, no --screenshot: someone watches the window, so the error shows in it and the
   // sandbox keeps running until it is closed (here by timeout's SIGTERM, which SDL turns into a
   // quit event).
-  const RunResult r = run(kXvfb + "timeout -s TERM 8 " + std::string(CABLELAB_CLI) + " gui " +
-                              bad + " --size 640x480",
-                          "gui_bad_interactive");
+  const RunResult r = run(
+      kXvfb + "timeout -s TERM 8 " + std::string(CABLELAB_CLI) + " gui " + bad + " --size 640x480",
+      "gui_bad_interactive");
   EXPECT_NE(r.exitCode, 2) << r.err;
   EXPECT_NE(r.err.find(bad + ": bodies[0].mass: must be positive (got -1.5)"), std::string::npos)
       << r.err;
@@ -207,7 +207,8 @@ TEST(Gui, SetChangesTheSceneLikeRun) {
   REQUIRE_XVFB();
   const std::string plain = (outputDir("gui") / "wheel-default.png").string(),
                     wide = (outputDir("gui") / "wheel-r.png").string();
-  const std::string gui = kXvfb + std::string(CABLELAB_CLI) + " gui wheel --size 800x600 --frames 2";
+  const std::string gui =
+      kXvfb + std::string(CABLELAB_CLI) + " gui wheel --size 800x600 --frames 2";
   ASSERT_EQ(run(gui + " --screenshot " + plain, "gui_set_default").exitCode, 0);
   const RunResult r = run(gui + " --set r=0.5 --screenshot " + wide, "gui_set_r");
   ASSERT_EQ(r.exitCode, 0) << r.err;

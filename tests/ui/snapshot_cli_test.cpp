@@ -87,12 +87,14 @@ std::vector<BadInput> badScenes() {
            ": (json): not valid JSON at line 1, column 28: syntax error while parsing object key - "
            "unexpected '}'; expected string literal"},
       {"unknown body in a cable", data("scene_unknown_cable_body.json"),
-       data("scene_unknown_cable_body.json") + ": cables[0].end.body: unknown body (got \"ghost\")"},
+       data("scene_unknown_cable_body.json") +
+           ": cables[0].end.body: unknown body (got \"ghost\")"},
       {"missing file", "/no/such/scene.json",
        "/no/such/scene.json: (file): cannot open: No such file or directory"},
       {"a directory", folder, folder + ": (file): is a directory, not a file"},
       {"unknown scene name", "no_such_scene",
-       "command line: SCENE: no such built-in scene or file; built-in: ", "(got \"no_such_scene\")"},
+       "command line: SCENE: no such built-in scene or file; built-in: ",
+       "(got \"no_such_scene\")"},
       {"bad --set name", "hexagon --set nosuch=1",
        "command line: --set nosuch: unknown parameter of scene hexagon (known: ", ")"},
       {"bad --set value", "wheel --set m1=-2", "command line: --set m1: must be positive (got -2)"},
@@ -105,15 +107,16 @@ TEST(GuiCli, EveryBadSceneExitsTwoWithSnapshotsLineAndNoWindowOrPng) {
     fs::remove(shot);
     const RunResult snap = run(kCli + " snapshot " + bad.args + " --out " + shot, "bad_snapshot");
     EXPECT_EQ(snap.exitCode, 2) << bad.kind;
-    EXPECT_EQ(std::count(snap.err.begin(), snap.err.end(), '\n'), 1) << bad.kind << ": " << snap.err;
+    EXPECT_EQ(std::count(snap.err.begin(), snap.err.end(), '\n'), 1)
+        << bad.kind << ": " << snap.err;
     EXPECT_TRUE(bad.matches(snap.err)) << bad.kind << ": " << snap.err;
     EXPECT_FALSE(fs::exists(shot)) << bad.kind;
     // `cablelab gui` (handing off) and cablelab-gui itself, with --frames and --screenshot, with
     // --frames alone and with --screenshot alone: the same line, exit 2, no window, no PNG.
     for (const std::string& command :
          {kCli + " gui " + bad.args + " --frames 30 --screenshot " + shot,
-          kCli + " gui " + bad.args + " --frames 30", kGui + " " + bad.args + " --screenshot " + shot,
-          kGui + " " + bad.args + " --frames 5"}) {
+          kCli + " gui " + bad.args + " --frames 30",
+          kGui + " " + bad.args + " --screenshot " + shot, kGui + " " + bad.args + " --frames 5"}) {
       const RunResult gui = run(kNoDisplay + command, "bad_gui");
       EXPECT_EQ(gui.exitCode, 2) << command;
       EXPECT_EQ(gui.err, snap.err) << command;
@@ -127,17 +130,21 @@ TEST(GuiCli, BadOptionValuesExitTwoWithOneLine) {
   const std::string shot = (outputDir("gui-bad") / "never.png").string();
   fs::remove(shot);
   const std::pair<std::string, std::string> cases[] = {
-      {"--size axb", "command line: --size: must be WxH, each a whole number in [240, 16384] (got \"axb\")"},
-      {"--size 100x100", "command line: --size: must be WxH, each a whole number in [240, 16384] (got \"100x100\")"},
+      {"--size axb",
+       "command line: --size: must be WxH, each a whole number in [240, 16384] (got \"axb\")"},
+      {"--size 100x100",
+       "command line: --size: must be WxH, each a whole number in [240, 16384] (got \"100x100\")"},
       {"--ui-scale 9", "command line: --ui-scale: must be a number in [0.5, 4] (got \"9\")"},
       {"--set m1", "command line: --set: must be NAME=VALUE (got \"m1\")"},
       {"--record /no/such/dir/clip.gif",
-       "command line: --record: cannot write the file: no folder /no/such/dir (got \"/no/such/dir/clip.gif\")"},
+       "command line: --record: cannot write the file: no folder /no/such/dir (got "
+       "\"/no/such/dir/clip.gif\")"},
   };
   for (const auto& [args, line] : cases)
     for (const std::string& program : {kCli + " gui", kGui}) {
       const RunResult r =
-          run(kNoDisplay + program + " wheel " + args + " --frames 3 --screenshot " + shot, "bad_gui_option");
+          run(kNoDisplay + program + " wheel " + args + " --frames 3 --screenshot " + shot,
+              "bad_gui_option");
       EXPECT_EQ(r.exitCode, 2) << program << " " << args;
       EXPECT_EQ(r.err, line + "\n") << program << " " << args;
       EXPECT_FALSE(fs::exists(shot));
@@ -162,9 +169,9 @@ TEST(GuiCli, HelpListsEveryOptionOfTheSandboxInBothPrograms) {
   ASSERT_EQ(cli.exitCode, 0);
   ASSERT_EQ(gui.exitCode, 0);
   const std::set<std::string> listed = optionsIn(cli.out);
-  for (const char* option : {"--set", "--frames", "--screenshot", "--size", "--ui-scale",
-                             "--record", "--script", "--script-out", "--open", "--test-input",
-                             "--help"})
+  for (const char* option :
+       {"--set", "--frames", "--screenshot", "--size", "--ui-scale", "--record", "--script",
+        "--script-out", "--open", "--test-input", "--help"})
     EXPECT_TRUE(listed.count(option)) << option << " missing from `cablelab gui --help`:\n"
                                       << cli.out;
   EXPECT_EQ(listed, optionsIn(gui.out)) << cli.out << "\n---\n" << gui.out;

@@ -56,9 +56,8 @@ TEST(SnapshotCompare, TheSameSceneRepeatsByteForByteAndMatchesAtToleranceZero) {
 
   const std::string out = path("repeat3.png");
   std::ofstream(path("repeat3.diff.png")) << "stale";  // a match removes an old diff
-  const RunResult r = snapshot("hand --time 0.5 --out " + out + " --compare " + first +
-                                   " --tolerance 0",
-                               "same");
+  const RunResult r =
+      snapshot("hand --time 0.5 --out " + out + " --compare " + first + " --tolerance 0", "same");
   EXPECT_EQ(r.exitCode, 0) << r.err;
   EXPECT_EQ(r.err, "");
   const auto j = nlohmann::json::parse(r.out);
@@ -155,7 +154,8 @@ TEST(SnapshotCompare, ABadReferenceOrToleranceExitsTwoWithOneLineAndWritesNothin
     std::string args, line;
   };
   const Case cases[] = {
-      {"--compare /no/such/ref.png", "/no/such/ref.png: (file): cannot open: No such file or directory"},
+      {"--compare /no/such/ref.png",
+       "/no/such/ref.png: (file): cannot open: No such file or directory"},
       {"--compare " + folder, folder + ": (file): is a directory, not a file"},
       {"--compare " + ref + " --size 640x480",
        "command line: --size: must be the reference image's size 320x200 (" + ref +
