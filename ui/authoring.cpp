@@ -154,6 +154,7 @@ bool cableClick(Sandbox& sandbox, Authoring& a, const Vec2& p, bool shift, bool 
   if (!problem.empty()) {  // take the cable back: it would not run where it was clicked
     undoEdit(sandbox);
     a.redo.clear();
+    sandbox.message = "the cable was not added";
     sandbox.error = problem;
     return true;
   }
@@ -283,6 +284,7 @@ bool undoEdit(Sandbox& sandbox) {
   if (!sandbox.replaceScene(a.undo.back())) return false;
   a.undo.pop_back();
   a.redo.push_back(std::move(current));
+  sandbox.message = "undid the last edit (Ctrl+Y redoes it)";
   return true;
 }
 
@@ -293,6 +295,7 @@ bool redoEdit(Sandbox& sandbox) {
   if (!sandbox.replaceScene(a.redo.back())) return false;
   a.redo.pop_back();
   a.undo.push_back(std::move(current));
+  sandbox.message = "redid the edit";
   return true;
 }
 

@@ -31,14 +31,18 @@ BuildStep jointSetting(std::function<void(JointDef&)> edit) {
 
 std::vector<BuildScenario> makeScenarios() {
   return {
-      // An Atwood machine over a round pulley fixed in space (1 kg and 2 kg).
+      // An Atwood machine (1 kg and 2 kg) over a round pulley 0.8 m across fixed in space: the
+      // ropes hang straight down from its sides.
       {"build-circle-pulley",
-       {tool(Tool::Box), click(-0.5, 1), mass(2), click(0.5, 1), tool(Tool::CirclePulley),
-        click(0, 2.5), tool(Tool::Cable), click(-0.5, 1.1), click(0, 2.5), click(0.5, 1.1)}},
-      // Two equal boxes over a hexagon above them: the cable goes over it and holds them.
+       {tool(Tool::Box), click(-0.4, 1), mass(2), click(0.4, 1),
+        setting([](Sandbox& s) { s.authoring->size = 0.8; }), tool(Tool::CirclePulley),
+        click(0, 2.5), tool(Tool::Cable), click(-0.4, 1.1), click(0, 2.5), click(0.4, 1.1)}},
+      // Two equal boxes under a hexagon 0.8 m across: the cable goes over it and holds them
+      // still, the ropes straight down from its side corners.
       {"build-polygon-route",
-       {tool(Tool::Box), click(-0.6, 1), click(0.6, 1), tool(Tool::PolygonPulley), click(0, 2.5),
-        tool(Tool::Cable), click(-0.6, 1.1), click(0, 2.5), click(0.6, 1.1)}},
+       {tool(Tool::Box), click(-0.4, 1), click(0.4, 1),
+        setting([](Sandbox& s) { s.authoring->size = 0.8; }), tool(Tool::PolygonPulley),
+        click(0, 2.5), tool(Tool::Cable), click(-0.4, 1.1), click(0, 2.5), click(0.4, 1.1)}},
       // A box hung by its top-right corner from a point in space.
       {"build-cable-corner",
        {tool(Tool::Box), click(0, 1), tool(Tool::Cable), click(0, 2.5), click(0.19, 1.19)}},
@@ -52,12 +56,15 @@ std::vector<BuildScenario> makeScenarios() {
           p.side = WrapSide::Auto;
           editPulley(s, 0, 0, p);
         })}},
-      // A bar on a hinge at its left end, driven by a motor at 1 rad/s.
+      // A box on a hinge near its left side, driven by a motor at 1 rad/s (gains for its 0.05
+      // kg m^2: the default kd 44.7 would overshoot at 60 Hz, kd dt / I = 15).
       {"build-hinge-motor",
-       {setting([](Sandbox& s) { s.authoring->size = 0.4; }), tool(Tool::Box), click(0, 1.5),
-        tool(Tool::Revolute), click(-1, 2.5), click(-0.15, 1.5), jointSetting([](JointDef& j) {
+       {tool(Tool::Box), click(0, 1.5), tool(Tool::Revolute), click(-1, 2.5), click(-0.15, 1.5),
+        jointSetting([](JointDef& j) {
           j.servo.enabled = true;
           j.servo.speed = 1;
+          j.servo.kp = 20;
+          j.servo.kd = 2;
         })}},
       // A box on a slider (left-right) with limits, pulled by a sloping cable.
       {"build-slider-limits",
