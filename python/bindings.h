@@ -46,5 +46,6 @@ void bindWorld(py::module_& m);
 void bindTools(py::module_& m);
 void bindHand(py::module_& m);
 void bindRender(py::module_& m);
+void bindRollout(py::module_& m);
 
 }  // namespace cablelab::python

@@ -125,5 +125,6 @@ PYBIND11_MODULE(_core, m) {
   bindTools(m);
   bindHand(m);
   bindRender(m);
+  bindRollout(m);
   addTextSignatures(m);
 }

@@ -48,12 +48,6 @@ int resolveIndex(py::handle which, int count, const std::vector<std::string>& na
   throw InputError(source, kind, "must be an index or a name");
 }
 
-double checkedValue(double v, const std::string& source, const std::string& field) {
-  if (!std::isfinite(v) || std::abs(v) > kMaxStateValue)
-    throw InputError(source, field, "must be finite and within +/-1e12");
-  return v;
-}
-
 void checkStep(const SceneDef& scene, py::handle dt, py::handle substeps, double& h, int& n) {
   h = scene.dt;
   n = scene.substeps;
@@ -67,11 +61,6 @@ void checkStep(const SceneDef& scene, py::handle dt, py::handle substeps, double
     if (s < 1 || s > 1000) throw InputError("step", "substeps", "must be 1..1000");
     n = static_cast<int>(s);
   }
-}
-
-void writeBody(const BodyState& b, double* d) {
-  d[0] = b.position.x(), d[1] = b.position.y(), d[2] = b.angle;
-  d[3] = b.velocity.x(), d[4] = b.velocity.y(), d[5] = b.angularVelocity;
 }
 
 /// The scene with the current state in place of the initial one (bodies, servo targets, cable
@@ -96,6 +85,29 @@ SceneDef currentScene(const World& world) {
 }
 
 }  // namespace
+
+double checkedValue(double v, const std::string& source, const std::string& field) {
+  if (!std::isfinite(v) || std::abs(v) > kMaxStateValue)
+    throw InputError(source, field, "must be finite and within +/-1e12");
+  return v;
+}
+
+void writeBody(const BodyState& b, double* d) {
+  d[0] = b.position.x(), d[1] = b.position.y(), d[2] = b.angle;
+  d[3] = b.velocity.x(), d[4] = b.velocity.y(), d[5] = b.angularVelocity;
+}
+
+void writeStateRow(const World& w, double* bodies, double* cables, double* joints) {
+  for (int i = 0; i < w.bodyCount(); ++i) writeBody(w.body(i), bodies + 6 * i);
+  for (int i = 0; i < w.cableCount(); ++i) {
+    const Cable& c = w.cable(i);
+    cables[3 * i] = c.length(), cables[3 * i + 1] = c.tension(), cables[3 * i + 2] = c.wraps();
+  }
+  for (int i = 0; i < w.jointCount(); ++i) {
+    const JointState j = w.joint(i);
+    joints[2 * i] = j.value, joints[2 * i + 1] = j.speed;
+  }
+}
 
 PyWorld::PyWorld(SceneDef scene, const std::string& source)
     : PyWorld(std::make_unique<World>(std::move(scene), source), source) {}
@@ -217,15 +229,8 @@ py::object runWorld(PyWorld& self, py::handle time, py::handle steps, py::handle
   }
   auto row = [&] {
     *pt++ = w.time();
-    for (int i = 0; i < nb; ++i, pb += 6) writeBody(w.body(i), pb);
-    for (int i = 0; i < nc; ++i, pc += 3) {
-      const Cable& c = w.cable(i);
-      pc[0] = c.length(), pc[1] = c.tension(), pc[2] = c.wraps();
-    }
-    for (int i = 0; i < nj; ++i, pj += 2) {
-      const JointState j = w.joint(i);
-      pj[0] = j.value, pj[1] = j.speed;
-    }
+    writeStateRow(w, pb, pc, pj);
+    pb += 6 * nb, pc += 3 * nc, pj += 2 * nj;
   };
   {
     py::gil_scoped_release release;

@@ -37,6 +37,16 @@ struct PyWorld {
   int jointIndex(py::handle which, const std::string& source) const;
 };
 
+/// v itself; throws InputError unless finite and within the range Box2D simulates honestly.
+double checkedValue(double v, const std::string& source, const std::string& field);
+
+/// x y theta vx vy omega of a body into d[0..5].
+void writeBody(const BodyState& b, double* d);
+
+/// One row of a recording (World.run(record=True), rollout): bodies (bodies x 6: x y theta vx
+/// vy omega), cables (cables x 3: length, tension, wraps), joints (joints x 2: value, speed).
+void writeStateRow(const World& w, double* bodies, double* cables, double* joints);
+
 void bindState(py::module_& m, py::class_<PyWorld>& world);
 void bindSensors(py::class_<PyWorld>& world);
 

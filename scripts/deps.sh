@@ -7,7 +7,7 @@ CABLELAB_PACKAGES=(
   libsdl2-dev libimgui-dev libstb-dev libosmesa6-dev libgif-dev
   xvfb xauth
   python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib
-  python3-venv python3-pip python3-setuptools python3-wheel python3-mypy
+  python3-venv python3-pip python3-setuptools python3-wheel python3-mypy python3-distributed
 )
 
 cablelab_install_deps() {

@@ -20,10 +20,13 @@ The hand     HandModel, ControllerParams, HandController, hand_joints, place_han
              track, reach (`cablelab track` and `reach`; the GIL is released while they
              run), HandGrasp and GraspOptions (the grasp sequence, to step the hand under
              the controller or a law written in Python)
+Many runs    rollout (N Worlds stepped on a thread pool, recorded as (N, T, ...) arrays),
+             sweep (a task over a parameter grid on Dask: a LocalCluster or any Client)
 Pictures     render (numpy RGBA image), snapshot (PNG); offscreen, no display needed
              (HAS_RENDERER is False in a build without the UI)
 Errors       InputError (a ValueError; str(e) is the CLI's one-line message, with
-             e.source and e.field), SimulationError (a RuntimeError)
+             e.source and e.field), SimulationError (a RuntimeError), SweepError (tasks of a
+             sweep that raised, with their parameters)
 """
 
 import sys as _sys
@@ -40,6 +43,7 @@ except ImportError as _error:
         f"or run Debian's /usr/bin/python3.") from _error
 
 from . import _core
+from ._sweep import SweepError, sweep
 from ._core import (
     HAS_RENDERER,
     HAND_BOX,
@@ -62,6 +66,7 @@ from ._core import (
     place_hand,
     reach,
     render,
+    rollout,
     scenes,
     snapshot,
     statics,
@@ -73,7 +78,8 @@ __all__ = [
     "World", "WorldState", "statics", "wrap", "fit", "membrane_data", "membrane_model", "scenes",
     "HandModel", "ControllerParams", "HandController", "HandGrasp", "GraspOptions",
     "hand_joints", "place_hand",
-    "track", "reach", "render", "snapshot", "InputError", "SimulationError",
+    "track", "reach", "rollout", "sweep", "SweepError", "render", "snapshot",
+    "InputError", "SimulationError",
     "HAND_JOINT_NAMES", "HAND_BOX", "HAND_CABLES", "PID_KI", "HAS_RENDERER",
 ]
 

@@ -223,6 +223,9 @@ def track(*, target: Any = None, ramp: Any = None, start: Any = None, time: floa
 def reach(*, grid: int = 50, model: str = "simulation", pd: bool = False,
           threads: Optional[int] = None, hand: HandModel = ...,
           progress: Progress = None) -> dict: ...
+def rollout(worlds: Sequence[World], steps: int,
+            controls: Union[None, ArrayLike, Callable[[int, Array], ArrayLike]] = None,
+            threads: Optional[int] = None) -> dict: ...
 def render(world: World, size: Tuple[int, int] = (800, 600),
            view: View = None) -> npt.NDArray[np.uint8]: ...
 def snapshot(world: World, path: PathType, size: Tuple[int, int] = (800, 600),
