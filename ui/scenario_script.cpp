@@ -44,17 +44,6 @@ int rigidCableBody(const World& world, int* cable) {
   return -1;
 }
 
-/// The largest (length - rest length) of any span of any rigid cable (m).
-double longestRigidStretch(const World& world) {
-  double longest = -INFINITY;
-  for (int i = 0; i < world.cableCount(); ++i) {
-    const Cable& c = world.cable(i);
-    for (int k = 0; k < c.spanCount() && !c.elastic(); ++k)
-      longest = std::max(longest, c.spanStretch(k));
-  }
-  return longest;
-}
-
 /// The Inspector's span table as it was shown, with the engine's span tensions of the moment.
 std::string spansJson(const Sandbox& sandbox) {
   const SpanTable& t = sandbox.shownSpans;
@@ -234,15 +223,15 @@ bool ScenarioScript::poseDrag(Sandbox& sandbox, int frame) {
   } else if (frame > 4 && frame <= 4 + kDragFrames) {
     if (payOut) SDL_SetModState(KMOD_LSHIFT);  // held while the motion events are handled
     mouse(SDL_MOUSEMOTION, from_ + (to_ - from_) * ((frame - 4.0) / kDragFrames));
-    figures_[0] = std::max(figures_[0], longestRigidStretch(world));
+    figures_[0] = std::max(figures_[0], world.longestRigidStretch());
   } else if (frame == 5 + kDragFrames) {
     SDL_SetModState(KMOD_NONE);
-    figures_[0] = std::max(figures_[0], longestRigidStretch(world));
+    figures_[0] = std::max(figures_[0], world.longestRigidStretch());
     said_ = sandbox.message;
     end_ = world.body(body_).position;
     mouse(SDL_MOUSEBUTTONUP, to_);
   } else if (frame == 6 + kDragFrames) {
-    figures_[1] = longestRigidStretch(world);
+    figures_[1] = world.longestRigidStretch();
     figures_[2] = world.energy();
     figures_[3] = world.time();
     key(SDLK_SPACE);

@@ -411,6 +411,14 @@ PoseResult World::poseBody(int body, const Vec2& grabLocal, const Vec2& target, 
   return result;
 }
 
+double World::longestRigidStretch() const {
+  double longest = -INFINITY;
+  for (const Cable& c : cables_)
+    for (int k = 0; k < c.spanCount() && !c.elastic(); ++k)
+      longest = std::max(longest, c.spanStretch(k));
+  return longest;
+}
+
 PoseResult World::settlePose() {
   return poseBody(-1, Vec2::Zero(), Vec2::Zero());
 }

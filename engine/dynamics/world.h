@@ -137,6 +137,8 @@ class World {
   /// Brings every rigid cable back within its rest length and every joint together with the
   /// least mass-weighted motion (before a paused world runs again); the bodies moved end at rest.
   PoseResult settlePose();
+  /// The largest (length - rest length) of any span of any rigid cable (m): over 0, stretched.
+  double longestRigidStretch() const;
 
   // Cables, indexed as in scene().cables.
   int cableCount() const { return static_cast<int>(cables_.size()); }

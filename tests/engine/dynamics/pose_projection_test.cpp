@@ -16,17 +16,6 @@ namespace {
 
 constexpr double kSlop = 1e-5;  // m: a rigid cable may end this much over its rest length
 
-/// The largest (length - rest length) of any span of any rigid cable (m).
-double longestRigidStretch(const World& world) {
-  double longest = -INFINITY;
-  for (int i = 0; i < world.cableCount(); ++i) {
-    const Cable& c = world.cable(i);
-    for (int k = 0; k < c.spanCount() && !c.elastic(); ++k)
-      longest = std::max(longest, c.spanStretch(k));
-  }
-  return longest;
-}
-
 /// A 1 kg box hung from a world anchor at (0, 0) by a rigid rope of length 1, at rest below it.
 SceneDef hangingBox() {
   SceneDef s;
@@ -66,8 +55,8 @@ TEST(PoseProjection, PulledOverThePulleysTheOtherBodyRisesAsMuchAsTheDraggedOneS
   EXPECT_NEAR(world.body(left).position.y(), leftStart.y() - 1, 1e-4);
   EXPECT_NEAR(world.body(right).position.y(), rightStart.y() + 1, 1e-4);
   EXPECT_NEAR(world.body(right).position.x(), rightStart.x(), 1e-4);  // least motion: straight up
-  EXPECT_LE(longestRigidStretch(world), kSlop);
-  EXPECT_GE(longestRigidStretch(world), -1e-4) << "the cable should be taut";
+  EXPECT_LE(world.longestRigidStretch(), kSlop);
+  EXPECT_GE(world.longestRigidStretch(), -1e-4) << "the cable should be taut";
   EXPECT_LT(r.miss, 1e-4);
   EXPECT_EQ(r.moved, (std::vector<int>{left, right}));
   EXPECT_EQ(world.body(right).velocity, Vec2::Zero());
@@ -86,7 +75,7 @@ TEST(PoseProjection, AnUnreachableTargetLeavesTheNearestPoseTheRopeAllows) {
   EXPECT_NEAR(world.body(0).position.x(), std::sqrt(0.5), 1e-4);
   EXPECT_NEAR(world.body(0).position.y(), -std::sqrt(0.5), 1e-4);
   EXPECT_NEAR(r.miss, std::sqrt(8.0) - 1, 1e-4);
-  EXPECT_LE(longestRigidStretch(world), kSlop);
+  EXPECT_LE(world.longestRigidStretch(), kSlop);
   // Within reach (the rope goes slack): exactly there.
   r = drag(world, 0, Vec2::Zero(), Vec2(0.3, -0.4));
   EXPECT_NEAR((world.body(0).position - Vec2(0.3, -0.4)).norm(), 0, 1e-5);
@@ -103,7 +92,7 @@ TEST(PoseProjection, AGrabbedCornerTurnsTheBoxWhereTheRopeStopsItsCentre) {
   const Vec2 point = s.position + rotate(corner, s.angle);
   EXPECT_NEAR(s.position.norm(), 1, kSlop);
   EXPECT_LT(point.y(), -1.1) << "the corner should hang below the centre";
-  EXPECT_LE(longestRigidStretch(world), kSlop);
+  EXPECT_LE(world.longestRigidStretch(), kSlop);
 }
 
 TEST(PoseProjection, WithPayOutTheRopeLetsOutToTheTarget) {
@@ -116,7 +105,7 @@ TEST(PoseProjection, WithPayOutTheRopeLetsOutToTheTarget) {
   EXPECT_NEAR(r.paidOut[0].second, 0.2, 1e-4);
   EXPECT_NEAR(world.cable(0).restLength(), 3, 1e-4);
   EXPECT_NEAR(world.cable(0).paidOut(), 2, 1e-4);
-  EXPECT_LE(longestRigidStretch(world), kSlop);
+  EXPECT_LE(world.longestRigidStretch(), kSlop);
   // Play: the rope holds at its new length, and the World does not report the user's pay-out
   // as one a kinematic body hauled.
   const size_t warned = world.warnings().size();
@@ -132,7 +121,7 @@ TEST(PoseProjection, SettleShortensAnOverlongRopeByMovingTheBoxUp) {
   world.setBodyVelocity(0, Vec2(1, 0), 0);
   const PoseResult r = world.settlePose();
   EXPECT_NEAR(world.body(0).position.y(), -0.8, 1e-4);
-  EXPECT_LE(longestRigidStretch(world), kSlop);
+  EXPECT_LE(world.longestRigidStretch(), kSlop);
   EXPECT_EQ(r.moved, std::vector<int>{0});
   EXPECT_EQ(world.body(0).velocity, Vec2::Zero()) << "a posed body is at rest";
 }
@@ -145,7 +134,7 @@ TEST(PoseProjection, HexagonWeightDraggedAwayStaysOnItsRopeAndSwingsFromRest) {
   const int weight = world.findBody("weight");
   const Vec2 p = world.body(weight).position;
   const PoseResult r = drag(world, weight, Vec2::Zero(), p + p.normalized());
-  EXPECT_LE(longestRigidStretch(world), kSlop);
+  EXPECT_LE(world.longestRigidStretch(), kSlop);
   EXPECT_GT(r.miss, 0.5) << "the rope should have held the weight back";
   EXPECT_EQ(r.taut, std::vector<int>{0});
   const double posed = world.energy();
@@ -178,7 +167,7 @@ TEST(PoseProjection, HandFingerPosedKeepsItsJointsTogetherAndWithinTheirLimits) 
       EXPECT_LE(s.value, def.upper + 1e-5) << def.name;
     }
   }
-  EXPECT_LE(longestRigidStretch(world), kSlop);
+  EXPECT_LE(world.longestRigidStretch(), kSlop);
 }
 
 // The held-out goal of issue 37: for every built-in scene, paused at a random moment, random
@@ -226,7 +215,7 @@ TEST(PoseProjection, EveryBuiltinSceneGainsNoEnergyFromRandomPoses) {
         drag(world, b, grab, target);
       }
       const std::string what = info.name + " trial " + std::to_string(trial);
-      EXPECT_LE(longestRigidStretch(world), kSlop) << what;
+      EXPECT_LE(world.longestRigidStretch(), kSlop) << what;
       const double posed = world.energy();
       for (int i = 0; i < 6; ++i) world.step(scene.dt, scene.substeps);  // 0.1 s
       const double gain = world.energy() - posed;
