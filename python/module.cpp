@@ -47,8 +47,8 @@ void addTextSignature(py::handle function, bool method, const py::object& signat
     const bool blank = ch == ' ' || ch == '\n';
     if (!blank || (!args.empty() && args.back() != ' ')) args += blank ? ' ' : ch;
   }
-  const std::string text = name + "(" + (method ? (args.empty() ? "self" : "self, " + args) : args) +
-                           ")\n--\n\n" + doc;
+  const std::string text =
+      name + "(" + (method ? (args.empty() ? "self" : "self, " + args) : args) + ")\n--\n\n" + doc;
   const char* old = def->ml_doc;
   def->ml_doc = strdup(text.c_str());
   try {

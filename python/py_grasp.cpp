@@ -92,8 +92,8 @@ void bindOptions(py::module_& m) {
   py::class_<GraspOptions> c(m, "GraspOptions",
                              "GraspOptions(**fields): timing of the hand's grasp sequence (s); "
                              "read/write attributes.");
-  c.def(py::init(
-      [](const py::kwargs& kw) { return fromFields<GraspOptions>("GraspOptions", kw); }));
+  c.def(
+      py::init([](const py::kwargs& kw) { return fromFields<GraspOptions>("GraspOptions", kw); }));
   using R = FieldRule;
   const char* n = "GraspOptions";
   addField(c, n, "open_time", &GraspOptions::openTime, R::NonNegative,
@@ -107,7 +107,7 @@ void bindOptions(py::module_& m) {
   addField(c, n, "max_regrasps", &GraspOptions::maxRegrasps, R::NonNegative,
            "re-grasps before giving up (phase 'failed')");
   addFieldsPickle(c, n);
-  c      .def("__repr__", [](py::handle self) { return fieldsRepr(self, "GraspOptions"); });
+  c.def("__repr__", [](py::handle self) { return fieldsRepr(self, "GraspOptions"); });
 }
 
 }  // namespace

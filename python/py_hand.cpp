@@ -125,11 +125,9 @@ HandModel(stiffness=300) changes one from the default.)doc");
       m, "ControllerParams",
       "ControllerParams(**fields): gains of the hand's Jacobian "
       "controller (thesis 4.3); read/write attributes.");
-  params
-      .def(py::init([](const py::kwargs& kw) {
-        return fromFields<HandControllerParams>("ControllerParams", kw);
-      }))
-      ;
+  params.def(py::init([](const py::kwargs& kw) {
+    return fromFields<HandControllerParams>("ControllerParams", kw);
+  }));
   {
     using R = FieldRule;
     using P = HandControllerParams;

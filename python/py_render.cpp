@@ -66,7 +66,8 @@ ViewDef viewOf(const World& world, py::handle view, int width, int height,
   if (py::isinstance<py::dict>(view)) {
     const py::dict d = view.cast<py::dict>();
     for (auto [key, value] : d)
-      if (py::str(key).cast<std::string>() != "center" && py::str(key).cast<std::string>() != "height")
+      if (py::str(key).cast<std::string>() != "center" &&
+          py::str(key).cast<std::string>() != "height")
         throw InputError(source, "view." + py::str(key).cast<std::string>(),
                          "no such key (known: center, height)");
     if (!d.contains("center") || !d.contains("height"))
@@ -89,9 +90,8 @@ ViewDef viewOf(const World& world, py::handle view, int width, int height,
 #ifdef CABLELAB_HAVE_OFFSCREEN
 ui::Image renderImage(const PyWorld& w, py::handle size, py::handle view, const char* source) {
   const auto [width, height] = sizeOf(size, source);
-  return ui::renderSnapshot(*w.world,
-                            ui::Camera::fit(viewOf(*w.world, view, width, height, source), width,
-                                            height));
+  return ui::renderSnapshot(
+      *w.world, ui::Camera::fit(viewOf(*w.world, view, width, height, source), width, height));
 }
 
 // The GIL stays held: the renderer uses Dear ImGui's global context, one frame at a time.

@@ -14,7 +14,7 @@ namespace cablelab::python {
 
 namespace {
 
-constexpr int kStateVersion = 1;  // the pickled layout below
+constexpr int kStateVersion = 1;          // the pickled layout below
 constexpr py::ssize_t kInputColumns = 7;  // kind, index, count, values[4]
 
 /// The history as an (n, 7) float64 array (kind, index, count, four values): exact, as every
@@ -74,8 +74,7 @@ py::tuple packFigures(const WorldState& s) {
 
 std::shared_ptr<WorldState> unpackWithFigures(const py::tuple& t) {
   if (t.size() != 5) throw InputError("pickle", "state", "is not a cablelab WorldState");
-  auto s = std::make_shared<WorldState>(
-      unpackState(py::make_tuple(t[0], t[1], t[2], t[3])));
+  auto s = std::make_shared<WorldState>(unpackState(py::make_tuple(t[0], t[1], t[2], t[3])));
   const py::tuple f = t[4].cast<py::tuple>();
   s->time = f[0].cast<double>();
   s->steps = f[1].cast<long>();
@@ -203,7 +202,8 @@ that led to the state (it replays them).)doc");
 An independent World in the same state: stepped with the same inputs it stays bit for bit
 equal to this one. Takes as long as the steps taken so far (see WorldState).)doc");
   c.def("__copy__", &copyWorld);
-  c.def("__deepcopy__", [](const PyWorld& self, py::handle) { return copyWorld(self); }, "memo"_a);
+  c.def(
+      "__deepcopy__", [](const PyWorld& self, py::handle) { return copyWorld(self); }, "memo"_a);
   c.def(py::pickle(
       [](const PyWorld& self) {
         PyWorld::Busy busy(self);

@@ -1,8 +1,8 @@
 // cablelab.World: a scene being simulated, its state as numpy arrays (python/bindings.h).
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <algorithm>
 #include <memory>
 
 #include "engine/core/error.h"
@@ -157,8 +157,8 @@ std::vector<std::pair<std::string, double>> loadKeywords(const std::string& scen
       std::string known;
       for (const SceneParam& p : info->params) known += (known.empty() ? "" : ", ") + p.name;
       throw InputError(kSource, k,
-                       "no such keyword for scene '" + scene + "' (known: " +
-                           (known.empty() ? "none" : known) + ")");
+                       "no such keyword for scene '" + scene +
+                           "' (known: " + (known.empty() ? "none" : known) + ")");
     }
     if (PyBool_Check(value.ptr()) || !PyNumber_Check(value.ptr()))
       throw InputError(kSource, k, "must be a number");

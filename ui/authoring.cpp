@@ -34,8 +34,8 @@ std::string freshCableName(const SceneDef& scene) {
 std::vector<Vec2> regularPolygon(int n, double radius) {
   std::vector<Vec2> v;
   for (int k = 0; k < n; ++k)
-    v.push_back(snapped(radius * Vec2(std::cos(2 * M_PI * k / n), std::sin(2 * M_PI * k / n)),
-                        kFineSnap));
+    v.push_back(
+        snapped(radius * Vec2(std::cos(2 * M_PI * k / n), std::sin(2 * M_PI * k / n)), kFineSnap));
   return v;
 }
 
@@ -135,8 +135,7 @@ bool cableClick(Sandbox& sandbox, Authoring& a, const Vec2& p, bool shift, bool 
   if (body >= 0 && (shift || alt || isPulleyBody(sandbox.scene.bodies[body]))) {
     if (!a.route.empty() && a.route.back().body == sandbox.scene.bodies[body].name && !alt)
       return true;  // clicked twice: one stop
-    a.route.push_back(
-        routeStop(sandbox.scene.bodies[body], sandbox.world()->body(body), p, alt));
+    a.route.push_back(routeStop(sandbox.scene.bodies[body], sandbox.world()->body(body), p, alt));
     return true;
   }
   AnchorDef end = anchorAt(sandbox, p);
@@ -170,7 +169,8 @@ bool jointClick(Sandbox& sandbox, Authoring& a, const Vec2& p) {
   if (!a.jointStarted) {
     a.jointStarted = true;
     a.jointBodyA = name;
-    sandbox.message = std::string(toolName(a.tool)) + " joint: now click the second body at the "
+    sandbox.message = std::string(toolName(a.tool)) +
+                      " joint: now click the second body at the "
                       "point where they are joined (empty space: the ground)";
     return true;
   }
@@ -183,8 +183,9 @@ bool jointClick(Sandbox& sandbox, Authoring& a, const Vec2& p) {
   j.bodyB = name;
   if (j.bodyB == "world") std::swap(j.bodyA, j.bodyB);
   if (j.bodyB == "world" || j.bodyA == j.bodyB) {
-    sandbox.error = "A joint needs two different bodies (or a body and the ground): click a "
-                    "body, then another one.";
+    sandbox.error =
+        "A joint needs two different bodies (or a body and the ground): click a "
+        "body, then another one.";
     return true;
   }
   j.anchor = p;

@@ -7,7 +7,8 @@
 //   Polygon             clicks add vertices, Finish (or a right click) makes the convex hull body
 //   PointPulley         an eyelet (a small sensor disc) the cable threads through
 //   PolygonPulley       a hexagon the cable wraps
-//   CirclePulley        a wheel (a circle) the cable wraps; no-slip and capstan grip in the Inspector
+//   CirclePulley        a wheel (a circle) the cable wraps; no-slip and capstan grip in the
+//   Inspector
 //                       Pulleys clicked in empty space are fixed (static); clicked on a body they
 //                       are mounted on it (a revolute axle at their centre; an eyelet is welded).
 //   Cable               click the start (a point of a body, or empty space), then pulleys in order
@@ -46,8 +47,8 @@ struct Authoring {
   };
   static constexpr int kToolCount = 12;
   Tool tool = Tool::None;
-  double size = 0.4;  ///< box side, circle diameter, pulley diameter (m)
-  double mass = 1.0;  ///< kg
+  double size = 0.4;                      ///< box side, circle diameter, pulley diameter (m)
+  double mass = 1.0;                      ///< kg
   BodyType bodyType = BodyType::Dynamic;  ///< of the next box, circle or polygon
   bool drumEnds = false;      ///< cable ends clicked on a round body wind on it (a drum)
   std::vector<Vec2> polygon;  ///< polygon vertices clicked so far (world, m)

@@ -29,8 +29,9 @@ void toolButtons(Authoring& a) {
        "Click the start (a point on a body, or empty space), the pulleys in order, then the end. "
        "Shift+click: any body as a pulley. Alt+click: an eyelet on any body. Right click "
        "cancels."},
-      {Tool::Revolute, "Click two bodies: they turn about the second click (empty space: the "
-                       "ground)."},
+      {Tool::Revolute,
+       "Click two bodies: they turn about the second click (empty space: the "
+       "ground)."},
       {Tool::Prismatic, "Click two bodies: they slide along a line through the second click."},
       {Tool::Weld, "Click two bodies: they are glued together at the second click."},
       {Tool::Delete, "Click a body or a cable to delete it (with its cables and joints)."},

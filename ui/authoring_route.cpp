@@ -78,9 +78,11 @@ std::string routeProblem(const World& world, int index) {
     if (inPath) continue;
     const PulleyDef& p = def.pulleys[j];
     if (p.side == WrapSide::Auto)
-      return "The cable does not touch " + p.body + ", so it runs straight past it. With side "
+      return "The cable does not touch " + p.body +
+             ", so it runs straight past it. With side "
              "auto the cable goes round a pulley only once it touches it.";
-    return "The cable cannot go round " + p.body + ": it would not touch it there (an end is "
+    return "The cable cannot go round " + p.body +
+           ": it would not touch it there (an end is "
            "inside it, or the cable runs straight past it). Click the pulleys so that the cable "
            "bends round each one.";
   }

@@ -35,10 +35,10 @@ inline constexpr double kEyeletRadius = 0.03;
 
 /// One pulley clicked on the route: a body and, for an eyelet on a body, the clicked point.
 struct RouteStop {
-  std::string body;            ///< the body the pulley is on
-  Vec2 world = Vec2::Zero();   ///< where the route bends (the pulley's centre or the eyelet), m
-  bool eyelet = false;         ///< true: a point pulley at `local` (Alt+click on any body)
-  Vec2 local = Vec2::Zero();   ///< eyelet: the clicked point, body frame (m)
+  std::string body;           ///< the body the pulley is on
+  Vec2 world = Vec2::Zero();  ///< where the route bends (the pulley's centre or the eyelet), m
+  bool eyelet = false;        ///< true: a point pulley at `local` (Alt+click on any body)
+  Vec2 local = Vec2::Zero();  ///< eyelet: the clicked point, body frame (m)
 };
 
 /// The stop for a click on body `b` at world point `p` (its state `s`): an eyelet when `eyelet`

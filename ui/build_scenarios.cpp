@@ -1,6 +1,5 @@
 #include "ui/build_scenarios.h"
 
-
 namespace cablelab::ui {
 namespace {
 
@@ -74,8 +73,8 @@ std::vector<BuildScenario> makeScenarios() {
           j.lower = -0.5;
           j.upper = 0.3;
         }),
-        tool(Tool::Box), click(1.2, 1), tool(Tool::PointPulley), click(1.2, 2.5),
-        tool(Tool::Cable), click(0.1, 1.5), click(1.2, 2.5), click(1.2, 1.1)}},
+        tool(Tool::Box), click(1.2, 1), tool(Tool::PointPulley), click(1.2, 2.5), tool(Tool::Cable),
+        click(0.1, 1.5), click(1.2, 2.5), click(1.2, 1.1)}},
       // Two boxes glued by a weld, the pair hung from one cable.
       {"build-weld",
        {tool(Tool::Box), click(0, 1.5), click(0.4, 1.5), tool(Tool::Weld), click(0, 1.5),
@@ -121,8 +120,17 @@ std::vector<BuildScenario> makeScenarios() {
         tool(Tool::Cable), click(-1, 2.4), click(-1, 1.1)}},
       // Delete, undo and redo with Ctrl+Z and Ctrl+Y.
       {"build-undo-redo",
-       {tool(Tool::Box), click(-0.5, 1), click(0.5, 1), tool(Tool::Delete), click(-0.5, 1),
-        {Kind::Undo}, {Kind::Redo}, {Kind::Undo}, tool(Tool::Circle), click(0, 2), {Kind::Undo}}},
+       {tool(Tool::Box),
+        click(-0.5, 1),
+        click(0.5, 1),
+        tool(Tool::Delete),
+        click(-0.5, 1),
+        {Kind::Undo},
+        {Kind::Redo},
+        {Kind::Undo},
+        tool(Tool::Circle),
+        click(0, 2),
+        {Kind::Undo}}},
   };
 }
 

@@ -71,7 +71,9 @@ bool pulleyRow(PulleyDef& p, int k) {
 }
 
 const char* jointKind(JointDef::Kind k) {
-  return k == JointDef::Kind::Revolute ? "hinge" : k == JointDef::Kind::Prismatic ? "slider" : "weld";
+  return k == JointDef::Kind::Revolute    ? "hinge"
+         : k == JointDef::Kind::Prismatic ? "slider"
+                                          : "weld";
 }
 
 /// Limits, motor and servo of one joint; true if `j` changed.
@@ -99,8 +101,9 @@ bool jointFields(JointDef& j) {
     changed |= numberField(label, &j.upper, "%.4g", "Measured from the starting pose.");
   }
   changed |= ImGui::Checkbox("motor / servo", &j.servo.enabled);
-  tooltip("Drives the joint: it pulls towards the target position, which moves at the set "
-          "speed (a motor), never harder than the largest force.");
+  tooltip(
+      "Drives the joint: it pulls towards the target position, which moves at the set "
+      "speed (a motor), never harder than the largest force.");
   if (j.servo.enabled) {
     std::snprintf(label, sizeof label, "target (%s)", unit);
     changed |= numberField(label, &j.servo.target, "%.4g", "Where the servo pulls the joint to.");

@@ -167,9 +167,11 @@ void bodyEdits(Sandbox& sandbox, int b) {
   tooltip("The body's starting position, y.");
   bool v = false;
   if (def.type != BodyType::Static) {
-    v |= ImGui::InputDouble("speed x (m/s)", &vx, 0, 0, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue);
+    v |= ImGui::InputDouble("speed x (m/s)", &vx, 0, 0, "%.4g",
+                            ImGuiInputTextFlags_EnterReturnsTrue);
     tooltip("Starting speed, x. A driven body keeps its speed whatever pushes on it.");
-    v |= ImGui::InputDouble("speed y (m/s)", &vy, 0, 0, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue);
+    v |= ImGui::InputDouble("speed y (m/s)", &vy, 0, 0, "%.4g",
+                            ImGuiInputTextFlags_EnterReturnsTrue);
     tooltip("Starting speed, y.");
     v |= ImGui::InputDouble("spin (rad/s)", &omega, 0, 0, "%.4g",
                             ImGuiInputTextFlags_EnterReturnsTrue);
@@ -183,8 +185,9 @@ void bodyEdits(Sandbox& sandbox, int b) {
   for (int k = 0; k < 3; ++k) {
     if (k) sameLineIfRoom(checkboxWidth(types[k]));
     if (ImGui::RadioButton(types[k], type == k)) t = type != k, type = k;
-    tooltip("moves: falls and is pulled by cables. fixed: never moves. driven: moves at its set "
-            "speed whatever pushes on it.");
+    tooltip(
+        "moves: falls and is pulled by cables. fixed: never moves. driven: moves at its set "
+        "speed whatever pushes on it.");
   }
   const bool del = ImGui::SmallButton("Delete body");
   tooltip("Remove the body with its cables and joints (Delete key; Ctrl+Z undoes it).");

@@ -76,9 +76,8 @@ Vec2 freePoint(const Sandbox& sandbox, double fx, double fy) {
 
 const std::vector<std::string>& ScenarioScript::names() {
   static const std::vector<std::string> n = [] {
-    std::vector<std::string> all = {"describe", "reset-scale", "rigid-drag",
-                                     "drop-box", "author",      "capstan-slip", "pose-drag",
-                                     "pose-payout"};
+    std::vector<std::string> all = {"describe", "reset-scale",  "rigid-drag", "drop-box",
+                                    "author",   "capstan-slip", "pose-drag",  "pose-payout"};
     for (const BuildScenario& b : buildScenarios()) all.push_back(b.name);
     return all;
   }();
@@ -365,8 +364,8 @@ bool ScenarioScript::author(Sandbox& sandbox, int frame) {
 // keys are held for one frame through SDL's modifier state, which the handlers read.
 bool ScenarioScript::build(Sandbox& sandbox, int frame) {
   const auto& all = buildScenarios();
-  const auto it = std::find_if(all.begin(), all.end(),
-                               [&](const BuildScenario& b) { return b.name == name_; });
+  const auto it =
+      std::find_if(all.begin(), all.end(), [&](const BuildScenario& b) { return b.name == name_; });
   SDL_SetModState(KMOD_NONE);
   if (frame == 2) {
     newScene(sandbox);
@@ -423,13 +422,13 @@ bool ScenarioScript::build(Sandbox& sandbox, int frame) {
   const World& world = *sandbox.world();
   int wraps = 0;
   for (int i = 0; i < world.cableCount(); ++i) wraps += world.cable(i).wraps();
-  report_ = "{\"scenario\": " + jsonQuoted(name_) + ", \"bodies\": " +
-            number(scene.bodies.size()) + ", \"cables\": " + number(scene.cables.size()) +
+  report_ = "{\"scenario\": " + jsonQuoted(name_) + ", \"bodies\": " + number(scene.bodies.size()) +
+            ", \"cables\": " + number(scene.cables.size()) +
             ", \"joints\": " + number(scene.joints.size()) + ", \"wraps\": " + number(wraps) +
             ", \"undo\": " + number(sandbox.authoring->undo.size()) +
             ", \"redo\": " + number(sandbox.authoring->redo.size()) +
-            ", \"error\": " + jsonQuoted(sandbox.error) + ", \"save_error\": " +
-            jsonQuoted(saveError) + ", \"file\": " + jsonQuoted(out_) + "}";
+            ", \"error\": " + jsonQuoted(sandbox.error) +
+            ", \"save_error\": " + jsonQuoted(saveError) + ", \"file\": " + jsonQuoted(out_) + "}";
   return false;
 }
 

@@ -71,7 +71,7 @@ class ScenarioScript {
   double figures_[6] = {0, 0, 0, 0, 0, 0};
   std::string said_;  ///< the status line at a moment the scenario reports
   double largest_ = 0;
-  size_t step_ = 0;         ///< build: the next step
+  size_t step_ = 0;        ///< build: the next step
   double restBefore_ = 0;  ///< pose scenarios: the cable's rest length before the drag (m)
 };
 

@@ -84,8 +84,8 @@ Cable::Cable(const SceneDef& scene, int index, const std::string& source)
     ps.world = ps.local;
     // A circle or polygon the scene winds the cable round (turns > 0) is in the path from the
     // start, even where the straight cable would miss it (a rope laid over a pulley above).
-    ps.engaged = ps.side == WrapSide::Threaded || (!ps.local.empty() && ps.turns > 0 &&
-                                                   (ps.circle || ps.polygon));
+    ps.engaged = ps.side == WrapSide::Threaded ||
+                 (!ps.local.empty() && ps.turns > 0 && (ps.circle || ps.polygon));
     ps.arc = ps.initialArc();
     pulleys_.push_back(std::move(ps));
   }

@@ -43,8 +43,8 @@ namespace cablelab {
 namespace cable_stages {
 namespace {
 
-void solve(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables,
-           std::span<Vec3> loads, StepStats& stats) {
+void solve(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables, std::span<Vec3> loads,
+           StepStats& stats) {
   const int islands = findIslands(ws, in, cables);  // 1
   if (islands == 0) return;
   if (ws.dofs.ofBody.size() != in.bodies.size()) ws.dofs.reset(in.bodies.size());
@@ -59,12 +59,12 @@ void solve(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables,
     ws.ahead.clear();
     ws.limits.free(ws.jointIndex, static_cast<int>(in.joints.size()));
     for (bool again = true; again;) {
-      prepareRows(ws, in, cables, loads);  // 2-4
+      prepareRows(ws, in, cables, loads);                           // 2-4
       if (ws.ahead.empty() && redirectBlockedRows(ws, in, cables))  // 4b
         prepareRows(ws, in, cables, loads);
-      ws.midpoint = takesMidpointRule(ws, in, cables);  // 5a
-      lengthTargets(ws, in.h, in.share, cables);        // 5
-      newtonOnLengths(ws, in, cables, stats);           // 6, 6d
+      ws.midpoint = takesMidpointRule(ws, in, cables);             // 5a
+      lengthTargets(ws, in.h, in.share, cables);                   // 5
+      newtonOnLengths(ws, in, cables, stats);                      // 6, 6d
       if (ws.midpoint && pullAlongMidpointPose(ws, in, cables)) {  // 6e
         prepareRows(ws, in, cables, loads);
         lengthTargets(ws, in.h, in.share, cables);

@@ -146,8 +146,7 @@ using Workspace = CableSolverWorkspace;
 
 // 1. Islands and rows (cable_solver_rows.cpp).
 int findIslands(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables);
-void buildRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
-               int island);
+void buildRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables, int island);
 double floorRow(Workspace& ws, std::span<const BodyState> bodies, const Cable& cable,
                 const Workspace::Row& row);
 
@@ -197,8 +196,7 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
 bool takesMidpointRule(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
 void midpointSpringRows(Workspace& ws, std::span<const Cable> cables, double h);
 void balanceMidpointWork(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
-bool pullAlongMidpointPose(Workspace& ws, const CableSolveInput& in,
-                           std::span<const Cable> cables);
+bool pullAlongMidpointPose(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
 
 // 6b, 6c. Sliding capstans, crossed joint limits (cable_solver_rerun.cpp).
 bool mergeSlidingSpans(Workspace& ws, std::span<const Cable> cables);

@@ -45,7 +45,8 @@ void setJointValues(World& world, std::span<const double> q, const std::string& 
                          gotValue(static_cast<double>(q.size())));
   for (int j = 0; j < n; ++j)
     if (!std::isfinite(q[j]))
-      throw InputError(source, "values[" + std::to_string(j) + "]", "must be finite" + gotValue(q[j]));
+      throw InputError(source, "values[" + std::to_string(j) + "]",
+                       "must be finite" + gotValue(q[j]));
   // From the world outwards: a joint is posed once its inner body is (the world always is). A
   // tree hanging from no body of the world keeps its first joint's body A where it is.
   std::vector<char> placed(world.bodyCount(), 0), done(n, 0);

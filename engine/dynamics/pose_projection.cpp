@@ -390,7 +390,9 @@ PoseResult projectPose(PoseWorld& world, const PoseGoal& asked) {
 }
 
 PoseResult World::poseBody(int body, const Vec2& grabLocal, const Vec2& target, bool payOut) {
-  history_.add({WorldInput::Kind::Pose, body, payOut ? 1 : 0,
+  history_.add({WorldInput::Kind::Pose,
+                body,
+                payOut ? 1 : 0,
                 {grabLocal.x(), grabLocal.y(), target.x(), target.y()}});
   PoseWorld w{scene_, *b2_, cables_, bodies_, jointBodies_, warnings_};
   const PoseResult result = projectPose(w, {body, grabLocal, target, payOut});

@@ -34,8 +34,8 @@ constexpr int kMaxUnsettledHalvings = 4;  // of a step whose main-solve Newton f
 constexpr int kFloorRelocations = 3;   // a floor arrival's cut is located again at most this often
 constexpr double kMaxOmegaDt = 0.3;    // longest midpoint step over the fastest transverse mode
 constexpr double kStillTurn = 1e-5;    // rad a step: joints that turn less keep Box2D's solve
-constexpr double kStallRate = 1e-3;     // rad/s or m/s: a servo's joint moving slower is stalled
-constexpr double kStallRelease = 0.9;   // of max_force: a stalled servo pushing less is released
+constexpr double kStallRate = 1e-3;    // rad/s or m/s: a servo's joint moving slower is stalled
+constexpr double kStallRelease = 0.9;  // of max_force: a stalled servo pushing less is released
 constexpr double kOverstretch = 0.01;  // m: a rigid cable this far over its rest length is said
 
 SceneDef validated(SceneDef scene, const std::string& source) {
@@ -119,13 +119,15 @@ void World::refreshCables() {
 }
 
 void World::setBodyVelocity(int i, const Vec2& velocity, double angularVelocity) {
-  history_.add({WorldInput::Kind::BodyVelocity, i, 1, {velocity.x(), velocity.y(), angularVelocity}});
+  history_.add(
+      {WorldInput::Kind::BodyVelocity, i, 1, {velocity.x(), velocity.y(), angularVelocity}});
   b2_->setVelocity(i, velocity, angularVelocity);
   b2_->readBodies(bodies_);
 }
 
 void World::applyForce(int i, const Vec2& force, const Vec2& worldPoint) {
-  history_.add({WorldInput::Kind::Force, i, 1, {force.x(), force.y(), worldPoint.x(), worldPoint.y()}});
+  history_.add(
+      {WorldInput::Kind::Force, i, 1, {force.x(), force.y(), worldPoint.x(), worldPoint.y()}});
   if (pendingForces_.size() != bodies_.size()) pendingForces_.assign(bodies_.size(), Vec3::Zero());
   const Vec2 r = worldPoint - bodies_[i].position;
   pendingForces_[i] += Vec3(force.x(), force.y(), cross(r, force));
@@ -133,7 +135,8 @@ void World::applyForce(int i, const Vec2& force, const Vec2& worldPoint) {
 
 void World::beginDrag(int body, const Vec2& worldPoint, double stiffnessHz) {
   endDrag();
-  history_.add({WorldInput::Kind::BeginDrag, body, 1, {worldPoint.x(), worldPoint.y(), stiffnessHz}});
+  history_.add(
+      {WorldInput::Kind::BeginDrag, body, 1, {worldPoint.x(), worldPoint.y(), stiffnessHz}});
   if (!b2_->beginDrag(body, worldPoint, stiffnessHz, gravity_.norm())) return;
   dragBody_ = body;
   dragTarget_ = worldPoint;
@@ -166,7 +169,8 @@ void World::setCableParameters(int i, double restLength, double stiffness, doubl
   check(preload, "preload", false);
   check(damping, "damping", false);
   cables_[i].setParameters({restLength, stiffness, preload, damping});
-  history_.add({WorldInput::Kind::CableParameters, i, 1, {restLength, stiffness, preload, damping}});
+  history_.add(
+      {WorldInput::Kind::CableParameters, i, 1, {restLength, stiffness, preload, damping}});
 }
 
 JointState World::joint(int i) const {
@@ -673,11 +677,11 @@ void World::reportStalls(double dt) {
     if (stalledSince_[j] >= 0 || !atMax || rate * (f > 0 ? 1 : -1) > kStallRate) continue;
     stalledSince_[j] = time_ - dt;
     const bool turns = scene_.joints[j].kind == JointDef::Kind::Revolute;
-    warnings_.push_back("joint '" + scene_.joints[j].name + "': its servo pushes with all it has (" +
-                        "max_force " + formatNumber(servo.maxForce) + (turns ? " N m" : " N") +
-                        ") and cannot move what it drives: stalled from t = " +
-                        formatNumber(stalledSince_[j]) +
-                        " s (a stronger servo or a lighter load moves it)");
+    warnings_.push_back(
+        "joint '" + scene_.joints[j].name + "': its servo pushes with all it has (" + "max_force " +
+        formatNumber(servo.maxForce) + (turns ? " N m" : " N") +
+        ") and cannot move what it drives: stalled from t = " + formatNumber(stalledSince_[j]) +
+        " s (a stronger servo or a lighter load moves it)");
   }
 }
 

@@ -244,7 +244,7 @@ class World {
   std::vector<JointFrame> jointFrames_;            ///< the joints as the solver sees them
   // State the user edits while the world runs (the scene keeps the authored values).
   Vec2 gravity_ = Vec2::Zero();
-  std::vector<double> servoTargets_;  ///< per joint (rad or m)
+  std::vector<double> servoTargets_;               ///< per joint (rad or m)
   std::vector<JointCoordinate> jointCoordinates_;  ///< scratch: every joint's value and rate
   std::vector<double> servoImpulses_;  ///< per joint, its servo's impulse over this step (N s)
   std::vector<double> jointForces_;    ///< ... over the last step (N or N m): JointState::force

@@ -25,9 +25,9 @@ namespace {
 
 void checkIndex(int index, int count, const char* kind, size_t input, const std::string& source) {
   if (index < 0 || index >= count)
-    throw InputError(source, "inputs[" + std::to_string(input) + "]",
-                     std::string("names no ") + kind + " of the scene" +
-                         gotValue(static_cast<double>(index)));
+    throw InputError(
+        source, "inputs[" + std::to_string(input) + "]",
+        std::string("names no ") + kind + " of the scene" + gotValue(static_cast<double>(index)));
 }
 
 }  // namespace

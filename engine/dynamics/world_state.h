@@ -16,15 +16,15 @@
 namespace cablelab {
 
 struct WorldState {
-  SceneDef scene;                   ///< the scene the World was built from
-  std::string source;               ///< names it in errors
-  std::vector<WorldInput> inputs;   ///< the history, oldest first
+  SceneDef scene;                  ///< the scene the World was built from
+  std::string source;              ///< names it in errors
+  std::vector<WorldInput> inputs;  ///< the history, oldest first
   // Read-only copies taken with the state (restoring does not read them).
-  double time = 0;                  ///< s
-  long steps = 0;                   ///< World::stepCount()
-  std::vector<BodyState> bodies;    ///< per body
-  std::vector<double> jointValues;  ///< per joint (rad or m)
-  std::vector<double> servoTargets; ///< per joint (rad or m)
+  double time = 0;                   ///< s
+  long steps = 0;                    ///< World::stepCount()
+  std::vector<BodyState> bodies;     ///< per body
+  std::vector<double> jointValues;   ///< per joint (rad or m)
+  std::vector<double> servoTargets;  ///< per joint (rad or m)
 };
 
 /// The state of `world` now.
@@ -35,7 +35,6 @@ WorldState captureState(const World& world, const std::string& source);
 std::unique_ptr<World> restoreWorld(const WorldState& state);
 
 /// Replays `inputs` on `world` in order (each as the World method it records).
-void replayInputs(World& world, const std::vector<WorldInput>& inputs,
-                  const std::string& source);
+void replayInputs(World& world, const std::vector<WorldInput>& inputs, const std::string& source);
 
 }  // namespace cablelab

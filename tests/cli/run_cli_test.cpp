@@ -85,7 +85,7 @@ TEST(RunCli, CsvEndsWithEveryNamedJointsValueRateAndForce) {
   EXPECT_NEAR(b[n - 2], 2.0, 1e-3);
   EXPECT_NEAR((b[n - 3] - a[n - 3]) / (b[0] - a[0]), b[n - 2], 1e-3);
   EXPECT_NEAR(b[n - 1], 0.1 * b[n - 5], 0.01 * 0.1 * b[n - 5]);  // torque = tension r
-  EXPECT_NEAR(rows.front()[n - 1], 0.0, 1e-12);  // no step yet: no force
+  EXPECT_NEAR(rows.front()[n - 1], 0.0, 1e-12);                  // no step yet: no force
 }
 
 TEST(RunCli, BadOptionsExitTwo) {

@@ -103,7 +103,7 @@ TEST(Authoring, CableOverAnEyeletHasTheRoutedLength) {
   ASSERT_EQ(sandbox.world()->cableCount(), 1) << sandbox.error;
   const Cable& c = sandbox.world()->cable(0);
   EXPECT_NEAR(c.restLength(), 2 * std::hypot(0.6, 1.4), 1e-6);  // Box2D keeps positions in float
-  EXPECT_EQ(c.def().start.point, Vec2(0, 0.1));  // the clicked point, not the centre
+  EXPECT_EQ(c.def().start.point, Vec2(0, 0.1));                 // the clicked point, not the centre
   EXPECT_EQ(c.def().pulleys.at(0).side, WrapSide::Threaded);
 }
 

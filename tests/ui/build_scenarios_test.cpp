@@ -87,11 +87,11 @@ Csv buildAndCompare(const std::string& name, const std::string& hand,
     const std::string stem = (dir / (name + "-" + size)).string();
     saved = stem + ".json";
     std::filesystem::remove(saved);
-    const RunResult r = run("xvfb-run -a -s \"-screen 0 " + std::string(size) + "x24\" " +
-                                std::string(CABLELAB_CLI) + " gui hexagon --size " + size +
-                                " --script " + name + " --script-out " + saved +
-                                " --screenshot " + stem + ".png",
-                            name + "-" + size);
+    const RunResult r =
+        run("xvfb-run -a -s \"-screen 0 " + std::string(size) + "x24\" " +
+                std::string(CABLELAB_CLI) + " gui hexagon --size " + size + " --script " + name +
+                " --script-out " + saved + " --screenshot " + stem + ".png",
+            name + "-" + size);
     EXPECT_EQ(r.exitCode, 0) << r.err;
     nlohmann::json j;
     try {
@@ -127,11 +127,11 @@ Csv buildAndCompare(const std::string& name, const std::string& hand,
 // the drop after n steps of dt a dt^2 n (n + 1) / 2 (Box2D's semi-implicit Euler).
 TEST(BuildInWindow, CirclePulleyIsACircleAndCarriesAnAtwoodMachine) {
   REQUIRE_XVFB();
-  const std::string hand = handScene(
-      box("box1", -0.4, 1) + ", " + box("box2", 0.4, 1, 2) + R"(,
+  const std::string hand =
+      handScene(box("box1", -0.4, 1) + ", " + box("box2", 0.4, 1, 2) + R"(,
       {"name": "pulley1", "type": "static", "position": [0, 2.5],
        "shapes": [{"type": "circle", "radius": 0.4, "sensor": true}]})",
-      "", R"({"name": "cable1", "start": {"body": "box1", "point": [0, 0.1]},
+                "", R"({"name": "cable1", "start": {"body": "box1", "point": [0, 0.1]},
               "pulleys": [{"type": "circle", "body": "pulley1", "radius": 0.4, "side": "left",
                            "turns": 0.4114}],
               "end": {"body": "box2", "point": [0, 0.1]}})");
@@ -150,12 +150,12 @@ TEST(BuildInWindow, CirclePulleyIsACircleAndCarriesAnAtwoodMachine) {
 // the equal boxes hang still for 5 s, the ropes straight down from its side corners, on m g.
 TEST(BuildInWindow, CableRunsOverAPolygonPulleyAboveTheBoxes) {
   REQUIRE_XVFB();
-  const std::string hand = handScene(
-      box("box1", -0.4, 1) + ", " + box("box2", 0.4, 1) + R"(,
+  const std::string hand =
+      handScene(box("box1", -0.4, 1) + ", " + box("box2", 0.4, 1) + R"(,
       {"name": "pulley1", "type": "static", "position": [0, 2.5],
        "shapes": [{"type": "polygon", "sensor": true, "vertices": [[0.4, 0], [0.2, 0.3464],
                    [-0.2, 0.3464], [-0.4, 0], [-0.2, -0.3464], [0.2, -0.3464]]}]})",
-      "", R"({"name": "cable1", "start": {"body": "box1", "point": [0, 0.1]},
+                "", R"({"name": "cable1", "start": {"body": "box1", "point": [0, 0.1]},
               "pulleys": [{"type": "polygon", "body": "pulley1", "side": "left",
                            "turns": 0.4114}],
               "end": {"body": "box2", "point": [0, 0.1]}})");
@@ -173,12 +173,12 @@ TEST(BuildInWindow, CableRunsOverAPolygonPulleyAboveTheBoxes) {
 // in plain words, and the boxes fall as the user asked.
 TEST(BuildInWindow, AutoSideThatMissesThePulleyIsReported) {
   REQUIRE_XVFB();
-  const std::string hand = handScene(
-      box("box1", -0.6, 1) + ", " + box("box2", 0.6, 1) + R"(,
+  const std::string hand =
+      handScene(box("box1", -0.6, 1) + ", " + box("box2", 0.6, 1) + R"(,
       {"name": "pulley1", "type": "static", "position": [0, 2.5],
        "shapes": [{"type": "polygon", "sensor": true, "vertices": [[0.2, 0], [0.1, 0.1732],
                    [-0.1, 0.1732], [-0.2, 0], [-0.1, -0.1732], [0.1, -0.1732]]}]})",
-      "", R"({"name": "cable1", "start": {"body": "box1", "point": [0, 0.1]},
+                "", R"({"name": "cable1", "start": {"body": "box1", "point": [0, 0.1]},
               "pulleys": [{"type": "polygon", "body": "pulley1", "side": "auto"}],
               "end": {"body": "box2", "point": [0, 0.1]}})");
   nlohmann::json report;
@@ -198,7 +198,8 @@ TEST(BuildInWindow, CableEndAttachesAtTheClickedPointOfTheBody) {
                                 "end": {"body": "box1", "point": [0.19, 0.19]}})");
   const Csv csv = buildAndCompare("build-cable-corner", hand);
   double largest = 0;
-  for (double t = 0; t <= 5; t += 0.05) largest = std::max(largest, std::abs(csv.at("box1.theta", t)));
+  for (double t = 0; t <= 5; t += 0.05)
+    largest = std::max(largest, std::abs(csv.at("box1.theta", t)));
   EXPECT_GT(largest, 0.3);
   // The corner stays at the cable's length from the anchor (a rigid cable, taut).
   const double length = std::hypot(0.19, 2.5 - 1.19);
@@ -220,21 +221,20 @@ TEST(BuildInWindow, HingeWithAMotorTurnsTheBoxAboutTheClickedPoint) {
   const Csv csv = buildAndCompare("build-hinge-motor", hand);
   EXPECT_NEAR(csv.at("box1.theta", 5), 5.0, 0.1);
   for (double t : {1.0, 2.5, 5.0})
-    EXPECT_NEAR(std::hypot(csv.at("box1.x", t) + 0.15, csv.at("box1.y", t) - 1.5), 0.15, 2e-3)
-        << t;
+    EXPECT_NEAR(std::hypot(csv.at("box1.x", t) + 0.15, csv.at("box1.y", t) - 1.5), 0.15, 2e-3) << t;
 }
 
 // A slider (left-right) with limits [-0.5, 0.3] m, pulled right by a box hanging from an eyelet:
 // the box slides to the upper limit and stays there.
 TEST(BuildInWindow, SliderWithLimitsStopsAtItsUpperLimit) {
   REQUIRE_XVFB();
-  const std::string hand = handScene(
-      box("box1", 0, 1.5) + ", " + box("box2", 1.2, 1) + R"(,
+  const std::string hand =
+      handScene(box("box1", 0, 1.5) + ", " + box("box2", 1.2, 1) + R"(,
       {"name": "pulley1", "type": "static", "position": [1.2, 2.5],
        "shapes": [{"type": "circle", "radius": 0.03, "sensor": true}]})",
-      R"({"type": "prismatic", "name": "joint1", "body_b": "box1", "anchor": [0, 1.5],
+                R"({"type": "prismatic", "name": "joint1", "body_b": "box1", "anchor": [0, 1.5],
           "axis": [1, 0], "limits": [-0.5, 0.3]})",
-      R"({"name": "cable1", "start": {"body": "box1", "point": [0.1, 0]},
+                R"({"name": "cable1", "start": {"body": "box1", "point": [0.1, 0]},
           "pulleys": [{"type": "point", "body": "pulley1", "point": [0, 0], "side": "threaded"}],
           "end": {"body": "box2", "point": [0, 0.1]}})");
   const Csv csv = buildAndCompare("build-slider-limits", hand);
@@ -247,11 +247,11 @@ TEST(BuildInWindow, SliderWithLimitsStopsAtItsUpperLimit) {
 // and, hung off-centre, turn together.
 TEST(BuildInWindow, WeldKeepsTwoBoxesTogether) {
   REQUIRE_XVFB();
-  const std::string hand = handScene(
-      box("box1", 0, 1.5) + ", " + box("box2", 0.4, 1.5),
-      R"({"type": "weld", "name": "joint1", "body_a": "box1", "body_b": "box2",
+  const std::string hand =
+      handScene(box("box1", 0, 1.5) + ", " + box("box2", 0.4, 1.5),
+                R"({"type": "weld", "name": "joint1", "body_a": "box1", "body_b": "box2",
           "anchor": [0.3, 1.5]})",
-      R"({"name": "cable1", "start": {"body": "world", "point": [0, 2.8]},
+                R"({"name": "cable1", "start": {"body": "world", "point": [0, 2.8]},
           "end": {"body": "box1", "point": [0, 0.1]}})");
   const Csv csv = buildAndCompare("build-weld", hand);
   for (double t : {0.5, 2.0, 5.0}) {
@@ -268,15 +268,15 @@ TEST(BuildInWindow, WeldKeepsTwoBoxesTogether) {
 // cable runs over it to a hanging box.
 TEST(BuildInWindow, PulleyOnAMovingBody) {
   REQUIRE_XVFB();
-  const std::string hand = handScene(
-      box("box1", 0, 2.4) + R"(,
+  const std::string hand =
+      handScene(box("box1", 0, 2.4) + R"(,
       {"name": "pulley1", "position": [0.1, 2.4],
        "shapes": [{"type": "circle", "radius": 0.2, "sensor": true}]}, )" +
-          box("box2", 0.6, 1),
-      R"({"type": "revolute", "name": "joint1", "body_b": "box1", "anchor": [-0.1, 2.4]},
+                    box("box2", 0.6, 1),
+                R"({"type": "revolute", "name": "joint1", "body_b": "box1", "anchor": [-0.1, 2.4]},
          {"type": "revolute", "name": "pulley1_mount", "body_a": "box1", "body_b": "pulley1",
           "anchor": [0.1, 2.4]})",
-      R"({"name": "cable1", "start": {"body": "world", "point": [-1, 2.6]},
+                R"({"name": "cable1", "start": {"body": "world", "point": [-1, 2.6]},
           "pulleys": [{"type": "circle", "body": "pulley1", "radius": 0.2, "side": "left",
                        "turns": 0.1629}],
           "end": {"body": "box2", "point": [0, 0.1]}})");
@@ -314,7 +314,8 @@ TEST(BuildInWindow, CapstanFrictionOnACircleTurnsTheWheel) {
   REQUIRE_XVFB();
   const std::string hand = handScene(
       R"({"name": "circle1", "position": [0, 2.5], "shapes": [{"type": "circle", "radius": 0.2}]},
-      )" + box("box1", -0.5, 1) + ", " + box("box2", 0.5, 1, 2),
+      )" + box("box1", -0.5, 1) +
+          ", " + box("box2", 0.5, 1, 2),
       R"({"type": "revolute", "name": "joint1", "body_b": "circle1", "anchor": [0, 2.5]})",
       R"({"name": "cable1", "start": {"body": "box1", "point": [0, 0.1]},
           "pulleys": [{"type": "circle", "body": "circle1", "radius": 0.2, "side": "left",
@@ -328,9 +329,9 @@ TEST(BuildInWindow, CapstanFrictionOnACircleTurnsTheWheel) {
 // The Inspector's stiffness 200 N/m and damping 2 N s/m: the box settles m g / k below.
 TEST(BuildInWindow, ElasticCableSettlesAtItsStretch) {
   REQUIRE_XVFB();
-  const std::string hand = handScene(
-      box("box1", 0, 1.5), "",
-      R"({"name": "cable1", "start": {"body": "world", "point": [0, 2.8]},
+  const std::string hand =
+      handScene(box("box1", 0, 1.5), "",
+                R"({"name": "cable1", "start": {"body": "world", "point": [0, 2.8]},
           "end": {"body": "box1", "point": [0, 0.1]}, "stiffness": 200, "damping": 2})");
   const Csv csv = buildAndCompare("build-elastic", hand);
   EXPECT_NEAR(csv.at("box1.y", 5), 1.5 - kG / 200, 2e-3);
@@ -342,14 +343,14 @@ TEST(BuildInWindow, DrivenBodyKeepsItsSpeed) {
   REQUIRE_XVFB();
   std::string driven = box("box1", -1, 2.5, 1, "kinematic");
   driven.insert(driven.size() - 1, R"(, "velocity": [0.2, 0])");
-  const std::string hand = handScene(
-      driven + ", " + box("box2", -1, 1), "",
-      R"({"name": "cable1", "start": {"body": "box1", "point": [0, -0.1]},
+  const std::string hand =
+      handScene(driven + ", " + box("box2", -1, 1), "",
+                R"({"name": "cable1", "start": {"body": "box1", "point": [0, -0.1]},
           "end": {"body": "box2", "point": [0, 0.1]}})");
   const Csv csv = buildAndCompare("build-kinematic", hand);
   EXPECT_NEAR(csv.at("box1.x", 5), -1 + 0.2 * 5, 1e-5);  // Box2D keeps positions in float
   EXPECT_NEAR(csv.at("box1.y", 5), 2.5, 1e-9);
-  EXPECT_GT(csv.at("box2.x", 5), -0.5);  // dragged along (starts at -1)
+  EXPECT_GT(csv.at("box2.x", 5), -0.5);        // dragged along (starts at -1)
   EXPECT_NEAR(csv.at("box2.y", 5), 1.0, 0.1);  // still hanging below it
 }
 

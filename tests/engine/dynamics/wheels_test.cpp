@@ -108,10 +108,11 @@ TEST(Winch, AWeightWoundUpToTheDrumStopsThereAndTheStalledServoHoldsIt) {
   // (omega -2) the cable runs out after a turn, winds the other way and the weight, swinging,
   // reaches the rim from the side at 25 s. Either way it stops there and the servo stalls: its
   // target runs on, so its torque grows (kp |omega| = 200 N m a second over 1 + h (kp h + kd) / I,
-  // I the drum's and weight's inertia, docs/servos.md), and the rope holds it, T = |torque| / r. Newton on the end-of-step lengths found a root a whole turn of the drum
-  // away (which Box2D cannot reach in a step): the tension went 1e5, 1e7, ... 1e13 N. A floor
-  // along the segment alone let the weight that came from the side slide into the drum, and the
-  // cable, with a segment of no length, let it fall (4.03 -> 4.09 m on a rigid cable).
+  // I the drum's and weight's inertia, docs/servos.md), and the rope holds it, T = |torque| / r.
+  // Newton on the end-of-step lengths found a root a whole turn of the drum away (which Box2D
+  // cannot reach in a step): the tension went 1e5, 1e7, ... 1e13 N. A floor along the segment alone
+  // let the weight that came from the side slide into the drum, and the cable, with a segment of no
+  // length, let it fall (4.03 -> 4.09 m on a rigid cable).
   for (const double omega : {2.0, -2.0}) {
     World w = load("winch", {{"omega", omega}});
     const int drum = w.findBody("drum"), weight = w.findBody("weight");
