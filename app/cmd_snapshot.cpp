@@ -53,7 +53,7 @@ int snapshot(const SnapshotOptions& o) {
   // The reference first: a bad one fails before the simulation, and sets the default size.
   ui::Image reference;
   if (!o.compare.empty()) {
-    reference = ui::readInputPng(o.compare);
+    reference = ui::readPng(o.compare);
     requireWritable(diffPathFor(o.out), "--out");
   }
   PixelSize size{800, 600};

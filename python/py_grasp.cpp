@@ -92,8 +92,6 @@ void bindOptions(py::module_& m) {
   py::class_<GraspOptions> c(m, "GraspOptions",
                              "GraspOptions(**fields): timing of the hand's grasp sequence (s); "
                              "read/write attributes.");
-  c.def(
-      py::init([](const py::kwargs& kw) { return fromFields<GraspOptions>("GraspOptions", kw); }));
   using R = FieldRule;
   const char* n = "GraspOptions";
   addField(c, n, "open_time", &GraspOptions::openTime, R::NonNegative,
@@ -106,8 +104,7 @@ void bindOptions(py::module_& m) {
            "s held still after losing the box, before re-grasping");
   addField(c, n, "max_regrasps", &GraspOptions::maxRegrasps, R::NonNegative,
            "re-grasps before giving up (phase 'failed')");
-  addFieldsPickle(c, n);
-  c.def("__repr__", [](py::handle self) { return fieldsRepr(self, "GraspOptions"); });
+  addValueClassMethods(c, n);
 }
 
 }  // namespace

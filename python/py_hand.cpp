@@ -67,7 +67,6 @@ The two-finger hand of chapter 4: dimensions (m), masses (kg), membrane stiffnes
 damping (N s/m) and preload (m), servo gain, joint limits (rad, m). One model feeds the
 hand scene, the controller and the experiments. Fields are read/write attributes;
 HandModel(stiffness=300) changes one from the default.)doc");
-  model.def(py::init([](const py::kwargs& kw) { return fromFields<HandModel>("HandModel", kw); }));
   {
     using R = FieldRule;
     const char* n = "HandModel";
@@ -96,7 +95,7 @@ HandModel(stiffness=300) changes one from the default.)doc");
     addField(model, n, "lower", &HandModel::lower, R::Finite,
              "joint lower limits, 6 (rad, m), controller order");
     addField(model, n, "upper", &HandModel::upper, R::Finite, "joint upper limits, 6 (rad, m)");
-    addFieldsPickle(model, n);
+    addValueClassMethods(model, n);
   }
   model
       .def(
@@ -114,7 +113,6 @@ HandModel(stiffness=300) changes one from the default.)doc");
           "world",
           [](const HandModel& h) { return std::make_unique<PyWorld>(buildHandScene(h), "hand"); },
           "world() -> World: the hand scene built from this model, at the pinch pose q = 0.");
-  model.def("__repr__", [](py::handle self) { return fieldsRepr(self, "HandModel"); });
   m.attr("HAND_JOINT_NAMES") =
       py::make_tuple(kHandJointNames[0], kHandJointNames[1], kHandJointNames[2], kHandJointNames[3],
                      kHandJointNames[4], kHandJointNames[5]);
@@ -125,9 +123,6 @@ HandModel(stiffness=300) changes one from the default.)doc");
       m, "ControllerParams",
       "ControllerParams(**fields): gains of the hand's Jacobian "
       "controller (thesis 4.3); read/write attributes.");
-  params.def(py::init([](const py::kwargs& kw) {
-    return fromFields<HandControllerParams>("ControllerParams", kw);
-  }));
   {
     using R = FieldRule;
     using P = HandControllerParams;
@@ -148,9 +143,8 @@ HandModel(stiffness=300) changes one from the default.)doc");
              "joint-space weight of the distal joints");
     addField(params, n, "face_on_gain", &P::faceOnGain, R::NonNegative,
              "null-space pull to face-on paddles, per update");
-    addFieldsPickle(params, n);
+    addValueClassMethods(params, n);
   }
-  params.def("__repr__", [](py::handle self) { return fieldsRepr(self, "ControllerParams"); });
   m.attr("PID_KI") = kHandPidKi;
 
   py::class_<HandController>(m, "HandController",

@@ -79,9 +79,12 @@ void addField(py::class_<T>& cls, const char* className, const char* name, V T::
       doc);
 }
 
-/// Pickling and copy.copy / deepcopy of a value class, through its read/write attributes.
+/// What every value class (HandModel, ControllerParams, GraspOptions) has beyond its fields:
+/// T(**fields), repr, pickling and copy.copy / deepcopy, all through its read/write attributes.
 template <typename T>
-void addFieldsPickle(py::class_<T>& cls, const char* className) {
+void addValueClassMethods(py::class_<T>& cls, const char* className) {
+  cls.def(py::init([className](const py::kwargs& kw) { return fromFields<T>(className, kw); }));
+  cls.def("__repr__", [className](py::handle self) { return fieldsRepr(self, className); });
   cls.def(py::pickle(
       [](py::handle self) {
         py::dict d;

@@ -47,23 +47,6 @@ void writePng(const Image& image, const std::string& path) {
 }
 
 Image readPng(const std::string& path) {
-  File file = open(path, "rb");
-  png_image png;
-  std::memset(&png, 0, sizeof png);
-  png.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_stdio(&png, file.get()))
-    throw std::runtime_error(path + ": not a PNG: " + png.message);
-  png.format = PNG_FORMAT_RGBA;
-  Image image;
-  image.width = static_cast<int>(png.width);
-  image.height = static_cast<int>(png.height);
-  image.rgba.resize(PNG_IMAGE_SIZE(png));
-  if (!png_image_finish_read(&png, nullptr, image.rgba.data(), 0, nullptr))
-    throw std::runtime_error(path + ": PNG read failed: " + png.message);
-  return image;
-}
-
-Image readInputPng(const std::string& path) {
   const std::string bytes = readInputFile(path);  // a missing file or a directory says so
   png_image png;
   std::memset(&png, 0, sizeof png);

@@ -24,12 +24,9 @@ struct Image {
 /// Writes `image` as an 8-bit RGBA PNG; throws std::runtime_error naming `path` on failure.
 void writePng(const Image& image, const std::string& path);
 
-/// Reads any PNG as 8-bit RGBA; throws std::runtime_error naming `path` on failure.
+/// Reads any PNG as 8-bit RGBA. A missing file, a directory or a file that is not a PNG is an
+/// InputError naming `path` ("REF.png: (file): not a PNG image: ..."), as users name these files.
 Image readPng(const std::string& path);
-
-/// Reads a PNG the user named (e.g. `--compare REF.png`) as 8-bit RGBA. A missing file, a
-/// directory or a file that is not a PNG is an InputError: "REF.png: (file): not a PNG image: ...".
-Image readInputPng(const std::string& path);
 
 /// How `actual` differs from `expected` (the same size): a pixel differs when its largest
 /// red, green or blue difference exceeds `threshold` levels of 255 (alpha is not compared).
