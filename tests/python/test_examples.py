@@ -6,7 +6,6 @@ import subprocess
 import sys
 
 import numpy as np
-import pytest
 
 import cablelab
 from conftest import SOURCE_DIR, cli_json
@@ -60,19 +59,3 @@ def test_parallel_reach_equals_serial_runs(tmp_path):
     for (x, y), error in list(zip(r["targets"], r["final_errors"]))[::4]:
         assert cablelab.track(target=(x, y), time=r["seconds_per_target"], pid=True)["final_error"] == error
     assert r["reached"] == sum(e < 0.005 and h for e, h in zip(r["final_errors"], r["grasp_held"]))
-
-
-def test_readme_python_lines_run_and_plot_the_atwood_tension():
-    text = (SOURCE_DIR / "README.md").read_text().split("## Python", 1)[1]
-    block = next(b for b in text.split("\n\n") if b.startswith("    "))  # the first code block
-    lines = [l[4:] for l in block.splitlines()]
-    assert len(lines) == 3
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    scope = {"cablelab": cablelab, "plt": plt}
-    exec("\n".join(lines), scope)
-    tension = plt.gca().lines[-1].get_ydata()
-    g, m1, m2 = 9.81, 2.0, 1.0  # the pulley scene's defaults
-    assert tension[-1] == pytest.approx(2 * g * m1 * m2 / (m1 + m2), rel=1e-3)
-    plt.close("all")
