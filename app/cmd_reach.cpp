@@ -1,5 +1,6 @@
 // cablelab reach: figure 4-4, the box positions the Jacobian controller reaches versus the range
 // of the fingertips themselves.
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -7,6 +8,7 @@
 
 #include "app/command.h"
 #include "app/options.h"
+#include "app/reach_on_dask.h"
 #include "engine/core/error.h"
 #include "engine/core/file_input.h"
 #include "engine/hand/hand_io.h"
@@ -85,7 +87,7 @@ const bool reachRegistered = registerCommand(
     [](CLI::App& sub) {
       struct Options {
         int grid = 50;
-        std::string model = "simulation", csv, png;
+        std::string model = "simulation", csv, png, scheduler;
         bool pd = false;
       };
       auto o = std::make_shared<Options>();
@@ -98,6 +100,9 @@ const bool reachRegistered = registerCommand(
       sub.add_option("--csv", o->csv,
                      "Write x,y,object_reached,fingertip_reachable per target to this CSV file");
       sub.add_option("--png", o->png, "Draw the sets to this PNG file");
+      sub.add_option("--scheduler", o->scheduler,
+                     "Run the targets on this Dask scheduler's workers (tcp://HOST:PORT; they "
+                     "need the cablelab Python module); same JSON and CSV");
       return [o] {
         const ReachOptions options = reachOptions(o->grid, o->model, o->pd);
 #ifndef CABLELAB_HAVE_OFFSCREEN
@@ -106,10 +111,21 @@ const bool reachRegistered = registerCommand(
         requireOutputFile(o->png, "--png");
         std::unique_ptr<std::ofstream> csv;
         if (!o->csv.empty()) csv = std::make_unique<std::ofstream>(openOutputFile(o->csv, "--csv"));
-        Progress progress("reach", static_cast<long>(o->grid) * o->grid);
-        const ReachResult r =
-            runReach(options, HandModel{}, [&](long done, long) { progress.update(done); });
-        progress.done();
+        ReachResult r;
+        if (o->scheduler.empty()) {
+          Progress progress("reach", static_cast<long>(o->grid) * o->grid);
+          r = runReach(options, HandModel{}, [&](long done, long) { progress.update(done); });
+          progress.done();
+        } else {
+          const auto start = std::chrono::steady_clock::now();
+          Progress progress("reach", o->grid);  // one task per grid row
+          r = reachGrid(options, HandModel{});
+          evaluateReachOnDask(o->scheduler, options, r, progress);
+          progress.done();
+          summariseReach(r);
+          r.seconds =
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        }
         const double ratio = r.fingertipArea > 0 ? r.objectArea / r.fingertipArea : 0.0;
         if (csv) {
           *csv << "x,y,object_reached,fingertip_reachable\n";
