@@ -33,15 +33,15 @@ void Progress::update(long done, const std::string& note) {
   lastDraw_ = now;
   const double share = std::clamp(static_cast<double>(done) / total_, 0.0, 1.0);
   char eta[40] = "";
-  if (share > 0)
-    std::snprintf(eta, sizeof eta, "  eta %.0f s", elapsed * (1 - share) / share);
+  if (share > 0) std::snprintf(eta, sizeof eta, "  eta %.0f s", elapsed * (1 - share) / share);
   draw(done, eta);
 }
 
 void Progress::done() {
   if (shown_ && !finished_) {
     char took[40];
-    std::snprintf(took, sizeof took, "  %.1f s", std::chrono::duration<double>(Clock::now() - start_).count());
+    std::snprintf(took, sizeof took, "  %.1f s",
+                  std::chrono::duration<double>(Clock::now() - start_).count());
     note_.clear();
     draw(total_, took);
     std::fputc('\n', stderr);
@@ -56,9 +56,9 @@ void Progress::draw(long done, const std::string& tail) {
   bar.resize(kBarWidth, '-');
   // "\r" back to the line's start, "\x1b[K" clears what a longer earlier line left.
   const int percent = static_cast<int>(share * 100);  // 100 only when all is done
-  std::fprintf(stderr, "\r%s [%s] %3d%%  %ld/%ld%s%s%s\x1b[K", label_.c_str(), bar.c_str(),
-               percent, std::min(done, total_), total_, tail.c_str(),
-               note_.empty() ? "" : "  ", note_.c_str());
+  std::fprintf(stderr, "\r%s [%s] %3d%%  %ld/%ld%s%s%s\x1b[K", label_.c_str(), bar.c_str(), percent,
+               std::min(done, total_), total_, tail.c_str(), note_.empty() ? "" : "  ",
+               note_.c_str());
   std::fflush(stderr);
   shown_ = true;
 }

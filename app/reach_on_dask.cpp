@@ -69,37 +69,45 @@ std::string lastLine(const std::string& path) {
 void evaluateReachOnDask(const std::string& address, const ReachOptions& options, ReachResult& r,
                          Progress& progress) {
   const std::string python = pythonInterpreter();
-  std::vector<std::string> args = {python,     "-m",
-                                   "cablelab._reach_on_dask", "--scheduler",
-                                   address,    "--grid",
-                                   std::to_string(options.grid), "--model",
-                                   options.model == ReachModel::Simulation ? "simulation"
-                                                                           : "quasi-static"};
+  std::vector<std::string> args = {
+      python,
+      "-m",
+      "cablelab._reach_on_dask",
+      "--scheduler",
+      address,
+      "--grid",
+      std::to_string(options.grid),
+      "--model",
+      options.model == ReachModel::Simulation ? "simulation" : "quasi-static"};
   if (!options.pid) args.push_back("--pd");
   std::vector<std::string> env = childEnvironment();
 
   // The child's stdout is our pipe; its stderr (Dask's log lines, a traceback) a temporary
   // file, shown only when the child fails.
   int pipeFds[2];
-  if (pipe(pipeFds) != 0) throw std::runtime_error("reach --scheduler: pipe: " + std::string(std::strerror(errno)));
+  if (pipe(pipeFds) != 0)
+    throw std::runtime_error("reach --scheduler: pipe: " + std::string(std::strerror(errno)));
   char logPath[] = "/tmp/cablelab-reach-XXXXXX";
   const int logFd = mkstemp(logPath);
-  if (logFd < 0) throw std::runtime_error("reach --scheduler: temporary file: " + std::string(std::strerror(errno)));
+  if (logFd < 0)
+    throw std::runtime_error("reach --scheduler: temporary file: " +
+                             std::string(std::strerror(errno)));
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_adddup2(&actions, pipeFds[1], STDOUT_FILENO);
   posix_spawn_file_actions_adddup2(&actions, logFd, STDERR_FILENO);
   posix_spawn_file_actions_addclose(&actions, pipeFds[0]);
   pid_t child = 0;
-  const int spawned = posix_spawnp(&child, python.c_str(), &actions, nullptr,
-                                   pointers(args).data(), pointers(env).data());
+  const int spawned = posix_spawnp(&child, python.c_str(), &actions, nullptr, pointers(args).data(),
+                                   pointers(env).data());
   posix_spawn_file_actions_destroy(&actions);
   close(pipeFds[1]);
   close(logFd);
   if (spawned != 0) {
     close(pipeFds[0]);
     unlink(logPath);
-    throw std::runtime_error("reach --scheduler: cannot start " + python + ": " + std::strerror(spawned));
+    throw std::runtime_error("reach --scheduler: cannot start " + python + ": " +
+                             std::strerror(spawned));
   }
 
   std::string inputError, failure;
@@ -138,9 +146,9 @@ void evaluateReachOnDask(const std::string& address, const ReachOptions& options
     throw InputError(kCommandLine, "--scheduler", inputError + gotValue(address));
   if (!failure.empty()) throw std::runtime_error("reach --scheduler: " + failure);
   if (!haveTargets || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw std::runtime_error("reach --scheduler: " + python +
-                             " -m cablelab._reach_on_dask failed: " +
-                             (log.empty() ? "no result" : log));
+    throw std::runtime_error(
+        "reach --scheduler: " + python +
+        " -m cablelab._reach_on_dask failed: " + (log.empty() ? "no result" : log));
 }
 
 }  // namespace cablelab::app

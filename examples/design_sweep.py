@@ -28,7 +28,7 @@ import cablelab
 
 
 def reach_area(stiffness, preload, grid, model):
-    """One design's reach map (runs on a Dask worker; one thread: the cluster is the parallelism)."""
+    """One design's reach map (on a Dask worker; one thread: the cluster is the parallelism)."""
     r = cablelab.reach(grid=grid, model=model, threads=1,
                        hand=cablelab.HandModel(stiffness=stiffness, preload=preload))
     return {"object_area": r["object_area"], "fingertip_area": r["fingertip_area"],
@@ -85,7 +85,8 @@ def main():
             ax.text(j, i, f"{area[i, j]:.2f}", ha="center", va="center", fontsize=7,
                     color="white" if area[i, j] < area.mean() else "black")
     ax.set(xlabel="membrane preload (m)", ylabel="membrane stiffness (N/m)",
-           title=f"Reach area over {d} x {d} designs ({args.grid} x {args.grid} {args.model} map each)")
+           title=f"Reach area over {d} x {d} designs "
+                 f"({args.grid} x {args.grid} {args.model} map each)")
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     fig.savefig(out / "design_sweep.png", dpi=100)

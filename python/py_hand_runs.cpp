@@ -180,8 +180,8 @@ py::list reachTargetsCall(const std::vector<int>& indices, int grid, const std::
   py::list out;
   for (int k : indices) {
     const ReachTarget& t = r.targets[k];
-    out.append(py::make_tuple(k, t.simulated, t.quasiStatic, t.error, t.graspHeld,
-                              t.simulatedTime));
+    out.append(
+        py::make_tuple(k, t.simulated, t.quasiStatic, t.error, t.graspHeld, t.simulatedTime));
   }
   return out;
 }

@@ -55,11 +55,14 @@ def main(argv=None):
         _emit({"threads": sum(client.nthreads().values())})
         rows = [{"row": r, "grid": args.grid, "model": args.model, "pd": args.pd}
                 for r in range(args.grid)]
+        def report(done, total):
+            _emit({"progress": [done, total]})
+
         try:
-            results = cablelab.sweep(reach_row, rows, client=client,
-                                     progress=lambda done, total: _emit({"progress": [done, total]}))
-        except cablelab.SweepError as e:
-            _emit({"failed": str(e).splitlines()[0] + " " + e.failures[0][2].strip().splitlines()[-1]})
+            results = cablelab.sweep(reach_row, rows, client=client, progress=report)
+        except cablelab.SweepError as e:  # the first failure's last line says why
+            why = e.failures[0][2].strip().splitlines()[-1]
+            _emit({"failed": f"{str(e).splitlines()[0]} {why}"})
             return 1
     _emit({"targets": [target for row in results for target in row]})
     return 0

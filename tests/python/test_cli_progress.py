@@ -45,11 +45,11 @@ def without_timing(result):
     return {k: v for k, v in result.items() if k not in ("seconds", "step_us_median")}
 
 
-# Each runs for well over the half second before the first bar (a few seconds here).
+# Each runs for several times the half second before the first bar (about 2 s of CPU here).
 LONG_COMMANDS = {
-    "run": (["run", "hexagon", "--time", "2000"], "run hexagon", 120000),
-    "track": (["track", "--target", "0.1,0.2", "--time", "150", "--pid"], "track", 9000),
-    "reach": (["reach", "--grid", "5"], "reach", 25),
+    "run": (["run", "hexagon", "--time", "4000"], "run hexagon", 240000),
+    "track": (["track", "--target", "0.1,0.2", "--time", "1200", "--pid"], "track", 72000),
+    "reach": (["reach", "--grid", "7"], "reach", 49),
 }
 
 

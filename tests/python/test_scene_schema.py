@@ -202,7 +202,8 @@ def test_the_schema_and_the_loader_agree_on_single_field_changes():
 def loader_field_names():
     """Every key scene_json.cpp reads: the first argument of the reader's accessors."""
     source = (ROOT / "engine" / "model" / "scene_json.cpp").read_text()
-    calls = r'\b\w\.(?:string|requiredString|number|integer|boolean|vec2|points|list|has|child|item)\("(\w+)"'
+    accessors = "string|requiredString|number|integer|boolean|vec2|points|list|has|child|item"
+    calls = rf'\b\w\.(?:{accessors})\("(\w+)"'
     return set(re.findall(calls, source))  # the writer uses j["..."], never these
 
 
