@@ -1,6 +1,5 @@
 // cablelab reach: figure 4-4, the box positions the Jacobian controller reaches versus the range
 // of the fingertips themselves.
-#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -111,21 +110,13 @@ const bool reachRegistered = registerCommand(
         requireOutputFile(o->png, "--png");
         std::unique_ptr<std::ofstream> csv;
         if (!o->csv.empty()) csv = std::make_unique<std::ofstream>(openOutputFile(o->csv, "--csv"));
-        ReachResult r;
-        if (o->scheduler.empty()) {
-          Progress progress("reach", static_cast<long>(o->grid) * o->grid);
-          r = runReach(options, HandModel{}, [&](long done, long) { progress.update(done); });
-          progress.done();
-        } else {
-          const auto start = std::chrono::steady_clock::now();
-          Progress progress("reach", o->grid);  // one task per grid row
-          r = reachGrid(options, HandModel{});
-          evaluateReachOnDask(o->scheduler, options, r, progress);
-          progress.done();
-          summariseReach(r);
-          r.seconds =
-              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        }
+        // Local threads report targets done; on Dask the grid's rows are the tasks.
+        const bool local = o->scheduler.empty();
+        Progress progress("reach", local ? static_cast<long>(o->grid) * o->grid : o->grid);
+        const ReachResult r =
+            local ? runReach(options, HandModel{}, [&](long done, long) { progress.update(done); })
+                  : runReachOnDask(o->scheduler, options, progress);
+        progress.done();
         const double ratio = r.fingertipArea > 0 ? r.objectArea / r.fingertipArea : 0.0;
         if (csv) {
           *csv << "x,y,object_reached,fingertip_reachable\n";

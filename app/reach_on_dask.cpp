@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -66,8 +67,10 @@ std::string lastLine(const std::string& path) {
 
 }  // namespace
 
-void evaluateReachOnDask(const std::string& address, const ReachOptions& options, ReachResult& r,
-                         Progress& progress) {
+ReachResult runReachOnDask(const std::string& address, const ReachOptions& options,
+                           Progress& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  ReachResult r = reachGrid(options, HandModel{});
   const std::string python = pythonInterpreter();
   std::vector<std::string> args = {
       python,
@@ -149,6 +152,9 @@ void evaluateReachOnDask(const std::string& address, const ReachOptions& options
     throw std::runtime_error(
         "reach --scheduler: " + python +
         " -m cablelab._reach_on_dask failed: " + (log.empty() ? "no result" : log));
+  summariseReach(r);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
 }
 
 }  // namespace cablelab::app

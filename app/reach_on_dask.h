@@ -12,10 +12,11 @@
 
 namespace cablelab::app {
 
-/// Fills r's targets (from reachGrid) with their verdicts computed on the scheduler's workers,
-/// and r.threads with the workers' thread count. An unreachable scheduler is an InputError on
-/// --scheduler; a missing Python module or failing tasks a std::runtime_error.
-void evaluateReachOnDask(const std::string& address, const ReachOptions& options, ReachResult& r,
-                         Progress& progress);
+/// runReach's result (HandModel{}, the CLI's hand) with the targets evaluated on the workers of
+/// the Dask scheduler at `address`; threads: the workers' thread count; progress: rows done. An
+/// unreachable scheduler is an InputError on --scheduler; a missing Python module or failing
+/// tasks a std::runtime_error.
+ReachResult runReachOnDask(const std::string& address, const ReachOptions& options,
+                           Progress& progress);
 
 }  // namespace cablelab::app
