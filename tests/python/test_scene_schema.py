@@ -1,9 +1,9 @@
 # docs/scene.schema.json and docs/scene-format.md against the loader (engine/model/scene_json.cpp):
-# every scene the loader accepts (assets/, tests/data/, the built-in scenes as to_dict writes them)
-# passes the schema; every bad scene under tests/data/bad/ is rejected by the schema unless its
-# fault is one the schema cannot express (listed below, and checked to stay so); on single-field
-# changes of good scenes the schema and the loader agree; the docs and the schema name every
-# field the loader reads.
+# every scene the loader accepts (assets/, examples/, tests/data/, the built-in scenes as to_dict
+# writes them) passes the schema; every bad scene under tests/data/bad/ is rejected by the schema
+# unless its fault is one the schema cannot express (listed below, and checked to stay so); on
+# single-field changes of good scenes the schema and the loader agree; the docs and the schema
+# name every field the loader reads.
 import json
 import math
 import pathlib
@@ -45,7 +45,7 @@ def schema_accepts(scene):
 
 
 def json_files():
-    for folder in (ROOT / "assets", ROOT / "tests" / "data"):
+    for folder in (ROOT / "assets", ROOT / "examples", ROOT / "tests" / "data"):
         for path in sorted(folder.rglob("*.json")):
             if "bad" not in path.parts:
                 yield path
