@@ -50,10 +50,6 @@ nlohmann::json machine() {
           {"ndebug", optimised}};
 }
 
-void stage(const char* what) {
-  std::fprintf(stderr, "bench: %s\n", what);
-}
-
 double median(std::vector<double> v) {
   if (v.empty()) return 0;
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
@@ -152,6 +148,11 @@ const bool benchRegistered = registerCommand(
         const bool quick = o->quick;
         nlohmann::json out;
         out["quick"] = quick;
+        // One bar over the stages (hand, scenes, scale, big islands, 3 x statics, controller,
+        // reach), the stage under way as its note.
+        Progress progress("bench", 9);
+        long stagesDone = 0;
+        auto stage = [&](const std::string& what) { progress.update(stagesDone++, what); };
 
         // 1. The hand scene with and without its cables, interleaved rounds.
         stage("hand scene step, with and without cables");
@@ -252,7 +253,7 @@ const bool benchRegistered = registerCommand(
         const int instances = quick ? 150 : 1000;
         nlohmann::json socp = nlohmann::json::object(), newton = nlohmann::json::object();
         for (int n : {2, 4, 8}) {
-          stage(("statics, " + std::to_string(n) + " cables").c_str());
+          stage("statics, " + std::to_string(n) + " cables");
           const StaticsTimings t = measureStatics(n, instances, 42);
           socp[std::to_string(n)] = t.socpMicros;
           newton[std::to_string(n)] = t.newtonMicros;
@@ -267,14 +268,13 @@ const bool benchRegistered = registerCommand(
 
         // 4. The reach sweep, the code `cablelab reach` runs (same options).
         const int grid = quick ? 20 : kFullReachGrid;
-        stage(("reach sweep, " + std::to_string(grid) + " x " + std::to_string(grid)).c_str());
+        stage("reach sweep, " + std::to_string(grid) + " x " + std::to_string(grid));
         ReachOptions reach;
         reach.grid = grid;
         reach.threads =
             static_cast<int>(std::max(1u, std::min(2u, std::thread::hardware_concurrency())));
-        Progress progress("reach", static_cast<long>(grid) * grid);
         const ReachResult r =
-            runReach(reach, HandModel{}, [&](long done, long) { progress.update(done); });
+            runReach(reach, HandModel{}, [&](long, long) { progress.update(stagesDone - 1); });
         progress.done();
         const double scale = double(kFullReachGrid) * kFullReachGrid / (double(grid) * grid);
         out["reach_sweep_s"] = r.seconds * scale;

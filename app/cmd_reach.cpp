@@ -7,6 +7,7 @@
 
 #include "app/command.h"
 #include "app/options.h"
+#include "app/reach_on_dask.h"
 #include "engine/core/error.h"
 #include "engine/core/file_input.h"
 #include "engine/hand/hand_io.h"
@@ -85,7 +86,7 @@ const bool reachRegistered = registerCommand(
     [](CLI::App& sub) {
       struct Options {
         int grid = 50;
-        std::string model = "simulation", csv, png;
+        std::string model = "simulation", csv, png, scheduler;
         bool pd = false;
       };
       auto o = std::make_shared<Options>();
@@ -98,6 +99,9 @@ const bool reachRegistered = registerCommand(
       sub.add_option("--csv", o->csv,
                      "Write x,y,object_reached,fingertip_reachable per target to this CSV file");
       sub.add_option("--png", o->png, "Draw the sets to this PNG file");
+      sub.add_option("--scheduler", o->scheduler,
+                     "Run the targets on this Dask scheduler's workers (tcp://HOST:PORT; they "
+                     "need the cablelab Python module); same JSON and CSV");
       return [o] {
         const ReachOptions options = reachOptions(o->grid, o->model, o->pd);
 #ifndef CABLELAB_HAVE_OFFSCREEN
@@ -106,9 +110,12 @@ const bool reachRegistered = registerCommand(
         requireOutputFile(o->png, "--png");
         std::unique_ptr<std::ofstream> csv;
         if (!o->csv.empty()) csv = std::make_unique<std::ofstream>(openOutputFile(o->csv, "--csv"));
-        Progress progress("reach", static_cast<long>(o->grid) * o->grid);
+        // Local threads report targets done; on Dask the grid's rows are the tasks.
+        const bool local = o->scheduler.empty();
+        Progress progress("reach", local ? static_cast<long>(o->grid) * o->grid : o->grid);
         const ReachResult r =
-            runReach(options, HandModel{}, [&](long done, long) { progress.update(done); });
+            local ? runReach(options, HandModel{}, [&](long done, long) { progress.update(done); })
+                  : runReachOnDask(o->scheduler, options, progress);
         progress.done();
         const double ratio = r.fingertipArea > 0 ? r.objectArea / r.fingertipArea : 0.0;
         if (csv) {

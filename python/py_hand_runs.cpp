@@ -164,6 +164,28 @@ py::dict reachCall(int grid, const std::string& model, bool pd, py::handle threa
   return out;
 }
 
+/// Some targets of reach()'s grid, evaluated by the engine's own per-target code: the work unit
+/// of `cablelab reach --scheduler` (python/cablelab/_reach_on_dask.py).
+py::list reachTargetsCall(const std::vector<int>& indices, int grid, const std::string& model,
+                          bool pd, const HandModel& hand) {
+  const ReachOptions options = reachOptions(grid, model, pd, 1);
+  ReachResult r = reachGrid(options, hand);
+  for (int k : indices)
+    if (k < 0 || k >= r.points)
+      throw InputError("_reach_targets", "indices", "must be in [0, grid^2)" + gotValue(k));
+  {
+    py::gil_scoped_release release;
+    for (int k : indices) evaluateReachTarget(hand, options, r.targets[k]);
+  }
+  py::list out;
+  for (int k : indices) {
+    const ReachTarget& t = r.targets[k];
+    out.append(
+        py::make_tuple(k, t.simulated, t.quasiStatic, t.error, t.graspHeld, t.simulatedTime));
+  }
+  return out;
+}
+
 }  // namespace
 
 void bindHandRuns(py::module_& m) {
@@ -207,6 +229,13 @@ points, model, law, object_points, fingertip_points, quasi_static_points, beyond
 row by row from the lower left): x, y (m), object_reached, fingertip_reachable (the CLI's
 CSV), quasi_static, simulated, grasp_held (bool), error (m), simulated_time (s); the sets
 object_set, fingertip_set, quasi_static_set ((n, 2), m); lower, upper (the window, m).)doc");
+  m.def("_reach_targets", &reachTargetsCall, "indices"_a, py::kw_only(), "grid"_a, "model"_a,
+        "pd"_a, "hand"_a = HandModel{},
+        R"doc(_reach_targets(indices, *, grid, model, pd, hand=HandModel()) -> list
+
+The targets `indices` of reach(grid=..., model=..., pd=..., hand=...)'s grid (row by row from
+the lower left), each evaluated as reach() does: [(index, simulated, quasi_static, error (m),
+grasp_held, simulated_time (s))]. The work unit of `cablelab reach --scheduler`.)doc");
 }
 
 }  // namespace cablelab::python

@@ -8,6 +8,7 @@ CABLELAB_PACKAGES=(
   xvfb xauth
   python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib
   python3-venv python3-pip python3-setuptools python3-wheel python3-mypy python3-distributed
+  python3-jsonschema
 )
 
 cablelab_install_deps() {

@@ -61,9 +61,7 @@ ReachTarget simulateTarget(const HandModel& m, const Vec2& target, const ReachOp
 
 }  // namespace
 
-ReachResult runReach(const ReachOptions& o, const HandModel& m,
-                     const std::function<void(long, long)>& progress) {
-  const auto start = std::chrono::steady_clock::now();
+ReachResult reachGrid(const ReachOptions& o, const HandModel& m) {
   ReachResult r;
   r.model = o.model;
   r.lower = Vec2(-1.6, -2.6);
@@ -76,17 +74,47 @@ ReachResult runReach(const ReachOptions& o, const HandModel& m,
     t.point = Vec2(r.lower.x() + (k % n + 0.5) * cell.x(), r.lower.y() + (k / n + 0.5) * cell.y());
     t.fingertip = fingertipsReach(m, t.point);
   }
+  r.points = n * n;
+  return r;
+}
+
+void evaluateReachTarget(const HandModel& m, const ReachOptions& o, ReachTarget& t) {
+  if (o.model == ReachModel::Simulation) {
+    const ReachTarget s = simulateTarget(m, t.point, o);
+    t.simulated = s.simulated, t.error = s.error, t.graspHeld = s.graspHeld;
+    t.simulatedTime = s.simulatedTime;
+  }
+  t.quasiStatic = quasiStaticReach(m, t.point, o);
+}
+
+void summariseReach(ReachResult& r) {
+  const bool simulate = r.model == ReachModel::Simulation;
+  r.fingertipPoints.clear(), r.quasiStaticPoints.clear(), r.objectPoints.clear();
+  r.simulatedSeconds = 0;
+  for (const ReachTarget& t : r.targets) {
+    if (t.fingertip) r.fingertipPoints.push_back(t.point);
+    if (t.quasiStatic) r.quasiStaticPoints.push_back(t.point);
+    if (simulate ? t.simulated : t.quasiStatic) r.objectPoints.push_back(t.point);
+    r.simulatedSeconds += t.simulatedTime;
+  }
+  const int n = static_cast<int>(std::lround(std::sqrt(static_cast<double>(r.targets.size()))));
+  const Vec2 cell = (r.upper - r.lower) / n;  // the grid's cell, as reachGrid laid it out
+  const double area = cell.x() * cell.y();
+  r.points = static_cast<int>(r.targets.size());
+  r.objectArea = r.objectPoints.size() * area;
+  r.fingertipArea = r.fingertipPoints.size() * area;
+  r.quasiStaticArea = r.quasiStaticPoints.size() * area;
+}
+
+ReachResult runReach(const ReachOptions& o, const HandModel& m,
+                     const std::function<void(long, long)>& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  ReachResult r = reachGrid(o, m);
+  const int n = o.grid;
   std::atomic<int> next{0}, done{0};
-  const bool simulate = o.model == ReachModel::Simulation;
   auto worker = [&] {
     for (int k = next++; k < n * n; k = next++) {
-      ReachTarget& t = r.targets[k];
-      if (simulate) {
-        const ReachTarget s = simulateTarget(m, t.point, o);
-        t.simulated = s.simulated, t.error = s.error, t.graspHeld = s.graspHeld;
-        t.simulatedTime = s.simulatedTime;
-      }
-      t.quasiStatic = quasiStaticReach(m, t.point, o);
+      evaluateReachTarget(m, o, r.targets[k]);
       ++done;
     }
   };
@@ -107,18 +135,7 @@ ReachResult runReach(const ReachOptions& o, const HandModel& m,
   for (std::thread& t : threads) t.join();
   if (stopped) std::rethrow_exception(stopped);
   if (progress) progress(done, static_cast<long>(n) * n);
-
-  for (const ReachTarget& t : r.targets) {
-    if (t.fingertip) r.fingertipPoints.push_back(t.point);
-    if (t.quasiStatic) r.quasiStaticPoints.push_back(t.point);
-    if (simulate ? t.simulated : t.quasiStatic) r.objectPoints.push_back(t.point);
-    r.simulatedSeconds += t.simulatedTime;
-  }
-  const double area = cell.x() * cell.y();
-  r.points = n * n;
-  r.objectArea = r.objectPoints.size() * area;
-  r.fingertipArea = r.fingertipPoints.size() * area;
-  r.quasiStaticArea = r.quasiStaticPoints.size() * area;
+  summariseReach(r);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

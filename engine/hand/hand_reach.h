@@ -63,6 +63,19 @@ struct ReachResult {
 ReachResult runReach(const ReachOptions& options, const HandModel& model = {},
                      const std::function<void(long, long)>& progress = {});
 
+// runReach in three parts, for sweeps that evaluate the targets elsewhere (`cablelab reach
+// --scheduler` on Dask): the same grid, the same per-target runs, the same sets and areas.
+
+/// The N x N targets (points and fingertip verdicts) and the window; nothing evaluated yet.
+ReachResult reachGrid(const ReachOptions& options, const HandModel& model = {});
+
+/// Target t's object-set verdicts: the quasi-static one, and for the simulation model the
+/// full dynamic run's (simulated, error, graspHeld, simulatedTime).
+void evaluateReachTarget(const HandModel& model, const ReachOptions& options, ReachTarget& t);
+
+/// The sets, their areas and the summed simulated time from r's evaluated targets.
+void summariseReach(ReachResult& r);
+
 /// Whether both fingers can hold a rigid pinch centred at g (see above).
 bool fingertipsReach(const HandModel& model, const Vec2& g);
 

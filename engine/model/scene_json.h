@@ -2,7 +2,8 @@
 // (InputError "file: bodies[2].mass: must be positive"); unknown keys are errors too, so a typo
 // never silently falls back to a default. save -> load gives back the same SceneDef.
 //
-// Format (lengths m, masses kg, angles rad, every key but the lists optional):
+// Every field, its units and default: docs/scene-format.md (JSON Schema: docs/scene.schema.json).
+// In brief (lengths m, masses kg, angles rad, every key but the lists optional):
 // { "name": "...", "description": "...", "gravity": [0, -9.81], "dt": 0.0166, "substeps": 1,
 //   "view": {"center": [0, 0], "height": 4},
 //   "bodies": [{"name": "b", "type": "dynamic|static|kinematic", "position": [x, y], "angle": 0,

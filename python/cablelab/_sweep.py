@@ -48,18 +48,20 @@ def _local_client():
     return Client(cluster)
 
 
-def _gather_in_order(client, futures, show_progress):
-    """The (ok, value) pairs in submission order; a count on stderr as they finish."""
+def _count_on_stderr(done, total):
+    print(f"\rsweep: {done}/{total} tasks done", end="\n" if done == total else "",
+          file=sys.stderr, flush=True)
+
+
+def _gather_in_order(client, futures, report):
+    """The (ok, value) pairs in submission order; report(done, total) as they finish."""
     from distributed import as_completed
     index = {f.key: i for i, f in enumerate(futures)}
     out = [None] * len(futures)
     for done, future in enumerate(as_completed(futures), 1):
         out[index[future.key]] = future.result()
-        if show_progress:
-            print(f"\rsweep: {done}/{len(futures)} tasks done", end="", file=sys.stderr,
-                  flush=True)
-    if show_progress:
-        print(file=sys.stderr)
+        if report:
+            report(done, len(futures))
     return out
 
 
@@ -96,7 +98,8 @@ def sweep(task, params, client=None, progress=None):
     single-threaded worker process per core for this call; a distributed.Client runs on its
     workers instead (any scheduler address). task and params are pickled to the workers
     (cloudpickle: a function defined in a script or a lambda travels too). progress: a count
-    on stderr; default when stderr is a terminal. Tasks that raise do not stop the others:
+    on stderr (True), none (False), or a callable progress(done, total) called as tasks
+    finish; default: the count when stderr is a terminal. Tasks that raise do not stop the others:
     SweepError at the end names their parameters and errors and holds the other results.
     """
     params = list(params)
@@ -104,12 +107,13 @@ def sweep(task, params, client=None, progress=None):
         raise TypeError(f"sweep: task: must be callable (got {type(task).__name__})")
     if progress is None:
         progress = sys.stderr.isatty()
+    report = progress if callable(progress) else _count_on_stderr if progress else None
     own = client is None
     if own:
         client = _local_client()
     try:
         futures = [client.submit(_run_one, task, p, pure=False) for p in params]
-        outcomes = _gather_in_order(client, futures, progress)
+        outcomes = _gather_in_order(client, futures, report)
     finally:
         if own:
             cluster = client.cluster

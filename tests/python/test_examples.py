@@ -59,3 +59,21 @@ def test_parallel_reach_equals_serial_runs(tmp_path):
     for (x, y), error in list(zip(r["targets"], r["final_errors"]))[::4]:
         assert cablelab.track(target=(x, y), time=r["seconds_per_target"], pid=True)["final_error"] == error
     assert r["reached"] == sum(e < 0.005 and h for e, h in zip(r["final_errors"], r["grasp_held"]))
+
+
+def test_design_sweep_on_dask_equals_serial_reach_maps_and_tension_widens_the_reach(tmp_path):
+    r = run_example("design_sweep.py", tmp_path)
+    rows = [dict(zip(r["columns"], row)) for row in r["rows"]]
+    designs = [(row["stiffness"], row["preload"]) for row in rows]
+    assert designs == [(30.0, 0.05), (30.0, 1.0), (600.0, 0.05), (600.0, 1.0)]
+    for row in rows:  # each design's map, computed here serially, is the one the cluster gave
+        serial = cablelab.reach(grid=r["grid"], model=r["model"], threads=2,
+                                hand=cablelab.HandModel(stiffness=row["stiffness"],
+                                                        preload=row["preload"]))
+        assert row["object_area"] == serial["object_area"]
+        assert row["object_points"] == serial["object_points"]
+    # A slack membrane (soft and barely preloaded) holds the box over less ground; more
+    # stiffness or more preload widens the reach, up to the same saturated set.
+    area = dict(zip(designs, (row["object_area"] for row in rows)))
+    assert area[30.0, 0.05] < area[30.0, 1.0] and area[30.0, 0.05] < area[600.0, 0.05]
+    assert area[600.0, 1.0] >= max(area[30.0, 1.0], area[600.0, 0.05])

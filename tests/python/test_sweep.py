@@ -59,3 +59,11 @@ def test_a_failing_task_is_reported_with_its_parameters(client):
     assert "params[1] = {'m_left': -1.0, 'm_right': 2.0}" in str(e)
     assert e.results[1] is None
     assert e.results[0] == pulley_run(**grid[0]) and e.results[2] == pulley_run(**grid[2])
+
+
+def test_a_progress_callable_counts_every_finished_task(client):
+    calls = []
+    assert cablelab.sweep(lambda x: -x, range(5), client=client,
+                          progress=lambda done, total: calls.append((done, total))) == \
+        [0, -1, -2, -3, -4]
+    assert calls == [(k, 5) for k in range(1, 6)]
