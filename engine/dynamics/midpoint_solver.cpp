@@ -193,9 +193,10 @@ int MidpointSolver::solve(std::span<const BodyState> bodies, std::span<Cable> ca
                           std::span<Vec3> forces, std::span<Vec3> kicks) {
   share_ = share;
   redundant_ = floorHit_ = false;
+  iterationsRun_ = 0;
   if (!buildRows(bodies, cables, which, gravity, h, forces)) return 0;
   for (int iteration = 0; iteration < kIterations; ++iteration)
-    if (newtonStep(bodies, cables, h, iteration == 0)) {
+    if (++iterationsRun_; newtonStep(bodies, cables, h, iteration == 0)) {
       for (size_t r = 0; r < rows_.size(); ++r) floorHit_ |= segment_[r] >= 0 && P_[r] > 0;
       if (floorHit_) return -1;
       finish(bodies, cables, h, forces, kicks);

@@ -82,6 +82,8 @@ class MidpointSolver {
   bool redundant() const { return redundant_; }
   /// Whether the last solve gave up because a floor row pushed (a body reached its pulley).
   bool floorHit() const { return floorHit_; }
+  /// The Newton iterations the last solve ran, settled or not (the work it cost).
+  int iterationsRun() const { return iterationsRun_; }
 
  private:
   bool buildRows(std::span<const BodyState> bodies, std::span<Cable> cables,
@@ -111,6 +113,7 @@ class MidpointSolver {
   Eigen::MatrixXd activeK_;
   Eigen::LDLT<Eigen::MatrixXd> redundancy_;
   bool redundant_ = false, floorHit_ = false;
+  int iterationsRun_ = 0;
   // The end rates of the pulling rigid rows (settleRates): their rows, J1 and M^-1 J1^T, the
   // LCP's K and b, the impulses mu, M^-1 J1^T mu and the end velocities v1.
   std::vector<int> settled_;

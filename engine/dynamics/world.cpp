@@ -307,6 +307,7 @@ void World::solveForces(double dt, double h) {
           midpoint_->appendEnds(ends_);
           continue;
         }
+        stats_.solverIterations += midpoint_->iterationsRun();
         ++stats_.midpointFallbacks;  // Newton did not settle (nothing changed): the main solve
         stats_.midpointRedundant += midpoint_->redundant();
         stats_.midpointFloorHits += midpoint_->floorHit();
