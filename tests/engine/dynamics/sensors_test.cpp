@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -19,7 +20,7 @@ struct Stepping {
   int substeps;
 };
 // 30 Hz to 480 Hz, 1 to 8 sub-steps.
-const std::vector<Stepping> kSteppings = {{1.0 / 30, 1}, {1.0 / 60, 1}, {1.0 / 60, 4},
+const std::vector<Stepping> kSteppings = {{1.0 / 30, 1}, {1.0 / 60, 1},  {1.0 / 60, 4},
                                           {1.0 / 60, 8}, {1.0 / 120, 2}, {1.0 / 240, 1},
                                           {1.0 / 480, 1}};
 const std::vector<double> kMasses = {0.3, 1.0, 5.0};
@@ -117,8 +118,13 @@ TEST(SensorsTest, PlatformAtRestReportsNoVelocityAndTensionsThatBalanceTheLoad) 
         unbalanced = std::max(unbalanced, force.norm());
         untwisted = std::max(untwisted, std::abs(torque));
       }
-      // Measured: below 1e-12 m/s in most variants, 2-5e-9 at 30 Hz and with 20 kg (open: the
-      // issue asks 1e-9); before the end-rate step, 1 cm/s alternating with the pose frozen.
+      // Measured: below 1e-12 m/s and 1e-11 of the load in 16 of the 21 variants; 2.4-4.9e-9 m/s
+      // and up to 5e-9 of the load at 20 kg (30, 60, 480 Hz, 60 Hz x 8: the midpoint solve's
+      // Newton does not settle on some steps and the main solve takes them) and 4 kg at 30 Hz
+      // (no such fallback; open, as is the issue's 1e-9 m/s). Before the end-rate step: 1 cm/s
+      // with the pose frozen.
+      std::printf("platform %s: %.1e m/s, %.1e rad/s, force off by %.1e of the load\n",
+                  label(mass, s).c_str(), fastest, spin, unbalanced / load);
       EXPECT_LT(fastest, 1e-8);
       EXPECT_LT(spin, 1e-8);
       EXPECT_LT(unbalanced, 1e-6 * load);
