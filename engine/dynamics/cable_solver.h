@@ -5,31 +5,8 @@
 // that the cable lengths at the END of the sub-step are right (a SHAKE-like position-level
 // condition, docs/model.md). Cables and the moving bodies they connect (through cables or
 // joints) form islands, solved one after the other, so the cost grows with the islands' sizes,
-// not with the square of the world's. Per island, in named stages:
-//   1. buildRows            one row per cable span that pulls on a moving body; the dofs
-//                           it moves (wheels that grip a cable split it in spans); a floor
-//                           row per short segment that may close up (floors.h). The islands,
-//                           rows and dofs are kept from the last sub-step while the cables pull
-//                           on the same moving bodies (layoutKey); the floors are found anew
-//   2. predictVelocities    v* (gravity and loads, no cables) and J^T at the start of the step
-//   3. inverseMass          W = M'^-1 J^T, M' with the taut cables' geometric stiffness
-//   4. projectOntoJoints    W and v* restricted to what Box2D's joints allow: in the joints'
-//                           coordinates for trees (joint_tree.h), else the Schur complement
-//   5. lengthTargets        rigid: the end-of-step length; elastic: the implicit spring-damper
-//   6. newtonOnLengths      Newton on the end-of-step lengths, one LCP per iteration; one
-//                           LCP on the start-of-step linearisation where its remainder bound
-//                           (lengthRemainderBound) shows it is exact to 1e-12 m
-//   6a. balanceMidpointWork under the midpoint rule (stage 5a): each row's work equal to its
-//                           cable's energy change
-//   6b. mergeSlidingSpans   capstans past e^(mu theta): merge their spans, run 2-6 again
-//   6c. lockCrossingLimits  a limited joint the step takes past its bound: lock it at the
-//                           rate that reaches the bound (joint_limits.h), run 2-6 again
-//   6d. (newtonOnLengths)   rigid cables a kinematic body hauls out against bodies that cannot
-//                           give way: solve again with them paying out (Cable::payOut)
-//   6e. pullAlongMidpointPose  (right after 6) rows under the midpoint rule (5a): pull
-//                           along J at the midpoint pose, run 2-6 once more
-//   7. applyForces          the force that gives the solved end-of-step velocity, and the
-//                           jointed bodies' end poses (CableSolveInput::placements)
+// not with the square of the world's. Per island, in named stages: cable_solver.cpp lists them, one
+// file (cable_solver_*.cpp) per stage or family of stages.
 // Private to engine/dynamics.
 #pragma once
 
@@ -78,7 +55,7 @@ struct CableSolveInput {
   std::span<const Vec3> contacts;
 };
 
-struct CableSolverWorkspace;  // the stages' buffers (cable_solver.cpp)
+struct CableSolverWorkspace;  // the stages' buffers (cable_solver_stages.h)
 
 /// Off: Newton always runs, never the start-of-step linearisation alone (tests compare the two).
 void setLinearShortcut(bool on);

@@ -193,9 +193,10 @@ int MidpointSolver::solve(std::span<const BodyState> bodies, std::span<Cable> ca
                           std::span<Vec3> forces, std::span<Vec3> kicks) {
   share_ = share;
   redundant_ = floorHit_ = false;
+  iterationsRun_ = 0;
   if (!buildRows(bodies, cables, which, gravity, h, forces)) return 0;
   for (int iteration = 0; iteration < kIterations; ++iteration)
-    if (newtonStep(bodies, cables, h, iteration == 0)) {
+    if (++iterationsRun_; newtonStep(bodies, cables, h, iteration == 0)) {
       for (size_t r = 0; r < rows_.size(); ++r) floorHit_ |= segment_[r] >= 0 && P_[r] > 0;
       if (floorHit_) return -1;
       finish(bodies, cables, h, forces, kicks);
@@ -393,11 +394,72 @@ bool MidpointSolver::redundantActiveRows() {
   return rankDeficient(redundancy_);
 }
 
-// Tensions, the force that gives Box2D the velocity v_b, and the second half after its step.
+// The midpoint rule holds a rigid cable's length, q1 = q0 + h (v0 + v1) / 2, which fixes the
+// sum v0 + v1 along the cable and leaves their difference free: a rate J v0 at the start comes
+// back as -J v1 at the end, step after step, and the tension alternates with it (a bob whose rope
+// wrapped a peg at 240 Hz: +-20% about the right tension for as long as it swung; a platform at
+// rest on rigid cables: a velocity of 1-2 mm/s with its pose frozen). A pulling rigid row's end
+// rate J1 v1 is therefore held to no more than the mean of its start and end rates (J0 v0 + J1 v1)
+// / 2 by an impulse mu >= 0 at the end of the step (RATTLE's velocity step, docs/cables.md,
+// "Energy"). On the smooth motion the two rates agree to O(h^3) and mu is nil; the alternation
+// dies within two steps. Into v1_ (the end velocities) and mu_.
+void MidpointSolver::settleRates(std::span<const BodyState> bodies, std::span<const Cable> cables) {
+  const int n = static_cast<int>(invM_.size());
+  v1_.resize(n);
+  for (size_t k = 0; k < bodyOfDof_.size(); ++k) {
+    const BodyState& s = bodies[bodyOfDof_[k]];
+    const Vec3 v0(s.velocity.x(), s.velocity.y(), s.angularVelocity);
+    v1_.segment<3>(3 * k) = 2 * vb_.segment<3>(3 * k) - v0;
+  }
+  settled_.clear();
+  for (size_t r = 0; r < rows_.size(); ++r)
+    if (segment_[r] < 0 && P_[r] > 0 && !cables[rows_[r]].elastic())
+      settled_.push_back(static_cast<int>(r));
+  mu_.setZero(static_cast<Eigen::Index>(rows_.size()));
+  endShift_.setZero(n);
+  const int s = static_cast<int>(settled_.size());
+  if (s == 0) return;
+  endW_.setZero(n, s);
+  endJ_.resize(s, n);
+  rateB_.resize(s);
+  for (int i = 0; i < s; ++i) {
+    const Cable& c = cables[rows_[settled_[i]]];
+    double start = 0, end = 0;
+    for (const auto& e : c.kinematics().jacobian) {  // J0 v0
+      const BodyState& b = bodies[e.body];
+      start += e.d.dot(Vec3(b.velocity.x(), b.velocity.y(), b.angularVelocity));
+    }
+    path_.assign(c.path().begin(), c.path().end());
+    cableLengthJacobian(path_, predicted_, kin_);
+    for (const auto& e : kin_.jacobian)
+      if (const int d = dofOfBody_[e.body]; d >= 0) {
+        endW_.block<3, 1>(d, i) = invM_.segment<3>(d).cwiseProduct(e.d);
+        end += e.d.dot(v1_.segment<3>(d));
+      } else {
+        const BodyState& b = bodies[e.body];
+        end += e.d.dot(Vec3(b.velocity.x(), b.velocity.y(), b.angularVelocity));
+      }
+    rateB_[i] = 0.5 * (end - start);  // w = K mu - (J1 v1 - (J0 v0 + J1 v1) / 2) >= 0
+    endJ_.row(i).setZero();
+    for (const auto& e : kin_.jacobian)
+      if (const int d = dofOfBody_[e.body]; d >= 0) endJ_.block<1, 3>(i, d) += e.d.transpose();
+  }
+  if (!(rateB_.maxCoeff() > 0)) return;
+  rateK_.noalias() = endJ_ * endW_;
+  solveLcp(rateK_, rateB_, lcp_, solution_, true);
+  endShift_.noalias() = endW_ * solution_.x;
+  v1_ -= endShift_;
+  for (int i = 0; i < s; ++i) mu_[settled_[i]] = solution_.x[i];
+}
+
+// Tensions (each row's impulse over the step, the end one included, over h), the force that
+// gives Box2D the velocity v_b, and the rest after its step: the end velocities themselves,
+// which World sets (appendEnds), and as kicks for a body it cannot set.
 void MidpointSolver::finish(std::span<const BodyState> bodies, std::span<Cable> cables, double h,
                             std::span<Vec3> forces, std::span<Vec3> kicks) {
+  settleRates(bodies, cables);
   for (size_t r = 0; r < rows_.size(); ++r)
-    if (segment_[r] < 0) cables[rows_[r]].setTension(P_[r] / h);
+    if (segment_[r] < 0) cables[rows_[r]].setTension((P_[r] + mu_[r]) / h);
   for (size_t k = 0; k < bodyOfDof_.size(); ++k) {
     const int body = bodyOfDof_[k];
     const BodyState& s = bodies[body];
@@ -406,9 +468,14 @@ void MidpointSolver::finish(std::span<const BodyState> bodies, std::span<Cable> 
       const int d = 3 * static_cast<int>(k) + c;
       if (invM_[d] == 0) continue;
       forces[body][c] += (vb_[d] - vFree_[d]) / (h * invM_[d]);
-      kicks[body][c] = vb_[d] - v0[c];
+      kicks[body][c] = vb_[d] - v0[c] - endShift_[d];
     }
   }
+}
+
+void MidpointSolver::appendEnds(std::vector<std::pair<int, Vec3>>& ends) const {
+  for (size_t k = 0; k < bodyOfDof_.size(); ++k)
+    ends.emplace_back(bodyOfDof_[k], v1_.segment<3>(3 * k));
 }
 
 }  // namespace cablelab

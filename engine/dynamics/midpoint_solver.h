@@ -28,6 +28,7 @@
 #pragma once
 
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -66,6 +67,11 @@ class MidpointSolver {
             const Vec2& gravity, double h, double share, std::span<Vec3> forces,
             std::span<Vec3> kicks);
 
+  /// The end-of-step velocity (vx, vy, omega) of each body the last solve moved, appended to
+  /// `ends`: World sets them after Box2D's step, whose float velocity update would leave a body at
+  /// rest moving at 1e-8 m/s.
+  void appendEnds(std::vector<std::pair<int, Vec3>>& ends) const;
+
   /// The fastest transverse mode of the cables `which` (rad/s), from their tensions and segment
   /// curvatures over the lightest body they move: sqrt(T sum(1 / |d|) / m).
   static double transverseMode(std::span<const BodyState> bodies, std::span<const Cable> cables,
@@ -76,6 +82,8 @@ class MidpointSolver {
   bool redundant() const { return redundant_; }
   /// Whether the last solve gave up because a floor row pushed (a body reached its pulley).
   bool floorHit() const { return floorHit_; }
+  /// The Newton iterations the last solve ran, settled or not (the work it cost).
+  int iterationsRun() const { return iterationsRun_; }
 
  private:
   bool buildRows(std::span<const BodyState> bodies, std::span<Cable> cables,
@@ -85,6 +93,7 @@ class MidpointSolver {
   void buildIterationMatrix(std::span<const Cable> cables, double h);
   bool newtonStep(std::span<const BodyState> bodies, std::span<const Cable> cables, double h,
                   bool first);
+  void settleRates(std::span<const BodyState> bodies, std::span<const Cable> cables);
   void finish(std::span<const BodyState> bodies, std::span<Cable> cables, double h,
               std::span<Vec3> forces, std::span<Vec3> kicks);
   bool redundantActiveRows();
@@ -104,6 +113,12 @@ class MidpointSolver {
   Eigen::MatrixXd activeK_;
   Eigen::LDLT<Eigen::MatrixXd> redundancy_;
   bool redundant_ = false, floorHit_ = false;
+  int iterationsRun_ = 0;
+  // The end rates of the pulling rigid rows (settleRates): their rows, J1 and M^-1 J1^T, the
+  // LCP's K and b, the impulses mu, M^-1 J1^T mu and the end velocities v1.
+  std::vector<int> settled_;
+  Eigen::MatrixXd endJ_, endW_, rateK_;
+  Eigen::VectorXd rateB_, mu_, endShift_, v1_;
   std::vector<BodyState> predicted_, midpoint_;  // q1 and the midpoint pose (q0 off the dofs)
   std::vector<WrapPoint> path_;
   std::vector<BodyJacobian> gradient_;

@@ -279,6 +279,7 @@ void World::solveForces(double dt, double h) {
   forces_ = pendingForces_;
   applyServos(dt);
   kicks_.assign(bodies_.size(), Vec3::Zero());
+  ends_.clear();
   placements_.assign(bodies_.size(), Placement{});
   excluded_.assign(bodies_.size(), 0);
   for (const auto& [a, b] : jointBodies_)
@@ -303,8 +304,10 @@ void World::solveForces(double dt, double h) {
           stats_.solverIterations += iterations;
           ++stats_.midpointSolves;
           midpointCables_.insert(midpointCables_.end(), island.begin(), island.end());
+          midpoint_->appendEnds(ends_);
           continue;
         }
+        stats_.solverIterations += midpoint_->iterationsRun();
         ++stats_.midpointFallbacks;  // Newton did not settle (nothing changed): the main solve
         stats_.midpointRedundant += midpoint_->redundant();
         stats_.midpointFloorHits += midpoint_->floorHit();
@@ -454,6 +457,11 @@ double World::advance(double left, double h, bool locate) {
   b2_->step(dt);
   expectContacts(dt);
   b2_->addVelocities(kicks_);
+  // The midpoint solve's end velocities, set rather than added to Box2D's float update (which
+  // leaves a body at rest moving at 1e-8 m/s); a damped body keeps Box2D's damping and the kick.
+  for (const auto& [b, v] : ends_)
+    if (scene_.bodies[b].linearDamping == 0 && scene_.bodies[b].angularDamping == 0)
+      b2_->setVelocity(b, v.head<2>(), v.z());
   for (size_t b = 0; b < placements_.size(); ++b)
     if (placements_[b].place)
       b2_->placeBody(static_cast<int>(b), placements_[b].position, placements_[b].angle);
@@ -526,6 +534,31 @@ void World::averageTensions(double h) {
       cables_[c].setSpanTension(static_cast<int>(k), impulses_[c][k] / h);
 }
 
+// The tensions a step reports are its impulses over its length (N), each span's (over the part
+// since a wheel last split or joined its spans): what acted
+// over the step, not the last sub-step's solve, which with sub-steps may be a quarter of it and
+// off by a tenth. The solves read back what they set (their warm start and geometric stiffness),
+// so the last sub-step's tensions are kept and given back at the next step (end false).
+void World::reportStepTensions(bool end) {
+  if (!end) {
+    for (size_t c = 0; c < solved_.size() && c < cables_.size(); ++c)
+      if (static_cast<int>(solved_[c].size()) == cables_[c].spanCount())
+        for (size_t k = 0; k < solved_[c].size(); ++k)
+          cables_[c].setSpanTension(static_cast<int>(k), solved_[c][k]);
+    stepImpulses_.assign(cables_.size(), {});
+    stepTimes_.assign(cables_.size(), 0.0);
+    return;
+  }
+  solved_.resize(cables_.size());
+  for (size_t c = 0; c < cables_.size(); ++c) {
+    const int spans = cables_[c].spanCount();
+    solved_[c].resize(spans);
+    for (int k = 0; k < spans; ++k) solved_[c][k] = cables_[c].spanTension(k);
+    for (int k = 0; k < spans; ++k)
+      cables_[c].setSpanTension(k, stepImpulses_[c][k] / stepTimes_[c]);
+  }
+}
+
 void World::step(double dt, int substeps) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
@@ -538,6 +571,7 @@ void World::step(double dt, int substeps) {
   const double h = dt / std::max(1, substeps);
   if (pendingForces_.size() != bodies_.size()) pendingForces_.assign(bodies_.size(), Vec3::Zero());
   std::fill(servoImpulses_.begin(), servoImpulses_.end(), 0.0);
+  reportStepTensions(false);
   for (int s = 0; s < std::max(1, substeps); ++s) {
     // Wrap events cut the sub-step; a bounded number per sub-step bounds the cost.
     double left = h, first = 0;
@@ -552,7 +586,21 @@ void World::step(double dt, int substeps) {
         addImpulses(taken, false);
     }
     if (steps > 1) averageTensions(h);
+    for (size_t c = 0; substeps > 1 && c < cables_.size(); ++c) {
+      std::vector<double>& sum = stepImpulses_[c];
+      const int spans = cables_[c].spanCount();
+      if (s == 0 || static_cast<int>(sum.size()) != spans) {  // from here: spans split or joined
+        sum.assign(spans, 0.0);
+        stepTimes_[c] = 0;
+      }
+      for (int k = 0; k < spans; ++k) sum[k] += cables_[c].spanTension(k) * h;
+      stepTimes_[c] += h;
+    }
   }
+  if (substeps > 1)
+    reportStepTensions(true);
+  else
+    solved_.clear();  // one sub-step: its solve's tensions are the step's
   pendingForces_.assign(bodies_.size(), Vec3::Zero());
   // Lengths reported (and energy) belong to the end-of-step state; the wrap points are
   // re-selected at the start of the next step.

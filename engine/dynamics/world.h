@@ -202,6 +202,7 @@ class World {
   void flyFreeBodies(double dt);
   void addImpulses(double dt, bool first);
   void averageTensions(double h);
+  void reportStepTensions(bool end);
 
   const SceneDef scene_;                      ///< the model: never edited after construction
   std::unique_ptr<Box2DBridge> b2_;           ///< bodies, joints, contacts
@@ -218,6 +219,7 @@ class World {
   std::vector<Vec3> contactLast_;  ///< per body, Box2D's contact force over the last step
   std::vector<Vec3> contactExpected_;  ///< ... the one the cable solve expects (expectContacts)
   std::vector<Vec3> kicks_;            ///< velocity added after Box2D's step (midpoint rules)
+  std::vector<std::pair<int, Vec3>> ends_;  ///< velocities set after it (the midpoint solve's)
   std::vector<char> onCable_;          ///< scratch: bodies on some cable's path (flyFreeBodies)
   std::vector<Placement>
       placements_;             ///< poses given after Box2D's step (the main solve's midpoint rule)
@@ -234,6 +236,9 @@ class World {
   std::vector<Vec3> pendingForces_;  ///< applyForce() loads for the next step
   std::vector<Cable> cables_;
   std::vector<std::vector<double>> impulses_;  ///< per cable and span, over this sub-step (N s)
+  std::vector<std::vector<double>> stepImpulses_;  ///< ... over this step (N s)
+  std::vector<double> stepTimes_;                  ///< ... and the time they are over (s)
+  std::vector<std::vector<double>> solved_;  ///< ... the last sub-step's tensions (N), the solves'
   std::vector<std::string> warnings_;
   std::vector<double> paidOutSeen_;  ///< per cable: Cable::paidOut() at the last step's end
   std::vector<double> payStart_;     ///< ... when it began paying out (< 0: it is not)

@@ -2,11 +2,13 @@
 // length error, and the angle precision that needs (Box2D integrates angles in float).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
 
+#include "engine/dynamics/length_targets.h"
 #include "engine/dynamics/world.h"
 #include "tests/support/busy_scene.h"
 #include "tests/support/engine_test_support.h"
@@ -104,8 +106,12 @@ TEST(LongRun, BusySceneForTenMinutesHasNoGrowthInLengthError) {
     if (scene.cables[c].stiffness > 0) continue;
     ++rigid;
     const double first = r.overLength.front()[c], final = r.overLength.back()[c];
-    // The 1e-5 m below which the solve leaves the error alone (float rounding) is the tolerance.
-    EXPECT_LE(final, first + 1e-5) << scene.cables[c].name;
+    // The solve leaves an error below kLengthSlop alone (float rounding) and takes a fifth of any
+    // excess off each step, so an error that does not grow stays under the larger of the slop
+    // and its first minute's, plus a step's overshoot. (Against the first minute alone, the bound
+    // rested on how close the chaotic hexagon came to the slop in its first minute: 3.9e-6 m on
+    // one trajectory, 5e-8 m on one that differs from it by rounding, docs/cables.md "Long runs".)
+    EXPECT_LE(final, std::max(first, kLengthSlop) + 1e-6) << scene.cables[c].name;
     EXPECT_LT(final, 1e-4) << scene.cables[c].name;
     std::printf("%s: over-length %.2g m in the first minute, %.2g m in the last\n",
                 scene.cables[c].name.c_str(), first, final);

@@ -141,7 +141,12 @@ TEST(WrapSkip, FastCatchesAreTheSame) {
     SceneDef s = thrownSquare(speed);
     s.dt = 1.0 / 60.0;
     s.substeps = 1;
-    const Counts n = compareSkipping(s, 1.0);
+    // 2 s: the 50 m/s puck keeps no wrap set in its first second since the end-rate step of the
+    // midpoint solve (docs/cables.md, "The end rates") took the rate flip out of its rope, which
+    // changes its flight (measured: 0 kept updates in 1 s, 8 in 2 s; 7 and 10 at 5 and 15 m/s).
+    const Counts n = compareSkipping(s, 2.0);
+    std::printf("thrown at %g m/s: %ld events, %ld of %ld updates kept\n", speed, n.events,
+                n.selectionSkips, n.updates);
     World w(s, "thrown");
     bool caught = false;
     for (int k = 0; k < 30; ++k) {
