@@ -72,7 +72,7 @@ struct StepStats {
   double stepMicros = 0;           ///< wall time of the whole step (us)
   double cableMicros = 0;          ///< of that, cable geometry + tension solve (us)
   int wrapPoints = 0;              ///< pulley wrap points in use, all cables
-  int solverIterations = 0;        ///< LCP active-set iterations, summed over sub-steps
+  int solverIterations = 0;        ///< LCP active-set iterations (with those of solves given up), summed over sub-steps
   double residual = 0;             ///< largest complementarity residual of the tension solve
   int linearisationFallbacks = 0;  ///< cable rows solved on the start-of-step Jacobian (guard)
   int linearSolves = 0;  ///< main-solve islands whose start-of-step linearisation was exact enough
