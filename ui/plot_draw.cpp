@@ -114,6 +114,10 @@ Plot& Plot::addArrows(std::string label, std::vector<double> x, std::vector<doub
   return *this;
 }
 
+Colour plotColour(int index) {
+  return kPalette[index % 6];
+}
+
 void checkPlot(const Plot& plot, int width, int height) {
   for (const auto& s : plot.series) checkLengths(s.label, s.x.size(), {s.y.size()});
   for (const auto& a : plot.arrows)

@@ -11,6 +11,9 @@
 
 namespace cablelab::ui {
 
+/// The colour of a plot's `index`-th series without a colour of its own.
+Colour plotColour(int index);
+
 /// Throws std::runtime_error if the series' lengths differ or width x height is too small.
 void checkPlot(const Plot& plot, int width, int height);
 

@@ -58,6 +58,12 @@ void picker(Sandbox& sandbox, const World& world) {
 void chartView(Sandbox& sandbox, const World& world, size_t index) {
   PlotBoard& board = *sandbox.plots;
   const Chart& chart = board.charts[index];
+  // In the narrow panel: the title as wrapped text above, the legend as the coloured curve list
+  // below (both as the PNG has them, which has the room).
+  Plot plot = board.plot(chart, world, world.time());
+  ImGui::TextWrapped("%s", plot.title.c_str());
+  plot.title.clear();
+  for (PlotSeries& s : plot.series) s.label.clear();
   const float width = ImGui::GetContentRegionAvail().x;
   const float height = std::round(0.62f * width);
   const ImVec2 origin = ImGui::GetCursorScreenPos();
@@ -65,7 +71,7 @@ void chartView(Sandbox& sandbox, const World& world, size_t index) {
   draw->AddRectFilled(origin, ImVec2(origin.x + width, origin.y + height),
                       IM_COL32(255, 255, 255, 255));
   try {
-    drawPlot(draw, board.plot(chart, world, world.time()), static_cast<int>(width),
+    drawPlot(draw, plot, static_cast<int>(width),
              static_cast<int>(height), ImGui::GetFontSize() / 13.0f, origin);
   } catch (const std::exception&) {
     // Too narrow to draw: the panel is being resized.
@@ -86,7 +92,10 @@ void chartView(Sandbox& sandbox, const World& world, size_t index) {
     const bool remove = ImGui::SmallButton("x");
     tooltip("Remove this curve.");
     ImGui::SameLine();
-    ImGui::TextUnformatted(quantityName(world, chart.curves[k]).c_str());
+    const Colour c = plotColour(static_cast<int>(k));
+    ImGui::TextColored(ImVec4(c[0], c[1], c[2], c[3]), "%s (%s)",
+                       quantityName(world, chart.curves[k]).c_str(),
+                       quantityUnit(chart.curves[k].kind));
     ImGui::PopID();
     if (remove) {
       board.removeCurve(index, k);
