@@ -28,10 +28,14 @@ void triangle(const ImDrawVert& a, const ImDrawVert& b, const ImDrawVert& c, con
               const Image& texture, Image& image) {
   const float area = edge(a.pos, b.pos, c.pos.x, c.pos.y);
   if (std::abs(area) < 1e-12f) return;
-  const int x0 = std::max(clip.x0, static_cast<int>(std::floor(std::min({a.pos.x, b.pos.x, c.pos.x}))));
-  const int x1 = std::min(clip.x1, static_cast<int>(std::ceil(std::max({a.pos.x, b.pos.x, c.pos.x}))));
-  const int y0 = std::max(clip.y0, static_cast<int>(std::floor(std::min({a.pos.y, b.pos.y, c.pos.y}))));
-  const int y1 = std::min(clip.y1, static_cast<int>(std::ceil(std::max({a.pos.y, b.pos.y, c.pos.y}))));
+  const int x0 =
+      std::max(clip.x0, static_cast<int>(std::floor(std::min({a.pos.x, b.pos.x, c.pos.x}))));
+  const int x1 =
+      std::min(clip.x1, static_cast<int>(std::ceil(std::max({a.pos.x, b.pos.x, c.pos.x}))));
+  const int y0 =
+      std::max(clip.y0, static_cast<int>(std::floor(std::min({a.pos.y, b.pos.y, c.pos.y}))));
+  const int y1 =
+      std::min(clip.y1, static_cast<int>(std::ceil(std::max({a.pos.y, b.pos.y, c.pos.y}))));
   const auto ca = unpack(a.col), cb = unpack(b.col), cc = unpack(c.col);
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x) {

@@ -44,8 +44,7 @@ void PlotBoard::clear(bool andCharts) {
     for (auto& v : c.values) v.clear();
 }
 
-void PlotBoard::record(const World& world, const std::optional<Vec2>& target,
-                       int controlledBody) {
+void PlotBoard::record(const World& world, const std::optional<Vec2>& target, int controlledBody) {
   std::vector<std::vector<double>> values;
   for (const Chart& c : charts) {
     values.emplace_back();
@@ -148,9 +147,9 @@ Plot PlotBoard::plot(const Chart& chart, const World& world, double now) const {
     for (size_t i = 0; i < times_.size(); ++i)
       if (times_[i] >= range[0] - 1e-9 && times_[i] <= now + 1e-9)
         x.push_back(times_[i]), y.push_back(chart.values[k][i]);
-    p.addLine(quantityName(world, chart.curves[k]) + " (" + quantityUnit(chart.curves[k].kind) +
-                  ")",
-              std::move(x), std::move(y));
+    p.addLine(
+        quantityName(world, chart.curves[k]) + " (" + quantityUnit(chart.curves[k].kind) + ")",
+        std::move(x), std::move(y));
     // Earlier curves drawn wider: one that coincides with a later one still shows at its edges.
     const double later = static_cast<double>(chart.curves.size() - 1 - k);
     p.series.back().lineWidth = static_cast<float>(2 + 1.5 * std::min(later, 3.0));

@@ -183,8 +183,7 @@ void drawPlot(ImDrawList* draw, const Plot& plot, int width, int height, float s
                   static_cast<float>(bottom - (y - ry.lo) / ry.span() * (bottom - top)));
   };
 
-    {
-
+  {
     // Grid, ticks and tick labels.
     const double xStep = niceCeil(rx.span() / 8), yStep = niceCeil(ry.span() / 8);
     for (double t = std::ceil(rx.lo / xStep) * xStep; t <= rx.hi + 1e-9 * xStep; t += xStep) {
@@ -286,13 +285,12 @@ void drawPlot(ImDrawList* draw, const Plot& plot, int width, int height, float s
     // Title, axis labels, legend.
     if (!plot.title.empty())
       draw->AddText(ImVec2(0.5f * (left + right) - 3.5f * u * plot.title.size(), origin.y + 16 * u),
-                    kInk,
-                    plot.title.c_str());
+                    kInk, plot.title.c_str());
     if (!plot.xLabel.empty())
       draw->AddText(ImVec2(0.5f * (left + right) - 3.5f * u * plot.xLabel.size(), bottom + 28 * u),
-                    kInk,
-                    plot.xLabel.c_str());
-    if (!plot.yLabel.empty()) draw->AddText(ImVec2(origin.x + 8 * u, top - 18 * u), kInk, plot.yLabel.c_str());
+                    kInk, plot.xLabel.c_str());
+    if (!plot.yLabel.empty())
+      draw->AddText(ImVec2(origin.x + 8 * u, top - 18 * u), kInk, plot.yLabel.c_str());
     if (!legend.empty()) {
       size_t longestLabel = 0;
       for (const auto& l : legend) longestLabel = std::max(longestLabel, l.first.size());
@@ -327,7 +325,8 @@ void drawPlot(ImDrawList* draw, const Plot& plot, int width, int height, float s
         const auto [c, kind] = legend[i].second;
         if (kind == 0 || kind == 2)
           draw->AddLine(ImVec2(p0.x + 6 * u, y), ImVec2(p0.x + 28 * u, y), c, 2.0f * u);
-        if (kind == 1 || kind == 2) draw->AddCircleFilled(ImVec2(p0.x + 17 * u, y), 3.0f * u, c, 12);
+        if (kind == 1 || kind == 2)
+          draw->AddCircleFilled(ImVec2(p0.x + 17 * u, y), 3.0f * u, c, 12);
         if (kind == 4)
           for (float x = 6; x < 28; x += 8)
             draw->AddLine(ImVec2(p0.x + x * u, y), ImVec2(p0.x + std::min(x + 5, 28.0f) * u, y), c,
@@ -339,7 +338,7 @@ void drawPlot(ImDrawList* draw, const Plot& plot, int width, int height, float s
         draw->AddText(ImVec2(p0.x + 34 * u, y - 7 * u), kInk, legend[i].first.c_str());
       }
     }
-    }
+  }
 }
 
 }  // namespace cablelab::ui

@@ -43,8 +43,9 @@ void picker(Sandbox& sandbox, const World& world) {
     }
     ImGui::EndCombo();
   }
-  tooltip("What to plot against time: a body's position, velocity or angle, a cable's length "
-          "or tension, the energy, or the controller's error.");
+  tooltip(
+      "What to plot against time: a body's position, velocity or angle, a cable's length "
+      "or tension, the energy, or the controller's error.");
   if (ImGui::SmallButton("New chart")) board.addCurve(board.charts.size(), options[chosen]);
   tooltip("Plot it in a chart of its own.");
   if (!board.charts.empty()) {
@@ -71,8 +72,8 @@ void chartView(Sandbox& sandbox, const World& world, size_t index) {
   draw->AddRectFilled(origin, ImVec2(origin.x + width, origin.y + height),
                       IM_COL32(255, 255, 255, 255));
   try {
-    drawPlot(draw, plot, static_cast<int>(width),
-             static_cast<int>(height), ImGui::GetFontSize() / 13.0f, origin);
+    drawPlot(draw, plot, static_cast<int>(width), static_cast<int>(height),
+             ImGui::GetFontSize() / 13.0f, origin);
   } catch (const std::exception&) {
     // Too narrow to draw: the panel is being resized.
   }
@@ -85,8 +86,9 @@ void chartView(Sandbox& sandbox, const World& world, size_t index) {
       sandbox.error = e.what();
     }
   }
-  tooltip("Save this chart for a slide: a 1920 x 1080 PNG and its numbers as CSV, in the "
-          "working directory.");
+  tooltip(
+      "Save this chart for a slide: a 1920 x 1080 PNG and its numbers as CSV, in the "
+      "working directory.");
   for (size_t k = 0; k < chart.curves.size(); ++k) {
     ImGui::PushID(static_cast<int>(k));
     const bool remove = ImGui::SmallButton("x");
@@ -138,8 +140,9 @@ void plotsPanel(Sandbox& sandbox) {
   if (ImGui::SliderFloat("shown", &seconds, 1, static_cast<float>(PlotBoard::kKeptSeconds),
                          "%.0f s"))
     board.windowSeconds = seconds;
-  tooltip("How many seconds the charts show, up to the moment on screen (the last 30 s are "
-          "kept). The vertical range fits what is shown.");
+  tooltip(
+      "How many seconds the charts show, up to the moment on screen (the last 30 s are "
+      "kept). The vertical range fits what is shown.");
   for (size_t i = 0; i < board.charts.size(); ++i) chartView(sandbox, *world, i);
 }
 

@@ -29,8 +29,8 @@ const char* quantityUnit(Quantity::Kind kind) {
 
 std::string quantityName(const World& world, const Quantity& q) {
   using K = Quantity::Kind;
-  const bool body = q.kind == K::X || q.kind == K::Y || q.kind == K::Vx || q.kind == K::Vy ||
-                    q.kind == K::Angle;
+  const bool body =
+      q.kind == K::X || q.kind == K::Y || q.kind == K::Vx || q.kind == K::Vy || q.kind == K::Angle;
   const bool cable = q.kind == K::Length || q.kind == K::Tension || q.kind == K::SpanTension;
   std::string owner;
   if (body && q.index >= 0 && q.index < world.bodyCount())
@@ -39,16 +39,25 @@ std::string quantityName(const World& world, const Quantity& q) {
     owner = "cable '" + world.cable(q.index).name() + "'" +
             (q.kind == K::SpanTension ? ", span " + std::to_string(q.span + 1) : "") + ": ";
   switch (q.kind) {
-    case K::X: return owner + "x";
-    case K::Y: return owner + "y";
-    case K::Vx: return owner + "x velocity";
-    case K::Vy: return owner + "y velocity";
-    case K::Angle: return owner + "angle";
-    case K::Length: return owner + "length";
+    case K::X:
+      return owner + "x";
+    case K::Y:
+      return owner + "y";
+    case K::Vx:
+      return owner + "x velocity";
+    case K::Vy:
+      return owner + "y velocity";
+    case K::Angle:
+      return owner + "angle";
+    case K::Length:
+      return owner + "length";
     case K::Tension:
-    case K::SpanTension: return owner + "tension";
-    case K::Energy: return "energy";
-    case K::ControllerError: return "controller error";
+    case K::SpanTension:
+      return owner + "tension";
+    case K::Energy:
+      return "energy";
+    case K::ControllerError:
+      return "controller error";
   }
   return owner;
 }

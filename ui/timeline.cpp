@@ -103,8 +103,8 @@ bool Timeline::rewindTo(Sandbox& sandbox, int i) {
   try {
     const std::vector<WorldInput> wanted = inputsThroughStep(run_, frames_[i].step);
     // Forward within the run, nothing edited since: play the world on (cheaper than a rebuild).
-    const auto rest = i > current_ ? inputsBetween(world->history().inputs(), wanted)
-                                   : std::nullopt;
+    const auto rest =
+        i > current_ ? inputsBetween(world->history().inputs(), wanted) : std::nullopt;
     std::unique_ptr<World> rebuilt;
     if (rest) {
       replayInputs(*sandbox.world(), *rest, sandbox.sceneName);
@@ -129,8 +129,8 @@ bool Timeline::stepBack(Sandbox& sandbox) {
 }
 
 size_t Timeline::bytes() const {
-  size_t n = sizeof(*this) + frames_.size() * sizeof(TimelineFrame) +
-             run_.capacity() * sizeof(WorldInput);
+  size_t n =
+      sizeof(*this) + frames_.size() * sizeof(TimelineFrame) + run_.capacity() * sizeof(WorldInput);
   for (const TimelineFrame& f : frames_)
     if (f.hand) {
       n += sizeof(HandFrame);

@@ -16,8 +16,8 @@
 #include <optional>
 #include <vector>
 
-#include "engine/dynamics/world_history.h"
 #include "engine/core/math.h"
+#include "engine/dynamics/world_history.h"
 
 namespace cablelab::ui {
 
@@ -26,9 +26,9 @@ struct HandFrame;  // timeline.cpp: the hand controller's state after a step
 
 /// One kept moment: the state right after a step.
 struct TimelineFrame {
-  long step = 0;    ///< World::stepCount()
-  double time = 0;  ///< s
-  std::optional<Vec2> target;              ///< the controller target (m)
+  long step = 0;                          ///< World::stepCount()
+  double time = 0;                        ///< s
+  std::optional<Vec2> target;             ///< the controller target (m)
   std::shared_ptr<const HandFrame> hand;  ///< null: no hand controller
 };
 

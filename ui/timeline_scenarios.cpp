@@ -72,8 +72,8 @@ bool TimelineScenario::rewind(Sandbox& sandbox, int frame, std::string& report) 
   if (frame >= kRecorded && frame < kRecorded + kBack) pushKeyPress(windowId_, SDLK_b);
   if (frame == kRecorded + kBack) {
     stepAfterBack_ = step;
-    equalAfterBack_ = step >= 0 && step < static_cast<long>(recorded_.size()) &&
-                      poses(world) == recorded_[step];
+    equalAfterBack_ =
+        step >= 0 && step < static_cast<long>(recorded_.size()) && poses(world) == recorded_[step];
     pushKeyPress(windowId_, SDLK_SPACE);
   }
   if (frame > kRecorded + kBack && step < static_cast<long>(recorded_.size())) {
@@ -137,9 +137,9 @@ bool TimelineScenario::plotExport(Sandbox& sandbox, int frame, std::string& repo
   const auto& error = board.charts[0].values[0];
   report = "{\"scenario\": \"plot-export\", \"range_far\": [" + number(rangeFar_[0]) + ", " +
            number(rangeFar_[1]) + "], \"range_after\": [" + number(after[0]) + ", " +
-           number(after[1]) + "], \"files\": [" + files + "], \"last_time\": " +
-           number(t.back()) + ", \"last_error\": " + number(error.back()) +
-           ", \"time\": " + number(world.time()) + "}";
+           number(after[1]) + "], \"files\": [" + files + "], \"last_time\": " + number(t.back()) +
+           ", \"last_error\": " + number(error.back()) + ", \"time\": " + number(world.time()) +
+           "}";
   return false;
 }
 

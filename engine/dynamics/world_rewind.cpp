@@ -23,8 +23,8 @@ std::vector<WorldInput> inputsThroughStep(const std::vector<WorldInput>& inputs,
     out.push_back(part);
   }
   if (taken < steps)
-    throw std::out_of_range("rewind: the history holds " + std::to_string(taken) +
-                            " steps, not " + std::to_string(steps));
+    throw std::out_of_range("rewind: the history holds " + std::to_string(taken) + " steps, not " +
+                            std::to_string(steps));
   return out;
 }
 

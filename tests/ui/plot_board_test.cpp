@@ -82,7 +82,8 @@ TEST(PlotBoard, TheSlidePngHasTheSineWhereTheDataSaysAndTheTitleClearOfIt) {
   ASSERT_EQ(image.height, 900);
 
   // The layout of renderPlot grown slideScale times.
-  const double u = slideScale(1600, 900), left = 72 * u, right = 1600 - 24 * u, top = 44 * u, bottom = 900 - 52 * u;
+  const double u = slideScale(1600, 900), left = 72 * u, right = 1600 - 24 * u, top = 44 * u,
+               bottom = 900 - 52 * u;
   const auto yr = sandbox.plots->valueRange(sandbox.plots->charts[0], now);
   const auto xr = sandbox.plots->timeRange(now);
   EXPECT_EQ(xr[0], 0);
@@ -100,7 +101,7 @@ TEST(PlotBoard, TheSlidePngHasTheSineWhereTheDataSaysAndTheTitleClearOfIt) {
         break;
       }
   const double lineHalfWidth = 0.5 * 3.5 * u;  // a single curve is drawn 3.5 px wide (x u)
-  EXPECT_GT(row(1), top + 10);                   // the range is padded: the peak is inside
+  EXPECT_GT(row(1), top + 10);                 // the range is padded: the peak is inside
   EXPECT_NEAR(peakRow, row(1) - lineHalfWidth, 2.5);
   // The first curve pixel found on that row: the left end of the flat top (2 px of a sine's
   // top span about +-0.04 s there).
@@ -109,8 +110,8 @@ TEST(PlotBoard, TheSlidePngHasTheSineWhereTheDataSaysAndTheTitleClearOfIt) {
   bool crossing = false;
   for (int dy = -3; dy <= 3; ++dy)
     for (int dx = -3; dx <= 3; ++dx)
-      crossing |= isCurve(image.pixel(static_cast<int>(column(2)) + dx,
-                                      static_cast<int>(row(0)) + dy));
+      crossing |=
+          isCurve(image.pixel(static_cast<int>(column(2)) + dx, static_cast<int>(row(0)) + dy));
   EXPECT_TRUE(crossing);
 
   // The title's rows (above the plot area) hold dark text and no curve pixel.

@@ -16,11 +16,10 @@ namespace {
 /// The scenario's JSON report; `screenshot` gets the last frame.
 nlohmann::json runScript(const std::string& name, const std::string& size,
                          const std::string& screenshot, const std::string& extra = "") {
-  const RunResult r =
-      run("xvfb-run -a -s \"-screen 0 1920x1080x24\" " + std::string(CABLELAB_CLI) +
-              " gui hand --size " + size + " --script " + name + " --screenshot " + screenshot +
-              " " + extra,
-          "timeline_gui_" + name);
+  const RunResult r = run("xvfb-run -a -s \"-screen 0 1920x1080x24\" " + std::string(CABLELAB_CLI) +
+                              " gui hand --size " + size + " --script " + name + " --screenshot " +
+                              screenshot + " " + extra,
+                          "timeline_gui_" + name);
   EXPECT_EQ(r.exitCode, 0) << r.err;
   try {
     return nlohmann::json::parse(r.out);

@@ -30,8 +30,8 @@ std::vector<double> poses(const World& w) {
   std::vector<double> out;
   for (int i = 0; i < w.bodyCount(); ++i) {
     const BodyState& s = w.body(i);
-    out.insert(out.end(), {s.position.x(), s.position.y(), s.angle, s.velocity.x(),
-                           s.velocity.y(), s.angularVelocity});
+    out.insert(out.end(), {s.position.x(), s.position.y(), s.angle, s.velocity.x(), s.velocity.y(),
+                           s.angularVelocity});
   }
   return out;
 }
