@@ -33,9 +33,12 @@ struct PlotLine {
   bool dashed = false;  ///< targets are dashed
 };
 
-/// Grows `range` (a stable plot range: it never shrinks until the history is cleared) to a nice
-/// number holding every |value| of the plotted series.
-float stableRange(const TimeHistory& h, std::initializer_list<PlotLine> lines, float range) {
+constexpr float kSmallestErrorRange = 0.05f, kSmallestXyRange = 0.2f;  // m
+
+/// The plot range for the plotted series: `smallest`, grown to a nice number holding every
+/// |value| in the history (15 s), so that it shrinks back once a far target has left the plot.
+float fittedRange(const TimeHistory& h, std::initializer_list<PlotLine> lines, float smallest) {
+  float range = smallest;
   for (const PlotLine& l : lines)
     for (int k = 0; k < h.count; ++k) {
       const float v = std::abs(h.values[l.series][k]);
@@ -345,11 +348,12 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
            {{"top", 0, IM_COL32(200, 60, 30, 255)}, {"bottom", 1, IM_COL32(40, 90, 200, 255)}},
            "N tension", 6 * lh, 0, tensionTop);
   tooltip("Membrane tensions; the range is the colour bar's.");
-  h.errorRange = stableRange(h.history, {{"", 2, 0}}, h.errorRange);
+  h.errorRange = fittedRange(h.history, {{"", 2, 0}}, kSmallestErrorRange);
   timePlot("##error", h.history, {{"|box - target|", 2, IM_COL32(170, 20, 120, 255)}}, "m", 5 * lh,
            0, h.errorRange);
-  tooltip("Tracking error; the range only grows (Reset starts it again).");
-  h.xyRange = stableRange(h.history, {{"", 3, 0}, {"", 4, 0}, {"", 5, 0}, {"", 6, 0}}, h.xyRange);
+  tooltip("Tracking error; the range fits the last 15 s.");
+  h.xyRange =
+      fittedRange(h.history, {{"", 3, 0}, {"", 4, 0}, {"", 5, 0}, {"", 6, 0}}, kSmallestXyRange);
   timePlot("##xy", h.history,
            {{"x", 3, IM_COL32(200, 90, 0, 255)},
             {"y", 4, IM_COL32(0, 130, 90, 255)},

@@ -61,7 +61,7 @@ struct HandControlState {
   int seenUpdates = 0;         ///< grasp->updates() when `prediction` was taken
   /// top tension, bottom tension (N), |box - target|, box x, box y, target x, target y (m)
   TimeHistory history{7};
-  float errorRange = 0.05f, xyRange = 0.2f;  ///< stable plot ranges (m), grow only
+  float errorRange = 0.05f, xyRange = 0.2f;  ///< plot ranges (m), fitted to the last 15 s
   // A ramp target as `cablelab track --ramp X,Y,SECONDS`: from the box to `rampTo` over
   // `rampSeconds`, starting at world time `rampStart` (-1: a constant target).
   double rampStart = -1, rampSeconds = 2;

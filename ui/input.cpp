@@ -5,11 +5,13 @@
 #include <iterator>
 
 #include "ui/authoring.h"
+#include "ui/timeline_panel.h"
 
 namespace cablelab::ui {
 
 const char* const kShortcuts[][2] = {{"space", "play / pause"},
                                      {"s", "single step (pauses)"},
+                                     {"b", "step back (pauses; the last 30 s are kept)"},
                                      {"r", "reset the scene"},
                                      {"[ / ]", "slower / faster (0.1x .. 4x)"},
                                      {"f", "camera follows the selected body"},
@@ -137,6 +139,9 @@ void key(Sandbox& sandbox, const SDL_KeyboardEvent& e) {
       sandbox.paused = true;
       ++sandbox.pendingSteps;
       break;
+    case SDLK_b:
+      stepBack(sandbox);
+      break;
     case SDLK_r:
       sandbox.reset();
       break;
@@ -198,7 +203,8 @@ void handleEvent(Sandbox& sandbox, const SDL_Event& event) {
       break;
     }
     case SDL_KEYDOWN:
-      if (!event.key.repeat || event.key.keysym.sym == SDLK_s) key(sandbox, event.key);
+      if (!event.key.repeat || event.key.keysym.sym == SDLK_s || event.key.keysym.sym == SDLK_b)
+        key(sandbox, event.key);
       break;
     case SDL_DROPFILE:
       if (event.drop.file) {

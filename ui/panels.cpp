@@ -13,6 +13,9 @@
 #include "ui/input.h"
 #include "ui/panel_sections.h"
 #include "ui/scene_catalog.h"
+#include "ui/plot_board.h"
+#include "ui/plot_panel.h"
+#include "ui/timeline_panel.h"
 
 namespace cablelab::ui {
 namespace {
@@ -138,11 +141,15 @@ float rowOverflow() {
 void simulationPanel(Sandbox& sandbox, PanelState& state, float top) {
   if (beginSidePanel(sandbox, state, "Simulation", true, top)) {
     runPanel(sandbox);
+    timelinePanel(sandbox);
     if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) scenePanel(sandbox);
     if (ImGui::CollapsingHeader("Controller", ImGuiTreeNodeFlags_DefaultOpen))
       drawControllerPanel(sandbox);
     // Open while a tool is chosen (a script or a shortcut can choose one with the section shut).
     if (sandbox.authoring->tool != Authoring::Tool::None) ImGui::SetNextItemOpen(true);
+    if (!sandbox.plots->charts.empty()) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
+    if (ImGui::CollapsingHeader("Plots")) plotsPanel(sandbox);
+    tooltip("Any quantity against time, several at once; export for slides (PNG and CSV).");
     if (ImGui::CollapsingHeader("Build")) authoringPanel(sandbox);
     tooltip("Add bodies, pulleys and cables by clicks; undo, redo; save as scene JSON.");
     if (ImGui::CollapsingHeader("View")) viewPanel(sandbox);
@@ -171,9 +178,11 @@ void statusLine(Sandbox& sandbox) {
   record(sandbox);
   if (const World* world = sandbox.world()) {
     const StepStats& s = world->lastStepStats();
-    ImGui::Text("%s %.2gx  t %.3f s   step %.1f us (cables %.1f us)   %.0f fps   wraps %d   %s",
-                sandbox.paused ? "PAUSED" : "running", sandbox.speed, world->time(), s.stepMicros,
-                s.cableMicros, sandbox.fps, s.wrapPoints,
+    ImGui::Text(
+        "%s %.2gx  t %.3f s   energy %.4g J   step %.1f us (cables %.1f us)   %.0f fps   wraps "
+        "%d   %s",
+        sandbox.paused ? "PAUSED" : "running", sandbox.speed, world->time(), world->energy(),
+        s.stepMicros, s.cableMicros, sandbox.fps, s.wrapPoints,
                 sandbox.message.empty() ? "h: help" : sandbox.message.c_str());
   } else {
     ImGui::TextUnformatted("no scene loaded");

@@ -10,6 +10,9 @@
 #include "ui/controller_panel.h"
 #include "ui/scene_catalog.h"
 #include "ui/tension_scale.h"
+#include "ui/plot_board.h"
+#include "ui/plot_panel.h"
+#include "ui/timeline.h"
 
 namespace cablelab::ui {
 namespace {
@@ -25,6 +28,8 @@ Sandbox::Sandbox(int width, int height) {
   camera.height = height;
   draw.markerLegend = true;
   authoring = std::make_unique<Authoring>();
+  timeline = std::make_unique<Timeline>();
+  plots = std::make_unique<PlotBoard>();
 }
 
 Sandbox::~Sandbox() = default;
@@ -54,6 +59,8 @@ bool Sandbox::adopt(SceneDef def, const std::string& name, bool fitCamera) {
   accumulator_ = 0;
   warningsSeen = 0;
   banner.clear();
+  timeline->clear();
+  plots->clear(true);
   loadCableEdit();
   controller.reset();
   controllerOpened(*this);
@@ -122,6 +129,8 @@ void Sandbox::reset() {
     accumulator_ = 0;
     warningsSeen = 0;
     banner.clear();
+    timeline->clear();
+    plots->clear(false);
     loadCableEdit();
     controllerOpened(*this);
   } catch (const std::exception& e) {
@@ -147,12 +156,16 @@ void Sandbox::advance(double frameSeconds, bool fixedStep) {
   }
   try {
     if (world_->gravity() != gravity) world_->setGravity(gravity);
-    if (steps > 0 && wasPaused_) settleBeforeRunning();
+    // Settle only after an edit while paused: a pause alone changes nothing (a rewound run
+    // plays on exactly).
+    if (steps > 0 && wasPaused_ && world_->history().inputs().size() != inputsAfterStep_)
+      settleBeforeRunning();
     wasPaused_ = paused;
     for (int i = 0; i < steps; ++i) {
       controllerBeforeStep(*this, *world_);
       applyDrag();
       world_->step(dt, substeps);
+      inputsAfterStep_ = world_->history().inputs().size();
       afterStep();
     }
   } catch (const std::exception& e) {
@@ -179,12 +192,25 @@ void Sandbox::checkWarnings() {
 
 void Sandbox::afterStep() {
   controllerAfterStep(*this, *world_);
+  timelineAfterStep(*this);
+  plotsAfterStep(*this);
   for (int i = 0; i < world_->cableCount() && i < static_cast<int>(tensionHistory.size()); ++i) {
     const double t = world_->cable(i).tension();
     tensionHistory[i][historyHead] = std::isfinite(t) ? static_cast<float>(t) : 0.0f;
     if (!tensionScaleLocked && std::isfinite(t) && t > tensionScale) tensionScale = niceCeil(t);
   }
   historyHead = (historyHead + 1) % kHistory;
+}
+
+void Sandbox::adoptRewound(std::unique_ptr<World> world) {
+  if (world) world_ = std::move(world);
+  gesture = {};
+  drag = {};
+  accumulator_ = 0;
+  inputsAfterStep_ = world_->history().inputs().size();
+  warningsSeen = world_->warnings().size();  // the replay's warnings were shown the first time
+  banner.clear();
+  loadCableEdit();
 }
 
 double Sandbox::dragLimit(int body) const {

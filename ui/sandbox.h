@@ -22,6 +22,8 @@ namespace cablelab::ui {
 
 struct ControllerState;  // ui/controller_panel.h
 struct Authoring;        // ui/authoring.h
+class Timeline;          // ui/timeline.h
+class PlotBoard;         // ui/plot_board.h
 
 /// Screen rectangle of a UI panel (px); the scene under it does not take mouse input.
 struct PanelRect {
@@ -107,6 +109,10 @@ class Sandbox {
   /// Whether an empty-space click sets the target (a controller uses it).
   bool hasController() const;
 
+  /// Takes a world the timeline rewound (null: the current one, played forward to the moment);
+  /// drops the drag, so that playing on repeats the run (ui/timeline.h).
+  void adoptRewound(std::unique_ptr<World> world);
+
   World* world() { return world_.get(); }
   const World* world() const { return world_.get(); }
 
@@ -171,6 +177,10 @@ class Sandbox {
   std::unique_ptr<ControllerState> controller;
   /// The scene editor (ui/authoring.h): tool, sizes, undo and redo; open() clears its history.
   std::unique_ptr<Authoring> authoring;
+  /// The last 30 s, for rewinding (ui/timeline.h); cleared by open() and reset().
+  std::unique_ptr<Timeline> timeline;
+  /// The Plots section's charts (ui/plot_board.h); open() clears them, reset() their samples.
+  std::unique_ptr<PlotBoard> plots;
 
   // What the Scene panel showed last (for the scripted checks).
   std::string shownTitle, shownDescription;
@@ -196,6 +206,8 @@ class Sandbox {
   std::unique_ptr<World> world_;
   double accumulator_ = 0;
   bool wasPaused_ = false;  ///< paused at the last advance(): the next steps resume the world
+  size_t inputsAfterStep_ = 0;  ///< the world's history length after its last step: more is an
+                                ///< edit while paused (settleBeforeRunning)
 };
 
 }  // namespace cablelab::ui

@@ -9,6 +9,7 @@
 #include "ui/controller_panel.h"
 #include "ui/synthetic_events.h"
 #include "ui/tension_scale.h"
+#include "ui/timeline_scenarios.h"
 
 namespace cablelab::ui {
 namespace {
@@ -79,13 +80,18 @@ const std::vector<std::string>& ScenarioScript::names() {
     std::vector<std::string> all = {"describe", "reset-scale",  "rigid-drag", "drop-box",
                                     "author",   "capstan-slip", "pose-drag",  "pose-payout"};
     for (const BuildScenario& b : buildScenarios()) all.push_back(b.name);
+    for (const std::string& t : TimelineScenario::names()) all.push_back(t);
     return all;
   }();
   return n;
 }
 
 ScenarioScript::ScenarioScript(std::string name, Uint32 windowId, std::string out)
-    : name_(std::move(name)), out_(std::move(out)), windowId_(windowId) {}
+    : name_(std::move(name)), out_(std::move(out)), windowId_(windowId) {
+  const auto& timeline = TimelineScenario::names();
+  if (std::find(timeline.begin(), timeline.end(), name_) != timeline.end())
+    timeline_ = std::make_shared<TimelineScenario>(name_, windowId_, out_);
+}
 
 void ScenarioScript::mouse(Uint32 type, const Vec2& screen, Uint8 button) {
   pushMouseEvent(windowId_, type, screen, button);
@@ -108,6 +114,7 @@ bool ScenarioScript::beforeFrame(Sandbox& sandbox, int frame) {
   if (name_ == "capstan-slip") return capstanSlip(sandbox, frame);
   if (name_ == "pose-drag" || name_ == "pose-payout") return poseDrag(sandbox, frame);
   if (name_.rfind("build-", 0) == 0) return build(sandbox, frame);
+  if (timeline_) return timeline_->beforeFrame(sandbox, frame, report_);
   report_ = "{\"scenario\": " + jsonQuoted(name_) + ", \"failure\": \"unknown scenario\"}";
   return false;
 }

@@ -31,12 +31,15 @@
 #include <SDL.h>
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "ui/sandbox.h"
 
 namespace cablelab::ui {
+
+class TimelineScenario;  // ui/timeline_scenarios.h: rewind, plot-export
 
 class ScenarioScript {
  public:
@@ -73,6 +76,7 @@ class ScenarioScript {
   double largest_ = 0;
   size_t step_ = 0;        ///< build: the next step
   double restBefore_ = 0;  ///< pose scenarios: the cable's rest length before the drag (m)
+  std::shared_ptr<TimelineScenario> timeline_;  ///< the rewind and plot scenarios
 };
 
 }  // namespace cablelab::ui
