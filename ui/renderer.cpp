@@ -431,6 +431,17 @@ void drawOverlay(const Overlay& overlay, const Painter& paint) {
   for (const Overlay::Text& t : overlay.texts) paint.label(t.position, t.text, t.colour, {0, 0});
 }
 
+/// Where labels may not go: the screen pieces, and a collapsed side panel's title bar reaching
+/// into the top of the free area (`keyTop` tall).
+std::vector<LabelBox> reservedForLabels(const FurnitureLayout& furniture,
+                                        const RenderOptions& options) {
+  std::vector<LabelBox> reserved = furniture.occupied();
+  if (options.keyTop > 0)
+    reserved.push_back({furniture.x, furniture.y, furniture.x + furniture.w,
+                        furniture.y + options.keyTop});
+  return reserved;
+}
+
 }  // namespace
 
 bool overstretched(const Cable& cable) {
@@ -494,7 +505,7 @@ DrawnView drawWorld(const World& world, const Camera& camera, const Overlay& ove
       free ? LabelBox{options.freeX, options.freeY, options.freeX + options.freeWidth,
                       options.freeY + options.freeHeight}
            : LabelBox{0, 0, static_cast<double>(camera.width), static_cast<double>(camera.height)},
-      drawn.furniture.occupied(), drawn);
+      reservedForLabels(drawn.furniture, options), drawn);
   drawFurniture(drawn.furniture, overlay, options, scale, camera, text);
   glDisable(GL_LINE_SMOOTH);
   glDisable(GL_SCISSOR_TEST);

@@ -196,7 +196,8 @@ bool ScenarioScript::rigidDrag(Sandbox& sandbox, int frame) {
         ", \"largest_stretch\": " + number(largest_) +
         ", \"largest_drag_force\": " + number(figures_[0]) +
         ", \"drag_limit\": " + number(sandbox.dragLimit(body_)) +
-        ", \"frames_at_limit\": " + number(figures_[1]) + "}";
+        ", \"frames_at_limit\": " + number(figures_[1]) +
+        ", \"banner\": " + jsonQuoted(sandbox.banner) + "}";
     return false;
   }
   return true;

@@ -43,7 +43,8 @@ const std::map<std::string, Guide>& guides() {
         "model predicts.",
         "Drag the point into the band and let go: it bounces and settles where the band's "
         "pull balances its weight.\n"
-        "Drag the k slider (band stiffness) up and let go: the point sinks less."}},
+        "Select the band (click it) and watch its tension in the Inspector as the point "
+        "bounces."}},
       {"pulley",
        {"Two bodies hang from one cable over two pulleys fixed to the ceiling. The heavier "
         "left body sinks and pulls the lighter one up; the cable keeps the same length "

@@ -278,6 +278,8 @@ TEST(GuiAcceptance, DragCannotStretchARigidCable) {
     // The mouse did pull as hard as it may: the cable held against the limit.
     EXPECT_GT(j["frames_at_limit"].get<double>(), 10) << scene;
     EXPECT_LE(j["largest_drag_force"].get<double>(), j["drag_limit"].get<double>() * (1 + 1e-9));
+    // Dragging the weight is a "what to try" step: it raises no banner (issue 38).
+    EXPECT_EQ(j["banner"], "") << scene;
   }
 }
 
@@ -299,6 +301,7 @@ TEST(GuiAcceptance, PausedDragPosesTheWeightWithinItsRope) {
       << j["status"];
   EXPECT_NEAR(j["seconds_run"].get<double>(), 0.1, 1.0 / 60);
   EXPECT_LT(j["fastest_after_play"].get<double>(), 9.81 * 0.1 * 1.05);
+  EXPECT_EQ(j["banner"], "") << "pausing and posing is a what-to-try step: no banner";
   // The scene's energy scale: the weight lifted through the view, or crossing it in a second.
   const SceneDef scene = ui::loadScene("hexagon");
   double scale = 0;
@@ -334,6 +337,8 @@ TEST(GuiAcceptance, DroppedBoxShowsTheGraspLostState) {
   const auto j = scenario("hand", "drop-box");
   EXPECT_EQ(j.value("state_before", ""), "pinch pose") << j.dump();
   EXPECT_EQ(j.value("state_after", ""), "grasp lost") << j.dump();
+  // The hand's "what to try" step (drag limit 20, the box dragged out): no banner (issue 38).
+  EXPECT_EQ(j.value("banner_seen", "?"), "") << j.dump();
 }
 
 TEST(GuiAcceptance, AuthoredSceneRunsInTheCli) {

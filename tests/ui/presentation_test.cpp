@@ -60,7 +60,8 @@ TEST(Presentation, TheViewStaysFittedUntilTheUserMovesIt) {
   sandbox.panels = {{0, 0, 1280, 30}, {0, 30, 300, 660}};
   keepViewFitted(sandbox);
   EXPECT_EQ(sandbox.camera.metresPerPixel, 0.5 * before);
-  // The fit key fits it again.
+  // The fit key fits it again (at the first fit's UI scale: the colour bar's row scales with it).
+  sandbox.uiScale = 1;
   sandbox.fitView();
   EXPECT_TRUE(sandbox.viewFitted);
   EXPECT_EQ(sandbox.camera.metresPerPixel, before);
