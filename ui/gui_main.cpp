@@ -235,8 +235,8 @@ int run(const cablelab::ui::GuiOptions& options) {
         "\"free\": [%g, %g, %g, %g], \"tension_scale\": %.17g, \"overflow\": [%g, %g], "
         "\"status_overflow\": %g, \"truncated_buttons\": %d}\n",
         options.frames, m > 0 ? 1 / m : 0.0, c.center.x(), c.center.y(), c.metresPerPixel, f.x, f.y,
-        f.width, f.height, sandbox.tensionScale, sandbox.panelOverflow[0],
-        sandbox.panelOverflow[1], sandbox.statusOverflow, sandbox.truncatedButtons);
+        f.width, f.height, sandbox.tensionScale, sandbox.panelOverflow[0], sandbox.panelOverflow[1],
+        sandbox.statusOverflow, sandbox.truncatedButtons);
   }
   return 0;
 }

@@ -171,7 +171,8 @@ bool LectureScript::graspQuiet(Sandbox& sandbox, int frame) {
   constexpr double kControlSeconds = 4;
   if (!sandbox.banner.empty()) {
     ++bannerFrames_;
-    if (items_.empty() || items_.back() != quoted(sandbox.banner)) items_.push_back(quoted(sandbox.banner));
+    if (items_.empty() || items_.back() != quoted(sandbox.banner))
+      items_.push_back(quoted(sandbox.banner));
   }
   if (frame == 2) {
     if (!startHandGrasp(sandbox)) {
@@ -200,9 +201,9 @@ bool LectureScript::graspQuiet(Sandbox& sandbox, int frame) {
     report_ = "{\"scenario\": \"grasp-quiet\", \"banner_frames\": " + number(bannerFrames_) +
               ", \"banners\": " + join(items_) +
               ", \"log_entries\": " + number(sandbox.log.entries().size()) +
-              ", \"state\": " + quoted(handGraspState(sandbox)) +
-              ", \"clicked\": [" + number(target_.x()) + ", " + number(target_.y()) + "]" +
-              ", \"target\": [" + number(sandbox.target ? sandbox.target->x() : 1e9) + ", " +
+              ", \"state\": " + quoted(handGraspState(sandbox)) + ", \"clicked\": [" +
+              number(target_.x()) + ", " + number(target_.y()) + "]" + ", \"target\": [" +
+              number(sandbox.target ? sandbox.target->x() : 1e9) + ", " +
               number(sandbox.target ? sandbox.target->y() : 1e9) + "]" +
               ", \"time\": " + number(sandbox.world()->time()) + "}";
     return false;
@@ -215,7 +216,8 @@ bool LectureScript::tensionRun(Sandbox& sandbox, int frame) {
   if (frame >= 1 && frame < 70) {
     lowest_ = std::min(lowest_, sandbox.tensionScale);
     highest_ = std::max(highest_, sandbox.tensionScale);
-    for (int i = 0; i < world.cableCount(); ++i) largest_ = std::max(largest_, world.cable(i).tension());
+    for (int i = 0; i < world.cableCount(); ++i)
+      largest_ = std::max(largest_, world.cable(i).tension());
   }
   if (frame == 5) {  // the body at a cable's end, pulled down hard
     for (int i = 0; i < world.cableCount() && body_ < 0; ++i) {
@@ -241,7 +243,7 @@ bool LectureScript::tensionRun(Sandbox& sandbox, int frame) {
                      ", \"scene_scale\": " + number(loadTensionScale(sandbox.scene)) +
                      ", \"lowest\": " + number(lowest_) + ", \"highest\": " + number(highest_) +
                      ", \"largest_tension\": " + number(largest_));
-    sandbox.tensionScaleLocked = true;  // the View section's checkbox
+    sandbox.tensionScaleLocked = true;                // the View section's checkbox
     sandbox.tensionScale = 2 * sandbox.tensionScale;  // and its "scale max (N)" field
     items_.push_back("\"locked_at\": " + number(sandbox.tensionScale));
     sandbox.open(nextScene(sandbox.sceneName));

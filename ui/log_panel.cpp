@@ -13,8 +13,9 @@ void logSection(Sandbox& sandbox) {
   char title[64];
   std::snprintf(title, sizeof title, "Log (%zu)###log", entries.size());
   if (!ImGui::CollapsingHeader(title)) {
-    tooltip("What the simulation engine reported, in its own terms: for the curious and for "
-            "bug reports. Nothing here needs an action.");
+    tooltip(
+        "What the simulation engine reported, in its own terms: for the curious and for "
+        "bug reports. Nothing here needs an action.");
     return;
   }
   if (entries.empty()) {

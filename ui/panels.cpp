@@ -77,8 +77,7 @@ void viewMenu(Sandbox& sandbox, PanelState& state) {
   if (ImGui::MenuItem("projector mode", nullptr, &sandbox.projector))
     sandbox.uiScale = sandbox.projector ? 2 : 1;
   tooltip("Large fonts and thick lines for a lecture hall.");
-  if (ImGui::MenuItem("presentation mode", "p", sandbox.presentation))
-    togglePresentation(sandbox);
+  if (ImGui::MenuItem("presentation mode", "p", sandbox.presentation)) togglePresentation(sandbox);
   tooltip("Hide the side panels and fit the scene to the window (p again brings them back).");
   if (ImGui::MenuItem("fit scene view", "v")) sandbox.fitView();
   tooltip("Fit the scene to the view; it stays fitted until you pan or zoom.");

@@ -24,8 +24,8 @@ void togglePresentation(Sandbox& sandbox) {
 }
 
 void keepViewFitted(Sandbox& sandbox) {
-  const bool moved = !sameArea(sandbox.freeArea(), sandbox.fittedArea) ||
-                     sandbox.fittedScale != sandbox.uiScale;
+  const bool moved =
+      !sameArea(sandbox.freeArea(), sandbox.fittedArea) || sandbox.fittedScale != sandbox.uiScale;
   if (sandbox.fitPending || (sandbox.viewFitted && moved)) sandbox.fitView();
 }
 

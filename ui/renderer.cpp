@@ -437,8 +437,8 @@ std::vector<LabelBox> reservedForLabels(const FurnitureLayout& furniture,
                                         const RenderOptions& options) {
   std::vector<LabelBox> reserved = furniture.occupied();
   if (options.keyTop > 0)
-    reserved.push_back({furniture.x, furniture.y, furniture.x + furniture.w,
-                        furniture.y + options.keyTop});
+    reserved.push_back(
+        {furniture.x, furniture.y, furniture.x + furniture.w, furniture.y + options.keyTop});
   return reserved;
 }
 

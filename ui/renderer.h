@@ -24,7 +24,6 @@ struct ImDrawList;
 
 namespace cablelab::ui {
 
-
 /// A rigid cable longer than its rest length by more than this (m) is drawn as overstretched.
 inline constexpr double kOverstretch = 0.01;
 /// An elastic cable stretched beyond this share of its rest length is drawn as overstretched.
@@ -46,7 +45,7 @@ struct DrawnView {
 /// Clears the viewport (the free rectangle with `clipToFree`) and draws `world` seen by
 /// `camera`, with `overlay` on top; returns where the labels and screen pieces went.
 DrawnView drawWorld(const World& world, const Camera& camera, const Overlay& overlay,
-               const RenderOptions& options, ImDrawList* text);
+                    const RenderOptions& options, ImDrawList* text);
 
 /// The colour-bar maximum the renderer uses for `world` and `options` (N).
 double tensionScaleFor(const World& world, const RenderOptions& options);

@@ -370,7 +370,8 @@ Overlay Sandbox::overlay() const {
   authoringOverlay(*this, o);
   // The hand's bodies collide with nothing (the model is its cables): say so, or a box sliding
   // through a paddle that looks solid reads as a bug.
-  if (hasController()) o.notes.push_back("The bodies pass through each other: only the bands hold the box.");
+  if (hasController())
+    o.notes.push_back("The bodies pass through each other: only the bands hold the box.");
   o.banner = banner;
   return o;
 }

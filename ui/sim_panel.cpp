@@ -30,9 +30,8 @@ void parameterSliders(Sandbox& sandbox) {
     float v = static_cast<float>(it->second);
     // The unit next to the slider ("m_load (kg)"), from the description's last "(...)".
     const size_t open = p.description.rfind(" (");
-    const std::string unit = open != std::string::npos && p.description.back() == ')'
-                                 ? p.description.substr(open)
-                                 : "";
+    const std::string unit =
+        open != std::string::npos && p.description.back() == ')' ? p.description.substr(open) : "";
     const std::string label = p.name + unit + "###" + p.name;
     ImGui::SetNextItemWidth(fieldWidth((p.name + unit).c_str(), ImGui::GetFontSize() * 9));
     const ImGuiSliderFlags flags = p.logarithmic ? ImGuiSliderFlags_Logarithmic : 0;
@@ -85,8 +84,7 @@ void runPanel(Sandbox& sandbox) {
   // wrapping to the next row (a narrow panel at a large UI scale).
   const char* run = sandbox.paused ? "Play" : "Pause";
   const float widest = std::max({buttonWidth("Pause"), buttonWidth("Step"), buttonWidth("Reset")});
-  const float even =
-      (ImGui::GetContentRegionAvail().x - 2 * ImGui::GetStyle().ItemSpacing.x) / 3;
+  const float even = (ImGui::GetContentRegionAvail().x - 2 * ImGui::GetStyle().ItemSpacing.x) / 3;
   const float w = even >= widest ? std::min(ImGui::GetFontSize() * 4.5f, even - 1) : 0.0f;
   sandbox.truncatedButtons = 0;
   auto counted = [&](const char* label) {

@@ -38,8 +38,8 @@ double loadTensionScale(const SceneDef& scene) {
       const Cable& c = world.cable(i);
       // An elastic cable's pull at the start, k (length - rest + preload); a rigid one has none
       // until the first step.
-      const double pull = c.elastic() ? c.stiffness() * (c.length() - c.restLength() + c.preload())
-                                      : c.tension();
+      const double pull =
+          c.elastic() ? c.stiffness() * (c.length() - c.restLength() + c.preload()) : c.tension();
       if (std::isfinite(pull)) startTension = std::max(startTension, pull);
       if (!c.elastic() && c.restLength() > 0) shortest = std::min(shortest, c.restLength());
     }
@@ -51,7 +51,8 @@ double loadTensionScale(const SceneDef& scene) {
     for (const JointDef& j : scene.joints) {
       const std::string& other = j.bodyA == name ? j.bodyB : j.bodyB == name ? j.bodyA : name;
       const int k = findBodyIndex(scene, other);
-      if (other != name && (other == "world" || (k >= 0 && scene.bodies[k].type == BodyType::Static)))
+      if (other != name &&
+          (other == "world" || (k >= 0 && scene.bodies[k].type == BodyType::Static)))
         return true;
     }
     return false;

@@ -59,7 +59,8 @@ std::vector<MarkerKeyRow> keyRows(const World& world, const Overlay& overlay,
   std::vector<MarkerKeyRow> rows;
   bool point = false, polygon = false, stretched = false;
   for (const CableDef& c : world.scene().cables)
-    for (const PulleyDef& p : c.pulleys) (p.kind == PulleyDef::Kind::Point ? point : polygon) = true;
+    for (const PulleyDef& p : c.pulleys)
+      (p.kind == PulleyDef::Kind::Point ? point : polygon) = true;
   for (int i = 0; i < world.cableCount(); ++i) stretched |= overstretched(world.cable(i));
   const Colour dark{0.15f, 0.15f, 0.15f, 1};
   if (options.wrapPoints && world.cableCount() > 0) {
@@ -79,8 +80,8 @@ std::vector<MarkerKeyRow> keyRows(const World& world, const Overlay& overlay,
   if (options.overstretch && stretched)
     rows.push_back({Sample::Stretch, kStretchHalo, "overstretched cable"});
   for (const Overlay::Key& k : overlay.keys)
-    rows.push_back(
-        {k.marker == Overlay::Key::Marker::Arrow ? Sample::Arrow : Sample::Cross, k.colour, k.label});
+    rows.push_back({k.marker == Overlay::Key::Marker::Arrow ? Sample::Arrow : Sample::Cross,
+                    k.colour, k.label});
   return rows;
 }
 
@@ -103,7 +104,8 @@ void layoutBars(FurnitureLayout& l, const World& world, const RenderOptions& opt
     l.barX = l.x + l.w - l.barWidth - 24;
     l.barY = l.y + l.h - 1.6f * lh - l.barHeight;
     const float left = l.barX - l.slackWidth - 8;
-    const float right = std::max(l.barX + l.barWidth + 20, (options.tensionLocked ? left : l.barX) + title + 4);
+    const float right =
+        std::max(l.barX + l.barWidth + 20, (options.tensionLocked ? left : l.barX) + title + 4);
     // A title wider than the bar would reach past the view's edge: the whole piece moves left.
     const float over = std::max(0.0f, right - (l.x + l.w - 2));
     l.barX -= over;
@@ -157,8 +159,7 @@ void layoutKey(FurnitureLayout& l, const World& world, const Overlay& overlay,
   // View toggle brings it back once the window is larger).
   const bool tooWide = width + l.keySampleWidth + 16 > 0.4f * l.w;
   const bool tooLong = (!l.colourBar.empty() && key.overlaps(l.colourBar)) ||
-                       (!l.scaleBar.empty() && key.overlaps(l.scaleBar)) ||
-                       key.y1 > l.y + l.h;
+                       (!l.scaleBar.empty() && key.overlaps(l.scaleBar)) || key.y1 > l.y + l.h;
   const bool onScene = options.keyGivesWay && !scene.empty() && key.overlaps(scene);
   if (tooWide || tooLong || onScene) {
     l.keyRows.clear();

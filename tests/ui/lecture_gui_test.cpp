@@ -55,7 +55,8 @@ void expectReadable(const nlohmann::json& v) {
                             v["scene_name"].get<std::string>() + ", " +
                             v["screenshot"].get<std::string>() + ")";
   const double w = v["window"][0];
-  const Box free{v["free"][0], v["free"][1], v["free"][0].get<double>() + v["free"][2].get<double>(),
+  const Box free{v["free"][0], v["free"][1],
+                 v["free"][0].get<double>() + v["free"][2].get<double>(),
                  v["free"][1].get<double>() + v["free"][3].get<double>()};
   ASSERT_FALSE(v["scene"].is_null()) << where;
   const Box scene = boxes(nlohmann::json::array({v["scene"]}))[0];
@@ -79,14 +80,17 @@ void expectReadable(const nlohmann::json& v) {
     if (!v[k].is_null()) pieces.push_back(boxes(nlohmann::json::array({v[k]}))[0]);
   const std::vector<Box> labels = boxes(v["labels"]);
   for (size_t i = 0; i < labels.size(); ++i) {
-    for (size_t j = 0; j < i; ++j) EXPECT_FALSE(labels[i].overlaps(labels[j])) << i << "," << j << " " << where;
-    for (const Box& p : pieces) EXPECT_FALSE(labels[i].overlaps(p)) << "label " << i << " " << where;
+    for (size_t j = 0; j < i; ++j)
+      EXPECT_FALSE(labels[i].overlaps(labels[j])) << i << "," << j << " " << where;
+    for (const Box& p : pieces)
+      EXPECT_FALSE(labels[i].overlaps(p)) << "label " << i << " " << where;
     EXPECT_TRUE(labels[i].x0 >= free.x0 && labels[i].x1 <= free.x1 && labels[i].y0 >= free.y0 &&
                 labels[i].y1 <= free.y1)
         << "label " << i << " " << where;
   }
   for (size_t i = 0; i < pieces.size(); ++i)
-    for (size_t j = 0; j < i; ++j) EXPECT_FALSE(pieces[i].overlaps(pieces[j])) << i << "," << j << " " << where;
+    for (size_t j = 0; j < i; ++j)
+      EXPECT_FALSE(pieces[i].overlaps(pieces[j])) << i << "," << j << " " << where;
   // No control text cut: panel rows, the status line, the Run buttons.
   EXPECT_EQ(v["overflow"][0].get<double>(), 0) << where;
   EXPECT_EQ(v["overflow"][1].get<double>(), 0) << where;

@@ -13,8 +13,8 @@ namespace cablelab::ui {
 namespace {
 
 // Words a student should not meet on the view (the engine's and the solver's).
-const char* const kSolverWords[] = {"guard", "t = ", "sub-step", "rest length", "pulley 0",
-                                    "jump", "constraint", "solve"};
+const char* const kSolverWords[] = {"guard",    "t = ", "sub-step",   "rest length",
+                                    "pulley 0", "jump", "constraint", "solve"};
 
 const std::string kOverstretch =
     "cable 'rope': rigid and 0.0213 m longer than its rest length at t = 1.25 s: the step did "
