@@ -569,11 +569,13 @@ void drawControllerPanel(Sandbox& sandbox) {
   ControllerState* c = sandbox.controller.get();
   if (c && c->hand && sandbox.world()) return handPanel(sandbox, *c->hand);
   if (c && c->membrane && sandbox.world()) return membranePanel(sandbox, *c->membrane);
+  ImGui::PushTextWrapPos(0);  // a narrow panel at a large UI scale wraps them
   ImGui::TextDisabled("no controller in this scene");
   if (sandbox.target)
     ImGui::Text("marked point (%.3f, %.3f) m", sandbox.target->x(), sandbox.target->y());
   else
     ImGui::TextDisabled("Ctrl + click marks a point");
+  ImGui::PopTextWrapPos();
   if (sandbox.target && ImGui::Button("Clear mark")) sandbox.target.reset();
   tooltip("Remove the marked point.");
 }

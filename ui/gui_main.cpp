@@ -25,6 +25,7 @@
 #include "ui/input.h"
 #include "ui/input_script.h"
 #include "ui/panels.h"
+#include "ui/presentation.h"
 #include "ui/recorder.h"
 #include "ui/renderer.h"
 #include "ui/sandbox.h"
@@ -147,7 +148,7 @@ int run(const cablelab::ui::GuiOptions& options) {
 
     window.beginFrame();
     drawPanels(sandbox, panelState);
-    if (sandbox.fitPending) sandbox.fitView();  // needs this frame's panel layout
+    keepViewFitted(sandbox);  // needs this frame's panel layout
     // The panels' colour everywhere (they draw no background), then the world in the free
     // area only (panels.cpp, kPanelBackground): a clear is a fill, the cheapest pixels.
     const ImVec4 panel = ImGui::GetStyleColorVec4(ImGuiCol_WindowBg);
@@ -157,7 +158,8 @@ int run(const cablelab::ui::GuiOptions& options) {
     if (const cablelab::World* world = sandbox.world()) {
       RenderOptions options = sandbox.renderOptions();
       options.clipToFree = true;
-      drawWorld(*world, sandbox.camera, sandbox.overlay(), options, ImGui::GetBackgroundDrawList());
+      sandbox.drawn = drawWorld(*world, sandbox.camera, sandbox.overlay(), options,
+                                ImGui::GetBackgroundDrawList());
     } else {
       glClearColor(0.97f, 0.97f, 0.95f, 1);
       glClear(GL_COLOR_BUFFER_BIT);
@@ -230,10 +232,11 @@ int run(const cablelab::ui::GuiOptions& options) {
     const PanelRect f = sandbox.freeArea();
     std::printf(
         "{\"frames\": %d, \"fps\": %.17g, \"camera\": [%.17g, %.17g, %.17g], "
-        "\"free\": [%g, %g, %g, %g], \"tension_scale\": %.17g, \"overflow\": [%g, %g]}\n",
+        "\"free\": [%g, %g, %g, %g], \"tension_scale\": %.17g, \"overflow\": [%g, %g], "
+        "\"status_overflow\": %g, \"truncated_buttons\": %d}\n",
         options.frames, m > 0 ? 1 / m : 0.0, c.center.x(), c.center.y(), c.metresPerPixel, f.x, f.y,
-        f.width, f.height, sandbox.tensionScale, sandbox.panelOverflow[0],
-        sandbox.panelOverflow[1]);
+        f.width, f.height, sandbox.tensionScale, sandbox.panelOverflow[0], sandbox.panelOverflow[1],
+        sandbox.statusOverflow, sandbox.truncatedButtons);
   }
   return 0;
 }

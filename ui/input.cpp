@@ -5,6 +5,7 @@
 #include <iterator>
 
 #include "ui/authoring.h"
+#include "ui/presentation.h"
 #include "ui/timeline_panel.h"
 
 namespace cablelab::ui {
@@ -15,6 +16,8 @@ const char* const kShortcuts[][2] = {{"space", "play / pause"},
                                      {"r", "reset the scene"},
                                      {"[ / ]", "slower / faster (0.1x .. 4x)"},
                                      {"f", "camera follows the selected body"},
+                                     {"p", "presentation mode: panels hidden, scene fitted"},
+                                     {"v", "fit the scene to the view"},
                                      {"F12", "screenshot (PNG in the working directory)"},
                                      {"F9", "start / stop recording a GIF"},
                                      {"h, F1", "this help"},
@@ -108,6 +111,7 @@ void mouseMotion(Sandbox& sandbox, const SDL_MouseMotionEvent& e) {
   } else if (sandbox.gesture.kind == Gesture::Kind::Pan) {
     sandbox.camera.panPixels(mouse - sandbox.gesture.lastMouse);
     sandbox.follow = false;
+    sandbox.viewFitted = false;  // the user's view now: layout changes keep it
   }
   sandbox.gesture.lastMouse = mouse;
 }
@@ -168,10 +172,18 @@ void key(Sandbox& sandbox, const SDL_KeyboardEvent& e) {
     case SDLK_EQUALS:
     case SDLK_KP_PLUS:
       sandbox.camera.zoomAt(centre, 1.25);
+      sandbox.viewFitted = false;
       break;
     case SDLK_MINUS:
     case SDLK_KP_MINUS:
       sandbox.camera.zoomAt(centre, 1 / 1.25);
+      sandbox.viewFitted = false;
+      break;
+    case SDLK_p:
+      togglePresentation(sandbox);
+      break;
+    case SDLK_v:
+      sandbox.fitView();
       break;
     case SDLK_ESCAPE:
       sandbox.showHelp = false;
@@ -198,8 +210,10 @@ void handleEvent(Sandbox& sandbox, const SDL_Event& event) {
       int x = 0, y = 0;
       SDL_GetMouseState(&x, &y);
       const Vec2 mouse(x, y);
-      if (!overPanel(sandbox, mouse) && event.wheel.y != 0)
+      if (!overPanel(sandbox, mouse) && event.wheel.y != 0) {
         sandbox.camera.zoomAt(mouse, event.wheel.y > 0 ? 1.15 : 1 / 1.15);
+        sandbox.viewFitted = false;
+      }
       break;
     }
     case SDL_KEYDOWN:

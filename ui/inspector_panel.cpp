@@ -230,12 +230,7 @@ void inspectorContents(Sandbox& sandbox) {
     bodyEdits(sandbox, b);
   }
   jointEdits(sandbox);
-  if (!world->warnings().empty()) {
-    section("Engine warnings (guards)");
-    const auto& w = world->warnings();
-    for (size_t k = w.size() > 5 ? w.size() - 5 : 0; k < w.size(); ++k)
-      ImGui::TextWrapped("%s", w[k].c_str());
-  }
+  logSection(sandbox);
 }
 
 }  // namespace cablelab::ui

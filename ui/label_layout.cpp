@@ -8,7 +8,7 @@ namespace {
 
 constexpr int kColumns = 5, kRows = 3;  // sample points per label
 // Distances (in units of `gap`) of the candidate rings; from the third ring on a leader line.
-constexpr double kRings[] = {1, 3, 6, 10, 16, 25};
+constexpr double kRings[] = {1, 3, 6, 10, 16, 25, 40, 60};
 constexpr int kLeaderRing = 2;
 
 bool insideConvex(const LabelObstacle& poly, const Vec2& p) {
@@ -59,7 +59,8 @@ double obstacleCover(const LabelBox& box, const std::vector<LabelObstacle>& obst
 
 std::vector<LabelPlacement> placeLabels(const std::vector<LabelRequest>& labels,
                                         const std::vector<LabelObstacle>& obstacles,
-                                        const LabelBox& view, double gap) {
+                                        const LabelBox& view, double gap,
+                                        const std::vector<LabelBox>& reserved) {
   std::vector<LabelPlacement> placed;
   placed.reserve(labels.size());
   std::vector<Vec2> offsets;
@@ -79,16 +80,20 @@ std::vector<LabelPlacement> placeLabels(const std::vector<LabelRequest>& labels,
     for (size_t k = 0; k < offsets.size(); ++k) {
       const Vec2 p = l.anchor + offsets[k];
       const LabelBox r{p.x(), p.y(), p.x() + w, p.y() + h};
-      double bad = 0;
-      for (const LabelPlacement& q : placed) bad += r.overlapArea(q.box);
-      if (r.x0 < view.x0 || r.y0 < view.y0 || r.x1 > view.x1 || r.y1 > view.y1) bad += 0.5 * area;
+      // Hard limits first (each costs more than any cover of bodies), then the bodies' cover.
+      double clash = 0;
+      for (const LabelPlacement& q : placed)
+        if (q.shown) clash += r.overlapArea(q.box);
+      for (const LabelBox& q : reserved) clash += r.overlapArea(q);
+      if (r.x0 < view.x0 || r.y0 < view.y0 || r.x1 > view.x1 || r.y1 > view.y1) clash += area;
+      double bad = clash > 0 ? 2 * area + clash : 0;
       if (bad < best) bad += obstacleCover(r, obstacles) * area;  // the costly part last
       // Nearer places win ties: a small penalty per ring.
       const int ring = k == 0 ? 0 : static_cast<int>((k - 1) / 8);
       const double score = bad + 1e-3 * ring;
       if (score < best) {
         best = score;
-        choice = {r, ring >= kLeaderRing};
+        choice = {r, ring >= kLeaderRing, clash <= 0};
       }
       if (bad <= 0) break;
     }

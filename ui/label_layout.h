@@ -1,7 +1,9 @@
 // Label placement in screen space (pixels, y down), without GL: each label goes to the first of
 // its candidate places, nearest to its anchor first, that overlaps no label placed before it,
-// no body and stays inside the view; the least-bad place when none is free. A label placed
-// away from its anchor gets a leader line back to it.
+// no reserved rectangle (the scale bar, the colour bar, the key), no body and stays inside the
+// view. Bodies are a soft limit (the least-covered place wins when none is clear of them); the
+// other labels, the reserved rectangles and the view's edges are hard ones: a label with no
+// place that keeps them is not shown. A label placed away from its anchor gets a leader line.
 #pragma once
 
 #include <vector>
@@ -12,6 +14,7 @@ namespace cablelab::ui {
 
 struct LabelBox {
   double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x1 <= x0 || y1 <= y0; }
   bool overlaps(const LabelBox& o) const { return overlapArea(o) > 0; }
   double overlapArea(const LabelBox& o) const;
 };
@@ -25,16 +28,18 @@ struct LabelRequest {
 struct LabelPlacement {
   LabelBox box;
   bool leader = false;  ///< placed away from its anchor: draw a line back to it
+  bool shown = true;    ///< false: no place kept off the other labels, `reserved` and the edges
 };
 
 /// Bodies as convex screen polygons (either winding) that labels keep off.
 using LabelObstacle = std::vector<Vec2>;
 
-/// Places `labels` in order inside `view`; `gap` is the smallest distance (px) kept from the
-/// anchor.
+/// Places `labels` in order inside `view`, off `reserved`; `gap` is the smallest distance (px)
+/// kept from the anchor.
 std::vector<LabelPlacement> placeLabels(const std::vector<LabelRequest>& labels,
                                         const std::vector<LabelObstacle>& obstacles,
-                                        const LabelBox& view, double gap);
+                                        const LabelBox& view, double gap,
+                                        const std::vector<LabelBox>& reserved = {});
 
 /// How much of `box` the obstacles cover, 0..1 (a grid of sample points, plus obstacle
 /// vertices inside the box, so that a small body under a big label counts).

@@ -26,5 +26,7 @@ void inspectorContents(Sandbox& sandbox);
 void pulleyEdits(Sandbox& sandbox, int cable);
 /// The joints: pick one, edit its limits, motor and servo.
 void jointEdits(Sandbox& sandbox);
+/// The log of what the engine reported (ui/log_panel.cpp).
+void logSection(Sandbox& sandbox);
 
 }  // namespace cablelab::ui

@@ -4,6 +4,7 @@
 #include <imgui_internal.h>  // the window's widest row (ImGuiWindow::DC.CursorMaxPos)
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <string>
@@ -12,6 +13,7 @@
 #include "ui/controller_panel.h"
 #include "ui/input.h"
 #include "ui/panel_sections.h"
+#include "ui/presentation.h"
 #include "ui/scene_catalog.h"
 #include "ui/plot_board.h"
 #include "ui/plot_panel.h"
@@ -78,8 +80,28 @@ void viewMenu(Sandbox& sandbox, PanelState& state) {
   if (ImGui::MenuItem("projector mode", nullptr, &sandbox.projector))
     sandbox.uiScale = sandbox.projector ? 2 : 1;
   tooltip("Large fonts and thick lines for a lecture hall.");
+  if (ImGui::MenuItem("presentation mode", "p", sandbox.presentation)) togglePresentation(sandbox);
+  tooltip("Hide the side panels and fit the scene to the window (p again brings them back).");
+  if (ImGui::MenuItem("fit scene view", "v")) sandbox.fitView();
+  tooltip("Fit the scene to the view; it stays fitted until you pan or zoom.");
   if (ImGui::MenuItem("collapse both panels")) state.collapseLeft = state.collapseRight = true;
   ImGui::EndMenu();
+}
+
+/// Presentation mode's controls in the menu bar: the side panels are hidden.
+void presentationControls(Sandbox& sandbox) {
+  ImGui::TextDisabled("|");
+  if (ImGui::Button(sandbox.paused ? "Play" : "Pause")) sandbox.paused = !sandbox.paused;
+  tooltip("Run or pause the simulation (space).");
+  if (ImGui::Button("Step")) {
+    sandbox.paused = true;
+    ++sandbox.pendingSteps;
+  }
+  tooltip("Pause and advance one time step (s).");
+  if (ImGui::Button("Reset")) sandbox.reset();
+  tooltip("Start the scene again (r).");
+  if (ImGui::Button("Panels")) togglePresentation(sandbox);
+  tooltip("Leave presentation mode: show the side panels again (p).");
 }
 
 float menuBar(Sandbox& sandbox, PanelState& state) {
@@ -91,6 +113,7 @@ float menuBar(Sandbox& sandbox, PanelState& state) {
       ImGui::MenuItem("Shortcuts", "h", &sandbox.showHelp);
       ImGui::EndMenu();
     }
+    if (sandbox.presentation) presentationControls(sandbox);
     ImGui::TextDisabled("  %s", sandbox.sceneName.c_str());
     height = ImGui::GetWindowSize().y;
     sandbox.panels.push_back({0, 0, static_cast<float>(sandbox.camera.width), height});
@@ -177,13 +200,24 @@ void statusLine(Sandbox& sandbox) {
                    ImGuiWindowFlags_NoSavedSettings | kPanelBackground);
   record(sandbox);
   if (const World* world = sandbox.world()) {
+    // The whole line when it fits, else without the timings, else the essentials.
     const StepStats& s = world->lastStepStats();
-    ImGui::Text(
-        "%s %.2gx  t %.3f s   energy %.4g J   step %.1f us (cables %.1f us)   %.0f fps   wraps "
-        "%d   %s",
-        sandbox.paused ? "PAUSED" : "running", sandbox.speed, world->time(), world->energy(),
-        s.stepMicros, s.cableMicros, sandbox.fps, s.wrapPoints,
-                sandbox.message.empty() ? "h: help" : sandbox.message.c_str());
+    const char* state = sandbox.paused ? "PAUSED" : "running";
+    const char* note = sandbox.message.empty() ? "h: help" : sandbox.message.c_str();
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "%s %.2gx  t %.3f s   energy %.4g J   step %.1f us (cables %.1f us)   %.0f fps   "
+                  "wraps %d   %s",
+                  state, sandbox.speed, world->time(), world->energy(), s.stepMicros, s.cableMicros,
+                  sandbox.fps, s.wrapPoints, note);
+    const float room = ImGui::GetContentRegionAvail().x;
+    if (ImGui::CalcTextSize(line).x > room)
+      std::snprintf(line, sizeof line, "%s %.2gx  t %.3f s   energy %.4g J   %s", state,
+                    sandbox.speed, world->time(), world->energy(), note);
+    if (ImGui::CalcTextSize(line).x > room)
+      std::snprintf(line, sizeof line, "%s  t %.2f s", state, world->time());
+    sandbox.statusOverflow = std::max(0.0f, ImGui::CalcTextSize(line).x - room);
+    ImGui::TextUnformatted(line);
   } else {
     ImGui::TextUnformatted("no scene loaded");
   }
@@ -288,8 +322,10 @@ void drawPanels(Sandbox& sandbox, PanelState& state) {
   sandbox.panels.clear();
   layoutFor(sandbox, state);
   const float top = menuBar(sandbox, state);
-  simulationPanel(sandbox, state, top);
-  inspectorPanel(sandbox, state, top);
+  if (!sandbox.presentation) {
+    simulationPanel(sandbox, state, top);
+    inspectorPanel(sandbox, state, top);
+  }
   statusLine(sandbox);
   helpOverlay(sandbox);
   openDialog(sandbox, state);

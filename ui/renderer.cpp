@@ -10,17 +10,14 @@
 
 #include "ui/colormap.h"
 #include "ui/label_layout.h"
+#include "ui/palette.h"
+#include "ui/scene_bounds.h"
 
 namespace cablelab::ui {
 namespace {
 
-constexpr Colour kBackground{0.97f, 0.97f, 0.95f, 1};
 constexpr Colour kGridMinor{0.89f, 0.89f, 0.87f, 1};
 constexpr Colour kGridAxis{0.72f, 0.72f, 0.70f, 1};
-constexpr Colour kSlack{0.55f, 0.55f, 0.55f, 1};
-constexpr Colour kPulley{0.9f, 0.45f, 0.0f, 1};
-constexpr Colour kPulleyIdle{0.95f, 0.75f, 0.55f, 1};  // a pulley the cable does not touch now
-constexpr Colour kJoint{0.25f, 0.25f, 0.3f, 1};
 constexpr Colour kSelected{0.95f, 0.75f, 0.0f, 1};
 
 struct BodyColours {
@@ -37,11 +34,6 @@ BodyColours coloursFor(BodyType type) {
       return {{0.98f, 0.80f, 0.56f, 1}, {0.62f, 0.36f, 0.1f, 1}};
   }
   return {{1, 0, 1, 1}, {0, 0, 0, 1}};
-}
-
-ImU32 toImU32(const Colour& c) {
-  auto b = [](float v) { return static_cast<int>(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f); };
-  return IM_COL32(b(c[0]), b(c[1]), b(c[2]), b(c[3]));
 }
 
 void colour(const Colour& c, float alpha = 1) {
@@ -159,9 +151,11 @@ class Painter {
     for (const Vec2& p : worldPoints) o.push_back(cam_.toScreen(p));
   }
 
-  /// Draws the queued labels where label_layout.h puts them inside `view` (px): off the bodies
-  /// and each other, a leader line to those placed away from their anchor.
-  void placeLabels(const LabelBox& view) const {
+  /// Draws the queued labels where label_layout.h puts them inside `view` (px): off the bodies,
+  /// each other and `reserved`, a leader line to those placed away from their anchor; a label
+  /// with no such place is left out. Adds what it drew to `drawn`.
+  void placeLabels(const LabelBox& view, const std::vector<LabelBox>& reserved,
+                   DrawnView& drawn) const {
     if (!text_) return;
     std::vector<LabelRequest> requests;
     requests.reserve(labels_.size());
@@ -169,9 +163,14 @@ class Painter {
       const ImVec2 size = ImGui::CalcTextSize(l.text.c_str());
       requests.push_back({l.anchor, l.offset, size.x, size.y});
     }
-    const auto placed = ui::placeLabels(requests, obstacles_, view, 4 * scale_);
+    const auto placed = ui::placeLabels(requests, obstacles_, view, 4 * scale_, reserved);
     for (size_t k = 0; k < labels_.size(); ++k) {
       const LabelBox& b = placed[k].box;
+      if (!placed[k].shown) {
+        ++drawn.hiddenLabels;
+        continue;
+      }
+      drawn.labels.push_back(b);
       const ImU32 colour = toImU32(labels_[k].colour);
       if (placed[k].leader) {
         const Vec2& a = labels_[k].anchor;
@@ -362,7 +361,6 @@ double metresPerNewton(const Camera& cam, double scale) {
 void drawCables(const World& world, const RenderOptions& options, double scale,
                 const Painter& paint) {
   constexpr Colour kPlain{0.25f, 0.25f, 0.3f, 1};
-  constexpr Colour kStretch{0.9f, 0.0f, 0.1f, 0.35f};
   for (int i = 0; i < world.cableCount(); ++i) {
     const Cable& cable = world.cable(i);
     const auto& path = cable.path();
@@ -371,7 +369,7 @@ void drawCables(const World& world, const RenderOptions& options, double scale,
     const bool stretched = options.overstretch && overstretched(cable);
     if (stretched)  // a wide red halo under the cable
       for (size_t k = 1; k < path.size(); ++k)
-        paint.line(path[k - 1].world, path[k].world, kStretch, 12.0f);
+        paint.line(path[k - 1].world, path[k].world, kStretchHalo, 12.0f);
     double phase = 0;
     // Straight pieces run between tangent points; each carries its span's tension.
     for (size_t k = 1; k < path.size(); ++k) {
@@ -401,11 +399,10 @@ void drawCables(const World& world, const RenderOptions& options, double scale,
     if (options.forces && path.size() >= 2 && !cable.slack() && cable.tension() > 0) {
       // The cable pulls each end body along its first (last) segment.
       const double l = cable.tension() * metresPerNewton(paint.camera(), scale);
-      const Colour arrow{0.55f, 0.1f, 0.6f, 1};
       for (int end = 0; end < 2; ++end) {
         const Vec2 a = end == 0 ? path[0].world : path.back().world;
         const Vec2 b = end == 0 ? path[1].world : path[path.size() - 2].world;
-        if ((b - a).norm() > 1e-12) paint.arrow(a, a + l * (b - a).normalized(), arrow, 2.0f);
+        if ((b - a).norm() > 1e-12) paint.arrow(a, a + l * (b - a).normalized(), kForceArrow, 2.0f);
       }
     }
     if (stretched && !path.empty()) {
@@ -434,253 +431,15 @@ void drawOverlay(const Overlay& overlay, const Painter& paint) {
   for (const Overlay::Text& t : overlay.texts) paint.label(t.position, t.text, t.colour, {0, 0});
 }
 
-std::string format(const char* fmt, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, fmt, value);
-  return buffer;
-}
-
-/// The free screen rectangle (px) the screen-space pieces are placed in.
-struct Frame {
-  float x, y, w, h;
-  float lineHeight;  ///< of the text font (px)
-};
-
-void quad(float x0, float y0, float x1, float y1) {
-  glBegin(GL_QUADS);
-  glVertex2f(x0, y0);
-  glVertex2f(x1, y0);
-  glVertex2f(x1, y1);
-  glVertex2f(x0, y1);
-  glEnd();
-}
-
-void drawScaleBar(const Camera& cam, const Frame& f, ImDrawList* text) {
-  const double step = gridStep(cam);
-  const float length = static_cast<float>(step / cam.metresPerPixel);
-  const float x0 = f.x + 16, y0 = f.y + f.h - 18;
-  glLineWidth(2.0f);
-  glColor4f(0.15f, 0.15f, 0.15f, 1);
-  glBegin(GL_LINES);
-  glVertex2f(x0, y0);
-  glVertex2f(x0 + length, y0);
-  glVertex2f(x0, y0 - 5);
-  glVertex2f(x0, y0 + 5);
-  glVertex2f(x0 + length, y0 - 5);
-  glVertex2f(x0 + length, y0 + 5);
-  glEnd();
-  if (text)
-    text->AddText(ImVec2(x0 + length + 6, y0 - 0.5f * f.lineHeight), IM_COL32(40, 40, 40, 255),
-                  (format("%g", step) + " m").c_str());
-}
-
-/// A horizontal colour bar in the bottom-right corner, where scenes are seldom drawn.
-void drawTensionBar(double scale, const Frame& f, ImDrawList* text) {
-  const float lh = f.lineHeight, barH = std::max(10.0f, 0.7f * lh);
-  const float barW = std::clamp(0.3f * f.w, 90.0f, 12 * lh);
-  const float slackW = text ? ImGui::CalcTextSize("slack").x + 34 : 80;
-  const float x0 = f.x + f.w - barW - 24, y0 = f.y + f.h - 1.6f * lh - barH;
-  glColor4f(kBackground[0], kBackground[1], kBackground[2], 0.85f);
-  quad(x0 - slackW - 8, y0 - 1.5f * lh, x0 + barW + 20, y0 + barH + 1.5f * lh);
-  glBegin(GL_QUADS);
-  const int n = 32;
-  for (int k = 0; k < n; ++k) {
-    const float a = static_cast<float>(k) / n, b = static_cast<float>(k + 1) / n;
-    colour(tensionColour(a));
-    glVertex2f(x0 + barW * a, y0 + barH);
-    glVertex2f(x0 + barW * a, y0);
-    colour(tensionColour(b));
-    glVertex2f(x0 + barW * b, y0);
-    glVertex2f(x0 + barW * b, y0 + barH);
-  }
-  glEnd();
-  glLineWidth(1.0f);
-  glColor4f(0.2f, 0.2f, 0.2f, 1);
-  glBegin(GL_LINE_LOOP);
-  glVertex2f(x0, y0);
-  glVertex2f(x0 + barW, y0);
-  glVertex2f(x0 + barW, y0 + barH);
-  glVertex2f(x0, y0 + barH);
-  glEnd();
-  glBegin(GL_LINES);
-  for (int k = 0; k <= 4; ++k) {
-    glVertex2f(x0 + barW * k / 4.0f, y0 + barH);
-    glVertex2f(x0 + barW * k / 4.0f, y0 + barH + 3);
-  }
-  // Slack sample, left of the bar: a dashed grey stroke.
-  glColor4f(kSlack[0], kSlack[1], kSlack[2], 1);
-  for (int k = 0; k < 3; ++k) {
-    glVertex2f(x0 - slackW + 8.0f * k, y0 + 0.5f * barH);
-    glVertex2f(x0 - slackW + 5 + 8.0f * k, y0 + 0.5f * barH);
-  }
-  glEnd();
-  if (!text) return;
-  const ImU32 ink = IM_COL32(40, 40, 40, 255);
-  text->AddText(ImVec2(x0, y0 - 1.25f * lh), ink, "tension (N)");
-  text->AddText(ImVec2(x0 - slackW + 28, y0 + 0.5f * (barH - lh)), ink, "slack");
-  for (int k = 0; k <= 4; k += 2) {
-    const std::string label = format("%.3g", scale * k / 4);
-    const float w = ImGui::CalcTextSize(label.c_str()).x;
-    text->AddText(ImVec2(x0 + barW * k / 4.0f - 0.5f * w, y0 + barH + 4), ink, label.c_str());
-  }
-}
-
-/// One row of the marker key: which sample to draw, its colour, its text.
-struct KeyRow {
-  enum class Sample {
-    Anchor,
-    WrapPoint,
-    PointPulley,
-    PulleyInUse,
-    PulleyIdle,
-    Cross,
-    Arrow,
-    DashedCross,
-    Stretch
-  };
-  Sample sample;
-  Colour colour;
-  std::string label;
-};
-
-void drawSample(const KeyRow& row, float cx, float cy, float s) {
-  const Colour& c = row.colour;
-  auto disc = [&](float r, const Colour& fill) {
-    colour(fill);
-    glBegin(GL_TRIANGLE_FAN);
-    for (int k = 0; k < 20; ++k)
-      glVertex2f(cx + r * std::cos(2 * M_PI * k / 20), cy + r * std::sin(2 * M_PI * k / 20));
-    glEnd();
-  };
-  auto segment = [&](float x0, float y0, float x1, float y1, float width) {
-    glLineWidth(width * s);
-    colour(c);
-    glBegin(GL_LINES);
-    glVertex2f(x0, y0);
-    glVertex2f(x1, y1);
-    glEnd();
-  };
-  const float h = 8 * s;
-  switch (row.sample) {
-    case KeyRow::Sample::Anchor:
-      disc(3.5f * s, c);
-      break;
-    case KeyRow::Sample::WrapPoint:
-      colour(c);
-      quad(cx - 3 * s, cy - 3 * s, cx + 3 * s, cy + 3 * s);
-      break;
-    case KeyRow::Sample::PointPulley:
-      disc(6 * s, c);
-      disc(3.5f * s, {1, 1, 1, 1});
-      break;
-    case KeyRow::Sample::PulleyInUse:
-    case KeyRow::Sample::PulleyIdle:
-      segment(cx - h, cy, cx + h, cy, 2.5f);
-      break;
-    case KeyRow::Sample::Stretch:
-      segment(cx - h, cy, cx + h, cy, 10.0f);
-      break;
-    case KeyRow::Sample::Arrow:
-      segment(cx - h, cy, cx + h, cy, 2);
-      segment(cx + h, cy, cx + h - 0.6f * h, cy - 0.4f * h, 2);
-      segment(cx + h, cy, cx + h - 0.6f * h, cy + 0.4f * h, 2);
-      break;
-    case KeyRow::Sample::Cross:
-    case KeyRow::Sample::DashedCross:
-      segment(cx - 0.8f * h, cy - 0.8f * h, cx + 0.8f * h, cy + 0.8f * h, 2.5f);
-      segment(cx - 0.8f * h, cy + 0.8f * h, cx + 0.8f * h, cy - 0.8f * h, 2.5f);
-      break;
-  }
-}
-
-/// The key of every marker on screen, top-right of the free area.
-void drawMarkerKey(const World& world, const Overlay& overlay, const RenderOptions& options,
-                   const Frame& f, ImDrawList* text) {
-  if (!text) return;
-  std::vector<KeyRow> rows;
-  bool point = false, polygon = false, stretched = false;
-  for (const CableDef& c : world.scene().cables)
-    for (const PulleyDef& p : c.pulleys)
-      (p.kind == PulleyDef::Kind::Point ? point : polygon) = true;
-  for (int i = 0; i < world.cableCount(); ++i) stretched |= overstretched(world.cable(i));
-  const Colour dark{0.15f, 0.15f, 0.15f, 1};
-  if (options.wrapPoints && world.cableCount() > 0) {
-    rows.push_back({KeyRow::Sample::Anchor, dark, "cable end"});
-    rows.push_back({KeyRow::Sample::WrapPoint, dark, "wrap point"});
-  }
-  if (point) rows.push_back({KeyRow::Sample::PointPulley, kPulley, "point pulley"});
-  if (polygon) {
-    rows.push_back({KeyRow::Sample::PulleyInUse, kPulley, "pulley, cable on it"});
-    rows.push_back({KeyRow::Sample::PulleyIdle, kPulleyIdle, "pulley, cable off it"});
-  }
-  bool revolute = false;
-  for (const JointDef& j : world.scene().joints) revolute |= j.kind == JointDef::Kind::Revolute;
-  if (revolute) rows.push_back({KeyRow::Sample::PointPulley, kJoint, "revolute joint"});
-  if (options.forces && world.cableCount() > 0)
-    rows.push_back({KeyRow::Sample::Arrow, {0.55f, 0.1f, 0.6f, 1}, "cable force"});
-  if (options.overstretch && stretched)
-    rows.push_back({KeyRow::Sample::Stretch, {0.9f, 0.0f, 0.1f, 0.35f}, "overstretched cable"});
-  for (const Overlay::Key& k : overlay.keys) {
-    const KeyRow::Sample sample =
-        k.marker == Overlay::Key::Marker::Arrow ? KeyRow::Sample::Arrow : KeyRow::Sample::Cross;
-    rows.push_back({sample, k.colour, k.label});
-  }
-  if (rows.empty()) return;
-  const float lh = f.lineHeight, s = options.lineScale, sampleW = 24 * s;
-  float width = 0;
-  for (const KeyRow& r : rows) width = std::max(width, ImGui::CalcTextSize(r.label.c_str()).x);
-  // The key gives way on a small view: it would hide the scene (the View toggle brings it back
-  // once the window is larger).
-  if (width + sampleW + 16 > 0.4f * f.w) return;
-  const float x1 = f.x + f.w - 8, x0 = x1 - width - sampleW - 16, y0 = f.y + 8 + options.keyTop;
-  const float rowH = std::max(lh + 2, 16 * s);
-  glColor4f(kBackground[0], kBackground[1], kBackground[2], 0.85f);
-  quad(x0, y0, x1, y0 + rows.size() * rowH + 8);
-  for (size_t k = 0; k < rows.size(); ++k) {
-    const float cy = y0 + 4 + (k + 0.5f) * rowH;
-    drawSample(rows[k], x0 + 6 + 0.5f * sampleW, cy, s);
-    text->AddText(ImVec2(x0 + 10 + sampleW, cy - 0.5f * lh), IM_COL32(40, 40, 40, 255),
-                  rows[k].label.c_str());
-  }
-}
-
-/// A pale yellow strip across the top of the free area.
-void drawBanner(const std::string& banner, const Frame& f, ImDrawList* text) {
-  if (banner.empty() || !text) return;
-  const ImVec2 size = ImGui::CalcTextSize(banner.c_str(), nullptr, false, f.w - 40);
-  const float w = size.x + 20, x0 = f.x + 0.5f * (f.w - w), y0 = f.y + 6;
-  glColor4f(1.0f, 0.91f, 0.55f, 0.95f);
-  quad(x0, y0, x0 + w, y0 + size.y + 10);
-  glLineWidth(1.5f);
-  glColor4f(0.7f, 0.45f, 0.0f, 1);
-  glBegin(GL_LINE_LOOP);
-  glVertex2f(x0, y0);
-  glVertex2f(x0 + w, y0);
-  glVertex2f(x0 + w, y0 + size.y + 10);
-  glVertex2f(x0, y0 + size.y + 10);
-  glEnd();
-  text->AddText(nullptr, 0, ImVec2(x0 + 10, y0 + 5), IM_COL32(90, 50, 0, 255), banner.c_str(),
-                nullptr, f.w - 40);
-}
-
-/// Screen-space pieces: the orthographic matrix is switched to pixels (y down).
-void drawScreenSpace(const World& world, const Overlay& overlay, const RenderOptions& options,
-                     double scale, const Camera& cam, ImDrawList* text) {
-  glMatrixMode(GL_PROJECTION);
-  glLoadIdentity();
-  glOrtho(0, cam.width, cam.height, 0, -1, 1);
-  const bool whole = options.freeWidth <= 0 || options.freeHeight <= 0;
-  Frame f{whole ? 0.0f : options.freeX, whole ? 0.0f : options.freeY,
-          whole ? cam.width : options.freeWidth, whole ? cam.height : options.freeHeight,
-          text ? ImGui::GetTextLineHeight() : 13.0f};
-  if (text)
-    for (size_t i = 0; i < overlay.notes.size(); ++i)
-      text->AddText(ImVec2(f.x + 8, f.y + 8 + (f.lineHeight + 2) * i), IM_COL32(40, 40, 40, 255),
-                    overlay.notes[i].c_str());
-  if (options.grid) drawScaleBar(cam, f, text);
-  if (options.legend && world.cableCount() > 0) drawTensionBar(scale, f, text);
-  if (options.markerLegend) drawMarkerKey(world, overlay, options, f, text);
-  drawBanner(overlay.banner, f, text);
+/// Where labels may not go: the screen pieces, and a collapsed side panel's title bar reaching
+/// into the top of the free area (`keyTop` tall).
+std::vector<LabelBox> reservedForLabels(const FurnitureLayout& furniture,
+                                        const RenderOptions& options) {
+  std::vector<LabelBox> reserved = furniture.occupied();
+  if (options.keyTop > 0)
+    reserved.push_back(
+        {furniture.x, furniture.y, furniture.x + furniture.w, furniture.y + options.keyTop});
+  return reserved;
 }
 
 }  // namespace
@@ -699,8 +458,8 @@ double tensionScaleFor(const World& world, const RenderOptions& options) {
   return niceCeil(largest);
 }
 
-void drawWorld(const World& world, const Camera& camera, const Overlay& overlay,
-               const RenderOptions& options, ImDrawList* text) {
+DrawnView drawWorld(const World& world, const Camera& camera, const Overlay& overlay,
+                    const RenderOptions& options, ImDrawList* text) {
   glClearColor(kBackground[0], kBackground[1], kBackground[2], kBackground[3]);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
@@ -727,6 +486,14 @@ void drawWorld(const World& world, const Camera& camera, const Overlay& overlay,
 
   const Painter paint(camera, text, std::max(options.lineScale, 0.25f));
   const double scale = tensionScaleFor(world, options);
+  DrawnView drawn;
+  const WorldBounds bounds = sceneBounds(world);
+  if (!bounds.empty()) {
+    const Vec2 a = camera.toScreen(bounds.lo), b = camera.toScreen(bounds.hi);
+    drawn.scene = {std::min(a.x(), b.x()), std::min(a.y(), b.y()), std::max(a.x(), b.x()),
+                   std::max(a.y(), b.y())};
+  }
+  drawn.furniture = layoutFurniture(world, overlay, options, camera, text != nullptr, drawn.scene);
   if (options.grid) drawGrid(paint);
   drawBodies(world, options, paint);
   drawPulleys(world, paint);
@@ -737,10 +504,12 @@ void drawWorld(const World& world, const Camera& camera, const Overlay& overlay,
   paint.placeLabels(
       free ? LabelBox{options.freeX, options.freeY, options.freeX + options.freeWidth,
                       options.freeY + options.freeHeight}
-           : LabelBox{0, 0, static_cast<double>(camera.width), static_cast<double>(camera.height)});
-  drawScreenSpace(world, overlay, options, scale, camera, text);
+           : LabelBox{0, 0, static_cast<double>(camera.width), static_cast<double>(camera.height)},
+      reservedForLabels(drawn.furniture, options), drawn);
+  drawFurniture(drawn.furniture, overlay, options, scale, camera, text);
   glDisable(GL_LINE_SMOOTH);
   glDisable(GL_SCISSOR_TEST);
+  return drawn;
 }
 
 }  // namespace cablelab::ui

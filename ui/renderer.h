@@ -17,38 +17,12 @@
 #include "engine/dynamics/world.h"
 #include "ui/camera.h"
 #include "ui/overlay.h"
+#include "ui/render_options.h"
+#include "ui/view_furniture.h"
 
 struct ImDrawList;
 
 namespace cablelab::ui {
-
-struct RenderOptions {
-  /// Tension (N) at the top of the colour bar; <= 0: the largest current tension, rounded up
-  /// to 1, 2 or 5 times a power of ten.
-  double tensionScale = 0;
-  int selectedBody = -1;      ///< highlighted body, -1 none
-  int selectedCable = -1;     ///< highlighted cable, -1 none
-  bool grid = true;           ///< grid lines and scale bar
-  bool legend = true;         ///< tension colour bar and cable list
-  bool wrapPoints = true;     ///< squares at wrap points, circles at anchors
-  bool labels = true;         ///< body names
-  bool tensions = true;       ///< cables coloured by tension (else one plain colour)
-  bool forces = false;        ///< arrows of the cable forces at the anchors, length per newton
-  bool markerLegend = false;  ///< a key of the markers drawn (the sandbox turns it on)
-  /// Pixels to keep clear at the top of the free area for the marker key (a collapsed panel's
-  /// title bar there).
-  float keyTop = 0;
-  /// Line widths and marker sizes are multiplied by this (projector mode: 2).
-  float lineScale = 1;
-  /// Cables drawn with an overstretch mark (rigid: longer than rest by > kOverstretch).
-  bool overstretch = true;
-  /// Screen rectangle (px, top-left origin) free of UI panels, where the legend and scale bar
-  /// go; a zero-size rectangle means the whole viewport.
-  float freeX = 0, freeY = 0, freeWidth = 0, freeHeight = 0;
-  /// Clear and draw only inside the free rectangle (GL scissor): the sandbox's panels cover the
-  /// rest, and on a software rasteriser every pixel drawn under them is time lost.
-  bool clipToFree = false;
-};
 
 /// A rigid cable longer than its rest length by more than this (m) is drawn as overstretched.
 inline constexpr double kOverstretch = 0.01;
@@ -59,10 +33,19 @@ inline constexpr double kOverstretchElastic = 0.5;
 /// pulled it through a constraint.
 bool overstretched(const Cable& cable);
 
+/// What a drawWorld() call put where on the screen (px, top-left origin): for the sandbox's
+/// scripted checks that labels, bars and key never cover each other and the scene fits.
+struct DrawnView {
+  std::vector<LabelBox> labels;  ///< every label shown
+  int hiddenLabels = 0;          ///< labels with no free place (not drawn)
+  FurnitureLayout furniture;     ///< scale bar, colour bar, key, notes, banner, PAUSED sign
+  LabelBox scene;                ///< the moving bodies, pulleys and cables (ui/scene_bounds.h)
+};
+
 /// Clears the viewport (the free rectangle with `clipToFree`) and draws `world` seen by
-/// `camera`, with `overlay` on top.
-void drawWorld(const World& world, const Camera& camera, const Overlay& overlay,
-               const RenderOptions& options, ImDrawList* text);
+/// `camera`, with `overlay` on top; returns where the labels and screen pieces went.
+DrawnView drawWorld(const World& world, const Camera& camera, const Overlay& overlay,
+                    const RenderOptions& options, ImDrawList* text);
 
 /// The colour-bar maximum the renderer uses for `world` and `options` (N).
 double tensionScaleFor(const World& world, const RenderOptions& options);

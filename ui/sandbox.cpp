@@ -8,6 +8,8 @@
 #include "ui/authoring.h"
 #include "ui/colormap.h"
 #include "ui/controller_panel.h"
+#include "ui/presentation.h"
+#include "ui/scene_bounds.h"
 #include "ui/scene_catalog.h"
 #include "ui/tension_scale.h"
 #include "ui/plot_board.h"
@@ -17,7 +19,8 @@
 namespace cablelab::ui {
 namespace {
 
-constexpr double kBannerSeconds = 6;  // a guard's banner stays this long (wall time)
+constexpr double kBannerSeconds = 6;  // a banner stays this long (wall time)
+constexpr double kActionSeconds = 1;  // a warning this soon after a drag or edit is its doing
 constexpr double kOverLength = 1e-5;  // m: a rigid cable longer than its rest length by more
                                       // is settled before a paused world runs again
 
@@ -54,13 +57,14 @@ bool Sandbox::adopt(SceneDef def, const std::string& name, bool fitCamera) {
   follow = false;
   tensionHistory.assign(world_->cableCount(), std::vector<float>(kHistory, 0.0f));
   historyHead = 0;
-  sceneTensionScale = expectedTensionScale(scene);
-  tensionScale = sceneTensionScale;
+  sceneTensionScale = loadTensionScale(scene);
+  if (!tensionScaleLocked) tensionScale = sceneTensionScale;
   accumulator_ = 0;
-  warningsSeen = 0;
+  log.newWorld();
   banner.clear();
   timeline->clear();
   plots->clear(true);
+  actionUntil = -1;
   loadCableEdit();
   controller.reset();
   controllerOpened(*this);
@@ -71,6 +75,8 @@ bool Sandbox::adopt(SceneDef def, const std::string& name, bool fitCamera) {
 bool Sandbox::open(const std::string& nameOrPath) {
   try {
     adopt(loadScene(nameOrPath), nameOrPath, true);
+    paused = false;  // every scene starts running (a paused one said so only in small print)
+    pendingSteps = 0;
     const Authoring::Tool tool = authoring->tool;
     authoring = std::make_unique<Authoring>();
     authoring->tool = tool;
@@ -125,12 +131,13 @@ void Sandbox::reset() {
     drag = {};
     for (auto& h : tensionHistory) std::fill(h.begin(), h.end(), 0.0f);
     historyHead = 0;
-    tensionScale = sceneTensionScale;
+    if (!tensionScaleLocked) tensionScale = sceneTensionScale;
     accumulator_ = 0;
-    warningsSeen = 0;
+    log.newWorld();
     banner.clear();
     timeline->clear();
     plots->clear(false);
+    actionUntil = -1;
     loadCableEdit();
     controllerOpened(*this);
   } catch (const std::exception& e) {
@@ -179,13 +186,16 @@ void Sandbox::advance(double frameSeconds, bool fixedStep) {
 }
 
 void Sandbox::checkWarnings() {
-  const auto& w = world_->warnings();
-  if (w.size() > warningsSeen) {
-    banner = "guard: " + w.back();
-    if (w.size() > warningsSeen + 1)
-      banner += "  (+" + std::to_string(w.size() - warningsSeen - 1) + " more, see Inspector)";
+  if (drag.body >= 0 && drag.body < world_->bodyCount()) {
+    action = {UserAction::Kind::Drag, world_->scene().bodies[drag.body].name};
+    actionUntil = clock + kActionSeconds;
+  }
+  const UserAction current = clock <= actionUntil ? action : UserAction{};
+  for (const std::string& w : log.take(*world_, sceneName)) {
+    const std::string plain = plainBanner(w, current);
+    if (plain.empty()) continue;
+    banner = plain;
     bannerUntil = clock + kBannerSeconds;
-    warningsSeen = w.size();
   }
   if (clock > bannerUntil) banner.clear();
 }
@@ -197,7 +207,6 @@ void Sandbox::afterStep() {
   for (int i = 0; i < world_->cableCount() && i < static_cast<int>(tensionHistory.size()); ++i) {
     const double t = world_->cable(i).tension();
     tensionHistory[i][historyHead] = std::isfinite(t) ? static_cast<float>(t) : 0.0f;
-    if (!tensionScaleLocked && std::isfinite(t) && t > tensionScale) tensionScale = niceCeil(t);
   }
   historyHead = (historyHead + 1) % kHistory;
 }
@@ -353,6 +362,8 @@ bool Sandbox::applyCableEdit() {
   try {
     world_->setCableParameters(selectedCable, cableEdit.restLength, cableEdit.stiffness,
                                cableEdit.preload, cableEdit.damping);
+    action = {UserAction::Kind::CableEdit, ""};
+    actionUntil = clock + kActionSeconds;
     return true;
   } catch (const std::exception& e) {
     error = e.what();
@@ -383,6 +394,10 @@ Overlay Sandbox::overlay() const {
   }
   controllerOverlay(*this, o);
   authoringOverlay(*this, o);
+  // The hand's bodies collide with nothing (the model is its cables): say so, or a box sliding
+  // through a paddle that looks solid reads as a bug.
+  if (hasController())
+    o.notes.push_back("The bodies pass through each other: only the bands hold the box.");
   o.banner = banner;
   return o;
 }
@@ -415,28 +430,27 @@ Vec2 Sandbox::centreFor(const Vec2& p) const {
 void Sandbox::fitView() {
   fitPending = false;
   const PanelRect f = freeArea();
+  fittedArea = f;
+  fittedScale = uiScale;
+  viewFitted = true;
   if (!world_ || f.width < 40 || f.height < 40) return;
-  const double aspect = f.width / f.height;
-  const Vec2 half(0.5 * scene.view.height * aspect, 0.5 * scene.view.height);
-  Vec2 lo = scene.view.center - half, hi = scene.view.center + half;
-  auto include = [&](const Vec2& p, double margin) {
-    lo = lo.cwiseMin(p - Vec2(margin, margin));
-    hi = hi.cwiseMax(p + Vec2(margin, margin));
-  };
-  const double margin = 0.04 * scene.view.height;
-  for (int i = 0; i < world_->bodyCount(); ++i) {
-    if (scene.bodies[i].type != BodyType::Dynamic) continue;  // grounds may be very wide
-    const BodyState& s = world_->body(i);
-    for (const ShapeDef& shape : scene.bodies[i].shapes) {
-      if (shape.kind == ShapeDef::Kind::Circle)
-        include(s.position + rotate(shape.center, s.angle), shape.radius + margin);
-      for (const Vec2& v : shape.vertices) include(s.position + rotate(v, s.angle), margin);
-    }
+  if (presentation) {
+    camera = fitToContent(*world_, camera, f, barRowHeight(*this));
+    return;
   }
-  for (int i = 0; i < world_->cableCount(); ++i)
-    for (const WrapPoint& p : world_->cable(i).path()) include(p.world, margin);
-  camera.metresPerPixel = std::max((hi.x() - lo.x()) / f.width, (hi.y() - lo.y()) / f.height);
-  camera.center = centreFor(0.5 * (lo + hi));
+  // The scene's view grown to hold the moving parts, above the colour bar's row.
+  PanelRect area = f;
+  area.height = std::max(40.0f, f.height - barRowHeight(*this));
+  const double aspect = area.width / area.height;
+  const Vec2 half(0.5 * scene.view.height * aspect, 0.5 * scene.view.height);
+  WorldBounds b = sceneBounds(*world_, 0.04 * scene.view.height);
+  b.include(scene.view.center - half);
+  b.include(scene.view.center + half);
+  camera.metresPerPixel =
+      std::max((b.hi.x() - b.lo.x()) / area.width, (b.hi.y() - b.lo.y()) / area.height);
+  const double dx = area.x + 0.5 * area.width - 0.5 * camera.width;
+  const double dy = area.y + 0.5 * area.height - 0.5 * camera.height;
+  camera.center = 0.5 * (b.lo + b.hi) - camera.metresPerPixel * Vec2(dx, -dy);
 }
 
 RenderOptions Sandbox::renderOptions() const {
@@ -445,6 +459,9 @@ RenderOptions Sandbox::renderOptions() const {
   options.selectedCable = selectedCable;
   options.selectedBody = selectedBody;
   options.lineScale = projector ? 2.0f : 1.0f;
+  options.paused = paused;
+  options.keyGivesWay = presentation;
+  options.tensionLocked = tensionScaleLocked;
   const PanelRect free = freeArea();
   options.freeX = free.x;
   options.freeY = free.y;

@@ -15,7 +15,9 @@
 #include "engine/dynamics/world.h"
 #include "ui/cable_spans.h"
 #include "ui/camera.h"
+#include "ui/event_log.h"
 #include "ui/overlay.h"
+#include "ui/plain_words.h"
 #include "ui/renderer.h"
 
 namespace cablelab::ui {
@@ -94,11 +96,18 @@ class Sandbox {
   /// The world view's free rectangle (px) between the panels.
   PanelRect freeArea() const;
   /// Fits the camera to the free area: the scene's view, grown to hold every dynamic body,
-  /// cable and pulley (so nothing starts cut off), centred in the area between the panels.
+  /// cable and pulley (so nothing starts cut off), centred in the area between the panels; in
+  /// presentation mode the moving parts alone, as large as they fit (ui/presentation.h).
   void fitView();
   /// The camera centre that puts world point `p` at the free area's centre (current scale).
   Vec2 centreFor(const Vec2& p) const;
   bool fitPending = false;  ///< fit the view once the panels have been laid out
+  /// The camera is as the last fit left it (no pan or zoom since): a change of the free area or
+  /// the UI scale fits it again (ui/presentation.h).
+  bool viewFitted = true;
+  PanelRect fittedArea;       ///< the free area of the last fit
+  float fittedScale = 0;      ///< the UI scale of the last fit
+  bool presentation = false;  ///< presentation mode: side panels hidden, the scene fitted
 
   // Drag (see Drag).
   void beginDrag(int body, const Vec2& worldPoint);
@@ -148,17 +157,20 @@ class Sandbox {
   static constexpr int kHistory = 600;
   std::vector<std::vector<float>> tensionHistory;
   int historyHead = 0;
-  /// Legend maximum (N): the scene's expected tension scale (ui/tension_scale.h), fixed while
-  /// `tensionScaleLocked`, else it grows with the largest tension; reset with the scene.
+  /// Legend maximum (N): the scene's scale from its loads (ui/tension_scale.h), or the user's
+  /// while `tensionScaleLocked` (kept across resets and scenes); never changed by a run.
   double tensionScale = 1;
   double sceneTensionScale = 1;
-  bool tensionScaleLocked = true;
+  bool tensionScaleLocked = false;
 
-  // Guard banner: the newest engine warning, shown for a few seconds after it appears.
+  // What the engine says goes to the log (ui/event_log.h); a warning the user's drag or edit
+  // caused also shows, in plain words (ui/plain_words.h), as a banner for a few seconds.
+  EventLog log;
   std::string banner;
   double bannerUntil = -1;  ///< wall-clock seconds of the sandbox (`clock`)
   double clock = 0;         ///< wall seconds since start (advance() adds frameSeconds)
-  size_t warningsSeen = 0;
+  UserAction action;        ///< the user's last drag or edit, current until `actionUntil`
+  double actionUntil = -1;  ///< `clock` seconds
 
   // UI scale and projector mode (fonts, line widths); the window applies them between frames.
   float uiScale = 1;
@@ -190,6 +202,13 @@ class Sandbox {
   /// How far (px) the widest row of the Simulation and the Inspector panel reached past the
   /// panel's width in the last frame each was open (0: every row fits).
   std::array<float, 2> panelOverflow{};
+  /// How far (px) the status line's text reached past the window's width in the last frame.
+  float statusOverflow = 0;
+  /// Buttons of the Run row drawn narrower than their text in the last frame (0: none).
+  int truncatedButtons = 0;
+
+  /// Where the last frame's labels, bars, key, banner and scene went (px), for the scripts.
+  DrawnView drawn;
 
   // Status.
   double lastFrameSeconds = 0;

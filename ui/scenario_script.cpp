@@ -81,6 +81,7 @@ const std::vector<std::string>& ScenarioScript::names() {
                                     "author",   "capstan-slip", "pose-drag",  "pose-payout"};
     for (const BuildScenario& b : buildScenarios()) all.push_back(b.name);
     for (const std::string& t : TimelineScenario::names()) all.push_back(t);
+    for (const std::string& name : LectureScript::names()) all.push_back(name);
     return all;
   }();
   return n;
@@ -91,6 +92,9 @@ ScenarioScript::ScenarioScript(std::string name, Uint32 windowId, std::string ou
   const auto& timeline = TimelineScenario::names();
   if (std::find(timeline.begin(), timeline.end(), name_) != timeline.end())
     timeline_ = std::make_shared<TimelineScenario>(name_, windowId_, out_);
+  const auto& lecture = LectureScript::names();
+  if (std::find(lecture.begin(), lecture.end(), name_) != lecture.end())
+    lecture_ = std::make_unique<LectureScript>(name_, windowId_, out_);
 }
 
 void ScenarioScript::mouse(Uint32 type, const Vec2& screen, Uint8 button) {
@@ -105,6 +109,11 @@ bool ScenarioScript::beforeFrame(Sandbox& sandbox, int frame) {
   if (!sandbox.world()) {
     report_ = "{\"scenario\": " + jsonQuoted(name_) + ", \"failure\": \"no scene\"}";
     return false;
+  }
+  if (lecture_) {
+    const bool more = lecture_->beforeFrame(sandbox, frame);
+    report_ = lecture_->report();
+    return more;
   }
   if (name_ == "describe") return describe(sandbox, frame);
   if (name_ == "reset-scale") return resetScale(sandbox, frame);
@@ -154,7 +163,7 @@ bool ScenarioScript::resetScale(Sandbox& sandbox, int frame) {
     report_ = "{\"scenario\": \"reset-scale\", \"before\": " + number(figures_[0]) +
               ", \"after_drag\": " + number(figures_[1]) +
               ", \"after_reset\": " + number(figures_[2]) +
-              ", \"expected\": " + number(expectedTensionScale(sandbox.scene)) +
+              ", \"expected\": " + number(loadTensionScale(sandbox.scene)) +
               ", \"largest_tension\": " + number(largest_) +
               ", \"time_after_reset\": " + number(world.time()) + "}";
     return false;
@@ -193,7 +202,8 @@ bool ScenarioScript::rigidDrag(Sandbox& sandbox, int frame) {
         ", \"largest_stretch\": " + number(largest_) +
         ", \"largest_drag_force\": " + number(figures_[0]) +
         ", \"drag_limit\": " + number(sandbox.dragLimit(body_)) +
-        ", \"frames_at_limit\": " + number(figures_[1]) + "}";
+        ", \"frames_at_limit\": " + number(figures_[1]) +
+        ", \"banner\": " + jsonQuoted(sandbox.banner) + "}";
     return false;
   }
   return true;
@@ -270,6 +280,7 @@ bool ScenarioScript::dropBox(Sandbox& sandbox, int frame) {
     report_ = "{\"scenario\": \"drop-box\", \"failure\": \"no body called box\"}";
     return false;
   }
+  if (!sandbox.banner.empty()) bannerSeen_ = sandbox.banner;
   if (frame == 2) {
     sandbox.dragWeights = 20;  // strong enough to pull the box out of the membranes
     figures_[0] = 0;
@@ -285,7 +296,8 @@ bool ScenarioScript::dropBox(Sandbox& sandbox, int frame) {
     mouse(SDL_MOUSEBUTTONUP, to_);
   } else if (frame == 180) {
     report_.pop_back();
-    report_ += ", \"state_after\": " + jsonQuoted(handGraspState(sandbox)) + ", \"box\": [" +
+    report_ += ", \"banner_seen\": " + jsonQuoted(bannerSeen_) +
+               ", \"state_after\": " + jsonQuoted(handGraspState(sandbox)) + ", \"box\": [" +
                number(world.body(box).position.x()) + ", " + number(world.body(box).position.y()) +
                "]}";
     return false;

@@ -24,6 +24,7 @@
 //                saves it to --script-out; reports the counts and the file
 //   build-...    a new scene, one element built by clicks and keys (ui/build_scenarios.h), saved
 //                to --script-out; reports the counts, the error and the message shown
+//   present, grasp-quiet, tension-run   the lecture-hall checks (ui/lecture_scripts.h)
 //
 // Needs: an SDL video subsystem (the sandbox's Window), a Sandbox with a loaded scene.
 #pragma once
@@ -35,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "ui/lecture_scripts.h"
 #include "ui/sandbox.h"
 
 namespace cablelab::ui {
@@ -77,6 +79,8 @@ class ScenarioScript {
   size_t step_ = 0;        ///< build: the next step
   double restBefore_ = 0;  ///< pose scenarios: the cable's rest length before the drag (m)
   std::shared_ptr<TimelineScenario> timeline_;  ///< the rewind and plot scenarios
+  std::unique_ptr<LectureScript> lecture_;  ///< the lecture-hall checks
+  std::string bannerSeen_;                  ///< drop-box: a banner shown during the drag
 };
 
 }  // namespace cablelab::ui

@@ -9,7 +9,13 @@
 
 namespace cablelab::ui {
 
-/// "What to try" for the built-in scene `name` (several short lines separated by '\n').
+/// "What to try" for the built-in scene `name` (several short lines separated by '\n'): steps
+/// that work in the window with the default settings (clicks, drags, sliders, keys).
 std::string whatToTry(const std::string& name);
+
+/// Two to four plain sentences about the built-in scene `name` for students (what it is, what
+/// to watch), shown in the Scene panel in place of its short technical description; empty for
+/// a scene file, which shows its own.
+std::string studentDescription(const std::string& name);
 
 }  // namespace cablelab::ui

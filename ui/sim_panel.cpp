@@ -28,9 +28,14 @@ void parameterSliders(Sandbox& sandbox) {
         std::find_if(values.begin(), values.end(), [&](auto& v) { return v.first == p.name; });
     if (it == values.end()) it = values.insert(values.end(), {p.name, p.value});
     float v = static_cast<float>(it->second);
-    ImGui::SetNextItemWidth(-ImGui::CalcTextSize("m_ballast_").x);
+    // The unit next to the slider ("m_load (kg)"), from the description's last "(...)".
+    const size_t open = p.description.rfind(" (");
+    const std::string unit =
+        open != std::string::npos && p.description.back() == ')' ? p.description.substr(open) : "";
+    const std::string label = p.name + unit + "###" + p.name;
+    ImGui::SetNextItemWidth(fieldWidth((p.name + unit).c_str(), ImGui::GetFontSize() * 9));
     const ImGuiSliderFlags flags = p.logarithmic ? ImGuiSliderFlags_Logarithmic : 0;
-    if (ImGui::SliderFloat(p.name.c_str(), &v, static_cast<float>(p.lo), static_cast<float>(p.hi),
+    if (ImGui::SliderFloat(label.c_str(), &v, static_cast<float>(p.lo), static_cast<float>(p.hi),
                            "%.4g", flags))
       it->second = v;
     apply |= ImGui::IsItemDeactivatedAfterEdit();
@@ -54,16 +59,12 @@ void scenePanel(Sandbox& sandbox) {
   ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(20, 60, 140, 255));
   ImGui::TextUnformatted(title.c_str());
   ImGui::PopStyleColor();
-  // A long description shows its first sentence; the whole text is in the tooltip.
-  const std::string& d = sandbox.scene.description;
-  const size_t stop =
-      d.find(": ") != std::string::npos && d.find(": ") < 90 ? d.find(": ") : d.find(". ");
-  const bool longText = d.size() > 140;
-  const std::string shown = longText ? d.substr(0, std::min(stop, size_t{120})) + " ..." : d;
+  // A built-in scene's description for students (ui/scene_guide.h), a file's own; whole.
+  const std::string student = studentDescription(sandbox.sceneName);
+  const std::string& shown = student.empty() ? sandbox.scene.description : student;
   ImGui::PushTextWrapPos(0);
-  if (!d.empty()) ImGui::TextUnformatted(shown.c_str());
+  if (!shown.empty()) ImGui::TextUnformatted(shown.c_str());
   ImGui::PopTextWrapPos();
-  if (longText) tooltip(d.c_str());
   sandbox.shownTitle = title;
   sandbox.shownDescription = shown;
   if (ImGui::TreeNode("What to try")) {
@@ -72,28 +73,37 @@ void scenePanel(Sandbox& sandbox) {
     ImGui::PopTextWrapPos();
     ImGui::TreePop();
   }
-  if (ImGui::TreeNode("Parameters (--set)")) {
+  if (ImGui::TreeNode("Parameters")) {
     parameterSliders(sandbox);
     ImGui::TreePop();
   }
 }
 
 void runPanel(Sandbox& sandbox) {
-  const float w =
-      std::min(ImGui::GetFontSize() * 4.5f,
-               (ImGui::GetContentRegionAvail().x - 2 * ImGui::GetStyle().ItemSpacing.x) / 3);
-  if (ImGui::Button(sandbox.paused ? "Play" : "Pause", ImVec2(w, 0)))
-    sandbox.paused = !sandbox.paused;
+  // Three buttons of one width on a row when their words fit, else each as wide as its word,
+  // wrapping to the next row (a narrow panel at a large UI scale).
+  const char* run = sandbox.paused ? "Play" : "Pause";
+  const float widest = std::max({buttonWidth("Pause"), buttonWidth("Step"), buttonWidth("Reset")});
+  const float even = (ImGui::GetContentRegionAvail().x - 2 * ImGui::GetStyle().ItemSpacing.x) / 3;
+  const float w = even >= widest ? std::min(ImGui::GetFontSize() * 4.5f, even - 1) : 0.0f;
+  sandbox.truncatedButtons = 0;
+  auto counted = [&](const char* label) {
+    sandbox.truncatedButtons += ImGui::GetItemRectSize().x + 0.5f < buttonWidth(label);
+  };
+  if (ImGui::Button(run, ImVec2(w, 0))) sandbox.paused = !sandbox.paused;
+  counted(run);
   tooltip("Run or pause the simulation (space).");
-  ImGui::SameLine();
+  sameLineIfRoom(std::max(w, buttonWidth("Step")));
   if (ImGui::Button("Step", ImVec2(w, 0))) {
     sandbox.paused = true;
     ++sandbox.pendingSteps;
   }
+  counted("Step");
   tooltip("Pause and advance one time step (s).");
-  ImGui::SameLine();
+  sameLineIfRoom(std::max(w, buttonWidth("Reset")));
   if (ImGui::Button("Reset", ImVec2(w, 0))) sandbox.reset();
-  tooltip("Rebuild the scene from its start (r); the tension scale goes back to the scene's.");
+  counted("Reset");
+  tooltip("Rebuild the scene from its start (r); the tension scale stays as it is.");
   // Speed: a slider over the steps, plus the step buttons.
   float speed = static_cast<float>(sandbox.speed);
   const float spacing = ImGui::GetStyle().ItemSpacing.x;
@@ -200,7 +210,7 @@ void viewPanel(Sandbox& sandbox) {
     sandbox.camera.metresPerPixel = 1.0 / zoom;
   tooltip("Zoom: screen pixels per metre (the wheel zooms about the cursor).");
   if (ImGui::Button("Fit scene view")) sandbox.fitView();
-  tooltip("Back to the scene's own view, grown to show every body and cable.");
+  tooltip("Fit the scene to the view (v); it stays fitted until you pan or zoom.");
   sameLineIfRoom(checkboxWidth("follow"));
   if (sandbox.selectedBody < 0) ImGui::BeginDisabled();
   ImGui::Checkbox("follow", &sandbox.follow);
@@ -208,16 +218,20 @@ void viewPanel(Sandbox& sandbox) {
   tooltip("The camera keeps the selected body in the middle of the view (f).");
   drawToggles(sandbox);
 
-  ImGui::Checkbox("lock tension scale", &sandbox.tensionScaleLocked);
+  if (ImGui::Checkbox("lock tension scale", &sandbox.tensionScaleLocked) &&
+      !sandbox.tensionScaleLocked)
+    sandbox.tensionScale = sandbox.sceneTensionScale;
   tooltip(
-      "Locked: the colour bar keeps the scene's expected range, so a colour always means "
-      "the same tension. Unlocked: it grows with the largest tension seen. Reset restores "
-      "the scene's range.");
+      "The colour bar runs from 0 to the scene's own scale, worked out from its loads (the "
+      "weights m g of its moving bodies summed): a run never changes it. Locked, it keeps your "
+      "maximum through resets and other scenes, to compare runs colour for colour.");
   float top = static_cast<float>(sandbox.tensionScale);
   ImGui::SetNextItemWidth(fieldWidth("scale max (N)", ImGui::GetFontSize() * 8));
-  if (ImGui::DragFloat("scale max (N)", &top, std::max(top * 0.01f, 0.01f), 0.01f, 1e7f, "%.4g"))
+  if (ImGui::DragFloat("scale max (N)", &top, std::max(top * 0.01f, 0.01f), 0.01f, 1e7f, "%.4g")) {
     sandbox.tensionScale = std::max(static_cast<double>(top), 1e-3);
-  tooltip("Tension at the red end of the colour bar.");
+    sandbox.tensionScaleLocked = true;  // the user's own maximum: kept until unlocked
+  }
+  tooltip("Tension (N) at the red end of the colour bar; setting it locks the scale.");
 
   ImGui::SetNextItemWidth(fieldWidth("drag limit", ImGui::GetFontSize() * 8));
   float drag = static_cast<float>(sandbox.dragWeights);

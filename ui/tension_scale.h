@@ -18,4 +18,16 @@ inline constexpr double kTensionProbeSeconds = 2.0;
 /// cable pulls or the probe run fails.
 double expectedTensionScale(const SceneDef& scene);
 
+/// The least colour-bar maximum (N) of loadTensionScale(): a scene with next to no load (a new
+/// one) does not colour numerical noise of micronewtons.
+inline constexpr double kLeastTensionScale = 1.0;
+
+/// The sandbox's colour-bar maximum (N) for `scene`, from its loads: the weights m |g| of its
+/// moving bodies summed (but those a joint ties to the ground, which carries them), plus m v^2 / L
+/// for those that start moving (L: the shortest rigid cable), or the largest cable tension at the
+/// start when that is more (an elastic band's preload); rounded up to a "nice" number, at least
+/// kLeastTensionScale. No simulation: the same scene always gets the same scale, whatever a run
+/// does.
+double loadTensionScale(const SceneDef& scene);
+
 }  // namespace cablelab::ui

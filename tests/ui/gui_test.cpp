@@ -13,6 +13,7 @@
 #include "ui/gif.h"
 #include "ui/offscreen.h"
 #include "ui/panels.h"
+#include "ui/scene_guide.h"
 
 namespace cablelab::test {
 namespace {
@@ -237,18 +238,21 @@ nlohmann::json scenario(const std::string& scene, const std::string& name,
   }
 }
 
+// Issue 38: each built-in scene shows two to four plain sentences for students, whole, with no
+// command-line options or thesis notation; its "what to try" steps need no command line either.
 TEST(GuiAcceptance, EachSceneShowsItsDescription) {
   REQUIRE_XVFB();
   for (const auto& entry : ui::builtinSceneList()) {
     const auto j = scenario(entry.name, "describe");
-    const std::string shown = j.value("description", ""), full = j.value("scene_description", "");
-    ASSERT_FALSE(full.empty()) << entry.name << " has no description";
+    const std::string shown = j.value("description", "");
     EXPECT_EQ(j.value("title", ""), entry.name);
-    // The panel shows the whole description, or its beginning and " ..." (the rest in a tooltip).
-    const std::string head =
-        shown.size() > 4 && shown.ends_with(" ...") ? shown.substr(0, shown.size() - 4) : shown;
-    EXPECT_GE(head.size(), 20u) << entry.name << ": " << shown;
-    EXPECT_EQ(full.substr(0, head.size()), head) << entry.name;
+    EXPECT_EQ(shown, ui::studentDescription(entry.name)) << entry.name;
+    const long sentences = std::count(shown.begin(), shown.end(), '.');
+    EXPECT_GE(sentences, 2) << entry.name << ": " << shown;
+    EXPECT_LE(sentences, 4) << entry.name << ": " << shown;
+    for (const std::string& text : {shown, ui::whatToTry(entry.name)})
+      for (const char* jargon : {"--set", "thesis", "k_p", "sqrt", "e^(", "Jacobian", "`"})
+        EXPECT_EQ(text.find(jargon), std::string::npos) << entry.name << ": " << jargon;
   }
 }
 
@@ -274,6 +278,8 @@ TEST(GuiAcceptance, DragCannotStretchARigidCable) {
     // The mouse did pull as hard as it may: the cable held against the limit.
     EXPECT_GT(j["frames_at_limit"].get<double>(), 10) << scene;
     EXPECT_LE(j["largest_drag_force"].get<double>(), j["drag_limit"].get<double>() * (1 + 1e-9));
+    // Dragging the weight is a "what to try" step: it raises no banner (issue 38).
+    EXPECT_EQ(j["banner"], "") << scene;
   }
 }
 
@@ -295,6 +301,7 @@ TEST(GuiAcceptance, PausedDragPosesTheWeightWithinItsRope) {
       << j["status"];
   EXPECT_NEAR(j["seconds_run"].get<double>(), 0.1, 1.0 / 60);
   EXPECT_LT(j["fastest_after_play"].get<double>(), 9.81 * 0.1 * 1.05);
+  EXPECT_EQ(j["banner"], "") << "pausing and posing is a what-to-try step: no banner";
   // The scene's energy scale: the weight lifted through the view, or crossing it in a second.
   const SceneDef scene = ui::loadScene("hexagon");
   double scale = 0;
@@ -330,6 +337,8 @@ TEST(GuiAcceptance, DroppedBoxShowsTheGraspLostState) {
   const auto j = scenario("hand", "drop-box");
   EXPECT_EQ(j.value("state_before", ""), "pinch pose") << j.dump();
   EXPECT_EQ(j.value("state_after", ""), "grasp lost") << j.dump();
+  // The hand's "what to try" step (drag limit 20, the box dragged out): no banner (issue 38).
+  EXPECT_EQ(j.value("banner_seen", "?"), "") << j.dump();
 }
 
 TEST(GuiAcceptance, AuthoredSceneRunsInTheCli) {

@@ -57,3 +57,43 @@ TEST(LabelLayout, CoverCountsASmallBodyUnderALabel) {
 
 }  // namespace
 }  // namespace cablelab::ui
+
+namespace cablelab::ui {
+namespace {
+
+// Issue 38: labels never cover each other, the scale bar or the colour bar. Ten labels crowd one
+// anchor beside a reserved box (a colour bar) in a small view: each shown label is clear of the
+// box, of the others and of the edges; one that finds no such place is left out.
+TEST(LabelLayout, ReservedBoxesAndOtherLabelsAreNeverCovered) {
+  const LabelBox view{0, 0, 300, 200};
+  const std::vector<LabelBox> reserved = {{150, 120, 300, 200}, {0, 170, 120, 200}};
+  std::vector<LabelRequest> labels(10, {Vec2(160, 130), Vec2(6, -16), 70, 13});
+  const auto placed = placeLabels(labels, {}, view, 4, reserved);
+  ASSERT_EQ(placed.size(), 10u);
+  int shown = 0;
+  for (size_t i = 0; i < placed.size(); ++i) {
+    if (!placed[i].shown) continue;
+    ++shown;
+    const LabelBox& b = placed[i].box;
+    for (const LabelBox& r : reserved) EXPECT_FALSE(b.overlaps(r)) << i;
+    EXPECT_TRUE(b.x0 >= view.x0 && b.y0 >= view.y0 && b.x1 <= view.x1 && b.y1 <= view.y1) << i;
+    for (size_t j = 0; j < i; ++j)
+      EXPECT_FALSE(placed[j].shown && b.overlaps(placed[j].box)) << i << " " << j;
+  }
+  EXPECT_GE(shown, 6);  // the free part of the view holds most of them
+  // The preferred place (on the reserved box) was not taken: the first label moved off it.
+  EXPECT_TRUE(placed[0].shown);
+  EXPECT_NE(placed[0].box.x0, 166);
+}
+
+// A view with room for no label at all: nothing is drawn rather than drawn over the bars.
+TEST(LabelLayout, ALabelWithNoFreePlaceIsLeftOut) {
+  const LabelBox view{0, 0, 100, 40};
+  const auto placed =
+      placeLabels({{Vec2(50, 20), Vec2(6, -16), 60, 13}}, {}, view, 4, {{0, 0, 100, 40}});
+  ASSERT_EQ(placed.size(), 1u);
+  EXPECT_FALSE(placed[0].shown);
+}
+
+}  // namespace
+}  // namespace cablelab::ui

@@ -1,0 +1,71 @@
+// Presentation mode's fit (ui/presentation.h) without a window: the scene's moving parts fill
+// the free area above the colour bar's row, and the view stays fitted through layout changes
+// until the user moves it.
+#include "ui/presentation.h"
+
+#include <gtest/gtest.h>
+
+#include "ui/scene_bounds.h"
+
+namespace cablelab::ui {
+namespace {
+
+constexpr double kPixel = 1.0;
+
+/// The scene's moving parts on screen (px).
+LabelBox onScreen(const Sandbox& sandbox) {
+  const WorldBounds b = sceneBounds(*sandbox.world());
+  const Vec2 lo = sandbox.camera.toScreen(b.lo), hi = sandbox.camera.toScreen(b.hi);
+  return {lo.x(), hi.y(), hi.x(), lo.y()};
+}
+
+TEST(Presentation, TheSceneFillsTheAreaAboveTheBarRow) {
+  for (const char* scene : {"hand", "hexagon", "tackle"}) {
+    Sandbox sandbox(1280, 720);
+    ASSERT_TRUE(sandbox.open(scene));
+    sandbox.panels = {{0, 0, 1280, 30}, {0, 690, 1280, 30}};  // a menu strip and a status line
+    togglePresentation(sandbox);
+    keepViewFitted(sandbox);
+    const PanelRect f = sandbox.freeArea();
+    const double reserve = barRowHeight(sandbox);
+    ASSERT_GT(reserve, 0);
+    const LabelBox s = onScreen(sandbox);
+    EXPECT_GE(s.x0, f.x - kPixel) << scene;
+    EXPECT_LE(s.x1, f.x + f.width + kPixel) << scene;
+    EXPECT_GE(s.y0, f.y - kPixel) << scene;
+    EXPECT_LE(s.y1, f.y + f.height - reserve + kPixel) << scene;
+    // As large as it fits: the limiting side spans the area less the margins (6% each side).
+    const double wide = (s.x1 - s.x0) / f.width, tall = (s.y1 - s.y0) / (f.height - reserve);
+    EXPECT_NEAR(std::max(wide, tall), 1 / 1.12, 0.01) << scene;
+  }
+}
+
+TEST(Presentation, TheViewStaysFittedUntilTheUserMovesIt) {
+  Sandbox sandbox(1280, 720);
+  ASSERT_TRUE(sandbox.open("hexagon"));
+  sandbox.panels = {{0, 0, 1280, 30}, {0, 30, 300, 660}};  // the Simulation panel open
+  keepViewFitted(sandbox);
+  const double before = sandbox.camera.metresPerPixel;
+  // The panel collapses: the free area grows, the view is fitted to it.
+  sandbox.panels = {{0, 0, 1280, 30}};
+  keepViewFitted(sandbox);
+  EXPECT_EQ(sandbox.fittedArea.width, 1280);
+  // The UI scale doubles: fitted again (projector mode).
+  sandbox.uiScale = 2;
+  keepViewFitted(sandbox);
+  EXPECT_EQ(sandbox.fittedScale, 2);
+  // The user zooms: their view stays through the next layout change.
+  sandbox.viewFitted = false;
+  sandbox.camera.metresPerPixel = 0.5 * before;
+  sandbox.panels = {{0, 0, 1280, 30}, {0, 30, 300, 660}};
+  keepViewFitted(sandbox);
+  EXPECT_EQ(sandbox.camera.metresPerPixel, 0.5 * before);
+  // The fit key fits it again (at the first fit's UI scale: the colour bar's row scales with it).
+  sandbox.uiScale = 1;
+  sandbox.fitView();
+  EXPECT_TRUE(sandbox.viewFitted);
+  EXPECT_EQ(sandbox.camera.metresPerPixel, before);
+}
+
+}  // namespace
+}  // namespace cablelab::ui

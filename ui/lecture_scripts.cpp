@@ -1,0 +1,263 @@
+#include "ui/lecture_scripts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "ui/controller_panel.h"
+#include "ui/scene_catalog.h"
+#include "ui/synthetic_events.h"
+#include "ui/tension_scale.h"
+
+namespace cablelab::ui {
+namespace {
+
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c == '\n' ? ' ' : c;
+  }
+  return out + "\"";
+}
+
+std::string number(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.9g", std::isfinite(v) ? v : -1.0);
+  return b;
+}
+
+std::string box(const LabelBox& b) {
+  if (b.empty()) return "null";
+  return "[" + number(b.x0) + ", " + number(b.y0) + ", " + number(b.x1) + ", " + number(b.y1) + "]";
+}
+
+/// What the last frame showed, as JSON (see lecture_scripts.h, `present`).
+std::string viewJson(const Sandbox& s, const std::string& name, const std::string& shot) {
+  const DrawnView& d = s.drawn;
+  const FurnitureLayout& f = d.furniture;
+  const PanelRect free = s.freeArea();
+  std::string labels = "[";
+  for (size_t k = 0; k < d.labels.size(); ++k) labels += (k ? ", " : "") + box(d.labels[k]);
+  labels += "]";
+  return "{\"name\": " + quoted(name) + ", \"scene_name\": " + quoted(s.sceneName) +
+         ", \"window\": [" + number(s.camera.width) + ", " + number(s.camera.height) +
+         "], \"free\": [" + number(free.x) + ", " + number(free.y) + ", " + number(free.width) +
+         ", " + number(free.height) + "], \"scene\": " + box(d.scene) + ", \"labels\": " + labels +
+         ", \"hidden_labels\": " + number(d.hiddenLabels) + ", \"scale_bar\": " + box(f.scaleBar) +
+         ", \"colour_bar\": " + box(f.colourBar) + ", \"key\": " + box(f.key) +
+         ", \"notes\": " + box(f.notes) + ", \"banner\": " + box(f.banner) +
+         ", \"paused\": " + box(f.paused) + ", \"ui_scale\": " + number(s.uiScale) +
+         ", \"presentation\": " + (s.presentation ? "true" : "false") +
+         ", \"view_fitted\": " + (s.viewFitted ? "true" : "false") + ", \"overflow\": [" +
+         number(s.panelOverflow[0]) + ", " + number(s.panelOverflow[1]) +
+         "], \"status_overflow\": " + number(s.statusOverflow) +
+         ", \"truncated_buttons\": " + number(s.truncatedButtons) +
+         ", \"screenshot\": " + quoted(shot) + "}";
+}
+
+/// The built-in scene after `name` in the menu's order (the first after the last).
+std::string nextScene(const std::string& name) {
+  const auto all = builtinSceneList();
+  for (size_t k = 0; k < all.size(); ++k)
+    if (all[k].name == name) return all[(k + 1) % all.size()].name;
+  return all.front().name;
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out = "[";
+  for (size_t k = 0; k < items.size(); ++k) out += (k ? ", " : "") + items[k];
+  return out + "]";
+}
+
+}  // namespace
+
+const std::vector<std::string>& LectureScript::names() {
+  static const std::vector<std::string> n = {"present", "grasp-quiet", "tension-run"};
+  return n;
+}
+
+LectureScript::LectureScript(std::string name, Uint32 windowId, std::string out)
+    : name_(std::move(name)), out_(std::move(out)), windowId_(windowId) {}
+
+void LectureScript::key(SDL_Keycode k) {
+  pushKeyPress(windowId_, k);
+}
+
+void LectureScript::mouse(Uint32 type, const Vec2& screen) {
+  pushMouseEvent(windowId_, type, screen);
+}
+
+bool LectureScript::beforeFrame(Sandbox& sandbox, int frame) {
+  if (name_ == "present") return present(sandbox, frame);
+  if (name_ == "grasp-quiet") return graspQuiet(sandbox, frame);
+  if (name_ == "tension-run") return tensionRun(sandbox, frame);
+  report_ = "{\"scenario\": " + quoted(name_) + ", \"failure\": \"unknown scenario\"}";
+  return false;
+}
+
+bool LectureScript::present(Sandbox& sandbox, int frame) {
+  // The view drawn in the frame the screenshot was taken of is recorded one frame later.
+  if (!pending_.empty()) {
+    items_.push_back(viewJson(sandbox, pending_, out_ + "-" + pending_ + ".png"));
+    pending_.clear();
+  }
+  auto snapshot = [&](const char* name) {
+    pending_ = name;
+    sandbox.pngRequest = PanelRect{0, 0, static_cast<float>(sandbox.camera.width),
+                                   static_cast<float>(sandbox.camera.height)};
+    sandbox.pngRequestPath = out_ + "-" + pending_ + ".png";
+  };
+  SDL_Window* window = SDL_GetWindowFromID(windowId_);
+  switch (frame) {
+    case 3:
+      key(SDLK_p);
+      break;
+    case 10:
+      snapshot("presentation");
+      break;
+    case 12:  // the View menu's projector mode off, then on again
+      sandbox.projector = false;
+      sandbox.uiScale = 1;
+      break;
+    case 20:
+      snapshot("scale-1");
+      break;
+    case 22:
+      sandbox.projector = true;
+      sandbox.uiScale = 2;
+      break;
+    case 30:
+      snapshot("scale-2");
+      break;
+    case 32:
+      SDL_GetWindowSize(window, &width_, &height_);
+      SDL_SetWindowSize(window, width_ * 3 / 4, height_ * 3 / 4);
+      break;
+    case 42:
+      snapshot("resized");
+      break;
+    case 44:
+      SDL_SetWindowSize(window, width_, height_);
+      break;
+    case 52:
+      sandbox.open(nextScene(sandbox.sceneName));  // the Scene menu's choice
+      break;
+    case 60:
+      snapshot("next-scene");
+      break;
+    case 62:
+      key(SDLK_SPACE);
+      break;
+    case 68:
+      snapshot("paused");
+      break;
+    case 70:
+      key(SDLK_p);
+      break;
+    case 78:
+      snapshot("panels");
+      break;
+    case 80:
+      report_ = "{\"scenario\": \"present\", \"views\": " + join(items_) + "}";
+      return false;
+    default:
+      break;
+  }
+  return true;
+}
+
+bool LectureScript::graspQuiet(Sandbox& sandbox, int frame) {
+  constexpr double kControlSeconds = 4;
+  if (!sandbox.banner.empty()) {
+    ++bannerFrames_;
+    if (items_.empty() || items_.back() != quoted(sandbox.banner))
+      items_.push_back(quoted(sandbox.banner));
+  }
+  if (frame == 2) {
+    if (!startHandGrasp(sandbox)) {
+      report_ = "{\"scenario\": \"grasp-quiet\", \"failure\": \"not the hand\"}";
+      return false;
+    }
+  } else if (frame == 90) {  // "click empty space": the nearest point 0.2 m or more from the box
+    const World& world = *sandbox.world();
+    const Vec2 box = world.body(world.findBody("box")).position;
+    double best = 1e300;
+    for (int i = -8; i <= 8; ++i)
+      for (int j = -8; j <= 8; ++j) {
+        const Vec2 p = box + 0.05 * Vec2(i, j);
+        const double d = (p - box).norm();
+        if (d < 0.2 || d >= best || sandbox.bodyAt(p, true) >= 0 ||
+            sandbox.cableAt(p, 8 * sandbox.camera.metresPerPixel) >= 0)
+          continue;
+        best = d;
+        to_ = sandbox.camera.toScreen(p);
+      }
+    target_ = sandbox.camera.toWorld(to_);
+    mouse(SDL_MOUSEMOTION, to_);
+    mouse(SDL_MOUSEBUTTONDOWN, to_);
+    mouse(SDL_MOUSEBUTTONUP, to_);
+  } else if (frame > 90 && sandbox.world()->time() >= 1.5 + kControlSeconds) {
+    report_ = "{\"scenario\": \"grasp-quiet\", \"banner_frames\": " + number(bannerFrames_) +
+              ", \"banners\": " + join(items_) +
+              ", \"log_entries\": " + number(sandbox.log.entries().size()) +
+              ", \"state\": " + quoted(handGraspState(sandbox)) + ", \"clicked\": [" +
+              number(target_.x()) + ", " + number(target_.y()) + "]" + ", \"target\": [" +
+              number(sandbox.target ? sandbox.target->x() : 1e9) + ", " +
+              number(sandbox.target ? sandbox.target->y() : 1e9) + "]" +
+              ", \"time\": " + number(sandbox.world()->time()) + "}";
+    return false;
+  }
+  return true;
+}
+
+bool LectureScript::tensionRun(Sandbox& sandbox, int frame) {
+  World& world = *sandbox.world();
+  if (frame >= 1 && frame < 70) {
+    lowest_ = std::min(lowest_, sandbox.tensionScale);
+    highest_ = std::max(highest_, sandbox.tensionScale);
+    for (int i = 0; i < world.cableCount(); ++i)
+      largest_ = std::max(largest_, world.cable(i).tension());
+  }
+  if (frame == 5) {  // the body at a cable's end, pulled down hard
+    for (int i = 0; i < world.cableCount() && body_ < 0; ++i) {
+      const int b = world.findBody(world.cable(i).def().end.body);
+      if (b >= 0 && world.scene().bodies[b].type == BodyType::Dynamic) body_ = b;
+    }
+    if (body_ < 0) {
+      report_ = "{\"scenario\": \"tension-run\", \"failure\": \"no body at a cable's end\"}";
+      return false;
+    }
+    from_ = sandbox.camera.toScreen(world.body(body_).position);
+    to_ = from_ + Vec2(0, 250);
+    mouse(SDL_MOUSEMOTION, from_);
+    mouse(SDL_MOUSEBUTTONDOWN, from_);
+  } else if (frame > 5 && frame <= 45) {
+    mouse(SDL_MOUSEMOTION, from_ + (to_ - from_) * std::min(1.0, (frame - 5) / 20.0));
+  } else if (frame == 46) {
+    mouse(SDL_MOUSEBUTTONUP, to_);
+  } else if (frame == 55) {
+    key(SDLK_r);
+  } else if (frame == 70) {
+    items_.push_back("\"scene\": " + quoted(sandbox.sceneName) +
+                     ", \"scene_scale\": " + number(loadTensionScale(sandbox.scene)) +
+                     ", \"lowest\": " + number(lowest_) + ", \"highest\": " + number(highest_) +
+                     ", \"largest_tension\": " + number(largest_));
+    sandbox.tensionScaleLocked = true;                // the View section's checkbox
+    sandbox.tensionScale = 2 * sandbox.tensionScale;  // and its "scale max (N)" field
+    items_.push_back("\"locked_at\": " + number(sandbox.tensionScale));
+    sandbox.open(nextScene(sandbox.sceneName));
+  } else if (frame == 75) {
+    sandbox.reset();
+  } else if (frame == 80) {
+    report_ = "{\"scenario\": \"tension-run\", " + items_[0] + ", " + items_[1] +
+              ", \"next_scene\": " + quoted(sandbox.sceneName) +
+              ", \"next_scene_scale\": " + number(loadTensionScale(sandbox.scene)) +
+              ", \"after_next_scene\": " + number(sandbox.tensionScale) +
+              ", \"locked\": " + (sandbox.tensionScaleLocked ? "true" : "false") + "}";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace cablelab::ui

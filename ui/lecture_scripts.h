@@ -1,0 +1,57 @@
+// LectureScript: the scripted checks of the sandbox in a lecture hall (`cablelab-gui --script
+// NAME`, dispatched by ui/scenario_script.h), driven by synthetic SDL events and the same calls
+// the menus make. Each reports one JSON object; tests/ui/lecture_test.cpp judges the figures.
+//
+//   present       p (presentation mode), then the UI scale down and up again (projector mode),
+//                 the window resized and back, the next built-in scene, Space (pause), p again;
+//                 after each, what the view showed (ui/renderer.h DrawnView: the scene's box,
+//                 every label, the bars, the key, the banner, the PAUSED sign), the free area,
+//                 the panels' and the status line's overflow, and a screenshot
+//                 (--script-out PREFIX: PREFIX-NAME.png)
+//   grasp-quiet   the hand: the grasp sequence (the panel's "open (grasp)"), then a click on
+//                 empty space (a new target) and 4 s of control; reports every banner shown and
+//                 the log's size
+//   tension-run   a hard drag, a reset, then the scale locked and the next scene opened; reports
+//                 the colour bar's maximum over every frame and the scenes' load scales
+//
+// Needs: an SDL video subsystem (the sandbox's Window), a Sandbox with a loaded scene.
+#pragma once
+
+#include <SDL.h>
+
+#include <string>
+#include <vector>
+
+#include "ui/sandbox.h"
+
+namespace cablelab::ui {
+
+class LectureScript {
+ public:
+  static const std::vector<std::string>& names();
+  /// `out`: the prefix of the screenshots' paths.
+  LectureScript(std::string name, Uint32 windowId, std::string out);
+  /// Called once per frame before events are polled; false when the script has finished.
+  bool beforeFrame(Sandbox& sandbox, int frame);
+  std::string report() const { return report_; }
+
+ private:
+  bool present(Sandbox& sandbox, int frame);
+  bool graspQuiet(Sandbox& sandbox, int frame);
+  bool tensionRun(Sandbox& sandbox, int frame);
+  void key(SDL_Keycode k);
+  void mouse(Uint32 type, const Vec2& screen);
+
+  std::string name_, out_, report_ = "{}";
+  Uint32 windowId_;
+  std::vector<std::string> items_;  ///< JSON pieces gathered so far
+  std::string pending_;             ///< a view to record next frame (its screenshot was taken)
+  int body_ = -1;
+  Vec2 from_ = Vec2::Zero(), to_ = Vec2::Zero();
+  Vec2 target_ = Vec2::Zero();  ///< grasp-quiet: the point clicked (m)
+  double lowest_ = 1e300, highest_ = -1e300, largest_ = 0;
+  int bannerFrames_ = 0;
+  int width_ = 0, height_ = 0;  ///< present: the window's size before the resize
+};
+
+}  // namespace cablelab::ui

@@ -1,0 +1,41 @@
+#include "ui/scene_bounds.h"
+
+namespace cablelab::ui {
+namespace {
+
+Vec2 onBody(const World& world, int body, const Vec2& local) {
+  if (body < 0) return local;
+  const BodyState& s = world.body(body);
+  return s.position + rotate(local, s.angle);
+}
+
+void includeShapes(WorldBounds& b, const World& world, int body, double margin) {
+  for (const ShapeDef& shape : world.scene().bodies[body].shapes) {
+    if (shape.kind == ShapeDef::Kind::Circle)
+      b.include(onBody(world, body, shape.center), shape.radius + margin);
+    for (const Vec2& v : shape.vertices) b.include(onBody(world, body, v), margin);
+  }
+}
+
+}  // namespace
+
+WorldBounds sceneBounds(const World& world, double margin) {
+  WorldBounds b;
+  const SceneDef& scene = world.scene();
+  for (int i = 0; i < world.bodyCount(); ++i)
+    if (scene.bodies[i].type != BodyType::Static) includeShapes(b, world, i, margin);
+  for (int i = 0; i < world.cableCount(); ++i)
+    for (const WrapPoint& p : world.cable(i).path()) b.include(p.world, margin);
+  for (const CableDef& c : scene.cables)
+    for (const PulleyDef& p : c.pulleys) {
+      const int body = findBodyIndex(scene, p.body);
+      if (p.kind == PulleyDef::Kind::Polygon && p.vertices.empty() && body >= 0)
+        includeShapes(b, world, body, margin);
+      for (const Vec2& v : p.vertices) b.include(onBody(world, body, v), margin);
+      if (p.kind != PulleyDef::Kind::Polygon)
+        b.include(onBody(world, body, p.point), std::abs(p.radius) + margin);
+    }
+  return b;
+}
+
+}  // namespace cablelab::ui

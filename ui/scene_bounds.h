@@ -1,0 +1,25 @@
+// Scene bounds: the world rectangle (m) that holds what a scene shows moving, for fitting the
+// view (ui/sandbox.h, ui/presentation.h) and for checking that the scene sits inside the window.
+//
+// Needs: the engine's World. Static bodies are left out (a ground may be very wide); the
+// pulleys the cables run over are in, wherever they sit.
+#pragma once
+
+#include "engine/dynamics/world.h"
+
+namespace cablelab::ui {
+
+struct WorldBounds {
+  Vec2 lo = Vec2(1e300, 1e300), hi = Vec2(-1e300, -1e300);  ///< m; lo > hi: empty
+  bool empty() const { return lo.x() > hi.x() || lo.y() > hi.y(); }
+  void include(const Vec2& p, double margin = 0) {
+    lo = lo.cwiseMin(p - Vec2(margin, margin));
+    hi = hi.cwiseMax(p + Vec2(margin, margin));
+  }
+};
+
+/// The shapes of the dynamic and kinematic bodies, the cables' paths and their pulleys, each
+/// grown by `margin` (m), as they are now.
+WorldBounds sceneBounds(const World& world, double margin = 0);
+
+}  // namespace cablelab::ui
