@@ -10,6 +10,8 @@
 #include "engine/core/error.h"
 #include "engine/core/file_input.h"
 #include "engine/hand/hand_io.h"
+#include "engine/scenes/scene_hand.h"
+#include "engine/scenes/scene_registry.h"
 #ifdef CABLELAB_HAVE_OFFSCREEN
 #include "ui/plot.h"
 #endif
@@ -87,6 +89,7 @@ const bool reachRegistered = registerCommand(
         int grid = 50;
         std::string model = "simulation", csv, png;
         bool pd = false;
+        std::vector<std::string> sets;
       };
       auto o = std::make_shared<Options>();
       sub.add_option("--grid", o->grid, "N: try an N x N grid of targets")->capture_default_str();
@@ -98,7 +101,12 @@ const bool reachRegistered = registerCommand(
       sub.add_option("--csv", o->csv,
                      "Write x,y,object_reached,fingertip_reachable per target to this CSV file");
       sub.add_option("--png", o->png, "Draw the sets to this PNG file");
+      sub.add_option("--set", o->sets,
+                     "Hand scene parameter NAME=VALUE (repeatable; as `run hand`), e.g. turn=1");
       return [o] {
+        std::vector<std::pair<std::string, double>> overrides;
+        for (const std::string& s : o->sets) overrides.push_back(parseSetting(s));
+        const HandModel hand = handModelWithSettings(overrides);
         const ReachOptions options = reachOptions(o->grid, o->model, o->pd);
 #ifndef CABLELAB_HAVE_OFFSCREEN
         if (!o->png.empty()) badOption("--png", "this build has no offscreen renderer");
@@ -108,7 +116,7 @@ const bool reachRegistered = registerCommand(
         if (!o->csv.empty()) csv = std::make_unique<std::ofstream>(openOutputFile(o->csv, "--csv"));
         Progress progress("reach", static_cast<long>(o->grid) * o->grid);
         const ReachResult r =
-            runReach(options, HandModel{}, [&](long done, long) { progress.update(done); });
+            runReach(options, hand, [&](long done, long) { progress.update(done); });
         progress.done();
         const double ratio = r.fingertipArea > 0 ? r.objectArea / r.fingertipArea : 0.0;
         if (csv) {
