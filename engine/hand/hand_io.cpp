@@ -12,8 +12,10 @@ namespace cablelab {
 std::vector<double> targetNumbers(std::string_view text, const std::string& source,
                                   const std::string& field) {
   const size_t count = std::count(text.begin(), text.end(), ',') + 1;
-  if (count == 3) return parseNumberList(text, 3, source, field, "X,Y,THETA");
-  return parseNumberList(text, 2, source, field, "X,Y or X,Y,THETA");
+  if (count != 2 && count != 3)
+    throw InputError(source, field,
+                     "must be X,Y or X,Y,THETA, 2 or 3 finite numbers" + gotValue(text));
+  return parseNumberList(text, count, source, field, count == 3 ? "X,Y,THETA" : "X,Y");
 }
 
 void setTarget(TrackRequest& request, const std::vector<double>& v, const std::string& source,
