@@ -131,8 +131,8 @@ const bool trackRegistered = registerCommand(
         if (!o->png.empty()) {
           TrackOptions swapped = options;
           swapped.pid = !options.pid;
-          other = runTracking(swapped, model,
-                              [&](long done, long) { progress.update(steps + done); });
+          other =
+              runTracking(swapped, model, [&](long done, long) { progress.update(steps + done); });
         }
         progress.done();
 
@@ -141,8 +141,7 @@ const bool trackRegistered = registerCommand(
           char line[240];
           for (const TrackSample& s : r.samples) {
             std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", s.t,
-                          s.target.x(), s.target.y(), s.box.x(), s.box.y(), s.targetAngle,
-                          s.angle);
+                          s.target.x(), s.target.y(), s.box.x(), s.box.y(), s.targetAngle, s.angle);
             *csv << line;
           }
           finishOutputFile(*csv, o->csv, "--csv");

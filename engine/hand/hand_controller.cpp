@@ -66,8 +66,8 @@ BoxPrediction HandController::predict(const HandJoints& q, const Vec2& guess,
   if (model_.turn) {
     // The box in (x, y, theta): Newton on the membranes' energy (box_pose.h, docs/hand.md).
     const std::vector<BoxCable> cables = boxCables(q);
-    const BoxPoseResult eq = solveBoxPose(cables, BoxPose(guess.x(), guess.y(), guessAngle),
-                                          model_.boxHalfSize);
+    const BoxPoseResult eq =
+        solveBoxPose(cables, BoxPose(guess.x(), guess.y(), guessAngle), model_.boxHalfSize);
     out.box = eq.pose.head<2>();
     out.angle = eq.pose[2];
     if (!eq.converged) return out;
@@ -82,8 +82,8 @@ BoxPrediction HandController::predict(const HandJoints& q, const Vec2& guess,
     out.jacobian = J.topRows<2>();
     out.angleJacobian = J.row(2);
     // The centre's stiffness with the angle settling freely (Schur complement).
-    out.stiffness = H.topLeftCorner<2, 2>() -
-                    H.topRightCorner<2, 1>() * H.bottomLeftCorner<1, 2>() / H(2, 2);
+    out.stiffness =
+        H.topLeftCorner<2, 2>() - H.topRightCorner<2, 1>() * H.bottomLeftCorner<1, 2>() / H(2, 2);
     out.smooth = true;
     out.margin = faceOn(q, out).value.minCoeff();
     out.valid = out.margin > 0;
@@ -389,8 +389,8 @@ HandJoints HandController::update(const HandJoints& q, const BoxPose& boxPose,
   advanceServos(commanded);
   commanded_ = commanded;
   steeringJoints_ = commanded + (q - servoJoints_);
-  commandedPrediction_ = predict(steeringJoints_, started_ ? reference_ : box,
-                                 started_ ? angleReference_ : angle);
+  commandedPrediction_ =
+      predict(steeringJoints_, started_ ? reference_ : box, started_ ? angleReference_ : angle);
   const BoxPrediction& p = commandedPrediction_;
   // The reduction's Jacobian steers wherever the statics is smooth, also with a paddle tilted
   // beyond face-on (the equilibrium still follows the box there to a centimetre or so; a stale

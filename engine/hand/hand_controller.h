@@ -87,7 +87,8 @@ struct BoxPrediction {
   /// complement of the (x, y, theta) Hessian).
   Eigen::Matrix2d stiffness = Eigen::Matrix2d::Zero();
   double angle = 0;  ///< equilibrium box angle (rad); 0 for a box that cannot turn
-  Eigen::Matrix<double, 1, 6> angleJacobian = Eigen::Matrix<double, 1, 6>::Zero();  ///< d angle/dq_u
+  Eigen::Matrix<double, 1, 6> angleJacobian =
+      Eigen::Matrix<double, 1, 6>::Zero();  ///< d angle/dq_u
   bool smooth = false;  ///< solver converged and the equilibrium is smooth (jacobian exists)
   bool valid = false;   ///< smooth and both membranes wrap the box face-on
   double margin = 0;    ///< faceOnMargin() at the equilibrium (m)

@@ -21,8 +21,8 @@ std::vector<double> targetNumbers(std::string_view text, const std::string& sour
 void setTarget(TrackRequest& request, const std::vector<double>& v, const std::string& source,
                const std::string& field) {
   if (v.size() != 2 && v.size() != 3)
-    throw InputError(source, field, "must be X,Y or X,Y,THETA (got " +
-                                        std::to_string(v.size()) + " numbers)");
+    throw InputError(source, field,
+                     "must be X,Y or X,Y,THETA (got " + std::to_string(v.size()) + " numbers)");
   request.target = Vec2(v[0], v[1]);
   request.targetAngle = v.size() == 3 ? v[2] : 0.0;
 }
@@ -33,8 +33,9 @@ TrackOptions trackOptions(const TrackRequest& q, const HandModel& model) {
     throw InputError(kCommandLine, "--ramp", "give either --target or --ramp, not both");
   if (q.target) o.target = *q.target;
   if (q.targetAngle != 0 && !model.turn)
-    throw InputError(kCommandLine, "--target",
-                     "THETA needs a box that turns (--set turn=1)" + gotValue(q.targetAngle));
+    throw InputError(
+        kCommandLine, "--target",
+        "THETA needs a box that may turn (scene parameter turn=1)" + gotValue(q.targetAngle));
   if (!(std::abs(q.targetAngle) <= M_PI))
     throw InputError(kCommandLine, "--target",
                      "THETA must be in [-pi, pi] rad" + gotValue(q.targetAngle));
@@ -69,10 +70,14 @@ nlohmann::json trackSummary(const TrackResult& r) {
           {"final_angle_error", r.finalAngleError},
           {"rms_angle_error", r.rmsAngleError},
           {"final_angle", r.samples.empty() ? 0.0 : r.samples.back().angle},
-          {"grasp_time", r.graspTime},           {"start_error", r.startError},
-          {"grasp_held", r.graspHeld},           {"losses", r.losses},
-          {"start", {r.start.x(), r.start.y()}}, {"final_box", {last.x(), last.y()}},
-          {"max_tension", r.maxTension},         {"events", events}};
+          {"grasp_time", r.graspTime},
+          {"start_error", r.startError},
+          {"grasp_held", r.graspHeld},
+          {"losses", r.losses},
+          {"start", {r.start.x(), r.start.y()}},
+          {"final_box", {last.x(), last.y()}},
+          {"max_tension", r.maxTension},
+          {"events", events}};
 }
 
 ReachOptions reachOptions(int grid, const std::string& model, bool pd, int threads) {

@@ -114,11 +114,11 @@ TrackResult runTracking(const TrackOptions& o, const HandModel& model,
     const double angleError = std::abs(angle - nowAngle);
     angleSquares += angleError * angleError;
     ++controlledSteps;
-    const bool resting = (o.rampTime <= 0 || world.time() >= grasp.controlStart() + o.rampTime) &&
-                         nextChange == o.changes.size() &&
-                         (grasp.controller().status().reference - now).norm() < 1e-9 &&
-                         std::abs(grasp.controller().status().angleReference -
-                                  (model.turn ? nowAngle : 0.0)) < 1e-9;
+    const bool resting =
+        (o.rampTime <= 0 || world.time() >= grasp.controlStart() + o.rampTime) &&
+        nextChange == o.changes.size() &&
+        (grasp.controller().status().reference - now).norm() < 1e-9 &&
+        std::abs(grasp.controller().status().angleReference - (model.turn ? nowAngle : 0.0)) < 1e-9;
     bool reached = false;
     if (!grasp.held() || watch.done(world.time(), e, angleError, resting, reached)) {
       result.stoppedEarly = o.stop.enabled && s + 1 < steps;

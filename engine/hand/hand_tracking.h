@@ -60,18 +60,18 @@ struct TrackSample {
 };
 
 struct TrackResult {
-  double finalError = 0;    ///< |box - target| at the end (m)
-  double rmsError = 0;      ///< RMS of |box - target| over the steps after control began (m)
+  double finalError = 0;       ///< |box - target| at the end (m)
+  double rmsError = 0;         ///< RMS of |box - target| over the steps after control began (m)
   double finalAngleError = 0;  ///< |box angle - target angle| at the end (rad)
   double rmsAngleError = 0;    ///< its RMS over the steps after control began (rad)
-  double graspTime = -1;    ///< s; -1 if the membranes never both wrapped the box
-  double startError = 0;    ///< |box - target| when control began (m)
-  bool graspHeld = false;   ///< the grasp closed and was never lost afterwards
-  int losses = 0;           ///< times the box was lost (each followed by a re-grasp attempt)
-  double startTension = 0;  ///< the larger membrane tension when control began (N): the squeeze
-  double maxTension = 0;    ///< the larger membrane tension's maximum after control began (N)
+  double graspTime = -1;       ///< s; -1 if the membranes never both wrapped the box
+  double startError = 0;       ///< |box - target| when control began (m)
+  bool graspHeld = false;      ///< the grasp closed and was never lost afterwards
+  int losses = 0;              ///< times the box was lost (each followed by a re-grasp attempt)
+  double startTension = 0;     ///< the larger membrane tension when control began (N): the squeeze
+  double maxTension = 0;       ///< the larger membrane tension's maximum after control began (N)
   bool stoppedEarly = false;
-  bool reached = false;  ///< ended within the early-stop tolerance(s) (any run)
+  bool reached = false;       ///< ended within the early-stop tolerance(s) (any run)
   Vec2 start = Vec2::Zero();  ///< where the grasp closed about (m)
   HandJoints finalJoints = HandJoints::Zero();
   std::vector<GraspEvent> events;

@@ -27,7 +27,8 @@ const std::vector<SceneInfo>& builtinScenes() {
         {"damping", 550.0, "membrane damping b_s (N s/m)", SceneParam::Range::NonNegative},
         {"preload", 0.3, "membrane pre-stretch (m)", SceneParam::Range::NonNegative},
         {"box_mass", 1.0, "manipuland mass (kg)"},
-        {"turn", 0.0, "1: the box may turn, 0: its angle stays fixed", SceneParam::Range::NonNegative}},
+        {"turn", 0.0, "1: the box may turn, 0: its angle stays fixed",
+         SceneParam::Range::NonNegative}},
        makeHandScene},
       {"hexagon",
        "figure 2-4: a cable wrapping a swinging hexagonal pulley, wrap points come and go",
@@ -100,23 +101,24 @@ SceneParams sceneParams(const SceneInfo& scene,
                         const std::vector<std::pair<std::string, double>>& overrides) {
   const SceneInfo* info = &scene;
   SceneParams params;
-    for (const SceneParam& p : info->params) params[p.name] = p.value;
-    for (const auto& [name, value] : overrides) {
-      if (!params.count(name)) {
-        std::string known;
-        for (const SceneParam& p : info->params) known += (known.empty() ? "" : ", ") + p.name;
-        throw InputError(kCommandLine, "--set " + name,
-                         "unknown parameter of scene " + info->name + " (known: " + known + ")");
-      }
-      const auto range = std::find_if(info->params.begin(), info->params.end(),
-                                      [&key = name](const SceneParam& p) { return p.name == key; })
-                             ->range;  // clang 14: no capture of a structured binding
-      if (range == SceneParam::Range::Positive && value <= 0)
-        throw InputError(kCommandLine, "--set " + name, "must be positive" + gotValue(value));
-      if (range == SceneParam::Range::NonNegative && value < 0)
-        throw InputError(kCommandLine, "--set " + name, "must be >= 0" + gotValue(value));
-      params[name] = value;
+  for (const SceneParam& p : info->params) params[p.name] = p.value;
+  for (const auto& [name, value] : overrides) {
+    if (!params.count(name)) {
+      std::string known;
+      for (const SceneParam& p : info->params) known += (known.empty() ? "" : ", ") + p.name;
+      throw InputError(kCommandLine, "--set " + name,
+                       "unknown parameter of scene " + info->name + " (known: " + known + ")");
     }
+    const auto range =
+        std::find_if(info->params.begin(), info->params.end(), [&key = name](const SceneParam& p) {
+          return p.name == key;
+        })->range;  // clang 14: no capture of a structured binding
+    if (range == SceneParam::Range::Positive && value <= 0)
+      throw InputError(kCommandLine, "--set " + name, "must be positive" + gotValue(value));
+    if (range == SceneParam::Range::NonNegative && value < 0)
+      throw InputError(kCommandLine, "--set " + name, "must be >= 0" + gotValue(value));
+    params[name] = value;
+  }
   return params;
 }
 

@@ -8,8 +8,8 @@
 #include "engine/core/error.h"
 #include "engine/hand/hand_controller.h"
 #include "engine/hand/hand_io.h"
-#include "engine/hand/hand_tracking.h"
 #include "engine/hand/hand_kinematics.h"
+#include "engine/hand/hand_tracking.h"
 #include "engine/scenes/scene_hand.h"
 #include "engine/scenes/scene_registry.h"
 #include "tests/support/finite_differences.h"
@@ -149,16 +149,18 @@ TEST(HandTurn, AngleTargetsAreCheckedWithTheClisMessages) {
     }
     return std::string("no error");
   };
-  EXPECT_EQ(message([] { targetNumbers("1,2,3,4", kCommandLine, "--target"); }),
-            "command line: --target: must be X,Y or X,Y,THETA, 2 or 3 finite numbers (got \"1,2,3,4\")");
+  EXPECT_EQ(
+      message([] { targetNumbers("1,2,3,4", kCommandLine, "--target"); }),
+      "command line: --target: must be X,Y or X,Y,THETA, 2 or 3 finite numbers (got \"1,2,3,4\")");
   EXPECT_EQ(message([] { targetNumbers("0.1,0.2,nan", kCommandLine, "--target"); }),
             "command line: --target: must be X,Y,THETA, 3 finite numbers (got \"0.1,0.2,nan\")");
   TrackRequest request;
   setTarget(request, targetNumbers("0.1,0.2,0.3", kCommandLine, "--target"), kCommandLine,
             "--target");
   EXPECT_EQ(request.targetAngle, 0.3);
-  EXPECT_EQ(message([&] { trackOptions(request, HandModel{}); }),
-            "command line: --target: THETA needs a box that turns (--set turn=1) (got 0.3)");
+  EXPECT_EQ(
+      message([&] { trackOptions(request, HandModel{}); }),
+      "command line: --target: THETA needs a box that may turn (scene parameter turn=1) (got 0.3)");
   EXPECT_EQ(trackOptions(request, turningHand()).targetAngle, 0.3);
   request.targetAngle = 4;
   EXPECT_EQ(message([&] { trackOptions(request, turningHand()); }),
@@ -168,9 +170,9 @@ TEST(HandTurn, AngleTargetsAreCheckedWithTheClisMessages) {
 TEST(HandTurnTracking, HeldOutTargetsInXYThetaAreReached) {
   // Issue 41's goal: targets (x, y, theta), |theta| <= 0.3 rad, inside the reach set, reached
   // within 5 mm and 0.02 rad with the grasp held. These ten were not used to tune anything.
-  const double targets[10][3] = {{0.3, 0.2, 0.15},   {-0.2, 0.3, -0.3},  {0.0, -0.3, 0.25},
-                                 {0.35, -0.2, -0.2}, {-0.3, -0.2, 0.3},  {0.15, 0.35, -0.1},
-                                 {-0.35, 0.1, 0.2},  {0.25, 0.0, -0.3},  {-0.1, -0.4, -0.15},
+  const double targets[10][3] = {{0.3, 0.2, 0.15},   {-0.2, 0.3, -0.3}, {0.0, -0.3, 0.25},
+                                 {0.35, -0.2, -0.2}, {-0.3, -0.2, 0.3}, {0.15, 0.35, -0.1},
+                                 {-0.35, 0.1, 0.2},  {0.25, 0.0, -0.3}, {-0.1, -0.4, -0.15},
                                  {0.05, 0.15, 0.3}};
   int reached = 0, held = 0;
   for (const auto& t : targets) {
