@@ -11,6 +11,8 @@
 #include "engine/core/error.h"
 #include "engine/core/file_input.h"
 #include "engine/hand/hand_io.h"
+#include "engine/scenes/scene_hand.h"
+#include "engine/scenes/scene_registry.h"
 #ifdef CABLELAB_HAVE_OFFSCREEN
 #include "ui/plot.h"
 #endif
@@ -88,6 +90,7 @@ const bool reachRegistered = registerCommand(
         int grid = 50;
         std::string model = "simulation", csv, png, scheduler;
         bool pd = false;
+        std::vector<std::string> sets;
       };
       auto o = std::make_shared<Options>();
       sub.add_option("--grid", o->grid, "N: try an N x N grid of targets")->capture_default_str();
@@ -102,8 +105,16 @@ const bool reachRegistered = registerCommand(
       sub.add_option("--scheduler", o->scheduler,
                      "Run the targets on this Dask scheduler's workers (tcp://HOST:PORT; they "
                      "need the cablelab Python module); same JSON and CSV");
+      sub.add_option("--set", o->sets,
+                     "Hand scene parameter NAME=VALUE (repeatable; as `run hand`), e.g. turn=1");
       return [o] {
+        std::vector<std::pair<std::string, double>> overrides;
+        for (const std::string& s : o->sets) overrides.push_back(parseSetting(s));
+        const HandModel hand = handModelWithSettings(overrides);
         const ReachOptions options = reachOptions(o->grid, o->model, o->pd);
+        // The Dask workers build the default hand (python/cablelab/_reach_on_dask.py).
+        if (!o->scheduler.empty() && !o->sets.empty())
+          badOption("--set", "cannot be combined with --scheduler");
 #ifndef CABLELAB_HAVE_OFFSCREEN
         if (!o->png.empty()) badOption("--png", "this build has no offscreen renderer");
 #endif
@@ -114,7 +125,7 @@ const bool reachRegistered = registerCommand(
         const bool local = o->scheduler.empty();
         Progress progress("reach", local ? static_cast<long>(o->grid) * o->grid : o->grid);
         const ReachResult r =
-            local ? runReach(options, HandModel{}, [&](long done, long) { progress.update(done); })
+            local ? runReach(options, hand, [&](long done, long) { progress.update(done); })
                   : runReachOnDask(o->scheduler, options, progress);
         progress.done();
         const double ratio = r.fingertipArea > 0 ? r.objectArea / r.fingertipArea : 0.0;

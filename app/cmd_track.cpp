@@ -10,6 +10,7 @@
 #include "engine/core/file_input.h"
 #include "engine/core/parse.h"
 #include "engine/hand/hand_io.h"
+#include "engine/scenes/scene_hand.h"
 #include "engine/scenes/scene_registry.h"
 #ifdef CABLELAB_HAVE_OFFSCREEN
 #include "ui/plot.h"
@@ -73,29 +74,37 @@ const bool trackRegistered = registerCommand(
     [](CLI::App& sub) {
       struct Options {
         std::string target, ramp, start, csv, png;
+        std::vector<std::string> sets;
         double time = 15;
         bool pid = false;
       };
       auto o = std::make_shared<Options>();
-      sub.add_option("--target", o->target, "Constant target box centre X,Y (m); default 0,0");
+      sub.add_option("--target", o->target,
+                     "Constant target box centre X,Y (m), and angle THETA (rad; needs --set "
+                     "turn=1): X,Y[,THETA]; default 0,0");
       sub.add_option("--ramp", o->ramp,
                      "Linear ramp from the start at control time to X,Y over SECONDS: X,Y,SECONDS");
       sub.add_option("--start", o->start,
                      "Box centre X,Y (m) the hand grasps it at; default 0,0, or 0.1,0.1 when the "
                      "target is within 5 cm of 0,0");
       sub.add_option("--time", o->time, "Simulated time (s)")->capture_default_str();
+      sub.add_option("--set", o->sets,
+                     "Hand scene parameter NAME=VALUE (repeatable; as `run hand`), e.g. turn=1");
       sub.add_flag("--pid", o->pid,
                    "Add the integral term to the outer loop (removes the steady offset)");
-      sub.add_option("--csv", o->csv, "Write t,target_x,target_y,x,y per step to this CSV file");
+      sub.add_option("--csv", o->csv,
+                     "Write t,target_x,target_y,x,y,target_angle,angle per step to this CSV file");
       sub.add_option("--png", o->png,
                      "Plot target (dashed) and response (solid; the other law, PD or PID, pale) "
                      "to this PNG file");
       return [o] {
+        std::vector<std::pair<std::string, double>> overrides;
+        for (const std::string& s : o->sets) overrides.push_back(parseSetting(s));
+        const HandModel model = handModelWithSettings(overrides);
         TrackRequest request;
-        if (!o->target.empty()) {
-          const auto v = parseNumberList(o->target, 2, kCommandLine, "--target", "X,Y");
-          request.target = Vec2(v[0], v[1]);
-        }
+        if (!o->target.empty())
+          setTarget(request, targetNumbers(o->target, kCommandLine, "--target"), kCommandLine,
+                    "--target");
         if (!o->ramp.empty()) {
           const auto v = parseNumberList(o->ramp, 3, kCommandLine, "--ramp", "X,Y,SECONDS");
           request.ramp = {v[0], v[1], v[2]};
@@ -106,7 +115,7 @@ const bool trackRegistered = registerCommand(
         }
         request.time = o->time;
         request.pid = o->pid;
-        const TrackOptions options = trackOptions(request);
+        const TrackOptions options = trackOptions(request, model);
 #ifndef CABLELAB_HAVE_OFFSCREEN
         if (!o->png.empty()) badOption("--png", "this build has no offscreen renderer");
 #endif
@@ -117,22 +126,22 @@ const bool trackRegistered = registerCommand(
         const long steps = std::lround(options.time * 60.0);  // the hand scene's dt is 1/60 s
         Progress progress("track", o->png.empty() ? steps : 2 * steps);
         const TrackResult r =
-            runTracking(options, HandModel{}, [&](long done, long) { progress.update(done); });
+            runTracking(options, model, [&](long done, long) { progress.update(done); });
         TrackResult other;
         if (!o->png.empty()) {
           TrackOptions swapped = options;
           swapped.pid = !options.pid;
-          other = runTracking(swapped, HandModel{},
-                              [&](long done, long) { progress.update(steps + done); });
+          other =
+              runTracking(swapped, model, [&](long done, long) { progress.update(steps + done); });
         }
         progress.done();
 
         if (csv) {
-          *csv << "t,target_x,target_y,x,y\n";
-          char line[160];
+          *csv << "t,target_x,target_y,x,y,target_angle,angle\n";
+          char line[240];
           for (const TrackSample& s : r.samples) {
-            std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g\n", s.t, s.target.x(),
-                          s.target.y(), s.box.x(), s.box.y());
+            std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", s.t,
+                          s.target.x(), s.target.y(), s.box.x(), s.box.y(), s.targetAngle, s.angle);
             *csv << line;
           }
           finishOutputFile(*csv, o->csv, "--csv");

@@ -75,7 +75,16 @@ py::dict trackCall(py::handle target, py::handle ramp, py::handle start, double 
                    const HandControllerParams& controller, const GraspOptions& grasp,
                    py::handle progress) {
   TrackRequest request;
-  request.target = optionVec2(target, "--target");
+  if (!target.is_none()) {
+    // (x, y) or (x, y, theta), as numbers or the CLI's text.
+    const bool three = py::isinstance<py::sequence>(target) && !py::isinstance<py::str>(target) &&
+                       py::len(target) == 3;
+    setTarget(request,
+              py::isinstance<py::str>(target)
+                  ? targetNumbers(target.cast<std::string>(), kCommandLine, "--target")
+                  : toNumbers(target, three ? 3 : 2, kCommandLine, "--target"),
+              kCommandLine, "--target");
+  }
   if (!ramp.is_none()) {
     const auto v = optionNumbers(ramp, 3, "--ramp", "X,Y,SECONDS");
     request.ramp = {v[0], v[1], v[2]};
@@ -96,11 +105,13 @@ py::dict trackCall(py::handle target, py::handle ramp, py::handle start, double 
   py::dict out = fromJson(trackSummary(r));
   const py::ssize_t n = static_cast<py::ssize_t>(r.samples.size());
   py::array_t<double> t = newArray({n}), tension = newArray({n});
+  py::array_t<double> angle = newArray({n}), targetAngle = newArray({n});
   py::array_t<double> tg = newArray({n, 2}), box = newArray({n, 2}), ref = newArray({n, 2});
   for (py::ssize_t i = 0; i < n; ++i) {
     const TrackSample& s = r.samples[i];
     t.mutable_at(i) = s.t;
     tension.mutable_at(i) = s.tension;
+    angle.mutable_at(i) = s.angle, targetAngle.mutable_at(i) = s.targetAngle;
     tg.mutable_at(i, 0) = s.target.x(), tg.mutable_at(i, 1) = s.target.y();
     box.mutable_at(i, 0) = s.box.x(), box.mutable_at(i, 1) = s.box.y();
     ref.mutable_at(i, 0) = s.reference.x(), ref.mutable_at(i, 1) = s.reference.y();
@@ -110,6 +121,8 @@ py::dict trackCall(py::handle target, py::handle ramp, py::handle start, double 
   out["box"] = box;
   out["tension"] = tension;
   out["reference"] = ref;
+  out["angle"] = angle;
+  out["target_angle"] = targetAngle;
   out["start_tension"] = r.startTension;
   out["final_joints"] = jointsArray(r.finalJoints);
   return out;
@@ -199,18 +212,19 @@ void bindHandRuns(py::module_& m) {
       progress=None) -> dict
 
 Figure 4-5, as `cablelab track`: the hand closes a pinch grasp about the box at `start`,
-then the Jacobian controller drives it to `target` [x, y] (m), or along `ramp` (x, y,
-seconds) from the start. Each of target, ramp and start is numbers or the CLI's text
+then the Jacobian controller drives it to `target` [x, y] (m) or [x, y, theta] (theta in
+rad; needs hand=HandModel(turn=True)), or along `ramp` (x, y, seconds) from the start. Each of target, ramp and start is numbers or the CLI's text
 ("0.1,0.2"); start defaults to (0, 0), or (0.1, 0.1) for a target within 5 cm of it.
 time: simulated seconds. pid: add the integral term (k_i = PID_KI). changes: later target
 steps [(t, (x, y)), ...] in time order (not in the CLI). progress(done, total): called
 about every 0.1 s. Bad options raise InputError with the CLI's message; Ctrl-C stops the
 run (KeyboardInterrupt). Runs with the GIL released.
 
-Returns the CLI's JSON fields: final_error, rms_error, start_error (m), grasp_time (s),
+Returns the CLI's JSON fields: final_error, rms_error, start_error (m), final_angle_error,
+rms_angle_error, final_angle (rad), grasp_time (s),
 grasp_held, losses, start, final_box (m), max_tension (N), events [{t, what}]; and the
-samples, one per step from t = 0: t (s), target, box, reference ((n, 2), m), tension
-((n,), N, the larger membrane's); start_tension (N), final_joints (6, rad/m).)doc");
+samples, one per step from t = 0: t (s), target, box, reference ((n, 2), m), angle,
+target_angle ((n,), rad), tension ((n,), N, the larger membrane's); start_tension (N), final_joints (6, rad/m).)doc");
   m.def("reach", &reachCall, py::kw_only(), "grid"_a = 50, "model"_a = "simulation", "pd"_a = false,
         "threads"_a = py::none(), "hand"_a = HandModel{}, "progress"_a = py::none(),
         R"doc(reach(*, grid=50, model="simulation", pd=False, threads=None, hand=HandModel(),

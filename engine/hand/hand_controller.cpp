@@ -33,9 +33,11 @@ void HandController::reset() {
   referenceVelocity_.setZero();
   started_ = hasSteering_ = false;
   status_ = {};
+  angleVelocity_ = angleIntegral_ = 0;
+  steeringAngle_.setZero();
 }
 
-StaticsProblem HandController::staticsProblem(const HandJoints& q, const Vec2& guess) const {
+std::vector<BoxCable> HandController::boxCables(const HandJoints& q) const {
   const FingertipPoints tips = fingertipPoints(model_, q);
   const double h = model_.boxHalfSize;
   std::vector<BoxCable> cables(2);
@@ -51,11 +53,42 @@ StaticsProblem HandController::staticsProblem(const HandJoints& q, const Vec2& g
     c.cornerA = Vec2(-h, face);
     c.cornerB = Vec2(h, face);
   }
-  return reduceBoxToPoint(cables, guess);
+  return cables;
 }
 
-BoxPrediction HandController::predict(const HandJoints& q, const Vec2& guess) const {
+StaticsProblem HandController::staticsProblem(const HandJoints& q, const Vec2& guess) const {
+  return reduceBoxToPoint(boxCables(q), guess);
+}
+
+BoxPrediction HandController::predict(const HandJoints& q, const Vec2& guess,
+                                      double guessAngle) const {
   BoxPrediction out;
+  if (model_.turn) {
+    // The box in (x, y, theta): Newton on the membranes' energy (box_pose.h, docs/hand.md).
+    const std::vector<BoxCable> cables = boxCables(q);
+    const BoxPoseResult eq =
+        solveBoxPose(cables, BoxPose(guess.x(), guess.y(), guessAngle), model_.boxHalfSize);
+    out.box = eq.pose.head<2>();
+    out.angle = eq.pose[2];
+    if (!eq.converged) return out;
+    Eigen::Vector3d gradient;
+    Eigen::Matrix3d H;
+    boxPoseEnergy(cables, eq.pose, &gradient, &H);
+    const Eigen::LDLT<Eigen::Matrix3d> ldlt(H);
+    if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || ldlt.vectorD().minCoeff() <= 0)
+      return out;  // no isolated equilibrium: no Jacobian
+    const Eigen::Matrix<double, 3, 6> J =
+        boxPoseSensitivity(cables, eq.pose) * fingertipJacobian(model_, q);
+    out.jacobian = J.topRows<2>();
+    out.angleJacobian = J.row(2);
+    // The centre's stiffness with the angle settling freely (Schur complement).
+    out.stiffness =
+        H.topLeftCorner<2, 2>() - H.topRightCorner<2, 1>() * H.bottomLeftCorner<1, 2>() / H(2, 2);
+    out.smooth = true;
+    out.margin = faceOn(q, out).value.minCoeff();
+    out.valid = out.margin > 0;
+    return out;
+  }
   const StaticsProblem problem = staticsProblem(q, guess);
   StaticsResult eq;
   solveStatics(problem, eq);
@@ -147,9 +180,21 @@ void HandController::advanceReference(const Vec2& box, const Vec2& target) {
 Eigen::Matrix<double, 12, 6> HandController::faceOnJacobian(const HandJoints& q,
                                                             const BoxPrediction& p) const {
   // Each condition is linear in the fingertips and the box; both move with the joints, the box
-  // through the statics (p.jacobian).
-  const FaceOnTerms terms = faceOnTerms(model_, fingertipPoints(model_, q), p.box);
-  return terms.dTips * fingertipJacobian(model_, q) + terms.dBox * p.jacobian;
+  // through the statics (p.jacobian, p.angleJacobian).
+  const FaceOnTerms terms = faceOn(q, p);
+  Eigen::Matrix<double, 12, 6> J =
+      terms.dTips * fingertipJacobian(model_, q) + terms.dBox * p.jacobian;
+  if (model_.turn) J += terms.dAngle * p.angleJacobian;
+  return J;
+}
+
+FaceOnTerms HandController::faceOn(const HandJoints& q, const BoxPrediction& p) const {
+  const FingertipPoints tips = fingertipPoints(model_, q);
+  return model_.turn ? faceOnTerms(model_, tips, p.box, p.angle) : faceOnTerms(model_, tips, p.box);
+}
+
+Eigen::Matrix<double, 1, 6> HandController::angleRow() const {
+  return params_.angleArm * steeringAngle_;
 }
 
 Eigen::Matrix<double, 6, 6> HandController::stepMetric(const BoxJacobian& J,
@@ -159,8 +204,12 @@ Eigen::Matrix<double, 6, 6> HandController::stepMetric(const BoxJacobian& J,
   // stacked task (the distal joints cost distalWeight times more).
   HandJoints cost = HandJoints::Ones();
   cost[kDistal] = cost[3 + kDistal] = params_.distalWeight;
-  return J.transpose() * J + gapWeight * G.transpose() * G +
-         params_.lambda * params_.lambda * Eigen::Matrix<double, 6, 6>(cost.asDiagonal());
+  Eigen::Matrix<double, 6, 6> M =
+      J.transpose() * J + gapWeight * G.transpose() * G +
+      params_.lambda * params_.lambda * Eigen::Matrix<double, 6, 6>(cost.asDiagonal());
+  // A box that turns: its angle is held (or followed) as firmly as the gap.
+  if (model_.turn) M += gapWeight * angleRow().transpose() * angleRow();
+  return M;
 }
 
 void HandController::stepConstraints(double scale, Eigen::Matrix<double, 24, 6>& C,
@@ -190,8 +239,7 @@ HandController::FeasibleMotion HandController::feasibleDirection(const Vec2& d, 
   Eigen::Matrix<double, 24, 6> C;
   Eigen::Matrix<double, 24, 1> b;
   stepConstraints(v * params_.period, C, b);
-  const FaceOnTerms terms =
-      faceOnTerms(model_, fingertipPoints(model_, steeringJoints_), commandedPrediction_.box);
+  const FaceOnTerms terms = faceOn(steeringJoints_, commandedPrediction_);
   for (int i = 0; i < 12; ++i)
     b[i] = -std::sqrt(2 * a * std::max(0.0, terms.value[i] - params_.wrapMargin)) / v;
   const SmallQpResult r = solveSmallQp(stepMetric(J, G, kGapWeight), -J.transpose() * d, C, b,
@@ -199,7 +247,8 @@ HandController::FeasibleMotion HandController::feasibleDirection(const Vec2& d, 
   return {J * r.x, !r.active.empty()};
 }
 
-HandJoints HandController::boundedStep(const HandJoints& dq, const Eigen::Matrix<double, 4, 6>& A,
+HandJoints HandController::boundedStep(const HandJoints& dq, const BoxJacobian& J,
+                                       const Eigen::Matrix<double, 2, 6>& G,
                                        const HandJoints& winv) const {
   // The step nearest dq in the task's metric that keeps the commanded joints within their limits
   // and every face-on condition at least wrapMargin (restoring one that has fallen below).
@@ -207,11 +256,10 @@ HandJoints HandController::boundedStep(const HandJoints& dq, const Eigen::Matrix
   Eigen::Matrix<double, 24, 6> C;
   Eigen::Matrix<double, 24, 1> b;
   stepConstraints(1, C, b);
-  const FaceOnTerms terms =
-      faceOnTerms(model_, fingertipPoints(model_, steeringJoints_), commandedPrediction_.box);
+  const FaceOnTerms terms = faceOn(steeringJoints_, commandedPrediction_);
   for (int i = 0; i < 12; ++i) b[i] = params_.wrapMargin - terms.value[i];
   if ((C * dq - b).minCoeff() >= 0) return dq;
-  Eigen::Matrix<double, 6, 6> M = stepMetric(A.topRows<2>(), A.bottomRows<2>(), 1);
+  Eigen::Matrix<double, 6, 6> M = stepMetric(J, G, 1);
   for (int j = 0; j < 6; ++j)
     if (winv[j] == 0) M(j, j) += 1e6;  // joints taken out at a limit stay out
   const SmallQpResult r = solveSmallQp(M, -M * dq, C, b, Eigen::VectorXd::Zero(6));
@@ -254,7 +302,9 @@ Eigen::Matrix<double, 2, 6> HandController::gapJacobian(const HandJoints& comman
   Eigen::Matrix<double, 2, 6> G = Eigen::Matrix<double, 2, 6>::Zero();
   const FingerPose top = fingerPose(model_, commanded, 0),
                    bottom = fingerPose(model_, commanded, 1);
-  gap = top.paddle - bottom.paddle - Vec2(0, 2 * model_.baseY);
+  gap = top.paddle - bottom.paddle -
+        (model_.turn ? rotate(Vec2(0, 2 * model_.baseY), angleReference_)
+                     : Vec2(0, 2 * model_.baseY));
   for (int f = 0; f < 2; ++f) {
     const FingerPose& pose = f == 0 ? top : bottom;
     const double sign = f == 0 ? 1.0 : -1.0;
@@ -270,16 +320,67 @@ HandJoints HandController::nullSpaceTask(const HandJoints& commanded,
   // servos lag under load and a task on the measured joints would wind up.
   HandJoints gradient = HandJoints::Zero();
   for (int f = 0; f < 2; ++f) {
-    const double tilt = commanded[3 * f + kProximal] + commanded[3 * f + kDistal];
+    double tilt = commanded[3 * f + kProximal] + commanded[3 * f + kDistal];
+    if (model_.turn) tilt -= angleReference_;  // face-on to the turned box
     gradient[3 * f + kProximal] = tilt;
     gradient[3 * f + kDistal] = tilt;
   }
   return -params_.faceOnGain * winv.asDiagonal() * gradient;
 }
 
+void HandController::advanceAngleReference(double target) {
+  // As the centre's reference: cruise at angleSpeed, brake in time, never overshoot.
+  const double T = params_.period, a = params_.angleAcceleration;
+  const double toGo = target - angleReference_;
+  const double desired = std::copysign(
+      std::min({params_.angleSpeed, std::sqrt(2 * a * std::abs(toGo)), std::abs(toGo) / T}), toGo);
+  angleVelocity_ += std::clamp(desired - angleVelocity_, -a * T, a * T);
+  if (std::abs(angleVelocity_ * T) >= std::abs(toGo))
+    angleReference_ = target, angleVelocity_ = 0;
+  else
+    angleReference_ += angleVelocity_ * T;
+}
+
+template <int Tasks>
+HandJoints HandController::stackedStep(const Eigen::Matrix<double, Tasks, 6>& A,
+                                       const Eigen::Matrix<double, Tasks, 1>& task,
+                                       const HandJoints& commanded, HandJoints& winv,
+                                       HandJoints& primary) const {
+  // Weighted damped pseudo-inverse of the stacked task; joints the step would push through a
+  // limit drop out (winv zeroed) and the others take over.
+  HandJoints dq = HandJoints::Zero();
+  for (int pass = 0; pass < kLimitPasses; ++pass) {
+    const Eigen::Matrix<double, 6, Tasks> AWt = winv.asDiagonal() * A.transpose();
+    const Eigen::Matrix<double, Tasks, Tasks> AWAt =
+        A * AWt + params_.lambda * params_.lambda * Eigen::Matrix<double, Tasks, Tasks>::Identity();
+    const Eigen::Matrix<double, 6, Tasks> pinv = AWt * AWAt.inverse();
+    const Eigen::Matrix<double, 6, 6> nullspace =
+        Eigen::Matrix<double, 6, 6>::Identity() - pinv * A;
+    primary = pinv * task;
+    dq = primary + nullspace * nullSpaceTask(commanded, winv);
+    bool blocked = false;
+    for (int j = 0; j < 6; ++j) {
+      const bool atUpper = commanded[j] >= model_.upper[j] - kLimitMargin && dq[j] > 0;
+      const bool atLower = commanded[j] <= model_.lower[j] + kLimitMargin && dq[j] < 0;
+      if (winv[j] > 0 && (atUpper || atLower)) winv[j] = 0, blocked = true;
+    }
+    if (!blocked) break;
+  }
+  return dq;
+}
+
 HandJoints HandController::update(const HandJoints& q, const Vec2& box, const Vec2& target,
                                   const HandJoints& commanded) {
-  last_ = predict(q, box);
+  return update(q, BoxPose(box.x(), box.y(), 0), BoxPose(target.x(), target.y(), 0), commanded);
+}
+
+HandJoints HandController::update(const HandJoints& q, const BoxPose& boxPose,
+                                  const BoxPose& targetPose, const HandJoints& commanded) {
+  const Vec2 box = boxPose.head<2>(), target = targetPose.head<2>();
+  // A box that cannot turn has angle 0 and so has its target: every angle term below vanishes.
+  const bool turn = model_.turn;
+  const double angle = turn ? boxPose[2] : 0, targetAngle = turn ? targetPose[2] : 0;
+  last_ = predict(q, box, angle);
   // The loop steers the equilibrium the fingers settle to: the commanded joints plus the servos'
   // static droop under the membranes' load (the measured joints minus the commanded ones as the
   // servos' ramp lag would have them). The servos' and the box's lags behind it are physics the
@@ -288,23 +389,29 @@ HandJoints HandController::update(const HandJoints& q, const Vec2& box, const Ve
   advanceServos(commanded);
   commanded_ = commanded;
   steeringJoints_ = commanded + (q - servoJoints_);
-  commandedPrediction_ = predict(steeringJoints_, started_ ? reference_ : box);
+  commandedPrediction_ =
+      predict(steeringJoints_, started_ ? reference_ : box, started_ ? angleReference_ : angle);
   const BoxPrediction& p = commandedPrediction_;
   // The reduction's Jacobian steers wherever the statics is smooth, also with a paddle tilted
   // beyond face-on (the equilibrium still follows the box there to a centimetre or so; a stale
   // Jacobian does not). Where it is not smooth: the last one; the null-space task brings the
   // grasp back to the pinch geometry.
-  if (p.smooth) steering_ = p.jacobian, stiffness_ = p.stiffness, hasSteering_ = true;
+  if (p.smooth)
+    steering_ = p.jacobian, stiffness_ = p.stiffness, steeringAngle_ = p.angleJacobian,
+    hasSteering_ = true;
   if (!hasSteering_) return HandJoints::Zero();
   const double T = params_.period;
   const bool first = !started_;
   if (first) {
     reference_ = servoReference_ = modelBox_ = box;
     referenceVelocity_.setZero(), modelVelocity_.setZero();
+    angleReference_ = angle, angleVelocity_ = 0;
     started_ = true;
   }
   const Vec2 previousReference = reference_;
+  const double previousAngle = angleReference_;
   advanceReference(box, target);
+  if (turn) advanceAngleReference(targetAngle);
   advanceModel(previousReference);
   // Feedback in three parts (docs/controller.md). k_p acts on the commanded equilibrium's
   // departure from the reference: it corrects the linearisation and never feeds the box's own lag
@@ -313,7 +420,7 @@ HandJoints HandController::update(const HandJoints& q, const Vec2& box, const Ve
   // integral collects the box's offset from the target once the reference rests there: the
   // statics model's own error, which PD leaves.
   // Once the reference rests on the target the lag has gone and k_p acts on the box itself.
-  const bool resting = reference_ == target;
+  const bool resting = reference_ == target && angleReference_ == targetAngle;
   const Vec2 modelError = resting    ? Vec2(box - target)
                           : p.smooth ? Vec2(p.box - reference_)
                                      : Vec2::Zero();
@@ -327,37 +434,41 @@ HandJoints HandController::update(const HandJoints& q, const Vec2& box, const Ve
   const double cap = kFeedbackHeadroom * T * speedLimit(stiffness_, want);
   status_ = {reference_, modelBox_, error, integral_, status_.speedLimit, false, 0, p.margin};
   if (want.norm() > cap) want *= cap / want.norm(), status_.rateLimited = true;
+  // The angle the same way (its equilibrium against the reference while that moves, the box
+  // against the target once it rests), without a sway model: the table's drag damps the turning.
+  double wantAngle = 0;
+  if (turn) {
+    const double angleError = resting    ? angle - targetAngle
+                              : p.smooth ? p.angle - angleReference_
+                                         : 0.0;
+    wantAngle = (angleReference_ - previousAngle) - params_.kp * angleError -
+                params_.ki * T * angleIntegral_;
+    const double angleCap = kFeedbackHeadroom * T * params_.angleSpeed;
+    if (std::abs(wantAngle) > angleCap)
+      wantAngle = std::copysign(angleCap, wantAngle), status_.rateLimited = true;
+  }
 
-  // Weighted damped pseudo-inverse of the box task stacked with the paddles' gap: the gap is held
-  // at the pinch's (0, 2 baseY) as a task of its own, not in the null space, so that when joints
-  // saturate the fingers cannot spread apart and let the box out. Joints the update would push
-  // through a limit drop out.
+  // Weighted damped pseudo-inverse of the box task (and its angle) stacked with the paddles' gap:
+  // the gap is held at the pinch's (0, 2 baseY) as a task of its own, not in the null space, so
+  // that when joints saturate the fingers cannot spread apart and let the box out.
   const BoxJacobian& J = steering_;
-  Eigen::Matrix<double, 4, 6> A;
   Vec2 gap;
-  A.topRows<2>() = J;
-  A.bottomRows<2>() = gapJacobian(commanded, gap);
-  Eigen::Vector4d task;
-  task << want, -params_.faceOnGain * gap;
+  const Eigen::Matrix<double, 2, 6> G = gapJacobian(commanded, gap);
   HandJoints winv = HandJoints::Ones();
   winv[kDistal] = winv[3 + kDistal] = 1.0 / params_.distalWeight;
-  HandJoints dq = HandJoints::Zero(), primary = HandJoints::Zero();
-  for (int pass = 0; pass < kLimitPasses; ++pass) {
-    const Eigen::Matrix<double, 6, 4> AWt = winv.asDiagonal() * A.transpose();
-    const Eigen::Matrix4d AWAt =
-        A * AWt + params_.lambda * params_.lambda * Eigen::Matrix4d::Identity();
-    const Eigen::Matrix<double, 6, 4> pinv = AWt * AWAt.inverse();
-    const Eigen::Matrix<double, 6, 6> nullspace =
-        Eigen::Matrix<double, 6, 6>::Identity() - pinv * A;
-    primary = pinv * task;
-    dq = primary + nullspace * nullSpaceTask(commanded, winv);
-    bool blocked = false;
-    for (int j = 0; j < 6; ++j) {
-      const bool atUpper = commanded[j] >= model_.upper[j] - kLimitMargin && dq[j] > 0;
-      const bool atLower = commanded[j] <= model_.lower[j] + kLimitMargin && dq[j] < 0;
-      if (winv[j] > 0 && (atUpper || atLower)) winv[j] = 0, blocked = true;
-    }
-    if (!blocked) break;
+  HandJoints dq, primary;
+  if (turn) {
+    Eigen::Matrix<double, 5, 6> A;
+    A << J, angleRow(), G;
+    Eigen::Matrix<double, 5, 1> task;
+    task << want, params_.angleArm * wantAngle, -params_.faceOnGain * gap;
+    dq = stackedStep<5>(A, task, commanded, winv, primary);
+  } else {
+    Eigen::Matrix<double, 4, 6> A;
+    A << J, G;
+    Eigen::Vector4d task;
+    task << want, -params_.faceOnGain * gap;
+    dq = stackedStep<4>(A, task, commanded, winv, primary);
   }
   status_.jointsAtLimit = static_cast<int>((winv.array() == 0).count());
   // Bounded by the joint limits and the face-on conditions. While the reference moves, what the
@@ -365,9 +476,10 @@ HandJoints HandController::update(const HandJoints& q, const Vec2& box, const Ve
   // runs ahead of what the joints can deliver, so it keeps sliding along the boundary instead of
   // waiting outside it. Once it rests on the target it stays there (the integral's anti-windup
   // below handles a bound then).
-  const HandJoints bounded = boundedStep(dq, A, winv);
+  const HandJoints bounded = boundedStep(dq, J, G, winv);
   if (bounded != dq && !resting) {
     reference_ += J * (bounded - dq);
+    if (turn) angleReference_ += steeringAngle_ * (bounded - dq);
     status_.reference = reference_;
   }
   primary += bounded - dq, dq = bounded;
@@ -375,10 +487,19 @@ HandJoints HandController::update(const HandJoints& q, const Vec2& box, const Ve
   // is not saturated (the requested motion is what the joints deliver).
   const HandJoints clipped = model_.clamp(commanded + dq) - (commanded + dq);
   const Vec2 delivered = J * (primary + clipped);  // the box part of the stacked task
-  const bool saturated =
-      status_.rateLimited || (delivered - want).norm() > 0.2 * want.norm() + 1e-9;
-  if (!saturated && resting) integral_ += (box - target) * T;
+  bool saturated = status_.rateLimited || (delivered - want).norm() > 0.2 * want.norm() + 1e-9;
+  if (turn) {  // the centre and the angle (in metres at the corners) as one task
+    const double arm = params_.angleArm, turned = steeringAngle_ * (primary + clipped);
+    const Eigen::Vector3d asked(want.x(), want.y(), arm * wantAngle),
+        got(delivered.x(), delivered.y(), arm * turned);
+    saturated = status_.rateLimited || (got - asked).norm() > 0.2 * asked.norm() + 1e-9;
+  }
+  if (!saturated && resting) {
+    integral_ += (box - target) * T;
+    if (turn) angleIntegral_ += (angle - targetAngle) * T;
+  }
   status_.integral = integral_;
+  status_.angleReference = angleReference_;
   return dq;
 }
 

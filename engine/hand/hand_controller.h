@@ -42,6 +42,7 @@
 
 #include "engine/hand/hand_kinematics.h"
 #include "engine/hand/hand_model.h"
+#include "engine/statics/box_pose.h"
 #include "engine/statics/statics.h"
 
 namespace cablelab {
@@ -64,6 +65,12 @@ struct HandControllerParams {
                               ///< (> 1: prefer moving the fingers to tilting the paddles)
   double faceOnGain = 0.3;    ///< per update: null-space pull back to face-on paddles and the
                               ///< pinch gap
+  /// A box that turns (HandModel::turn): the angle reference's top speed (rad/s) and
+  /// acceleration (rad/s^2); the angle's share of the stacked task counts a radian as this many
+  /// metres (the box's half side: the corners move that far per radian).
+  double angleSpeed = 0.25;
+  double angleAcceleration = 0.25;
+  double angleArm = 0.25;
 };
 
 /// The integral gain `--pid` uses (1/s per update).
@@ -76,7 +83,12 @@ using BoxJacobian = Eigen::Matrix<double, 2, 6>;
 struct BoxPrediction {
   Vec2 box = Vec2::Zero();  ///< equilibrium box centre (m)
   BoxJacobian jacobian = BoxJacobian::Zero();
-  Eigen::Matrix2d stiffness = Eigen::Matrix2d::Zero();  ///< d2E/db2 at the equilibrium (N/m)
+  /// d2E/db2 at the equilibrium (N/m); for a box that turns, with the angle free (the Schur
+  /// complement of the (x, y, theta) Hessian).
+  Eigen::Matrix2d stiffness = Eigen::Matrix2d::Zero();
+  double angle = 0;  ///< equilibrium box angle (rad); 0 for a box that cannot turn
+  Eigen::Matrix<double, 1, 6> angleJacobian =
+      Eigen::Matrix<double, 1, 6>::Zero();  ///< d angle/dq_u
   bool smooth = false;  ///< solver converged and the equilibrium is smooth (jacobian exists)
   bool valid = false;   ///< smooth and both membranes wrap the box face-on
   double margin = 0;    ///< faceOnMargin() at the equilibrium (m)
@@ -92,6 +104,7 @@ struct ControllerStatus {
   bool rateLimited = false;       ///< the update was scaled down to the rate limit
   int jointsAtLimit = 0;          ///< joints taken out of J+ at their limits
   double margin = 0;              ///< faceOnMargin() of the commanded joints' equilibrium (m)
+  double angleReference = 0;      ///< the box angle's reference (rad; 0 if it cannot turn)
 };
 
 class HandController {
@@ -107,8 +120,12 @@ class HandController {
   /// membranes as point cables, fingertips shifted by the box corners they wrap.
   StaticsProblem staticsProblem(const HandJoints& q, const Vec2& guess) const;
 
-  /// Equilibrium box centre, db/dq_u and the box stiffness at joints q, warm-started at `guess`.
-  BoxPrediction predict(const HandJoints& q, const Vec2& guess) const;
+  /// The two membranes as cables over the box's wrapped faces (box_pose.h), fingertips at q.
+  std::vector<BoxCable> boxCables(const HandJoints& q) const;
+
+  /// Equilibrium box centre, db/dq_u and the box stiffness at joints q, warm-started at `guess`
+  /// (and `guessAngle` when the box may turn: then the statics in (x, y, theta), box_pose.h).
+  BoxPrediction predict(const HandJoints& q, const Vec2& guess, double guessAngle = 0) const;
 
   /// Clears the integral, the derivative memory and the reference (the next update starts the
   /// reference at the box).
@@ -119,9 +136,15 @@ class HandController {
   /// period.
   HandJoints update(const HandJoints& q, const Vec2& box, const Vec2& target,
                     const HandJoints& commanded);
+  /// The same for a box that may turn: box and target as (x, y, theta). For a box that cannot
+  /// turn the angles are ignored (the update above).
+  HandJoints update(const HandJoints& q, const BoxPose& box, const BoxPose& target,
+                    const HandJoints& commanded);
 
+  /// The face-on conditions at joints q with the box where p has it (turned by p.angle).
+  FaceOnTerms faceOn(const HandJoints& q, const BoxPrediction& p) const;
   /// d(face-on conditions)/dq at joints q with the prediction p there (12 x 6, faceOnTerms()'s
-  /// rows): the fingertips move with q, the box with p.jacobian.
+  /// rows): the fingertips move with q, the box with p.jacobian (and p.angleJacobian).
   Eigen::Matrix<double, 12, 6> faceOnJacobian(const HandJoints& q, const BoxPrediction& p) const;
 
   /// The last update's prediction and status (for diagnostics).
@@ -138,6 +161,11 @@ class HandController {
 
  private:
   void advanceReference(const Vec2& box, const Vec2& target);
+  void advanceAngleReference(double target);
+  template <int Tasks>
+  HandJoints stackedStep(const Eigen::Matrix<double, Tasks, 6>& A,
+                         const Eigen::Matrix<double, Tasks, 1>& task, const HandJoints& commanded,
+                         HandJoints& winv, HandJoints& primary) const;
   void advanceModel(const Vec2& from);
   void advanceServos(const HandJoints& commanded);
   double ellipseNorm(const Vec2& lag) const;
@@ -146,13 +174,17 @@ class HandController {
     bool bounded;  ///< a joint limit or a face-on condition shaped it
   };
   FeasibleMotion feasibleDirection(const Vec2& d, double v, double a) const;
-  HandJoints boundedStep(const HandJoints& dq, const Eigen::Matrix<double, 4, 6>& A,
-                         const HandJoints& winv) const;
+  HandJoints boundedStep(const HandJoints& dq, const BoxJacobian& J,
+                         const Eigen::Matrix<double, 2, 6>& G, const HandJoints& winv) const;
   Eigen::Matrix<double, 6, 6> stepMetric(const BoxJacobian& J, const Eigen::Matrix<double, 2, 6>& G,
                                          double gapWeight) const;
+  /// The angle's row of the stacked task (angleArm x d angle/dq; zero if the box cannot turn).
+  Eigen::Matrix<double, 1, 6> angleRow() const;
   void stepConstraints(double scale, Eigen::Matrix<double, 24, 6>& C,
                        Eigen::Matrix<double, 24, 1>& b) const;
   HandJoints nullSpaceTask(const HandJoints& commanded, const HandJoints& winv) const;
+  /// d gap/dq and the gap itself, the paddles' distal joints' offset from the pinch's, the
+  /// pinch turned by the angle reference when the box may turn.
   Eigen::Matrix<double, 2, 6> gapJacobian(const HandJoints& commanded, Vec2& gap) const;
 
   HandModel model_;
@@ -172,6 +204,9 @@ class HandController {
   HandJoints commanded_ = HandJoints::Zero();       ///< the joint targets of this update
   HandJoints steeringJoints_ = HandJoints::Zero();  ///< commanded plus the servos' droop
   ControllerStatus status_;
+  // A box that turns: the angle's reference, its rate, the integral and the last valid d angle/dq.
+  double angleReference_ = 0, angleVelocity_ = 0, angleIntegral_ = 0;
+  Eigen::Matrix<double, 1, 6> steeringAngle_ = Eigen::Matrix<double, 1, 6>::Zero();
 };
 
 /// Median wall time of one HandController::update at the pinch pose (us), over `repeats` calls.

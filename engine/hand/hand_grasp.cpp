@@ -134,9 +134,11 @@ void HandGrasp::beforeStep(World& world, const std::optional<Vec2>& target, cons
     const HandJoints from = commanded_;
     if (law || target) {
       const HandJoints q = joints(world);
-      const Vec2 box = world.body(box_).position;
+      const BodyState& box = world.body(box_);
       const HandJoints dq =
-          law ? law(q, box, commanded_) : controller_.update(q, box, *target, commanded_);
+          law ? law(q, box.position, commanded_)
+              : controller_.update(q, BoxPose(box.position.x(), box.position.y(), box.angle),
+                                   BoxPose(target->x(), target->y(), targetAngle_), commanded_);
       ++updates_;
       // Spread over the period; no wind-up against the limits.
       startRamp(t, from, model_.clamp(commanded_ + dq), period);

@@ -67,6 +67,8 @@ class HandGrasp {
   void beforeStep(World& world, const std::optional<Vec2>& target, const GraspLaw& law = {});
   /// After World::step: notices the grasp closing and a lost grasp.
   void afterStep(const World& world);
+  /// The box angle (rad) the controller turns the box to when the box may turn (HandModel::turn).
+  void setTargetAngle(double angle) { targetAngle_ = angle; }
 
   Phase phase() const { return phase_; }
   double graspTime() const { return graspTime_; }        ///< s; -1 until the grasp first closes
@@ -104,6 +106,7 @@ class HandGrasp {
   HandJoints rampFrom_ = HandJoints::Zero(), commanded_ = HandJoints::Zero();
   double rampStart_ = 0, rampEnd_ = 0;
   Vec2 pinchAt_ = Vec2::Zero();
+  double targetAngle_ = 0;
   std::vector<GraspEvent> events_;
 };
 

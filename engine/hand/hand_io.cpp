@@ -1,16 +1,45 @@
 #include "engine/hand/hand_io.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "engine/core/error.h"
 #include "engine/core/parse.h"
 #include "engine/hand/hand_kinematics.h"
 
 namespace cablelab {
 
+std::vector<double> targetNumbers(std::string_view text, const std::string& source,
+                                  const std::string& field) {
+  const size_t count = std::count(text.begin(), text.end(), ',') + 1;
+  if (count != 2 && count != 3)
+    throw InputError(source, field,
+                     "must be X,Y or X,Y,THETA, 2 or 3 finite numbers" + gotValue(text));
+  return parseNumberList(text, count, source, field, count == 3 ? "X,Y,THETA" : "X,Y");
+}
+
+void setTarget(TrackRequest& request, const std::vector<double>& v, const std::string& source,
+               const std::string& field) {
+  if (v.size() != 2 && v.size() != 3)
+    throw InputError(source, field,
+                     "must be X,Y or X,Y,THETA (got " + std::to_string(v.size()) + " numbers)");
+  request.target = Vec2(v[0], v[1]);
+  request.targetAngle = v.size() == 3 ? v[2] : 0.0;
+}
+
 TrackOptions trackOptions(const TrackRequest& q, const HandModel& model) {
   TrackOptions o;
   if (q.target && q.ramp)
     throw InputError(kCommandLine, "--ramp", "give either --target or --ramp, not both");
   if (q.target) o.target = *q.target;
+  if (q.targetAngle != 0 && !model.turn)
+    throw InputError(
+        kCommandLine, "--target",
+        "THETA needs a box that may turn (scene parameter turn=1)" + gotValue(q.targetAngle));
+  if (!(std::abs(q.targetAngle) <= M_PI))
+    throw InputError(kCommandLine, "--target",
+                     "THETA must be in [-pi, pi] rad" + gotValue(q.targetAngle));
+  o.targetAngle = q.targetAngle;
   if (q.ramp) {
     const auto& v = *q.ramp;
     if (!(v[2] > 0))
@@ -36,11 +65,19 @@ nlohmann::json trackSummary(const TrackResult& r) {
   nlohmann::json events = nlohmann::json::array();
   for (const GraspEvent& e : r.events) events.push_back({{"t", e.t}, {"what", e.what}});
   const Vec2 last = r.samples.empty() ? r.start : r.samples.back().box;
-  return {{"final_error", r.finalError},         {"rms_error", r.rmsError},
-          {"grasp_time", r.graspTime},           {"start_error", r.startError},
-          {"grasp_held", r.graspHeld},           {"losses", r.losses},
-          {"start", {r.start.x(), r.start.y()}}, {"final_box", {last.x(), last.y()}},
-          {"max_tension", r.maxTension},         {"events", events}};
+  return {{"final_error", r.finalError},
+          {"rms_error", r.rmsError},
+          {"final_angle_error", r.finalAngleError},
+          {"rms_angle_error", r.rmsAngleError},
+          {"final_angle", r.samples.empty() ? 0.0 : r.samples.back().angle},
+          {"grasp_time", r.graspTime},
+          {"start_error", r.startError},
+          {"grasp_held", r.graspHeld},
+          {"losses", r.losses},
+          {"start", {r.start.x(), r.start.y()}},
+          {"final_box", {last.x(), last.y()}},
+          {"max_tension", r.maxTension},
+          {"events", events}};
 }
 
 ReachOptions reachOptions(int grid, const std::string& model, bool pd, int threads) {

@@ -17,18 +17,27 @@ namespace cablelab {
 /// `track`'s options as given, already numbers; the optional ones may be absent.
 struct TrackRequest {
   std::optional<Vec2> target;                 ///< --target X,Y (m)
+  double targetAngle = 0;                     ///< --target's THETA (rad), X,Y,THETA
   std::optional<std::array<double, 3>> ramp;  ///< --ramp X,Y,SECONDS (m, m, s)
   std::optional<Vec2> start;                  ///< --start X,Y (m)
   double time = 15;                           ///< --time (s)
   bool pid = false;                           ///< --pid
 };
 
+/// --target's X,Y or X,Y,THETA as 2 or 3 finite numbers; throws InputError(source, field, ...).
+std::vector<double> targetNumbers(std::string_view text, const std::string& source,
+                                  const std::string& field);
+/// Sets request's target (and angle) from 2 or 3 numbers; throws InputError(source, field, ...).
+void setTarget(TrackRequest& request, const std::vector<double>& v, const std::string& source,
+               const std::string& field);
+
 /// The checked TrackOptions; throws InputError("command line", "--OPTION", ...), the CLI's
 /// message.
 TrackOptions trackOptions(const TrackRequest& request, const HandModel& model = {});
 
-/// The JSON object `cablelab track` prints: final_error, rms_error, grasp_time, start_error,
-/// grasp_held, losses, start, final_box, max_tension, events [{t, what}].
+/// The JSON object `cablelab track` prints: final_error, rms_error, final_angle_error,
+/// rms_angle_error, grasp_time, start_error, grasp_held, losses, start, final_box, final_angle,
+/// max_tension, events [{t, what}].
 nlohmann::json trackSummary(const TrackResult& r);
 
 /// `reach`'s options: --grid N, --model simulation|quasi-static, --pd; threads 0: one per core.

@@ -1,5 +1,7 @@
 #include "engine/hand/hand_kinematics.h"
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <limits>
 
@@ -105,6 +107,25 @@ FaceOnTerms faceOnTerms(const HandModel& m, const FingertipPoints& tips, const V
       t.value[r + 1] = depth + h;
       t.dTips(r + 1, y) = s, t.dBox(r + 1, 1) = -s;
     }
+  }
+  return t;
+}
+
+FaceOnTerms faceOnTerms(const HandModel& m, const FingertipPoints& tips, const Vec2& p,
+                        double angle) {
+  FingertipPoints local;  // the fingertips in the box's frame, the box at its origin
+  for (int i = 0; i < 4; ++i) local.segment<2>(2 * i) = rotate(tips.segment<2>(2 * i) - p, -angle);
+  const FaceOnTerms boxFrame = faceOnTerms(m, local, Vec2::Zero());
+  const Eigen::Matrix2d back = Eigen::Rotation2Dd(-angle).toRotationMatrix();  // d local / d tip
+  FaceOnTerms t;
+  t.value = boxFrame.value;
+  t.dBox.setZero(), t.dAngle.setZero();
+  for (int i = 0; i < 4; ++i) {
+    const auto dLocal = boxFrame.dTips.middleCols<2>(2 * i);
+    t.dTips.middleCols<2>(2 * i) = dLocal * back;
+    t.dBox -= dLocal * back;
+    // d/d angle of R(-angle) v is -perp(R(-angle) v).
+    t.dAngle -= dLocal * perp(local.segment<2>(2 * i));
   }
   return t;
 }

@@ -58,7 +58,12 @@ struct FaceOnTerms {
   Eigen::Matrix<double, 12, 1> value;  ///< slack of each condition (m)
   Eigen::Matrix<double, 12, 8> dTips;  ///< d value / d fingertip points
   Eigen::Matrix<double, 12, 2> dBox;   ///< d value / d box centre
+  Eigen::Matrix<double, 12, 1> dAngle = Eigen::Matrix<double, 12, 1>::Zero();  ///< d / d angle
 };
 FaceOnTerms faceOnTerms(const HandModel& m, const FingertipPoints& tips, const Vec2& p);
+/// The same conditions for a box turned by `angle` (rad): checked in the box's frame, where the
+/// fingertips are R(-angle) (tip - p); dAngle is their derivative in the angle.
+FaceOnTerms faceOnTerms(const HandModel& m, const FingertipPoints& tips, const Vec2& p,
+                        double angle);
 
 }  // namespace cablelab

@@ -47,6 +47,9 @@ struct HandModel {
   double damping = 550.0;    ///< membrane b_s (N s/m)
   double preload = 0.3;      ///< membrane pre-stretch (m): tension k (stretch + preload)
   double servoKp = 500.0;    ///< inner PD stiffness per unit effective inertia (1/s^2)
+  /// The box may turn (scene parameter `turn`): the statics and the controller work in
+  /// (x, y, theta) (docs/hand.md). Off, the box keeps its angle, the thesis's model.
+  bool turn = false;
   std::array<double, 6> lower = {-0.7, -0.6, -0.7, -0.7, -0.6, -0.7};  ///< joint limits (rad, m)
   std::array<double, 6> upper = {0.7, 0.9, 0.7, 0.7, 0.9, 0.7};        ///< joint limits (rad, m)
 

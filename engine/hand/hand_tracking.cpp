@@ -23,10 +23,11 @@ class StopWatch {
  public:
   explicit StopWatch(const EarlyStop& o) : o_(o) {}
   /// After a controlled step at time t with error e; `resting`: the target no longer moves.
-  bool done(double t, double e, bool resting, bool& reached) {
+  /// `angleError`: the box angle's (0 for a box that cannot turn).
+  bool done(double t, double e, double angleError, bool resting, bool& reached) {
     if (!o_.enabled) return false;
     if (first_) inside_ = bestTime_ = t, first_ = false;
-    if (e >= o_.tolerance || !resting) inside_ = t;
+    if (e >= o_.tolerance || angleError >= o_.angleTolerance || !resting) inside_ = t;
     if (t - inside_ >= o_.settledFor) return reached = true;
     if (e < best_ - std::max(o_.progress, o_.share * best_)) best_ = e, bestTime_ = t;
     return t - bestTime_ >= o_.stallFor;
@@ -51,6 +52,7 @@ TrackResult runTracking(const TrackOptions& o, const HandModel& model,
   if (o.pid) params.ki = kHandPidKi;
   HandGrasp grasp(model, params, o.grasp);
   grasp.attach(world);
+  grasp.setTargetAngle(o.targetAngle);
   const int box = grasp.boxBody();
 
   TrackResult result;
@@ -66,16 +68,24 @@ TrackResult runTracking(const TrackOptions& o, const HandModel& model,
     if (!std::isfinite(t0)) return result.start;
     return result.start + (o.target - result.start) * std::clamp((t - t0) / o.rampTime, 0.0, 1.0);
   };
+  // The angle ramps with the centre (from the box's start angle, 0) and stays at its target
+  // through later changes of the centre's target.
+  auto targetAngleAt = [&](double t) {
+    if (o.rampTime <= 0) return o.targetAngle;
+    const double t0 = grasp.controlStart();
+    if (!std::isfinite(t0)) return 0.0;
+    return o.targetAngle * std::clamp((t - t0) / o.rampTime, 0.0, 1.0);
+  };
   auto maxTension = [&] {
     return std::max(world.cable(grasp.membrane(0)).tension(),
                     world.cable(grasp.membrane(1)).tension());
   };
 
   result.samples.reserve(steps + 1);
-  result.samples.push_back(
-      {0, targetAt(0), world.body(box).position, maxTension(), world.body(box).position});
+  result.samples.push_back({0, targetAt(0), world.body(box).position, maxTension(),
+                            world.body(box).position, targetAngleAt(0), world.body(box).angle});
   StopWatch watch(o.stop);
-  double sumSquares = 0;
+  double sumSquares = 0, angleSquares = 0;
   long controlledSteps = 0;
   bool started = false;
   for (long s = 0; s < steps; ++s) {
@@ -86,24 +96,31 @@ TrackResult runTracking(const TrackOptions& o, const HandModel& model,
       result.startError = (world.body(box).position - target).norm();
       result.startTension = maxTension();
     }
+    grasp.setTargetAngle(targetAngleAt(t));
     grasp.beforeStep(world, target);
     world.step(dt, substeps);
     grasp.afterStep(world);
     const Vec2 now = targetAt(world.time());
     const Vec2 position = world.body(box).position;
+    const double angle = world.body(box).angle, nowAngle = targetAngleAt(world.time());
     result.samples.push_back({world.time(), now, position, maxTension(),
-                              started ? grasp.controller().status().expected : position});
+                              started ? grasp.controller().status().expected : position, nowAngle,
+                              angle});
     if (onStep) onStep(s + 1, steps);
     if (!started) continue;
     result.maxTension = std::max(result.maxTension, result.samples.back().tension);
     const double e = (position - now).norm();
     sumSquares += e * e;
+    const double angleError = std::abs(angle - nowAngle);
+    angleSquares += angleError * angleError;
     ++controlledSteps;
-    const bool resting = (o.rampTime <= 0 || world.time() >= grasp.controlStart() + o.rampTime) &&
-                         nextChange == o.changes.size() &&
-                         (grasp.controller().status().reference - now).norm() < 1e-9;
+    const bool resting =
+        (o.rampTime <= 0 || world.time() >= grasp.controlStart() + o.rampTime) &&
+        nextChange == o.changes.size() &&
+        (grasp.controller().status().reference - now).norm() < 1e-9 &&
+        std::abs(grasp.controller().status().angleReference - (model.turn ? nowAngle : 0.0)) < 1e-9;
     bool reached = false;
-    if (!grasp.held() || watch.done(world.time(), e, resting, reached)) {
+    if (!grasp.held() || watch.done(world.time(), e, angleError, resting, reached)) {
       result.stoppedEarly = o.stop.enabled && s + 1 < steps;
       if (o.stop.enabled) break;
     }
@@ -112,10 +129,14 @@ TrackResult runTracking(const TrackOptions& o, const HandModel& model,
   result.finalError = (last.box - last.target).norm();
   result.rmsError =
       controlledSteps > 0 ? std::sqrt(sumSquares / controlledSteps) : result.finalError;
+  result.finalAngleError = std::abs(last.angle - last.targetAngle);
+  result.rmsAngleError =
+      controlledSteps > 0 ? std::sqrt(angleSquares / controlledSteps) : result.finalAngleError;
   result.graspTime = grasp.graspTime();
   result.graspHeld = grasp.graspTime() >= 0 && grasp.held();
   result.losses = grasp.losses();
-  result.reached = result.graspHeld && result.finalError < o.stop.tolerance;
+  result.reached = result.graspHeld && result.finalError < o.stop.tolerance &&
+                   result.finalAngleError < o.stop.angleTolerance;
   result.finalJoints = readHandJoints(world);
   result.events = grasp.events();
   return result;

@@ -31,10 +31,12 @@ struct EarlyStop {
                              ///< error before stopping as failed
   double progress = 0.0005;  ///< m
   double share = 0.05;
+  double angleTolerance = 0.02;  ///< rad: a box that turns settles within this of its angle too
 };
 
 struct TrackOptions {
   Vec2 target = Vec2::Zero();         ///< final target box centre (m)
+  double targetAngle = 0;             ///< final target box angle (rad; the box must turn)
   std::optional<Vec2> start;          ///< box position where the hand grasps it; default
                                       ///< defaultStart(target)
   double rampTime = 0;                ///< s; > 0: the target moves linearly from the start to
@@ -53,19 +55,23 @@ struct TrackSample {
   Vec2 box = Vec2::Zero();        ///< m
   double tension = 0;             ///< the larger membrane tension (N)
   Vec2 reference = Vec2::Zero();  ///< the controller's reference r (m); the box before control
+  double targetAngle = 0;         ///< rad
+  double angle = 0;               ///< the box's angle (rad)
 };
 
 struct TrackResult {
-  double finalError = 0;    ///< |box - target| at the end (m)
-  double rmsError = 0;      ///< RMS of |box - target| over the steps after control began (m)
-  double graspTime = -1;    ///< s; -1 if the membranes never both wrapped the box
-  double startError = 0;    ///< |box - target| when control began (m)
-  bool graspHeld = false;   ///< the grasp closed and was never lost afterwards
-  int losses = 0;           ///< times the box was lost (each followed by a re-grasp attempt)
-  double startTension = 0;  ///< the larger membrane tension when control began (N): the squeeze
-  double maxTension = 0;    ///< the larger membrane tension's maximum after control began (N)
+  double finalError = 0;       ///< |box - target| at the end (m)
+  double rmsError = 0;         ///< RMS of |box - target| over the steps after control began (m)
+  double finalAngleError = 0;  ///< |box angle - target angle| at the end (rad)
+  double rmsAngleError = 0;    ///< its RMS over the steps after control began (rad)
+  double graspTime = -1;       ///< s; -1 if the membranes never both wrapped the box
+  double startError = 0;       ///< |box - target| when control began (m)
+  bool graspHeld = false;      ///< the grasp closed and was never lost afterwards
+  int losses = 0;              ///< times the box was lost (each followed by a re-grasp attempt)
+  double startTension = 0;     ///< the larger membrane tension when control began (N): the squeeze
+  double maxTension = 0;       ///< the larger membrane tension's maximum after control began (N)
   bool stoppedEarly = false;
-  bool reached = false;       ///< ended within the early-stop tolerance (any run)
+  bool reached = false;       ///< ended within the early-stop tolerance(s) (any run)
   Vec2 start = Vec2::Zero();  ///< where the grasp closed about (m)
   HandJoints finalJoints = HandJoints::Zero();
   std::vector<GraspEvent> events;

@@ -8,8 +8,11 @@
 #include <cmath>
 #include <cstdio>
 
+#include "engine/core/error.h"
+#include "engine/core/parse.h"
 #include "engine/hand/hand_kinematics.h"
 #include "engine/hand/hand_model.h"
+#include "engine/scenes/scene_hand.h"
 #include "engine/scenes/scene_registry.h"
 
 namespace cablelab {
@@ -116,8 +119,10 @@ SceneDef buildHandScene(const HandModel& m) {
   BodyDef box;
   box.name = kHandBoxName;
   box.mass = m.boxMass;
-  box.fixedRotation = true;
+  box.fixedRotation = !m.turn;
   box.linearDamping = m.boxDamping;
+  // The table's drag on the box's turning, at the same rate as on its sliding.
+  if (m.turn) box.angularDamping = m.boxDamping;
   const double h = m.boxHalfSize;
   box.shapes = {bar(-h, h, -h, h)};
   s.bodies.push_back(box);
@@ -144,13 +149,27 @@ SceneDef buildHandScene(const HandModel& m) {
   return s;
 }
 
-SceneDef makeHandScene(const SceneParams& p) {
+namespace {
+HandModel handModel(const SceneParams& p) {
   HandModel m;
   m.stiffness = p.at("k");
   m.damping = p.at("damping");
   m.preload = p.at("preload");
   m.boxMass = p.at("box_mass");
-  return buildHandScene(m);
+  const double turn = p.at("turn");
+  if (turn != 0 && turn != 1)
+    throw InputError(kCommandLine, "--set turn", "must be 0 or 1" + gotValue(turn));
+  m.turn = turn == 1;
+  return m;
+}
+}  // namespace
+
+SceneDef makeHandScene(const SceneParams& p) {
+  return buildHandScene(handModel(p));
+}
+
+HandModel handModelWithSettings(const std::vector<std::pair<std::string, double>>& overrides) {
+  return handModel(sceneParams(*findBuiltinScene("hand"), overrides));
 }
 
 }  // namespace cablelab

@@ -7,6 +7,7 @@
 #include "engine/core/error.h"
 #include "engine/core/parse.h"
 #include "engine/model/scene_json.h"
+#include "engine/scenes/scene_hand.h"
 
 namespace cablelab {
 
@@ -25,7 +26,9 @@ const std::vector<SceneInfo>& builtinScenes() {
        {{"k", 150.0, "membrane stiffness k_s (N/m)"},
         {"damping", 550.0, "membrane damping b_s (N s/m)", SceneParam::Range::NonNegative},
         {"preload", 0.3, "membrane pre-stretch (m)", SceneParam::Range::NonNegative},
-        {"box_mass", 1.0, "manipuland mass (kg)"}},
+        {"box_mass", 1.0, "manipuland mass (kg)"},
+        {"turn", 0.0, "1: the box may turn, 0: its angle stays fixed",
+         SceneParam::Range::NonNegative}},
        makeHandScene},
       {"hexagon",
        "figure 2-4: a cable wrapping a swinging hexagonal pulley, wrap points come and go",
@@ -94,28 +97,35 @@ std::pair<std::string, double> parseSetting(const std::string& text) {
   return {name, parseNumber(text.substr(eq + 1), kCommandLine, "--set " + name)};
 }
 
+SceneParams sceneParams(const SceneInfo& scene,
+                        const std::vector<std::pair<std::string, double>>& overrides) {
+  const SceneInfo* info = &scene;
+  SceneParams params;
+  for (const SceneParam& p : info->params) params[p.name] = p.value;
+  for (const auto& [name, value] : overrides) {
+    if (!params.count(name)) {
+      std::string known;
+      for (const SceneParam& p : info->params) known += (known.empty() ? "" : ", ") + p.name;
+      throw InputError(kCommandLine, "--set " + name,
+                       "unknown parameter of scene " + info->name + " (known: " + known + ")");
+    }
+    const auto range =
+        std::find_if(info->params.begin(), info->params.end(), [&key = name](const SceneParam& p) {
+          return p.name == key;
+        })->range;  // clang 14: no capture of a structured binding
+    if (range == SceneParam::Range::Positive && value <= 0)
+      throw InputError(kCommandLine, "--set " + name, "must be positive" + gotValue(value));
+    if (range == SceneParam::Range::NonNegative && value < 0)
+      throw InputError(kCommandLine, "--set " + name, "must be >= 0" + gotValue(value));
+    params[name] = value;
+  }
+  return params;
+}
+
 SceneDef makeScene(const std::string& nameOrPath,
                    const std::vector<std::pair<std::string, double>>& overrides) {
   if (const SceneInfo* info = findBuiltinScene(nameOrPath)) {
-    SceneParams params;
-    for (const SceneParam& p : info->params) params[p.name] = p.value;
-    for (const auto& [name, value] : overrides) {
-      if (!params.count(name)) {
-        std::string known;
-        for (const SceneParam& p : info->params) known += (known.empty() ? "" : ", ") + p.name;
-        throw InputError(kCommandLine, "--set " + name,
-                         "unknown parameter of scene " + info->name + " (known: " + known + ")");
-      }
-      const auto range = std::find_if(info->params.begin(), info->params.end(),
-                                      [&key = name](const SceneParam& p) { return p.name == key; })
-                             ->range;  // clang 14: no capture of a structured binding
-      if (range == SceneParam::Range::Positive && value <= 0)
-        throw InputError(kCommandLine, "--set " + name, "must be positive" + gotValue(value));
-      if (range == SceneParam::Range::NonNegative && value < 0)
-        throw InputError(kCommandLine, "--set " + name, "must be >= 0" + gotValue(value));
-      params[name] = value;
-    }
-    SceneDef scene = info->build(params);
+    SceneDef scene = info->build(sceneParams(*info, overrides));
     validateScene(scene, "scene '" + info->name + "'");
     return scene;
   }

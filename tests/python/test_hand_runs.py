@@ -16,6 +16,10 @@ TRACK_CASES = {
     "ramp_start_pid": (["--ramp", "0.3,-0.2,2", "--start", "-0.1,0.1", "--pid", "--time", "4"],
                        dict(ramp=(0.3, -0.2, 2), start=(-0.1, 0.1), pid=True, time=4)),
     "default_start": (["--time", "3"], dict(time=3)),  # target 0,0: start 0.1,0.1
+    # a box that turns, to an angle target (x, y, theta)
+    "turn_angle": (["--set", "turn=1", "--target", "0.1,0.05,0.2", "--pid", "--time", "6"],
+                   dict(target=(0.1, 0.05, 0.2), pid=True, time=6,
+                        hand=cablelab.HandModel(turn=True))),
 }
 
 
@@ -29,12 +33,25 @@ def test_track_equals_cli_to_the_bit(case, tmp_path):
     for key in expected:
         assert got[key] == expected[key], key  # floats compared exactly
     header, rows = read_csv(csv)
-    assert header == ["t", "target_x", "target_y", "x", "y"]
+    assert header == ["t", "target_x", "target_y", "x", "y", "target_angle", "angle"]
     rows = np.array(rows)
     assert np.array_equal(got["t"], rows[:, 0])
     assert np.array_equal(got["target"], rows[:, 1:3])
     assert np.array_equal(got["box"], rows[:, 3:5])
+    assert np.array_equal(got["target_angle"], rows[:, 5])
+    assert np.array_equal(got["angle"], rows[:, 6])
     assert got["final_error"] == np.linalg.norm(got["box"][-1] - got["target"][-1])
+    assert got["final_angle_error"] == abs(got["angle"][-1] - got["target_angle"][-1])
+
+
+def test_track_angle_target_turns_the_box_and_bad_angles_are_the_clis_errors():
+    r = cablelab.track(target=(0.1, 0.05, 0.2), pid=True, hand=cablelab.HandModel(turn=True))
+    assert r["final_error"] < 0.005 and r["final_angle_error"] < 0.02 and r["grasp_held"]
+    assert r["final_angle"] == pytest.approx(0.2, abs=0.02)
+    with pytest.raises(cablelab.InputError, match="THETA needs a box that may turn"):
+        cablelab.track(target=(0.1, 0.05, 0.2))
+    with pytest.raises(cablelab.InputError, match="2 or 3 finite numbers"):
+        cablelab.track(target="1,2,3,4", hand=cablelab.HandModel(turn=True))
 
 
 def test_track_start_and_result_fields_are_consistent():
@@ -92,7 +109,7 @@ def test_track_bad_changes_and_numbers():
     with pytest.raises(cablelab.InputError, match=r"^track: changes\[0\]: must be \(t, \(x, y\)\)"):
         cablelab.track(changes=[(2, 0, 0)])
     with pytest.raises(cablelab.InputError, match=r"^argument: target: must be \[x, y\]"):
-        cablelab.track(target=(1, 2, 3))
+        cablelab.track(target=(1, 2, 3, 4))  # (x, y) or (x, y, theta)
     with pytest.raises(cablelab.InputError, match=r"^argument: start\[0\]: must be finite"):
         cablelab.track(start=(float("nan"), 0))
 
