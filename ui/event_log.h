@@ -29,6 +29,8 @@ class EventLog {
   std::vector<std::string> take(const World& world, const std::string& scene);
   /// A new world starts: its warnings are counted from the first.
   void newWorld() { seen_ = 0; }
+  /// A rewound world replayed warnings the log took the first time: they count as taken.
+  void takenAlready(const World& world) { seen_ = world.warnings().size(); }
   const std::deque<LogEntry>& entries() const { return entries_; }
   /// Entries ever added (the panel's "new" count compares against it).
   size_t total() const { return total_; }

@@ -217,7 +217,7 @@ void Sandbox::adoptRewound(std::unique_ptr<World> world) {
   drag = {};
   accumulator_ = 0;
   inputsAfterStep_ = world_->history().inputs().size();
-  warningsSeen = world_->warnings().size();  // the replay's warnings were shown the first time
+  log.takenAlready(*world_);
   banner.clear();
   loadCableEdit();
 }
