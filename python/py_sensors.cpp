@@ -84,8 +84,34 @@ void bindSensors(py::class_<PyWorld>& c) {
       R"doc(cable_span_tensions(cable) -> ndarray (spans,)
 
 Tension of each span of the cable over the last step (N), in path order. A cable is one span
-unless a no-slip or capstan wheel (or a drum) splits it: round a capstan the two sides
-differ by up to e^(mu theta). cable_tensions() gives the largest of them.)doc");
+unless a no-slip or capstan wheel, or a polygon with friction, splits it: round a capstan the
+two sides differ by up to e^(mu theta). cable_tensions() gives the largest of them.)doc");
+  c.def(
+      "cable_corner_tensions",
+      [](const PyWorld& self, py::handle cable) {
+        PyWorld::Busy busy(self);
+        const Cable& c = self.world->cable(self.cableIndex(cable, "cable_corner_tensions"));
+        std::vector<CornerTension> all, corners;
+        for (int k = 0; k + 1 < c.spanCount(); ++k) {
+          c.cornerTensions(k, corners);
+          all.insert(all.end(), corners.begin(), corners.end());
+        }
+        py::array_t<double> a = newArray({static_cast<py::ssize_t>(all.size()), 3});
+        for (size_t i = 0; i < all.size(); ++i) {
+          const auto row = static_cast<py::ssize_t>(i);
+          a.mutable_at(row, 0) = all[i].turn;
+          a.mutable_at(row, 1) = all[i].tensionIn;
+          a.mutable_at(row, 2) = all[i].tensionOut;
+        }
+        return a;
+      },
+      "cable"_a,
+      R"doc(cable_corner_tensions(cable) -> ndarray (corners, 3)
+
+One row per engaged corner of the cable's polygon pulleys with friction ("mu"), in path order:
+the angle the cable turns there (rad), the tension arriving and the tension leaving (N). While
+the rope slides, each corner's two tensions are in the ratio e^(mu theta_i); while it holds,
+each corner takes the same share of its friction. Empty without such polygons.)doc");
   c.def(
       "joint_rates", [](const PyWorld& s) { return jointColumn(s, &JointState::speed); },
       "joint_rates() -> ndarray (joints,): joint coordinate rates (rad/s or m/s); the same as "

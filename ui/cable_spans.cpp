@@ -7,6 +7,24 @@
 namespace cablelab::ui {
 namespace {
 
+CornerRow cornerRow(const CornerTension& c, double mu) {
+  CornerRow row;
+  row.vertex = c.vertex;
+  row.turn = c.turn;
+  row.tensionIn = c.tensionIn;
+  row.tensionOut = c.tensionOut;
+  const double low = std::min(c.tensionIn, c.tensionOut),
+               high = std::max(c.tensionIn, c.tensionOut);
+  row.ratio = low > 0 ? high / low : 0.0;
+  row.capstanRatio = std::exp(mu * c.turn);
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "  corner %d: theta %.3f rad, %.4g N -> %.4g N, ratio %.4g (e^(mu theta) %.4g)",
+                c.vertex, c.turn, c.tensionIn, c.tensionOut, row.ratio, row.capstanRatio);
+  row.text = text;
+  return row;
+}
+
 WheelRow wheelRow(const Cable& cable, int k) {
   const SpanLink& link = cable.link(k);
   WheelRow w;
@@ -20,11 +38,15 @@ WheelRow wheelRow(const Cable& cable, int k) {
   const double low = std::min(a, b), high = std::max(a, b);
   w.ratio = low > 0 ? high / low : 0.0;
   char text[160];
+  std::vector<CornerTension> corners;
+  cable.cornerTensions(k, corners);
+  const char* what = corners.empty() ? "wheel" : "polygon";
   if (link.grip == Grip::Capstan) {
     w.capstanRatio = std::exp(link.mu * link.wrapAngle);
     w.state = link.slipped ? "slipping" : "holding";
-    std::snprintf(text, sizeof text, "wheel %d: %s, theta %.3f rad, ratio %.4g (e^(mu theta) %.4g)",
-                  link.pulley, w.state.c_str(), link.wrapAngle, w.ratio, w.capstanRatio);
+    std::snprintf(text, sizeof text, "%s %d: %s, theta %.3f rad, ratio %.4g (e^(mu theta) %.4g)",
+                  what, link.pulley, w.state.c_str(), link.wrapAngle, w.ratio, w.capstanRatio);
+    for (const CornerTension& c : corners) w.corners.push_back(cornerRow(c, link.mu));
   } else {
     w.state = "no slip";
     std::snprintf(text, sizeof text, "wheel %d: no slip, theta %.3f rad, ratio %.4g", link.pulley,

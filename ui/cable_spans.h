@@ -1,5 +1,6 @@
-// The Inspector's span table: a cable split by the wheels that grip it (no slip, capstan) into
-// spans, each with its own tension (docs/wheels.md), and what each wheel between two spans does.
+// The Inspector's span table: a cable split by the wheels that grip it (no slip, capstan) and the
+// polygons with friction into spans, each with its own tension (docs/wheels.md,
+// docs/polygon_friction.md), and what each wheel or polygon between two spans does.
 // Plain data and the text lines the panel shows, so that the tests read what a user reads.
 #pragma once
 
@@ -17,7 +18,18 @@ struct SpanRow {
   std::string text;    ///< the line the Inspector shows
 };
 
-/// The wheel between spans `span` and `span` + 1.
+/// One corner of a polygon with friction: the tensions on either side of it.
+struct CornerRow {
+  int vertex = -1;
+  double turn = 0;          ///< rad, the angle the cable turns there
+  double tensionIn = 0;     ///< N
+  double tensionOut = 0;    ///< N
+  double ratio = 0;         ///< larger / smaller of the two (0 if one is slack)
+  double capstanRatio = 0;  ///< e^(mu theta_i): the most friction holds at this corner
+  std::string text;         ///< the line the Inspector shows
+};
+
+/// The wheel (or polygon with friction) between spans `span` and `span` + 1.
 struct WheelRow {
   int span = 0;
   int pulley = -1;
@@ -29,6 +41,7 @@ struct WheelRow {
   bool slipped = false;     ///< the last solve let the cable slide on the wheel
   std::string state;        ///< "no slip", "holding", "slipping"
   std::string text;         ///< the line the Inspector shows
+  std::vector<CornerRow> corners;  ///< a polygon's engaged corners in path order (else none)
 };
 
 struct SpanTable {

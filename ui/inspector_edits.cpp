@@ -61,10 +61,21 @@ bool pulleyRow(PulleyDef& p, int k) {
       p.grip = static_cast<Grip>(grip);
       if (p.grip == Grip::Capstan && p.mu <= 0) p.mu = 0.3;
     }
-    if (p.grip == Grip::Capstan) {
-      ImGui::SetNextItemWidth(ImGui::GetFontSize() * 5);
-      changed |= numberField("mu", &p.mu, "%.3f", "Friction coefficient between rope and pulley.");
+  }
+  if (p.kind == PulleyDef::Kind::Polygon) {
+    static const char* const grips[] = {"slides", "friction"};
+    int grip = p.grip == Grip::Capstan ? 1 : 0;
+    if (choice("grip", grips, 2, &grip,
+               "slides: the rope slides freely over the corners. friction: each corner holds "
+               "until one side pulls e^(mu x angle) times harder, angle the rope's turn there.")) {
+      changed = true;
+      p.grip = grip == 1 ? Grip::Capstan : Grip::Frictionless;
+      if (p.grip == Grip::Capstan && p.mu <= 0) p.mu = 0.3;
     }
+  }
+  if (p.grip == Grip::Capstan) {
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 5);
+    changed |= numberField("mu", &p.mu, "%.3f", "Friction coefficient between rope and pulley.");
   }
   ImGui::PopID();
   return changed;

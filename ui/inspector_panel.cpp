@@ -97,7 +97,8 @@ void spanSection(Sandbox& sandbox, const Cable& cable) {
   ImGui::Text("spans (%d)", cable.spanCount());
   tooltip(
       "Each span between gripping wheels carries its own tension (docs/wheels.md). A capstan "
-      "holds while the tension ratio is below e^(mu theta) and slips at that ratio.");
+      "holds while the tension ratio is below e^(mu theta) and slips at that ratio; on a "
+      "polygon with friction, so does each corner, theta the angle the rope turns there.");
   if (ImGui::BeginTable("spans", 3, ImGuiTableFlags_RowBg)) {
     ImGui::TableSetupColumn("span");
     ImGui::TableSetupColumn("tension (N)");
@@ -114,7 +115,10 @@ void spanSection(Sandbox& sandbox, const Cable& cable) {
     }
     ImGui::EndTable();
   }
-  for (const WheelRow& w : table.wheels) ImGui::TextWrapped("%s", w.text.c_str());
+  for (const WheelRow& w : table.wheels) {
+    ImGui::TextWrapped("%s", w.text.c_str());
+    for (const CornerRow& c : w.corners) ImGui::TextWrapped("%s", c.text.c_str());
+  }
   sandbox.shownSpans = std::move(table);
 }
 

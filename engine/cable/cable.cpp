@@ -76,10 +76,8 @@ Cable::Cable(const SceneDef& scene, int index, const std::string& source)
     } else {
       ps.local = {pd.point};
     }
-    if (ps.circle) {
-      ps.radius = pd.radius;
-      ps.grips = gripsCable(pd);
-    }
+    if (ps.circle) ps.radius = pd.radius;
+    ps.grips = gripsCable(pd);
     ps.turns = pd.turns;
     ps.world = ps.local;
     // A circle or polygon the scene winds the cable round (turns > 0) is in the path from the
@@ -135,8 +133,14 @@ void Cable::setSpanTension(int k, double t) {
 }
 
 double Cable::segmentTension(size_t i) const {
-  for (const Span& s : spans_)
-    if (i < s.last) return s.tension;
+  for (size_t k = 0; k < spans_.size(); ++k) {
+    if (i < spans_[k].last) return spans_[k].tension;
+    if (k + 1 < spans_.size() && i < spans_[k + 1].first) {
+      std::vector<CornerTension> corners;  // between two corners of a polygon with friction
+      cornerTensions(static_cast<int>(k), corners);
+      return corners[i - spans_[k].last].tensionOut;
+    }
+  }
   return tension_;
 }
 

@@ -169,13 +169,23 @@ struct CableParameters {
   double damping = 0.0;      ///< N s/m
 };
 
-/// A wheel that grips the cable (no slip or capstan friction) between span k and span k + 1.
+/// A wheel that grips the cable (no slip or capstan friction), or a polygon with friction,
+/// between span k and span k + 1.
 struct SpanLink {
   int pulley = -1;           ///< index into CableDef::pulleys
   Grip grip = Grip::NoSlip;  ///< NoSlip or Capstan
   double mu = 0;             ///< capstan friction coefficient
-  double wrapAngle = 0;      ///< rad, the angle the cable turns on the wheel (both spans' arcs)
+  double wrapAngle = 0;      ///< rad, the angle the cable turns on the wheel (both spans' arcs);
+                             ///< a polygon: at all its engaged corners together
   bool slipped = false;      ///< the last solve let the cable slide (tension ratio e^(mu theta))
+};
+
+/// One engaged corner of a polygon with friction (docs/polygon_friction.md).
+struct CornerTension {
+  int vertex = -1;        ///< polygon vertex index
+  double turn = 0;        ///< rad, the angle the cable turns at the corner (>= 0)
+  double tensionIn = 0;   ///< N, on the segment that arrives at the corner
+  double tensionOut = 0;  ///< N, on the segment that leaves it
 };
 
 class Cable {
@@ -253,8 +263,14 @@ class Cable {
   /// The solver let the cable slide on link k's wheel this sub-step: the next update moves rest
   /// length between the two spans so that the slide is not undone.
   void setSlipped(int k, bool slipped) { links_[k].slipped = slipped; }
-  /// Tension on path segment i (path()[i] -> path()[i + 1]): its span's.
+  /// Tension on path segment i (path()[i] -> path()[i + 1]): its span's, or between two corners
+  /// of a polygon with friction, what cornerTensions() gives it.
   double segmentTension(size_t i) const;
+  /// Link k's corners in path order, if it is a polygon with friction (else none), into `out`.
+  /// While the cable slides, each corner's tensions are in the ratio e^(mu theta_i); while it
+  /// holds (the split between the corners of a rigid polygon is not determined), every corner
+  /// takes the same share of its friction: T_out / T_in = (T_k+1 / T_k)^(theta_i / theta).
+  void cornerTensions(int k, std::vector<CornerTension>& out) const;
   /// Lets span k pay out `length` (m): its rest length grows by it. The solver does this where a
   /// kinematic body hauls a rigid cable that nothing can hold (docs/model.md, "Driven bodies").
   void payOut(int k, double length);
@@ -309,9 +325,18 @@ class Cable {
   bool joinRound(std::vector<std::string>* warnings);
   void storeArcs();
   void placeDrumMarks(std::span<const BodyState> bodies);
+  /// Where a gripping pulley splits the path: path_[in] ends one span, path_[out] starts the
+  /// next (the same point for a wheel; a polygon's first and last engaged corners).
+  struct Split {
+    size_t in = 0, out = 0;
+  };
   void updateSpans(std::span<const BodyState> bodies);
-  void splitIntoSpans(std::span<const BodyState> bodies, const std::vector<size_t>& splits);
+  void splitIntoSpans(std::span<const BodyState> bodies, const std::vector<Split>& splits);
   void rebaseMarks();
+  /// The angle the path turns at path_[i], a polygon corner, on its wrap side (>= 0, rad).
+  double cornerTurn(size_t i) const;
+  /// The length of the path between the spans, over the corners of polygons with friction (m).
+  double cornerLength(const std::vector<Split>& splits) const;
   bool updateDrumEnd(WrapPoint& end, bool atStart, std::span<const BodyState> bodies);
 
   const CableDef* def_;     ///< the scene's, never edited
@@ -342,6 +367,9 @@ class Cable {
   std::vector<Span> spans_;        ///< empty: one span, the whole path
   std::vector<SpanLink> links_;    ///< spans_.size() - 1
   std::vector<int> splitPulleys_;  ///< pulleys at the links, in path order (scratch + memory)
+  std::vector<Split> splits_;      ///< updateSpans scratch
+  double cornerRest_ = 0;          ///< cornerLength() at the last update: rigid, outside the spans
+  CableKinematics spanScratch_;    ///< a span's previous path, measured again
   // Skipping: a certificate built at a full update's selection pose. Each test is one signed
   // distance the event search watches (a point p from the line a-b), with its value then; the
   // wrap set cannot change while every point's displacement since is too small to zero one.

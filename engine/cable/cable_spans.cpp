@@ -6,23 +6,37 @@
 // every update, with the rest lengths shifted by the same r dphi, so the constraint values do not
 // change and the arcs stay bounded however far the wheel turns. When the solver let the cable
 // slide on a wheel, the rest lengths of its two spans are shared out again (the slide stays).
+//
+// A polygon with friction splits the cable at its corners (docs/polygon_friction.md): one span
+// ends on its first engaged corner and the next starts on its last; the rope between them is
+// stuck to the rigid polygon while it holds, and slides over all its corners at once.
+#include <algorithm>
 #include <cmath>
 
 #include "engine/cable/cable.h"
 
 namespace cablelab {
 
-void Cable::splitIntoSpans(std::span<const BodyState> bodies, const std::vector<size_t>& splits) {
+void Cable::splitIntoSpans(std::span<const BodyState> bodies, const std::vector<Split>& splits) {
   double total = params_.restLength;
   if (!spans_.empty()) {
-    total = 0;
+    total = cornerRest_;
     for (const Span& s : spans_) total += s.rest;
   }
+  total -= cornerLength(splits);  // the rope between a polygon's corners is stuck: no stretch
   spans_.assign(splits.size() + 1, Span{});
   links_.assign(splits.size(), SpanLink{});
   std::vector<WrapPoint> wheels;  // each split wheel with its mark at the contact's middle
   for (size_t k = 0; k < splits.size(); ++k) {
-    WrapPoint w = path_[splits[k]];
+    WrapPoint w = path_[splits[k].in];
+    const PulleyDef& pd = def_->pulleys[w.pulley];
+    if (w.kind != WrapPoint::Kind::Circle) {  // a polygon: the spans end on its corners
+      double turn = 0;
+      for (size_t i = splits[k].in; i <= splits[k].out; ++i) turn += cornerTurn(i);
+      links_[k] = {w.pulley, pd.grip, pd.mu, turn, false};
+      wheels.push_back(w);
+      continue;
+    }
     const double s = w.radius > 0 ? 1.0 : -1.0;
     const Vec2 t = w.tangentIn - w.world;
     const double beta = std::atan2(t.y(), t.x());
@@ -30,16 +44,15 @@ void Cable::splitIntoSpans(std::span<const BodyState> bodies, const std::vector<
     w.mark = beta - s * 0.5 * w.arc - angle;
     w.arc *= 0.5;
     wheels.push_back(w);
-    const PulleyDef& pd = def_->pulleys[w.pulley];
     links_[k] = {w.pulley, pd.grip, pd.mu, 2 * w.arc, false};
   }
   double lengths = 0;
   for (size_t k = 0; k < spans_.size(); ++k) {
     Span& span = spans_[k];
-    span.first = k == 0 ? 0 : splits[k - 1];
-    span.last = k == splits.size() ? path_.size() - 1 : splits[k];
+    span.first = k == 0 ? 0 : splits[k - 1].out;
+    span.last = k == splits.size() ? path_.size() - 1 : splits[k].in;
     span.path.assign(path_.begin() + span.first, path_.begin() + span.last + 1);
-    if (k > 0) span.path.front() = wheels[k - 1];
+    if (k > 0 && wheels[k - 1].kind == WrapPoint::Kind::Circle) span.path.front() = wheels[k - 1];
     if (k < splits.size()) span.path.back() = wheels[k];
     cableLengthJacobian(span.path, bodies, span.kin);
     span.tension = tension_;
@@ -54,6 +67,12 @@ void Cable::splitIntoSpans(std::span<const BodyState> bodies, const std::vector<
 // Moves each wheel's mark to the middle of its contact, shifting rest length to match.
 void Cable::rebaseMarks() {
   for (size_t k = 0; k < links_.size(); ++k) {
+    if (spans_[k].path.back().kind != WrapPoint::Kind::Circle) {  // a polygon: no mark
+      links_[k].wrapAngle = 0;
+      for (size_t i = spans_[k].last; i <= spans_[k + 1].first; ++i)
+        links_[k].wrapAngle += cornerTurn(i);
+      continue;
+    }
     WrapPoint& in = spans_[k].path.back();
     WrapPoint& out = spans_[k + 1].path.front();
     const double wrap = in.arc + out.arc;
@@ -72,40 +91,61 @@ void Cable::rebaseMarks() {
 }
 
 void Cable::updateSpans(std::span<const BodyState> bodies) {
-  std::vector<size_t> splits;
+  std::vector<Split>& splits = splits_;
+  splits.clear();
   std::vector<int> ids;
-  for (size_t i = 1; i + 1 < path_.size(); ++i)
-    if (path_[i].pulley >= 0 && pulleys_[path_[i].pulley].grips) {
-      splits.push_back(i);
-      ids.push_back(path_[i].pulley);
+  for (size_t i = 1; i + 1 < path_.size(); ++i) {
+    const int pulley = path_[i].pulley;
+    if (pulley < 0 || !pulleys_[pulley].grips) continue;
+    if (!ids.empty() && ids.back() == pulley && splits.back().out + 1 == i) {
+      splits.back().out = i;  // the next corner of the same polygon
+      continue;
     }
+    splits.push_back({i, i});
+    ids.push_back(pulley);
+  }
   if (splits.empty()) {
     if (!spans_.empty()) {
-      double total = 0;
+      double total = cornerRest_;
       for (const Span& s : spans_) total += s.rest;
       params_.restLength = total;
     }
     spans_.clear();
     links_.clear();
     splitPulleys_.clear();
+    cornerRest_ = 0;
     return;
   }
   if (ids != splitPulleys_ || spans_.empty()) {
     splitIntoSpans(bodies, splits);
     splitPulleys_ = ids;
+    cornerRest_ = cornerLength(splits);
     return;
   }
   for (size_t k = 0; k < spans_.size(); ++k) {
     Span& span = spans_[k];
     const WrapPoint front = span.path.front(), back = span.path.back();
-    span.first = k == 0 ? 0 : splits[k - 1];
-    span.last = k + 1 == spans_.size() ? path_.size() - 1 : splits[k];
+    const size_t first = k == 0 ? 0 : splits[k - 1].out;
+    const size_t last = k + 1 == spans_.size() ? path_.size() - 1 : splits[k].in;
+    // A polygon's chain grew or shrank at this span's end: the rope at its corners is stuck
+    // (docs/polygon_friction.md), so the span keeps its stretch, measured on its old path.
+    const bool moved = (k > 0 && path_[first].vertex != front.vertex) ||
+                       (k + 1 < spans_.size() && path_[last].vertex != back.vertex);
+    double before = 0;
+    if (moved) {
+      cableLengthJacobian(span.path, bodies, spanScratch_);
+      before = spanScratch_.length;
+    }
+    span.first = first;
+    span.last = last;
     span.path.assign(path_.begin() + span.first, path_.begin() + span.last + 1);
     // A wheel's mark and arc on each side belong to the span, not to the whole path.
     if (k > 0) span.path.front().mark = front.mark, span.path.front().arc = front.arc;
     if (k + 1 < spans_.size()) span.path.back().mark = back.mark, span.path.back().arc = back.arc;
     cableLengthJacobian(span.path, bodies, span.kin);
+    if (moved) span.rest += span.kin.length - before;
   }
+  cornerRest_ = cornerLength(splits);
   // After a slide, the two spans share their stretch again: the slide is kept.
   for (size_t k = 0; k < links_.size(); ++k) {
     if (!links_[k].slipped) continue;
@@ -115,6 +155,44 @@ void Cable::updateSpans(std::span<const BodyState> bodies) {
     links_[k].slipped = false;
   }
   rebaseMarks();
+}
+
+double Cable::cornerTurn(size_t i) const {
+  const Vec2 &a = kin_.directions[i - 1], &b = kin_.directions[i];
+  const double turn = std::atan2(cross(a, b), a.dot(b));  // + counter-clockwise
+  return std::max(0.0, pulleys_[path_[i].pulley].side == WrapSide::Right ? turn : -turn);
+}
+
+double Cable::cornerLength(const std::vector<Split>& splits) const {
+  double length = 0;
+  for (const Split& s : splits)
+    for (size_t i = s.in; i < s.out; ++i) length += (path_[i + 1].world - path_[i].world).norm();
+  return length;
+}
+
+void Cable::cornerTensions(int k, std::vector<CornerTension>& out) const {
+  out.clear();
+  if (k < 0 || k + 1 >= static_cast<int>(spans_.size())) return;
+  const size_t first = spans_[k].last, last = spans_[k + 1].first;
+  if (path_[first].kind != WrapPoint::Kind::Vertex) return;
+  double total = 0;
+  for (size_t i = first; i <= last; ++i) total += cornerTurn(i);
+  const double in = spans_[k].tension, outer = spans_[k + 1].tension;
+  // The tension after a share s of the turn: geometric between the spans' (linear if one is
+  // slack, which no friction holds).
+  auto at = [&](double s) {
+    return in > 0 && outer > 0 ? in * std::pow(outer / in, s) : in + s * (outer - in);
+  };
+  double turned = 0;
+  for (size_t i = first; i <= last; ++i) {
+    CornerTension c;
+    c.vertex = path_[i].vertex;
+    c.turn = cornerTurn(i);
+    c.tensionIn = at(total > 0 ? turned / total : 0.0);
+    turned += c.turn;
+    c.tensionOut = i == last ? outer : at(total > 0 ? turned / total : 1.0);
+    out.push_back(c);
+  }
 }
 
 }  // namespace cablelab

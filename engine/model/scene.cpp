@@ -83,6 +83,18 @@ void checkCollisionPolygon(const Checker& check, const std::vector<Vec2>& polygo
                           " m^2, it needs more than 1.2e-07 m^2");
 }
 
+// A pulley that grips the cable (a wheel with no slip or friction, a polygon with friction)
+// splits it in spans: each a rigid constraint of its own, on a side known in advance.
+void checkGrip(const Checker& check, const PulleyDef& pd, const CableDef& c,
+               const std::string& field, const std::string& what) {
+  if (pd.grip == Grip::Capstan) check.positive(pd.mu, field + ".mu");
+  if (!gripsCable(pd)) return;
+  if (c.stiffness > 0)
+    check.fail(field + (pd.grip == Grip::Capstan ? ".mu" : ".no_slip"),
+               what + " needs a rigid cable (stiffness 0)");
+  if (pd.side == WrapSide::Auto) check.fail(field + ".side", what + " needs side left or right");
+}
+
 }  // namespace
 
 void validateScene(const SceneDef& scene, const std::string& source) {
@@ -200,16 +212,16 @@ void validateScene(const SceneDef& scene, const std::string& source) {
       check.nonNegative(pd.turns, fp + ".turns");
       if (pd.side == WrapSide::Auto && pd.turns > 0)
         check.fail(fp + ".side", "a pulley wound at the start needs side left or right");
-      if (pd.kind != PulleyDef::Kind::Circle) continue;
+      if (pd.kind == PulleyDef::Kind::Polygon) {
+        if (pd.grip == Grip::NoSlip)
+          check.fail(fp + ".no_slip", "a polygon pulley cannot be no_slip (give it mu)");
+        checkGrip(check, pd, c, fp, "a polygon pulley with friction");
+        continue;
+      }
       check.positive(pd.radius, fp + ".radius");
       if (pd.side == WrapSide::Threaded)
         check.fail(fp + ".side", "a circle pulley cannot be threaded (use left, right or auto)");
-      if (pd.grip == Grip::Capstan) check.positive(pd.mu, fp + ".mu");
-      if (gripsCable(pd) && c.stiffness > 0)
-        check.fail(fp + (pd.grip == Grip::Capstan ? ".mu" : ".no_slip"),
-                   "a wheel that grips the cable needs a rigid cable (stiffness 0)");
-      if (gripsCable(pd) && pd.side == WrapSide::Auto)
-        check.fail(fp + ".side", "a wheel that grips the cable needs side left or right");
+      checkGrip(check, pd, c, fp, "a wheel that grips the cable");
     }
   }
 }

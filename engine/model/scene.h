@@ -76,12 +76,13 @@ struct JointDef {
 ///  Auto:  Left or Right, whichever side the pulley meets the cable from (polygons, circles).
 enum class WrapSide { Left, Right, Threaded, Auto };
 
-/// How a cable grips a circle pulley (docs/wheels.md).
+/// How a cable grips a circle or polygon pulley (docs/wheels.md, docs/polygon_friction.md).
 ///  Frictionless: slides freely; one tension on both sides, the wheel is not driven.
 ///  NoSlip: never slides; the wheel's angle enters the constraint and the two sides carry
 ///          their own tensions (a toothed belt, a rope on a winch barrel).
 ///  Capstan: sticks while T_high <= T_low e^(mu theta) (theta the wrap angle), slides at that
-///           ratio beyond (Euler-Eytelwein).
+///           ratio beyond (Euler-Eytelwein). On a polygon each engaged corner holds while
+///           T_high <= T_low e^(mu theta_i), theta_i the angle the cable turns there.
 enum class Grip { Frictionless, NoSlip, Capstan };
 
 /// A pulley fixed to a body or the world: a point, the vertices of a convex polygon, or a circle.
@@ -95,7 +96,7 @@ struct PulleyDef {
                                    ///< body's first polygon shape
   WrapSide side = WrapSide::Left;  ///< Polygon pulleys cannot be Threaded
   double radius = 0.0;             ///< Circle: m, > 0
-  Grip grip = Grip::Frictionless;  ///< Circle only
+  Grip grip = Grip::Frictionless;  ///< Circle: any; Polygon: Frictionless or Capstan
   double mu = 0.0;                 ///< Capstan: friction coefficient, > 0
   double turns = 0.0;              ///< Circle: the wrap at the start in turns, for a cable wound
                                    ///< round more than once (2.25 = 810 degrees); 0 = the wrap
@@ -127,9 +128,10 @@ struct CableDef {
   double damping = 0.0;      ///< N s/m, >= 0 (elastic cables only)
 };
 
-/// True for a circle pulley the cable does not slide freely on (it splits the cable in spans).
+/// True for a circle or polygon pulley the cable does not slide freely on (it splits the cable
+/// in spans).
 inline bool gripsCable(const PulleyDef& p) {
-  return p.kind == PulleyDef::Kind::Circle && p.grip != Grip::Frictionless;
+  return p.kind != PulleyDef::Kind::Point && p.grip != Grip::Frictionless;
 }
 
 /// Where the camera looks by default (for the sandbox and snapshots).

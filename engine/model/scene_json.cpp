@@ -142,14 +142,9 @@ AnchorDef readAnchor(Reader&& r) {
   return a;
 }
 
-// Circle pulleys: "radius", and either "no_slip": true or "mu" (capstan friction).
-void readCircle(Reader& p, PulleyDef& pd) {
-  pd.kind = PulleyDef::Kind::Circle;
-  pd.point = p.vec2("point", Vec2::Zero());
-  if (!p.has("radius")) p.fail("radius", "is required for a circle pulley");
-  pd.radius = p.number("radius", 0);
-  pd.side = readSide(p, WrapSide::Left);
-  pd.turns = p.number("turns", 0);
+// Circle and polygon pulleys: either "no_slip": true (circles) or "mu" (capstan friction;
+// on a polygon, at each corner).
+void readGrip(Reader& p, PulleyDef& pd) {
   const bool noSlip = p.boolean("no_slip", false);
   if (p.has("mu")) {
     if (noSlip) p.fail("mu", "give either mu or no_slip, not both");
@@ -159,6 +154,17 @@ void readCircle(Reader& p, PulleyDef& pd) {
   } else if (noSlip) {
     pd.grip = Grip::NoSlip;
   }
+}
+
+// Circle pulleys: "radius", and a grip (readGrip).
+void readCircle(Reader& p, PulleyDef& pd) {
+  pd.kind = PulleyDef::Kind::Circle;
+  pd.point = p.vec2("point", Vec2::Zero());
+  if (!p.has("radius")) p.fail("radius", "is required for a circle pulley");
+  pd.radius = p.number("radius", 0);
+  pd.side = readSide(p, WrapSide::Left);
+  pd.turns = p.number("turns", 0);
+  readGrip(p, pd);
 }
 
 CableDef readCable(Reader&& r) {
@@ -183,6 +189,7 @@ CableDef readCable(Reader&& r) {
       pd.vertices = p.points("vertices");
       pd.side = readSide(p, WrapSide::Left);
       pd.turns = p.number("turns", 0);
+      readGrip(p, pd);
     } else if (type == "circle") {
       readCircle(p, pd);
     } else {
@@ -327,6 +334,7 @@ json sceneToJson(const SceneDef& s) {
       if (p.kind == PulleyDef::Kind::Polygon && !p.vertices.empty())
         jp["vertices"] = polygonJson(p.vertices);
       if (p.kind == PulleyDef::Kind::Polygon && p.turns > 0) jp["turns"] = p.turns;
+      if (p.kind == PulleyDef::Kind::Polygon && p.grip == Grip::Capstan) jp["mu"] = p.mu;
       jc["pulleys"].push_back(jp);
     }
     j["cables"].push_back(jc);

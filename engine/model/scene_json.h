@@ -20,10 +20,15 @@
 //               "pulleys": [{"type": "point", "body": "world", "point": [x, y],
 //                            "side": "left|right|threaded"},
 //                           {"type": "polygon", "body": "hex", "vertices": [[x, y], ...],
-//                            "side": "left|right", "turns": 0}],
+//                            "side": "left|right", "turns": 0, "mu": 0},
+//                           {"type": "circle", "body": "wheel", "point": [x, y], "radius": r,
+//                            "side": "left|right|auto", "turns": 0, "no_slip": false, "mu": 0}],
 //               "rest_length": L, "stiffness": 0, "preload": 0, "damping": 0}] }
 // Body-attached points are in the body frame; "world" points in the world frame. A box shape is
-// stored as a polygon. rest_length omitted = the length at the initial pose.
+// stored as a polygon. rest_length omitted = the length at the initial pose. "mu" > 0 is capstan
+// friction (docs/wheels.md): on a circle, holding while T_high <= T_low e^(mu theta); on a
+// polygon, at each engaged corner with theta_i its turn (docs/polygon_friction.md); 0 = none.
+// "no_slip" (circles only) and "mu" exclude each other; either needs a rigid cable.
 #pragma once
 
 #include <nlohmann/json.hpp>

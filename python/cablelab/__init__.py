@@ -13,8 +13,9 @@ says _deg). Arrays are numpy float64.
 Simulation   World (load, from_dict, step, run, state as arrays, forces, servos, cables)
 State        World.get_state / set_state / copy, WorldState; World and the value classes
              pickle (processes, Dask)
-Sensors      cable_span_tensions, cable_jacobian, cable_jdot_v, joint_values / rates /
-             forces, contact_forces; set_body_states, set_joint_values
+Sensors      cable_span_tensions, cable_corner_tensions, cable_jacobian, cable_jdot_v,
+             joint_values / rates / forces, contact_forces; set_body_states,
+             set_joint_values
 Tools        statics, wrap, fit, membrane_data, membrane_model, scenes
 The hand     HandModel, ControllerParams, HandController, hand_joints, place_hand,
              track, reach (`cablelab track` and `reach`; the GIL is released while they

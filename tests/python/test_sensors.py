@@ -1,6 +1,8 @@
 # Sensors (issue 39, item 2) against finite differences and analytic cases: the cable Jacobian and
 # J-dot-v, servo torques, contact forces, per-span tensions round a capstan, posing by joint values.
+import json
 import math
+import os
 
 import numpy as np
 import pytest
@@ -8,6 +10,8 @@ import pytest
 import cablelab
 
 G = 9.81
+SQUARE = os.path.join(os.path.dirname(__file__), "..", "data", "polygon_friction",
+                      "good_polygon_friction_scene.json")
 
 
 def swing_scene():
@@ -155,6 +159,30 @@ def test_capstan_span_tensions(m_load, slips):
     else:
         assert (high, low) == pytest.approx((m_load * G, 1.0 * G), rel=1e-3)
     assert w.cable_tensions()[0] == pytest.approx(high, rel=1e-12)
+
+
+@pytest.mark.parametrize("m_left,slides", [(1.5, False), (4.0, True)])
+def test_square_corner_tensions(m_left, slides):
+    """A rope over a fixed square's two top corners (90 degrees each), mu 0.2, 1 kg on the right:
+    it holds while m_left <= e^(0.2 pi) = 1.87 kg; sliding, each corner's ratio is e^(0.2 pi / 2)."""
+    with open(SQUARE) as f:
+        scene = json.load(f)
+    scene["bodies"][0]["mass"] = m_left
+    w = cablelab.World.from_dict(scene)
+    w.run(time=0.5)
+    spans = w.cable_span_tensions("rope")
+    corners = w.cable_corner_tensions("rope")
+    assert spans.shape == (2,) and corners.shape == (2, 3)
+    np.testing.assert_allclose(corners[:, 0], [math.pi / 2] * 2, atol=1e-6)
+    assert corners[0, 1] == pytest.approx(spans[0], rel=1e-12)
+    assert corners[1, 2] == pytest.approx(spans[1], rel=1e-12)
+    assert corners[0, 2] == pytest.approx(corners[1, 1], rel=1e-12)
+    ratios = corners[:, 1] / corners[:, 2]
+    if slides:
+        np.testing.assert_allclose(ratios, [math.exp(0.2 * math.pi / 2)] * 2, rtol=1e-6)
+    else:
+        assert tuple(spans) == pytest.approx((m_left * G, 1.0 * G), rel=1e-6)
+        assert all(1 < r < math.exp(0.2 * math.pi / 2) for r in ratios)
 
 
 def arm_scene():

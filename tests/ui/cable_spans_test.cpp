@@ -73,5 +73,30 @@ TEST(CableSpans, CapstanHoldingRatioIsTheMassRatioBelowTheCapstanBound) {
   EXPECT_LT(w.ratio, w.capstanRatio);
 }
 
+// A rope over a fixed square's two top corners (90 degrees each) with mu 0.2: 3 kg against 1 kg
+// slides (e^(0.2 pi) = 1.87), each corner at e^(0.2 pi / 2); the Inspector lists both.
+TEST(CableSpans, PolygonWithFrictionListsEachCorner) {
+  const SceneDef scene = loadScene(std::string(CABLELAB_SOURCE_DIR) +
+                                   "/tests/data/polygon_friction/good_polygon_friction_scene.json");
+  const auto world = stepped(scene, 30);
+  const SpanTable t = spanTable(world->cable(0));
+  ASSERT_EQ(t.spans.size(), 2u);
+  ASSERT_EQ(t.wheels.size(), 1u);
+  const WheelRow& w = t.wheels[0];
+  EXPECT_EQ(w.state, "slipping");
+  EXPECT_NEAR(w.wrapAngle, M_PI, 1e-6);
+  EXPECT_NEAR(w.ratio, std::exp(0.2 * M_PI), 1e-6);
+  EXPECT_NE(w.text.find("polygon 0: slipping"), std::string::npos) << w.text;
+  ASSERT_EQ(w.corners.size(), 2u);
+  for (const CornerRow& c : w.corners) {
+    EXPECT_NEAR(c.turn, M_PI / 2, 1e-6);
+    EXPECT_NEAR(c.ratio, std::exp(0.2 * M_PI / 2), 1e-6);
+    EXPECT_NEAR(c.capstanRatio, std::exp(0.2 * M_PI / 2), 1e-12);
+    EXPECT_NE(c.text.find("corner"), std::string::npos) << c.text;
+  }
+  EXPECT_EQ(w.corners[0].tensionIn, t.spans[0].tension);
+  EXPECT_EQ(w.corners[1].tensionOut, t.spans[1].tension);
+}
+
 }  // namespace
 }  // namespace cablelab::ui

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 #include "engine/core/error.h"
 #include "engine/dynamics/world.h"
@@ -87,6 +89,11 @@ const BadScene kBadScenes[] = {
     {"scene_no_slip_elastic.json", "cables[0].pulleys[0].no_slip"},
     {"scene_mu_and_no_slip.json", "cables[1].pulleys[0].mu"},
     {"scene_drum_threaded.json", "cables[1].end.side"},
+    // Polygons with friction (the good twin: tests/data/polygon_friction/).
+    {"scene_polygon_negative_mu.json", "cables[0].pulleys[0].mu"},
+    {"scene_polygon_mu_and_no_slip.json", "cables[0].pulleys[0].mu"},
+    {"scene_polygon_no_slip.json", "cables[0].pulleys[0].no_slip"},
+    {"scene_polygon_mu_elastic.json", "cables[0].pulleys[0].mu"},
 };
 
 TEST(SceneJson, BadFilesExitTwoNamingTheField) {
@@ -121,6 +128,43 @@ TEST(SceneJson, TheGoodTwinOfTheBadFilesRuns) {
   const auto r =
       test::runCli("run '" + test::sourcePath("tests/data/good_scene.json") + "' --time 0.1");
   EXPECT_EQ(r.exitCode, 0) << r.err;
+}
+
+TEST(SceneJson, ThePolygonFrictionExampleRunsRoundTripsAndWritesSpanTensions) {
+  const std::string path =
+      test::sourcePath("tests/data/polygon_friction/good_polygon_friction_scene.json");
+  const std::string csv = "/tmp/cablelab-polygon-friction-test.csv";
+  const auto r = test::runCli("run '" + path + "' --time 0.5 --csv " + csv);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const SceneDef scene = loadSceneFile(path);
+  const PulleyDef& square = scene.cables[0].pulleys[0];
+  EXPECT_EQ(square.kind, PulleyDef::Kind::Polygon);
+  EXPECT_EQ(square.grip, Grip::Capstan);
+  EXPECT_DOUBLE_EQ(square.mu, 0.2);
+  EXPECT_EQ(sceneToJson(sceneFromJson(sceneToJson(scene), "again")), sceneToJson(scene));
+  // "mu": 0 is no friction at all: the same scene as without it.
+  nlohmann::json j = sceneToJson(scene);
+  j["cables"][0]["pulleys"][0]["mu"] = 0;
+  nlohmann::json without = j;
+  without["cables"][0]["pulleys"][0].erase("mu");
+  EXPECT_EQ(sceneToJson(sceneFromJson(j, "mu0")), sceneToJson(sceneFromJson(without, "none")));
+  // 3 kg against 1 kg slides (e^(0.2 pi) = 1.87): the CSV's span columns are in that ratio.
+  std::ifstream in(csv);
+  std::string header, line, last;
+  std::getline(in, header);
+  while (std::getline(in, line)) last = line;
+  std::remove(csv.c_str());
+  auto column = [&](const std::string& name) {
+    const size_t at = header.find(name);
+    EXPECT_NE(at, std::string::npos) << name << " in " << header;
+    const long index = std::count(header.begin(), header.begin() + at, ',');
+    std::stringstream row(last);
+    std::string cell;
+    for (long i = 0; i <= index; ++i) std::getline(row, cell, ',');
+    return std::stod(cell);
+  };
+  EXPECT_NEAR(column("rope.span0.tension") / column("rope.span1.tension"), std::exp(0.2 * M_PI),
+              1e-6);
 }
 
 TEST(SceneJson, TheWheelsExampleRunsAndRoundTrips) {
