@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "ui/controller_panel.h"
+#include "ui/report_json.h"
 #include "ui/scene_catalog.h"
 #include "ui/synthetic_events.h"
 #include "ui/tension_scale.h"
@@ -12,24 +13,10 @@
 namespace cablelab::ui {
 namespace {
 
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c == '\n' ? ' ' : c;
-  }
-  return out + "\"";
-}
-
-std::string number(double v) {
-  char b[40];
-  std::snprintf(b, sizeof b, "%.9g", std::isfinite(v) ? v : -1.0);
-  return b;
-}
-
 std::string box(const LabelBox& b) {
   if (b.empty()) return "null";
-  return "[" + number(b.x0) + ", " + number(b.y0) + ", " + number(b.x1) + ", " + number(b.y1) + "]";
+  return "[" + jsonNumber(b.x0) + ", " + jsonNumber(b.y0) + ", " + jsonNumber(b.x1) + ", " +
+         jsonNumber(b.y1) + "]";
 }
 
 /// What the last frame showed, as JSON (see lecture_scripts.h, `present`).
@@ -40,20 +27,21 @@ std::string viewJson(const Sandbox& s, const std::string& name, const std::strin
   std::string labels = "[";
   for (size_t k = 0; k < d.labels.size(); ++k) labels += (k ? ", " : "") + box(d.labels[k]);
   labels += "]";
-  return "{\"name\": " + quoted(name) + ", \"scene_name\": " + quoted(s.sceneName) +
-         ", \"window\": [" + number(s.camera.width) + ", " + number(s.camera.height) +
-         "], \"free\": [" + number(free.x) + ", " + number(free.y) + ", " + number(free.width) +
-         ", " + number(free.height) + "], \"scene\": " + box(d.scene) + ", \"labels\": " + labels +
-         ", \"hidden_labels\": " + number(d.hiddenLabels) + ", \"scale_bar\": " + box(f.scaleBar) +
-         ", \"colour_bar\": " + box(f.colourBar) + ", \"key\": " + box(f.key) +
-         ", \"notes\": " + box(f.notes) + ", \"banner\": " + box(f.banner) +
-         ", \"paused\": " + box(f.paused) + ", \"ui_scale\": " + number(s.uiScale) +
+  return "{\"name\": " + jsonQuoted(name) + ", \"scene_name\": " + jsonQuoted(s.sceneName) +
+         ", \"window\": [" + jsonNumber(s.camera.width) + ", " + jsonNumber(s.camera.height) +
+         "], \"free\": [" + jsonNumber(free.x) + ", " + jsonNumber(free.y) + ", " +
+         jsonNumber(free.width) + ", " + jsonNumber(free.height) + "], \"scene\": " + box(d.scene) +
+         ", \"labels\": " + labels + ", \"hidden_labels\": " + jsonNumber(d.hiddenLabels) +
+         ", \"scale_bar\": " + box(f.scaleBar) + ", \"colour_bar\": " + box(f.colourBar) +
+         ", \"key\": " + box(f.key) + ", \"notes\": " + box(f.notes) +
+         ", \"banner\": " + box(f.banner) + ", \"paused\": " + box(f.paused) +
+         ", \"ui_scale\": " + jsonNumber(s.uiScale) +
          ", \"presentation\": " + (s.presentation ? "true" : "false") +
          ", \"view_fitted\": " + (s.viewFitted ? "true" : "false") + ", \"overflow\": [" +
-         number(s.panelOverflow[0]) + ", " + number(s.panelOverflow[1]) +
-         "], \"status_overflow\": " + number(s.statusOverflow) +
-         ", \"truncated_buttons\": " + number(s.truncatedButtons) +
-         ", \"screenshot\": " + quoted(shot) + "}";
+         jsonNumber(s.panelOverflow[0]) + ", " + jsonNumber(s.panelOverflow[1]) +
+         "], \"status_overflow\": " + jsonNumber(s.statusOverflow) +
+         ", \"truncated_buttons\": " + jsonNumber(s.truncatedButtons) +
+         ", \"screenshot\": " + jsonQuoted(shot) + "}";
 }
 
 /// The built-in scene after `name` in the menu's order (the first after the last).
@@ -92,7 +80,7 @@ bool LectureScript::beforeFrame(Sandbox& sandbox, int frame) {
   if (name_ == "present") return present(sandbox, frame);
   if (name_ == "grasp-quiet") return graspQuiet(sandbox, frame);
   if (name_ == "tension-run") return tensionRun(sandbox, frame);
-  report_ = "{\"scenario\": " + quoted(name_) + ", \"failure\": \"unknown scenario\"}";
+  report_ = "{\"scenario\": " + jsonQuoted(name_) + ", \"failure\": \"unknown scenario\"}";
   return false;
 }
 
@@ -171,8 +159,8 @@ bool LectureScript::graspQuiet(Sandbox& sandbox, int frame) {
   constexpr double kControlSeconds = 4;
   if (!sandbox.banner.empty()) {
     ++bannerFrames_;
-    if (items_.empty() || items_.back() != quoted(sandbox.banner))
-      items_.push_back(quoted(sandbox.banner));
+    if (items_.empty() || items_.back() != jsonQuoted(sandbox.banner))
+      items_.push_back(jsonQuoted(sandbox.banner));
   }
   if (frame == 2) {
     if (!startHandGrasp(sandbox)) {
@@ -198,14 +186,14 @@ bool LectureScript::graspQuiet(Sandbox& sandbox, int frame) {
     mouse(SDL_MOUSEBUTTONDOWN, to_);
     mouse(SDL_MOUSEBUTTONUP, to_);
   } else if (frame > 90 && sandbox.world()->time() >= 1.5 + kControlSeconds) {
-    report_ = "{\"scenario\": \"grasp-quiet\", \"banner_frames\": " + number(bannerFrames_) +
+    report_ = "{\"scenario\": \"grasp-quiet\", \"banner_frames\": " + jsonNumber(bannerFrames_) +
               ", \"banners\": " + join(items_) +
-              ", \"log_entries\": " + number(sandbox.log.entries().size()) +
-              ", \"state\": " + quoted(handGraspState(sandbox)) + ", \"clicked\": [" +
-              number(target_.x()) + ", " + number(target_.y()) + "]" + ", \"target\": [" +
-              number(sandbox.target ? sandbox.target->x() : 1e9) + ", " +
-              number(sandbox.target ? sandbox.target->y() : 1e9) + "]" +
-              ", \"time\": " + number(sandbox.world()->time()) + "}";
+              ", \"log_entries\": " + jsonNumber(sandbox.log.entries().size()) +
+              ", \"state\": " + jsonQuoted(handGraspState(sandbox)) + ", \"clicked\": [" +
+              jsonNumber(target_.x()) + ", " + jsonNumber(target_.y()) + "]" + ", \"target\": [" +
+              jsonNumber(sandbox.target ? sandbox.target->x() : 1e9) + ", " +
+              jsonNumber(sandbox.target ? sandbox.target->y() : 1e9) + "]" +
+              ", \"time\": " + jsonNumber(sandbox.world()->time()) + "}";
     return false;
   }
   return true;
@@ -239,21 +227,21 @@ bool LectureScript::tensionRun(Sandbox& sandbox, int frame) {
   } else if (frame == 55) {
     key(SDLK_r);
   } else if (frame == 70) {
-    items_.push_back("\"scene\": " + quoted(sandbox.sceneName) +
-                     ", \"scene_scale\": " + number(loadTensionScale(sandbox.scene)) +
-                     ", \"lowest\": " + number(lowest_) + ", \"highest\": " + number(highest_) +
-                     ", \"largest_tension\": " + number(largest_));
+    items_.push_back("\"scene\": " + jsonQuoted(sandbox.sceneName) +
+                     ", \"scene_scale\": " + jsonNumber(loadTensionScale(sandbox.scene)) +
+                     ", \"lowest\": " + jsonNumber(lowest_) + ", \"highest\": " +
+                     jsonNumber(highest_) + ", \"largest_tension\": " + jsonNumber(largest_));
     sandbox.tensionScaleLocked = true;                // the View section's checkbox
     sandbox.tensionScale = 2 * sandbox.tensionScale;  // and its "scale max (N)" field
-    items_.push_back("\"locked_at\": " + number(sandbox.tensionScale));
+    items_.push_back("\"locked_at\": " + jsonNumber(sandbox.tensionScale));
     sandbox.open(nextScene(sandbox.sceneName));
   } else if (frame == 75) {
     sandbox.reset();
   } else if (frame == 80) {
     report_ = "{\"scenario\": \"tension-run\", " + items_[0] + ", " + items_[1] +
-              ", \"next_scene\": " + quoted(sandbox.sceneName) +
-              ", \"next_scene_scale\": " + number(loadTensionScale(sandbox.scene)) +
-              ", \"after_next_scene\": " + number(sandbox.tensionScale) +
+              ", \"next_scene\": " + jsonQuoted(sandbox.sceneName) +
+              ", \"next_scene_scale\": " + jsonNumber(loadTensionScale(sandbox.scene)) +
+              ", \"after_next_scene\": " + jsonNumber(sandbox.tensionScale) +
               ", \"locked\": " + (sandbox.tensionScaleLocked ? "true" : "false") + "}";
     return false;
   }

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "ui/colormap.h"
+#include "ui/palette.h"
 
 namespace cablelab::ui {
 namespace {
@@ -18,11 +19,6 @@ constexpr Colour kPalette[] = {{0.12f, 0.47f, 0.71f, 1}, {1.0f, 0.50f, 0.05f, 1}
                                {0.58f, 0.40f, 0.74f, 1}, {0.55f, 0.34f, 0.29f, 1}};
 const ImU32 kInk = IM_COL32(30, 30, 30, 255);
 const ImU32 kGrid = IM_COL32(225, 225, 225, 255);
-
-ImU32 toImU32(const Colour& c) {
-  auto b = [](float v) { return static_cast<int>(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f); };
-  return IM_COL32(b(c[0]), b(c[1]), b(c[2]), b(c[3]));
-}
 
 struct Range {
   double lo = std::numeric_limits<double>::infinity();

@@ -7,27 +7,13 @@
 #include "ui/authoring.h"
 #include "ui/build_scenarios.h"
 #include "ui/controller_panel.h"
+#include "ui/report_json.h"
 #include "ui/synthetic_events.h"
 #include "ui/tension_scale.h"
 #include "ui/timeline_scenarios.h"
 
 namespace cablelab::ui {
 namespace {
-
-std::string jsonQuoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c == '\n' ? ' ' : c;
-  }
-  return out + "\"";
-}
-
-std::string number(double v) {
-  char b[40];
-  std::snprintf(b, sizeof b, "%.17g", std::isfinite(v) ? v : -1.0);
-  return b;
-}
 
 /// The body at the end of a rigid cable that the mouse can grab, -1 if none.
 int rigidCableBody(const World& world, int* cable) {
@@ -50,21 +36,21 @@ std::string spansJson(const Sandbox& sandbox) {
   const SpanTable& t = sandbox.shownSpans;
   std::string out = "{\"spans\": [";
   for (size_t k = 0; k < t.spans.size(); ++k)
-    out += std::string(k ? ", " : "") + "{\"tension\": " + number(t.spans[k].tension) +
+    out += std::string(k ? ", " : "") + "{\"tension\": " + jsonNumber(t.spans[k].tension) +
            ", \"text\": " + jsonQuoted(t.spans[k].text) + "}";
   out += "], \"wheels\": [";
   for (size_t k = 0; k < t.wheels.size(); ++k) {
     const WheelRow& w = t.wheels[k];
-    out += std::string(k ? ", " : "") + "{\"mu\": " + number(w.mu) +
-           ", \"theta\": " + number(w.wrapAngle) + ", \"ratio\": " + number(w.ratio) +
+    out += std::string(k ? ", " : "") + "{\"mu\": " + jsonNumber(w.mu) +
+           ", \"theta\": " + jsonNumber(w.wrapAngle) + ", \"ratio\": " + jsonNumber(w.ratio) +
            ", \"state\": " + jsonQuoted(w.state) + ", \"text\": " + jsonQuoted(w.text) + "}";
   }
   out += "], \"engine\": [";
   const World& world = *sandbox.world();
   const Cable& c = world.cable(std::clamp(sandbox.selectedCable, 0, world.cableCount() - 1));
   for (int k = 0; k < c.spanCount(); ++k)
-    out += std::string(k ? ", " : "") + number(c.spanTension(k));
-  return out + "], \"overflow\": " + number(sandbox.panelOverflow[1]) + "}";
+    out += std::string(k ? ", " : "") + jsonNumber(c.spanTension(k));
+  return out + "], \"overflow\": " + jsonNumber(sandbox.panelOverflow[1]) + "}";
 }
 
 /// The world point in the free area's fraction (fx, fy) from its top-left corner, as pixels.
@@ -160,12 +146,12 @@ bool ScenarioScript::resetScale(Sandbox& sandbox, int frame) {
     key(SDLK_r);
   } else if (frame == 50) {
     figures_[2] = sandbox.tensionScale;
-    report_ = "{\"scenario\": \"reset-scale\", \"before\": " + number(figures_[0]) +
-              ", \"after_drag\": " + number(figures_[1]) +
-              ", \"after_reset\": " + number(figures_[2]) +
-              ", \"expected\": " + number(loadTensionScale(sandbox.scene)) +
-              ", \"largest_tension\": " + number(largest_) +
-              ", \"time_after_reset\": " + number(world.time()) + "}";
+    report_ = "{\"scenario\": \"reset-scale\", \"before\": " + jsonNumber(figures_[0]) +
+              ", \"after_drag\": " + jsonNumber(figures_[1]) +
+              ", \"after_reset\": " + jsonNumber(figures_[2]) +
+              ", \"expected\": " + jsonNumber(loadTensionScale(sandbox.scene)) +
+              ", \"largest_tension\": " + jsonNumber(largest_) +
+              ", \"time_after_reset\": " + jsonNumber(world.time()) + "}";
     return false;
   }
   return true;
@@ -199,10 +185,10 @@ bool ScenarioScript::rigidDrag(Sandbox& sandbox, int frame) {
     mouse(SDL_MOUSEBUTTONUP, to_);
     report_ =
         "{\"scenario\": \"rigid-drag\", \"body\": " + jsonQuoted(world.scene().bodies[body_].name) +
-        ", \"largest_stretch\": " + number(largest_) +
-        ", \"largest_drag_force\": " + number(figures_[0]) +
-        ", \"drag_limit\": " + number(sandbox.dragLimit(body_)) +
-        ", \"frames_at_limit\": " + number(figures_[1]) +
+        ", \"largest_stretch\": " + jsonNumber(largest_) +
+        ", \"largest_drag_force\": " + jsonNumber(figures_[0]) +
+        ", \"drag_limit\": " + jsonNumber(sandbox.dragLimit(body_)) +
+        ", \"frames_at_limit\": " + jsonNumber(figures_[1]) +
         ", \"banner\": " + jsonQuoted(sandbox.banner) + "}";
     return false;
   }
@@ -257,15 +243,15 @@ bool ScenarioScript::poseDrag(Sandbox& sandbox, int frame) {
     report_ = "{\"scenario\": " + jsonQuoted(name_) +
               ", \"body\": " + jsonQuoted(world.scene().bodies[body_].name) +
               ", \"paused\": " + (figures_[5] > 0 ? "true" : "false") +
-              ", \"largest_paused_stretch\": " + number(figures_[0]) +
-              ", \"stretch_at_play\": " + number(figures_[1]) +
-              ", \"moved\": " + number((end_ - start_).norm()) +
-              ", \"energy_posed\": " + number(figures_[2]) +
-              ", \"energy_after\": " + number(world.energy()) +
-              ", \"seconds_run\": " + number(world.time() - figures_[3]) +
-              ", \"fastest_after_play\": " + number(figures_[4]) +
-              ", \"rest_before\": " + number(restBefore_) +
-              ", \"rest_after\": " + number(world.cable(cable_).restLength()) +
+              ", \"largest_paused_stretch\": " + jsonNumber(figures_[0]) +
+              ", \"stretch_at_play\": " + jsonNumber(figures_[1]) +
+              ", \"moved\": " + jsonNumber((end_ - start_).norm()) +
+              ", \"energy_posed\": " + jsonNumber(figures_[2]) +
+              ", \"energy_after\": " + jsonNumber(world.energy()) +
+              ", \"seconds_run\": " + jsonNumber(world.time() - figures_[3]) +
+              ", \"fastest_after_play\": " + jsonNumber(figures_[4]) +
+              ", \"rest_before\": " + jsonNumber(restBefore_) +
+              ", \"rest_after\": " + jsonNumber(world.cable(cable_).restLength()) +
               ", \"status\": " + jsonQuoted(said_) + ", \"banner\": " + jsonQuoted(sandbox.banner) +
               "}";
     return false;
@@ -298,8 +284,8 @@ bool ScenarioScript::dropBox(Sandbox& sandbox, int frame) {
     report_.pop_back();
     report_ += ", \"banner_seen\": " + jsonQuoted(bannerSeen_) +
                ", \"state_after\": " + jsonQuoted(handGraspState(sandbox)) + ", \"box\": [" +
-               number(world.body(box).position.x()) + ", " + number(world.body(box).position.y()) +
-               "]}";
+               jsonNumber(world.body(box).position.x()) + ", " +
+               jsonNumber(world.body(box).position.y()) + "]}";
     return false;
   }
   return true;
@@ -366,10 +352,10 @@ bool ScenarioScript::author(Sandbox& sandbox, int frame) {
         error = e.what();
       }
       const SceneDef& s = sandbox.scene;
-      report_ = "{\"scenario\": \"author\", \"bodies\": " + number(s.bodies.size()) +
-                ", \"cables\": " + number(s.cables.size()) +
-                ", \"pulleys\": " + number(s.cables.empty() ? 0 : s.cables.front().pulleys.size()) +
-                ", \"undo\": " + number(a.undo.size()) + ", \"file\": " + jsonQuoted(out_) +
+      report_ = "{\"scenario\": \"author\", \"bodies\": " + jsonNumber(s.bodies.size()) +
+                ", \"cables\": " + jsonNumber(s.cables.size()) + ", \"pulleys\": " +
+                jsonNumber(s.cables.empty() ? 0 : s.cables.front().pulleys.size()) +
+                ", \"undo\": " + jsonNumber(a.undo.size()) + ", \"file\": " + jsonQuoted(out_) +
                 ", \"error\": " + jsonQuoted(error + sandbox.error) + "}";
       return false;
     }
@@ -441,13 +427,14 @@ bool ScenarioScript::build(Sandbox& sandbox, int frame) {
   const World& world = *sandbox.world();
   int wraps = 0;
   for (int i = 0; i < world.cableCount(); ++i) wraps += world.cable(i).wraps();
-  report_ = "{\"scenario\": " + jsonQuoted(name_) + ", \"bodies\": " + number(scene.bodies.size()) +
-            ", \"cables\": " + number(scene.cables.size()) +
-            ", \"joints\": " + number(scene.joints.size()) + ", \"wraps\": " + number(wraps) +
-            ", \"undo\": " + number(sandbox.authoring->undo.size()) +
-            ", \"redo\": " + number(sandbox.authoring->redo.size()) +
-            ", \"error\": " + jsonQuoted(sandbox.error) +
-            ", \"save_error\": " + jsonQuoted(saveError) + ", \"file\": " + jsonQuoted(out_) + "}";
+  report_ =
+      "{\"scenario\": " + jsonQuoted(name_) + ", \"bodies\": " + jsonNumber(scene.bodies.size()) +
+      ", \"cables\": " + jsonNumber(scene.cables.size()) +
+      ", \"joints\": " + jsonNumber(scene.joints.size()) + ", \"wraps\": " + jsonNumber(wraps) +
+      ", \"undo\": " + jsonNumber(sandbox.authoring->undo.size()) +
+      ", \"redo\": " + jsonNumber(sandbox.authoring->redo.size()) +
+      ", \"error\": " + jsonQuoted(sandbox.error) + ", \"save_error\": " + jsonQuoted(saveError) +
+      ", \"file\": " + jsonQuoted(out_) + "}";
   return false;
 }
 

@@ -10,6 +10,7 @@
 #include "ui/input.h"
 #include "ui/plot_board.h"
 #include "ui/plot_panel.h"
+#include "ui/report_json.h"
 #include "ui/synthetic_events.h"
 #include "ui/timeline.h"
 
@@ -26,12 +27,6 @@ std::vector<double> poses(const World& w) {
     out.insert(out.end(), {s.position.x(), s.position.y(), s.angle});
   }
   return out;
-}
-
-std::string number(double v) {
-  char b[40];
-  std::snprintf(b, sizeof b, "%.17g", std::isfinite(v) ? v : -1.0);
-  return b;
 }
 
 bool helpListsStepBack() {
@@ -90,7 +85,7 @@ bool TimelineScenario::rewind(Sandbox& sandbox, int frame, std::string& report) 
            ", \"step_after_back\": " + std::to_string(stepAfterBack_) +
            ", \"equal_after_back\": " + (equalAfterBack_ ? "true" : "false") +
            ", \"compared\": " + std::to_string(compared_) +
-           ", \"largest_difference\": " + number(largest_) +
+           ", \"largest_difference\": " + jsonNumber(largest_) +
            ", \"paused\": " + (sandbox.paused ? "true" : "false") +
            ", \"rewound\": " + (t.rewound() ? "true" : "false") +
            ", \"frames\": " + std::to_string(t.frameCount()) +
@@ -135,11 +130,12 @@ bool TimelineScenario::plotExport(Sandbox& sandbox, int frame, std::string& repo
   }
   const auto& t = board.times();
   const auto& error = board.charts[0].values[0];
-  report = "{\"scenario\": \"plot-export\", \"range_far\": [" + number(rangeFar_[0]) + ", " +
-           number(rangeFar_[1]) + "], \"range_after\": [" + number(after[0]) + ", " +
-           number(after[1]) + "], \"files\": [" + files + "], \"last_time\": " + number(t.back()) +
-           ", \"last_error\": " + number(error.back()) + ", \"time\": " + number(world.time()) +
-           "}";
+  report = "{\"scenario\": \"plot-export\", \"range_far\": [" + jsonNumber(rangeFar_[0]) + ", " +
+           jsonNumber(rangeFar_[1]) + "], \"range_after\": [" + jsonNumber(after[0]) + ", " +
+           jsonNumber(after[1]) + "], \"files\": [" + files +
+           "], \"last_time\": " + jsonNumber(t.back()) +
+           ", \"last_error\": " + jsonNumber(error.back()) +
+           ", \"time\": " + jsonNumber(world.time()) + "}";
   return false;
 }
 

@@ -27,7 +27,7 @@ float textWidth(const std::string& s, bool text, float lineHeight) {
   return text ? ImGui::CalcTextSize(s.c_str()).x : 0.55f * lineHeight * s.size();
 }
 
-void colour(const Colour& c) {
+void glColour(const Colour& c) {
   glColor4f(c[0], c[1], c[2], c[3]);
 }
 
@@ -226,10 +226,10 @@ void drawTensionBar(const FurnitureLayout& l, const RenderOptions& options, doub
   const int n = 32;
   for (int k = 0; k < n; ++k) {
     const float a = static_cast<float>(k) / n, b = static_cast<float>(k + 1) / n;
-    colour(tensionColour(a));
+    glColour(tensionColour(a));
     glVertex2f(x0 + barW * a, y0 + barH);
     glVertex2f(x0 + barW * a, y0);
-    colour(tensionColour(b));
+    glColour(tensionColour(b));
     glVertex2f(x0 + barW * b, y0);
     glVertex2f(x0 + barW * b, y0 + barH);
   }
@@ -270,7 +270,7 @@ void drawSample(const MarkerKeyRow& row, float cx, float cy, float s) {
   using Sample = MarkerKeyRow::Sample;
   const Colour& c = row.colour;
   auto disc = [&](float r, const Colour& fill) {
-    colour(fill);
+    glColour(fill);
     glBegin(GL_TRIANGLE_FAN);
     for (int k = 0; k < 20; ++k)
       glVertex2f(cx + r * std::cos(2 * M_PI * k / 20), cy + r * std::sin(2 * M_PI * k / 20));
@@ -278,7 +278,7 @@ void drawSample(const MarkerKeyRow& row, float cx, float cy, float s) {
   };
   auto segment = [&](float x0, float y0, float x1, float y1, float width) {
     glLineWidth(width * s);
-    colour(c);
+    glColour(c);
     glBegin(GL_LINES);
     glVertex2f(x0, y0);
     glVertex2f(x1, y1);
@@ -290,7 +290,7 @@ void drawSample(const MarkerKeyRow& row, float cx, float cy, float s) {
       disc(3.5f * s, c);
       break;
     case Sample::WrapPoint:
-      colour(c);
+      glColour(c);
       quad(cx - 3 * s, cy - 3 * s, cx + 3 * s, cy + 3 * s);
       break;
     case Sample::PointPulley:

@@ -10,7 +10,7 @@
 #include "tests/support/listed_settings.h"
 
 namespace cablelab {
-namespace {
+namespace settings_bench {  // named: unity batches join test files
 
 // Both worlds stepped in turn over the scene's first seconds (warmed up for 1 s), so that
 // both see the same machine load; the benchmark's time is the setting's step.

@@ -132,8 +132,12 @@ TEST(InputErrors, BadOptionValuesNameTheOption) {
   expectError({"run ballast --set l", "command line: --set: must be NAME=VALUE (got \"l\")"});
   expectError(
       {"run ballast --set l=1x", "command line: --set l: must be a finite number (got \"1x\")"});
+  expectError({"track --target 1,2,3,4",
+               "command line: --target: must be X,Y or X,Y,THETA, 2 or 3 finite numbers (got "
+               "\"1,2,3,4\")"});
   expectError({"track --target 1,2,3",
-               "command line: --target: must be X,Y, 2 finite numbers (got \"1,2,3\")"});
+               "command line: --target: THETA needs a box that may turn (scene parameter turn=1) "
+               "(got 3)"});
 #ifdef CABLELAB_HAVE_OFFSCREEN  // snapshot exists only with the offscreen renderer
   expectError({"snapshot pulley --out x.png --size 800by600",
                "command line: --size: must be WxH, each a whole number in [16, 8192] (got "

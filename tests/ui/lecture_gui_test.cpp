@@ -10,7 +10,7 @@
 #include "tests/ui/test_support.h"
 
 namespace cablelab::test {
-namespace {
+namespace lecture_gui_test {  // named: unity batches join test files
 
 #define REQUIRE_XVFB() \
   if (!onPath("xvfb-run")) GTEST_SKIP() << "xvfb-run not installed: GUI tests skipped"

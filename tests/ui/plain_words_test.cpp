@@ -10,7 +10,7 @@
 #include "ui/sandbox.h"
 
 namespace cablelab::ui {
-namespace {
+namespace plain_words_test {  // named: unity batches join test files
 
 // Words a student should not meet on the view (the engine's and the solver's).
 const char* const kSolverWords[] = {"guard",    "t = ", "sub-step",   "rest length",

@@ -16,7 +16,7 @@
 #include "ui/sandbox.h"
 
 namespace cablelab::ui {
-namespace {
+namespace plot_board_test {  // named: unity batches join test files
 
 constexpr double kDt = 1.0 / 60;
 

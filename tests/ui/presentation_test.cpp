@@ -8,7 +8,7 @@
 #include "ui/scene_bounds.h"
 
 namespace cablelab::ui {
-namespace {
+namespace presentation_test {  // named: unity batches join test files
 
 constexpr double kPixel = 1.0;
 

@@ -9,7 +9,7 @@
 #include "ui/scene_catalog.h"
 
 namespace cablelab::ui {
-namespace {
+namespace scene_guide_test {  // named: unity batches join test files
 
 /// Opens `scene`, sets the slider `name` to `value` (nothing when `name` is empty), runs
 /// `seconds` and returns how far `body` moved in y (m, up positive).

@@ -8,7 +8,7 @@
 #include "ui/scene_catalog.h"
 
 namespace cablelab::ui {
-namespace {
+namespace tension_scale_test {  // named: unity batches join test files
 
 TEST(TensionScale, FromTheScenesLoads) {
   // hexagon: the hexagon turns on an axle (its weight is the axle's), the 1 kg weight hangs:

@@ -11,7 +11,7 @@
 #include "tests/ui/test_support.h"
 
 namespace cablelab::test {
-namespace {
+namespace timeline_gui_test {  // named: unity batches join test files
 
 /// The scenario's JSON report; `screenshot` gets the last frame.
 nlohmann::json runScript(const std::string& name, const std::string& size,

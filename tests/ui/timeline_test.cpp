@@ -13,7 +13,7 @@
 #include "ui/sandbox.h"
 
 namespace cablelab::ui {
-namespace {
+namespace timeline_test {  // named: unity batches join test files
 
 /// Every body's pose and velocity.
 std::vector<double> poses(const World& w) {

@@ -10,7 +10,7 @@
 #include "tests/support/engine_test_support.h"
 
 namespace cablelab {
-namespace {
+namespace polygon_friction_test {  // named: unity batches join test files
 
 constexpr double kG = 9.81;
 using test::kDt;

@@ -13,7 +13,7 @@
 #include "tests/support/engine_test_support.h"
 
 namespace cablelab {
-namespace {
+namespace sensors_test {  // named: unity batches join test files
 
 struct Stepping {
   double dt;

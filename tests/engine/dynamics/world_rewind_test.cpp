@@ -13,7 +13,7 @@
 #include "engine/scenes/scene_registry.h"
 
 namespace cablelab {
-namespace {
+namespace world_rewind_test {  // named: unity batches join test files
 
 /// The time-varying inputs of step k: servo targets every step, a force every 5th step, a
 /// teleport at step 30 (each recorded in the history between two steps).

@@ -15,7 +15,7 @@
 #include "tests/support/finite_differences.h"
 
 namespace cablelab {
-namespace {
+namespace hand_turn_test {  // named: unity batches join test files
 
 using test::kFdStep;
 /// Of the ten held-out targets, how many are reached within 5 mm and 0.02 rad at 15 s.

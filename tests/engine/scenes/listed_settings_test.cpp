@@ -14,7 +14,7 @@
 #include "tests/support/listed_settings.h"
 
 namespace cablelab {
-namespace {
+namespace listed_settings_test {  // named: unity batches join test files
 
 struct Work {
   double iterations = 0;  // per step, mean
