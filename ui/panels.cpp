@@ -13,10 +13,10 @@
 #include "ui/controller_panel.h"
 #include "ui/input.h"
 #include "ui/panel_sections.h"
-#include "ui/presentation.h"
-#include "ui/scene_catalog.h"
 #include "ui/plot_board.h"
 #include "ui/plot_panel.h"
+#include "ui/presentation.h"
+#include "ui/scene_catalog.h"
 #include "ui/timeline_panel.h"
 
 namespace cablelab::ui {

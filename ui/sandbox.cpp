@@ -8,12 +8,12 @@
 #include "ui/authoring.h"
 #include "ui/colormap.h"
 #include "ui/controller_panel.h"
+#include "ui/plot_board.h"
+#include "ui/plot_panel.h"
 #include "ui/presentation.h"
 #include "ui/scene_bounds.h"
 #include "ui/scene_catalog.h"
 #include "ui/tension_scale.h"
-#include "ui/plot_board.h"
-#include "ui/plot_panel.h"
 #include "ui/timeline.h"
 
 namespace cablelab::ui {

@@ -224,7 +224,7 @@ class Sandbox {
   void loadCableEdit();
   std::unique_ptr<World> world_;
   double accumulator_ = 0;
-  bool wasPaused_ = false;  ///< paused at the last advance(): the next steps resume the world
+  bool wasPaused_ = false;      ///< paused at the last advance(): the next steps resume the world
   size_t inputsAfterStep_ = 0;  ///< the world's history length after its last step: more is an
                                 ///< edit while paused (settleBeforeRunning)
 };

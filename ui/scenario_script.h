@@ -79,8 +79,8 @@ class ScenarioScript {
   size_t step_ = 0;        ///< build: the next step
   double restBefore_ = 0;  ///< pose scenarios: the cable's rest length before the drag (m)
   std::shared_ptr<TimelineScenario> timeline_;  ///< the rewind and plot scenarios
-  std::unique_ptr<LectureScript> lecture_;  ///< the lecture-hall checks
-  std::string bannerSeen_;                  ///< drop-box: a banner shown during the drag
+  std::unique_ptr<LectureScript> lecture_;      ///< the lecture-hall checks
+  std::string bannerSeen_;                      ///< drop-box: a banner shown during the drag
 };
 
 }  // namespace cablelab::ui

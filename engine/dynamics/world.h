@@ -69,10 +69,11 @@ struct PoseResult {
 
 /// Timing and solver figures of the last step() call.
 struct StepStats {
-  double stepMicros = 0;           ///< wall time of the whole step (us)
-  double cableMicros = 0;          ///< of that, cable geometry + tension solve (us)
-  int wrapPoints = 0;              ///< pulley wrap points in use, all cables
-  int solverIterations = 0;        ///< LCP active-set iterations (with those of solves given up), summed over sub-steps
+  double stepMicros = 0;   ///< wall time of the whole step (us)
+  double cableMicros = 0;  ///< of that, cable geometry + tension solve (us)
+  int wrapPoints = 0;      ///< pulley wrap points in use, all cables
+  int solverIterations =
+      0;  ///< LCP active-set iterations (with those of solves given up), summed over sub-steps
   double residual = 0;             ///< largest complementarity residual of the tension solve
   int linearisationFallbacks = 0;  ///< cable rows solved on the start-of-step Jacobian (guard)
   int linearSolves = 0;  ///< main-solve islands whose start-of-step linearisation was exact enough
@@ -220,7 +221,7 @@ class World {
   std::vector<Vec3> contactExpected_;  ///< ... the one the cable solve expects (expectContacts)
   std::vector<Vec3> kicks_;            ///< velocity added after Box2D's step (midpoint rules)
   std::vector<std::pair<int, Vec3>> ends_;  ///< velocities set after it (the midpoint solve's)
-  std::vector<char> onCable_;          ///< scratch: bodies on some cable's path (flyFreeBodies)
+  std::vector<char> onCable_;  ///< scratch: bodies on some cable's path (flyFreeBodies)
   std::vector<Placement>
       placements_;             ///< poses given after Box2D's step (the main solve's midpoint rule)
   bool midpointUsed_ = false;  ///< the last solveForces() solved some midpoint island
@@ -235,7 +236,7 @@ class World {
   std::vector<Vec3> forces_;         ///< (fx, fy, torque) per body for the current sub-step
   std::vector<Vec3> pendingForces_;  ///< applyForce() loads for the next step
   std::vector<Cable> cables_;
-  std::vector<std::vector<double>> impulses_;  ///< per cable and span, over this sub-step (N s)
+  std::vector<std::vector<double>> impulses_;      ///< per cable and span, over this sub-step (N s)
   std::vector<std::vector<double>> stepImpulses_;  ///< ... over this step (N s)
   std::vector<double> stepTimes_;                  ///< ... and the time they are over (s)
   std::vector<std::vector<double>> solved_;  ///< ... the last sub-step's tensions (N), the solves'

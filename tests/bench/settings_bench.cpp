@@ -45,5 +45,5 @@ const bool kRegistered = [] {
   return true;
 }();
 
-}  // namespace
+}  // namespace settings_bench
 }  // namespace cablelab

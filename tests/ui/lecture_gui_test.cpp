@@ -176,5 +176,5 @@ TEST(Lecture, TensionScaleKeepsItsMeaningAcrossARun) {
   EXPECT_NE(j["next_scene_scale"].get<double>(), j["locked_at"].get<double>());
 }
 
-}  // namespace
+}  // namespace lecture_gui_test
 }  // namespace cablelab::test

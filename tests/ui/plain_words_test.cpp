@@ -67,5 +67,5 @@ TEST(PlainWords, SandboxLogsEveryWarningAndBannersOnlyTheUsers) {
   }));
 }
 
-}  // namespace
+}  // namespace plain_words_test
 }  // namespace cablelab::ui

@@ -179,5 +179,5 @@ TEST(PlotBoard, TheCpuDrawingMatchesTheOffscreenRenderer) {
   EXPECT_LT(c.share(), 0.01);
 }
 
-}  // namespace
+}  // namespace plot_board_test
 }  // namespace cablelab::ui

@@ -67,5 +67,5 @@ TEST(Presentation, TheViewStaysFittedUntilTheUserMovesIt) {
   EXPECT_EQ(sandbox.camera.metresPerPixel, before);
 }
 
-}  // namespace
+}  // namespace presentation_test
 }  // namespace cablelab::ui

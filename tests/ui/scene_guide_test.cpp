@@ -63,5 +63,5 @@ TEST(SceneGuide, TackleBalancesWithAFourthOfTheLoad) {
   EXPECT_LT(std::abs(riseAfter("tackle", "m_effort", 1, "effort", 1)), kStill);
 }
 
-}  // namespace
+}  // namespace scene_guide_test
 }  // namespace cablelab::ui

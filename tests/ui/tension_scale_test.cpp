@@ -68,5 +68,5 @@ TEST(TensionScale, TheSandboxNeverRescalesBehindTheUsersBack) {
   EXPECT_EQ(sandbox.tensionScale, 50);
 }
 
-}  // namespace
+}  // namespace tension_scale_test
 }  // namespace cablelab::ui

@@ -75,5 +75,5 @@ TEST(TimelineGui, PlotsExportAtSlideSizeAndTheRangeShrinksBack) {
   EXPECT_EQ(std::stod(e), j["last_error"].get<double>());
 }
 
-}  // namespace
+}  // namespace timeline_gui_test
 }  // namespace cablelab::test

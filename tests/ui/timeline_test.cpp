@@ -133,5 +133,5 @@ TEST(Timeline, KeepsTheLastThirtySecondsAndTheOldestRestores) {
   EXPECT_EQ(poses(*sandbox.world()), recorded[oldest]);
 }
 
-}  // namespace
+}  // namespace timeline_test
 }  // namespace cablelab::ui

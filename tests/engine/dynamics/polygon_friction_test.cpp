@@ -412,5 +412,5 @@ TEST(PolygonFriction, APolygonTurningUnderTheHeldRopeKeepsItsLength) {
   }
 }
 
-}  // namespace
+}  // namespace polygon_friction_test
 }  // namespace cablelab

@@ -134,5 +134,5 @@ TEST(SensorsTest, PlatformAtRestReportsNoVelocityAndTensionsThatBalanceTheLoad) 
     }
 }
 
-}  // namespace
+}  // namespace sensors_test
 }  // namespace cablelab

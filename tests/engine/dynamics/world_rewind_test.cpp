@@ -81,5 +81,5 @@ TEST(WorldRewind, InputsThroughStepCutsARunOfStepsAndLeavesOutTheNextStepsInputs
   EXPECT_THROW(inputsThroughStep(h.inputs(), 7), std::out_of_range);
 }
 
-}  // namespace
+}  // namespace world_rewind_test
 }  // namespace cablelab

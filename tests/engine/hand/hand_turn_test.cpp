@@ -191,5 +191,5 @@ TEST(HandTurnTracking, HeldOutTargetsInXYThetaAreReached) {
   EXPECT_GE(reached, kHeldOutReached);
 }
 
-}  // namespace
+}  // namespace hand_turn_test
 }  // namespace cablelab

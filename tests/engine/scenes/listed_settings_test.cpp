@@ -76,5 +76,5 @@ TEST(ListedSettings, NoSettingTakesMoreThanThreeTimesItsDefaultsWork) {
   }
 }
 
-}  // namespace
+}  // namespace listed_settings_test
 }  // namespace cablelab
