@@ -229,13 +229,7 @@ nlohmann::json scenario(const std::string& scene, const std::string& name,
   const RunResult r = run(kXvfb + std::string(CABLELAB_CLI) + " gui " + scene +
                               " --size 1280x720 --script " + name + " " + extra,
                           "gui_script_" + name);
-  EXPECT_EQ(r.exitCode, 0) << r.err;
-  try {
-    return nlohmann::json::parse(r.out);
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "no JSON report: " << r.out << r.err;
-    return nlohmann::json::object();
-  }
+  return jsonReport(r);
 }
 
 // Issue 38: each built-in scene shows two to four plain sentences for students, whole, with no

@@ -27,13 +27,7 @@ nlohmann::json lecture(const std::string& scene, const std::string& script, cons
   const RunResult r = run(kXvfb1080 + std::string(CABLELAB_CLI) + " gui " + scene + " --size " +
                               size + " --ui-scale 2 --script " + script + " --script-out " + prefix,
                           "lecture_" + tag);
-  EXPECT_EQ(r.exitCode, 0) << r.err;
-  try {
-    return nlohmann::json::parse(r.out);
-  } catch (const std::exception&) {
-    ADD_FAILURE() << "no JSON report: " << r.out << r.err;
-    return nlohmann::json::object();
-  }
+  return jsonReport(r);
 }
 
 struct Box {

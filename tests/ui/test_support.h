@@ -1,12 +1,14 @@
 // Shared helpers of the UI tests: run a command, compare images, step a scene.
 #pragma once
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 
@@ -45,6 +47,18 @@ inline RunResult run(const std::string& command, const std::string& tag) {
   r.out = slurp(out);
   r.err = slurp(err);
   return r;
+}
+
+/// The JSON report a scripted run printed on stdout; a failed run or no JSON is a test failure
+/// (and an empty object, so the caller's checks fail on their own terms).
+inline nlohmann::json jsonReport(const RunResult& r) {
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  try {
+    return nlohmann::json::parse(r.out);
+  } catch (const std::exception&) {
+    ADD_FAILURE() << "no JSON report: " << r.out << r.err;
+    return nlohmann::json::object();
+  }
 }
 
 /// True when `program` is found on PATH.

@@ -20,13 +20,7 @@ nlohmann::json runScript(const std::string& name, const std::string& size,
                               " gui hand --size " + size + " --script " + name + " --screenshot " +
                               screenshot + " " + extra,
                           "timeline_gui_" + name);
-  EXPECT_EQ(r.exitCode, 0) << r.err;
-  try {
-    return nlohmann::json::parse(r.out);
-  } catch (const std::exception&) {
-    ADD_FAILURE() << "no JSON report: " << r.out << r.err;
-    return nlohmann::json::object();
-  }
+  return jsonReport(r);
 }
 
 TEST(TimelineGui, StepBackAndPlayRepeatTheHandsRunExactly) {

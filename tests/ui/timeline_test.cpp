@@ -9,29 +9,19 @@
 #include <cstdio>
 #include <vector>
 
+#include "tests/support/body_states.h"
 #include "ui/controller_panel.h"
 #include "ui/sandbox.h"
 
 namespace cablelab::ui {
 namespace timeline_test {  // named: unity batches join test files
 
-/// Every body's pose and velocity.
-std::vector<double> poses(const World& w) {
-  std::vector<double> out;
-  for (int i = 0; i < w.bodyCount(); ++i) {
-    const BodyState& s = w.body(i);
-    out.insert(out.end(), {s.position.x(), s.position.y(), s.angle, s.velocity.x(), s.velocity.y(),
-                           s.angularVelocity});
-  }
-  return out;
-}
-
 /// `steps` fixed steps, the poses after each.
 std::vector<std::vector<double>> run(Sandbox& sandbox, int steps) {
   std::vector<std::vector<double>> out;
   for (int i = 0; i < steps; ++i) {
     sandbox.advance(sandbox.dt, true);
-    out.push_back(poses(*sandbox.world()));
+    out.push_back(test::bodyStates(*sandbox.world()));
   }
   return out;
 }
@@ -63,7 +53,7 @@ TEST(Timeline, TheHandPlaysOnFromARewoundMomentBitForBit) {
   EXPECT_TRUE(sandbox.paused);
   EXPECT_TRUE(sandbox.timeline->rewound());
   EXPECT_EQ(sandbox.world()->stepCount(), sandbox.timeline->frame(kMoment).step);
-  ASSERT_EQ(poses(*sandbox.world()), recorded[kMoment]);
+  ASSERT_EQ(test::bodyStates(*sandbox.world()), recorded[kMoment]);
   const int updatesThen = sandbox.controller->hand->grasp->updates();
   sandbox.paused = false;
   const auto replay = run(sandbox, 240 - kMoment - 1);
@@ -86,15 +76,15 @@ TEST(Timeline, StepBackForwardAndANewRunFromTheMoment) {
   Timeline& t = *sandbox.timeline;
   for (int k = 0; k < 3; ++k) ASSERT_TRUE(t.stepBack(sandbox));
   EXPECT_EQ(t.current(), 86);
-  EXPECT_EQ(poses(*sandbox.world()), recorded[86]);
+  EXPECT_EQ(test::bodyStates(*sandbox.world()), recorded[86]);
   ASSERT_TRUE(t.rewindTo(sandbox, 30));
-  EXPECT_EQ(poses(*sandbox.world()), recorded[30]);
+  EXPECT_EQ(test::bodyStates(*sandbox.world()), recorded[30]);
   const World* rebuilt = sandbox.world();
   ASSERT_TRUE(t.rewindTo(sandbox, 60));  // forward: the same World object, stepped on
   EXPECT_EQ(sandbox.world(), rebuilt);
-  EXPECT_EQ(poses(*sandbox.world()), recorded[60]);
+  EXPECT_EQ(test::bodyStates(*sandbox.world()), recorded[60]);
   ASSERT_TRUE(t.rewindTo(sandbox, 89));
-  EXPECT_EQ(poses(*sandbox.world()), recorded[89]);
+  EXPECT_EQ(test::bodyStates(*sandbox.world()), recorded[89]);
   EXPECT_FALSE(t.rewound());
 
   ASSERT_TRUE(t.rewindTo(sandbox, 50));
@@ -102,7 +92,7 @@ TEST(Timeline, StepBackForwardAndANewRunFromTheMoment) {
   sandbox.paused = false;
   run(sandbox, 5);
   EXPECT_EQ(t.frameCount(), 56);
-  EXPECT_NE(poses(*sandbox.world()), recorded[55]);
+  EXPECT_NE(test::bodyStates(*sandbox.world()), recorded[55]);
   ASSERT_TRUE(t.stepBack(sandbox));  // back into the new run, not the old one
   EXPECT_EQ(sandbox.world()->stepCount(), 55);
   EXPECT_DOUBLE_EQ(sandbox.world()->gravity().y(), -3);
@@ -130,7 +120,7 @@ TEST(Timeline, KeepsTheLastThirtySecondsAndTheOldestRestores) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("rewinding 33 s of the hand to its oldest kept moment: %.0f ms\n", 1e3 * seconds);
-  EXPECT_EQ(poses(*sandbox.world()), recorded[oldest]);
+  EXPECT_EQ(test::bodyStates(*sandbox.world()), recorded[oldest]);
 }
 
 }  // namespace timeline_test

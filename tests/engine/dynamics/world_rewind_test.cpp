@@ -11,6 +11,7 @@
 #include "engine/dynamics/world.h"
 #include "engine/dynamics/world_rewind.h"
 #include "engine/scenes/scene_registry.h"
+#include "tests/support/body_states.h"
 
 namespace cablelab {
 namespace world_rewind_test {  // named: unity batches join test files
@@ -25,17 +26,6 @@ void drive(World& w, int k) {
   w.step(w.scene().dt, w.scene().substeps);
 }
 
-/// Every body's pose and velocity, as bits.
-std::vector<double> poses(const World& w) {
-  std::vector<double> out;
-  for (int i = 0; i < w.bodyCount(); ++i) {
-    const BodyState& s = w.body(i);
-    out.insert(out.end(), {s.position.x(), s.position.y(), s.angle, s.velocity.x(), s.velocity.y(),
-                           s.angularVelocity});
-  }
-  return out;
-}
-
 TEST(WorldRewind, PlayingOnFromARestoredStepRepeatsTheRunBitForBit) {
   constexpr int kSteps = 120, kRewindTo = 47;
   for (const char* name : {"hand", "pulley", "hexagon", "capstan", "wheel", "ballast"}) {
@@ -45,17 +35,17 @@ TEST(WorldRewind, PlayingOnFromARestoredStepRepeatsTheRunBitForBit) {
     std::vector<double> times;
     for (int k = 0; k < kSteps; ++k) {
       drive(run, k);
-      recorded.push_back(poses(run));
+      recorded.push_back(test::bodyStates(run));
       times.push_back(run.time());
     }
     auto rewound = rewoundWorld(run.scene(), run.history().inputs(), kRewindTo, name);
     ASSERT_EQ(rewound->stepCount(), kRewindTo);
     EXPECT_EQ(rewound->time(), times[kRewindTo - 1]);
-    ASSERT_EQ(poses(*rewound), recorded[kRewindTo - 1]);
+    ASSERT_EQ(test::bodyStates(*rewound), recorded[kRewindTo - 1]);
     // The rewound world has not seen the inputs after its step yet: play on with the same ones.
     for (int k = kRewindTo; k < kSteps; ++k) {
       drive(*rewound, k);
-      ASSERT_EQ(poses(*rewound), recorded[k]) << "step " << k + 1;
+      ASSERT_EQ(test::bodyStates(*rewound), recorded[k]) << "step " << k + 1;
     }
     // Something moved: equal poses are not equal by accident of a world at rest.
     EXPECT_NE(recorded[kRewindTo - 1], recorded.back());
