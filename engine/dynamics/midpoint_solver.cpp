@@ -370,7 +370,7 @@ bool MidpointSolver::newtonStep(std::span<const BodyState> bodies, std::span<con
   // them) leave the split of their impulses free, and Newton on P then never settles: such an
   // island goes to the main solve, which takes the minimum-norm split (docs/model.md,
   // "Redundant cables").
-  redundant_ = first && redundantActiveRows();
+  redundant_ = first && redundantActiveRows(cables);
   if (redundant_) return false;
   dP_ = solution_.x - P_;
   dv_ = -(AinvR_ + 0.5 * AinvGt_ * dP_);
@@ -380,11 +380,16 @@ bool MidpointSolver::newtonStep(std::span<const BodyState> bodies, std::span<con
          dP_.lpNorm<Eigen::Infinity>() <= 1e-9 * (1e-9 + P_.lpNorm<Eigen::Infinity>());
 }
 
-// Whether the rows the LCP's solution pulls on are dependent (K singular on them).
-bool MidpointSolver::redundantActiveRows() {
+// Whether the rigid rows the LCP's solution pulls on are dependent (K singular on them). An
+// elastic row's spring sets its share of the load whatever the others do, so it is never
+// redundant; counted, a row coming taut (its secant slope near nil, its compliance huge) made
+// every other pivot look nil beside its own, and four stiff cables on one platform went to the
+// main solve's damping spring (tests/engine/dynamics/stiff_elastic_test.cpp).
+bool MidpointSolver::redundantActiveRows(std::span<const Cable> cables) {
   active_.clear();
   for (int r = 0; r < static_cast<int>(solution_.x.size()); ++r)
-    if (solution_.x[r] > 0) active_.push_back(r);
+    if (solution_.x[r] > 0 && (segment_[r] >= 0 || !cables[rows_[r]].elastic()))
+      active_.push_back(r);
   const int a = static_cast<int>(active_.size());
   if (a < 2) return false;
   activeK_.resize(a, a);

@@ -96,7 +96,7 @@ class MidpointSolver {
   void settleRates(std::span<const BodyState> bodies, std::span<const Cable> cables);
   void finish(std::span<const BodyState> bodies, std::span<Cable> cables, double h,
               std::span<Vec3> forces, std::span<Vec3> kicks);
-  bool redundantActiveRows();
+  bool redundantActiveRows(std::span<const Cable> cables);
 
   double share_ = 1;            // this step over the nominal sub-step
   std::vector<int> rows_;       // cable of each row

@@ -10,6 +10,7 @@
 
 #include "engine/dynamics/length_targets.h"
 #include "engine/dynamics/world.h"
+#include "engine/model/scene_json.h"
 #include "tests/support/busy_scene.h"
 #include "tests/support/engine_test_support.h"
 
@@ -148,6 +149,50 @@ TEST(LongRun, UndampedPartsKeepTheirEnergyForTenMinutes) {
   }
   EXPECT_LT(worst, 0.02 * scale) << worst / scale;
   EXPECT_EQ(midpoint, 10 * kMinute);
+}
+
+// Issue 36, item 6: a busy conservative world (tests/data/energy/busy_conservative.json: a square
+// spinning in an undamped elastic sling, a point in an undamped band, rigid ropes with weights
+// over a hexagon spinning on its pivot, four undamped elastic ropes over another) for ten
+// minutes at 60 Hz. Minute by minute, the largest |E - E0| over the largest kinetic energy of
+// the world so far stays under 2%, the energy never rises above E0 by more than 1e-3 of that
+// scale, and the drift does not speed up: no minute adds more than the first two did, plus
+// 0.01% (a drift that grows every minute, 0.9, 0.6, 1.1, ... 6.1%, fails all three). Measured:
+// 0.026% after the first minute, 0.22% after the tenth, 0.017 to 0.022% added each minute, all
+// of it lost (not gained) by the rigid ropes over the pivoted hexagon (docs/cables.md,
+// "Long runs").
+TEST(LongRun, AConservativeBusySceneKeepsItsEnergyForTenMinutesWithNoGrowth) {
+  World world(loadSceneFile(test::dataPath("energy/busy_conservative.json")));
+  ASSERT_EQ(world.scene().substeps, 4);
+  const double e0 = world.energy();
+  double scale = 0, worst = 0, highest = e0;
+  std::vector<double> byMinute;
+  for (int minute = 0; minute < 10; ++minute) {
+    for (int s = 0; s < kMinute; ++s) {
+      world.step(kDt, world.scene().substeps);
+      const double e = world.energy();
+      worst = std::max(worst, std::abs(e - e0));
+      highest = std::max(highest, e);
+      double kinetic = 0;
+      for (int b = 0; b < world.bodyCount(); ++b) {
+        const BodyState& x = world.body(b);
+        if (x.invMass > 0) kinetic += 0.5 * x.velocity.squaredNorm() / x.invMass;
+        if (x.invInertia > 0) kinetic += 0.5 * x.angularVelocity * x.angularVelocity / x.invInertia;
+      }
+      scale = std::max(scale, kinetic);
+    }
+    byMinute.push_back(worst / scale);
+    std::printf("minute %d: |E - E0| up to %.3g%% of the scale (%.3g J)\n", minute + 1,
+                100 * byMinute.back(), scale);
+  }
+  EXPECT_LT(byMinute.back(), 0.02);
+  EXPECT_LT(highest - e0, 1e-3 * scale);
+  const double firstTwo = std::max(byMinute[0], byMinute[1] - byMinute[0]);
+  for (size_t m = 1; m < byMinute.size(); ++m)
+    EXPECT_LT(byMinute[m] - byMinute[m - 1], firstTwo + 1e-4) << "minute " << m + 1;
+  // A weight of the elastic ropes swings into its hexagon's hull once and a guard drops the
+  // hexagon from that rope (a warning; pulleys next to points: issue 36, item 4): the energy holds.
+  for (const std::string& w : world.warnings()) std::printf("warning: %s\n", w.c_str());
 }
 
 }  // namespace
