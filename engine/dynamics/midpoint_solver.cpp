@@ -13,17 +13,22 @@ namespace {
 
 constexpr int kIterations = 40;
 constexpr double kPositionTolerance = 1e-12;  // m: end-of-step pose settled
+constexpr int kFloorIterations = 2;  // a floor pushing on as many first iterations: given up
 
 // Discrete gradient of V = k/2 max(0, phi)^2 between phi0 and phi1, and its phi1-derivative.
+// With both ends taut (or both slack) they are k (phi0 + phi1) / 2 and k / 2 in closed form: the
+// quotients (V1 - V0) / d and its derivative, with d = phi1 - phi0, lose to rounding what they
+// divide by d and d^2, and for a cable nearly at rest (d ~ 1e-10 m) the slope came out hundreds
+// of times k: the Newton of a platform resting on its cables did not settle, and the step was
+// halved up to 16 times, 1000-4000 iterations, each fallback leaving it swaying at 1e-9 m/s.
 struct SpringSecant {
   double tension, slope;
 };
 SpringSecant springSecant(double k, double phi0, double phi1) {
+  if (phi0 >= 0 && phi1 >= 0) return {0.5 * k * (phi0 + phi1), 0.5 * k};
+  if (phi0 <= 0 && phi1 <= 0) return {0.0, 0.0};
+  // Crossing zero: |d| is at least the taut end's stretch, so nothing cancels.
   const double d = phi1 - phi0;
-  if (std::abs(d) <= 1e-12 * (1e-9 + std::abs(phi0) + std::abs(phi1))) {
-    const double mid = 0.5 * (phi0 + phi1);
-    return {k * std::max(0.0, mid), mid > 0 ? 0.5 * k : 0.0};
-  }
   const double v0 = phi0 > 0 ? phi0 * phi0 : 0.0, v1 = phi1 > 0 ? phi1 * phi1 : 0.0;
   const double tension = 0.5 * k * (v1 - v0) / d;
   const double dv1 = phi1 > 0 ? 2 * phi1 : 0.0;
@@ -195,15 +200,30 @@ int MidpointSolver::solve(std::span<const BodyState> bodies, std::span<Cable> ca
   redundant_ = floorHit_ = false;
   iterationsRun_ = 0;
   if (!buildRows(bodies, cables, which, gravity, h, forces)) return 0;
-  for (int iteration = 0; iteration < kIterations; ++iteration)
-    if (++iterationsRun_; newtonStep(bodies, cables, h, iteration == 0)) {
-      for (size_t r = 0; r < rows_.size(); ++r) floorHit_ |= segment_[r] >= 0 && P_[r] > 0;
-      if (floorHit_) return -1;
-      finish(bodies, cables, h, forces, kicks);
-      return iteration + 1;
-    } else if (redundant_) {
+  auto floorPushes = [&] {
+    for (size_t r = 0; r < rows_.size(); ++r)
+      if (segment_[r] >= 0 && P_[r] > 0) return true;
+    return false;
+  };
+  int pushing = 0;  // iterations in a row on which a floor pushed
+  for (int iteration = 0; iteration < kIterations; ++iteration) {
+    const bool settled = (++iterationsRun_, newtonStep(bodies, cables, h, iteration == 0));
+    if (redundant_) return -1;
+    pushing = floorPushes() ? pushing + 1 : 0;
+    // A floor that pushes from the start is a body resting at its pulley: given up after
+    // kFloorIterations, not after the 15-20 a settled Newton takes (a tackle whose effort rests
+    // at its sheave did those on every step, to hand the step over anyway). A push on the first
+    // iteration alone can be the linearisation's (a box tied off its centre swinging in).
+    const bool fromTheStart = pushing == iteration + 1 && pushing >= kFloorIterations;
+    if ((settled && pushing > 0) || fromTheStart) {
+      floorHit_ = true;
       return -1;
     }
+    if (settled) {
+      finish(bodies, cables, h, forces, kicks);
+      return iteration + 1;
+    }
+  }
   return -1;
 }
 

@@ -283,8 +283,9 @@ TEST(ServoDrive, TwoServosOnAnArmSettleTogetherWithoutAlternating) {
 }
 
 // The winch scene with a light drum and a stiff servo.
-World lightWinch(double kp, double kd, double maxForce, double omega, double drumInertia) {
-  SceneDef s = makeScene("winch", {{"omega", omega}});
+World lightWinch(double kp, double kd, double maxForce, double omega, double drumInertia,
+                 double weight = 1.0) {
+  SceneDef s = makeScene("winch", {{"omega", omega}, {"mass", weight}});
   s.bodies[0].inertia = drumInertia;
   s.joints[0].servo.kp = kp;
   s.joints[0].servo.kd = kd;
@@ -348,6 +349,66 @@ TEST(ServoDrive, AWinchThatWindsOnAfterItsWeightReachesTheDrumStallsAtMaxForce) 
       EXPECT_LE(worst, 1.01 * maxForce / r);
       EXPECT_NEAR(w.cable(0).tension(), maxForce / r, 0.01 * maxForce / r);
     }
+}
+
+TEST(ServoDrive, OtherGainsStepsAndWeightsOnALightDrumLiftWithoutThrowing) {
+  // The stiff-servo row's adversarial variants: kp from 500 to 2e5, kd from 5 to critical on the
+  // weight's inertia at the drum and more, weights of 0.2 and 5 kg, 30 and 120 Hz. The same
+  // bounds: never over the drum's top, the tension while lifting under 1.5 m g, never above
+  // max_force / r.
+  const double r = 0.1, maxForce = 1e3;
+  for (const double kp : {500.0, 2e4, 2e5})
+    for (const double weight : {0.2, 5.0})
+      for (const double kd : {5.0, 4 * std::sqrt(kp * weight * r * r)})
+        for (const double hz : {30.0, 120.0}) {
+          World w = lightWinch(kp, kd, maxForce, 2.0, 0.001, weight);
+          const int drum = w.findBody("drum"), hung = w.findBody("weight");
+          double highest = -1e9, lifting = 0, largest = 0;
+          while (w.time() < 25) {
+            w.step(1 / hz);
+            const BodyState& b = w.body(hung);
+            const Vec2 end = b.position + rotate(Vec2(0, 0.1), b.angle);
+            highest = std::max(highest, end.y() - w.body(drum).position.y());
+            largest = std::max(largest, w.cable(0).tension());
+            if (w.time() > 1 && end.y() < w.body(drum).position.y() - 1)
+              lifting = std::max(lifting, w.cable(0).tension());
+          }
+          SCOPED_TRACE("kp " + std::to_string(kp) + " kd " + std::to_string(kd) + " weight " +
+                       std::to_string(weight) + " at " + std::to_string(hz) + " Hz");
+          EXPECT_LT(highest, r + 1e-3);
+          EXPECT_GT(lifting, 0);  // it did lift
+          EXPECT_LT(lifting, 1.5 * weight * kG);
+          EXPECT_LE(largest, 1.01 * maxForce / r);
+        }
+}
+
+TEST(ServoDrive, OtherGainsStepsAndWeightsThatWindOnStallAtMaxForce) {
+  // The winding-on row's adversarial variants: kp 100 and 5e3, kd 5 and 200, weights of 0.3 and
+  // 3 kg (max_force 20 N m lifts both: m g r = 2.9 N m at 3 kg), 30 and 120 Hz. One warning
+  // naming the joint, the force at max_force, never above it, the tension then max_force / r.
+  const double r = 0.1, maxForce = 20;
+  for (const double kp : {100.0, 5e3})
+    for (const double kd : {5.0, 200.0})
+      for (const double weight : {0.3, 3.0})
+        for (const double hz : {30.0, 120.0}) {
+          World w = lightWinch(kp, kd, maxForce, 5.0, 0.05, weight);
+          double worst = 0, stalledAt = -1, above = 0;
+          while (w.time() < 20) {
+            w.step(1 / hz);
+            if (stalledAt < 0 && !w.warnings().empty()) stalledAt = w.time();
+            if (stalledAt >= 0 && w.time() > stalledAt + 0.5)
+              worst = std::max(worst, w.cable(0).tension());
+            above = std::max(above, std::abs(w.joint(0).force) - maxForce);
+          }
+          SCOPED_TRACE("kp " + std::to_string(kp) + " kd " + std::to_string(kd) + " weight " +
+                       std::to_string(weight) + " at " + std::to_string(hz) + " Hz");
+          EXPECT_LE(above, 0);
+          ASSERT_EQ(w.warnings().size(), 1u);
+          EXPECT_NE(w.warnings()[0].find("joint 'axle'"), std::string::npos) << w.warnings()[0];
+          EXPECT_NEAR(w.joint(0).force, maxForce, 1e-9);
+          EXPECT_LE(worst, 1.01 * maxForce / r);
+          EXPECT_NEAR(w.cable(0).tension(), maxForce / r, 0.01 * maxForce / r);
+        }
 }
 
 }  // namespace
