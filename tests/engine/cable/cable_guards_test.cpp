@@ -178,19 +178,42 @@ TEST(CableGuards, APolygonComingFromTheWrapSideIsPassed) {
   EXPECT_NEAR(rig.cable.length(), 2, kTight);
 }
 
-TEST(CableGuards, ATerminalInsideAPolygonMakesItLeaveWithAWarning) {
-  // The start anchor rides on body "a"; carry it into the square's interior.
+TEST(CableGuards, ATerminalPressedIntoAWrappedPolygonKeepsItOnThePath) {
+  // The start anchor rides on body "a"; carry it into the interior of the square the cable is on.
+  // The square holds the chain's first corner (a contact between shapes, not a drop): it stays
+  // on the path, with no warning, and the cable runs from the anchor to that corner.
   Rig rig(sceneWith({squarePulley(0.2)}, Vec2(-1, 0), "a"));
   rig.at(Vec2(0, 0.1));
   ASSERT_TRUE(rig.cable.engaged(0));
+  const double wrapped = rig.cable.length();
+  const WrapPoint first = rig.cable.path()[1], last = rig.cable.path()[rig.cable.path().size() - 2];
+  rig.at(Vec2(0, 0.1), Vec2(0.9, 0.1));  // anchor now at (-0.1, 0.1): inside the square
+  EXPECT_TRUE(rig.cable.engaged(0));
+  EXPECT_TRUE(rig.warnings.empty()) << rig.warnings.front();
+  ASSERT_EQ(rig.cable.path().size(), 4u);
+  EXPECT_EQ(rig.cable.path()[1].vertex, first.vertex);
+  const Vec2 anchor(-0.1, 0.1), end(1, 0);
+  EXPECT_NEAR(rig.cable.length(),
+              (first.world - anchor).norm() + (last.world - first.world).norm() +
+                  (end - last.world).norm(),
+              kTight);
+  rig.at(Vec2(0, 0.1));  // the anchor back out: the taut path as before
+  EXPECT_TRUE(rig.cable.engaged(0));
+  EXPECT_NEAR(rig.cable.length(), wrapped, kTight);
   EXPECT_TRUE(rig.warnings.empty());
-  rig.at(Vec2(0, 0.1), Vec2(1.0, 0.1));  // anchor now at (0, 0.1): inside the square
+}
+
+TEST(CableGuards, APolygonJoiningWithATerminalInsideItsHullLeavesWithAWarning) {
+  // No chain to hold: the square crosses the cable with the start anchor inside it at once.
+  Rig rig(sceneWith({squarePulley(0.2)}, Vec2(-1, 0), "a"));
+  rig.at(Vec2(0, -0.5));
+  ASSERT_FALSE(rig.cable.engaged(0));
+  rig.at(Vec2(0, 0.1), Vec2(0.9, 0.1));  // anchor at (-0.1, 0.1): inside the square
   EXPECT_FALSE(rig.cable.engaged(0));
   EXPECT_EQ(rig.cable.wraps(), 0);
-  ASSERT_FALSE(rig.warnings.empty());
   EXPECT_TRUE(std::any_of(rig.warnings.begin(), rig.warnings.end(), [](const std::string& w) {
     return w.find("inside its hull") != std::string::npos;
-  })) << rig.warnings.back();
+  }));
   EXPECT_TRUE(std::isfinite(rig.cable.length()));
 }
 
@@ -200,12 +223,14 @@ bool warned(const std::vector<std::string>& warnings, const std::string& text) {
 }
 
 // A 0.5 m square at (0, 0.1) under the cable, which rides over its top; the start anchor rides on
-// body "a" at (-0.3, 0) + a's position, just left of the square. Moving a by +0.1 carries the
-// anchor inside the square: the polygon is dropped.
+// body "a" at (-0.3, 0) + a's position, just left of the square. The square is taken down off the
+// cable, then brought back up across it with a moved by +0.1, which carries the anchor inside the
+// square at once: joining with no chain to hold, the polygon is dropped.
 struct DroppedSquare : Rig {
   DroppedSquare() : Rig(sceneWith({squarePulley(0.25)}, Vec2(-0.3, 0), "a")) {
     at(Vec2(0, 0.1));
     wrapped = cable.length();
+    at(Vec2(0, -0.5));
     at(Vec2(0, 0.1), Vec2(0.1, 0));
   }
   double wrapped = 0;  // the length over the square before the drop
@@ -216,9 +241,15 @@ TEST(CableGuards, ADroppedPolygonRejoinsWhereTheDropIsUndone) {
   ASSERT_GT(rig.wrapped, 1.3 + 0.1);
   ASSERT_FALSE(rig.cable.engaged(0));
   ASSERT_TRUE(warned(rig.warnings, "inside its hull"));
-  rig.at(Vec2(0, 0.1));  // the anchor back where it was: the same taut path exists again
+  // The drop took no length out (the square was joining), so it rejoins only where its taut path
+  // is no longer than the straight cable by more than 1 mm: the anchor back out, the square's
+  // top 0.5 mm over the cable.
+  rig.at(Vec2(0, 0.1));
+  EXPECT_FALSE(rig.cable.engaged(0));
+  rig.at(Vec2(0, -0.2495));
   EXPECT_TRUE(rig.cable.engaged(0));
-  EXPECT_NEAR(rig.cable.length(), rig.wrapped, kTight);
+  const Vec2 a(-0.3, 0), b(1, 0), top0(-0.25, 0.0005), top1(0.25, 0.0005);
+  EXPECT_NEAR(rig.cable.length(), (top0 - a).norm() + 0.5 + (b - top1).norm(), kTight);
   EXPECT_TRUE(warned(rig.warnings, "rejoined the path"));
 }
 
@@ -235,7 +266,8 @@ TEST(CableGuards, APolygonThatWentThroughTheCableWhileDroppedStaysOut) {
   EXPECT_NEAR(rig.cable.length(), (b - a).norm(), kTight);
   EXPECT_FALSE(warned(rig.warnings, "rejoined the path"));
   EXPECT_FALSE(warned(rig.warnings, "moved the length by 0."));  // no jump beyond the drop's
-  // Once the square is back where it pushes on the cable from below, it is wrapped again.
+  // Once the square has cleared the cable and comes back up across it, it is wrapped again.
+  rig.at(Vec2(0, -0.5));
   rig.at(Vec2(0, 0.1));
   EXPECT_TRUE(rig.cable.engaged(0));
   EXPECT_NEAR(rig.cable.length(), rig.wrapped, kTight);
