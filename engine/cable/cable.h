@@ -28,9 +28,11 @@
 //    point, a neighbour's corner: a contact between shapes, which has no taut path) does not
 //    drop it: the polygon HOLDS the chain end it had at the last update until the terminal comes
 //    out, so the length stays continuous (wrapChainHolding, wrap.h).
-//  * A terminal inside the hull of a polygon with no chain to hold (it is joining, or the scene
-//    starts so) has no taut path: the polygon is DROPPED (it leaves the path) and a warning says
-//    so. A dropped polygon that
+//  * A polygon JOINING with a terminal already inside its hull (nothing to hold yet) starts its
+//    chain at its corner deepest on the wrap side of the old segment, the one that crossed it.
+//  * Only a terminal inside a polygon with no corner on the wrap side of its segment has no path
+//    round it at all: the polygon is DROPPED (it leaves the path) and a warning says so (a last
+//    resort, which the rules above leave for degenerate geometry). A dropped polygon that
 //    still cuts its segment REJOINS as soon as a taut path round it exists again and that path is
 //    no longer than the straight segment by more than the drop took out (+ kLengthJump), with a
 //    warning: drop and rejoin together add no length. One that moved through the cable while

@@ -167,6 +167,16 @@ std::optional<double> wrapChainHolding(const Vec2& a, const Vec2& b, std::span<c
   int ta = tangentVertex(a, polygon, side, false), tb = tangentVertex(b, polygon, side, true);
   if (ta < 0) ta = heldFrom;
   if (tb < 0) tb = heldInto;
+  if (ta < 0 || tb < 0) {
+    // Nothing held (the polygon is joining): the corner deepest on the wrap side of the segment
+    // a-b, the one that crossed it, so that the join happens on the old path.
+    int deepest = -1;
+    double depth = 0;
+    for (int i = 0; i < static_cast<int>(polygon.size()); ++i)
+      if (const double d = wrapSideDistance(a, b, polygon[i], side); d > depth) depth = d, deepest = i;
+    if (ta < 0) ta = deepest;
+    if (tb < 0) tb = deepest;
+  }
   if (ta < 0 || tb < 0) return std::nullopt;
   const int n = static_cast<int>(polygon.size()), stepDir = walkStep(side);
   int walk, loops;
