@@ -172,8 +172,10 @@ std::optional<double> wrapChainHolding(const Vec2& a, const Vec2& b, std::span<c
     // a-b, the one that crossed it, so that the join happens on the old path.
     int deepest = -1;
     double depth = 0;
-    for (int i = 0; i < static_cast<int>(polygon.size()); ++i)
-      if (const double d = wrapSideDistance(a, b, polygon[i], side); d > depth) depth = d, deepest = i;
+    for (int i = 0; i < static_cast<int>(polygon.size()); ++i) {
+      const double d = wrapSideDistance(a, b, polygon[i], side);
+      if (d > depth) depth = d, deepest = i;
+    }
     if (ta < 0) ta = deepest;
     if (tb < 0) tb = deepest;
   }

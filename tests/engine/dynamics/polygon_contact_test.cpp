@@ -122,7 +122,8 @@ TEST(PolygonContact, TwoPolygonsCloseTogetherSpinningStayOnTheRope) {
       for (const double spin : {5.0, 20.0})
         for (const int substeps : {1, 4}) {
           SCOPED_TRACE("spacing " + std::to_string(spacing) + " spin " + std::to_string(spin) +
-                       " substeps " + std::to_string(substeps) + (sameSide ? " same" : " opposite"));
+                       " substeps " + std::to_string(substeps) +
+                       (sameSide ? " same" : " opposite"));
           SceneDef scene = base;
           scene.bodies[0].position.x() = scene.joints[0].anchor.x() = -spacing / 2;
           scene.bodies[1].position.x() = scene.joints[1].anchor.x() = spacing / 2;
