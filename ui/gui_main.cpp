@@ -200,6 +200,7 @@ int run(const cablelab::ui::GuiOptions& options) {
       glClear(GL_COLOR_BUFFER_BIT);
     }
     const double now = sandbox.world() ? sandbox.world()->time() : 0;
+    recorder.follow(now);
     const bool recordNow = recorder.due(now);
     const bool screenshot = sandbox.screenshotRequested || sandbox.pngRequest.has_value();
     sandbox.screenshotRequested = false;

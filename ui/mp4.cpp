@@ -63,7 +63,7 @@ Mp4Writer::Mp4Writer(const std::string& path, int width, int height, double fram
     AVDictionary* options = nullptr;
     av_dict_set(&options, "preset", "veryfast", 0);
     av_dict_set(&options, "tune", "animation", 0);
-    av_dict_set(&options, "crf", "20", 0);
+    av_dict_set(&options, "crf", "23", 0);
     code = avcodec_open2(codec_, h264, &options);
     av_dict_free(&options);
     if (code < 0) videoFailure(path, "cannot start the H.264 encoder", code);

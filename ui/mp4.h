@@ -3,7 +3,7 @@
 //
 // Needs: FFmpeg 5.1 (compiled only when CMake finds it: CABLELAB_HAVE_MP4), ui/clip.h. Frames
 // are RGBA, converted to 4:2:0 YUV (BT.601, limited range, tagged so players convert back the
-// same way); sides must be even (clipSize()). Quality: x264's constant-quality mode at CRF 20
+// same way); sides must be even (clipSize()). Quality: x264's constant-quality mode at CRF 23
 // tuned for animation (flat colours, sharp edges), which keeps text and one-pixel lines
 // readable; the index sits at the front of the file ("faststart") so that browsers start
 // playing before the whole file is loaded.

@@ -32,6 +32,10 @@ void Recorder::start(const std::string& path, int width, int height, double fps,
   worker_ = std::thread([this] { work(); });
 }
 
+void Recorder::follow(double now) {
+  if (recording() && now < next_ - frameSeconds_ - 1e-9) next_ = now;
+}
+
 bool Recorder::due(double now) const {
   return recording() && now >= next_ - 1e-9;
 }

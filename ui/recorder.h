@@ -40,6 +40,9 @@ class Recorder {
   /// The clip's size may be a pixel less per side than asked (ui/clip.h, clipSize): crop the
   /// frames to width() x height().
   void start(const std::string& path, int width, int height, double fps, double now);
+  /// The simulated clock went back (a reset, a demo starting again, a rewind): the clip goes on
+  /// from `now`. Call every frame before due().
+  void follow(double now);
   /// True while recording and a frame is due at simulated time `now` (then call add()).
   bool due(double now) const;
   /// Queues a frame for simulated time `now` (cropped by the caller to the recording's size).

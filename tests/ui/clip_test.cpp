@@ -17,7 +17,7 @@
 namespace cablelab::test {
 namespace clip_test {
 
-// H.264 at CRF 20 in 4:2:0 moves flat colours by a few levels and smears the one-pixel edges of
+// H.264 at CRF 23 in 4:2:0 moves flat colours by a few levels and smears the one-pixel edges of
 // thin coloured lines and text: a pixel counts as different beyond kVideoLevels of 255, and a
 // frame matches a render when at most kVideoShare of its pixels do.
 constexpr int kVideoLevels = 48;
@@ -69,6 +69,21 @@ TEST(Clip, TheExtensionPicksTheFormat) {
   EXPECT_EQ(h, 676);
   ui::clipSize(ui::ClipFormat::Gif, w = 671, h = 677);
   EXPECT_EQ(w, 671);
+}
+
+// A demo that starts again (or a reset) sends the simulated clock back: the clip goes on.
+TEST(Recorder, GoesOnRecordingWhenTheClockGoesBack) {
+  ui::Recorder recorder;
+  recorder.start((outputDir("clip") / "restart.gif").string(), 32, 16, 10, 0);
+  int added = 0;
+  for (double t : {0.0, 0.05, 0.1, 0.2, 0.3, 0.0, 0.05, 0.1, 0.2}) {
+    recorder.follow(t);
+    if (recorder.due(t)) recorder.add(movingBands(32, 16, added++), t);
+  }
+  EXPECT_EQ(added, 7);  // 0, 0.1, 0.2, 0.3, then 0, 0.1, 0.2 again
+  EXPECT_FALSE(recorder.stop().empty());
+  EXPECT_FALSE(recorder.failed());
+  EXPECT_EQ(ui::readGif((outputDir("clip") / "restart.gif").string()).frames.size(), 7u);
 }
 
 TEST(Mp4, WriterRoundTripKeepsEveryFrameItsSizeAndItsTime) {
