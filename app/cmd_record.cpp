@@ -33,8 +33,8 @@ struct RecordOptions {
   double time = 5, fps = 30;
 };
 
-/// The --view camera "CX,CY,MPP" (centre in m, metres per pixel), as `gui --frames` reports
-/// it, or the scene's own view fitted to the image when empty.
+/// The --view camera "CX,CY,MPP" (centre in m, metres per pixel), as `gui --frames N --record F`
+/// reports it (record_view), or the scene's own view fitted to the image when empty.
 ui::Camera recordCamera(const std::string& view, const World& world, int width, int height) {
   if (view.empty()) return ui::Camera::fit(world.scene().view, width, height);
   const std::vector<double> v = parseNumberList(view, 3, kCommandLine, "--view", "CX,CY,MPP");
@@ -113,8 +113,9 @@ const bool recordRegistered = registerCommand(
           "frames per second of simulated time, 1..50 for GIF, 1..120 for MP4 (default 30)");
       sub.add_option("--size", o->size, "image size WxH in pixels (default 800x600)");
       sub.add_option("--view", o->view,
-                     "CX,CY,MPP: the view's centre (m) and metres per pixel, as `gui --frames` "
-                     "reports its camera (default: the scene's view fitted to the image)");
+                     "CX,CY,MPP: the view's centre (m) and metres per pixel, as `gui --frames N "
+                     "--record F` reports it (record_view; default: the scene's view fitted to "
+                     "the image)");
       sub.add_option("--set", o->sets, "scene parameter NAME=VALUE (repeatable)");
       return [o]() { return record(*o); };
     });
