@@ -5,6 +5,7 @@ CABLELAB_PACKAGES=(
   libbox2d-dev libeigen3-dev nlohmann-json3-dev libcli11-dev libpng-dev
   libgtest-dev libbenchmark-dev libmujoco-dev
   libsdl2-dev libimgui-dev libstb-dev libosmesa6-dev libgif-dev
+  libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
   xvfb xauth
   python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib
   python3-venv python3-pip python3-setuptools python3-wheel python3-mypy python3-distributed

@@ -1,11 +1,14 @@
 #include "ui/gif.h"
 
+#include "ui/gif_palette.h"
+
 #include <fcntl.h>
 #include <gif_lib.h>
 #include <unistd.h>
 
 #include <cerrno>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -17,6 +20,19 @@ namespace {
 [[noreturn]] void fail(const std::string& path, const std::string& what, int code) {
   const char* reason = GifErrorString(code);
   throw std::runtime_error(path + ": " + what + " (" + (reason ? reason : "giflib error") + ")");
+}
+
+/// The smallest rectangle [x0, x1] x [y0, y1] holding every pixel of `b` that differs from `a`
+/// in colour; a single pixel when none does (a GIF frame cannot be empty).
+void changedRectangle(const Image& a, const Image& b, int& x0, int& y0, int& x1, int& y1) {
+  x0 = b.width, y0 = b.height, x1 = -1, y1 = -1;
+  for (int y = 0; y < b.height; ++y)
+    for (int x = 0; x < b.width; ++x)
+      if (std::memcmp(a.pixel(x, y), b.pixel(x, y), 3) != 0) {
+        x0 = std::min(x0, x), x1 = std::max(x1, x);
+        y0 = std::min(y0, y), y1 = std::max(y1, y);
+      }
+  if (x1 < 0) x0 = y0 = x1 = y1 = 0;
 }
 
 }  // namespace
@@ -62,19 +78,16 @@ void GifWriter::add(const Image& frame) {
   if (frame.width != width_ || frame.height != height_)
     throw std::runtime_error(path_ + ": frame size " + std::to_string(frame.width) + "x" +
                              std::to_string(frame.height) + " differs from the GIF's");
-  const size_t n = static_cast<size_t>(width_) * height_;
-  std::vector<GifByteType> r(n), g(n), b(n), indices(n);
-  for (size_t i = 0; i < n; ++i) {
-    r[i] = frame.rgba[4 * i];
-    g[i] = frame.rgba[4 * i + 1];
-    b[i] = frame.rgba[4 * i + 2];
-  }
+  // Only the rectangle that changed since the last frame (GIF keeps the rest on screen).
+  int x0 = 0, y0 = 0, x1 = width_ - 1, y1 = height_ - 1;
+  if (frames_ > 0) changedRectangle(previous_, frame, x0, y0, x1, y1);
+  previous_ = frame;
+  const int w = x1 - x0 + 1, h = y1 - y0 + 1;
+  const IndexedPixels pixels = indexColours(frame, x0, y0, w, h);
   GifColorType palette[256];
   std::memset(palette, 0, sizeof palette);
-  int colours = 256;
-  if (GifQuantizeBuffer(width_, height_, &colours, r.data(), g.data(), b.data(), indices.data(),
-                        palette) == GIF_ERROR)
-    throw std::runtime_error(path_ + ": colour quantisation failed");
+  for (size_t i = 0; i < pixels.palette.size(); ++i)
+    palette[i] = {pixels.palette[i][0], pixels.palette[i][1], pixels.palette[i][2]};
   // Whole centiseconds per frame, spread so that the total stays on frames * frameSeconds.
   const double end = std::round((frames_ + 1) * frameSeconds_ * 100);
   const int delay = static_cast<int>(end - written_);
@@ -89,9 +102,11 @@ void GifWriter::add(const Image& frame) {
   if (!map) throw std::runtime_error(path_ + ": out of memory for the GIF palette");
   bool ok = EGifPutExtension(gif_, GRAPHICS_EXT_FUNC_CODE, static_cast<int>(length), extension) !=
                 GIF_ERROR &&
-            EGifPutImageDesc(gif_, 0, 0, width_, height_, false, map) != GIF_ERROR;
-  for (int y = 0; ok && y < height_; ++y)
-    ok = EGifPutLine(gif_, indices.data() + static_cast<size_t>(y) * width_, width_) != GIF_ERROR;
+            EGifPutImageDesc(gif_, x0, y0, w, h, false, map) != GIF_ERROR;
+  for (int y = 0; ok && y < h; ++y)
+    ok = EGifPutLine(gif_,
+                     const_cast<GifByteType*>(pixels.indices.data()) + static_cast<size_t>(y) * w,
+                     w) != GIF_ERROR;
   GifFreeMapObject(map);
   if (!ok) fail(path_, "cannot write GIF frame " + std::to_string(frames_), gif_->Error);
   ++frames_;

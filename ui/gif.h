@@ -1,5 +1,6 @@
-// GifWriter: an animated GIF written frame by frame with giflib (Debian's libgif), each frame
-// quantised to its own 256-colour palette by giflib's GifQuantizeBuffer (median cut).
+// GifWriter: an animated GIF written frame by frame with giflib (Debian's libgif). Each frame
+// stores only the rectangle that changed since the one before, in its own palette of its 256
+// most common colours (ui/gif_palette.h).
 //
 // Needs: giflib only (no GL), ui/image.h. Frames must all have the writer's size. The delay
 // of each frame is in GIF's centiseconds; frameSeconds that are not a whole number of them
@@ -10,27 +11,28 @@
 #include <string>
 #include <vector>
 
+#include "ui/clip.h"
 #include "ui/image.h"
 
 struct GifFileType;
 
 namespace cablelab::ui {
 
-class GifWriter {
+class GifWriter : public ClipWriter {
  public:
   /// Opens `path` for a width x height animation at one frame per `frameSeconds`; throws
   /// std::runtime_error naming the path if it cannot be written.
   GifWriter(const std::string& path, int width, int height, double frameSeconds);
-  ~GifWriter();  ///< closes the file if close() was not called (errors then ignored)
+  ~GifWriter() override;  ///< closes the file if close() was not called (errors then ignored)
   GifWriter(const GifWriter&) = delete;
   GifWriter& operator=(const GifWriter&) = delete;
 
   /// Appends one frame (its size must be the writer's); throws std::runtime_error on failure.
-  void add(const Image& frame);
+  void add(const Image& frame) override;
   /// Finishes the file; throws std::runtime_error naming the path on failure.
-  void close();
+  void close() override;
 
-  int frames() const { return frames_; }
+  int frames() const override { return frames_; }
   const std::string& path() const { return path_; }
 
  private:
@@ -40,6 +42,7 @@ class GifWriter {
   double frameSeconds_;
   double written_ = 0;  ///< centiseconds of delay written so far
   int frames_ = 0;
+  Image previous_;  ///< the last frame added: the next one writes only what changed
 };
 
 /// One decoded GIF (for tests and tools): every frame as an RGBA image (frames composed as a

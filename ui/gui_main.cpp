@@ -77,6 +77,9 @@ void openFirstScene(cablelab::ui::Sandbox& sandbox, const cablelab::ui::GuiOptio
 }
 
 cablelab::ui::PanelRect recordArea;  // the window rectangle the recording crops (px)
+/// The view of the last clip started, as `cablelab record --view` takes it: the world point at
+/// the clip's centre (m) and metres per pixel; empty before any.
+std::string recordView;
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0;
@@ -94,7 +97,8 @@ std::string freshName(const std::string& scene, const char* extension) {
   }
 }
 
-/// Starts or stops the GIF recording of the world view (the free area between the panels).
+/// Starts or stops the recording of the world view (the free area between the panels): MP4
+/// where this build has FFmpeg, else GIF, unless `path` names the file.
 void toggleRecording(cablelab::ui::Sandbox& sandbox, cablelab::ui::Recorder& recorder,
                      const std::string& path) {
   using namespace cablelab::ui;
@@ -107,9 +111,19 @@ void toggleRecording(cablelab::ui::Sandbox& sandbox, cablelab::ui::Recorder& rec
   const int w = std::max(16, static_cast<int>(free.width)),
             h = std::max(16, static_cast<int>(free.height));
   try {
-    recorder.start(path.empty() ? freshName(sandbox.sceneName, ".gif") : path, w, h,
+    const char* extension = mp4Available() ? ".mp4" : ".gif";
+    recorder.start(path.empty() ? freshName(sandbox.sceneName, extension) : path, w, h,
                    sandbox.recordFps, sandbox.world() ? sandbox.world()->time() : 0);
-    recordArea = {free.x, free.y, static_cast<float>(w), static_cast<float>(h)};
+    recordArea = {free.x, free.y, static_cast<float>(recorder.width()),
+                  static_cast<float>(recorder.height())};
+    const Camera& c = sandbox.camera;
+    const cablelab::Vec2 centre =
+        c.toWorld(cablelab::Vec2(static_cast<int>(free.x) + 0.5 * recorder.width(),
+                                 static_cast<int>(free.y) + 0.5 * recorder.height()));
+    char view[160];
+    std::snprintf(view, sizeof view, "[%.17g, %.17g, %.17g]", centre.x(), centre.y(),
+                  c.metresPerPixel);
+    recordView = view;
     sandbox.message = "recording " + recorder.path();
   } catch (const std::exception& e) {
     sandbox.error = e.what();
@@ -126,6 +140,7 @@ int run(const cablelab::ui::GuiOptions& options) {
   window.setUiScale(sandbox.uiScale);
   PanelState panelState;
   Recorder recorder;
+  int framesOutOfView = 0;
 
   openFirstScene(sandbox, options);
   bool startRecording = !options.record.empty();
@@ -149,6 +164,15 @@ int run(const cablelab::ui::GuiOptions& options) {
     window.beginFrame();
     drawPanels(sandbox, panelState);
     keepViewFitted(sandbox);  // needs this frame's panel layout
+    // The panels of the first frame decide the recorded area; a clip starts before the frame is
+    // drawn, so that its first frame has the time stamp too.
+    if (startRecording && frame > 0) {
+      toggleRecording(sandbox, recorder, options.record);
+      startRecording = false;
+    } else if (sandbox.recordToggleRequested) {
+      toggleRecording(sandbox, recorder, "");
+    }
+    sandbox.recordToggleRequested = false;
     // The panels' colour everywhere (they draw no background), then the world in the free
     // area only (panels.cpp, kPanelBackground): a clear is a fill, the cheapest pixels.
     const ImVec4 panel = ImGui::GetStyleColorVec4(ImGuiCol_WindowBg);
@@ -158,21 +182,25 @@ int run(const cablelab::ui::GuiOptions& options) {
     if (const cablelab::World* world = sandbox.world()) {
       RenderOptions options = sandbox.renderOptions();
       options.clipToFree = true;
-      sandbox.drawn = drawWorld(*world, sandbox.camera, sandbox.overlay(), options,
-                                ImGui::GetBackgroundDrawList());
+      Overlay overlay = sandbox.overlay();
+      if (recorder.recording()) {  // the time stamp every clip carries (as `cablelab record`)
+        const auto notes = clipNotes(*world, sandbox.sceneName);
+        overlay.notes.insert(overlay.notes.begin(), notes.begin(), notes.end());
+      }
+      sandbox.drawn =
+          drawWorld(*world, sandbox.camera, overlay, options, ImGui::GetBackgroundDrawList());
+      // Frames whose moving parts reach out of the view (a demo should stay in it).
+      const PanelRect f = sandbox.freeArea();
+      const LabelBox& s = sandbox.drawn.scene;
+      if (!s.empty() && (s.x0 < f.x - 1 || s.y0 < f.y - 1 || s.x1 > f.x + f.width + 1 ||
+                         s.y1 > f.y + f.height + 1))
+        ++framesOutOfView;
     } else {
       glClearColor(0.97f, 0.97f, 0.95f, 1);
       glClear(GL_COLOR_BUFFER_BIT);
     }
-    // The panels of the first frame decide the recorded area.
-    if (startRecording && frame > 0) {
-      toggleRecording(sandbox, recorder, options.record);
-      startRecording = false;
-    } else if (sandbox.recordToggleRequested) {
-      toggleRecording(sandbox, recorder, "");
-    }
-    sandbox.recordToggleRequested = false;
     const double now = sandbox.world() ? sandbox.world()->time() : 0;
+    recorder.follow(now);
     const bool recordNow = recorder.due(now);
     const bool screenshot = sandbox.screenshotRequested || sandbox.pngRequest.has_value();
     sandbox.screenshotRequested = false;
@@ -233,10 +261,12 @@ int run(const cablelab::ui::GuiOptions& options) {
     std::printf(
         "{\"frames\": %d, \"fps\": %.17g, \"camera\": [%.17g, %.17g, %.17g], "
         "\"free\": [%g, %g, %g, %g], \"tension_scale\": %.17g, \"overflow\": [%g, %g], "
-        "\"status_overflow\": %g, \"truncated_buttons\": %d}\n",
+        "\"status_overflow\": %g, \"truncated_buttons\": %d, \"restarts\": %d, "
+        "\"frames_out_of_view\": %d%s%s}\n",
         options.frames, m > 0 ? 1 / m : 0.0, c.center.x(), c.center.y(), c.metresPerPixel, f.x, f.y,
         f.width, f.height, sandbox.tensionScale, sandbox.panelOverflow[0], sandbox.panelOverflow[1],
-        sandbox.statusOverflow, sandbox.truncatedButtons);
+        sandbox.statusOverflow, sandbox.truncatedButtons, sandbox.demo.restarts, framesOutOfView,
+        recordView.empty() ? "" : ", \"record_view\": ", recordView.c_str());
   }
   return 0;
 }

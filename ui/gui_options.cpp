@@ -7,6 +7,7 @@
 #include "engine/core/parse.h"
 #include "engine/dynamics/world.h"
 #include "engine/scenes/scene_registry.h"
+#include "ui/clip.h"
 #include "ui/scene_catalog.h"
 
 namespace cablelab::ui {
@@ -27,8 +28,10 @@ void addGuiOptions(CLI::App& app, GuiArguments& args) {
   app.add_option("--ui-scale", args.uiScale,
                  "text and panel scale, 0.5..4 (default: from the display)")
       ->type_name("S");
-  app.add_option("--record", args.record, "record the world view as an animated GIF from frame 1")
-      ->type_name("F.gif");
+  app.add_option("--record", args.record,
+                 "record the world view from frame 1: F.mp4 (H.264, where built with FFmpeg) or "
+                 "F.gif")
+      ->type_name("F.mp4|F.gif");
   app.add_option("--script", args.script,
                  "run the acceptance scenario NAME with synthetic mouse and key events and print "
                  "its JSON report (an unknown NAME lists them)")
@@ -87,7 +90,11 @@ GuiOptions checkGuiArguments(const GuiArguments& args,
   if (!o.screenshot.empty()) requireWritable(o.screenshot, "--screenshot");
   for (const std::string& s : args.sets) o.overrides.push_back(parseSetting(s));
   if (o.unattended) {
-    if (!o.record.empty()) requireWritable(o.record, "--record");
+    if (!o.record.empty()) {
+      if (clipFormatFor(o.record) == ClipFormat::Mp4 && !mp4Available())
+        throw InputError(kCommandLine, "--record", kNoMp4);
+      requireWritable(o.record, "--record");
+    }
     // The scene as `cablelab run` and `snapshot` build it: the same checks, the same line.
     World(loadScene(o.scene, o.overrides), o.scene);
   }

@@ -36,9 +36,13 @@ float barRowHeight(const Sandbox& sandbox) {
 }
 
 Camera fitToContent(const World& world, const Camera& camera, const PanelRect& area,
-                    float bottomReserve) {
+                    float bottomReserve, const WorldBounds& stage) {
   Camera fitted = camera;
-  const WorldBounds b = sceneBounds(world);
+  WorldBounds b = sceneBounds(world);
+  if (!stage.empty()) {
+    b.include(stage.lo);
+    b.include(stage.hi);
+  }
   const float height = area.height - bottomReserve;
   if (b.empty() || area.width < 40 || height < 40) return fitted;
   const Vec2 size = (b.hi - b.lo).cwiseMax(Vec2(1e-3, 1e-3));

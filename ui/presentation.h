@@ -14,6 +14,7 @@
 #pragma once
 
 #include "ui/sandbox.h"
+#include "ui/scene_bounds.h"
 
 namespace cablelab::ui {
 
@@ -29,9 +30,10 @@ void keepViewFitted(Sandbox& sandbox);
 /// a presentation fit (0 when no colour bar is drawn).
 float barRowHeight(const Sandbox& sandbox);
 
-/// The camera that shows the scene's moving parts as large as `area` (px) allows, with a margin,
-/// keeping `bottomReserve` px at the bottom of the area for the colour bar's row.
+/// The camera that shows the scene's moving parts (and `stage`, a demo's whole run, when not
+/// empty) as large as `area` (px) allows, with a margin, keeping `bottomReserve` px at the
+/// bottom of the area for the colour bar's row.
 Camera fitToContent(const World& world, const Camera& camera, const PanelRect& area,
-                    float bottomReserve);
+                    float bottomReserve, const WorldBounds& stage = {});
 
 }  // namespace cablelab::ui

@@ -8,20 +8,32 @@ namespace {
 constexpr size_t kMaxQueued = 8;  // frames waiting for the encoder before add() blocks
 }
 
+std::vector<std::string> clipNotes(const World& world, const std::string& fallbackName) {
+  char time[48];
+  std::snprintf(time, sizeof time, "t = %.2f s", world.time());
+  return {world.scene().name.empty() ? fallbackName : world.scene().name, time};
+}
+
 Recorder::~Recorder() {
   if (recording()) stop();
 }
 
 void Recorder::start(const std::string& path, int width, int height, double fps, double now) {
   if (recording()) stop();
-  writer_ = std::make_unique<GifWriter>(path, width, height, 1 / fps);
+  clipSize(clipFormatFor(path), width, height);
+  writer_ = openClip(path, width, height, 1 / fps);
   path_ = path;
   error_.clear();
+  failed_ = false;
   width_ = width, height_ = height, queued_ = 0;
   frameSeconds_ = 1 / fps;
   next_ = now;
   finishing_ = false;
   worker_ = std::thread([this] { work(); });
+}
+
+void Recorder::follow(double now) {
+  if (recording() && now < next_ - frameSeconds_ - 1e-9) next_ = now;
 }
 
 bool Recorder::due(double now) const {
@@ -74,7 +86,8 @@ std::string Recorder::stop() {
   }
   const int frames = writer_->frames();
   writer_.reset();
-  if (!error_.empty()) return "recording failed: " + error_;
+  failed_ = !error_.empty();
+  if (failed_) return "recording failed: " + error_;
   char text[512];
   std::snprintf(text, sizeof text, "recorded %d frames (%.2f s) to %s", frames,
                 frames * frameSeconds_, path_.c_str());

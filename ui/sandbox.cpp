@@ -55,6 +55,7 @@ bool Sandbox::adopt(SceneDef def, const std::string& name, bool fitCamera) {
   selectedCable = world_->cableCount() > 0 ? 0 : -1;
   selectedBody = -1;
   follow = false;
+  demo = startDemo(scene, name);
   tensionHistory.assign(world_->cableCount(), std::vector<float>(kHistory, 0.0f));
   historyHead = 0;
   sceneTensionScale = loadTensionScale(scene);
@@ -127,6 +128,8 @@ void Sandbox::reset() {
     def.substeps = substeps;
     def.gravity = gravity;
     world_ = std::make_unique<World>(def, sceneName);
+    demo.moved = false;
+    demo.endedFor = 0;
     gesture = {};
     drag = {};
     for (auto& h : tensionHistory) std::fill(h.begin(), h.end(), 0.0f);
@@ -174,6 +177,10 @@ void Sandbox::advance(double frameSeconds, bool fixedStep) {
       world_->step(dt, substeps);
       inputsAfterStep_ = world_->history().inputs().size();
       afterStep();
+      if (demo.loops && drag.body < 0 && runEnded(demo, *world_, dt)) {
+        restartDemo();
+        break;
+      }
     }
   } catch (const std::exception& e) {
     paused = true;
@@ -183,6 +190,13 @@ void Sandbox::advance(double frameSeconds, bool fixedStep) {
   checkWarnings();
   if (follow && selectedBody >= 0 && selectedBody < world_->bodyCount())
     camera.center = centreFor(world_->body(selectedBody).position);
+}
+
+void Sandbox::restartDemo() {
+  const int restarts = demo.restarts + 1;
+  reset();
+  demo.restarts = restarts;
+  message = "The run has ended, so it starts again (run " + std::to_string(restarts + 1) + ").";
 }
 
 void Sandbox::checkWarnings() {
@@ -435,7 +449,7 @@ void Sandbox::fitView() {
   viewFitted = true;
   if (!world_ || f.width < 40 || f.height < 40) return;
   if (presentation) {
-    camera = fitToContent(*world_, camera, f, barRowHeight(*this));
+    camera = fitToContent(*world_, camera, f, barRowHeight(*this), demo.stage);
     return;
   }
   // The scene's view grown to hold the moving parts, above the colour bar's row.
@@ -444,6 +458,10 @@ void Sandbox::fitView() {
   const double aspect = area.width / area.height;
   const Vec2 half(0.5 * scene.view.height * aspect, 0.5 * scene.view.height);
   WorldBounds b = sceneBounds(*world_, 0.04 * scene.view.height);
+  if (!demo.stage.empty()) {  // the whole run of a demo (ui/demo_loop.h)
+    b.include(demo.stage.lo);
+    b.include(demo.stage.hi);
+  }
   b.include(scene.view.center - half);
   b.include(scene.view.center + half);
   camera.metresPerPixel =

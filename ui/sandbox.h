@@ -15,6 +15,7 @@
 #include "engine/dynamics/world.h"
 #include "ui/cable_spans.h"
 #include "ui/camera.h"
+#include "ui/demo_loop.h"
 #include "ui/event_log.h"
 #include "ui/overlay.h"
 #include "ui/plain_words.h"
@@ -137,6 +138,8 @@ class Sandbox {
   Vec2 gravity = Vec2(0, -9.81);  ///< m/s^2
   Camera camera;
   bool follow = false;  ///< the camera keeps the selected body at the view centre
+  /// A built-in demo that ends starts again, and its view holds its whole run (ui/demo_loop.h).
+  DemoRun demo;
   bool showHelp = false;
   std::string error;           ///< last error, shown until dismissed
   std::string message;         ///< last notice (saved a file, recording), shown in the status
@@ -217,6 +220,7 @@ class Sandbox {
  private:
   bool adopt(SceneDef def, const std::string& name, bool fitCamera);
   void afterStep();
+  void restartDemo();
   void applyDrag();
   void sayPose(const PoseResult& pose);
   void settleBeforeRunning();

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <string>
 
+#include "ui/clip.h"
 #include "ui/input.h"
 #include "ui/panel_sections.h"
 #include "ui/scene_catalog.h"
@@ -128,14 +129,17 @@ void runPanel(Sandbox& sandbox) {
   const bool recording = sandbox.recording;
   if (recording) ImGui::PushStyleColor(ImGuiCol_Button, IM_COL32(220, 70, 60, 255));
   char label[64];
-  std::snprintf(label, sizeof label, recording ? "Stop (%d frames)###rec" : "Record GIF###rec",
+  std::snprintf(label, sizeof label, recording ? "Stop (%d frames)###rec" : "Record clip###rec",
                 sandbox.recordedFrames);
   sameLineIfRoom(buttonWidth(label));
   if (ImGui::Button(label)) sandbox.recordToggleRequested = true;
   if (recording) ImGui::PopStyleColor();
-  tooltip(
-      "Record the world view as an animated GIF (F9), one frame per 1/fps s of simulated "
-      "time: it plays at the simulation's own speed. Saved in the working directory.");
+  tooltip(mp4Available()
+              ? "Record the world view as an MP4 video (F9), one frame per 1/fps s of simulated "
+                "time: it plays at the simulation's own speed. Saved in the working directory."
+              : "Record the world view as an animated GIF (F9), one frame per 1/fps s of simulated "
+                "time: it plays at the simulation's own speed. Saved in the working directory. "
+                "(This build has no FFmpeg, so no MP4.)");
   float fps = static_cast<float>(sandbox.recordFps);
   sameLineIfRoom(ImGui::GetFontSize() * 3.5f + ImGui::GetStyle().ItemInnerSpacing.x +
                  ImGui::CalcTextSize("fps").x);
@@ -144,7 +148,7 @@ void runPanel(Sandbox& sandbox) {
   if (ImGui::DragFloat("fps", &fps, 0.5f, 5, 50, "%.0f"))
     sandbox.recordFps = std::clamp(static_cast<double>(fps), 5.0, 50.0);
   if (recording) ImGui::EndDisabled();
-  tooltip("GIF frames per simulated second (5..50).");
+  tooltip("Clip frames per simulated second (5..50).");
 }
 
 void integrationPanel(Sandbox& sandbox) {

@@ -12,9 +12,14 @@ namespace presentation_test {  // named: unity batches join test files
 
 constexpr double kPixel = 1.0;
 
-/// The scene's moving parts on screen (px).
+/// The scene's moving parts on screen (px), with the whole run of a demo that ends (its stage,
+/// ui/demo_loop.h).
 LabelBox onScreen(const Sandbox& sandbox) {
-  const WorldBounds b = sceneBounds(*sandbox.world());
+  WorldBounds b = sceneBounds(*sandbox.world());
+  if (!sandbox.demo.stage.empty()) {
+    b.include(sandbox.demo.stage.lo);
+    b.include(sandbox.demo.stage.hi);
+  }
   const Vec2 lo = sandbox.camera.toScreen(b.lo), hi = sandbox.camera.toScreen(b.hi);
   return {lo.x(), hi.y(), hi.x(), lo.y()};
 }

@@ -1,0 +1,231 @@
+// Clips (ui/clip.h): the MP4 writer decoded back with FFmpeg, `cablelab record --out F.mp4`
+// against offscreen renders of the same moments, the GIF palette that keeps light fills, and the
+// size of an MP4 against the GIF of the same clip.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "tests/ui/test_support.h"
+#include "ui/camera.h"
+#include "ui/clip.h"
+#include "ui/gif.h"
+#include "ui/gif_palette.h"
+#include "ui/offscreen.h"
+#include "ui/recorder.h"
+#include "ui/tension_scale.h"
+
+namespace cablelab::test {
+namespace clip_test {
+
+// H.264 at CRF 23 in 4:2:0 moves flat colours by a few levels and smears the one-pixel edges of
+// thin coloured lines and text: a pixel counts as different beyond kVideoLevels of 255, and a
+// frame matches a render when at most kVideoShare of its pixels do.
+constexpr int kVideoLevels = 48;
+constexpr double kVideoShare = 0.01;
+
+/// Flat colour bands whose boundary moves with `k` (a frame a codec cannot mistake for another).
+ui::Image movingBands(int width, int height, int k) {
+  ui::Image image;
+  image.width = width;
+  image.height = height;
+  image.rgba.assign(static_cast<size_t>(width) * height * 4, 255);
+  static const std::uint8_t kColours[4][3] = {
+      {250, 20, 20}, {20, 200, 40}, {30, 40, 220}, {245, 245, 240}};
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const int band = ((x + 4 * k) / 16 + y / 16) % 4;
+      std::copy(kColours[band], kColours[band] + 3, image.pixel(x, y));
+    }
+  return image;
+}
+
+/// The frame `cablelab record` draws of `world` at its time: its camera, colour scale and notes.
+ui::Image recordedLook(const World& world, const std::string& name, int width, int height) {
+  ui::RenderOptions options;
+  options.tensionScale = ui::loadTensionScale(world.scene());
+  options.markerLegend = true;
+  ui::Overlay overlay;
+  overlay.notes = ui::clipNotes(world, name);
+  return ui::renderSnapshot(world, ui::Camera::fit(world.scene().view, width, height), overlay,
+                            options);
+}
+
+double share(const ui::Image& a, const ui::Image& b, int levels, const std::string& diff = {}) {
+  return static_cast<double>(countDiffering(a, b, levels, diff)) / (a.width * a.height);
+}
+
+#define REQUIRE_MP4() \
+  if (!ui::mp4Available()) GTEST_SKIP() << "built without FFmpeg: no MP4"
+
+TEST(Clip, TheExtensionPicksTheFormat) {
+  EXPECT_EQ(ui::clipFormatFor("a/b.mp4"), ui::ClipFormat::Mp4);
+  EXPECT_EQ(ui::clipFormatFor("B.MP4"), ui::ClipFormat::Mp4);
+  EXPECT_EQ(ui::clipFormatFor("b.gif"), ui::ClipFormat::Gif);
+  EXPECT_EQ(ui::clipFormatFor("b.mp4.gif"), ui::ClipFormat::Gif);
+  EXPECT_EQ(ui::clipFormatFor("clip"), ui::ClipFormat::Gif);  // as `record` always wrote
+  int w = 671, h = 677;
+  ui::clipSize(ui::ClipFormat::Mp4, w, h);
+  EXPECT_EQ(w, 670);
+  EXPECT_EQ(h, 676);
+  ui::clipSize(ui::ClipFormat::Gif, w = 671, h = 677);
+  EXPECT_EQ(w, 671);
+}
+
+// A demo that starts again (or a reset) sends the simulated clock back: the clip goes on.
+TEST(Recorder, GoesOnRecordingWhenTheClockGoesBack) {
+  ui::Recorder recorder;
+  recorder.start((outputDir("clip") / "restart.gif").string(), 32, 16, 10, 0);
+  int added = 0;
+  for (double t : {0.0, 0.05, 0.1, 0.2, 0.3, 0.0, 0.05, 0.1, 0.2}) {
+    recorder.follow(t);
+    if (recorder.due(t)) recorder.add(movingBands(32, 16, added++), t);
+  }
+  EXPECT_EQ(added, 7);  // 0, 0.1, 0.2, 0.3, then 0, 0.1, 0.2 again
+  EXPECT_FALSE(recorder.stop().empty());
+  EXPECT_FALSE(recorder.failed());
+  EXPECT_EQ(ui::readGif((outputDir("clip") / "restart.gif").string()).frames.size(), 7u);
+}
+
+TEST(Mp4, WriterRoundTripKeepsEveryFrameItsSizeAndItsTime) {
+  REQUIRE_MP4();
+  const std::string path = (outputDir("clip") / "bands.mp4").string();
+  constexpr int kFrames = 40, kWidth = 96, kHeight = 64;
+  constexpr double kFps = 25;
+  {
+    auto mp4 = ui::openClip(path, kWidth, kHeight, 1 / kFps);
+    for (int k = 0; k < kFrames; ++k) mp4->add(movingBands(kWidth, kHeight, k));
+    mp4->close();
+    EXPECT_EQ(mp4->frames(), kFrames);
+  }
+  const ui::DecodedClip clip = ui::readClip(path);
+  ASSERT_EQ(clip.frames.size(), static_cast<size_t>(kFrames));
+  for (int k = 0; k < kFrames; ++k) {
+    ASSERT_EQ(clip.frames[k].width, kWidth);
+    ASSERT_EQ(clip.frames[k].height, kHeight);
+    EXPECT_NEAR(clip.times[k], k / kFps, 1e-6) << "frame " << k;
+    // Frame k is band picture k, not its neighbour (4 px apart).
+    EXPECT_LT(share(clip.frames[k], movingBands(kWidth, kHeight, k), kVideoLevels), 0.03) << k;
+    EXPECT_GT(share(clip.frames[k], movingBands(kWidth, kHeight, k + 1), kVideoLevels), 0.1) << k;
+  }
+  ui::writePng(clip.frames[20], outputDir("clip") / "bands-20.png");
+}
+
+TEST(Mp4, OddSidesAndUnwritablePathsAreRefused) {
+  REQUIRE_MP4();
+  EXPECT_THROW(ui::openClip((outputDir("clip") / "odd.mp4").string(), 95, 64, 0.04),
+               std::runtime_error);
+  EXPECT_THROW(ui::openClip("/nonexistent/dir/x.mp4", 96, 64, 0.04), std::runtime_error);
+}
+
+TEST(RecordCli, Mp4OfHexagonMatchesOffscreenRendersAtItsFramesTimes) {
+  REQUIRE_MP4();
+  const std::string out = (outputDir("clip") / "hexagon.mp4").string();
+  const RunResult r =
+      run(std::string(CABLELAB_CLI) + " record hexagon --out " + out + " --time 2 --size 320x240",
+          "record_hexagon_mp4");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const ui::DecodedClip clip = ui::readClip(out);
+  ASSERT_EQ(clip.frames.size(), 61u);  // t = 0, 1/30, ..., 2 s
+  EXPECT_EQ(clip.frames[0].width, 320);
+  EXPECT_EQ(clip.frames[0].height, 240);
+  EXPECT_NEAR(clip.times[60], 2.0, 1e-6);
+  for (int k : {0, 15, 45, 60}) {
+    const auto world = sceneAt("hexagon", k / 30.0);
+    const ui::Image expected = recordedLook(*world, "hexagon", 320, 240);
+    const std::string stem = (outputDir("clip") / ("hexagon-" + std::to_string(k))).string();
+    ui::writePng(clip.frames[k], stem + ".png");
+    EXPECT_LT(share(clip.frames[k], expected, kVideoLevels, stem + "-diff.png"), kVideoShare)
+        << "frame " << k << " against the render at " << k / 30.0 << " s";
+    // A third of a second earlier is visibly another picture (the check can fail).
+    if (k >= 15) {
+      const auto before = sceneAt("hexagon", (k - 10) / 30.0);
+      EXPECT_GT(share(clip.frames[k], recordedLook(*before, "hexagon", 320, 240), kVideoLevels),
+                2 * kVideoShare)
+          << "frame " << k;
+    }
+  }
+}
+
+TEST(RecordCli, Mp4IsATenthOfTheGifOfTheSameClip) {
+  REQUIRE_MP4();
+  const std::string base = std::string(CABLELAB_CLI) + " record pulley --time 4.7 --size 670x676";
+  const auto dir = outputDir("clip");
+  ASSERT_EQ(run(base + " --out " + (dir / "pulley.mp4").string(), "record_pulley_mp4").exitCode, 0);
+  ASSERT_EQ(run(base + " --out " + (dir / "pulley.gif").string(), "record_pulley_gif").exitCode, 0);
+  const auto mp4 = std::filesystem::file_size(dir / "pulley.mp4");
+  const auto gif = std::filesystem::file_size(dir / "pulley.gif");
+  std::cout << "pulley 4.7 s at 670x676: MP4 " << mp4 << " bytes, GIF " << gif << " bytes\n";
+  EXPECT_LE(10 * mp4, gif);
+  EXPECT_EQ(ui::readClip((dir / "pulley.mp4").string()).frames.size(), 142u);  // 4.7 s x 30 + 1
+}
+
+TEST(RecordCli, GifFramesKeepTheLightFillsOfTheRender) {
+  // The weight's light fill and the background survive the palette: the GIF's frames are the
+  // renders to a few levels (a median cut merged the fill into the background).
+  const std::string out = (outputDir("clip") / "hexagon.gif").string();
+  const RunResult r =
+      run(std::string(CABLELAB_CLI) + " record hexagon --out " + out + " --time 1 --size 320x240",
+          "record_hexagon_gif");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const ui::GifAnimation gif = ui::readGif(out);
+  ASSERT_EQ(gif.frames.size(), 31u);
+  for (int k : {0, 30}) {
+    const auto world = sceneAt("hexagon", k / 30.0);
+    const ui::Image expected = recordedLook(*world, "hexagon", 320, 240);
+    ui::writePng(gif.frames[k], outputDir("clip") / ("hexagon-gif-" + std::to_string(k) + ".png"));
+    EXPECT_LT(share(gif.frames[k], expected, 12), 0.005) << "frame " << k;
+  }
+}
+
+TEST(GifPalette, KeepsTheCommonColoursExactlyAndMapsRareOnesToTheNearest) {
+  // 300 flat colours: the 256 commonest come back exactly, the rest as a near one.
+  ui::Image image;
+  image.width = 300;
+  image.height = 20;
+  image.rgba.assign(300 * 20 * 4, 255);
+  for (int x = 0; x < 300; ++x)
+    for (int y = 0; y < 20; ++y) {  // columns past 255: one pixel each, the rest column 0's
+      const int colour = x < 256 || y == 0 ? x : 0;
+      std::uint8_t* p = image.pixel(x, y);
+      p[0] = static_cast<std::uint8_t>(8 * (colour % 32) + 3);
+      p[1] = static_cast<std::uint8_t>(8 * (colour / 32) + 3);
+      p[2] = 100;
+    }
+  const ui::IndexedPixels indexed = ui::indexColours(image, 0, 0, 300, 20);
+  ASSERT_EQ(indexed.palette.size(), 256u);
+  for (int x = 0; x < 256; ++x) {
+    const auto& c = indexed.palette[indexed.indices[5 * 300 + x]];
+    EXPECT_EQ(c[0], image.pixel(x, 5)[0]) << x;
+    EXPECT_EQ(c[1], image.pixel(x, 5)[1]) << x;
+    EXPECT_EQ(c[2], 100) << x;
+  }
+  for (int x = 256; x < 300; ++x) {  // the nearest of the 256: 8 levels away at most per channel
+    const auto& c = indexed.palette[indexed.indices[x]];
+    EXPECT_LE(std::abs(c[0] - image.pixel(x, 0)[0]) + std::abs(c[1] - image.pixel(x, 0)[1]), 64)
+        << x;
+  }
+}
+
+TEST(RecordCli, Mp4ArgumentsAreCheckedWithOneLine) {
+  const std::string out = (outputDir("clip") / "bad.mp4").string();
+  std::vector<std::string> bad = {"hexagon --out " + out + " --fps 121 --time 0.1",
+                                  "hexagon --out " + out + " --view 1,2 --time 0.1",
+                                  "hexagon --out " + out + " --view 0,0,-1 --time 0.1",
+                                  "hexagon --out /nonexistent/dir/clip.mp4 --time 0.1"};
+  if (ui::mp4Available()) bad.push_back("hexagon --out " + out + " --size 321x240 --time 0.1");
+  for (const std::string& args : bad) {
+    const RunResult r = run(std::string(CABLELAB_CLI) + " record " + args, "record_bad_mp4");
+    EXPECT_EQ(r.exitCode, 2) << args << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("command line: ", 0), 0u) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+  }
+  if (!ui::mp4Available()) {  // says why, and what to do
+    const RunResult r =
+        run(std::string(CABLELAB_CLI) + " record hexagon --time 0.1 --out " + out, "record_nomp4");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("FFmpeg"), std::string::npos) << r.err;
+  }
+}
+
+}  // namespace clip_test
+}  // namespace cablelab::test
