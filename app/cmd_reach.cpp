@@ -83,6 +83,42 @@ void writeReachPng(const std::string& path, const ReachResult& r, int grid, doub
 }
 #endif
 
+/// `reach --angles`: one sweep per box angle, each target asked for (x, y, angle).
+int reachAtAngles(ReachOptions options, const HandModel& hand, const std::vector<double>& angles,
+                  const std::string& csvPath, const std::string& png, const std::string& scheduler) {
+  if (!scheduler.empty()) badOption("--angles", "cannot be combined with --scheduler");
+  if (!png.empty()) badOption("--angles", "cannot be combined with --png");
+  std::unique_ptr<std::ofstream> csv;
+  if (!csvPath.empty()) {
+    csv = std::make_unique<std::ofstream>(openOutputFile(csvPath, "--csv"));
+    *csv << "angle,x,y,object_reached,fingertip_reachable\n";
+  }
+  Progress progress("reach", static_cast<long>(angles.size()) * options.grid * options.grid);
+  nlohmann::json results = nlohmann::json::array();
+  long before = 0;
+  for (const double angle : angles) {
+    options.angle = angle;
+    const ReachResult r = runReach(options, hand, [&](long done, long) {
+      progress.update(before + done);
+    });
+    before += static_cast<long>(r.targets.size());
+    nlohmann::json j = reachSummary(r, options);
+    j["angle"] = angle;
+    results.push_back(j);
+    char line[160];
+    for (const ReachTarget& t : r.targets)
+      if (csv) {
+        std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%d,%d\n", angle, t.point.x(),
+                      t.point.y(), int(objectReached(r, t)), int(t.fingertip));
+        *csv << line;
+      }
+  }
+  progress.done();
+  if (csv) finishOutputFile(*csv, csvPath, "--csv");
+  printJson(nlohmann::json{{"angles", results}}.dump());
+  return 0;
+}
+
 const bool reachRegistered = registerCommand(
     "reach", "Box positions the hand's controller reaches vs the fingertips' range (fig. 4-4)",
     [](CLI::App& sub) {
@@ -91,6 +127,7 @@ const bool reachRegistered = registerCommand(
         std::string model = "simulation", csv, png, scheduler;
         bool pd = false;
         std::vector<std::string> sets;
+        std::string angles;
       };
       auto o = std::make_shared<Options>();
       sub.add_option("--grid", o->grid, "N: try an N x N grid of targets")->capture_default_str();
@@ -105,6 +142,9 @@ const bool reachRegistered = registerCommand(
       sub.add_option("--scheduler", o->scheduler,
                      "Run the targets on this Dask scheduler's workers (tcp://HOST:PORT; they "
                      "need the cablelab Python module); same JSON and CSV");
+      sub.add_option("--angles", o->angles,
+                     "A,B,...: the reach at each of these box angles (rad; needs --set turn=1 "
+                     "unless 0): JSON {\"angles\": [one result per angle]}, CSV column angle");
       sub.add_option("--set", o->sets,
                      "Hand scene parameter NAME=VALUE (repeatable; as `run hand`), e.g. turn=1");
       return [o] {
@@ -112,6 +152,9 @@ const bool reachRegistered = registerCommand(
         for (const std::string& s : o->sets) overrides.push_back(parseSetting(s));
         const HandModel hand = handModelWithSettings(overrides);
         const ReachOptions options = reachOptions(o->grid, o->model, o->pd);
+        if (!o->angles.empty())
+          return reachAtAngles(options, hand, reachAngles(o->angles, hand), o->csv, o->png,
+                               o->scheduler);
         // The Dask workers build the default hand (python/cablelab/_reach_on_dask.py).
         if (!o->scheduler.empty() && !o->sets.empty())
           badOption("--set", "cannot be combined with --scheduler");

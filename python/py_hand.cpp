@@ -95,6 +95,8 @@ HandModel(stiffness=300) changes one from the default.)doc");
     addField(model, n, "lower", &HandModel::lower, R::Finite,
              "joint lower limits, 6 (rad, m), controller order");
     addField(model, n, "upper", &HandModel::upper, R::Finite, "joint upper limits, 6 (rad, m)");
+    addField(model, n, "mu", &HandModel::friction, R::NonNegative,
+             "membrane-box friction at the box's corners (the scene's mu; 0: none, the thesis's)");
     model.def_readwrite("turn", &HandModel::turn,
                         "the box may turn (the scene's turn=1); track() then takes an angle");
     addValueClassMethods(model, n);

@@ -22,6 +22,9 @@ namespace {
 constexpr float kTargetRange = 1.0f;  // m, the target sliders' range about the origin
 constexpr Colour kPredictionColour{0.0f, 0.55f, 0.55f, 1.0f};
 constexpr Colour kForceColour{0.1f, 0.3f, 0.85f, 1.0f};
+constexpr Colour kAngleColour{0.85f, 0.1f, 0.55f, 1.0f};  // the target's (ui/sandbox.cpp)
+constexpr double kAngleArmPixels = 60, kAngleGrabPixels = 12;  // the handle's arm and reach
+constexpr float kAngleRange = 0.6f;  // rad, the angle field's range
 
 // ---------------------------------------------------------------------------------------------
 // Live time plot: several series against time in one frame, with the time axis in seconds.
@@ -162,6 +165,9 @@ std::unique_ptr<HandControlState> makeHandState(const World& world) {
   h->model.preload = world.cable(band).preload();
   h->model.boxMass = world.scene().bodies[box].mass;
   h->model.boxDamping = world.scene().bodies[box].linearDamping;
+  h->model.turn = !world.scene().bodies[box].fixedRotation;
+  const CableDef& membrane = world.cable(band).def();
+  if (!membrane.pulleys.empty()) h->model.friction = membrane.pulleys[0].mu;
   h->newGrasp(world);
   if (!h->grasp) return nullptr;  // no hand joints: not the hand
   return h;
@@ -180,6 +186,7 @@ void handBeforeStep(Sandbox& sandbox, World& world, HandControlState& h) {
     h.rampLast.reset();
   }
   // No target (or the loop switched off): the engine's sequence holds the hand.
+  if (h.model.turn) h.grasp->setTargetAngle(h.targetAngle);
   h.grasp->beforeStep(world, h.enabled ? sandbox.target : std::nullopt);
   const Vec2 box = world.body(h.box()).position;
   if (h.grasp->updates() != h.seenUpdates) {
@@ -265,6 +272,13 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
       h.rampStart = -1;
     }
     tooltip("Target x and y (m).");
+    if (h.model.turn) {
+      float angle = static_cast<float>(h.targetAngle);
+      ImGui::SetNextItemWidth(-ImGui::CalcTextSize("box angle").x - ImGui::GetStyle().ItemSpacing.x);
+      if (ImGui::SliderFloat("box angle", &angle, -kAngleRange, kAngleRange, "%.3f rad"))
+        h.targetAngle = angle;
+      tooltip("The angle to turn the box to (rad), or drag the handle on the target's arm.");
+    }
   }
   float ramp[3] = {static_cast<float>(h.rampTo.x()), static_cast<float>(h.rampTo.y()),
                    static_cast<float>(h.rampSeconds)};
@@ -594,6 +608,11 @@ void controllerOverlay(const Sandbox& sandbox, Overlay& overlay) {
   const World* world = sandbox.world();
   if (!world || !sandbox.controller) return;
   if (const HandControlState* h = sandbox.controller->hand.get()) {
+    if (const std::optional<Vec2> handle = targetAngleHandle(sandbox)) {
+      overlay.arrows.push_back({*sandbox.target, *handle, "", kAngleColour});
+      overlay.keys.push_back(
+          {Overlay::Key::Marker::Arrow, "target angle (drag its tip to turn it)", kAngleColour});
+    }
     if (h->prediction.valid) {
       // Unlabelled cross, its label below it: the target's label sits above the same spot.
       overlay.targets.push_back({h->prediction.box, "", kPredictionColour});
@@ -618,6 +637,27 @@ void controllerOverlay(const Sandbox& sandbox, Overlay& overlay) {
     overlay.arrows.push_back({n.p, n.p + metresPerNewton * n.force, text, kForceColour});
     overlay.keys.push_back({Overlay::Key::Marker::Arrow, "membrane model force", kForceColour});
   }
+}
+
+std::optional<Vec2> targetAngleHandle(const Sandbox& sandbox) {
+  const HandControlState* h = sandbox.controller ? sandbox.controller->hand.get() : nullptr;
+  if (!h || !h->model.turn || !sandbox.target) return std::nullopt;
+  const double arm = kAngleArmPixels * sandbox.camera.metresPerPixel;
+  return *sandbox.target + arm * Vec2(std::cos(h->targetAngle), std::sin(h->targetAngle));
+}
+
+bool grabsTargetAngleHandle(const Sandbox& sandbox, const Vec2& point) {
+  const std::optional<Vec2> handle = targetAngleHandle(sandbox);
+  return handle && (*handle - point).norm() <= kAngleGrabPixels * sandbox.camera.metresPerPixel;
+}
+
+void dragTargetAngle(Sandbox& sandbox, const Vec2& point) {
+  HandControlState* h = sandbox.controller ? sandbox.controller->hand.get() : nullptr;
+  if (!h || !h->model.turn || !sandbox.target) return;
+  const Vec2 arm = point - *sandbox.target;
+  if (arm.norm() < 1e-12) return;
+  h->targetAngle = std::clamp(std::atan2(arm.y(), arm.x()), -double(kAngleRange),
+                              double(kAngleRange));
 }
 
 bool loadFitIntoBand(Sandbox& sandbox, const std::string& path, std::string& message) {

@@ -68,6 +68,9 @@ struct HandControlState {
   Vec2 rampFrom = Vec2::Zero(), rampTo = Vec2(0.1, 0.1);
   std::optional<Vec2> rampLast;  ///< the target the ramp set last (a different one: a click)
   PanelRect plotRect;            ///< screen rectangle of the plots (for the PNG export)
+  /// The box's target angle (rad) when it may turn (model.turn, the scene's turn=1): the field
+  /// in the panel, or the handle on the target marker's arm in the view.
+  double targetAngle = 0;
 
   /// The engine's controller (gains from `params`, `pid` and `ki`).
   const HandController& controller() const { return grasp->controller(); }
@@ -121,6 +124,14 @@ void controllerAfterStep(Sandbox& sandbox, const World& world);
 
 /// Adds the controller's drawings (statics prediction, model force) to `overlay`.
 void controllerOverlay(const Sandbox& sandbox, Overlay& overlay);
+
+/// The handle at the end of the target marker's arm (m), which turns the box's target angle:
+/// shown on the hand with a box that may turn, and a target.
+std::optional<Vec2> targetAngleHandle(const Sandbox& sandbox);
+/// Whether a press at `point` (m) grabs that handle.
+bool grabsTargetAngleHandle(const Sandbox& sandbox, const Vec2& point);
+/// Points the target angle from the target towards `point` (m) (the handle dragged there).
+void dragTargetAngle(Sandbox& sandbox, const Vec2& point);
 
 /// Loads `cablelab fit` output into the membrane scene's band (World::setCableParameters): k,
 /// preload, rest length |AB|; `message` says what happened. False on any error (bad file, not

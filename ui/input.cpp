@@ -5,6 +5,7 @@
 #include <iterator>
 
 #include "ui/authoring.h"
+#include "ui/controller_panel.h"
 #include "ui/presentation.h"
 #include "ui/timeline_panel.h"
 
@@ -56,6 +57,10 @@ bool overPanel(const Sandbox& sandbox, const Vec2& mouse) {
 void leftDown(Sandbox& sandbox, World& world, const Vec2& mouse, const Vec2& point) {
   const SDL_Keymod mods = SDL_GetModState();
   if (authoringClick(sandbox, point, false, mods & KMOD_SHIFT, mods & KMOD_ALT)) return;
+  if (grabsTargetAngleHandle(sandbox, point)) {  // the hand's target angle (controller_panel.h)
+    sandbox.gesture = {Gesture::Kind::TurnTarget, mouse, Vec2::Zero()};
+    return;
+  }
   const int body = sandbox.bodyAt(point, true);
   const bool ctrl = (SDL_GetModState() & KMOD_CTRL) != 0;
   if (ctrl) {
@@ -99,7 +104,8 @@ void mouseUp(Sandbox& sandbox, const SDL_MouseButtonEvent& e) {
   if (sandbox.gesture.kind == Gesture::Kind::DragBody && e.button == SDL_BUTTON_LEFT) {
     sandbox.endDrag();
     sandbox.gesture = {};
-  } else if (sandbox.gesture.kind == Gesture::Kind::Pan && e.button == SDL_BUTTON_RIGHT) {
+  } else if ((sandbox.gesture.kind == Gesture::Kind::Pan && e.button == SDL_BUTTON_RIGHT) ||
+             (sandbox.gesture.kind == Gesture::Kind::TurnTarget && e.button == SDL_BUTTON_LEFT)) {
     sandbox.gesture = {};
   }
 }
@@ -108,6 +114,8 @@ void mouseMotion(Sandbox& sandbox, const SDL_MouseMotionEvent& e) {
   const Vec2 mouse(e.x, e.y);
   if (sandbox.gesture.kind == Gesture::Kind::DragBody && sandbox.world()) {
     sandbox.dragTo(sandbox.camera.toWorld(mouse), (SDL_GetModState() & KMOD_SHIFT) != 0);
+  } else if (sandbox.gesture.kind == Gesture::Kind::TurnTarget) {
+    dragTargetAngle(sandbox, sandbox.camera.toWorld(mouse));
   } else if (sandbox.gesture.kind == Gesture::Kind::Pan) {
     sandbox.camera.panPixels(mouse - sandbox.gesture.lastMouse);
     sandbox.follow = false;

@@ -38,7 +38,7 @@ struct PanelRect {
 
 /// Mouse gesture in progress.
 struct Gesture {
-  enum class Kind { None, DragBody, Pan };
+  enum class Kind { None, DragBody, Pan, TurnTarget };
   Kind kind = Kind::None;
   Vec2 lastMouse = Vec2::Zero();  ///< px
   Vec2 grabLocal = Vec2::Zero();  ///< DragBody: grabbed point in the body frame (m)

@@ -68,6 +68,7 @@ const std::vector<std::string>& ScenarioScript::names() {
     for (const BuildScenario& b : buildScenarios()) all.push_back(b.name);
     for (const std::string& t : TimelineScenario::names()) all.push_back(t);
     for (const std::string& name : LectureScript::names()) all.push_back(name);
+    all.push_back(TurnTargetScenario::kName);
     return all;
   }();
   return n;
@@ -81,6 +82,7 @@ ScenarioScript::ScenarioScript(std::string name, Uint32 windowId, std::string ou
   const auto& lecture = LectureScript::names();
   if (std::find(lecture.begin(), lecture.end(), name_) != lecture.end())
     lecture_ = std::make_unique<LectureScript>(name_, windowId_, out_);
+  if (name_ == TurnTargetScenario::kName) turnTarget_ = std::make_unique<TurnTargetScenario>(windowId_);
 }
 
 void ScenarioScript::mouse(Uint32 type, const Vec2& screen, Uint8 button) {
@@ -101,6 +103,7 @@ bool ScenarioScript::beforeFrame(Sandbox& sandbox, int frame) {
     report_ = lecture_->report();
     return more;
   }
+  if (turnTarget_) return turnTarget_->beforeFrame(sandbox, frame, report_);
   if (name_ == "describe") return describe(sandbox, frame);
   if (name_ == "reset-scale") return resetScale(sandbox, frame);
   if (name_ == "rigid-drag") return rigidDrag(sandbox, frame);

@@ -25,6 +25,8 @@
 //   build-...    a new scene, one element built by clicks and keys (ui/build_scenarios.h), saved
 //                to --script-out; reports the counts, the error and the message shown
 //   present, grasp-quiet, tension-run   the lecture-hall checks (ui/lecture_scripts.h)
+//   turn-target  the hand with a box that turns: drags the target's angle handle
+//                (ui/turn_target_scenario.h)
 //
 // Needs: an SDL video subsystem (the sandbox's Window), a Sandbox with a loaded scene.
 #pragma once
@@ -38,6 +40,7 @@
 
 #include "ui/lecture_scripts.h"
 #include "ui/sandbox.h"
+#include "ui/turn_target_scenario.h"
 
 namespace cablelab::ui {
 
@@ -80,6 +83,7 @@ class ScenarioScript {
   double restBefore_ = 0;  ///< pose scenarios: the cable's rest length before the drag (m)
   std::shared_ptr<TimelineScenario> timeline_;  ///< the rewind and plot scenarios
   std::unique_ptr<LectureScript> lecture_;      ///< the lecture-hall checks
+  std::unique_ptr<TurnTargetScenario> turnTarget_;  ///< turn-target (ui/turn_target_scenario.h)
   std::string bannerSeen_;                      ///< drop-box: a banner shown during the drag
 };
 

@@ -262,8 +262,14 @@ class Cable {
   int spanCount() const { return spans_.empty() ? 1 : static_cast<int>(spans_.size()); }
   std::span<const WrapPoint> spanPath(int k) const;
   const CableKinematics& spanKinematics(int k) const;
-  /// Span length - span rest length (m); the whole stretch() for a one-span cable.
+  /// Span length - span rest length (m); the whole stretch() for a one-span cable. On an elastic
+  /// cable split by a polygon with friction the rest is the span's unstretched material.
   double spanStretch(int k) const;
+  /// Span k's stiffness (N/m) and damping (N s/m): the cable's, or on an elastic cable split by a
+  /// polygon with friction the cable's times (rest length - preload) / span material, so that
+  /// equal strains give the unsplit cable's tension (docs/polygon_friction.md).
+  double spanStiffness(int k) const { return params_.stiffness * spanScale(k); }
+  double spanDamping(int k) const { return params_.damping * spanScale(k); }
   double spanTension(int k) const { return spans_.empty() ? tension_ : spans_[k].tension; }
   void setSpanTension(int k, double t);
   /// The wheel between spans k and k + 1 (spanCount() - 1 of them).
@@ -345,6 +351,11 @@ class Cable {
   void updateSpans(std::span<const BodyState> bodies);
   void splitIntoSpans(std::span<const BodyState> bodies, const std::vector<Split>& splits);
   void rebaseMarks();
+  /// Elastic spans beside a polygon with friction that break its capstan ratio slide to it.
+  void slideElasticSpans();
+  /// Unstretched length of an elastic cable's material (m): rest length - preload.
+  double materialLength() const;
+  double spanScale(int k) const;
   /// The angle the path turns at path_[i], a polygon corner, on its wrap side (>= 0, rad).
   double cornerTurn(size_t i) const;
   /// The length of the path between the spans, over the corners of polygons with friction (m).
@@ -382,6 +393,7 @@ class Cable {
   std::vector<int> splitPulleys_;  ///< pulleys at the links, in path order (scratch + memory)
   std::vector<Split> splits_;      ///< updateSpans scratch
   double cornerRest_ = 0;          ///< cornerLength() at the last update: rigid, outside the spans
+                                   ///< (elastic: the material between the corners)
   CableKinematics spanScratch_;    ///< a span's previous path, measured again
   // Skipping: a certificate built at a full update's selection pose. Each test is one signed
   // distance the event search watches (a point p from the line a-b), with its value then; the

@@ -14,16 +14,19 @@
 #include <cmath>
 
 #include "engine/cable/cable.h"
+#include "engine/core/capstan.h"
 
 namespace cablelab {
 
 void Cable::splitIntoSpans(std::span<const BodyState> bodies, const std::vector<Split>& splits) {
-  double total = params_.restLength;
+  // Rigid: the rest length; elastic: the unstretched material.
+  double total = elastic() ? materialLength() : params_.restLength;
   if (!spans_.empty()) {
     total = cornerRest_;
     for (const Span& s : spans_) total += s.rest;
   }
-  total -= cornerLength(splits);  // the rope between a polygon's corners is stuck: no stretch
+  const double corner = cornerLength(splits);
+  if (!elastic()) total -= corner;  // the rope between a polygon's corners is stuck: no stretch
   spans_.assign(splits.size() + 1, Span{});
   links_.assign(splits.size(), SpanLink{});
   std::vector<WrapPoint> wheels;  // each split wheel with its mark at the contact's middle
@@ -57,6 +60,14 @@ void Cable::splitIntoSpans(std::span<const BodyState> bodies, const std::vector<
     cableLengthJacobian(span.path, bodies, span.kin);
     span.tension = tension_;
     lengths += span.kin.length;
+  }
+  if (elastic()) {
+    // One strain throughout: each piece, the one between the corners too, gets material in
+    // proportion to its length, so every span starts with the unsplit cable's tension.
+    const double whole = lengths + corner;
+    for (Span& span : spans_) span.rest = whole > 0 ? total * span.kin.length / whole : 0.0;
+    cornerRest_ = whole > 0 ? total * corner / whole : 0.0;
+    return;
   }
   // The stretch is shared in proportion to the spans' lengths.
   const double excess = lengths - total;
@@ -108,7 +119,7 @@ void Cable::updateSpans(std::span<const BodyState> bodies) {
     if (!spans_.empty()) {
       double total = cornerRest_;
       for (const Span& s : spans_) total += s.rest;
-      params_.restLength = total;
+      params_.restLength = total + (elastic() ? params_.preload : 0.0);
     }
     spans_.clear();
     links_.clear();
@@ -119,7 +130,7 @@ void Cable::updateSpans(std::span<const BodyState> bodies) {
   if (ids != splitPulleys_ || spans_.empty()) {
     splitIntoSpans(bodies, splits);
     splitPulleys_ = ids;
-    cornerRest_ = cornerLength(splits);
+    if (!elastic()) cornerRest_ = cornerLength(splits);
     return;
   }
   for (size_t k = 0; k < spans_.size(); ++k) {
@@ -143,9 +154,16 @@ void Cable::updateSpans(std::span<const BodyState> bodies) {
     if (k > 0) span.path.front().mark = front.mark, span.path.front().arc = front.arc;
     if (k + 1 < spans_.size()) span.path.back().mark = back.mark, span.path.back().arc = back.arc;
     cableLengthJacobian(span.path, bodies, span.kin);
-    if (moved) span.rest += span.kin.length - before;
+    if (moved && elastic() && before > 0) {
+      // Elastic: the span keeps its strain; the material it gains or loses is the corners'.
+      const double rest = span.rest * span.kin.length / before;
+      cornerRest_ += span.rest - rest;
+      span.rest = rest;
+    } else if (moved) {
+      span.rest += span.kin.length - before;
+    }
   }
-  cornerRest_ = cornerLength(splits);
+  if (!elastic()) cornerRest_ = cornerLength(splits);
   // After a slide, the two spans share their stretch again: the slide is kept.
   for (size_t k = 0; k < links_.size(); ++k) {
     if (!links_[k].slipped) continue;
@@ -155,6 +173,37 @@ void Cable::updateSpans(std::span<const BodyState> bodies) {
     links_[k].slipped = false;
   }
   rebaseMarks();
+  if (elastic()) slideElasticSpans();
+}
+
+double Cable::materialLength() const {
+  // A rest length at or under the preload has no material to split: keep a sliver.
+  return std::max(params_.restLength - params_.preload, 1e-6 * std::abs(params_.restLength) + 1e-9);
+}
+
+double Cable::spanScale(int k) const {
+  if (spans_.empty() || !elastic()) return 1.0;
+  return materialLength() / std::max(spans_[k].rest, 1e-12);
+}
+
+// The solver lets an elastic cable's spans stick (each holds its material); where their tensions
+// then break T_high <= e^(mu theta) T_low, material slides over the corners from the slacker span
+// to the tighter one until the ratio is e^(mu theta) exactly: a return mapping, as in plasticity.
+void Cable::slideElasticSpans() {
+  const double material = materialLength();
+  for (size_t k = 0; k < links_.size(); ++k) {
+    if (links_[k].grip != Grip::Capstan) continue;
+    Span &a = spans_[k], &b = spans_[k + 1];
+    const double ratio = std::exp(links_[k].mu * std::max(0.0, links_[k].wrapAngle));
+    const double ta = materialTension(material, a.kin.length, a.rest);
+    const double tb = materialTension(material, b.kin.length, b.rest);
+    if (std::max(ta, tb) <= ratio * std::min(ta, tb) * (1 + 1e-12)) continue;
+    Span& tight = ta > tb ? a : b;
+    Span& loose = ta > tb ? b : a;
+    const double sum = a.rest + b.rest;
+    tight.rest = slideMaterial(material, tight.kin.length, tight.rest, loose.kin.length, sum, ratio);
+    loose.rest = sum - tight.rest;
+  }
 }
 
 double Cable::cornerTurn(size_t i) const {

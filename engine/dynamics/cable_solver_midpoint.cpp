@@ -76,7 +76,7 @@ bool takesMidpointRule(Workspace& ws, const CableSolveInput& in, std::span<const
         return false;
       continue;
     }
-    if (c.damping() != 0) return false;
+    if (c.damping() != 0 || c.spanCount() > 1) return false;  // (elastic spans: a stiffness each)
     const double say = rowSay(ws, in.bodies, cables, static_cast<int>(r));
     if (!(c.stiffness() * say * in.h * in.h <= 4)) return false;
   }

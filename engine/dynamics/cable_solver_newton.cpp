@@ -71,7 +71,7 @@ void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable>
                      : phi > kLengthSlop ? phi - beta * (phi - kLengthSlop)
                                          : phi;
     } else if (!ws.midpoint) {  // (midpointSpringRows pulls with the energy's discrete gradient)
-      const double stiffK = c.stiffness(), damp = c.damping();
+      const double stiffK = c.spanStiffness(row.first), damp = c.spanDamping(row.first);
       ws.compliance[r] = 1.0 / (h * (stiffK * h + damp));
       ws.damped[r] = damp * phi / (stiffK * h + damp);
     }

@@ -17,7 +17,8 @@ bool mergeSlidingSpans(Workspace& ws, std::span<const Cable> cables) {
     const Workspace::Row& b = ws.rows[r + 1];
     if (a.cable != b.cable || a.last + 1 != b.first || a.segment >= 0 || b.segment >= 0) continue;
     const SpanLink& link = cables[a.cable].link(a.last);
-    if (link.grip != Grip::Capstan) continue;
+    // An elastic cable's spans slide after the step instead (Cable::slideElasticSpans).
+    if (link.grip != Grip::Capstan || cables[a.cable].elastic()) continue;
     const double wa = a.weight(ws.rowWeights, a.last), wb = b.weight(ws.rowWeights, b.first);
     const double ta = ws.P[r] * wa, tb = ws.P[r + 1] * wb;
     const double ratio = std::exp(link.mu * std::max(0.0, link.wrapAngle));

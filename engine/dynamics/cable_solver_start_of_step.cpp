@@ -63,7 +63,7 @@ void solveStartOfStep(Workspace& ws, const CableSolveInput& in, std::span<const 
     const Cable& c = cables[row.cable];
     double goal = ws.target[r];
     if (c.elastic() && row.segment < 0) {  // the implicit spring-damper (lengthTargets)
-      const double k = c.stiffness(), damp = c.damping();
+      const double k = c.spanStiffness(row.first), damp = c.spanDamping(row.first);
       ws.K(r, r) += 1.0 / (h * (k * h + damp));
       goal = damp * ws.phi0[r] / (k * h + damp);
     }

@@ -44,6 +44,10 @@ nlohmann::json trackSummary(const TrackResult& r);
 /// Throws InputError as the CLI reports it.
 ReachOptions reachOptions(int grid, const std::string& model, bool pd, int threads = 0);
 
+/// `reach --angles A,B,...`: one or more box angles (rad, each in [-pi, pi]; any but 0 needs a
+/// box that may turn); throws InputError(kCommandLine, "--angles", ...).
+std::vector<double> reachAngles(std::string_view text, const HandModel& model);
+
 /// The name --model takes for m.
 const char* reachModelName(ReachModel m);
 

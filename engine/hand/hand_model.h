@@ -50,6 +50,10 @@ struct HandModel {
   /// The box may turn (scene parameter `turn`): the statics and the controller work in
   /// (x, y, theta) (docs/hand.md). Off, the box keeps its angle, the thesis's model.
   bool turn = false;
+  /// Friction between membrane and box (scene parameter `mu`): each corner a membrane wraps holds
+  /// while T_high <= T_low e^(mu theta_i) (docs/model.md, "Membrane friction"). 0: none, the
+  /// thesis's model.
+  double friction = 0.0;
   std::array<double, 6> lower = {-0.7, -0.6, -0.7, -0.7, -0.6, -0.7};  ///< joint limits (rad, m)
   std::array<double, 6> upper = {0.7, 0.9, 0.7, 0.7, 0.9, 0.7};        ///< joint limits (rad, m)
 

@@ -26,12 +26,16 @@ bool quasiStaticReach(const HandModel& m, const Vec2& target, const ReachOptions
   HandController controller(m, params);
   HandJoints q = HandJoints::Zero();
   Vec2 box = Vec2::Zero();
+  double angle = 0;
   for (int u = 0; u < o.maxUpdates; ++u) {
-    const BoxPrediction p = controller.predict(q, box);
+    const BoxPrediction p = controller.predict(q, box, angle);
     box = p.box;
+    angle = p.angle;
     if (!p.valid) return false;
-    if ((box - target).norm() < o.tolerance) return true;
-    q = m.clamp(q + controller.update(q, box, target, q));
+    if ((box - target).norm() < o.tolerance && std::abs(angle - o.angle) < o.angleTolerance)
+      return true;
+    q = m.clamp(q + controller.update(q, BoxPose(box.x(), box.y(), angle),
+                                      BoxPose(target.x(), target.y(), o.angle), q));
   }
   return false;
 }
@@ -41,6 +45,8 @@ namespace {
 ReachTarget simulateTarget(const HandModel& m, const Vec2& target, const ReachOptions& o) {
   TrackOptions track;
   track.target = target;
+  track.targetAngle = o.angle;
+  track.stop.angleTolerance = o.angleTolerance;
   track.pid = o.pid;
   track.time = o.time;
   track.stop.enabled = true;
@@ -54,7 +60,8 @@ ReachTarget simulateTarget(const HandModel& m, const Vec2& target, const ReachOp
   }
   t.error = r.finalError;
   t.graspHeld = r.graspHeld;
-  t.simulated = r.graspHeld && r.finalError < o.tolerance;
+  t.simulated = r.graspHeld && r.finalError < o.tolerance &&
+                r.finalAngleError < (m.turn ? o.angleTolerance : INFINITY);
   t.simulatedTime = r.samples.back().t;
   return t;
 }

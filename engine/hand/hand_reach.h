@@ -31,6 +31,10 @@ struct ReachOptions {
   double time = 15;          ///< s simulated per target at most
   int maxUpdates = 600;      ///< quasi-static outer-loop updates per target
   double tolerance = 0.005;  ///< m
+  /// The box angle every target asks for (rad; `reach --angles`); non-zero needs a box that may
+  /// turn. A target is then reached within `tolerance` and `angleTolerance` of (x, y, angle).
+  double angle = 0;
+  double angleTolerance = 0.02;  ///< rad
 };
 
 /// One grid target's outcome.

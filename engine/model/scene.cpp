@@ -85,11 +85,13 @@ void checkCollisionPolygon(const Checker& check, const std::vector<Vec2>& polygo
 
 // A pulley that grips the cable (a wheel with no slip or friction, a polygon with friction)
 // splits it in spans: each a rigid constraint of its own, on a side known in advance.
+// A polygon's corners may also grip an elastic cable: its spans slide after the step
+// (docs/polygon_friction.md), which a wheel's turning constraint does not allow.
 void checkGrip(const Checker& check, const PulleyDef& pd, const CableDef& c,
-               const std::string& field, const std::string& what) {
+               const std::string& field, const std::string& what, bool elasticAllowed = false) {
   if (pd.grip == Grip::Capstan) check.positive(pd.mu, field + ".mu");
   if (!gripsCable(pd)) return;
-  if (c.stiffness > 0)
+  if (c.stiffness > 0 && !elasticAllowed)
     check.fail(field + (pd.grip == Grip::Capstan ? ".mu" : ".no_slip"),
                what + " needs a rigid cable (stiffness 0)");
   if (pd.side == WrapSide::Auto) check.fail(field + ".side", what + " needs side left or right");
@@ -215,7 +217,7 @@ void validateScene(const SceneDef& scene, const std::string& source) {
       if (pd.kind == PulleyDef::Kind::Polygon) {
         if (pd.grip == Grip::NoSlip)
           check.fail(fp + ".no_slip", "a polygon pulley cannot be no_slip (give it mu)");
-        checkGrip(check, pd, c, fp, "a polygon pulley with friction");
+        checkGrip(check, pd, c, fp, "a polygon pulley with friction", true);
         continue;
       }
       check.positive(pd.radius, fp + ".radius");

@@ -28,7 +28,8 @@
 // stored as a polygon. rest_length omitted = the length at the initial pose. "mu" > 0 is capstan
 // friction (docs/wheels.md): on a circle, holding while T_high <= T_low e^(mu theta); on a
 // polygon, at each engaged corner with theta_i its turn (docs/polygon_friction.md); 0 = none.
-// "no_slip" (circles only) and "mu" exclude each other; either needs a rigid cable.
+// "no_slip" (circles only) and "mu" exclude each other; on a circle either needs a rigid cable
+// (a polygon with "mu" also grips an elastic one: docs/polygon_friction.md "Elastic cables").
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -4,7 +4,7 @@
 // on it) has no gravity term, and a real hand positioning an object on a table works in that
 // plane. The scene is built at the pinch pose (all joint coordinates zero); `cablelab track`
 // swings the fingers open before it starts. Every shape is a sensor: fingers and box meet only
-// through the membranes, as in the thesis (no friction, no rigid contact).
+// through the membranes, as in the thesis (no rigid contact; friction only with `mu`).
 #include <cmath>
 #include <cstdio>
 
@@ -139,6 +139,10 @@ SceneDef buildHandScene(const HandModel& m) {
     // Walking left to right, the top band has the box on its right (Left), the bottom one on its
     // left.
     wrap.side = f == 0 ? WrapSide::Left : WrapSide::Right;
+    if (m.friction > 0) {  // the membrane grips the box's corners (docs/polygon_friction.md)
+      wrap.grip = Grip::Capstan;
+      wrap.mu = m.friction;
+    }
     band.pulleys = {wrap};
     band.restLength = m.restLength();
     band.stiffness = m.stiffness;
@@ -160,6 +164,7 @@ HandModel handModel(const SceneParams& p) {
   if (turn != 0 && turn != 1)
     throw InputError(kCommandLine, "--set turn", "must be 0 or 1" + gotValue(turn));
   m.turn = turn == 1;
+  m.friction = p.at("mu");
   return m;
 }
 }  // namespace

@@ -16,7 +16,7 @@ namespace cablelab {
 SceneParams sceneParams(const SceneInfo& scene,
                         const std::vector<std::pair<std::string, double>>& overrides);
 
-/// The hand of the `hand` scene with its parameters (k, damping, preload, box_mass, turn) and
+/// The hand of the `hand` scene with its parameters (k, damping, preload, box_mass, turn, mu) and
 /// the --set overrides; throws InputError as makeScene() does.
 HandModel handModelWithSettings(const std::vector<std::pair<std::string, double>>& overrides);
 

@@ -28,6 +28,8 @@ const std::vector<SceneInfo>& builtinScenes() {
         {"preload", 0.3, "membrane pre-stretch (m)", SceneParam::Range::NonNegative},
         {"box_mass", 1.0, "manipuland mass (kg)"},
         {"turn", 0.0, "1: the box may turn, 0: its angle stays fixed",
+         SceneParam::Range::NonNegative},
+        {"mu", 0.0, "membrane-box friction at the box's corners (0: none, the thesis's model)",
          SceneParam::Range::NonNegative}},
        makeHandScene},
       {"hexagon",

@@ -11,36 +11,36 @@ namespace {
 constexpr double kResidualTolerance = 1e-10;  // |net force, torque / size| per unit max tension
 constexpr double kPoseArmijo = 1e-4;          // sufficient decrease of the line search
 
-/// s(q) = |c(q) - anchor| with c(q) = (x, y) + R(theta) r, its gradient and Hessian in q.
-struct Segment {
-  double length = 0;
-  Eigen::RowVector3d gradient = Eigen::RowVector3d::Zero();
-  Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();
-};
-
-Segment segment(const BoxPose& q, const Vec2& r, const Vec2& anchor) {
-  const Vec2 arm = rotate(r, q[2]);  // R(theta) r
-  const Vec2 d = q.head<2>() + arm - anchor;
-  Segment s;
-  s.length = d.norm();
-  if (s.length < 1e-300) return s;  // the corner on its fingertip: a kink, no gradient
-  // dc/dq: the corner moves with the centre and turns about it (d(R r)/dtheta = perp(R r)).
-  Eigen::Matrix<double, 2, 3> D;
-  D << 1, 0, -arm.y(), 0, 1, arm.x();
-  const Vec2 u = d / s.length;
-  s.gradient = u.transpose() * D;
-  s.hessian = D.transpose() * ((Eigen::Matrix2d::Identity() - u * u.transpose()) / s.length) * D;
-  s.hessian(2, 2) -= u.dot(arm);  // d2c/dtheta2 = -R r
-  return s;
-}
-
 double tension(const BoxCable& c, const BoxPose& q) {
-  const double l = segment(q, c.cornerA, c.a).length + (c.cornerB - c.cornerA).norm() +
-                   segment(q, c.cornerB, c.b).length;
+  const double l = boxSegment(q, c.cornerA, c.a).length + (c.cornerB - c.cornerA).norm() +
+                   boxSegment(q, c.cornerB, c.b).length;
   return c.k * std::max(0.0, l - c.L);
 }
 
 }  // namespace
+
+BoxSegment boxSegment(const BoxPose& q, const Vec2& corner, const Vec2& anchor) {
+  const Vec2 arm = rotate(corner, q[2]);  // R(theta) r
+  const Vec2 d = q.head<2>() + arm - anchor;
+  BoxSegment s;
+  s.length = d.norm();
+  if (s.length < 1e-300) return s;  // the corner on its fingertip: a kink, no gradient
+  // dc/dq: the corner moves with the centre and turns about it (d(R r)/dtheta = perp(R r)).
+  s.D << 1, 0, -arm.y(), 0, 1, arm.x();
+  s.u = d / s.length;
+  s.gradient = s.u.transpose() * s.D;
+  s.hessian =
+      s.D.transpose() * ((Eigen::Matrix2d::Identity() - s.u * s.u.transpose()) / s.length) * s.D;
+  s.hessian(2, 2) -= s.u.dot(arm);  // d2c/dtheta2 = -R r
+  return s;
+}
+
+Eigen::Matrix<double, 3, 2> BoxSegment::mixedAnchor(double stiffness, double tension,
+                                                    const Eigen::RowVector3d& dl) const {
+  if (length < 1e-300) return Eigen::Matrix<double, 3, 2>::Zero();
+  const Eigen::Matrix2d P = (Eigen::Matrix2d::Identity() - u * u.transpose()) / length;
+  return stiffness * (dl.transpose() * (-u.transpose())) - tension * D.transpose() * P;
+}
 
 double boxPoseEnergy(const std::vector<BoxCable>& cables, const BoxPose& q,
                      Eigen::Vector3d* gradient, Eigen::Matrix3d* hessian) {
@@ -48,7 +48,7 @@ double boxPoseEnergy(const std::vector<BoxCable>& cables, const BoxPose& q,
   if (gradient) gradient->setZero();
   if (hessian) hessian->setZero();
   for (const BoxCable& c : cables) {
-    const Segment A = segment(q, c.cornerA, c.a), B = segment(q, c.cornerB, c.b);
+    const BoxSegment A = boxSegment(q, c.cornerA, c.a), B = boxSegment(q, c.cornerB, c.b);
     const double stretch = A.length + (c.cornerB - c.cornerA).norm() + B.length - c.L;
     if (stretch <= 0) continue;  // slack: no energy, no force
     energy += 0.5 * c.k * stretch * stretch;
@@ -64,48 +64,57 @@ Eigen::MatrixXd boxPoseSensitivity(const std::vector<BoxCable>& cables, const Bo
   Eigen::MatrixXd mixed = Eigen::MatrixXd::Zero(3, 4 * n);  // d grad E / d fingertips
   for (Eigen::Index i = 0; i < n; ++i) {
     const BoxCable& c = cables[i];
-    const Segment A = segment(pose, c.cornerA, c.a), B = segment(pose, c.cornerB, c.b);
+    const BoxSegment A = boxSegment(pose, c.cornerA, c.a), B = boxSegment(pose, c.cornerB, c.b);
     const double stretch = A.length + (c.cornerB - c.cornerA).norm() + B.length - c.L;
     if (stretch <= 0) continue;
     const Eigen::RowVector3d dl = A.gradient + B.gradient;
-    // Each free segment |c(q) - anchor|: d/d anchor = -u^T, d2/dq d anchor = -D^T (I - u u^T)/s.
-    const std::pair<const Segment*, std::pair<const Vec2*, const Vec2*>> ends[2] = {
-        {&A, {&c.cornerA, &c.a}}, {&B, {&c.cornerB, &c.b}}};
-    for (int e = 0; e < 2; ++e) {
-      const Segment& seg = *ends[e].first;
-      if (seg.length < 1e-300) continue;
-      const Vec2 arm = rotate(*ends[e].second.first, pose[2]);
-      const Vec2 u = (pose.head<2>() + arm - *ends[e].second.second) / seg.length;
-      Eigen::Matrix<double, 2, 3> D;
-      D << 1, 0, -arm.y(), 0, 1, arm.x();
-      const Eigen::Matrix2d P = (Eigen::Matrix2d::Identity() - u * u.transpose()) / seg.length;
-      mixed.block<3, 2>(0, 4 * i + 2 * e) +=
-          c.k * (dl.transpose() * (-u.transpose()) - stretch * D.transpose() * P);
-    }
+    mixed.block<3, 2>(0, 4 * i) += A.mixedAnchor(c.k, c.k * stretch, dl);
+    mixed.block<3, 2>(0, 4 * i + 2) += B.mixedAnchor(c.k, c.k * stretch, dl);
   }
   Eigen::Vector3d g;
   Eigen::Matrix3d H;
   boxPoseEnergy(cables, pose, &g, &H);
+  return equilibriumSensitivity(H, mixed);
+}
+
+Eigen::MatrixXd equilibriumSensitivity(const Eigen::Matrix3d& H, const Eigen::MatrixXd& mixed) {
   const Eigen::LDLT<Eigen::Matrix3d> ldlt(H);
   if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || ldlt.vectorD().minCoeff() <= 0)
-    return Eigen::MatrixXd::Zero(3, 4 * n);
+    return Eigen::MatrixXd::Zero(3, mixed.cols());
   return -ldlt.solve(mixed);
 }
 
 BoxPoseResult solveBoxPose(const std::vector<BoxCable>& cables, const BoxPose& start, double size,
                            int maxIterations) {
+  BoxPoseResult out = minimiseBoxEnergy(
+      [&](const BoxPose& q, Eigen::Vector3d* g, Eigen::Matrix3d* H) {
+        return boxPoseEnergy(cables, q, g, H);
+      },
+      [&](const BoxPose& q) {
+        double maxTension = 0;
+        for (const BoxCable& c : cables) maxTension = std::max(maxTension, tension(c, q));
+        return maxTension;
+      },
+      start, size, maxIterations);
+  out.tensions.clear();
+  for (const BoxCable& c : cables) out.tensions.push_back(tension(c, out.pose));
+  return out;
+}
+
+BoxPoseResult minimiseBoxEnergy(const BoxEnergy& energy,
+                                const std::function<double(const BoxPose&)>& maxTension,
+                                const BoxPose& start, double size, int maxIterations) {
   BoxPoseResult out;
   out.pose = start;
   auto residual = [&](const Eigen::Vector3d& g, const BoxPose& q) {
-    double maxTension = 0;
-    for (const BoxCable& c : cables) maxTension = std::max(maxTension, tension(c, q));
-    if (maxTension == 0) return 0.0;  // every cable slack: any pose is an equilibrium
-    return Eigen::Vector3d(g[0], g[1], g[2] / size).norm() / maxTension;
+    const double largest = maxTension(q);
+    if (largest == 0) return 0.0;  // every cable slack: any pose is an equilibrium
+    return Eigen::Vector3d(g[0], g[1], g[2] / size).norm() / largest;
   };
   for (out.iterations = 0; out.iterations <= maxIterations; ++out.iterations) {
     Eigen::Vector3d g;
     Eigen::Matrix3d H;
-    const double E = boxPoseEnergy(cables, out.pose, &g, &H);
+    const double E = energy(out.pose, &g, &H);
     out.energy = E;
     out.residual = residual(g, out.pose);
     if (out.residual <= kResidualTolerance) {
@@ -123,14 +132,12 @@ BoxPoseResult solveBoxPose(const std::vector<BoxCable>& cables, const BoxPose& s
     const Eigen::Vector3d step = -ldlt.solve(g);
     // Backtracking: every accepted step lowers E.
     double t = 1;
-    while (boxPoseEnergy(cables, out.pose + t * step) > E + kPoseArmijo * t * g.dot(step) &&
+    while (energy(out.pose + t * step, nullptr, nullptr) > E + kPoseArmijo * t * g.dot(step) &&
            t > 1e-12)
       t *= 0.5;
     if (t <= 1e-12) break;  // no descent left at double precision
     out.pose += t * step;
   }
-  out.tensions.clear();
-  for (const BoxCable& c : cables) out.tensions.push_back(tension(c, out.pose));
   return out;
 }
 

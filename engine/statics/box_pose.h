@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 #include "engine/statics/box_reduction.h"
@@ -20,6 +21,21 @@ namespace cablelab {
 
 /// (x, y, theta): the box centre (m) and its angle (rad).
 using BoxPose = Eigen::Vector3d;
+
+/// A free segment from a box corner r (box frame) to a fixed anchor: s(q) = |c(q) - anchor| with
+/// c(q) = (x, y) + R(theta) r, its gradient u^T D and Hessian in q.
+struct BoxSegment {
+  double length = 0;  ///< m; 0: the corner on its anchor (no gradient)
+  Eigen::RowVector3d gradient = Eigen::RowVector3d::Zero();
+  Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();
+  Vec2 u = Vec2::Zero();                                 ///< unit vector anchor -> corner
+  Eigen::Matrix<double, 2, 3> D = Eigen::Matrix<double, 2, 3>::Zero();  ///< dc/dq
+  /// d(grad E)/d anchor (3 x 2) of a spring term whose tension T(l) has dT/dl = `stiffness`,
+  /// pulling along `dl` (its length's whole gradient): k dl^T (-u^T) - T D^T (I - u u^T) / s.
+  Eigen::Matrix<double, 3, 2> mixedAnchor(double stiffness, double tension,
+                                          const Eigen::RowVector3d& dl) const;
+};
+BoxSegment boxSegment(const BoxPose& q, const Vec2& corner, const Vec2& anchor);
 
 /// E(q) (J); with gradient (N, N m) and Hessian when asked.
 double boxPoseEnergy(const std::vector<BoxCable>& cables, const BoxPose& q,
@@ -38,6 +54,19 @@ struct BoxPoseResult {
 /// per cable, in order): from grad E(q*, tips) = 0, dq* = -H^-1 (d grad E / d tips) d tips.
 /// Zero where H is not positive definite (no isolated equilibrium).
 Eigen::MatrixXd boxPoseSensitivity(const std::vector<BoxCable>& cables, const BoxPose& pose);
+
+/// -H^-1 mixed: the equilibrium's sensitivity from E's Hessian and d(grad E)/d parameters; zero
+/// where H is not positive definite.
+Eigen::MatrixXd equilibriumSensitivity(const Eigen::Matrix3d& H, const Eigen::MatrixXd& mixed);
+
+/// An energy of the pose: E(q), filling the gradient and Hessian where not null.
+using BoxEnergy = std::function<double(const BoxPose&, Eigen::Vector3d*, Eigen::Matrix3d*)>;
+
+/// Newton on `energy` from `start`, Levenberg-shifted, with a backtracking line search, until the
+/// gradient (torque / `size`) is below 1e-10 of `maxTension(q)` (tensions and energy left empty).
+BoxPoseResult minimiseBoxEnergy(const BoxEnergy& energy,
+                                const std::function<double(const BoxPose&)>& maxTension,
+                                const BoxPose& start, double size, int maxIterations);
 
 /// Newton on E from `start`; `size` (m) scales the torque in the convergence test (the box's
 /// half side, say).
