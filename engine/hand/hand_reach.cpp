@@ -42,6 +42,8 @@ ReachTarget simulateTarget(const HandModel& m, const Vec2& target, const ReachOp
   TrackOptions track;
   track.target = target;
   track.pid = o.pid;
+  track.law = o.law;
+  track.mpc.horizon = o.horizon;
   track.time = o.time;
   track.stop.enabled = true;
   track.stop.tolerance = o.tolerance;

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "engine/hand/hand_model.h"
+#include "engine/hand/hand_tracking.h"
 
 namespace cablelab {
 
@@ -31,6 +32,8 @@ struct ReachOptions {
   double time = 15;          ///< s simulated per target at most
   int maxUpdates = 600;      ///< quasi-static outer-loop updates per target
   double tolerance = 0.005;  ///< m
+  HandLaw law = HandLaw::Jacobian;  ///< the simulated runs' outer loop (`pid` is the Jacobian's)
+  int horizon = HandMpcParams{}.horizon;  ///< the MPC's
 };
 
 /// One grid target's outcome.
