@@ -11,10 +11,10 @@ namespace cablelab {
 
 namespace {
 
-constexpr int kSubsteps = 8;  // per update: the servo ramp and the box's motion, implicit Euler
+constexpr int kMpcSubsteps = 8;  // per update: the servo ramp and the box's motion, implicit Euler
 
 /// The servos' ramp lag (s), as the Jacobian controller's reference model has it: 2 / omega.
-double servoLag(const HandModel& m) {
+double mpcServoLag(const HandModel& m) {
   return 2 / std::sqrt(m.servoKp);
 }
 
@@ -67,8 +67,8 @@ Eigen::Vector2d membraneTensions(const HandController& hand, const HandJoints& q
 MpcPrediction predictHorizon(const HandModel& m, const HandMpcParams& p, const MpcLinearisation& lin,
                              const HandJoints& commanded) {
   const int N = p.horizon, n = 6 * N;
-  const double h = p.period / kSubsteps;
-  const double follow = 1 - std::exp(-h / servoLag(m));
+  const double h = p.period / kMpcSubsteps;
+  const double follow = 1 - std::exp(-h / mpcServoLag(m));
   const double c = m.boxMass * m.boxDamping;  // N s/m: the table's drag
   const Eigen::Matrix2d inverse =
       ((m.boxMass + h * c) * Eigen::Matrix2d::Identity() + h * h * lin.stiffness).inverse();
@@ -86,10 +86,10 @@ MpcPrediction predictHorizon(const HandModel& m, const HandMpcParams& p, const M
   for (int k = 0; k < N; ++k) {
     Eigen::MatrixXd after = before;
     after.block<6, 6>(0, 1 + 6 * k) += Eigen::Matrix<double, 6, 6>::Identity();
-    for (int i = 1; i <= kSubsteps; ++i) {
+    for (int i = 1; i <= kMpcSubsteps; ++i) {
       // The servo targets ramp over the update (hand_grasp.h); the joints follow with the
       // servos' lag and sit their droop off the targets.
-      Eigen::MatrixXd ramp = before + (after - before) * (double(i) / kSubsteps);
+      Eigen::MatrixXd ramp = before + (after - before) * (double(i) / kMpcSubsteps);
       ramp.col(0) += lin.droop;
       s.joints += follow * (ramp - s.joints);
       Eigen::MatrixXd equilibrium = lin.jacobian * s.joints;
@@ -127,11 +127,11 @@ MpcLinearisation HandMpc::linearise(const HandJoints& q, const Vec2& box, const 
     offset_.setZero();
     plan_.resize(0);
   } else {
-    const double h = params_.period / kSubsteps;
-    const double follow = 1 - std::exp(-h / servoLag(m));
-    for (int i = 1; i <= kSubsteps; ++i)
+    const double h = params_.period / kMpcSubsteps;
+    const double follow = 1 - std::exp(-h / mpcServoLag(m));
+    for (int i = 1; i <= kMpcSubsteps; ++i)
       servo_ += follow * (previousCommanded_ +
-                          (commanded - previousCommanded_) * (double(i) / kSubsteps) - servo_);
+                          (commanded - previousCommanded_) * (double(i) / kMpcSubsteps) - servo_);
     previousCommanded_ = commanded;
   }
   MpcLinearisation lin;
