@@ -61,6 +61,11 @@ TEST(TrackMpcCli, BadValuesExitTwo) {
   EXPECT_EQ(h.exitCode, 2);
   EXPECT_NE(h.err.find("--horizon: must be a whole number in [1, 40] (got 0)"), std::string::npos)
       << h.err;
+  const auto a =
+      cablelab::test::runCli("track --set turn=1 --target 0.1,0.1,0.2 --controller mpc");
+  EXPECT_EQ(a.exitCode, 2);
+  EXPECT_NE(a.err.find("--controller: mpc steers the box's centre only"), std::string::npos)
+      << a.err;
   EXPECT_EQ(cablelab::test::runCli("track --compare --csv x.csv").exitCode, 2);
   EXPECT_EQ(cablelab::test::runCli("reach --controller nope --grid 2").exitCode, 2);
 }
