@@ -13,11 +13,11 @@
 namespace cablelab {
 
 struct CompareOptions {
-  int targets = 20;         ///< how many targets
-  unsigned seed = 1;        ///< of the targets' draw
-  double time = 15;         ///< s simulated per run
+  int targets = 20;                       ///< how many targets
+  unsigned seed = 1;                      ///< of the targets' draw
+  double time = 15;                       ///< s simulated per run
   int horizon = HandMpcParams{}.horizon;  ///< the MPC's
-  int threads = 0;          ///< 0: one per hardware thread
+  int threads = 0;                        ///< 0: one per hardware thread
 };
 
 /// One law's runs summed up.

@@ -44,8 +44,8 @@ Eigen::Matrix<double, 2, 8> gapOfTips() {
 Eigen::Vector2d membraneTensions(const HandController& hand, const HandJoints& q, const Vec2& box,
                                  double angle, Eigen::Matrix<double, 2, 6>* dq,
                                  Eigen::Matrix2d* dbox) {
-  // l = |cA - a| + |rB - rA| + |b - cB| with the corners c = box + R r (docs/model.md#rotating-box);
-  // T = k max(0, l - L).
+  // l = |cA - a| + |rB - rA| + |b - cB| with the corners c = box + R r
+  // (docs/model.md#rotating-box); T = k max(0, l - L).
   const std::vector<BoxCable> cables = hand.boxCables(q);
   const FingertipJacobian tipJacobian = fingertipJacobian(hand.model(), q);
   Eigen::Vector2d T;
@@ -64,8 +64,8 @@ Eigen::Vector2d membraneTensions(const HandController& hand, const HandJoints& q
   return T;
 }
 
-MpcPrediction predictHorizon(const HandModel& m, const HandMpcParams& p, const MpcLinearisation& lin,
-                             const HandJoints& commanded) {
+MpcPrediction predictHorizon(const HandModel& m, const HandMpcParams& p,
+                             const MpcLinearisation& lin, const HandJoints& commanded) {
   const int N = p.horizon, n = 6 * N;
   const double h = p.period / kMpcSubsteps;
   const double follow = 1 - std::exp(-h / mpcServoLag(m));
@@ -227,10 +227,8 @@ HandJoints HandMpc::update(const HandJoints& q, const BoxPose& boxPose, const Ve
       atLeast(unit, 0, -rate), atLeast(-unit, 0, -rate);
       atLeast(cmd.slope.row(j), cmd.offset[j], m.lower[j]);
       atLeast(-cmd.slope.row(j), -cmd.offset[j], -m.upper[j]);
-      atLeast(joints.slope.row(j), joints.offset[j],
-              std::min(m.lower[j] + p.limitMargin, q[j]));
-      atLeast(-joints.slope.row(j), -joints.offset[j],
-              -std::max(m.upper[j] - p.limitMargin, q[j]));
+      atLeast(joints.slope.row(j), joints.offset[j], std::min(m.lower[j] + p.limitMargin, q[j]));
+      atLeast(-joints.slope.row(j), -joints.offset[j], -std::max(m.upper[j] - p.limitMargin, q[j]));
     }
     // The box no faster than the model still holds: the membranes' lag and the servos' grow with
     // the speed, and the linear model knows neither limit.
@@ -241,8 +239,8 @@ HandJoints HandMpc::update(const HandJoints& q, const BoxPose& boxPose, const Ve
     }
     // Face-on at the predicted joints and box.
     const Eigen::MatrixXd face = faceJoints * joints.slope + lin.faceOn.dBox * at.slope;
-    const Eigen::VectorXd face0 = lin.faceOn.value + faceJoints * (joints.offset - q) +
-                                  lin.faceOn.dBox * (at.offset - box);
+    const Eigen::VectorXd face0 =
+        lin.faceOn.value + faceJoints * (joints.offset - q) + lin.faceOn.dBox * (at.offset - box);
     for (int i = 0; i < 12; ++i)
       atLeast(face.row(i), face0[i], std::min(p.wrapMargin, lin.faceOn.value[i]));
     const MpcAffine staticTension{

@@ -28,11 +28,11 @@
 namespace cablelab {
 
 struct HandMpcParams {
-  int horizon = 6;          ///< N: updates planned ahead
-  double period = 0.053;    ///< s: the outer loop's (as the Jacobian controller's)
-  double effort = 1e-2;     ///< cost of a joint increment, m^2 of box error per rad^2 (or m^2)
-  double gapWeight = 4.0;   ///< the paddles' gap off the pinch's (per m of box error)
-  double tiltWeight = 0.01; ///< m^2 per rad^2: a paddle's tilt off face-on
+  int horizon = 6;             ///< N: updates planned ahead
+  double period = 0.053;       ///< s: the outer loop's (as the Jacobian controller's)
+  double effort = 1e-2;        ///< cost of a joint increment, m^2 of box error per rad^2 (or m^2)
+  double gapWeight = 4.0;      ///< the paddles' gap off the pinch's (per m of box error)
+  double tiltWeight = 0.01;    ///< m^2 per rad^2: a paddle's tilt off face-on
   double settleWeight = 0.02;  ///< s^2: the box's speed at the horizon's end
   double wrapMargin = 0.02;    ///< m: every face-on condition keeps this much slack
   double minTension = 20;      ///< N: each membrane stays at least this taut
@@ -50,18 +50,18 @@ struct HandMpcParams {
 
 /// The model at the measured state, what the plan is linear in.
 struct MpcLinearisation {
-  HandJoints joints = HandJoints::Zero();     ///< measured q (rad, m)
-  HandJoints droop = HandJoints::Zero();      ///< q minus the servos' lagged targets (rad, m)
-  Vec2 box = Vec2::Zero();                    ///< measured box centre (m)
-  Vec2 velocity = Vec2::Zero();               ///< measured box velocity (m/s)
-  Vec2 equilibrium = Vec2::Zero();            ///< e(q) + d (m)
-  BoxJacobian jacobian = BoxJacobian::Zero(); ///< de/dq (2 x 6)
+  HandJoints joints = HandJoints::Zero();      ///< measured q (rad, m)
+  HandJoints droop = HandJoints::Zero();       ///< q minus the servos' lagged targets (rad, m)
+  Vec2 box = Vec2::Zero();                     ///< measured box centre (m)
+  Vec2 velocity = Vec2::Zero();                ///< measured box velocity (m/s)
+  Vec2 equilibrium = Vec2::Zero();             ///< e(q) + d (m)
+  BoxJacobian jacobian = BoxJacobian::Zero();  ///< de/dq (2 x 6)
   Eigen::Matrix2d stiffness = Eigen::Matrix2d::Zero();  ///< K (N/m)
   FingertipJacobian tips = FingertipJacobian::Zero();   ///< d fingertips/dq (8 x 6)
-  FaceOnTerms faceOn;                         ///< at the measured fingertips and box
+  FaceOnTerms faceOn;                                   ///< at the measured fingertips and box
   Eigen::Vector2d tension = Eigen::Vector2d::Zero();    ///< membranes' tensions (N)
   Eigen::Matrix<double, 2, 6> tensionJoints = Eigen::Matrix<double, 2, 6>::Zero();  ///< dT/dq
-  Eigen::Matrix2d tensionBox = Eigen::Matrix2d::Zero();  ///< dT/db (N/m)
+  Eigen::Matrix2d tensionBox = Eigen::Matrix2d::Zero();                             ///< dT/db (N/m)
   bool valid = false;  ///< the statics is smooth here (a Jacobian exists)
 };
 

@@ -42,9 +42,9 @@ TEST(TrackMpcCli, CompareKeysAndFigure) {
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["targets"].size(), 20u);
   for (const char* law : {"jacobian", "mpc"})
-    for (const char* key : {"median_time_to_5mm", "median_final_error", "max_final_error",
-                            "median_overshoot", "max_overshoot", "grasp_losses",
-                            "joint_limit_hits", "settled", "controller_solve_us"})
+    for (const char* key :
+         {"median_time_to_5mm", "median_final_error", "max_final_error", "median_overshoot",
+          "max_overshoot", "grasp_losses", "joint_limit_hits", "settled", "controller_solve_us"})
       EXPECT_TRUE(j[law].contains(key)) << law << "." << key;
   EXPECT_EQ(j["mpc"]["grasp_losses"], 0);
   EXPECT_GT(std::filesystem::file_size(png), 1000u);
@@ -61,8 +61,7 @@ TEST(TrackMpcCli, BadValuesExitTwo) {
   EXPECT_EQ(h.exitCode, 2);
   EXPECT_NE(h.err.find("--horizon: must be a whole number in [1, 40] (got 0)"), std::string::npos)
       << h.err;
-  const auto a =
-      cablelab::test::runCli("track --set turn=1 --target 0.1,0.1,0.2 --controller mpc");
+  const auto a = cablelab::test::runCli("track --set turn=1 --target 0.1,0.1,0.2 --controller mpc");
   EXPECT_EQ(a.exitCode, 2);
   EXPECT_NE(a.err.find("--controller: mpc steers the box's centre only"), std::string::npos)
       << a.err;
