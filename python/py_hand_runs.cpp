@@ -162,9 +162,8 @@ py::dict reachCall(int grid, const std::string& model, bool pd, py::handle threa
     if (count < 1 || count > 256)
       throw InputError("reach", "threads", "must be a whole number in [1, 256]" + gotValue(count));
   }
-  const ReachOptions options =
-      reachOptions(grid, model, pd, count, handLaw(law, "reach", "law"),
-                   checkedHorizon(horizon, "reach", "horizon"));
+  const ReachOptions options = reachOptions(grid, model, pd, count, handLaw(law, "reach", "law"),
+                                            checkedHorizon(horizon, "reach", "horizon"));
   ReachResult r;
   {
     // Ctrl-C stops the sweep once the runs under way have finished.

@@ -130,13 +130,14 @@ nlohmann::json compareSummary(const CompareResult& r, const CompareOptions& o) {
   const double pid = r.jacobianSummary.medianTimeTo5mm, mpc = r.mpcSummary.medianTimeTo5mm;
   nlohmann::json targets = nlohmann::json::array();
   for (const Vec2& t : r.targets) targets.push_back({t.x(), t.y()});
-  return {{"targets", targets},
-          {"seed", o.seed},
-          {"horizon", o.horizon},
-          {"time", o.time},
-          {"jacobian", law(r.jacobianSummary)},
-          {"mpc", law(r.mpcSummary)},
-          {"time_ratio", pid > 0 && mpc >= 0 ? nlohmann::json(mpc / pid) : nlohmann::json(nullptr)}};
+  return {
+      {"targets", targets},
+      {"seed", o.seed},
+      {"horizon", o.horizon},
+      {"time", o.time},
+      {"jacobian", law(r.jacobianSummary)},
+      {"mpc", law(r.mpcSummary)},
+      {"time_ratio", pid > 0 && mpc >= 0 ? nlohmann::json(mpc / pid) : nlohmann::json(nullptr)}};
 }
 
 ReachOptions reachOptions(int grid, const std::string& model, bool pd, int threads, HandLaw law,
@@ -173,7 +174,9 @@ nlohmann::json reachSummary(const ReachResult& r, const ReachOptions& o) {
           {"ratio", r.fingertipArea > 0 ? r.objectArea / r.fingertipArea : 0.0},
           {"points", r.points},
           {"model", reachModelName(r.model)},
-          {"law", o.law == HandLaw::Mpc ? "MPC" : o.pid ? "PID" : "PD"},
+          {"law", o.law == HandLaw::Mpc ? "MPC"
+                  : o.pid               ? "PID"
+                                        : "PD"},
           {"controller", handLawName(o.law)},
           {"object_points", r.objectPoints.size()},
           {"fingertip_points", r.fingertipPoints.size()},

@@ -32,8 +32,9 @@ struct ReachOptions {
   double time = 15;          ///< s simulated per target at most
   int maxUpdates = 600;      ///< quasi-static outer-loop updates per target
   double tolerance = 0.005;  ///< m
-  HandLaw law = HandLaw::Jacobian;  ///< the simulated runs' outer loop (`pid` is the Jacobian's)
-  int horizon = HandMpcParams{}.horizon;  ///< the MPC's
+  /// The simulated runs' outer loop (`pid` is the Jacobian controller's) and the MPC's horizon.
+  HandLaw law = HandLaw::Jacobian;
+  int horizon = HandMpcParams{}.horizon;
 };
 
 /// One grid target's outcome.

@@ -107,7 +107,8 @@ TrackResult runTracking(const TrackOptions& o, const HandModel& model,
     const HandJoints dq = o.law == HandLaw::Mpc
                               ? mpc.update(q, pose, b.velocity, goal, commanded)
                               : grasp.controller().update(q, pose, goal, commanded);
-    const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double took =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     solveSeconds += took, ++updates;
     result.maxSolveMicros = std::max(result.maxSolveMicros, 1e6 * took);
     return dq;
@@ -132,19 +133,19 @@ TrackResult runTracking(const TrackOptions& o, const HandModel& model,
     const Vec2 now = targetAt(world.time());
     const Vec2 position = world.body(box).position;
     const double angle = world.body(box).angle, nowAngle = targetAngleAt(world.time());
-    result.samples.push_back({world.time(), now, position, maxTension(),
-                              started && o.law == HandLaw::Jacobian
-                                  ? grasp.controller().status().expected
-                                  : position,
-                              nowAngle,
-                              angle});
+    result.samples.push_back(
+        {world.time(), now, position, maxTension(),
+         started && o.law == HandLaw::Jacobian ? grasp.controller().status().expected : position,
+         nowAngle, angle});
     if (onStep) onStep(s + 1, steps);
     if (!started) continue;
     result.maxTension = std::max(result.maxTension, result.samples.back().tension);
     const double e = (position - now).norm();
     sumSquares += e * e;
-    if (e >= kSettledWithin) enteredAt = -1;
-    else if (enteredAt < 0) enteredAt = world.time();
+    if (e >= kSettledWithin)
+      enteredAt = -1;
+    else if (enteredAt < 0)
+      enteredAt = world.time();
     result.overshoot = std::max(result.overshoot, (position - now).dot(towards));
     const HandJoints q = grasp.joints(world);
     for (int j = 0; j < 6; ++j) {

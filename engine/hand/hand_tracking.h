@@ -86,10 +86,10 @@ struct TrackResult {
   /// s from control's start until the box came within 5 mm of the target and stayed there to
   /// the end; -1 if it ended farther.
   double timeTo5mm = -1;
-  double overshoot = 0;      ///< m: furthest the box went past the target, along start -> target
-  int limitHits = 0;         ///< times a joint came within 1 mrad (1 mm) of a limit under control
-  double solveMicros = 0;    ///< mean wall time of one outer-loop update (us)
-  double maxSolveMicros = 0; ///< the longest one (us)
+  double overshoot = 0;       ///< m: furthest the box went past the target, along start -> target
+  int limitHits = 0;          ///< times a joint came within 1 mrad (1 mm) of a limit under control
+  double solveMicros = 0;     ///< mean wall time of one outer-loop update (us)
+  double maxSolveMicros = 0;  ///< the longest one (us)
 };
 
 /// The default start: the pinch at the origin, or (0.1, 0.1) m when the target is within 5 cm
