@@ -128,6 +128,8 @@ const bool reachRegistered = registerCommand(
         bool pd = false;
         std::vector<std::string> sets;
         std::string angles;
+        std::string controller = "jacobian";
+        int horizon = HandMpcParams{}.horizon;
       };
       auto o = std::make_shared<Options>();
       sub.add_option("--grid", o->grid, "N: try an N x N grid of targets")->capture_default_str();
@@ -136,6 +138,10 @@ const bool reachRegistered = registerCommand(
                      "--pid`; quasi-static: the statics model stands in for the hand")
           ->capture_default_str();
       sub.add_flag("--pd", o->pd, "Simulate the PD law (no integral term) instead of PID");
+      sub.add_option("--controller", o->controller,
+                     "Simulated runs' outer loop: jacobian or mpc (as `track --controller`)")
+          ->capture_default_str();
+      sub.add_option("--horizon", o->horizon, "MPC: updates planned ahead")->capture_default_str();
       sub.add_option("--csv", o->csv,
                      "Write x,y,object_reached,fingertip_reachable per target to this CSV file");
       sub.add_option("--png", o->png, "Draw the sets to this PNG file");
@@ -151,13 +157,17 @@ const bool reachRegistered = registerCommand(
         std::vector<std::pair<std::string, double>> overrides;
         for (const std::string& s : o->sets) overrides.push_back(parseSetting(s));
         const HandModel hand = handModelWithSettings(overrides);
-        const ReachOptions options = reachOptions(o->grid, o->model, o->pd);
+        const ReachOptions options =
+            reachOptions(o->grid, o->model, o->pd, 0,
+                         handLaw(o->controller, kCommandLine, "--controller"), o->horizon);
         if (!o->angles.empty())
           return reachAtAngles(options, hand, reachAngles(o->angles, hand), o->csv, o->png,
                                o->scheduler);
         // The Dask workers build the default hand (python/cablelab/_reach_on_dask.py).
         if (!o->scheduler.empty() && !o->sets.empty())
           badOption("--set", "cannot be combined with --scheduler");
+        if (!o->scheduler.empty() && options.law != HandLaw::Jacobian)
+          badOption("--controller", "mpc cannot be combined with --scheduler");
 #ifndef CABLELAB_HAVE_OFFSCREEN
         if (!o->png.empty()) badOption("--png", "this build has no offscreen renderer");
 #endif

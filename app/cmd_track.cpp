@@ -21,9 +21,10 @@ namespace {
 
 #ifdef CABLELAB_HAVE_OFFSCREEN
 /// Figure 4-5: target (dashed) and the box's x and y against time, for the chosen law and, as a
-/// thin line, the other one (PD next to PID shows the offset PD leaves and PID removes).
+/// thin line, another one (PD next to PID shows the offset PD leaves and PID removes; PID next to
+/// MPC how much sooner the plan arrives).
 void writeTrackPng(const std::string& path, const TrackOptions& options, const TrackResult& r,
-                   const TrackResult& other) {
+                   const TrackResult& other, const char* law, const char* otherLaw) {
   auto series = [](const TrackResult& run, auto pick) {
     std::vector<double> v;
     for (const TrackSample& s : run.samples) v.push_back(pick(s));
@@ -31,8 +32,6 @@ void writeTrackPng(const std::string& path, const TrackOptions& options, const T
   };
   const std::vector<double> t = series(r, [](const TrackSample& s) { return s.t; });
   const std::vector<double> to = series(other, [](const TrackSample& s) { return s.t; });
-  const char* law = options.pid ? "PID" : "PD";
-  const char* otherLaw = options.pid ? "PD" : "PID";
   char title[200];
   std::snprintf(title, sizeof title,
                 "Box position, %s: %s final error %.3g mm, %s %.3g mm (start %.0f mm off)",
@@ -69,6 +68,36 @@ void writeTrackPng(const std::string& path, const TrackOptions& options, const T
 }
 #endif
 
+/// The law as the figure names it.
+const char* lawLabel(const TrackOptions& o) {
+  return o.law == HandLaw::Mpc ? "MPC" : o.pid ? "PID" : "PD";
+}
+
+/// `track --compare`: both laws on the same seeded targets; the figure shows the first target.
+int runCompare(const std::string& png, const std::string& csv, const CompareOptions& compare,
+               const HandModel& model) {
+  if (!csv.empty()) badOption("--csv", "cannot be combined with --compare");
+#ifndef CABLELAB_HAVE_OFFSCREEN
+  if (!png.empty()) badOption("--png", "this build has no offscreen renderer");
+#endif
+  requireOutputFile(png, "--png");
+  Progress progress("track --compare", 2L * compare.targets);
+  const CompareResult r =
+      compareLaws(compare, model, [&](long done, long) { progress.update(done); });
+  progress.done();
+#ifdef CABLELAB_HAVE_OFFSCREEN
+  if (!png.empty()) {
+    TrackOptions first;
+    first.target = r.targets.front();
+    first.time = compare.time;
+    first.law = HandLaw::Mpc;
+    writeTrackPng(png, first, r.mpc.front(), r.jacobian.front(), "MPC", "PID");
+  }
+#endif
+  printJson(compareSummary(r, compare).dump());
+  return 0;
+}
+
 const bool trackRegistered = registerCommand(
     "track", "Hand closes a pinch grasp, then the Jacobian controller tracks a target (fig. 4-5)",
     [](CLI::App& sub) {
@@ -77,6 +106,10 @@ const bool trackRegistered = registerCommand(
         std::vector<std::string> sets;
         double time = 15;
         bool pid = false;
+        std::string controller = "jacobian";
+        int horizon = HandMpcParams{}.horizon;
+        bool compare = false;
+        unsigned seed = 1;
       };
       auto o = std::make_shared<Options>();
       sub.add_option("--target", o->target,
@@ -92,6 +125,17 @@ const bool trackRegistered = registerCommand(
                      "Hand scene parameter NAME=VALUE (repeatable; as `run hand`), e.g. turn=1");
       sub.add_flag("--pid", o->pid,
                    "Add the integral term to the outer loop (removes the steady offset)");
+      sub.add_option("--controller", o->controller,
+                     "Outer loop: jacobian (the thesis's controller) or mpc (model-predictive "
+                     "control, plans --horizon updates ahead)")
+          ->capture_default_str();
+      sub.add_option("--horizon", o->horizon, "MPC: updates planned ahead (0.053 s each)")
+          ->capture_default_str();
+      sub.add_flag("--compare", o->compare,
+                   "Run PID and MPC on the same 20 seeded targets and print each law's median "
+                   "time to 5 mm, final error, overshoot, grasp losses and joint-limit hits");
+      sub.add_option("--seed", o->seed, "--compare: seed of the targets' draw")
+          ->capture_default_str();
       sub.add_option("--csv", o->csv,
                      "Write t,target_x,target_y,x,y,target_angle,angle per step to this CSV file");
       sub.add_option("--png", o->png,
@@ -115,7 +159,16 @@ const bool trackRegistered = registerCommand(
         }
         request.time = o->time;
         request.pid = o->pid;
+        request.law = handLaw(o->controller, kCommandLine, "--controller");
+        request.horizon = o->horizon;
         const TrackOptions options = trackOptions(request, model);
+        if (o->compare) {
+          CompareOptions compare;
+          compare.seed = o->seed;
+          compare.horizon = options.mpc.horizon;
+          compare.time = options.time;
+          return runCompare(o->png, o->csv, compare, model);
+        }
 #ifndef CABLELAB_HAVE_OFFSCREEN
         if (!o->png.empty()) badOption("--png", "this build has no offscreen renderer");
 #endif
@@ -127,13 +180,14 @@ const bool trackRegistered = registerCommand(
         Progress progress("track", o->png.empty() ? steps : 2 * steps);
         const TrackResult r =
             runTracking(options, model, [&](long done, long) { progress.update(done); });
+        // The figure's other law: PID beside MPC, else PD beside PID and PID beside PD.
+        TrackOptions swapped = options;
+        swapped.law = HandLaw::Jacobian;
+        swapped.pid = options.law == HandLaw::Mpc || !options.pid;
         TrackResult other;
-        if (!o->png.empty()) {
-          TrackOptions swapped = options;
-          swapped.pid = !options.pid;
+        if (!o->png.empty())
           other =
               runTracking(swapped, model, [&](long done, long) { progress.update(steps + done); });
-        }
         progress.done();
 
         if (csv) {
@@ -147,9 +201,10 @@ const bool trackRegistered = registerCommand(
           finishOutputFile(*csv, o->csv, "--csv");
         }
 #ifdef CABLELAB_HAVE_OFFSCREEN
-        if (!o->png.empty()) writeTrackPng(o->png, options, r, other);
+        if (!o->png.empty())
+          writeTrackPng(o->png, options, r, other, lawLabel(options), lawLabel(swapped));
 #endif
-        printJson(trackSummary(r).dump());
+        printJson(trackSummary(r, options.law).dump());
         return 0;
       };
     });

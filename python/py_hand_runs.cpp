@@ -73,7 +73,7 @@ std::vector<TargetChange> targetChanges(py::handle changes) {
 py::dict trackCall(py::handle target, py::handle ramp, py::handle start, double time, bool pid,
                    py::handle changes, const HandModel& hand,
                    const HandControllerParams& controller, const GraspOptions& grasp,
-                   py::handle progress) {
+                   py::handle progress, const std::string& law, int horizon) {
   TrackRequest request;
   if (!target.is_none()) {
     // (x, y) or (x, y, theta), as numbers or the CLI's text.
@@ -92,6 +92,8 @@ py::dict trackCall(py::handle target, py::handle ramp, py::handle start, double 
   request.start = optionVec2(start, "--start");
   request.time = time;
   request.pid = pid;
+  request.law = handLaw(law, "track", "law");
+  request.horizon = checkedHorizon(horizon, "track", "horizon");
   TrackOptions options = trackOptions(request, hand);
   options.changes = targetChanges(changes);
   options.controller = controller;
@@ -102,7 +104,7 @@ py::dict trackCall(py::handle target, py::handle ramp, py::handle start, double 
     py::gil_scoped_release release;
     r = runTracking(options, hand, std::ref(onStep));
   }
-  py::dict out = fromJson(trackSummary(r));
+  py::dict out = fromJson(trackSummary(r, options.law));
   const py::ssize_t n = static_cast<py::ssize_t>(r.samples.size());
   py::array_t<double> t = newArray({n}), tension = newArray({n});
   py::array_t<double> angle = newArray({n}), targetAngle = newArray({n});
@@ -152,14 +154,16 @@ py::dict targetColumns(const ReachResult& r) {
 }
 
 py::dict reachCall(int grid, const std::string& model, bool pd, py::handle threads,
-                   const HandModel& hand, py::handle progress) {
+                   const HandModel& hand, py::handle progress, const std::string& law,
+                   int horizon) {
   int count = 0;
   if (!threads.is_none()) {
     count = threads.cast<int>();
     if (count < 1 || count > 256)
       throw InputError("reach", "threads", "must be a whole number in [1, 256]" + gotValue(count));
   }
-  const ReachOptions options = reachOptions(grid, model, pd, count);
+  const ReachOptions options = reachOptions(grid, model, pd, count, handLaw(law, "reach", "law"),
+                                            checkedHorizon(horizon, "reach", "horizon"));
   ReachResult r;
   {
     // Ctrl-C stops the sweep once the runs under way have finished.
@@ -206,34 +210,40 @@ void bindHandRuns(py::module_& m) {
   m.def("track", &trackCall, py::kw_only(), "target"_a = py::none(), "ramp"_a = py::none(),
         "start"_a = py::none(), "time"_a = 15.0, "pid"_a = false, "changes"_a = py::none(),
         "hand"_a = HandModel{}, "controller"_a = HandControllerParams{}, "grasp"_a = GraspOptions{},
-        "progress"_a = py::none(),
+        "progress"_a = py::none(), "law"_a = "jacobian", "horizon"_a = HandMpcParams{}.horizon,
         R"doc(track(*, target=None, ramp=None, start=None, time=15, pid=False, changes=None,
       hand=HandModel(), controller=ControllerParams(), grasp=GraspOptions(),
-      progress=None) -> dict
+      progress=None, law="jacobian", horizon=6) -> dict
 
 Figure 4-5, as `cablelab track`: the hand closes a pinch grasp about the box at `start`,
 then the Jacobian controller drives it to `target` [x, y] (m) or [x, y, theta] (theta in
 rad; needs hand=HandModel(turn=True)), or along `ramp` (x, y, seconds) from the start. Each of target, ramp and start is numbers or the CLI's text
 ("0.1,0.2"); start defaults to (0, 0), or (0.1, 0.1) for a target within 5 cm of it.
-time: simulated seconds. pid: add the integral term (k_i = PID_KI). changes: later target
+time: simulated seconds. pid: add the integral term (k_i = PID_KI). law: the outer loop,
+"jacobian" or "mpc" (model-predictive control planning `horizon` updates ahead; the CLI's
+--controller and --horizon). changes: later target
 steps [(t, (x, y)), ...] in time order (not in the CLI). progress(done, total): called
 about every 0.1 s. Bad options raise InputError with the CLI's message; Ctrl-C stops the
 run (KeyboardInterrupt). Runs with the GIL released.
 
 Returns the CLI's JSON fields: final_error, rms_error, start_error (m), final_angle_error,
 rms_angle_error, final_angle (rad), grasp_time (s),
-grasp_held, losses, start, final_box (m), max_tension (N), events [{t, what}]; and the
+grasp_held, losses, start, final_box (m), max_tension (N), events [{t, what}], controller,
+time_to_5mm (s or None), overshoot (m), joint_limit_hits, controller_solve_us,
+controller_solve_max_us (us); and the
 samples, one per step from t = 0: t (s), target, box, reference ((n, 2), m), angle,
 target_angle ((n,), rad), tension ((n,), N, the larger membrane's); start_tension (N), final_joints (6, rad/m).)doc");
   m.def("reach", &reachCall, py::kw_only(), "grid"_a = 50, "model"_a = "simulation", "pd"_a = false,
         "threads"_a = py::none(), "hand"_a = HandModel{}, "progress"_a = py::none(),
+        "law"_a = "jacobian", "horizon"_a = HandMpcParams{}.horizon,
         R"doc(reach(*, grid=50, model="simulation", pd=False, threads=None, hand=HandModel(),
-      progress=None) -> dict
+      progress=None, law="jacobian", horizon=6) -> dict
 
 Figure 4-4, as `cablelab reach`: the box positions the controller reaches on a grid x grid
 window, against the fingertips' range. model "simulation": every target is a full run of
 track(target=..., pid=not pd), reached within 5 mm with the grasp held; "quasi-static":
-the statics model stands in for the hand. threads: default one per core.
+the statics model stands in for the hand. law, horizon: the simulated runs' outer loop, as
+track()'s. threads: default one per core.
 progress(done, total) about every 0.1 s. Runs with the GIL released; Ctrl-C stops it
 (KeyboardInterrupt) once the runs under way have finished.
 

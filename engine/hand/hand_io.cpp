@@ -41,8 +41,26 @@ std::vector<double> reachAngles(std::string_view text, const HandModel& model) {
   return angles;
 }
 
+HandLaw handLaw(const std::string& text, const std::string& source, const std::string& field) {
+  if (text == "jacobian") return HandLaw::Jacobian;
+  if (text == "mpc") return HandLaw::Mpc;
+  throw InputError(source, field, "must be jacobian or mpc" + gotValue(text));
+}
+
+const char* handLawName(HandLaw law) {
+  return law == HandLaw::Mpc ? "mpc" : "jacobian";
+}
+
+int checkedHorizon(int horizon, const std::string& source, const std::string& field) {
+  if (horizon < 1 || horizon > 40)
+    throw InputError(source, field, "must be a whole number in [1, 40]" + gotValue(horizon));
+  return horizon;
+}
+
 TrackOptions trackOptions(const TrackRequest& q, const HandModel& model) {
   TrackOptions o;
+  o.law = q.law;
+  o.mpc.horizon = checkedHorizon(q.horizon, kCommandLine, "--horizon");
   if (q.target && q.ramp)
     throw InputError(kCommandLine, "--ramp", "give either --target or --ramp, not both");
   if (q.target) o.target = *q.target;
@@ -54,6 +72,9 @@ TrackOptions trackOptions(const TrackRequest& q, const HandModel& model) {
     throw InputError(kCommandLine, "--target",
                      "THETA must be in [-pi, pi] rad" + gotValue(q.targetAngle));
   o.targetAngle = q.targetAngle;
+  if (q.targetAngle != 0 && q.law == HandLaw::Mpc)
+    throw InputError(kCommandLine, "--controller",
+                     "mpc steers the box's centre only: an angle target needs jacobian (got mpc)");
   if (q.ramp) {
     const auto& v = *q.ramp;
     if (!(v[2] > 0))
@@ -75,7 +96,14 @@ TrackOptions trackOptions(const TrackRequest& q, const HandModel& model) {
   return o;
 }
 
-nlohmann::json trackSummary(const TrackResult& r) {
+namespace {
+/// A time that may not exist (-1) as a number or null.
+nlohmann::json timeOrNull(double t) {
+  return t >= 0 ? nlohmann::json(t) : nlohmann::json(nullptr);
+}
+}  // namespace
+
+nlohmann::json trackSummary(const TrackResult& r, HandLaw law) {
   nlohmann::json events = nlohmann::json::array();
   for (const GraspEvent& e : r.events) events.push_back({{"t", e.t}, {"what", e.what}});
   const Vec2 last = r.samples.empty() ? r.start : r.samples.back().box;
@@ -91,10 +119,43 @@ nlohmann::json trackSummary(const TrackResult& r) {
           {"start", {r.start.x(), r.start.y()}},
           {"final_box", {last.x(), last.y()}},
           {"max_tension", r.maxTension},
-          {"events", events}};
+          {"events", events},
+          {"controller", handLawName(law)},
+          {"time_to_5mm", timeOrNull(r.timeTo5mm)},
+          {"overshoot", r.overshoot},
+          {"joint_limit_hits", r.limitHits},
+          {"controller_solve_us", r.solveMicros},
+          {"controller_solve_max_us", r.maxSolveMicros}};
 }
 
-ReachOptions reachOptions(int grid, const std::string& model, bool pd, int threads) {
+nlohmann::json compareSummary(const CompareResult& r, const CompareOptions& o) {
+  auto law = [](const LawSummary& s) {
+    return nlohmann::json{{"median_time_to_5mm", timeOrNull(s.medianTimeTo5mm)},
+                          {"median_final_error", s.medianFinalError},
+                          {"max_final_error", s.maxFinalError},
+                          {"median_overshoot", s.medianOvershoot},
+                          {"max_overshoot", s.maxOvershoot},
+                          {"grasp_losses", s.graspLosses},
+                          {"joint_limit_hits", s.limitHits},
+                          {"settled", s.settled},
+                          {"controller_solve_us", s.solveMicros},
+                          {"controller_solve_max_us", s.maxSolveMicros}};
+  };
+  const double pid = r.jacobianSummary.medianTimeTo5mm, mpc = r.mpcSummary.medianTimeTo5mm;
+  nlohmann::json targets = nlohmann::json::array();
+  for (const Vec2& t : r.targets) targets.push_back({t.x(), t.y()});
+  return {
+      {"targets", targets},
+      {"seed", o.seed},
+      {"horizon", o.horizon},
+      {"time", o.time},
+      {"jacobian", law(r.jacobianSummary)},
+      {"mpc", law(r.mpcSummary)},
+      {"time_ratio", pid > 0 && mpc >= 0 ? nlohmann::json(mpc / pid) : nlohmann::json(nullptr)}};
+}
+
+ReachOptions reachOptions(int grid, const std::string& model, bool pd, int threads, HandLaw law,
+                          int horizon) {
   if (grid < 1 || grid > 1000)
     throw InputError(kCommandLine, "--grid",
                      "must be a whole number in [1, 1000]" + gotValue(grid));
@@ -106,6 +167,8 @@ ReachOptions reachOptions(int grid, const std::string& model, bool pd, int threa
   o.model = model == "simulation" ? ReachModel::Simulation : ReachModel::QuasiStatic;
   o.pid = !pd;
   o.threads = threads;
+  o.law = law;
+  o.horizon = checkedHorizon(horizon, kCommandLine, "--horizon");
   return o;
 }
 
@@ -125,7 +188,10 @@ nlohmann::json reachSummary(const ReachResult& r, const ReachOptions& o) {
           {"ratio", r.fingertipArea > 0 ? r.objectArea / r.fingertipArea : 0.0},
           {"points", r.points},
           {"model", reachModelName(r.model)},
-          {"law", o.pid ? "PID" : "PD"},
+          {"law", o.law == HandLaw::Mpc ? "MPC"
+                  : o.pid               ? "PID"
+                                        : "PD"},
+          {"controller", handLawName(o.law)},
           {"object_points", r.objectPoints.size()},
           {"fingertip_points", r.fingertipPoints.size()},
           {"beyond_fingertips", beyond},

@@ -48,6 +48,8 @@ ReachTarget simulateTarget(const HandModel& m, const Vec2& target, const ReachOp
   track.targetAngle = o.angle;
   track.stop.angleTolerance = o.angleTolerance;
   track.pid = o.pid;
+  track.law = o.law;
+  track.mpc.horizon = o.horizon;
   track.time = o.time;
   track.stop.enabled = true;
   track.stop.tolerance = o.tolerance;

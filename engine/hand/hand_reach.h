@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "engine/hand/hand_model.h"
+#include "engine/hand/hand_tracking.h"
 
 namespace cablelab {
 
@@ -35,6 +36,9 @@ struct ReachOptions {
   /// turn. A target is then reached within `tolerance` and `angleTolerance` of (x, y, angle).
   double angle = 0;
   double angleTolerance = 0.02;  ///< rad
+  /// The simulated runs' outer loop (`pid` is the Jacobian controller's) and the MPC's horizon.
+  HandLaw law = HandLaw::Jacobian;
+  int horizon = HandMpcParams{}.horizon;
 };
 
 /// One grid target's outcome.

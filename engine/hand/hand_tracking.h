@@ -13,6 +13,7 @@
 #include "engine/hand/hand_controller.h"
 #include "engine/hand/hand_grasp.h"
 #include "engine/hand/hand_model.h"
+#include "engine/hand/hand_mpc.h"
 
 namespace cablelab {
 
@@ -34,6 +35,10 @@ struct EarlyStop {
   double angleTolerance = 0.02;  ///< rad: a box that turns settles within this of its angle too
 };
 
+/// The outer-loop law: the Jacobian controller (hand_controller.h, the thesis's) or
+/// model-predictive control (hand_mpc.h).
+enum class HandLaw { Jacobian, Mpc };
+
 struct TrackOptions {
   Vec2 target = Vec2::Zero();         ///< final target box centre (m)
   double targetAngle = 0;             ///< final target box angle (rad; the box must turn)
@@ -46,6 +51,8 @@ struct TrackOptions {
   bool pid = false;                   ///< add the integral term (k_i = kHandPidKi)
   GraspOptions grasp;
   HandControllerParams controller;  ///< outer-loop gains (`pid` sets ki = kHandPidKi)
+  HandLaw law = HandLaw::Jacobian;
+  HandMpcParams mpc;  ///< the law's horizon and weights when it is HandLaw::Mpc
   EarlyStop stop;
 };
 
@@ -76,6 +83,13 @@ struct TrackResult {
   HandJoints finalJoints = HandJoints::Zero();
   std::vector<GraspEvent> events;
   std::vector<TrackSample> samples;  ///< one per step, t = 0 first
+  /// s from control's start until the box came within 5 mm of the target and stayed there to
+  /// the end; -1 if it ended farther.
+  double timeTo5mm = -1;
+  double overshoot = 0;       ///< m: furthest the box went past the target, along start -> target
+  int limitHits = 0;          ///< times a joint came within 1 mrad (1 mm) of a limit under control
+  double solveMicros = 0;     ///< mean wall time of one outer-loop update (us)
+  double maxSolveMicros = 0;  ///< the longest one (us)
 };
 
 /// The default start: the pinch at the origin, or (0.1, 0.1) m when the target is within 5 cm

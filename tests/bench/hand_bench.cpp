@@ -1,11 +1,13 @@
 // Controller update and hand-scene step (with and without the membranes).
 #include <benchmark/benchmark.h>
 
+#include <chrono>
 #include <cmath>
 #include <numbers>
 
 #include "engine/dynamics/world.h"
 #include "engine/hand/hand_controller.h"
+#include "engine/hand/hand_mpc.h"
 
 namespace cablelab {
 namespace {
@@ -17,6 +19,28 @@ void BM_HandControllerUpdate(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(controller.update(q, box, Vec2(0.01, 0), q));
 }
 BENCHMARK(BM_HandControllerUpdate);
+
+// One MPC update from the pinch towards a target 10 cm off, planned afresh (no warm start: the
+// costliest kind), horizon N. vs_jacobian: its time over one Jacobian controller update's.
+void BM_HandMpcUpdate(benchmark::State& state) {
+  HandMpcParams params;
+  params.horizon = static_cast<int>(state.range(0));
+  HandMpc mpc{HandModel{}, params};
+  const HandJoints q = HandJoints::Zero();
+  const Vec2 box = HandController{HandModel{}}.predict(q, Vec2::Zero()).box;
+  double seconds = 0;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    mpc.reset();
+    benchmark::DoNotOptimize(
+        mpc.update(q, BoxPose(box.x(), box.y(), 0), Vec2::Zero(), BoxPose(0.1, 0.05, 0), q));
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  const double micros = 1e6 * seconds / static_cast<double>(state.iterations());
+  state.counters["vs_jacobian"] = micros / measureControllerUpdateMicros(2000);
+  state.counters["period_share"] = micros / 53000;  // of the 0.053 s outer-loop period
+}
+BENCHMARK(BM_HandMpcUpdate)->Arg(6)->Arg(12)->ArgNames({"horizon"})->Unit(benchmark::kMicrosecond);
 
 void BM_HandStep(benchmark::State& state) {
   SceneDef scene = buildHandScene(HandModel{});
