@@ -29,6 +29,8 @@
 // friction (docs/wheels.md): on a circle, holding while T_high <= T_low e^(mu theta); on a
 // polygon, at each engaged corner with theta_i its turn (docs/polygon_friction.md); 0 = none.
 // "no_slip" (circles only) and "mu" exclude each other; either needs a rigid cable.
+// A scene written mid-run also has joints' "value", "time", "step_count" and a "history" (the scene
+// as built and its inputs since) that World replays bit for bit (docs/scene-format.md).
 #pragma once
 
 #include <nlohmann/json.hpp>
