@@ -39,7 +39,12 @@ struct Recording {
         steps(steps),
         nb(nb),
         nc(nc),
-        nj(nj) {}
+        nj(nj) {
+    // Touched here, before the threads start: a page's first write faults into the kernel, and
+    // faults of threads sharing one address space queue on its lock.
+    for (py::array_t<double>* a : {&t, &bodies, &cables, &joints})
+      std::fill_n(a->mutable_data(), a->size(), 0.0);
+  }
 
   /// Row `step` of world `i`: the state after that step.
   void write(int i, long step, const World& w) {
@@ -97,8 +102,13 @@ py::array_t<double> controlArray(py::handle controls, size_t worlds, long steps,
                          std::to_string(worlds) + ", " + std::to_string(steps) + ", " +
                          std::to_string(joints) + ") of servo targets, or a callable");
   const double* d = a.data();
-  for (py::ssize_t k = 0; k < a.size(); ++k)
-    checkedValue(d[k], kSource, "controls (flat index " + std::to_string(k) + ")");
+  for (py::ssize_t k = 0; k < a.size(); ++k) {
+    try {
+      checkedValue(d[k], kSource, "controls");  // a short name: no allocation per value
+    } catch (const InputError&) {
+      checkedValue(d[k], kSource, "controls (flat index " + std::to_string(k) + ")");
+    }
+  }
   return a;
 }
 

@@ -2,6 +2,8 @@
 // World.get_state / set_state / copy, and pickling of World. A state is the scene plus the
 // World's input history; restoring it replays the history, so a fork steps bit for bit as the
 // original (docs/python.md, "State").
+#include <algorithm>
+#include <array>
 #include <memory>
 
 #include "engine/core/error.h"
@@ -17,15 +19,13 @@ namespace {
 constexpr int kStateVersion = 1;          // the pickled layout below
 constexpr py::ssize_t kInputColumns = 7;  // kind, index, count, values[4]
 
-/// The history as an (n, 7) float64 array (kind, index, count, four values): exact, as every
-/// index and count is far below 2^53.
+/// The history as an (n, 7) float64 array (world_state.h, inputRows): exact, as every index
+/// and count is far below 2^53.
 py::array_t<double> inputsArray(const std::vector<WorldInput>& inputs) {
-  py::array_t<double> a = newArray({static_cast<py::ssize_t>(inputs.size()), kInputColumns});
-  double* d = a.mutable_data();
-  for (const WorldInput& in : inputs) {
-    *d++ = static_cast<double>(in.kind), *d++ = in.index, *d++ = static_cast<double>(in.count);
-    for (double v : in.values) *d++ = v;
-  }
+  const auto rows = inputRows(inputs);
+  py::array_t<double> a = newArray({static_cast<py::ssize_t>(rows.size()), kInputColumns});
+  std::copy_n(rows.empty() ? nullptr : rows[0].data(), rows.size() * kInputColumns,
+              a.mutable_data());
   return a;
 }
 
@@ -33,17 +33,9 @@ std::vector<WorldInput> inputsOf(py::handle array, const std::string& source) {
   auto a = py::array_t<double, py::array::forcecast | py::array::c_style>::ensure(array);
   if (!a || a.ndim() != 2 || a.shape(1) != kInputColumns)
     throw InputError(source, "inputs", "must be an (n, 7) array");
-  std::vector<WorldInput> out;
-  const double* d = a.data();
-  for (py::ssize_t i = 0; i < a.shape(0); ++i, d += kInputColumns) {
-    if (!(d[0] >= 0 && d[0] <= static_cast<double>(WorldInput::Kind::Last)) || d[2] < 0)
-      throw InputError(source, "inputs[" + std::to_string(i) + "]", "is not a World input");
-    WorldInput in{static_cast<WorldInput::Kind>(static_cast<int>(d[0])), static_cast<int>(d[1]),
-                  static_cast<long>(d[2])};
-    for (int k = 0; k < 4; ++k) in.values[k] = d[3 + k];
-    out.push_back(in);
-  }
-  return out;
+  std::vector<std::array<double, 7>> rows(static_cast<size_t>(a.shape(0)));
+  std::copy_n(a.data(), a.size(), rows.empty() ? nullptr : rows[0].data());
+  return inputsFromRows(rows, source, "inputs");
 }
 
 /// (version, scene JSON text, source, inputs): what pickle keeps of a state or a World.

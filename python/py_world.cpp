@@ -7,6 +7,7 @@
 
 #include "engine/core/error.h"
 #include "engine/dynamics/world.h"
+#include "engine/dynamics/world_state.h"
 #include "engine/model/scene_json.h"
 #include "engine/scenes/scene_registry.h"
 #include "python/bindings.h"
@@ -61,27 +62,6 @@ void checkStep(const SceneDef& scene, py::handle dt, py::handle substeps, double
     if (s < 1 || s > 1000) throw InputError("step", "substeps", "must be 1..1000");
     n = static_cast<int>(s);
   }
-}
-
-/// The scene with the current state in place of the initial one (bodies, servo targets, cable
-/// parameters, gravity), so that from_dict(to_dict(current=True)) continues from here.
-SceneDef currentScene(const World& world) {
-  SceneDef s = world.scene();
-  s.gravity = world.gravity();
-  for (int i = 0; i < world.bodyCount(); ++i) {
-    const BodyState& b = world.body(i);
-    s.bodies[i].position = b.position, s.bodies[i].angle = b.angle;
-    s.bodies[i].velocity = b.velocity, s.bodies[i].angularVelocity = b.angularVelocity;
-  }
-  for (int i = 0; i < world.jointCount(); ++i)
-    s.joints[i].servo.target = world.joint(i).servoTarget;
-  for (int i = 0; i < world.cableCount(); ++i) {
-    const CableParameters& live = world.cable(i).parameters();
-    CableDef& c = s.cables[i];
-    c.restLength = live.restLength, c.stiffness = live.stiffness;
-    c.preload = live.preload, c.damping = live.damping;
-  }
-  return s;
 }
 
 }  // namespace
@@ -403,16 +383,20 @@ numpy arrays are accepted for lists). source names the dict in InputError messag
       "to_dict",
       [](const PyWorld& self, bool current) {
         PyWorld::Busy busy(self);
-        return fromJson(sceneToJson(current ? currentScene(*self.world) : self.world->scene()));
+        return fromJson(sceneToJson(current ? sceneNow(*self.world) : self.world->scene()));
       },
       "current"_a = false,
       R"doc(to_dict(current=False) -> dict
 
-The scene JSON as a dict. current=False: the scene as it was built (initial state);
-current=True: with the bodies' present poses and velocities, servo targets, cable
-parameters and gravity in place of the initial ones. That is a scene, not a state: Box2D's
-contact caches are not carried over, and joint coordinates start again from zero at the
-present pose. To continue exactly, use get_state() / set_state() or copy().)doc");
+The scene JSON as a dict. current=False: the scene as it was built (initial state).
+current=True: the scene now, to continue from here: the bodies' present poses and
+velocities, joint coordinates ("value"), servo targets, cable parameters, gravity, time and
+step count in place of the initial ones, and a "history" (the scene as built and every input
+since) from which World.from_dict() rebuilds this World bit for bit: stepped with the same
+inputs, the two stay equal to the last bit (docs/scene-format.md, "Scenes written mid-run").
+Edit the fields only after deleting "history" (from_dict refuses a history that does not
+lead to them); the World then starts from the fields as written, close to but not bit for
+bit this one (Box2D's contacts and the solvers' warm starts start afresh).)doc");
 
   c.def(
       "step",

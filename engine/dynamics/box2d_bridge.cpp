@@ -84,6 +84,8 @@ b2Joint* createJoint(b2World& w, const JointDef& jd, b2Body* a, b2Body* b) {
     case JointDef::Kind::Revolute: {
       b2RevoluteJointDef def;
       def.Initialize(a, b, toB2(jd.anchor));
+      // The coordinate reads jd.value at the scene's pose (scene.h, JointDef::value).
+      def.referenceAngle -= static_cast<float>(jd.value);
       def.enableLimit = jd.enableLimit;
       def.lowerAngle = static_cast<float>(jd.lower);
       def.upperAngle = static_cast<float>(jd.upper);
@@ -92,7 +94,10 @@ b2Joint* createJoint(b2World& w, const JointDef& jd, b2Body* a, b2Body* b) {
     }
     case JointDef::Kind::Prismatic: {
       b2PrismaticJointDef def;
-      def.Initialize(a, b, toB2(jd.anchor), toB2(jd.axis.normalized()));
+      const Vec2 axis = jd.axis.normalized();
+      def.Initialize(a, b, toB2(jd.anchor), toB2(axis));
+      // The slide reads jd.value at the scene's pose: A's anchor sits that far back on the axis.
+      if (jd.value != 0) def.localAnchorA = a->GetLocalPoint(toB2(jd.anchor - jd.value * axis));
       def.enableLimit = jd.enableLimit;
       def.lowerTranslation = static_cast<float>(jd.lower);
       def.upperTranslation = static_cast<float>(jd.upper);

@@ -16,6 +16,7 @@
 #include "engine/dynamics/length_targets.h"
 #include "engine/dynamics/midpoint_solver.h"
 #include "engine/dynamics/servo_drive.h"
+#include "engine/dynamics/world_state.h"
 
 namespace cablelab {
 
@@ -46,7 +47,7 @@ SceneDef validated(SceneDef scene, const std::string& source) {
 }  // namespace
 
 World::World(SceneDef scene, const std::string& source)
-    : scene_(validated(std::move(scene), source)),
+    : scene_(validated(scene.history ? scene.history->origin : scene, source)),
       b2_(std::make_unique<Box2DBridge>(scene_)),
       solver_(std::make_unique<CableSolver>()),
       midpoint_(std::make_unique<MidpointSolver>()),
@@ -81,6 +82,9 @@ World::World(SceneDef scene, const std::string& source)
                           " m longer than its rest length " + formatNumber(c.restLength()) +
                           " m at the start: it snaps taut to it (give it stiffness to stretch)");
   }
+  time_ = scene_.time, steps_ = scene_.stepCount;
+  // A scene written mid-run: rebuilt bit for bit from where it started (world_state.h).
+  if (scene.history) resumeHistory(*this, scene, source);
 }
 
 World::~World() = default;

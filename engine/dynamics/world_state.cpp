@@ -1,7 +1,10 @@
 // Capture and restore of a World's state by its history (world_state.h).
 #include "engine/dynamics/world_state.h"
 
+#include <cmath>
+
 #include "engine/core/error.h"
+#include "engine/model/scene_json.h"
 
 namespace cablelab {
 
@@ -93,6 +96,98 @@ void replayInputs(World& world, const std::vector<WorldInput>& inputs, const std
         break;
     }
   }
+}
+
+SceneDef sceneNow(const World& world) {
+  const SceneDef& built = world.scene();
+  SceneDef s = built;
+  s.gravity = world.gravity();
+  for (int i = 0; i < world.bodyCount(); ++i) {
+    const BodyState& b = world.body(i);
+    s.bodies[i].position = b.position, s.bodies[i].angle = b.angle;
+    s.bodies[i].velocity = b.velocity, s.bodies[i].angularVelocity = b.angularVelocity;
+  }
+  for (int i = 0; i < world.jointCount(); ++i) {
+    const JointState j = world.joint(i);
+    JointDef& d = s.joints[i];
+    d.anchor = j.anchorB;
+    d.value = j.value;
+    d.servo.target = j.servoTarget;
+    // A prismatic axis turns with body A.
+    const int a = findBodyIndex(built, d.bodyA);
+    if (a >= 0) d.axis = rotate(d.axis, world.body(a).angle - built.bodies[a].angle);
+  }
+  for (int i = 0; i < world.cableCount(); ++i) {
+    const CableParameters& live = world.cable(i).parameters();
+    CableDef& c = s.cables[i];
+    c.restLength = live.restLength, c.stiffness = live.stiffness;
+    c.preload = live.preload, c.damping = live.damping;
+  }
+  s.time = world.time();
+  s.stepCount = world.stepCount();
+  auto history = std::make_shared<SceneHistory>();
+  history->origin = built;
+  history->inputs = inputRows(world.history().inputs());
+  s.history = std::move(history);
+  return s;
+}
+
+namespace {
+
+/// What sceneNow writes of the state (not the names, view or default step, free to edit).
+nlohmann::json stateFields(const SceneDef& scene) {
+  nlohmann::json j = sceneToJson(scene);
+  for (const char* key : {"name", "description", "view", "dt", "substeps", "history"})
+    j.erase(key);
+  return j;
+}
+
+}  // namespace
+
+void resumeHistory(World& world, const SceneDef& written, const std::string& source) {
+  replayInputs(world, inputsFromRows(written.history->inputs, source), source);
+  const nlohmann::json reached = stateFields(sceneNow(world)), given = stateFields(written);
+  if (reached == given) return;
+  std::string differ = "its state";
+  for (const auto& [key, value] : given.items())
+    if (!reached.contains(key) || reached.at(key) != value) {
+      differ = key;
+      break;
+    }
+  throw InputError(source, "history",
+                   "does not lead to the scene's " + differ +
+                       " (edited after the scene was written?): remove \"history\" to start "
+                       "from the fields as written");
+}
+
+std::vector<std::array<double, 7>> inputRows(const std::vector<WorldInput>& inputs) {
+  std::vector<std::array<double, 7>> rows;
+  rows.reserve(inputs.size());
+  for (const WorldInput& in : inputs)
+    rows.push_back({static_cast<double>(in.kind), static_cast<double>(in.index),
+                    static_cast<double>(in.count), in.values[0], in.values[1], in.values[2],
+                    in.values[3]});
+  return rows;
+}
+
+std::vector<WorldInput> inputsFromRows(const std::vector<std::array<double, 7>>& rows,
+                                       const std::string& source, const std::string& field) {
+  std::vector<WorldInput> out;
+  out.reserve(rows.size());
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const auto& r = rows[i];
+    const bool whole = r[0] == std::floor(r[0]) && r[1] == std::floor(r[1]) &&
+                       r[2] == std::floor(r[2]) && std::abs(r[1]) < 1e9 && r[2] < 1e15;
+    if (!whole || r[0] < 0 || r[0] > static_cast<double>(WorldInput::Kind::Last) || r[2] < 0)
+      throw InputError(source, field + "[" + std::to_string(i) + "]",
+                       "is not a World input (kind 0.." +
+                           std::to_string(static_cast<int>(WorldInput::Kind::Last)) +
+                           ", whole index and count)");
+    out.emplace_back(static_cast<WorldInput::Kind>(static_cast<int>(r[0])),
+                     static_cast<int>(r[1]), static_cast<long>(r[2]),
+                     std::array<double, 4>{r[3], r[4], r[5], r[6]});
+  }
+  return out;
 }
 
 std::unique_ptr<World> restoreWorld(const WorldState& state) {

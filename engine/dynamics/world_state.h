@@ -34,6 +34,24 @@ WorldState captureState(const World& world, const std::string& source);
 /// input that names no body, cable or joint of the scene (a state edited by hand).
 std::unique_ptr<World> restoreWorld(const WorldState& state);
 
+/// The scene with `world`'s state now in place of the initial one: poses, velocities, joint
+/// coordinates (JointDef::value) and anchors, servo targets, cable parameters, gravity, time
+/// and step count, and the history (the scene as built and the inputs since) from which
+/// World(scene) rebuilds `world` bit for bit (Python's World.to_dict(current=True)).
+SceneDef sceneNow(const World& world);
+
+/// For World's constructor, given a scene with a history: replays the history on `world` (built
+/// from history->origin), then checks that it led to the state `written` gives; InputError
+/// (source, "history") if not (the scene was edited after it was written).
+void resumeHistory(World& world, const SceneDef& written, const std::string& source);
+
+/// The history as rows (kind, index, count, four values) and back; fromRows throws InputError
+/// (source, "history.inputs[i]") for a row that is no input.
+std::vector<std::array<double, 7>> inputRows(const std::vector<WorldInput>& inputs);
+std::vector<WorldInput> inputsFromRows(const std::vector<std::array<double, 7>>& rows,
+                                       const std::string& source,
+                                       const std::string& field = "history.inputs");
+
 /// Replays `inputs` on `world` in order (each as the World method it records).
 void replayInputs(World& world, const std::vector<WorldInput>& inputs, const std::string& source);
 

@@ -174,7 +174,9 @@ void validateScene(const SceneDef& scene, const std::string& source) {
     check.finite(j.servo.target, f + ".servo.target");
     check.positive(j.servo.maxForce, f + ".servo.max_force");
     check.finite(j.servo.speed, f + ".servo.speed");
+    check.finite(j.value, f + ".value");
   }
+  check.nonNegative(scene.time, "time");
 
   std::set<std::string> cableNames;
   for (size_t i = 0; i < scene.cables.size(); ++i) {

@@ -6,6 +6,8 @@
 // Lengths in metres, masses in kilograms, angles in radians, time in seconds.
 #pragma once
 
+#include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -65,6 +67,10 @@ struct JointDef {
   bool enableLimit = false;
   double lower = 0.0, upper = 0.0;  ///< limits on the joint coordinate (rad or m)
   bool collideConnected = false;
+  /// The joint coordinate at the scene's pose (rad or m): 0 for a scene as authored; a scene
+  /// written mid-run (World.to_dict(current=True)) keeps the coordinate the servo targets and
+  /// limits refer to.
+  double value = 0.0;
   ServoDef servo;
 };
 
@@ -140,6 +146,8 @@ struct ViewDef {
   double height = 4.0;         ///< visible world height (m)
 };
 
+struct SceneHistory;
+
 struct SceneDef {
   std::string name;
   std::string description;
@@ -150,6 +158,19 @@ struct SceneDef {
   std::vector<BodyDef> bodies;
   std::vector<JointDef> joints;
   std::vector<CableDef> cables;
+  double time = 0.0;   ///< the World's clock at the scene's pose (s)
+  long stepCount = 0;  ///< steps taken before the scene's pose
+  /// Set in a scene written mid-run: the scene it started from and its inputs since, from which
+  /// the World is rebuilt bit for bit (docs/scene-format.md, "history"); null otherwise.
+  std::shared_ptr<const SceneHistory> history;
+};
+
+/// Where a scene written mid-run came from: the scene as built and every input the World took
+/// since, one row each as WorldInput holds it (engine/dynamics/world_history.h): kind, index,
+/// count, four values.
+struct SceneHistory {
+  SceneDef origin;
+  std::vector<std::array<double, 7>> inputs;
 };
 
 /// Checks every field; throws InputError(source, field, what) on the first bad one.

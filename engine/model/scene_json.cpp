@@ -1,6 +1,7 @@
 #include "engine/model/scene_json.h"
 
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 
@@ -93,6 +94,7 @@ JointDef readJoint(Reader&& r) {
     j.upper = lim.y();
   }
   j.collideConnected = r.boolean("collide_connected", false);
+  j.value = r.number("value", 0);
   if (r.has("servo")) {
     Reader s = r.child("servo");
     j.servo.enabled = true;
@@ -224,6 +226,28 @@ json anchorJson(const AnchorDef& a) {
   return j;
 }
 
+/// "history": {"scene": {...}, "inputs": [[kind, index, count, v0, v1, v2, v3], ...]}: the scene
+/// a World was built from and its inputs since (scene.h, SceneHistory).
+std::shared_ptr<const SceneHistory> readHistory(const json& j, const std::string& source) {
+  Reader r(j, source, "history");
+  auto h = std::make_shared<SceneHistory>();
+  if (!r.has("scene")) r.fail("scene", "is required");
+  h->origin = sceneFromJson(j.at("scene"), source + " (history.scene)");
+  if (h->origin.history) r.fail("scene", "must not have a history of its own");
+  if (!r.has("inputs")) r.fail("inputs", "is required");
+  const json& inputs = r.list("inputs");
+  for (size_t i = 0; i < inputs.size(); ++i) {
+    const std::string field = r.field("inputs") + "[" + std::to_string(i) + "]";
+    const json& row = inputs[i];
+    if (!row.is_array() || row.size() != 7)
+      throw InputError(source, field, "must be a list of 7 numbers (got " + describeJson(row) + ")");
+    std::array<double, 7> values{};
+    for (size_t k = 0; k < 7; ++k) values[k] = r.numberValue(row[k], field);
+    h->inputs.push_back(values);
+  }
+  return h;
+}
+
 }  // namespace
 
 SceneDef sceneFromJson(const json& j, const std::string& source) {
@@ -248,6 +272,12 @@ SceneDef sceneFromJson(const json& j, const std::string& source) {
     for (size_t i = 0; i < joints.size(); ++i) s.joints.push_back(readJoint(r.item("joints", i)));
     const json& cables = r.list("cables");
     for (size_t i = 0; i < cables.size(); ++i) s.cables.push_back(readCable(r.item("cables", i)));
+    s.time = r.number("time", 0);
+    const double steps = r.number("step_count", 0);
+    if (!(steps >= 0 && steps <= 1e15 && steps == std::floor(steps)))
+      r.fail("step_count", "must be a whole number >= 0" + gotValue(steps));
+    s.stepCount = static_cast<long>(steps);
+    if (r.has("history")) s.history = readHistory(j.at("history"), source);
   }
   validateScene(s, source);
   return s;
@@ -302,6 +332,7 @@ json sceneToJson(const SceneDef& s) {
                {"anchor", vec(jd.anchor)},
                {"axis", vec(jd.axis)},
                {"collide_connected", jd.collideConnected}};
+    if (jd.value != 0) jj["value"] = jd.value;
     if (jd.enableLimit) jj["limits"] = json::array({jd.lower, jd.upper});
     if (jd.servo.enabled)
       jj["servo"] = {{"kp", jd.servo.kp},
@@ -338,6 +369,12 @@ json sceneToJson(const SceneDef& s) {
       jc["pulleys"].push_back(jp);
     }
     j["cables"].push_back(jc);
+  }
+  if (s.time != 0 || s.stepCount != 0) j["time"] = s.time, j["step_count"] = s.stepCount;
+  if (s.history) {
+    json inputs = json::array();
+    for (const auto& row : s.history->inputs) inputs.push_back(row);
+    j["history"] = {{"scene", sceneToJson(s.history->origin)}, {"inputs", inputs}};
   }
   return j;
 }

@@ -3,6 +3,8 @@
 // never silently falls back to a default. save -> load gives back the same SceneDef.
 //
 // Every field, its units and default: docs/scene-format.md (JSON Schema: docs/scene.schema.json).
+// A scene written mid-run also has joints' "value", "time", "step_count" and a "history" (the scene
+// as built and its inputs since) that World replays bit for bit (docs/scene-format.md).
 // In brief (lengths m, masses kg, angles rad, every key but the lists optional):
 // { "name": "...", "description": "...", "gravity": [0, -9.81], "dt": 0.0166, "substeps": 1,
 //   "view": {"center": [0, 0], "height": 4},

@@ -92,4 +92,7 @@ for _name in __all__:
             _obj.__module__ = "cablelab"
         except (AttributeError, TypeError):
             pass
-del _name, _obj, _sys
+from ._keywords import name_keywords as _name_keywords
+
+_name_keywords(_sys.modules[__name__], __all__)
+del _name, _obj, _sys, _name_keywords

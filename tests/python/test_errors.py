@@ -1,4 +1,5 @@
 # Bad input raises cablelab.InputError naming the field; nothing crashes the interpreter.
+import inspect
 import json
 import math
 
@@ -224,3 +225,23 @@ def test_value_classes_check_each_field_when_given():
         "ControllerParams: period: must be positive (got 0)"
     assert "must be an integer" in message(cablelab.GraspOptions, max_regrasps=1.5)
     assert "must be >= 0" in message(cablelab.GraspOptions, stop_time=-0.1)
+
+
+def test_a_misspelt_keyword_is_named_with_the_known_ones():
+    """pybind11 alone answers "incompatible function arguments" with the whole signature."""
+    w = cablelab.World.load("hand")
+    cases = [(lambda: w.step(dtt=0.1), "World.step: dtt: no such keyword (known: dt, substeps)"),
+             (lambda: w.set_servo_targets(targts=[0.0] * 6),
+              "World.set_servo_targets: targts: no such keyword (known: targets)"),
+             (lambda: cablelab.World.from_dict({}, sorce="x"),
+              "World.from_dict: sorce: no such keyword (known: scene, source)"),
+             (lambda: cablelab.rollout([w], 3, thread=2),
+              "rollout: thread: no such keyword (known: worlds, steps, controls, threads)")]
+    for call, message in cases:
+        with pytest.raises(TypeError) as error:
+            call()
+        assert str(error.value) == message
+    # Right keywords still work, and the signatures stay visible.
+    w.step(dt=0.01, substeps=2)
+    assert w.step_count == 1 and list(inspect.signature(cablelab.World.step).parameters) == [
+        "self", "dt", "substeps"]

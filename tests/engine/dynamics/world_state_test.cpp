@@ -2,12 +2,14 @@
 // time-varying inputs: servo targets, forces, a teleport, live cable edits, gravity.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
 
 #include "engine/core/error.h"
 #include "engine/dynamics/world_state.h"
+#include "engine/model/scene_json.h"
 #include "engine/scenes/scene_registry.h"
 
 namespace cablelab {
@@ -104,6 +106,86 @@ TEST(WorldState, StepsInARowAreKeptAsOneInput) {
   world.step(1.0 / 120, 2);
   ASSERT_EQ(world.history().inputs().size(), 2u);
   EXPECT_EQ(world.history().inputs()[0].count, 50);
+}
+
+/// The scene `world` is in now, written as scene-file text and read back (sceneNow, docs/scene-format.md).
+SceneDef writtenAndReadBack(const World& world) {
+  return sceneFromJson(nlohmann::json::parse(sceneToJson(sceneNow(world)).dump(2)), "midrun.json");
+}
+
+// A scene written mid-run and read back, text and all, builds a World that continues bit for bit.
+TEST(WorldState, ASceneWrittenMidRunContinuesBitForBit) {
+  for (const char* name : {"hand", "pulley", "hexagon", "winch", "wheel"}) {
+    SCOPED_TRACE(name);
+    World world(makeScene(name, {}), name);
+    for (int k = 0; k < 40; ++k) drive(world, k);
+    World resumed(writtenAndReadBack(world), "midrun.json");
+    ASSERT_TRUE(sameBits(world, resumed));
+    EXPECT_EQ(resumed.stepCount(), 40);
+    int diverged = -1;
+    for (int k = 40; k < 100 && diverged < 0; ++k) {
+      drive(world, k);
+      drive(resumed, k);
+      if (!sameBits(world, resumed)) diverged = k;
+    }
+    EXPECT_EQ(diverged, -1);
+  }
+}
+
+// Without its history a mid-run scene still starts where the World was: joint coordinates (which
+// servo targets and limits refer to), servo targets, time and step count.
+TEST(WorldState, AMidRunSceneWithoutHistoryKeepsJointValuesTimeAndSteps) {
+  World world(makeScene("hand", {}), "hand");
+  for (int k = 0; k < 60; ++k) drive(world, k);
+  SceneDef scene = writtenAndReadBack(world);
+  scene.history = nullptr;
+  World fresh(scene, "midrun.json");
+  EXPECT_EQ(fresh.time(), world.time());
+  EXPECT_EQ(fresh.stepCount(), 60);
+  bool moved = false;
+  for (int j = 0; j < world.jointCount(); ++j) {
+    SCOPED_TRACE(j);
+    moved = moved || std::abs(world.joint(j).value) > 1e-3;
+    EXPECT_NEAR(fresh.joint(j).value, world.joint(j).value, 2e-6);  // Box2D's float angles
+    EXPECT_EQ(fresh.joint(j).servoTarget, world.joint(j).servoTarget);
+  }
+  EXPECT_TRUE(moved);  // the joints left zero: a re-zeroed coordinate would fail above
+}
+
+// JointDef::value: the coordinate reads it at the scene's pose, and servo targets are in that
+// coordinate: the hand with every value and target shifted by v_j moves as the hand unshifted.
+TEST(WorldState, AJointValueIsTheCoordinateAtTheScenesPose) {
+  const SceneDef plain = makeScene("hand", {});
+  SceneDef shifted = plain;
+  for (size_t j = 0; j < shifted.joints.size(); ++j) {
+    shifted.joints[j].value = 0.01 * (static_cast<double>(j) + 1);
+    shifted.joints[j].servo.target += shifted.joints[j].value;
+  }
+  World a(plain, "hand"), b(shifted, "hand");
+  for (int j = 0; j < b.jointCount(); ++j)
+    EXPECT_NEAR(b.joint(j).value, shifted.joints[j].value, 1e-6) << j;
+  for (int k = 0; k < 60; ++k) a.step(plain.dt, plain.substeps), b.step(plain.dt, plain.substeps);
+  double moved = 0;
+  for (int j = 0; j < a.jointCount(); ++j) {
+    moved = std::max(moved, std::abs(a.joint(j).value));
+    EXPECT_NEAR(b.joint(j).value - shifted.joints[j].value, a.joint(j).value, 1e-5) << j;
+  }
+  EXPECT_GT(moved, 1e-3);  // the joints moved: the comparison above has something to see
+}
+
+TEST(WorldState, AMidRunSceneEditedAfterItWasWrittenIsRefused) {
+  World world(makeScene("pulley", {}), "pulley");
+  for (int k = 0; k < 10; ++k) drive(world, k);
+  SceneDef scene = writtenAndReadBack(world);
+  scene.bodies[0].position += Vec2(0.01, 0);
+  try {
+    World edited(scene, "midrun.json");
+    FAIL() << "an edited scene was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("midrun.json: history: does not lead to the scene's bodies"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
