@@ -11,7 +11,7 @@ namespace cablelab::ui {
 namespace {
 
 constexpr double kWanted = 0.25;        // rad, where the drag takes the handle
-constexpr int kPress = 3, kDragFrames = 20, kRelease = kPress + kDragFrames + 2;
+constexpr int kArmPress = 3, kArmDragFrames = 20, kArmRelease = kArmPress + kArmDragFrames + 2;
 constexpr double kSettled = 0.02;       // rad: the box within this of the target angle
 constexpr double kSettledFor = 1.0;     // s
 constexpr int kLastFrame = 3000;
@@ -27,8 +27,8 @@ bool TurnTargetScenario::beforeFrame(Sandbox& sandbox, int frame, std::string& r
     return false;
   };
   if (box < 0 || !h) return fail("not the hand scene");
-  if (frame < kPress) return true;
-  if (frame == kPress) {
+  if (frame < kArmPress) return true;
+  if (frame == kArmPress) {
     const std::optional<Vec2> handle = targetAngleHandle(sandbox);
     if (!handle) return fail("no angle handle (is the box allowed to turn? --set turn=1)");
     sandbox.paused = false;
@@ -39,12 +39,12 @@ bool TurnTargetScenario::beforeFrame(Sandbox& sandbox, int frame, std::string& r
     to_ = centre + arm * Vec2(std::cos(kWanted), -std::sin(kWanted));  // screen y points down
     pushMouseEvent(windowId_, SDL_MOUSEMOTION, from_);
     pushMouseEvent(windowId_, SDL_MOUSEBUTTONDOWN, from_);
-  } else if (frame <= kPress + kDragFrames) {
-    const double s = double(frame - kPress) / kDragFrames;
+  } else if (frame <= kArmPress + kArmDragFrames) {
+    const double s = double(frame - kArmPress) / kArmDragFrames;
     pushMouseEvent(windowId_, SDL_MOUSEMOTION, from_ + s * (to_ - from_));
-  } else if (frame == kRelease) {
+  } else if (frame == kArmRelease) {
     pushMouseEvent(windowId_, SDL_MOUSEBUTTONUP, to_);
-  } else if (frame > kRelease) {
+  } else if (frame > kArmRelease) {
     dragged_ = h->targetAngle;
     const double error = std::abs(world.body(box).angle - dragged_);
     if (error > kSettled) settledAt_ = -1;

@@ -14,7 +14,7 @@ def test_track_with_friction_equals_the_cli_to_the_bit(tmp_path):
                         "--pid", "--time", "6", "--csv", csv)
     got = cablelab.track(target=(0.1, 0.05, 0.2), pid=True, time=6,
                          hand=cablelab.HandModel(mu=0.5, turn=True))
-    for key in expected:
+    for key in expected.keys() - {"controller_solve_us", "controller_solve_max_us"}:  # wall times
         assert got[key] == expected[key], key  # floats compared exactly
     _, rows = read_csv(csv)
     rows = np.array(rows)

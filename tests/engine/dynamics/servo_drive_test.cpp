@@ -11,7 +11,7 @@
 #include "tests/support/engine_test_support.h"
 
 namespace cablelab {
-namespace {
+namespace servo_drive_test {
 
 constexpr double kG = 9.81;
 constexpr double kSettled = 1e-3;  // rad: the goal's settling band
@@ -411,5 +411,5 @@ TEST(ServoDrive, OtherGainsStepsAndWeightsThatWindOnStallAtMaxForce) {
         }
 }
 
-}  // namespace
+}  // namespace servo_drive_test
 }  // namespace cablelab

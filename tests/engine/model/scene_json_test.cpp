@@ -93,7 +93,6 @@ const BadScene kBadScenes[] = {
     {"scene_polygon_negative_mu.json", "cables[0].pulleys[0].mu"},
     {"scene_polygon_mu_and_no_slip.json", "cables[0].pulleys[0].mu"},
     {"scene_polygon_no_slip.json", "cables[0].pulleys[0].no_slip"},
-    {"scene_polygon_mu_elastic.json", "cables[0].pulleys[0].mu"},
 };
 
 TEST(SceneJson, BadFilesExitTwoNamingTheField) {
