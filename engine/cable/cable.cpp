@@ -190,25 +190,14 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
     if (pulleys_[j].engaged) nodes.push_back(j + 1);
   nodes.push_back(count + 1);
 
-  // Polygon chains depend on their neighbours' contact points. Neighbouring polygons start from
-  // their common tangent (it holds whether their hulls are apart or overlap), and a few passes
-  // settle any chain of three or more.
+  // Polygon chains depend on their neighbours' contact points; neighbouring polygons need a few
+  // passes to settle on the common tangent.
   std::vector<std::vector<int>>& chains = chains_;
   chains.resize(count);
   for (std::vector<int>& c : chains) c.clear();
   bool neighbouringPolygons = false;
-  for (size_t n = 1; n + 2 < nodes.size(); ++n) {
-    PulleyState &first = pulleys_[nodes[n] - 1], &second = pulleys_[nodes[n + 1] - 1];
-    if (!first.polygon || !second.polygon) continue;
-    neighbouringPolygons = true;
-    int from, into;
-    if (!commonTangent(first.world, first.side, second.world, second.side, from, into)) continue;
-    std::vector<int>& a = chains[nodes[n] - 1];
-    std::vector<int>& b = chains[nodes[n + 1] - 1];
-    a.push_back(from);  // after its entry from a polygon before it, if any: front enters
-    b.assign(1, into);
-  }
-  turns_.resize(count);
+  for (size_t n = 1; n + 2 < nodes.size(); ++n)
+    neighbouringPolygons |= pulleys_[nodes[n] - 1].polygon && pulleys_[nodes[n + 1] - 1].polygon;
   const int passes = neighbouringPolygons ? 4 : 1;
   for (int pass = 0; pass < passes; ++pass)
     for (size_t n = 1; n + 1 < nodes.size(); ++n) {
@@ -217,43 +206,19 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
       const Vec2 a = exitPoint(nodes[n - 1], chains);
       const Vec2 b = entryPoint(nodes[n + 1], chains);
       // The chain that continues the last update's wrap (more than half a turn when the
-      // polygon swung round past an end anchor), holding on to its corners where a terminal is
-      // pressed into its hull.
-      const auto turn = wrapChainHolding(a, b, p.world, p.side, p.arc, p.heldFrom, p.heldInto,
-                                         chains[nodes[n] - 1]);
+      // polygon swung round past an end anchor).
+      const auto turn = wrapChainTurning(a, b, p.world, p.side, p.arc, chains[nodes[n] - 1]);
+      if (turn) p.arc = *turn;
       if (!turn) {
         p.engaged = false;
         p.dropped = true;
         p.arc = 0;
-        p.heldFrom = p.heldInto = -1;
         if (warnings)
           warnings->push_back("cable '" + def_->name + "': pulley " + std::to_string(nodes[n] - 1) +
                               " left the path: a neighbouring point lies inside its hull");
         return false;
       }
-      turns_[nodes[n] - 1] = *turn;
     }
-  // A polygon the path no longer bends round leaves before its neighbours take its centre as a
-  // terminal (leaveRound would see its empty chain only after they had).
-  for (size_t n = 1; n + 1 < nodes.size(); ++n) {
-    PulleyState& p = pulleys_[nodes[n] - 1];
-    if (p.polygon && chains[nodes[n] - 1].empty() && neighbouringPolygons) {
-      p.engaged = false;
-      p.previousDepth = 0;
-      p.arc = 0;
-      p.heldFrom = p.heldInto = -1;
-      return false;
-    }
-  }
-  for (size_t n = 1; n + 1 < nodes.size(); ++n) {
-    PulleyState& p = pulleys_[nodes[n] - 1];
-    if (!p.polygon) continue;
-    const std::vector<int>& c = chains[nodes[n] - 1];
-    p.arc = turns_[nodes[n] - 1];
-    if (!c.empty()) p.heldFrom = c.front(), p.heldInto = c.back();
-    p.pressed = insideConvex(exitPoint(nodes[n - 1], chains), p.world) ||
-                insideConvex(entryPoint(nodes[n + 1], chains), p.world);
-  }
 
   // Keep the terminals' last contact points (circle tangents) for the next build.
   if (!path_.empty()) {
@@ -315,7 +280,6 @@ bool Cable::leaveRound() {
       p.engaged = false;
       p.previousDepth = 0;
       p.arc = 0;
-      p.heldFrom = p.heldInto = -1;
       return true;
     }
   }
@@ -353,7 +317,6 @@ bool Cable::joinRound(std::vector<std::string>* warnings) {
       if (touches || crossed) {
         p.engaged = true;
         p.arc = 0;
-        p.heldFrom = p.heldInto = -1;
         return true;
       }
       continue;
@@ -384,7 +347,6 @@ bool Cable::joinRound(std::vector<std::string>* warnings) {
     if (cuts && crossed) {
       p.engaged = true;
       p.dropped = false;
-      p.heldFrom = p.heldInto = -1;
       // A circle joins at zero wrap; at the start its wrap is the one it was wound with. A
       // point or a polygon joins at zero turn.
       p.arc = firstUpdate_ && p.circle ? p.initialArc() : 0.0;

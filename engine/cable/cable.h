@@ -23,16 +23,8 @@
 //    continuous over time, like a circle's arc: a pulley swung round past an end anchor, which
 //    the cable bends round by more than half a turn or winds round for whole turns, STAYS, and a
 //    polygon's chain grows and shrinks one vertex at a time (wrapChainTurning, wrap.h).
-//  * Neighbouring polygons meet on their common tangent (commonTangent, wrap.h), whether their
-//    hulls are apart or overlap. A terminal pressed into an engaged polygon's hull (an anchor, a
-//    point, a neighbour's corner: a contact between shapes, which has no taut path) does not
-//    drop it: the polygon HOLDS the chain end it had at the last update until the terminal comes
-//    out, so the length stays continuous (wrapChainHolding, wrap.h).
-//  * A polygon JOINING with a terminal already inside its hull (nothing to hold yet) starts its
-//    chain at its corner deepest on the wrap side of the old segment, the one that crossed it.
-//  * Only a terminal inside a polygon with no corner on the wrap side of its segment has no path
-//    round it at all: the polygon is DROPPED (it leaves the path) and a warning says so (a last
-//    resort, which the rules above leave for degenerate geometry). A dropped polygon that
+//  * A terminal inside a polygon pulley's hull (a neighbouring pulley inside it) has no taut path:
+//    the polygon is DROPPED (it leaves the path) and a warning says so. A dropped polygon that
 //    still cuts its segment REJOINS as soon as a taut path round it exists again and that path is
 //    no longer than the straight segment by more than the drop took out (+ kLengthJump), with a
 //    warning: drop and rejoin together add no length. One that moved through the cable while
@@ -320,10 +312,6 @@ class Cable {
     bool dropped = false;      ///< left by a guard (terminal inside the hull): may rejoin
     double dropCut = 0;        ///< length the drop took out of the path (m): the most a rejoin
                                ///< may put back
-    /// Polygon: its chain's first and last vertex at the last update (-1: none), which a
-    /// terminal pressed into its hull keeps (wrapChainHolding)
-    int heldFrom = -1, heldInto = -1;
-    bool pressed = false;  ///< a terminal lies inside its hull (it holds its corners)
     double signedRadius() const { return side == WrapSide::Right ? -radius : radius; }
     /// The wrap branch at the start: the turns it was wound with, else within (0, 2 pi).
     double initialArc() const { return turns > 0 ? 2 * M_PI * turns : M_PI; }
@@ -377,7 +365,6 @@ class Cable {
   std::vector<WrapPoint> path_;
   std::vector<int> nodes_;                ///< buildPath scratch: engaged chain nodes
   std::vector<std::vector<int>> chains_;  ///< buildPath scratch: polygon vertex chains
-  std::vector<double> turns_;             ///< buildPath scratch: polygon turns (rad)
   double previousLength(std::span<const BodyState> bodies);
   void reportLengthJump(std::span<const BodyState> bodies, std::vector<std::string>* warnings);
   /// Wrap changes that move the length by more than this say so in a warning (m).

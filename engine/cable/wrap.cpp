@@ -62,43 +62,40 @@ std::optional<std::vector<int>> wrapChain(const Vec2& a, const Vec2& b,
   return chain;
 }
 
-bool insideConvex(const Vec2& p, std::span<const Vec2> polygon) {
-  const int n = static_cast<int>(polygon.size());
-  for (int i = 0; i < n; ++i)
-    if (cross(polygon[(i + 1) % n] - polygon[i], p - polygon[i]) <= 0) return false;
-  return true;
-}
-
 namespace {
-
-// The tangent vertex of the taut path from `a` round the polygon on `side` (walking the path the
-// polygon stays on the right for Left, s = +1), or into `b` (`into`); -1 when the terminal lies
-// inside the polygon (no taut path round it exists). Seen from an outside point the polygon spans
-// less than half a turn, so "more to the left" is a total order: from a, the vertex with nothing
-// on the left of a->v; into b, the vertex with nothing on the left of v->b. Ties (collinear): the
-// vertex farther from the terminal, so collinear points never become wrap points.
-int tangentVertex(const Vec2& terminal, std::span<const Vec2> polygon, WrapSide side, bool into) {
-  if (insideConvex(terminal, polygon)) return -1;
-  const int n = static_cast<int>(polygon.size());
-  const double s = side == WrapSide::Right ? -1.0 : 1.0;
-  int t = 0;
-  for (int i = 1; i < n; ++i) {
-    const double r = into ? -s * cross(terminal - polygon[t], polygon[i] - polygon[t])
-                          : -s * cross(polygon[t] - terminal, polygon[i] - terminal);
-    if (r < 0 || (r == 0 && (polygon[i] - terminal).squaredNorm() >
-                                (polygon[t] - terminal).squaredNorm()))
-      t = i;
-  }
-  return t;
-}
 
 // The tangent vertices of the taut path a -> polygon -> b on `side`: ta from a, tb into b.
 // False when a terminal lies inside the polygon (no taut path round it exists).
 bool tangentVertices(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, WrapSide side,
                      int& ta, int& tb) {
-  ta = tangentVertex(a, polygon, side, false);
-  tb = tangentVertex(b, polygon, side, true);
-  return ta >= 0 && tb >= 0;
+  const int n = static_cast<int>(polygon.size());
+  // Mirror Right into Left: walking the path, the polygon must stay on the right (s = +1).
+  const double s = side == WrapSide::Right ? -1.0 : 1.0;
+  auto right = [&](const Vec2& from, const Vec2& to, const Vec2& p) {
+    return -s * cross(to - from, p - from);
+  };
+  auto insidePolygon = [&](const Vec2& p) {
+    for (int i = 0; i < n; ++i)
+      if (cross(polygon[(i + 1) % n] - polygon[i], p - polygon[i]) <= 0) return false;
+    return true;
+  };
+  if (insidePolygon(a) || insidePolygon(b)) return false;
+  // Tangent vertices by one sweep each (seen from an outside point the polygon spans less than
+  // half a turn, so "more to the left" is a total order): from a, the vertex with nothing on the
+  // left of a->v; into b, the vertex with nothing on the left of v->b. Ties (collinear): the
+  // vertex farther from the terminal, so collinear points never become wrap points.
+  ta = 0, tb = 0;
+  for (int i = 1; i < n; ++i) {
+    const double r = right(a, polygon[ta], polygon[i]);
+    if (r < 0 || (r == 0 && (polygon[i] - a).squaredNorm() > (polygon[ta] - a).squaredNorm()))
+      ta = i;
+  }
+  for (int i = 1; i < n; ++i) {
+    const double r = right(polygon[tb], b, polygon[i]);
+    if (r < 0 || (r == 0 && (polygon[i] - b).squaredNorm() > (polygon[tb] - b).squaredNorm()))
+      tb = i;
+  }
+  return true;
 }
 
 // The walk round the boundary with the polygon on the right (clockwise for Left,
@@ -157,29 +154,9 @@ double walkTurning(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, 
 
 std::optional<double> wrapChainTurning(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,
                                        WrapSide side, double reference, std::vector<int>& chain) {
-  return wrapChainHolding(a, b, polygon, side, reference, -1, -1, chain);
-}
-
-std::optional<double> wrapChainHolding(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,
-                                       WrapSide side, double reference, int heldFrom,
-                                       int heldInto, std::vector<int>& chain) {
   chain.clear();
-  int ta = tangentVertex(a, polygon, side, false), tb = tangentVertex(b, polygon, side, true);
-  if (ta < 0) ta = heldFrom;
-  if (tb < 0) tb = heldInto;
-  if (ta < 0 || tb < 0) {
-    // Nothing held (the polygon is joining): the corner deepest on the wrap side of the segment
-    // a-b, the one that crossed it, so that the join happens on the old path.
-    int deepest = -1;
-    double depth = 0;
-    for (int i = 0; i < static_cast<int>(polygon.size()); ++i) {
-      const double d = wrapSideDistance(a, b, polygon[i], side);
-      if (d > depth) depth = d, deepest = i;
-    }
-    if (ta < 0) ta = deepest;
-    if (tb < 0) tb = deepest;
-  }
-  if (ta < 0 || tb < 0) return std::nullopt;
+  int ta, tb;
+  if (!tangentVertices(a, b, polygon, side, ta, tb)) return std::nullopt;
   const int n = static_cast<int>(polygon.size()), stepDir = walkStep(side);
   int walk, loops;
   const double turn = walkTurning(a, b, polygon, side, ta, tb, reference, walk, loops);
@@ -199,35 +176,6 @@ double chainLength(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,
     prev = polygon[i];
   }
   return total + (b - prev).norm();
-}
-
-bool commonTangent(std::span<const Vec2> first, WrapSide firstSide, std::span<const Vec2> second,
-                   WrapSide secondSide, int& from, int& into) {
-  // Walking the segment first[i] -> second[j], each polygon must lie on its wrap side of it
-  // (on the right for Left): the supporting line of both. Every pair is tried (at most 8 x 8
-  // vertices); among collinear candidates the longest segment, so that collinear vertices are
-  // not wrap points (as in tangentVertex).
-  const double s1 = firstSide == WrapSide::Right ? -1.0 : 1.0;
-  const double s2 = secondSide == WrapSide::Right ? -1.0 : 1.0;
-  double scale = 0;
-  for (const Vec2& v : first) scale = std::max(scale, (v - second[0]).norm());
-  for (const Vec2& v : second) scale = std::max(scale, (v - first[0]).norm());
-  const double eps = kCollinear * scale * scale;
-  double best = -1;
-  for (size_t i = 0; i < first.size(); ++i)
-    for (size_t j = 0; j < second.size(); ++j) {
-      const Vec2 d = second[j] - first[i];
-      const double length = d.squaredNorm();
-      if (!(length > 0) || length <= best) continue;
-      bool supports = true;
-      for (const Vec2& v : first) supports &= s1 * cross(d, v - first[i]) <= eps;
-      for (const Vec2& v : second) supports &= s2 * cross(d, v - first[i]) <= eps;
-      if (!supports) continue;
-      best = length;
-      from = static_cast<int>(i);
-      into = static_cast<int>(j);
-    }
-  return best > 0;
 }
 
 }  // namespace cablelab

@@ -36,22 +36,6 @@ bool wrapChain(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, Wrap
 std::optional<double> wrapChainTurning(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,
                                        WrapSide side, double reference, std::vector<int>& chain);
 
-/// wrapChainTurning for a polygon the cable is on already: a terminal inside its hull (a
-/// neighbour's point pressed into it, a contact between shapes: docs/cables.md, "Polygons side by
-/// side") keeps the tangent vertex the chain had at the last update, `heldFrom` (its first
-/// vertex, for A) or `heldInto` (its last, for B), so that the length stays continuous. nullopt
-/// only when a terminal inside has no held vertex (-1).
-std::optional<double> wrapChainHolding(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,
-                                       WrapSide side, double reference, int heldFrom,
-                                       int heldInto, std::vector<int>& chain);
-
-/// The common tangent of two neighbouring polygons on one cable: the segment first[from] ->
-/// second[into] with each polygon on its wrap side (on the cable's right for Left), the taut
-/// cable's segment between them whether their hulls are apart or overlap. False when none
-/// exists (opposite sides on overlapping hulls, or one hull inside the other).
-bool commonTangent(std::span<const Vec2> first, WrapSide firstSide, std::span<const Vec2> second,
-                   WrapSide secondSide, int& from, int& into);
-
 /// wrapChainTurning's angle for known tangent vertices ta (from A) and tb (into B): the turn
 /// along the walk ta -> tb (`walk` vertices, one lap at most) plus the `loops` whole loops that
 /// put it nearest `reference`. At most the straight threshold (1e-12 rad): min(angle, 0), the
@@ -74,9 +58,6 @@ double wrapSideDistance(const Vec2& a, const Vec2& b, const Vec2& p, WrapSide si
 /// half a turn (the cable doubled back round the point, e.g. swung round past an end anchor) it
 /// goes on growing instead of flipping sign. The point leaves the path when it goes below 0.
 double continuedPointTurn(const Vec2& in, const Vec2& out, WrapSide side, double previous);
-
-/// True when p lies strictly inside the convex CCW polygon.
-bool insideConvex(const Vec2& p, std::span<const Vec2> polygon);
 
 /// True when the segment a-b passes through the interior of the convex CCW polygon.
 bool segmentCutsPolygon(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon);

@@ -178,53 +178,67 @@ TEST(CableGuards, APolygonComingFromTheWrapSideIsPassed) {
   EXPECT_NEAR(rig.cable.length(), 2, kTight);
 }
 
-TEST(CableGuards, ATerminalPressedIntoAWrappedPolygonKeepsItOnThePath) {
-  // The start anchor rides on body "a"; carry it into the interior of the square the cable is on.
-  // The square holds the chain's first corner (a contact between shapes, not a drop): it stays
-  // on the path, with no warning, and the cable runs from the anchor to that corner.
+TEST(CableGuards, ATerminalInsideAPolygonMakesItLeaveWithAWarning) {
+  // The start anchor rides on body "a"; carry it into the square's interior.
   Rig rig(sceneWith({squarePulley(0.2)}, Vec2(-1, 0), "a"));
   rig.at(Vec2(0, 0.1));
   ASSERT_TRUE(rig.cable.engaged(0));
-  const double wrapped = rig.cable.length();
-  const WrapPoint first = rig.cable.path()[1], last = rig.cable.path()[rig.cable.path().size() - 2];
-  rig.at(Vec2(0, 0.1), Vec2(0.9, 0.1));  // anchor now at (-0.1, 0.1): inside the square
-  EXPECT_TRUE(rig.cable.engaged(0));
-  EXPECT_TRUE(rig.warnings.empty()) << rig.warnings.front();
-  ASSERT_EQ(rig.cable.path().size(), 4u);
-  EXPECT_EQ(rig.cable.path()[1].vertex, first.vertex);
-  const Vec2 anchor(-0.1, 0.1), end(1, 0);
-  EXPECT_NEAR(rig.cable.length(),
-              (first.world - anchor).norm() + (last.world - first.world).norm() +
-                  (end - last.world).norm(),
-              kTight);
-  rig.at(Vec2(0, 0.1));  // the anchor back out: the taut path as before
-  EXPECT_TRUE(rig.cable.engaged(0));
-  EXPECT_NEAR(rig.cable.length(), wrapped, kTight);
   EXPECT_TRUE(rig.warnings.empty());
-}
-
-TEST(CableGuards, APolygonJoiningWithATerminalInsideItsHullJoinsAtTheCornerThatCrossed) {
-  // Nothing to hold: the square crosses the cable with the start anchor inside it at once. It
-  // joins at its corner deepest on the wrap side of the old segment (the one that crossed it), and
-  // the cable runs from the anchor to that corner and on to B: no drop. (Moved by hand, the
-  // square went 0.6 m across the cable in one update: the length jump is warned about.)
-  Rig rig(sceneWith({squarePulley(0.2)}, Vec2(-1, 0), "a"));
-  rig.at(Vec2(0, -0.5));
-  ASSERT_FALSE(rig.cable.engaged(0));
-  rig.at(Vec2(0, 0.1), Vec2(0.9, 0.1));  // anchor at (-0.1, 0.1): inside the square
-  EXPECT_TRUE(rig.cable.engaged(0));
-  EXPECT_FALSE(std::any_of(rig.warnings.begin(), rig.warnings.end(), [](const std::string& w) {
+  rig.at(Vec2(0, 0.1), Vec2(1.0, 0.1));  // anchor now at (0, 0.1): inside the square
+  EXPECT_FALSE(rig.cable.engaged(0));
+  EXPECT_EQ(rig.cable.wraps(), 0);
+  ASSERT_FALSE(rig.warnings.empty());
+  EXPECT_TRUE(std::any_of(rig.warnings.begin(), rig.warnings.end(), [](const std::string& w) {
     return w.find("inside its hull") != std::string::npos;
-  }));
-  ASSERT_EQ(rig.cable.path().size(), 3u);
-  const Vec2 anchor(-0.1, 0.1), corner(0.2, 0.3), end(1, 0);
-  EXPECT_NEAR((rig.cable.path()[1].world - corner).norm(), 0, kTight);
-  EXPECT_NEAR(rig.cable.length(), (corner - anchor).norm() + (end - corner).norm(), kTight);
+  })) << rig.warnings.back();
+  EXPECT_TRUE(std::isfinite(rig.cable.length()));
 }
 
 bool warned(const std::vector<std::string>& warnings, const std::string& text) {
   return std::any_of(warnings.begin(), warnings.end(),
                      [&](const std::string& w) { return w.find(text) != std::string::npos; });
+}
+
+// A 0.5 m square at (0, 0.1) under the cable, which rides over its top; the start anchor rides on
+// body "a" at (-0.3, 0) + a's position, just left of the square. Moving a by +0.1 carries the
+// anchor inside the square: the polygon is dropped.
+struct DroppedSquare : Rig {
+  DroppedSquare() : Rig(sceneWith({squarePulley(0.25)}, Vec2(-0.3, 0), "a")) {
+    at(Vec2(0, 0.1));
+    wrapped = cable.length();
+    at(Vec2(0, 0.1), Vec2(0.1, 0));
+  }
+  double wrapped = 0;  // the length over the square before the drop
+};
+
+TEST(CableGuards, ADroppedPolygonRejoinsWhereTheDropIsUndone) {
+  DroppedSquare rig;
+  ASSERT_GT(rig.wrapped, 1.3 + 0.1);
+  ASSERT_FALSE(rig.cable.engaged(0));
+  ASSERT_TRUE(warned(rig.warnings, "inside its hull"));
+  rig.at(Vec2(0, 0.1));  // the anchor back where it was: the same taut path exists again
+  EXPECT_TRUE(rig.cable.engaged(0));
+  EXPECT_NEAR(rig.cable.length(), rig.wrapped, kTight);
+  EXPECT_TRUE(warned(rig.warnings, "rejoined the path"));
+}
+
+TEST(CableGuards, APolygonThatWentThroughTheCableWhileDroppedStaysOut) {
+  // While dropped the square moved up through the cable (soak seed 7: the hand's box through a
+  // membrane), then the anchor came out under its bottom. The segment still clips the square's
+  // lower corner, but the taut path round it goes back and over its far side, 0.7 m longer
+  // than the cable: rejoining would be a 0.7 m jump (the rigid membrane 0.74 m too long).
+  DroppedSquare rig;
+  ASSERT_FALSE(rig.cable.engaged(0));
+  rig.at(Vec2(0, 0.2), Vec2(0.1, -0.06));  // anchor at (-0.2, -0.06), under the square
+  const Vec2 a(-0.2, -0.06), b(1, 0);
+  EXPECT_FALSE(rig.cable.engaged(0));
+  EXPECT_NEAR(rig.cable.length(), (b - a).norm(), kTight);
+  EXPECT_FALSE(warned(rig.warnings, "rejoined the path"));
+  EXPECT_FALSE(warned(rig.warnings, "moved the length by 0."));  // no jump beyond the drop's
+  // Once the square is back where it pushes on the cable from below, it is wrapped again.
+  rig.at(Vec2(0, 0.1));
+  EXPECT_TRUE(rig.cable.engaged(0));
+  EXPECT_NEAR(rig.cable.length(), rig.wrapped, kTight);
 }
 
 TEST(CableGuards, APolygonSwungRoundPastTheEndAnchorStaysWrappedAndUnwindsTheSameWay) {
