@@ -37,7 +37,11 @@ TEST(TrackMpcCli, JsonKeys) {
 TEST(TrackMpcCli, CompareKeysAndFigure) {
   const std::string png =
       (std::filesystem::temp_directory_path() / "cablelab_mpc_compare.png").string();
+#ifdef CABLELAB_HAVE_OFFSCREEN
   const auto r = cablelab::test::runCli("track --compare --time 6 --png " + png);
+#else  // a build without the offscreen renderer (the sanitizer's) draws no figure
+  const auto r = cablelab::test::runCli("track --compare --time 6");
+#endif
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["targets"].size(), 20u);
@@ -47,8 +51,10 @@ TEST(TrackMpcCli, CompareKeysAndFigure) {
           "max_overshoot", "grasp_losses", "joint_limit_hits", "settled", "controller_solve_us"})
       EXPECT_TRUE(j[law].contains(key)) << law << "." << key;
   EXPECT_EQ(j["mpc"]["grasp_losses"], 0);
+#ifdef CABLELAB_HAVE_OFFSCREEN
   EXPECT_GT(std::filesystem::file_size(png), 1000u);
   std::filesystem::remove(png);
+#endif
 }
 
 TEST(TrackMpcCli, BadValuesExitTwo) {
