@@ -85,7 +85,8 @@ void writeReachPng(const std::string& path, const ReachResult& r, int grid, doub
 
 /// `reach --angles`: one sweep per box angle, each target asked for (x, y, angle).
 int reachAtAngles(ReachOptions options, const HandModel& hand, const std::vector<double>& angles,
-                  const std::string& csvPath, const std::string& png, const std::string& scheduler) {
+                  const std::string& csvPath, const std::string& png,
+                  const std::string& scheduler) {
   if (!scheduler.empty()) badOption("--angles", "cannot be combined with --scheduler");
   if (!png.empty()) badOption("--angles", "cannot be combined with --png");
   std::unique_ptr<std::ofstream> csv;
@@ -98,9 +99,8 @@ int reachAtAngles(ReachOptions options, const HandModel& hand, const std::vector
   long before = 0;
   for (const double angle : angles) {
     options.angle = angle;
-    const ReachResult r = runReach(options, hand, [&](long done, long) {
-      progress.update(before + done);
-    });
+    const ReachResult r =
+        runReach(options, hand, [&](long done, long) { progress.update(before + done); });
     before += static_cast<long>(r.targets.size());
     nlohmann::json j = reachSummary(r, options);
     j["angle"] = angle;

@@ -22,9 +22,9 @@ namespace {
 constexpr float kTargetRange = 1.0f;  // m, the target sliders' range about the origin
 constexpr Colour kPredictionColour{0.0f, 0.55f, 0.55f, 1.0f};
 constexpr Colour kForceColour{0.1f, 0.3f, 0.85f, 1.0f};
-constexpr Colour kAngleColour{0.85f, 0.1f, 0.55f, 1.0f};  // the target's (ui/sandbox.cpp)
+constexpr Colour kAngleColour{0.85f, 0.1f, 0.55f, 1.0f};       // the target's (ui/sandbox.cpp)
 constexpr double kAngleArmPixels = 60, kAngleGrabPixels = 12;  // the handle's arm and reach
-constexpr float kAngleRange = 0.6f;  // rad, the angle field's range
+constexpr float kAngleRange = 0.6f;                            // rad, the angle field's range
 
 // ---------------------------------------------------------------------------------------------
 // Live time plot: several series against time in one frame, with the time axis in seconds.
@@ -274,7 +274,8 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
     tooltip("Target x and y (m).");
     if (h.model.turn) {
       float angle = static_cast<float>(h.targetAngle);
-      ImGui::SetNextItemWidth(-ImGui::CalcTextSize("box angle").x - ImGui::GetStyle().ItemSpacing.x);
+      ImGui::SetNextItemWidth(-ImGui::CalcTextSize("box angle").x -
+                              ImGui::GetStyle().ItemSpacing.x);
       if (ImGui::SliderFloat("box angle", &angle, -kAngleRange, kAngleRange, "%.3f rad"))
         h.targetAngle = angle;
       tooltip("The angle to turn the box to (rad), or drag the handle on the target's arm.");
@@ -656,8 +657,8 @@ void dragTargetAngle(Sandbox& sandbox, const Vec2& point) {
   if (!h || !h->model.turn || !sandbox.target) return;
   const Vec2 arm = point - *sandbox.target;
   if (arm.norm() < 1e-12) return;
-  h->targetAngle = std::clamp(std::atan2(arm.y(), arm.x()), -double(kAngleRange),
-                              double(kAngleRange));
+  h->targetAngle =
+      std::clamp(std::atan2(arm.y(), arm.x()), -double(kAngleRange), double(kAngleRange));
 }
 
 bool loadFitIntoBand(Sandbox& sandbox, const std::string& path, std::string& message) {

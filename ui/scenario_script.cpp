@@ -82,7 +82,8 @@ ScenarioScript::ScenarioScript(std::string name, Uint32 windowId, std::string ou
   const auto& lecture = LectureScript::names();
   if (std::find(lecture.begin(), lecture.end(), name_) != lecture.end())
     lecture_ = std::make_unique<LectureScript>(name_, windowId_, out_);
-  if (name_ == TurnTargetScenario::kName) turnTarget_ = std::make_unique<TurnTargetScenario>(windowId_);
+  if (name_ == TurnTargetScenario::kName)
+    turnTarget_ = std::make_unique<TurnTargetScenario>(windowId_);
 }
 
 void ScenarioScript::mouse(Uint32 type, const Vec2& screen, Uint8 button) {

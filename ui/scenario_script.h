@@ -81,10 +81,10 @@ class ScenarioScript {
   double largest_ = 0;
   size_t step_ = 0;        ///< build: the next step
   double restBefore_ = 0;  ///< pose scenarios: the cable's rest length before the drag (m)
-  std::shared_ptr<TimelineScenario> timeline_;  ///< the rewind and plot scenarios
-  std::unique_ptr<LectureScript> lecture_;      ///< the lecture-hall checks
+  std::shared_ptr<TimelineScenario> timeline_;      ///< the rewind and plot scenarios
+  std::unique_ptr<LectureScript> lecture_;          ///< the lecture-hall checks
   std::unique_ptr<TurnTargetScenario> turnTarget_;  ///< turn-target (ui/turn_target_scenario.h)
-  std::string bannerSeen_;                      ///< drop-box: a banner shown during the drag
+  std::string bannerSeen_;                          ///< drop-box: a banner shown during the drag
 };
 
 }  // namespace cablelab::ui

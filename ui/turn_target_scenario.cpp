@@ -10,10 +10,10 @@
 namespace cablelab::ui {
 namespace {
 
-constexpr double kWanted = 0.25;        // rad, where the drag takes the handle
+constexpr double kWanted = 0.25;  // rad, where the drag takes the handle
 constexpr int kArmPress = 3, kArmDragFrames = 20, kArmRelease = kArmPress + kArmDragFrames + 2;
-constexpr double kSettled = 0.02;       // rad: the box within this of the target angle
-constexpr double kSettledFor = 1.0;     // s
+constexpr double kSettled = 0.02;    // rad: the box within this of the target angle
+constexpr double kSettledFor = 1.0;  // s
 constexpr int kLastFrame = 3000;
 
 }  // namespace
@@ -47,8 +47,10 @@ bool TurnTargetScenario::beforeFrame(Sandbox& sandbox, int frame, std::string& r
   } else if (frame > kArmRelease) {
     dragged_ = h->targetAngle;
     const double error = std::abs(world.body(box).angle - dragged_);
-    if (error > kSettled) settledAt_ = -1;
-    else if (settledAt_ < 0) settledAt_ = world.time();
+    if (error > kSettled)
+      settledAt_ = -1;
+    else if (settledAt_ < 0)
+      settledAt_ = world.time();
     const bool settled = settledAt_ >= 0 && world.time() - settledAt_ >= kSettledFor;
     if (settled || frame >= kLastFrame) {
       char text[400];

@@ -201,7 +201,8 @@ void Cable::slideElasticSpans() {
     Span& tight = ta > tb ? a : b;
     Span& loose = ta > tb ? b : a;
     const double sum = a.rest + b.rest;
-    tight.rest = slideMaterial(material, tight.kin.length, tight.rest, loose.kin.length, sum, ratio);
+    tight.rest =
+        slideMaterial(material, tight.kin.length, tight.rest, loose.kin.length, sum, ratio);
     loose.rest = sum - tight.rest;
   }
 }

@@ -137,8 +137,7 @@ namespace {
 /// What sceneNow writes of the state (not the names, view or default step, free to edit).
 nlohmann::json stateFields(const SceneDef& scene) {
   nlohmann::json j = sceneToJson(scene);
-  for (const char* key : {"name", "description", "view", "dt", "substeps", "history"})
-    j.erase(key);
+  for (const char* key : {"name", "description", "view", "dt", "substeps", "history"}) j.erase(key);
   return j;
 }
 
@@ -183,9 +182,8 @@ std::vector<WorldInput> inputsFromRows(const std::vector<std::array<double, 7>>&
                        "is not a World input (kind 0.." +
                            std::to_string(static_cast<int>(WorldInput::Kind::Last)) +
                            ", whole index and count)");
-    out.emplace_back(static_cast<WorldInput::Kind>(static_cast<int>(r[0])),
-                     static_cast<int>(r[1]), static_cast<long>(r[2]),
-                     std::array<double, 4>{r[3], r[4], r[5], r[6]});
+    out.emplace_back(static_cast<WorldInput::Kind>(static_cast<int>(r[0])), static_cast<int>(r[1]),
+                     static_cast<long>(r[2]), std::array<double, 4>{r[3], r[4], r[5], r[6]});
   }
   return out;
 }

@@ -29,14 +29,16 @@ void setTarget(TrackRequest& request, const std::vector<double>& v, const std::s
 
 std::vector<double> reachAngles(std::string_view text, const HandModel& model) {
   const size_t count = std::count(text.begin(), text.end(), ',') + 1;
-  const std::vector<double> angles = parseNumberList(text, count, kCommandLine, "--angles", "A,B,...");
+  const std::vector<double> angles =
+      parseNumberList(text, count, kCommandLine, "--angles", "A,B,...");
   for (const double a : angles) {
     if (!(std::abs(a) <= M_PI))
-      throw InputError(kCommandLine, "--angles", "each angle must be in [-pi, pi] rad" + gotValue(a));
-    if (a != 0 && !model.turn)
       throw InputError(kCommandLine, "--angles",
-                       "an angle other than 0 needs a box that may turn (scene parameter turn=1)" +
-                           gotValue(a));
+                       "each angle must be in [-pi, pi] rad" + gotValue(a));
+    if (a != 0 && !model.turn)
+      throw InputError(
+          kCommandLine, "--angles",
+          "an angle other than 0 needs a box that may turn (scene parameter turn=1)" + gotValue(a));
   }
   return angles;
 }

@@ -240,7 +240,8 @@ std::shared_ptr<const SceneHistory> readHistory(const json& j, const std::string
     const std::string field = r.field("inputs") + "[" + std::to_string(i) + "]";
     const json& row = inputs[i];
     if (!row.is_array() || row.size() != 7)
-      throw InputError(source, field, "must be a list of 7 numbers (got " + describeJson(row) + ")");
+      throw InputError(source, field,
+                       "must be a list of 7 numbers (got " + describeJson(row) + ")");
     std::array<double, 7> values{};
     for (size_t k = 0; k < 7; ++k) values[k] = r.numberValue(row[k], field);
     h->inputs.push_back(values);

@@ -10,10 +10,10 @@ namespace cablelab {
 
 namespace {
 
-constexpr int kMaxStickSolves = 2000;  // stick solve, slide, again (converges geometrically)
+constexpr int kMaxStickSolves = 2000;      // stick solve, slide, again (converges geometrically)
 constexpr double kSlideTolerance = 1e-12;  // material moved in the last slide, per unit material
-constexpr double kPartialStep = 1e-6;       // central differences of the slide condition
-constexpr double kStallResidual = 1e-7;     // |net force, torque / size| per unit max tension
+constexpr double kPartialStep = 1e-6;      // central differences of the slide condition
+constexpr double kStallResidual = 1e-7;    // |net force, torque / size| per unit max tension
 
 struct Spans {
   BoxSegment a, b;
@@ -34,7 +34,8 @@ double spanTension(const FrictionBoxCable& c, double length, double rest) {
 // The angle the membrane turns at its corners, each turn counted on the box's side.
 double cornerTurns(const FrictionBoxCable& c, const BoxPose& q) {
   const Vec2 centre = q.head<2>();
-  const Vec2 cA = centre + rotate(c.cable.cornerA, q[2]), cB = centre + rotate(c.cable.cornerB, q[2]);
+  const Vec2 cA = centre + rotate(c.cable.cornerA, q[2]),
+             cB = centre + rotate(c.cable.cornerB, q[2]);
   if ((cB - cA).norm() < 1e-300 || (cA - c.cable.a).norm() < 1e-300 ||
       (c.cable.b - cB).norm() < 1e-300)
     return 0;
@@ -185,7 +186,8 @@ Eigen::MatrixXd frictionBoxSensitivity(const FrictionBoxResult& eq) {
     int e = 0;
     for (const auto& [s, rest] : {std::pair(&seg.a, c.restA), std::pair(&seg.b, c.restB)}) {
       const double k = spanStiffness(c, rest), stretch = s->length - rest;
-      if (stretch > 0) Ft.block<3, 2>(0, 4 * i + 2 * e) += s->mixedAnchor(k, k * stretch, s->gradient);
+      if (stretch > 0)
+        Ft.block<3, 2>(0, 4 * i + 2 * e) += s->mixedAnchor(k, k * stretch, s->gradient);
       ++e;
     }
   }
@@ -204,7 +206,8 @@ Eigen::MatrixXd frictionBoxSensitivity(const FrictionBoxResult& eq) {
     for (int d = 0; d < 3; ++d) {
       BoxPose up = eq.pose, down = eq.pose;
       up[d] += h, down[d] -= h;
-      Fz(row, d) = (slideCondition(c, up, direction) - slideCondition(c, down, direction)) / (2 * h);
+      Fz(row, d) =
+          (slideCondition(c, up, direction) - slideCondition(c, down, direction)) / (2 * h);
     }
     auto withRest = [&](double delta) {
       FrictionBoxCable moved = c;

@@ -86,16 +86,16 @@ Eigen::MatrixXd equilibriumSensitivity(const Eigen::Matrix3d& H, const Eigen::Ma
 
 BoxPoseResult solveBoxPose(const std::vector<BoxCable>& cables, const BoxPose& start, double size,
                            int maxIterations) {
-  BoxPoseResult out = minimiseBoxEnergy(
-      [&](const BoxPose& q, Eigen::Vector3d* g, Eigen::Matrix3d* H) {
-        return boxPoseEnergy(cables, q, g, H);
-      },
-      [&](const BoxPose& q) {
-        double maxTension = 0;
-        for (const BoxCable& c : cables) maxTension = std::max(maxTension, tension(c, q));
-        return maxTension;
-      },
-      start, size, maxIterations);
+  BoxPoseResult out =
+      minimiseBoxEnergy([&](const BoxPose& q, Eigen::Vector3d* g,
+                            Eigen::Matrix3d* H) { return boxPoseEnergy(cables, q, g, H); },
+                        [&](const BoxPose& q) {
+                          double maxTension = 0;
+                          for (const BoxCable& c : cables)
+                            maxTension = std::max(maxTension, tension(c, q));
+                          return maxTension;
+                        },
+                        start, size, maxIterations);
   out.tensions.clear();
   for (const BoxCable& c : cables) out.tensions.push_back(tension(c, out.pose));
   return out;

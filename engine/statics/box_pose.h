@@ -28,7 +28,7 @@ struct BoxSegment {
   double length = 0;  ///< m; 0: the corner on its anchor (no gradient)
   Eigen::RowVector3d gradient = Eigen::RowVector3d::Zero();
   Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();
-  Vec2 u = Vec2::Zero();                                 ///< unit vector anchor -> corner
+  Vec2 u = Vec2::Zero();  ///< unit vector anchor -> corner
   Eigen::Matrix<double, 2, 3> D = Eigen::Matrix<double, 2, 3>::Zero();  ///< dc/dq
   /// d(grad E)/d anchor (3 x 2) of a spring term whose tension T(l) has dT/dl = `stiffness`,
   /// pulling along `dl` (its length's whole gradient): k dl^T (-u^T) - T D^T (I - u u^T) / s.

@@ -65,9 +65,8 @@ TEST(HandFrictionCli, TrackTakesMuAndTurn) {
 // Simulated runs: the quasi-static model reaches nothing with turn=1 (a known gap).
 TEST(HandFrictionCli, ReachAtTwoAngles) {
   const std::string csv = tempPath("reach_angles");
-  const auto r = test::runCli(
-      "reach --set turn=1 --set mu=0.5 --grid 4 --angles 0,0.25 --csv " +
-      csv);
+  const auto r =
+      test::runCli("reach --set turn=1 --set mu=0.5 --grid 4 --angles 0,0.25 --csv " + csv);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   ASSERT_EQ(j["angles"].size(), 2u);

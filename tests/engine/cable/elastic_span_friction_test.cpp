@@ -16,11 +16,11 @@ using test::kDt;
 
 struct Band {
   double mu = 0.3;
-  double m1 = 1, m2 = 1;     ///< kg, hanging left and right
-  double stiffness = 400;    ///< N/m, the whole band's
-  double damping = 20;       ///< N s/m
-  double restLength = 3.0;   ///< m (the band's length at the start is 3.6 m)
-  double preload = 0.0;      ///< m
+  double m1 = 1, m2 = 1;    ///< kg, hanging left and right
+  double stiffness = 400;   ///< N/m, the whole band's
+  double damping = 20;      ///< N s/m
+  double restLength = 3.0;  ///< m (the band's length at the start is 3.6 m)
+  double preload = 0.0;     ///< m
 };
 
 BodyDef hangingMass(const std::string& name, const Vec2& at, double mass) {
@@ -42,7 +42,8 @@ BodyDef hangingMass(const std::string& name, const Vec2& at, double mass) {
 SceneDef bandOverSquare(const Band& b) {
   SceneDef s;
   s.name = "band-over-square";
-  s.bodies = {hangingMass("left", Vec2(-0.2, 1.5), b.m1), hangingMass("right", Vec2(0.2, 1.5), b.m2)};
+  s.bodies = {hangingMass("left", Vec2(-0.2, 1.5), b.m1),
+              hangingMass("right", Vec2(0.2, 1.5), b.m2)};
   PulleyDef over;
   over.kind = PulleyDef::Kind::Polygon;
   over.side = WrapSide::Left;

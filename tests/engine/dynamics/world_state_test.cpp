@@ -108,7 +108,8 @@ TEST(WorldState, StepsInARowAreKeptAsOneInput) {
   EXPECT_EQ(world.history().inputs()[0].count, 50);
 }
 
-/// The scene `world` is in now, written as scene-file text and read back (sceneNow, docs/scene-format.md).
+/// The scene `world` is in now, written as scene-file text and read back (sceneNow,
+/// docs/scene-format.md).
 SceneDef writtenAndReadBack(const World& world) {
   return sceneFromJson(nlohmann::json::parse(sceneToJson(sceneNow(world)).dump(2)), "midrun.json");
 }
@@ -182,8 +183,9 @@ TEST(WorldState, AMidRunSceneEditedAfterItWasWrittenIsRefused) {
     World edited(scene, "midrun.json");
     FAIL() << "an edited scene was accepted";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("midrun.json: history: does not lead to the scene's bodies"),
-              std::string::npos)
+    EXPECT_NE(
+        std::string(e.what()).find("midrun.json: history: does not lead to the scene's bodies"),
+        std::string::npos)
         << e.what();
   }
 }

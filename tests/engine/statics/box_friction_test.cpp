@@ -111,7 +111,8 @@ TEST(BoxFriction, EveryMembraneHoldsWithinTheCapstanRatioOrSlidesOnIt) {
       ASSERT_TRUE(r.converged) << mu << " " << trial << ": " << r.iterations << " solves";
       for (int f = 0; f < 2; ++f) {
         const FrictionSpans& s = r.spans[f];
-        const double high = std::max(s.tensionA, s.tensionB), low = std::min(s.tensionA, s.tensionB);
+        const double high = std::max(s.tensionA, s.tensionB),
+                     low = std::min(s.tensionA, s.tensionB);
         ASSERT_GT(low, 0);
         EXPECT_LE(high, s.ratio * low * (1 + 1e-9)) << mu << " " << trial;
         if (r.sliding[f] != 0) {
