@@ -39,6 +39,17 @@ inline ShapeDef sensorPolygon(int sides, double radius, double phase = 0) {
   return polygon;
 }
 
+/// A 0.2 m sensor box of `mass` at `at` that does not turn: a weight hanging on a rope.
+inline BodyDef hangingMass(const std::string& name, const Vec2& at, double mass) {
+  BodyDef b;
+  b.name = name;
+  b.position = at;
+  b.mass = mass;
+  b.fixedRotation = true;
+  b.shapes = {sensorBox(0.1, 0.1)};
+  return b;
+}
+
 /// A revolute joint "pivot" from the world to `body` at the world point `anchor`.
 inline JointDef worldPivot(const std::string& body, const Vec2& anchor) {
   JointDef pivot;

@@ -7,9 +7,12 @@
 
 #include "engine/dynamics/world.h"
 #include "tests/support/engine_test_support.h"
+#include "tests/support/scene_parts.h"
 
 namespace cablelab {
 namespace elastic_span_friction_test {  // named: unity batches join test files
+
+using test::hangingMass;
 
 constexpr double kG = 9.81;
 using test::kDt;
@@ -22,20 +25,6 @@ struct Band {
   double restLength = 3.0;  ///< m (the band's length at the start is 3.6 m)
   double preload = 0.0;     ///< m
 };
-
-BodyDef hangingMass(const std::string& name, const Vec2& at, double mass) {
-  BodyDef b;
-  b.name = name;
-  b.position = at;
-  b.mass = mass;
-  b.fixedRotation = true;
-  ShapeDef box;
-  box.kind = ShapeDef::Kind::Polygon;
-  box.vertices = {Vec2(-0.1, -0.1), Vec2(0.1, -0.1), Vec2(0.1, 0.1), Vec2(-0.1, 0.1)};
-  box.sensor = true;
-  b.shapes = {box};
-  return b;
-}
 
 // A fixed 0.4 m square with a flat top at y = 3.2; the band hangs straight down its sides to the
 // masses, turning 90 degrees at each top corner (180 in all).

@@ -8,9 +8,12 @@
 
 #include "engine/dynamics/world.h"
 #include "tests/support/engine_test_support.h"
+#include "tests/support/scene_parts.h"
 
 namespace cablelab {
 namespace polygon_friction_test {  // named: unity batches join test files
+
+using test::hangingMass;
 
 constexpr double kG = 9.81;
 using test::kDt;
@@ -36,20 +39,6 @@ std::vector<Vec2> polygon(const Shape& shape, double radius) {
     v.push_back(radius * Vec2(std::cos(a), std::sin(a)));
   }
   return v;
-}
-
-BodyDef hangingMass(const std::string& name, const Vec2& at, double mass) {
-  BodyDef b;
-  b.name = name;
-  b.position = at;
-  b.mass = mass;
-  b.fixedRotation = true;
-  ShapeDef box;
-  box.kind = ShapeDef::Kind::Polygon;
-  box.vertices = {Vec2(-0.1, -0.1), Vec2(0.1, -0.1), Vec2(0.1, 0.1), Vec2(-0.1, 0.1)};
-  box.sensor = true;
-  b.shapes = {box};
-  return b;
 }
 
 struct Rope {
