@@ -371,7 +371,9 @@ takes one accepts the index or the name.)doc");
 
 A built-in scene by name ("hand", "pulley", ...) or a scene JSON file (str or path).
 params are the scene's parameters, as `cablelab run --set NAME=VALUE` takes them,
-e.g. World.load("pulley", m_left=2.0) (cablelab.scenes() lists them). Bad input raises
+e.g. World.load("pulley", m_left=2.0) (cablelab.scenes() lists them); the hand's are
+HandModel's fields of the same names (World.load("hand", k=300) is HandModel(k=300).world(),
+docs/python.md "One name per quantity"). Bad input raises
 InputError naming the keyword, e.g. "World.load: m1: no such keyword for scene 'pulley'
 (known: L, m_left, m_right)".)doc");
   c.def_static("from_dict", &worldFromDict, "scene"_a, "source"_a = "dict",
