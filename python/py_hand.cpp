@@ -65,6 +65,18 @@ double checkedField(double v, FieldRule rule, const char* className, const char*
   return v;
 }
 
+double numberField(py::handle value, const char* className, const char* field) {
+  if (PyBool_Check(value.ptr()) || !PyNumber_Check(value.ptr()))
+    throw InputError(className, field, "must be a number");
+  const double v = PyFloat_AsDouble(value.ptr());
+  if (v == -1.0 && PyErr_Occurred()) {  // a complex number, an array of several
+    PyErr_Clear();
+    throw InputError(className, field,
+                     "must be a number" + gotValue(py::repr(value).cast<std::string>()));
+  }
+  return v;
+}
+
 void requireHand(const PyWorld& w, const std::string& source) {
   for (const char* name : kHandJointNames)
     if (w.world->findJoint(name) < 0)
@@ -118,13 +130,12 @@ box_mass, mu, turn. `stiffness` is k's old name (deprecated: it warns).)doc");
         "turn", [](const HandModel& h) { return h.turn; },
         [n](HandModel& h, py::handle value) {
           // True/False, or the scene's 1/0; anything else is a mistake, not a truth value.
-          const bool number = PyNumber_Check(value.ptr()) && !py::isinstance<py::str>(value);
+          const char* rule = "must be True or False (or the scene's 1 or 0)";
+          if (!PyBool_Check(value.ptr()) && !PyNumber_Check(value.ptr()))
+            throw InputError(n, "turn", rule + gotValue(py::repr(value).cast<std::string>()));
           const double v =
-              number ? py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>() : -1;
-          if (v != 0 && v != 1)
-            throw InputError(n, "turn",
-                             "must be True or False (or the scene's 1 or 0)" +
-                                 (number ? gotValue(v) : gotValue(py::repr(value).cast<std::string>())));
+              PyBool_Check(value.ptr()) ? value.ptr() == Py_True : numberField(value, n, "turn");
+          if (v != 0 && v != 1) throw InputError(n, "turn", rule + gotValue(v));
           h.turn = v == 1;
         },
         "the box may turn (the scene's turn=1); track() then takes an angle");

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <limits>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -60,20 +61,23 @@ enum class FieldRule { Finite, NonNegative, Positive };
 /// Checks `v` against `rule`; throws InputError(className, field, "must be ... (got v)").
 double checkedField(double v, FieldRule rule, const char* className, const char* field);
 
+/// A real number (int, float, numpy scalar; not a bool, complex or array) as a double, else
+/// InputError(className, field, "must be a number").
+double numberField(py::handle value, const char* className, const char* field);
+
 /// The setter of a value class's field: a number, or an array of numbers each checked; an int
 /// field must be given an integer. Errors name the field `name` as the caller spelt it.
 template <typename T, typename V>
 auto fieldSetter(V T::*member, FieldRule rule, const char* className, const char* name) {
   return [member, rule, className, name](T& t, py::handle value) {
     if constexpr (std::is_same_v<V, double>) {
-      if (PyBool_Check(value.ptr()) || !PyNumber_Check(value.ptr()))
-        throw InputError(className, name, "must be a number");
-      t.*member = checkedField(py::float_(py::reinterpret_borrow<py::object>(value)), rule,
-                               className, name);
+      t.*member = checkedField(numberField(value, className, name), rule, className, name);
     } else if constexpr (std::is_same_v<V, int>) {
       if (PyBool_Check(value.ptr()) || !PyIndex_Check(value.ptr()))
         throw InputError(className, name, "must be an integer");
       const double v = py::int_(py::reinterpret_borrow<py::object>(value)).cast<double>();
+      if (v > std::numeric_limits<int>::max())
+        throw InputError(className, name, "is too large" + gotValue(v));
       t.*member = static_cast<int>(checkedField(v, rule, className, name));
     } else {
       const auto v = toNumbers(value, std::tuple_size_v<V>, className, name);
@@ -89,8 +93,8 @@ template <typename T, typename V>
 void addField(py::class_<T>& cls, const char* className, const char* name, V T::*member,
               FieldRule rule, const char* doc) {
   cls.def_property(
-      name, [member](const T& t) { return t.*member; },
-      fieldSetter(member, rule, className, name), doc);
+      name, [member](const T& t) { return t.*member; }, fieldSetter(member, rule, className, name),
+      doc);
 }
 
 /// `oldName`, a deprecated name of the field `newName` (stored in `member`, checked by `rule`):

@@ -150,10 +150,18 @@ def test_a_misspelt_keyword_names_itself_and_the_known_ones(call, text):
      "HandModel: turn: must be True or False (or the scene's 1 or 0) (got 2)"),
     (cablelab.HandModel, "turn", "yes",
      "HandModel: turn: must be True or False (or the scene's 1 or 0) (got \"'yes'\")"),
+    (cablelab.HandModel, "turn", None,
+     "HandModel: turn: must be True or False (or the scene's 1 or 0) (got \"None\")"),
     (cablelab.HandModel, "link_mass", "1", "HandModel: link_mass: must be a number"),
+    (cablelab.HandModel, "k", 1j, "HandModel: k: must be a number (got \"1j\")"),
+    (cablelab.HandModel, "k", np.array([1.0, 2.0]),
+     "HandModel: k: must be a number (got \"array([1., 2.])\")"),
+    (cablelab.HandModel, "lower", [0.0] * 5, "HandModel: lower: must be 6 numbers"),
     (cablelab.ControllerParams, "period", 0, "ControllerParams: period: must be positive (got 0)"),
     (cablelab.ControllerParams, "kp", -0.1, "ControllerParams: kp: must be >= 0 (got -0.1)"),
     (cablelab.GraspOptions, "max_regrasps", -1, "GraspOptions: max_regrasps: must be >= 0 (got -1)"),
+    (cablelab.GraspOptions, "max_regrasps", 2**70,
+     "GraspOptions: max_regrasps: is too large (got 1180591620717411303424)"),
     (cablelab.GraspOptions, "close_time", 0, "GraspOptions: close_time: must be positive (got 0)"),
 ])
 def test_a_bad_value_raises_at_once_in_one_line(cls, field, value, text):
@@ -168,6 +176,12 @@ def test_a_bad_value_raises_at_once_in_one_line(cls, field, value, text):
             setattr(obj, field, value)
         assert str(error.value) == text
     assert repr(obj) == repr(cls())  # unchanged
+
+
+def test_turn_takes_true_false_and_the_scenes_one_and_zero():
+    for value, turn in ((True, True), (1, True), (1.0, True), (np.bool_(True), True),
+                        (False, False), (0, False)):
+        assert cablelab.HandModel(turn=value).turn is turn, value
 
 
 def test_a_shared_parameter_is_checked_alike_through_both_apis():
