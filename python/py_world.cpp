@@ -160,7 +160,11 @@ std::unique_ptr<PyWorld> loadWorld(py::handle scene, const py::kwargs& params) {
     return std::make_unique<PyWorld>(makeScene(name, overrides), name);
   } catch (const InputError& e) {
     if (e.source() != kCommandLine) throw;
-    throw InputError("World.load", "scene", e.detail());  // "SCENE: no such built-in scene"
+    // A parameter the scene's builder refused ("--set turn: must be 0 or 1") is its keyword;
+    // anything else is about the scene ("SCENE: no such built-in scene").
+    const std::string set = "--set ";
+    const bool param = e.field().rfind(set, 0) == 0;
+    throw InputError("World.load", param ? e.field().substr(set.size()) : "scene", e.detail());
   }
 }
 

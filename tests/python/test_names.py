@@ -192,6 +192,9 @@ def test_a_shared_parameter_is_checked_alike_through_both_apis():
             cablelab.HandModel(**{name: bad})
         assert (scene.value.field, model.value.field) == (name, name)
         assert str(scene.value).split(": ", 2)[2] == str(model.value).split(": ", 2)[2]
+    with pytest.raises(cablelab.InputError) as scene:  # refused by the scene's builder
+        cablelab.World.load("hand", turn=2)
+    assert str(scene.value) == "World.load: turn: must be 0 or 1 (got 2)"
 
 
 # --- the docs' table -------------------------------------------------------------------------
