@@ -10,8 +10,9 @@ Without --scheduler a LocalCluster with one worker process per core runs it. On 
 machines: start `dask scheduler` on one (it prints its address, tcp://HOST:8786), `dask worker
 tcp://HOST:8786` on each (with the cablelab module importable there: PYTHONPATH or pip install),
 and pass that address as --scheduler. Writes DIR/design_sweep.png (the area over the design
-grid) and prints one JSON line: the table (stiffness, preload, object area, fingertip area,
-ratio per design, in design order) and the wall time.
+grid) and prints one JSON line: the table (k, preload, object area, fingertip area, ratio per
+design, in design order) and the wall time. k and preload are the membrane's stiffness (N/m) and
+pre-stretch (m), named as the hand scene's `--set k=... --set preload=...` and HandModel name them.
 """
 import argparse
 import json
@@ -27,18 +28,18 @@ import numpy as np
 import cablelab
 
 
-def reach_area(stiffness, preload, grid, model):
+def reach_area(k, preload, grid, model):
     """One design's reach map (on a Dask worker; one thread: the cluster is the parallelism)."""
     r = cablelab.reach(grid=grid, model=model, threads=1,
-                       hand=cablelab.HandModel(stiffness=stiffness, preload=preload))
+                       hand=cablelab.HandModel(k=k, preload=preload))
     return {"object_area": r["object_area"], "fingertip_area": r["fingertip_area"],
             "ratio": r["ratio"], "object_points": r["object_points"]}
 
 
-def design_grid(designs, stiffness_range, preload_range):
-    """designs x designs (stiffness, preload) pairs, preload varying fastest."""
-    return [{"stiffness": float(k), "preload": float(p)}
-            for k in np.linspace(*stiffness_range, designs)
+def design_grid(designs, k_range, preload_range):
+    """designs x designs (k, preload) pairs, preload varying fastest."""
+    return [{"k": float(k), "preload": float(p)}
+            for k in np.linspace(*k_range, designs)
             for p in np.linspace(*preload_range, designs)]
 
 
@@ -47,8 +48,8 @@ def main():
     parser.add_argument("--designs", type=int, default=8, help="D: D x D designs")
     parser.add_argument("--grid", type=int, default=12, help="N: each reach map has N x N targets")
     parser.add_argument("--model", default="simulation", choices=["simulation", "quasi-static"])
-    parser.add_argument("--stiffness", type=float, nargs=2, default=[30.0, 600.0],
-                        metavar=("LO", "HI"), help="membrane stiffness range (N/m)")
+    parser.add_argument("--k", type=float, nargs=2, default=[30.0, 600.0],
+                        metavar=("LO", "HI"), help="membrane stiffness k range (N/m)")
     parser.add_argument("--preload", type=float, nargs=2, default=[0.05, 1.0],
                         metavar=("LO", "HI"), help="membrane preload range (m)")
     parser.add_argument("--scheduler", help="a Dask scheduler's address (default: a LocalCluster)")
@@ -60,7 +61,7 @@ def main():
         args.designs, args.grid, args.model = 2, 8, "quasi-static"
 
     params = [dict(p, grid=args.grid, model=args.model)
-              for p in design_grid(args.designs, args.stiffness, args.preload)]
+              for p in design_grid(args.designs, args.k, args.preload)]
     client = None
     if args.scheduler:
         from distributed import Client
@@ -72,25 +73,25 @@ def main():
         client.close()
 
     d = args.designs
-    area = np.asarray(table["object_area"], dtype=float).reshape(d, d)  # rows: stiffness
-    stiffness = np.asarray(table["stiffness"], dtype=float).reshape(d, d)[:, 0]
+    area = np.asarray(table["object_area"], dtype=float).reshape(d, d)  # rows: k
+    k = np.asarray(table["k"], dtype=float).reshape(d, d)[:, 0]
     preload = np.asarray(table["preload"], dtype=float).reshape(d, d)[0, :]
     fig, ax = plt.subplots(figsize=(6, 5))
     image = ax.imshow(area, origin="lower", cmap="viridis", aspect="auto")
     fig.colorbar(image, ax=ax, label="reach area of the box (m$^2$)")
     ax.set_xticks(range(d), [f"{p:.2g}" for p in preload])
-    ax.set_yticks(range(d), [f"{k:.3g}" for k in stiffness])
+    ax.set_yticks(range(d), [f"{v:.3g}" for v in k])
     for i in range(d):  # the value in each design's cell
         for j in range(d):
             ax.text(j, i, f"{area[i, j]:.2f}", ha="center", va="center", fontsize=7,
                     color="white" if area[i, j] < area.mean() else "black")
-    ax.set(xlabel="membrane preload (m)", ylabel="membrane stiffness (N/m)",
+    ax.set(xlabel="membrane preload (m)", ylabel="membrane stiffness k (N/m)",
            title=f"Reach area over {d} x {d} designs "
                  f"({args.grid} x {args.grid} {args.model} map each)")
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     fig.savefig(out / "design_sweep.png", dpi=100)
-    columns = ["stiffness", "preload", "object_area", "fingertip_area", "ratio", "object_points"]
+    columns = ["k", "preload", "object_area", "fingertip_area", "ratio", "object_points"]
     rows = [[float(table[c][i]) for c in columns] for i in range(len(params))]
     print(json.dumps({"columns": columns, "rows": rows, "designs": d, "grid": args.grid,
                       "model": args.model, "wall_s": wall, "plot": str(out / "design_sweep.png")}))

@@ -23,12 +23,12 @@ import numpy as np
 import cablelab
 
 
-def resolved_rate(model, target, gain=0.1, kd=0.6, max_step=0.02, damping=0.05):
+def resolved_rate(hand, target, gain=0.1, kd=0.6, max_step=0.02, damping=0.05):
     """The outer-loop law: dq = J^T (J J^T + damping^2 I)^-1 (gain e - kd db), with J = db/dq
     from the engine's statics model, e the error (limited to max_step m) and db the box's change
     since the last update: the derivative term damps the box's sway on the membranes (about
     1 Hz), which the fingers lead."""
-    predictor = cablelab.HandController(model)
+    predictor = cablelab.HandController(hand=hand)
     previous = []
 
     def law(q, box, commanded):
@@ -45,13 +45,13 @@ def resolved_rate(model, target, gain=0.1, kd=0.6, max_step=0.02, damping=0.05):
     return law
 
 
-def control(world, model, target, start, seconds):
+def control(world, hand, target, start, seconds):
     """The engine's grasp sequence (HandGrasp) closes the pinch about `start`, then calls the
     law every controller period, spreads each update over the period and clamps it into the
     joint limits; it notices a lost grasp and re-grasps."""
-    grasp = cablelab.HandGrasp(world, model)
+    grasp = cablelab.HandGrasp(world, hand=hand)
     grasp.begin(start)
-    law = resolved_rate(model, target)
+    law = resolved_rate(hand, target)
     box = world.body_names.index(cablelab.HAND_BOX)
     t, path = [], []
     give_up = seconds + 10  # s: the grasp never closed, or failed after its re-grasps
@@ -76,9 +76,9 @@ def main():
 
     start = np.array([float(v) for v in args.start.split(",")])
 
-    model = cablelab.HandModel()
-    world = model.world()
-    grasp, t, path = control(world, model, target, start, seconds)
+    hand = cablelab.HandModel()
+    world = hand.world()
+    grasp, t, path = control(world, hand, target, start, seconds)
     error = np.linalg.norm(path - target, axis=1)
 
     out = pathlib.Path(args.out)

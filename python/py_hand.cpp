@@ -29,10 +29,23 @@ std::vector<std::string> fieldNames(py::handle self) {
   for (py::handle key : py::module_::import("builtins").attr("sorted")(type.attr("__dict__"))) {
     const std::string k = key.cast<std::string>();
     const py::object attr = type.attr(key);
-    if (k.rfind("_", 0) != 0 && py::hasattr(attr, "fset") && !attr.attr("fset").is_none())
+    if (k.rfind("_", 0) != 0 && py::hasattr(attr, "fset") && !attr.attr("fset").is_none() &&
+        renamedField(self, k).empty())
       out.push_back(k);
   }
   return out;
+}
+
+std::string renamedField(py::handle self, const std::string& oldName) {
+  const py::object renamed = py::getattr(py::type::handle_of(self), "_renamed", py::none());
+  if (renamed.is_none() || !renamed.contains(oldName)) return "";
+  return renamed[py::str(oldName)].cast<std::string>();
+}
+
+void warnRenamed(const char* className, const std::string& oldName, const std::string& newName) {
+  const std::string text = std::string(className) + ": " + oldName + ": deprecated, use " +
+                           newName + " (one name per quantity: docs/python.md)";
+  if (PyErr_WarnEx(PyExc_DeprecationWarning, text.c_str(), 1) != 0) throw py::error_already_set();
 }
 
 std::string fieldsRepr(py::handle self, const char* name) {
@@ -52,6 +65,18 @@ double checkedField(double v, FieldRule rule, const char* className, const char*
   return v;
 }
 
+double numberField(py::handle value, const char* className, const char* field) {
+  if (PyBool_Check(value.ptr()) || !PyNumber_Check(value.ptr()))
+    throw InputError(className, field, "must be a number");
+  const double v = PyFloat_AsDouble(value.ptr());
+  if (v == -1.0 && PyErr_Occurred()) {  // a complex number, an array of several
+    PyErr_Clear();
+    throw InputError(className, field,
+                     "must be a number" + gotValue(py::repr(value).cast<std::string>()));
+  }
+  return v;
+}
+
 void requireHand(const PyWorld& w, const std::string& source) {
   for (const char* name : kHandJointNames)
     if (w.world->findJoint(name) < 0)
@@ -65,8 +90,10 @@ void bindHand(py::module_& m) {
 
 The two-finger hand of chapter 4: dimensions (m), masses (kg), membrane stiffness (N/m),
 damping (N s/m) and preload (m), servo gain, joint limits (rad, m). One model feeds the
-hand scene, the controller and the experiments. Fields are read/write attributes;
-HandModel(stiffness=300) changes one from the default.)doc");
+hand scene, the controller and the experiments. Fields are read/write attributes, checked
+when set; HandModel(k=300) changes one from the default. The fields the hand scene also
+takes have its names (World.load("hand", k=300) is the same hand): k, damping, preload,
+box_mass, mu, turn. `stiffness` is k's old name (deprecated: it warns).)doc");
   {
     using R = FieldRule;
     const char* n = "HandModel";
@@ -87,7 +114,9 @@ HandModel(stiffness=300) changes one from the default.)doc");
     addField(model, n, "link_mass", &HandModel::linkMass, R::Positive, "kg");
     addField(model, n, "slider_mass", &HandModel::sliderMass, R::Positive, "kg");
     addField(model, n, "paddle_mass", &HandModel::paddleMass, R::Positive, "kg");
-    addField(model, n, "stiffness", &HandModel::stiffness, R::Positive, "membrane stiffness (N/m)");
+    addField(model, n, "k", &HandModel::stiffness, R::Positive,
+             "membrane stiffness k_s (N/m; the scene's k)");
+    addRenamedField(model, n, "stiffness", "k", &HandModel::stiffness, R::Positive);
     addField(model, n, "damping", &HandModel::damping, R::NonNegative, "membrane damping (N s/m)");
     addField(model, n, "preload", &HandModel::preload, R::NonNegative, "membrane pre-stretch (m)");
     addField(model, n, "servo_kp", &HandModel::servoKp, R::Positive,
@@ -97,8 +126,19 @@ HandModel(stiffness=300) changes one from the default.)doc");
     addField(model, n, "upper", &HandModel::upper, R::Finite, "joint upper limits, 6 (rad, m)");
     addField(model, n, "mu", &HandModel::friction, R::NonNegative,
              "membrane-box friction at the box's corners (the scene's mu; 0: none, the thesis's)");
-    model.def_readwrite("turn", &HandModel::turn,
-                        "the box may turn (the scene's turn=1); track() then takes an angle");
+    model.def_property(
+        "turn", [](const HandModel& h) { return h.turn; },
+        [n](HandModel& h, py::handle value) {
+          // True/False, or the scene's 1/0; anything else is a mistake, not a truth value.
+          const char* rule = "must be True or False (or the scene's 1 or 0)";
+          if (!PyBool_Check(value.ptr()) && !PyNumber_Check(value.ptr()))
+            throw InputError(n, "turn", rule + gotValue(py::repr(value).cast<std::string>()));
+          const double v =
+              PyBool_Check(value.ptr()) ? value.ptr() == Py_True : numberField(value, n, "turn");
+          if (v != 0 && v != 1) throw InputError(n, "turn", rule + gotValue(v));
+          h.turn = v == 1;
+        },
+        "the box may turn (the scene's turn=1); track() then takes an angle");
     addValueClassMethods(model, n);
   }
   model
@@ -152,13 +192,13 @@ HandModel(stiffness=300) changes one from the default.)doc");
   m.attr("PID_KI") = kHandPidKi;
 
   py::class_<HandController>(m, "HandController",
-                             R"doc(HandController(model=HandModel(), params=ControllerParams())
+                             R"doc(HandController(hand=HandModel(), controller=ControllerParams())
 
 The statics-based Jacobian controller of thesis 4.3 (the outer loop `cablelab track` runs).
-update() once per params.period with the measured joints and box centre returns the
+update() once per controller.period with the measured joints and box centre returns the
 joint-target increment; predict() gives the statics model's box and db/dq.)doc")
-      .def(py::init<HandModel, HandControllerParams>(), "model"_a = HandModel{},
-           "params"_a = HandControllerParams{})
+      .def(py::init<HandModel, HandControllerParams>(), "hand"_a = HandModel{},
+           "controller"_a = HandControllerParams{})
       .def(
           "update",
           [](HandController& c, py::handle q, py::handle box, py::handle target,
@@ -218,8 +258,8 @@ joint-target increment; predict() gives the statics model's box and db/dq.)doc")
         requireHand(w, "place_hand");
         placeHand(*w.world, model, jointsOf(q, "place_hand"));
       },
-      "world"_a, "q"_a, "model"_a = HandModel{},
-      "place_hand(world, q, model=HandModel()): teleports the fingers to joints q (velocities "
+      "world"_a, "q"_a, "hand"_a = HandModel{},
+      "place_hand(world, q, hand=HandModel()): teleports the fingers to joints q (velocities "
       "zeroed) and sets the servo targets to q.");
   bindGrasp(m);
   bindHandRuns(m);

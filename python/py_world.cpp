@@ -160,7 +160,11 @@ std::unique_ptr<PyWorld> loadWorld(py::handle scene, const py::kwargs& params) {
     return std::make_unique<PyWorld>(makeScene(name, overrides), name);
   } catch (const InputError& e) {
     if (e.source() != kCommandLine) throw;
-    throw InputError("World.load", "scene", e.detail());  // "SCENE: no such built-in scene"
+    // A parameter the scene's builder refused ("--set turn: must be 0 or 1") is its keyword;
+    // anything else is about the scene ("SCENE: no such built-in scene").
+    const std::string set = "--set ";
+    const bool param = e.field().rfind(set, 0) == 0;
+    throw InputError("World.load", param ? e.field().substr(set.size()) : "scene", e.detail());
   }
 }
 
@@ -371,7 +375,9 @@ takes one accepts the index or the name.)doc");
 
 A built-in scene by name ("hand", "pulley", ...) or a scene JSON file (str or path).
 params are the scene's parameters, as `cablelab run --set NAME=VALUE` takes them,
-e.g. World.load("pulley", m_left=2.0) (cablelab.scenes() lists them). Bad input raises
+e.g. World.load("pulley", m_left=2.0) (cablelab.scenes() lists them); the hand's are
+HandModel's fields of the same names (World.load("hand", k=300) is HandModel(k=300).world(),
+docs/python.md "One name per quantity"). Bad input raises
 InputError naming the keyword, e.g. "World.load: m1: no such keyword for scene 'pulley'
 (known: L, m_left, m_right)".)doc");
   c.def_static("from_dict", &worldFromDict, "scene"_a, "source"_a = "dict",

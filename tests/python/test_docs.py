@@ -39,6 +39,6 @@ def test_help_shows_public_names_without_the_private_module():
 
 
 def test_reprs_show_the_fields():
-    assert "stiffness=150.0" in repr(cablelab.HandModel())
+    assert "k=150.0" in repr(cablelab.HandModel())
     assert "kp=0.1" in repr(cablelab.ControllerParams())
     assert "'pulley'" in repr(cablelab.World.load("pulley"))

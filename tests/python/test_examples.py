@@ -64,12 +64,11 @@ def test_parallel_reach_equals_serial_runs(tmp_path):
 def test_design_sweep_on_dask_equals_serial_reach_maps_and_tension_widens_the_reach(tmp_path):
     r = run_example("design_sweep.py", tmp_path)
     rows = [dict(zip(r["columns"], row)) for row in r["rows"]]
-    designs = [(row["stiffness"], row["preload"]) for row in rows]
+    designs = [(row["k"], row["preload"]) for row in rows]
     assert designs == [(30.0, 0.05), (30.0, 1.0), (600.0, 0.05), (600.0, 1.0)]
     for row in rows:  # each design's map, computed here serially, is the one the cluster gave
         serial = cablelab.reach(grid=r["grid"], model=r["model"], threads=2,
-                                hand=cablelab.HandModel(stiffness=row["stiffness"],
-                                                        preload=row["preload"]))
+                                hand=cablelab.HandModel(k=row["k"], preload=row["preload"]))
         assert row["object_area"] == serial["object_area"]
         assert row["object_points"] == serial["object_points"]
     # A slack membrane (soft and barely preloaded) holds the box over less ground; more

@@ -15,9 +15,9 @@ def test_place_hand_then_read_the_joints():
 
 
 def test_model_fields_and_keyword_construction():
-    m = cablelab.HandModel(stiffness=300.0, box_mass=2.0)
-    assert (m.stiffness, m.box_mass) == (300.0, 2.0)
-    assert cablelab.HandModel().stiffness != 300.0
+    m = cablelab.HandModel(k=300.0, box_mass=2.0)
+    assert (m.k, m.box_mass) == (300.0, 2.0)
+    assert cablelab.HandModel().k != 300.0
     assert len(m.lower) == 6 and all(lo < hi for lo, hi in zip(m.lower, m.upper))
     assert np.array_equal(m.clamp([10] * 6), m.upper)
 

@@ -72,13 +72,13 @@ def test_set_state_of_another_scene_is_refused():
 
 
 def test_value_classes_pickle_and_copy():
-    values = [cablelab.HandModel(stiffness=300.0, lower=[-0.5] * 6),
+    values = [cablelab.HandModel(k=300.0, lower=[-0.5] * 6),
               cablelab.ControllerParams(kp=0.2, ki=1.0),
               cablelab.GraspOptions(close_time=2.0, max_regrasps=4)]
     for v in values:
         for back in (pickle.loads(pickle.dumps(v)), copy.copy(v), copy.deepcopy(v)):
             assert type(back) is type(v) and repr(back) == repr(v)
-    assert pickle.loads(pickle.dumps(values[0])).stiffness == 300.0
+    assert pickle.loads(pickle.dumps(values[0])).k == 300.0
     assert list(pickle.loads(pickle.dumps(values[0])).lower) == [-0.5] * 6
 
 
@@ -90,7 +90,7 @@ def box_after(model):
 
 
 def test_process_pool_over_hand_models():
-    models = [cablelab.HandModel(stiffness=k) for k in (100.0, 200.0)]
+    models = [cablelab.HandModel(k=k) for k in (100.0, 200.0)]
     with concurrent.futures.ProcessPoolExecutor(max_workers=2) as pool:
         remote = list(pool.map(box_after, models))
     assert remote == [box_after(m) for m in models]  # the same doubles in another process
