@@ -176,9 +176,9 @@ TEST(RecordCli, ClipsAreAFractionOfTheOldGifs) {
   };
   const double pulley = record("pulley", "pulley-720.gif");
   const double hexagon = record("hexagon", "hexagon-720.gif");
-  std::cout << "4.7 s at 1280x720: pulley GIF " << pulley << " bytes (" << pulley / kOldGifBytesPulley
-            << " of the old), hexagon GIF " << hexagon << " (" << hexagon / kOldGifBytesHexagon
-            << ")\n";
+  std::cout << "4.7 s at 1280x720: pulley GIF " << pulley << " bytes ("
+            << pulley / kOldGifBytesPulley << " of the old), hexagon GIF " << hexagon << " ("
+            << hexagon / kOldGifBytesHexagon << ")\n";
   // The pulley rests between its drops: what changed is little. The hexagon turns and its weight
   // swings in every frame: some 5,700 pixels of moving edges a frame.
   EXPECT_LE(7 * pulley, kOldGifBytesPulley);
