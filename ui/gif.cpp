@@ -22,18 +22,9 @@ namespace {
   throw std::runtime_error(path + ": " + what + " (" + (reason ? reason : "giflib error") + ")");
 }
 
-/// The smallest rectangle [x0, x1] x [y0, y1] holding every pixel of `b` that differs from `a`
-/// in colour; a single pixel when none does (a GIF frame cannot be empty).
-void changedRectangle(const Image& a, const Image& b, int& x0, int& y0, int& x1, int& y1) {
-  x0 = b.width, y0 = b.height, x1 = -1, y1 = -1;
-  for (int y = 0; y < b.height; ++y)
-    for (int x = 0; x < b.width; ++x)
-      if (std::memcmp(a.pixel(x, y), b.pixel(x, y), 3) != 0) {
-        x0 = std::min(x0, x), x1 = std::max(x1, x);
-        y0 = std::min(y0, y), y1 = std::max(y1, y);
-      }
-  if (x1 < 0) x0 = y0 = x1 = y1 = 0;
-}
+/// The palette's last index is the transparent one: "keep what the frame before showed".
+constexpr int kColours = 255;
+constexpr std::uint8_t kTransparent = 255;
 
 }  // namespace
 
@@ -53,9 +44,24 @@ GifWriter::GifWriter(const std::string& path, int width, int height, double fram
     ::close(fd);
     fail(path, "cannot write the GIF", error);
   }
-  EGifSetGifVersion(gif_, true);  // GIF89a: delays and looping
-  if (EGifPutScreenDesc(gif_, width, height, 8, 0, nullptr) == GIF_ERROR)
-    fail(path, "cannot write the GIF header", gif_->Error);
+  EGifSetGifVersion(gif_, true);  // GIF89a: delays, transparency and looping
+  shown_.assign(static_cast<size_t>(width) * height, kTransparent);  // nothing shown yet
+}
+
+void GifWriter::writeHeader(const Image* first) {
+  GifColorType colours[256];
+  std::memset(colours, 0, sizeof colours);
+  if (first) {
+    palette_ = std::make_unique<GifPalette>(*first, kColours);
+    const auto& chosen = palette_->colours();
+    for (size_t i = 0; i < chosen.size(); ++i)
+      colours[i] = {chosen[i][0], chosen[i][1], chosen[i][2]};
+  }
+  ColorMapObject* map = GifMakeMapObject(256, colours);
+  if (!map) throw std::runtime_error(path_ + ": out of memory for the GIF palette");
+  const bool ok = EGifPutScreenDesc(gif_, width_, height_, 8, 0, map) != GIF_ERROR;
+  GifFreeMapObject(map);
+  if (!ok) fail(path_, "cannot write the GIF header", gif_->Error);
   // NETSCAPE2.0 application extension, loop count 0 = forever.
   static const GifByteType kApp[] = "NETSCAPE2.0";
   static const GifByteType kLoop[] = {1, 0, 0};
@@ -63,7 +69,7 @@ GifWriter::GifWriter(const std::string& path, int width, int height, double fram
       EGifPutExtensionBlock(gif_, 11, kApp) == GIF_ERROR ||
       EGifPutExtensionBlock(gif_, 3, kLoop) == GIF_ERROR ||
       EGifPutExtensionTrailer(gif_) == GIF_ERROR)
-    fail(path, "cannot write the GIF loop extension", gif_->Error);
+    fail(path_, "cannot write the GIF loop extension", gif_->Error);
 }
 
 GifWriter::~GifWriter() {
@@ -78,16 +84,19 @@ void GifWriter::add(const Image& frame) {
   if (frame.width != width_ || frame.height != height_)
     throw std::runtime_error(path_ + ": frame size " + std::to_string(frame.width) + "x" +
                              std::to_string(frame.height) + " differs from the GIF's");
-  // Only the rectangle that changed since the last frame (GIF keeps the rest on screen).
-  int x0 = 0, y0 = 0, x1 = width_ - 1, y1 = height_ - 1;
-  if (frames_ > 0) changedRectangle(previous_, frame, x0, y0, x1, y1);
-  previous_ = frame;
+  if (!palette_) writeHeader(&frame);
+  // The frame in palette indices, and the rectangle where they differ from what is shown.
+  std::vector<std::uint8_t> indices(shown_.size());
+  int x0 = width_, y0 = height_, x1 = -1, y1 = -1;
+  for (int y = 0; y < height_; ++y)
+    for (int x = 0; x < width_; ++x) {
+      const size_t i = static_cast<size_t>(y) * width_ + x;
+      indices[i] = palette_->indexOf(frame.pixel(x, y));
+      if (indices[i] != shown_[i])
+        x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    }
+  if (x1 < 0) x0 = y0 = x1 = y1 = 0;  // nothing changed: one transparent pixel (no empty frame)
   const int w = x1 - x0 + 1, h = y1 - y0 + 1;
-  const IndexedPixels pixels = indexColours(frame, x0, y0, w, h);
-  GifColorType palette[256];
-  std::memset(palette, 0, sizeof palette);
-  for (size_t i = 0; i < pixels.palette.size(); ++i)
-    palette[i] = {pixels.palette[i][0], pixels.palette[i][1], pixels.palette[i][2]};
   // Whole centiseconds per frame, spread so that the total stays on frames * frameSeconds.
   const double end = std::round((frames_ + 1) * frameSeconds_ * 100);
   const int delay = static_cast<int>(end - written_);
@@ -95,25 +104,28 @@ void GifWriter::add(const Image& frame) {
   GraphicsControlBlock gcb{};
   gcb.DisposalMode = DISPOSE_DO_NOT;
   gcb.DelayTime = delay;
-  gcb.TransparentColor = NO_TRANSPARENT_COLOR;
+  gcb.TransparentColor = kTransparent;
   GifByteType extension[4];
   const size_t length = EGifGCBToExtension(&gcb, extension);
-  ColorMapObject* map = GifMakeMapObject(256, palette);
-  if (!map) throw std::runtime_error(path_ + ": out of memory for the GIF palette");
   bool ok = EGifPutExtension(gif_, GRAPHICS_EXT_FUNC_CODE, static_cast<int>(length), extension) !=
                 GIF_ERROR &&
-            EGifPutImageDesc(gif_, x0, y0, w, h, false, map) != GIF_ERROR;
-  for (int y = 0; ok && y < h; ++y)
-    ok = EGifPutLine(gif_,
-                     const_cast<GifByteType*>(pixels.indices.data()) + static_cast<size_t>(y) * w,
-                     w) != GIF_ERROR;
-  GifFreeMapObject(map);
+            EGifPutImageDesc(gif_, x0, y0, w, h, false, nullptr) != GIF_ERROR;
+  std::vector<GifByteType> line(w);
+  for (int y = y0; ok && y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) {
+      const size_t i = static_cast<size_t>(y) * width_ + x;
+      line[x - x0] = indices[i] == shown_[i] ? kTransparent : indices[i];
+      shown_[i] = indices[i];
+    }
+    ok = EGifPutLine(gif_, line.data(), w) != GIF_ERROR;
+  }
   if (!ok) fail(path_, "cannot write GIF frame " + std::to_string(frames_), gif_->Error);
   ++frames_;
 }
 
 void GifWriter::close() {
   if (!gif_) return;
+  if (!palette_) writeHeader(nullptr);  // a valid GIF without frames
   int error = 0;
   const int result = EGifCloseFile(gif_, &error);
   gif_ = nullptr;

@@ -1,6 +1,9 @@
-// GifWriter: an animated GIF written frame by frame with giflib (Debian's libgif). Each frame
-// stores only the rectangle that changed since the one before, in its own palette of its 256
-// most common colours (ui/gif_palette.h).
+// GifWriter: an animated GIF written frame by frame with giflib (Debian's libgif), small
+// because it uses what GIF does well: one global palette chosen from the first frame
+// (ui/gif_palette.h), and each later frame only the rectangle whose palette indices changed
+// since the frame before, its unchanged pixels written as the transparent index ("do not
+// dispose": the viewer keeps the previous frame under them). Long transparent runs are what LZW
+// compresses best, and no dithering changes pixels that did not move.
 //
 // Needs: giflib only (no GL), ui/image.h. Frames must all have the writer's size. The delay
 // of each frame is in GIF's centiseconds; frameSeconds that are not a whole number of them
@@ -8,6 +11,8 @@
 // The file loops forever (the NETSCAPE2.0 extension browsers understand).
 #pragma once
 
+#include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -17,6 +22,8 @@
 struct GifFileType;
 
 namespace cablelab::ui {
+
+class GifPalette;
 
 class GifWriter : public ClipWriter {
  public:
@@ -36,13 +43,18 @@ class GifWriter : public ClipWriter {
   const std::string& path() const { return path_; }
 
  private:
+  /// The screen descriptor with the global palette (from `first`, or one colour without a
+  /// frame) and the looping extension.
+  void writeHeader(const Image* first);
+
   std::string path_;
   GifFileType* gif_ = nullptr;
   int width_, height_;
   double frameSeconds_;
   double written_ = 0;  ///< centiseconds of delay written so far
   int frames_ = 0;
-  Image previous_;  ///< the last frame added: the next one writes only what changed
+  std::unique_ptr<GifPalette> palette_;  ///< from the first frame
+  std::vector<std::uint8_t> shown_;      ///< width x height: the index a viewer shows now
 };
 
 /// One decoded GIF (for tests and tools): every frame as an RGBA image (frames composed as a

@@ -10,9 +10,10 @@ Image renderSnapshot(const World& world, int width, int height, const Overlay& o
                      const RenderOptions& options) {
   OffscreenContext context(width, height);
   const Camera camera = Camera::fit(world.scene().view, width, height);
-  // The scene's own colour scale, as in the sandbox and in recordings (ui/tension_scale.h).
+  // The scene's own colour scale, the sandbox's and the recordings' (ui/tension_scale.h), so that
+  // a colour means the same newtons in a snapshot as in the window.
   RenderOptions o = options;
-  if (o.tensionScale <= 0) o.tensionScale = expectedTensionScale(world.scene());
+  if (o.tensionScale <= 0) o.tensionScale = loadTensionScale(world.scene());
   return context.render([&](ImDrawList* text) { drawWorld(world, camera, overlay, o, text); });
 }
 

@@ -16,7 +16,8 @@
 namespace cablelab::ui {
 
 /// Renders `world` at width x height with the scene's default view (scene().view); with no
-/// tension scale in `options`, the scene's expected one (ui/tension_scale.h).
+/// tension scale in `options`, the scene's fixed one from its loads, as the sandbox's window
+/// shows it (ui/tension_scale.h, loadTensionScale).
 /// Throws std::runtime_error with a clear message on failure (bad size, no OSMesa).
 Image renderSnapshot(const World& world, int width, int height, const Overlay& overlay = {},
                      const RenderOptions& options = {});

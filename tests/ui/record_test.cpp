@@ -1,6 +1,10 @@
 // Animated GIFs: the giflib writer round trip (ui/gif.h) and `cablelab record` (headless).
 #include <gtest/gtest.h>
 
+#include <gif_lib.h>
+
+#include <algorithm>
+#include <fstream>
 #include <set>
 
 #include "tests/ui/test_support.h"
@@ -45,18 +49,73 @@ TEST(Gif, WriterRoundTripKeepsFlatColoursAndTheFrameRate) {
     total += d;
   }
   EXPECT_EQ(total, static_cast<int>(std::lround(kFrames * 100 / kFps)));
-  // Four colours fit any palette: every pixel comes back, to the 5 bits per channel giflib's
-  // quantiser keeps (its palette entries are multiples of 8).
+  // Four colours fit any palette: every pixel comes back.
   for (int k = 0; k < kFrames; ++k) {
     EXPECT_EQ(countDiffering(a.frames[k], bands(64, 48, k), 7), 0) << "frame " << k;
     EXPECT_GT(countDiffering(a.frames[k], bands(64, 48, k + 1), 7), 100) << "frame " << k;
   }
 }
 
+// A still picture with a small square moving over it: each frame after the first stores only
+// the rectangle around the square's old and new places, in the one global palette, the
+// pixels there that stayed as the transparent index, drawn over the frame before.
+TEST(Gif, LaterFramesStoreOnlyWhatChangedWithTheOnePalette) {
+  const std::string path = (outputDir("gif") / "square.gif").string();
+  auto picture = [](int k) {
+    ui::Image image = bands(80, 60, 0);
+    for (int y = 20; y < 30; ++y)
+      for (int x = 10 + 2 * k; x < 20 + 2 * k; ++x) {
+        std::uint8_t* p = image.pixel(x, y);
+        p[0] = 240, p[1] = 230, p[2] = 60;
+      }
+    return image;
+  };
+  {
+    ui::GifWriter gif(path, 80, 60, 0.1);
+    for (int k = 0; k < 5; ++k) gif.add(picture(k));
+    gif.add(picture(4));  // nothing changed: one transparent pixel
+    gif.close();
+  }
+  int error = 0;
+  GifFileType* file = DGifOpenFileName(path.c_str(), &error);
+  ASSERT_NE(file, nullptr);
+  ASSERT_NE(DGifSlurp(file), GIF_ERROR);
+  ASSERT_EQ(file->ImageCount, 6);
+  EXPECT_NE(file->SColorMap, nullptr);
+  for (int k = 0; k < file->ImageCount; ++k) {
+    const SavedImage& image = file->SavedImages[k];
+    EXPECT_EQ(image.ImageDesc.ColorMap, nullptr) << "frame " << k << " has its own palette";
+    GraphicsControlBlock gcb{};
+    DGifSavedExtensionToGCB(file, k, &gcb);
+    EXPECT_EQ(gcb.DisposalMode, DISPOSE_DO_NOT);
+    if (k == 0 || k == 5) continue;
+    // The square moved 2 px right: columns 10 + 2(k-1) .. 19 + 2k, rows 20..29.
+    EXPECT_EQ(image.ImageDesc.Left, 10 + 2 * (k - 1)) << k;
+    EXPECT_EQ(image.ImageDesc.Width, 12) << k;
+    EXPECT_EQ(image.ImageDesc.Top, 20) << k;
+    EXPECT_EQ(image.ImageDesc.Height, 10) << k;
+    // Inside, the square's middle stayed: transparent.
+    ASSERT_GE(gcb.TransparentColor, 0);
+    EXPECT_EQ(image.RasterBits[5 * 12 + 5], gcb.TransparentColor) << k;
+    EXPECT_NE(image.RasterBits[5 * 12 + 11], gcb.TransparentColor) << k;  // the square's new edge
+  }
+  EXPECT_EQ(file->SavedImages[5].ImageDesc.Width * file->SavedImages[5].ImageDesc.Height, 1);
+  DGifCloseFile(file, &error);
+  const ui::GifAnimation a = ui::readGif(path);
+  ASSERT_EQ(a.frames.size(), 6u);
+  for (int k = 0; k < 6; ++k)
+    EXPECT_EQ(countDiffering(a.frames[k], picture(std::min(k, 4)), 7), 0) << "frame " << k;
+}
+
 TEST(Gif, WriterRejectsAWrongSizeAndAnUnwritablePath) {
   EXPECT_THROW(ui::GifWriter("/nonexistent/dir/x.gif", 10, 10, 0.1), std::runtime_error);
   ui::GifWriter gif((outputDir("gif") / "size.gif").string(), 10, 10, 0.1);
   EXPECT_THROW(gif.add(bands(11, 10, 0)), std::runtime_error);
+  gif.close();  // no frame: still a GIF file (a header without images)
+  std::ifstream file(outputDir("gif") / "size.gif", std::ios::binary);
+  std::string head(6, ' ');
+  file.read(head.data(), 6);
+  EXPECT_EQ(head, "GIF89a");
 }
 
 TEST(RecordCli, HexagonForTwoSecondsHasSixtyDifferentFrames) {

@@ -8,6 +8,8 @@
 
 #include "tests/ui/test_support.h"
 #include "ui/image.h"
+#include "ui/offscreen.h"
+#include "ui/sandbox.h"
 #include "ui/scene_catalog.h"
 
 namespace cablelab::test {
@@ -45,6 +47,28 @@ TEST(SnapshotCli, BadInputExitsTwoWithOneLine) {
       run(std::string(CABLELAB_CLI) + " snapshot " + scene + " --out " + out + " --time -1",
           "snapshot_bad_time");
   EXPECT_EQ(time.exitCode, 2) << time.err;
+}
+
+// A snapshot colours tensions on the window's scale for the scene (10 N for the hexagon: its
+// 1 kg weight), not on one of its own (a 2 s run's largest tension made it 20 N).
+TEST(SnapshotCli, ColoursTensionsOnTheWindowsScale) {
+  ui::Sandbox sandbox(800, 600);
+  ASSERT_TRUE(sandbox.open("hexagon"));
+  const double windowScale = sandbox.tensionScale;
+  ASSERT_EQ(windowScale, 10);
+  const std::string out = (outputDir("cli") / "hexagon-scale.png").string();
+  const RunResult r = run(
+      std::string(CABLELAB_CLI) + " snapshot hexagon --out " + out + " --size 400x300 --time 0.5",
+      "snapshot_scale");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const ui::Image snapshot = ui::readPng(out);
+  const auto world = sceneAt("hexagon", 0.5);
+  ui::RenderOptions options;
+  options.tensionScale = windowScale;
+  const ui::Image window = ui::renderSnapshot(*world, 400, 300, {}, options);
+  EXPECT_LE(countDiffering(snapshot, window, 8), 20);
+  options.tensionScale = 2 * windowScale;  // another scale shows: the check can fail
+  EXPECT_GT(countDiffering(snapshot, ui::renderSnapshot(*world, 400, 300, {}, options), 8), 200);
 }
 
 TEST(SnapshotCli, HelpWorks) {
