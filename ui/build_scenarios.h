@@ -30,6 +30,9 @@ struct BuildScenario {
   std::vector<BuildStep> steps;
 };
 
+/// Steps the window plays each built scene for after saving it (the poses the report gives).
+inline constexpr int kBuildPlaySteps = 60;
+
 /// Every build scenario.
 const std::vector<BuildScenario>& buildScenarios();
 
