@@ -170,6 +170,20 @@ std::vector<BuildScenario> makeScenarios() {
         }),
         tool(Tool::PointPulley), click(0.1, 2.5), tool(Tool::Box), click(0.1, 1),
         tool(Tool::Cable), click(-1.5, 2.5), click(0.1, 2.5), click(0.1, 1.1)}},
+      // A hexagon pulley clicked on an arm hinged with limits (it turns on an axle there), the
+      // cable from a
+      // point in space over it, through an eyelet Alt+clicked on a box's corner, up to another
+      // point in space: the box hangs in the loop.
+      {"build-hexagon-on-arm",
+       {tool(Tool::Box), click(0, 2.4), tool(Tool::Revolute), click(-1, 3), click(-0.1, 2.4),
+        jointSetting([](JointDef& j) {  // the arm swings 0.6 rad at most
+          j.enableLimit = true;
+          j.lower = -0.6;
+          j.upper = 0.6;
+        }),
+        tool(Tool::PolygonPulley), click(0.1, 2.4), tool(Tool::Box), click(0.6, 1),
+        tool(Tool::Cable), click(-1, 2.6), click(0.1, 2.4), click(0.75, 1.15, Kind::AltClick),
+        click(1.5, 2.6)}},
       // Delete, undo and redo with Ctrl+Z and Ctrl+Y.
       {"build-undo-redo",
        {tool(Tool::Box),

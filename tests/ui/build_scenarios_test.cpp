@@ -522,6 +522,44 @@ TEST(BuildInWindow, EyeletOnADrivenSliderCarriesTheCable) {
   EXPECT_GT(csv.at("box2.y", 5), 1.25);  // rose with the eyelet (about 0.5 m)
 }
 
+// A hexagon pulley clicked on an arm (hinged, limits +-0.6 rad) turns on an axle there and moves
+// with the arm; the cable goes over it (side from the route's turn) and through an eyelet
+// Alt+clicked at a corner of the box, which hangs askew from it. The rigid cable keeps its
+// routed length.
+TEST(BuildInWindow, HexagonPulleyOnAnArmAndAnEyeletOnABoxCorner) {
+  REQUIRE_XVFB();
+  const std::string hand =
+      handScene(box("box1", 0, 2.4) + R"(,
+      {"name": "pulley1", "position": [0.1, 2.4],
+       "shapes": [{"type": "polygon", "sensor": true, "vertices": [[0.2, 0], [0.1, 0.1732],
+                   [-0.1, 0.1732], [-0.2, 0], [-0.1, -0.1732], [0.1, -0.1732]]}]}, )" +
+                    box("box2", 0.6, 1),
+                R"({"type": "revolute", "name": "joint1", "body_b": "box1", "anchor": [-0.1, 2.4],
+          "limits": [-0.6, 0.6]},
+         {"type": "revolute", "name": "pulley1_mount", "body_a": "box1", "body_b": "pulley1",
+          "anchor": [0.1, 2.4]})",
+                R"({"name": "cable1", "start": {"body": "world", "point": [-1, 2.6]},
+          "pulleys": [{"type": "polygon", "body": "pulley1", "side": "left", "turns": 0.1451},
+                      {"type": "point", "body": "box2", "point": [0.15, 0.15],
+                       "side": "threaded"}],
+          "end": {"body": "world", "point": [1.5, 2.6]}})");
+  nlohmann::json report;
+  const Csv csv = buildAndCompare("build-hexagon-on-arm", hand, &report, kOneSize);
+  EXPECT_EQ(report.value("wraps", 0), 3) << report.dump();  // two hexagon corners, the eyelet
+  const double routed = csv.at("cable1.length", 0);
+  double moved = 0, tilt = 0;
+  for (double t = 0; t <= 5; t += 0.25) {
+    EXPECT_NEAR(std::hypot(csv.at("pulley1.x", t) + 0.1, csv.at("pulley1.y", t) - 2.4), 0.2, 5e-3)
+        << t;
+    EXPECT_LT(csv.at("cable1.length", t), routed + 1e-3) << t;
+    moved = std::max(moved, std::abs(csv.at("pulley1.y", t) - 2.4));
+    tilt = std::max(tilt, std::abs(csv.at("box2.theta", t)));
+  }
+  EXPECT_GT(moved, 0.05) << "the hexagon did not move with the arm";
+  EXPECT_NEAR(csv.at("box1.theta", 5), -0.6, 0.01);  // the arm rests on its limit
+  EXPECT_GT(tilt, 0.3) << "the box hangs as if threaded at its centre";
+}
+
 // Delete, Ctrl+Z, Ctrl+Y, Ctrl+Z, a new circle, Ctrl+Z: the two boxes, both on the ground.
 TEST(BuildInWindow, UndoAndRedoWithCtrlZAndCtrlY) {
   REQUIRE_XVFB();
