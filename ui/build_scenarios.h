@@ -31,7 +31,7 @@ struct BuildScenario {
 };
 
 /// Steps the window plays each built scene for after saving it (the poses the report gives).
-inline constexpr int kBuildPlaySteps = 60;
+inline constexpr int kBuildPlaySteps = 30;
 
 /// Every build scenario.
 const std::vector<BuildScenario>& buildScenarios();
