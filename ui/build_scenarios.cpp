@@ -184,7 +184,8 @@ std::vector<BuildScenario> makeScenarios() {
         tool(Tool::PolygonPulley), click(0.1, 2.4), tool(Tool::Box), click(0.6, 1),
         tool(Tool::Cable), click(-1, 2.6), click(0.1, 2.4), click(0.75, 1.15, Kind::AltClick),
         click(1.5, 2.6)}},
-      // Delete, undo and redo with Ctrl+Z and Ctrl+Y.
+      // Delete, undo and redo with Ctrl+Z and Ctrl+Y; then the second box selected with a click
+      // and deleted with the Delete key.
       {"build-undo-redo",
        {tool(Tool::Box),
         click(-0.5, 1),
@@ -196,7 +197,10 @@ std::vector<BuildScenario> makeScenarios() {
         {Kind::Undo},
         tool(Tool::Circle),
         click(0, 2),
-        {Kind::Undo}}},
+        {Kind::Undo},
+        tool(Tool::None),
+        click(0.5, 1),
+        {Kind::DeleteKey}}},
   };
 }
 

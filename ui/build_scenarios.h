@@ -18,7 +18,7 @@
 namespace cablelab::ui {
 
 struct BuildStep {
-  enum class Kind { Tool, Click, ShiftClick, AltClick, RightClick, Undo, Redo, Setting };
+  enum class Kind { Tool, Click, ShiftClick, AltClick, RightClick, Undo, Redo, DeleteKey, Setting };
   Kind kind = Kind::Click;
   Authoring::Tool tool = Authoring::Tool::None;  ///< Tool
   Vec2 at = Vec2::Zero();                        ///< clicks: world point (m)

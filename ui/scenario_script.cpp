@@ -415,6 +415,9 @@ bool ScenarioScript::build(Sandbox& sandbox, int frame) {
         SDL_SetModState(KMOD_LCTRL);
         key(SDLK_y);
         break;
+      case BuildStep::Kind::DeleteKey:
+        key(SDLK_DELETE);
+        break;
       case BuildStep::Kind::Setting:
         s.set(sandbox);
         break;
