@@ -134,18 +134,17 @@ std::vector<BuildScenario> makeScenarios() {
       // A fixed ramp drawn with the polygon tool (three corners, right click), a ball (a circle)
       // rolling down it, and a loose triangle (three corners, Finish) standing on the ground.
       {"build-ramp",
-       {setting([](Sandbox& s) { s.authoring->bodyType = BodyType::Static; }),
-        tool(Tool::Polygon), click(-1.8, 0), click(0.2, 0), click(-1.8, 1),
-        click(-1.8, 1, Kind::RightClick),
+       {setting([](Sandbox& s) { s.authoring->bodyType = BodyType::Static; }), tool(Tool::Polygon),
+        click(-1.8, 0), click(0.2, 0), click(-1.8, 1), click(-1.8, 1, Kind::RightClick),
         setting([](Sandbox& s) { s.authoring->bodyType = BodyType::Dynamic; }),
         setting([](Sandbox& s) { s.authoring->size = 0.2; }), tool(Tool::Circle),
-        click(-1.25, 0.85), tool(Tool::Polygon), click(1, 0.05), click(1.4, 0.05),
-        click(1.2, 0.4), setting([](Sandbox& s) { finishPolygon(s); })}},
+        click(-1.25, 0.85), tool(Tool::Polygon), click(1, 0.05), click(1.4, 0.05), click(1.2, 0.4),
+        setting([](Sandbox& s) { finishPolygon(s); })}},
       // Two boxes on hinges at their left sides: the first held by a servo at 0.5 rad, the
       // second stopped by its limits [-0.3, 0.3] rad as it falls.
       {"build-hinge-servo-limits",
-       {tool(Tool::Box), click(-0.8, 1.5), tool(Tool::Revolute), click(-1.5, 3),
-        click(-0.95, 1.5), jointSetting([](JointDef& j) {
+       {tool(Tool::Box), click(-0.8, 1.5), tool(Tool::Revolute), click(-1.5, 3), click(-0.95, 1.5),
+        jointSetting([](JointDef& j) {
           j.servo.enabled = true;
           j.servo.target = 0.5;
           j.servo.kp = 20;
@@ -168,8 +167,8 @@ std::vector<BuildScenario> makeScenarios() {
           j.servo.kp = 2000;
           j.servo.kd = 2000;  // slow (1 s), so that the box rises without a jerk
         }),
-        tool(Tool::PointPulley), click(0.1, 2.5), tool(Tool::Box), click(0.1, 1),
-        tool(Tool::Cable), click(-1.5, 2.5), click(0.1, 2.5), click(0.1, 1.1)}},
+        tool(Tool::PointPulley), click(0.1, 2.5), tool(Tool::Box), click(0.1, 1), tool(Tool::Cable),
+        click(-1.5, 2.5), click(0.1, 2.5), click(0.1, 1.1)}},
       // A hexagon pulley clicked on an arm hinged with limits (it turns on an axle there), the
       // cable from a
       // point in space over it, through an eyelet Alt+clicked on a box's corner, up to another

@@ -435,15 +435,14 @@ bool ScenarioScript::build(Sandbox& sandbox, int frame) {
     const SceneDef& scene = sandbox.scene;
     int wraps = 0;
     for (int i = 0; i < world.cableCount(); ++i) wraps += world.cable(i).wraps();
-    report_ = "{\"scenario\": " + jsonQuoted(name_) +
-              ", \"bodies\": " + jsonNumber(scene.bodies.size()) +
-              ", \"cables\": " + jsonNumber(scene.cables.size()) +
-              ", \"joints\": " + jsonNumber(scene.joints.size()) +
-              ", \"wraps\": " + jsonNumber(wraps) +
-              ", \"undo\": " + jsonNumber(sandbox.authoring->undo.size()) +
-              ", \"redo\": " + jsonNumber(sandbox.authoring->redo.size()) +
-              ", \"error\": " + jsonQuoted(sandbox.error) +
-              ", \"save_error\": " + jsonQuoted(saveError) + ", \"file\": " + jsonQuoted(out_);
+    report_ =
+        "{\"scenario\": " + jsonQuoted(name_) + ", \"bodies\": " + jsonNumber(scene.bodies.size()) +
+        ", \"cables\": " + jsonNumber(scene.cables.size()) +
+        ", \"joints\": " + jsonNumber(scene.joints.size()) + ", \"wraps\": " + jsonNumber(wraps) +
+        ", \"undo\": " + jsonNumber(sandbox.authoring->undo.size()) +
+        ", \"redo\": " + jsonNumber(sandbox.authoring->redo.size()) +
+        ", \"error\": " + jsonQuoted(sandbox.error) + ", \"save_error\": " + jsonQuoted(saveError) +
+        ", \"file\": " + jsonQuoted(out_);
     playing_ = true;
     playFrom_ = world.time();
     key(SDLK_SPACE);

@@ -379,8 +379,9 @@ TEST(BuildInWindow, CapstanFrictionOnACircleTurnsTheWheel) {
 // m g / k - preload below, and its swing dies away as e^(-c t / 2 m).
 TEST(BuildInWindow, ElasticCableSettlesAtItsStretch) {
   REQUIRE_XVFB();
-  const std::string hand = handScene(box("box1", 0, 1.5), "",
-                                     R"({"name": "cable1", "start": {"body": "world", "point": [0, 2.8]},
+  const std::string hand =
+      handScene(box("box1", 0, 1.5), "",
+                R"({"name": "cable1", "start": {"body": "world", "point": [0, 2.8]},
           "end": {"body": "box1", "point": [0, 0.1]}, "stiffness": 200, "preload": 0.02,
           "damping": 2})");
   const Csv csv = buildAndCompare("build-elastic", hand);
@@ -436,7 +437,9 @@ TEST(BuildInWindow, BallRollsDownAFixedPolygonRamp) {
                 "", "");
   const Csv csv = buildAndCompare("build-ramp", hand, nullptr, kOneSize);
   const double sinSlope = 1 / std::sqrt(5.0), a = 2.0 / 3 * kG * sinSlope;
-  auto speed = [&](double t) { return std::hypot(csv.at("circle1.vx", t), csv.at("circle1.vy", t)); };
+  auto speed = [&](double t) {
+    return std::hypot(csv.at("circle1.vx", t), csv.at("circle1.vy", t));
+  };
   EXPECT_NEAR((speed(0.8) - speed(0.3)) / 0.5, a, 0.02 * a);
   EXPECT_NEAR(csv.at("circle1.vy", 0.8) / csv.at("circle1.vx", 0.8), -0.5, 0.01);  // down it
   EXPECT_NEAR(csv.at("circle1.omega", 0.8), -speed(0.8) / 0.1, 0.02 * speed(0.8) / 0.1);
