@@ -100,12 +100,13 @@ std::vector<BuildScenario> makeScenarios() {
           next.cables.back().pulleys.front().mu = 0.1;
           applyEdit(s, std::move(next));
         })}},
-      // An elastic cord: a box on a spring of 200 N/m with some damping (the Inspector's fields).
+      // An elastic cord: a box on a spring of 200 N/m, pre-stretched 2 cm, with some damping (the
+      // Inspector's fields).
       {"build-elastic",
        {tool(Tool::Box), click(0, 1.5), tool(Tool::Cable), click(0, 2.8), click(0, 1.6),
         setting([](Sandbox& s) {
           s.selectedCable = 0;
-          s.cableEdit = {s.world()->cable(0).restLength(), 200, 0, 2};
+          s.cableEdit = {s.world()->cable(0).restLength(), 200, 0.02, 2};
           s.applyCableEdit();
         })}},
       // A driven (kinematic) box moving right at 0.2 m/s, dragging a box on a cable.
@@ -118,7 +119,72 @@ std::vector<BuildScenario> makeScenarios() {
         }),
         setting([](Sandbox& s) { s.authoring->bodyType = BodyType::Dynamic; }), click(-1, 1),
         tool(Tool::Cable), click(-1, 2.4), click(-1, 1.1)}},
-      // Delete, undo and redo with Ctrl+Z and Ctrl+Y.
+      // A round wheel on an axle (a circle body and a hinge), Shift+clicked as a pulley, the
+      // Inspector's grip "no slip": an Atwood machine whose rope turns the wheel.
+      {"build-no-slip",
+       {setting([](Sandbox& s) { s.authoring->size = 0.8; }), tool(Tool::Circle), click(0, 2.5),
+        tool(Tool::Revolute), click(-1.5, 3), click(0, 2.5),
+        setting([](Sandbox& s) { s.authoring->size = 0.4; }), tool(Tool::Box), click(-0.4, 1),
+        mass(2), click(0.4, 1), tool(Tool::Cable), click(-0.4, 1.1),
+        click(0, 2.5, Kind::ShiftClick), click(0.4, 1.1), setting([](Sandbox& s) {
+          PulleyDef p = s.scene.cables.back().pulleys.front();
+          p.grip = Grip::NoSlip;  // the Inspector's grip buttons
+          editPulley(s, 0, 0, p);
+        })}},
+      // A fixed ramp drawn with the polygon tool (three corners, right click), a ball (a circle)
+      // rolling down it, and a loose triangle (three corners, Finish) standing on the ground.
+      {"build-ramp",
+       {setting([](Sandbox& s) { s.authoring->bodyType = BodyType::Static; }), tool(Tool::Polygon),
+        click(-1.8, 0), click(0.2, 0), click(-1.8, 1), click(-1.8, 1, Kind::RightClick),
+        setting([](Sandbox& s) { s.authoring->bodyType = BodyType::Dynamic; }),
+        setting([](Sandbox& s) { s.authoring->size = 0.2; }), tool(Tool::Circle),
+        click(-1.25, 0.85), tool(Tool::Polygon), click(1, 0.05), click(1.4, 0.05), click(1.2, 0.4),
+        setting([](Sandbox& s) { finishPolygon(s); })}},
+      // Two boxes on hinges at their left sides: the first held by a servo at 0.5 rad, the
+      // second stopped by its limits [-0.3, 0.3] rad as it falls.
+      {"build-hinge-servo-limits",
+       {tool(Tool::Box), click(-0.8, 1.5), tool(Tool::Revolute), click(-1.5, 3), click(-0.95, 1.5),
+        jointSetting([](JointDef& j) {
+          j.servo.enabled = true;
+          j.servo.target = 0.5;
+          j.servo.kp = 20;
+          j.servo.kd = 2;
+        }),
+        tool(Tool::Box), click(0.8, 1.5), tool(Tool::Revolute), click(1.5, 3), click(0.65, 1.5),
+        jointSetting([](JointDef& j) {
+          j.enableLimit = true;
+          j.lower = -0.3;
+          j.upper = 0.3;
+        })}},
+      // A carriage on a slider (left-right) whose servo drives it 0.5 m right, an eyelet on it
+      // (the point pulley tool clicked on the carriage), a cable from a point in space through
+      // the eyelet down to a hanging box.
+      {"build-eyelet-on-slider",
+       {tool(Tool::Box), click(0, 2.5), tool(Tool::Prismatic), click(-1.5, 3.2), click(0, 2.5),
+        jointSetting([](JointDef& j) {
+          j.servo.enabled = true;
+          j.servo.target = 0.5;
+          j.servo.kp = 2000;
+          j.servo.kd = 2000;  // slow (1 s), so that the box rises without a jerk
+        }),
+        tool(Tool::PointPulley), click(0.1, 2.5), tool(Tool::Box), click(0.1, 1), tool(Tool::Cable),
+        click(-1.5, 2.5), click(0.1, 2.5), click(0.1, 1.1)}},
+      // A hexagon pulley clicked on an arm hinged with limits (it turns on an axle there), the
+      // cable from a
+      // point in space over it, through an eyelet Alt+clicked on a box's corner, up to another
+      // point in space: the box hangs in the loop.
+      {"build-hexagon-on-arm",
+       {tool(Tool::Box), click(0, 2.4), tool(Tool::Revolute), click(-1, 3), click(-0.1, 2.4),
+        jointSetting([](JointDef& j) {  // the arm swings 0.6 rad at most
+          j.enableLimit = true;
+          j.lower = -0.6;
+          j.upper = 0.6;
+        }),
+        tool(Tool::PolygonPulley), click(0.1, 2.4), tool(Tool::Box), click(0.6, 1),
+        tool(Tool::Cable), click(-1, 2.6), click(0.1, 2.4), click(0.75, 1.15, Kind::AltClick),
+        click(1.5, 2.6)}},
+      // Delete, undo and redo with Ctrl+Z and Ctrl+Y; then the second box selected with a click
+      // and deleted with the Delete key.
       {"build-undo-redo",
        {tool(Tool::Box),
         click(-0.5, 1),
@@ -130,7 +196,10 @@ std::vector<BuildScenario> makeScenarios() {
         {Kind::Undo},
         tool(Tool::Circle),
         click(0, 2),
-        {Kind::Undo}}},
+        {Kind::Undo},
+        tool(Tool::None),
+        click(0.5, 1),
+        {Kind::DeleteKey}}},
   };
 }
 

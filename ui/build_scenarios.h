@@ -18,7 +18,7 @@
 namespace cablelab::ui {
 
 struct BuildStep {
-  enum class Kind { Tool, Click, ShiftClick, AltClick, RightClick, Undo, Redo, Setting };
+  enum class Kind { Tool, Click, ShiftClick, AltClick, RightClick, Undo, Redo, DeleteKey, Setting };
   Kind kind = Kind::Click;
   Authoring::Tool tool = Authoring::Tool::None;  ///< Tool
   Vec2 at = Vec2::Zero();                        ///< clicks: world point (m)
@@ -29,6 +29,9 @@ struct BuildScenario {
   std::string name;  ///< "build-..."
   std::vector<BuildStep> steps;
 };
+
+/// Steps the window plays each built scene for after saving it (the poses the report gives).
+inline constexpr int kBuildPlaySteps = 30;
 
 /// Every build scenario.
 const std::vector<BuildScenario>& buildScenarios();

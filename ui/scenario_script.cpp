@@ -415,30 +415,50 @@ bool ScenarioScript::build(Sandbox& sandbox, int frame) {
         SDL_SetModState(KMOD_LCTRL);
         key(SDLK_y);
         break;
+      case BuildStep::Kind::DeleteKey:
+        key(SDLK_DELETE);
+        break;
       case BuildStep::Kind::Setting:
         s.set(sandbox);
         break;
     }
     return true;
   }
-  std::string saveError;
-  try {
-    saveScene(sandbox, out_);
-  } catch (const std::exception& e) {
-    saveError = e.what();
-  }
-  const SceneDef& scene = sandbox.scene;
   const World& world = *sandbox.world();
-  int wraps = 0;
-  for (int i = 0; i < world.cableCount(); ++i) wraps += world.cable(i).wraps();
-  report_ =
-      "{\"scenario\": " + jsonQuoted(name_) + ", \"bodies\": " + jsonNumber(scene.bodies.size()) +
-      ", \"cables\": " + jsonNumber(scene.cables.size()) +
-      ", \"joints\": " + jsonNumber(scene.joints.size()) + ", \"wraps\": " + jsonNumber(wraps) +
-      ", \"undo\": " + jsonNumber(sandbox.authoring->undo.size()) +
-      ", \"redo\": " + jsonNumber(sandbox.authoring->redo.size()) +
-      ", \"error\": " + jsonQuoted(sandbox.error) + ", \"save_error\": " + jsonQuoted(saveError) +
-      ", \"file\": " + jsonQuoted(out_) + "}";
+  if (!playing_) {  // built: save, report, then Space plays the scene as saved
+    std::string saveError;
+    try {
+      saveScene(sandbox, out_);
+    } catch (const std::exception& e) {
+      saveError = e.what();
+    }
+    const SceneDef& scene = sandbox.scene;
+    int wraps = 0;
+    for (int i = 0; i < world.cableCount(); ++i) wraps += world.cable(i).wraps();
+    report_ =
+        "{\"scenario\": " + jsonQuoted(name_) + ", \"bodies\": " + jsonNumber(scene.bodies.size()) +
+        ", \"cables\": " + jsonNumber(scene.cables.size()) +
+        ", \"joints\": " + jsonNumber(scene.joints.size()) + ", \"wraps\": " + jsonNumber(wraps) +
+        ", \"undo\": " + jsonNumber(sandbox.authoring->undo.size()) +
+        ", \"redo\": " + jsonNumber(sandbox.authoring->redo.size()) +
+        ", \"error\": " + jsonQuoted(sandbox.error) + ", \"save_error\": " + jsonQuoted(saveError) +
+        ", \"file\": " + jsonQuoted(out_);
+    playing_ = true;
+    playFrom_ = world.time();
+    key(SDLK_SPACE);
+    return true;
+  }
+  // One step a frame (scripted runs step at a fixed rate): the poses after kBuildPlaySteps.
+  const long steps = std::lround((world.time() - playFrom_) / sandbox.dt);
+  if (steps < kBuildPlaySteps && !sandbox.paused) return true;
+  std::string poses;
+  for (int b = 0; b < world.bodyCount(); ++b) {
+    const BodyState& s = world.body(b);
+    poses += std::string(b ? ", " : "") + "{\"name\": " + jsonQuoted(world.scene().bodies[b].name) +
+             ", \"x\": " + jsonNumber(s.position.x()) + ", \"y\": " + jsonNumber(s.position.y()) +
+             ", \"theta\": " + jsonNumber(s.angle) + "}";
+  }
+  report_ += ", \"played_steps\": " + jsonNumber(steps) + ", \"poses\": [" + poses + "]}";
   return false;
 }
 

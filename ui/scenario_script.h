@@ -23,7 +23,9 @@
 //   author       builds a scene by clicks (a box, a pulley, a cable anchor -> pulley -> box),
 //                saves it to --script-out; reports the counts and the file
 //   build-...    a new scene, one element built by clicks and keys (ui/build_scenarios.h), saved
-//                to --script-out; reports the counts, the error and the message shown
+//                to --script-out; reports the counts and the error shown, then presses Space
+//                and reports every body's pose after kBuildPlaySteps steps (what `cablelab run`
+//                of the saved file must give at that step)
 //   present, grasp-quiet, tension-run   the lecture-hall checks (ui/lecture_scripts.h)
 //   turn-target  the hand with a box that turns: drags the target's angle handle
 //                (ui/turn_target_scenario.h)
@@ -80,6 +82,8 @@ class ScenarioScript {
   std::string said_;  ///< the status line at a moment the scenario reports
   double largest_ = 0;
   size_t step_ = 0;        ///< build: the next step
+  bool playing_ = false;   ///< build: saved, now playing
+  double playFrom_ = 0;    ///< build: the world's time at Play (s)
   double restBefore_ = 0;  ///< pose scenarios: the cable's rest length before the drag (m)
   std::shared_ptr<TimelineScenario> timeline_;      ///< the rewind and plot scenarios
   std::unique_ptr<LectureScript> lecture_;          ///< the lecture-hall checks
