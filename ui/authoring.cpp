@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "engine/dynamics/world_state.h"
 #include "engine/model/scene_json.h"
 
 namespace cablelab::ui {
@@ -411,11 +412,30 @@ SceneDef withoutBody(const SceneDef& scene, const std::string& name) {
   return next;
 }
 
+namespace {
+
+bool posedBeforeTheFirstStep(const World& world) {
+  if (world.stepCount() != 0) return false;
+  const auto& inputs = world.history().inputs();
+  return std::any_of(inputs.begin(), inputs.end(),
+                     [](const WorldInput& in) { return in.kind == WorldInput::Kind::Pose; });
+}
+
+}  // namespace
+
 SceneDef sceneToSave(const Sandbox& sandbox) {
   SceneDef def = sandbox.scene;
   def.dt = sandbox.dt, def.substeps = sandbox.substeps, def.gravity = sandbox.gravity;
   const World* world = sandbox.world();
   if (!world || world->cableCount() != static_cast<int>(def.cables.size())) return def;
+  if (posedBeforeTheFirstStep(*world)) {
+    // Where the user posed the bodies is where the scene starts: the world as it stands, with
+    // the poses that led there, so `cablelab run` starts from it (docs/scene-format.md).
+    SceneDef now = sceneNow(*world);
+    now.name = def.name, now.description = def.description, now.view = def.view;
+    now.dt = def.dt, now.substeps = def.substeps;
+    return now;
+  }
   // Live cable edits (the inspector, a loaded fit) are World state: write them. The rest length
   // only where it differs from the one the file gives (an unset one is the initial length).
   const World fresh(def, sandbox.sceneName);
