@@ -6,22 +6,30 @@
 
 namespace cablelab::ui {
 
+namespace {
+
+// The scene's own colour scale where none is given, the sandbox's and the recordings'
+// (ui/tension_scale.h), so that a colour means the same newtons in a snapshot as in the window.
+RenderOptions onTheScenesScale(const World& world, RenderOptions options) {
+  if (options.tensionScale <= 0) options.tensionScale = loadTensionScale(world.scene());
+  return options;
+}
+
+}  // namespace
+
 Image renderSnapshot(const World& world, int width, int height, const Overlay& overlay,
                      const RenderOptions& options) {
-  OffscreenContext context(width, height);
+  OffscreenContext context(width, height);  // checks the size before the camera clamps it
   const Camera camera = Camera::fit(world.scene().view, width, height);
-  // The scene's own colour scale, the sandbox's and the recordings' (ui/tension_scale.h), so that
-  // a colour means the same newtons in a snapshot as in the window.
-  RenderOptions o = options;
-  if (o.tensionScale <= 0) o.tensionScale = loadTensionScale(world.scene());
+  const RenderOptions o = onTheScenesScale(world, options);
   return context.render([&](ImDrawList* text) { drawWorld(world, camera, overlay, o, text); });
 }
 
 Image renderSnapshot(const World& world, const Camera& camera, const Overlay& overlay,
                      const RenderOptions& options) {
   OffscreenContext context(camera.width, camera.height);
-  return context.render(
-      [&](ImDrawList* text) { drawWorld(world, camera, overlay, options, text); });
+  const RenderOptions o = onTheScenesScale(world, options);
+  return context.render([&](ImDrawList* text) { drawWorld(world, camera, overlay, o, text); });
 }
 
 void writeSnapshotPng(const World& world, const std::string& path, int width, int height,

@@ -22,7 +22,7 @@ namespace cablelab::ui {
 Image renderSnapshot(const World& world, int width, int height, const Overlay& overlay = {},
                      const RenderOptions& options = {});
 
-/// Renders `world` seen by `camera` (its width x height).
+/// Renders `world` seen by `camera` (its width x height), on the same tension scale.
 Image renderSnapshot(const World& world, const Camera& camera, const Overlay& overlay = {},
                      const RenderOptions& options = {});
 
