@@ -19,10 +19,10 @@
 //                           Newton finds no answer                     cable_solver_start_of_step
 //                           the checks on an answer (reachable, no energy gained, lengths met)
 //                                                                             cable_solver_checks
-//   5a, 6a, 6e.             the implicit midpoint rule: which islands take it, each row's work
-//                           equal to its cable's energy change (balanceMidpointWork), rows pull
-//                           along J at the midpoint pose and 2-6 run once more
-//                           (pullAlongMidpointPose)                        cable_solver_midpoint
+//   5a, 6a, 6e.             the implicit midpoint rule: which islands take it, rows pull along
+//                           the discrete gradient of their lengths over the step and 2-6 run
+//                           again, twice (pullAlongDiscreteGradient), each row's work equal to its
+//                           cable's energy change (balanceMidpointWork)  cable_solver_midpoint
 //   6b. mergeSlidingSpans   capstans past e^(mu theta): merge their spans, run 2-6 again
 //   6c. lockCrossingLimits  a limited joint the step takes past its bound: lock it at the
 //                           rate that reaches the bound (joint_limits.h), run 2-6 again
@@ -62,10 +62,11 @@ void solve(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables, st
       prepareRows(ws, in, cables, loads);                           // 2-4
       if (ws.ahead.empty() && redirectBlockedRows(ws, in, cables))  // 4b
         prepareRows(ws, in, cables, loads);
-      ws.midpoint = takesMidpointRule(ws, in, cables);             // 5a
-      lengthTargets(ws, in.h, in.share, cables);                   // 5
-      newtonOnLengths(ws, in, cables, stats);                      // 6, 6d
-      if (ws.midpoint && pullAlongMidpointPose(ws, in, cables)) {  // 6e
+      ws.midpoint = takesMidpointRule(ws, in, cables);  // 5a
+      lengthTargets(ws, in.h, in.share, cables);        // 5
+      newtonOnLengths(ws, in, cables, stats);           // 6, 6d
+      for (int pass = 0; pass < 2 && ws.midpoint && pullAlongDiscreteGradient(ws, in, cables);
+           ++pass) {  // 6e
         prepareRows(ws, in, cables, loads);
         lengthTargets(ws, in.h, in.share, cables);
         newtonOnLengths(ws, in, cables, stats);

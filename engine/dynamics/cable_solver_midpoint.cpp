@@ -1,6 +1,6 @@
 // The implicit midpoint rule's stages of the cable solve (cable_solver.cpp): which islands take it
-// (5a), its rows' discrete gradient, the energy balance of its impulses (6a) and the midpoint pose
-// its rows pull at (6e).
+// (5a), its rows' discrete gradient, the energy balance of its impulses (6a) and the discrete
+// gradient of the lengths its rows pull along (6e).
 #include "engine/dynamics/cable_solver_stages.h"
 
 #include <cmath>
@@ -69,11 +69,12 @@ bool takesMidpointRule(Workspace& ws, const CableSolveInput& in, std::span<const
     const Cable& c = cables[row.cable];
     if (row.segment >= 0 || row.first != row.last) return false;
     if (!c.elastic()) {
-      // A row stage 4b redirected joins fast: a puck caught at 50 m/s by a rope on a pivoted
-      // arm, under the midpoint rule, was thrown off before it wrapped.
+      // A row stage 4b redirected (a point joining fast) takes the rule too: stage 6e's discrete
+      // gradient gives the joining point its share over the step exactly, where 4b's half share
+      // guesses at it. Left to the main solve, the built-in hexagon at 1 sub-step gained 7e-4 J
+      // at each of its vertices' joins (at 4 rad/s, 0.1 J a minute of its 2.5 J).
       if (axles < 0) axles = jointsAreAxles(ws, in);
-      if (!axles || (r < ws.ahead.size() && ws.ahead[r]) || !rigidRowTakesMidpointRule(in, c))
-        return false;
+      if (!axles || !rigidRowTakesMidpointRule(in, c)) return false;
       continue;
     }
     if (c.damping() != 0 || c.spanCount() > 1) return false;  // (elastic spans: a stiffness each)
@@ -138,18 +139,21 @@ void balanceMidpointWork(Workspace& ws, const CableSolveInput& in, std::span<con
   }
 }
 
-// 6e. Under the midpoint rule a rigid row pulls along J at the midpoint pose q0 + h (v0 + v1) / 4
-// of the step just solved, as near the discrete gradient of its length as a turning path allows
-// (G (q1 - q0) = length(q1) - length(q0): the row then does no work). Along the start-of-step J
-// it did work a step on the turning path that added up: the hexagon on its pivot gained 47% of
-// its largest kinetic energy in a minute. An elastic row pulls there too, whatever stage 4b gave
-// it: along J0 (or 4b's half share for a joining vertex) its work missed its energy change by the
-// first order in the turn (a polygon's lever arm changes across the step), often by more than
-// stage 6a's factors 0.5..2 can balance; four undamped ropes over a hexagon spinning at 10 rad/s
-// gained 25% of their largest kinetic energy in a minute, now 0.2%. True if any row was
-// redirected (stages 2-5 run again).
-bool pullAlongMidpointPose(Workspace& ws, const CableSolveInput& in,
-                           std::span<const Cable> cables) {
+// 6e. Under the midpoint rule each pulling row pulls along the discrete gradient G of its length
+// between the start of the step and the end the solve found (lengthDiscreteGradient: G (q1 - q0)
+// = length(q1) - length(q0) exactly, a turning body's points moved along their chords), then the
+// step is solved again (stages 2-6). A rigid row that holds its length then does no work, and an
+// elastic row's work is its energy change. Along the start-of-step J a rigid row's work added up
+// on a turning path (the hexagon on its pivot gained 47% of its largest kinetic energy in a
+// minute); along J at the midpoint pose it still missed the length change by the third order in
+// the turn, always the same way after a wrap change: the built-in hexagon spun at 4 rad/s lost
+// 0.68% of its energy scale a minute at 2 sub-steps (6.1% in ten minutes), elastic ropes over a
+// spinning polygon lost what stage 6a's factors could not balance. The solve calls this twice: G
+// is taken once more at the end the first re-solve found (from the first solve's end alone, that
+// hexagon still lost 1.2% in ten minutes). Rows the solve left slack keep what they pulled along.
+// True if any row changed (stages 2-6 run again).
+bool pullAlongDiscreteGradient(Workspace& ws, const CableSolveInput& in,
+                               std::span<const Cable> cables) {
   const int m = static_cast<int>(ws.rows.size());
   if (static_cast<int>(ws.ahead.size()) != m) ws.ahead.assign(m, 0);
   ws.aheadJacobian.resize(m);
@@ -158,17 +162,15 @@ bool pullAlongMidpointPose(Workspace& ws, const CableSolveInput& in,
   ws.free.assign(ws.predicted.begin(), ws.predicted.end());
   for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
     const int b = ws.dofs.body[k];
-    stepPose(in.bodies[b], movedWith(ws, k, ws.v1.segment<3>(3 * k)), 0.5 * in.h, ws.motions[k],
+    stepPose(in.bodies[b], movedWith(ws, k, ws.v1.segment<3>(3 * k)), in.h, ws.motions[k],
              ws.free[b]);
   }
   bool any = false;
   for (int r = 0; r < m; ++r) {
     const Workspace::Row& row = ws.rows[r];
-    const Cable& c = cables[row.cable];
-    // A rigid row that stage 4b redirected keeps that Jacobian (takesMidpointRule refuses it).
-    if ((ws.ahead[r] && !c.elastic()) || row.segment >= 0 || !(ws.P[r] > 0)) continue;
-    pathAhead(ws, c, row.first, ws.free);
-    ws.aheadJacobian[r] = ws.kin.jacobian;
+    if (row.segment >= 0 || !(ws.P[r] > 0)) continue;
+    pathAhead(ws, cables[row.cable], row.first, ws.free);
+    lengthDiscreteGradient(ws.path, in.bodies, ws.free, ws.aheadJacobian[r]);
     ws.ahead[r] = 1;
     any = true;
   }

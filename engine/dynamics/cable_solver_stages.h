@@ -196,7 +196,8 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
 bool takesMidpointRule(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
 void midpointSpringRows(Workspace& ws, std::span<const Cable> cables, double h);
 void balanceMidpointWork(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
-bool pullAlongMidpointPose(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
+bool pullAlongDiscreteGradient(Workspace& ws, const CableSolveInput& in,
+                               std::span<const Cable> cables);
 
 // 6b, 6c. Sliding capstans, crossed joint limits (cable_solver_rerun.cpp).
 bool mergeSlidingSpans(Workspace& ws, std::span<const Cable> cables);

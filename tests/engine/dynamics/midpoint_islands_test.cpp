@@ -212,9 +212,9 @@ TEST(MidpointIslands, AMidpointIslandBesideAMainOneMovesAsItDoesAlone) {
       EXPECT_LT(gap, 1e-12);
     } else {
       EXPECT_EQ(midpointSteps, 0);
-      // The main solve's rule moves the band otherwise (measured 9.9e-5: its springs pull along
-      // J at the midpoint pose, not the discrete gradient).
-      EXPECT_GT(gap, 1e-5);
+      // The main solve's rule moves the band otherwise (measured 4.2e-6: both pull along the
+      // discrete gradient, but the two solves settle and stop apart).
+      EXPECT_GT(gap, 1e-6);
     }
   }
 }
