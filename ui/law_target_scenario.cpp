@@ -8,21 +8,10 @@
 #include "ui/synthetic_events.h"
 
 namespace cablelab::ui {
-namespace {
 
-constexpr int kLawClick = 3, kPidClick = 7, kTargetClick = 40;  // frames of the three clicks
-// The target: right of the box's start (the origin), clear of the box (half side 0.25 m) and of
-// the membranes, where a click lands on empty space. The same point for every law.
-const Vec2 kTarget(0.4, 0.0);
-constexpr double kWithin = 0.005;     // m
-constexpr double kSettledFor = 0.5;   // s within kWithin before the run ends
-constexpr double kLongestRun = 12.0;  // s after the target click
-
-Vec2 centreOf(const PanelRect& r) {
+Vec2 LawTargetScenario::centreOf(const PanelRect& r) {
   return Vec2(r.x + 0.5 * r.width, r.y + 0.5 * r.height);
 }
-
-}  // namespace
 
 void LawTargetScenario::click(const Vec2& screen, int frame, int at) {
   // The pointer itself moves there: Dear ImGui's SDL backend reads its position from SDL's mouse
@@ -56,7 +45,7 @@ bool LawTargetScenario::beforeFrame(Sandbox& sandbox, int frame, std::string& re
     click(centreOf(h->pidRect), frame, kPidClick);
   }
   if (frame == kTargetClick) {
-    target_ = kTarget;
+    target_ = Vec2(kTargetX, 0.0);
     if (sandbox.bodyAt(target_, true) >= 0 ||
         sandbox.cableAt(target_, 6 * sandbox.camera.metresPerPixel) >= 0)
       return fail("the target's point is not empty space");

@@ -30,6 +30,16 @@ class LawTargetScenario {
  private:
   /// Frames at, at + 1, at + 2: the pointer to `screen` (px), the left button down, up.
   void click(const Vec2& screen, int frame, int at);
+  static Vec2 centreOf(const PanelRect& r);
+
+  // Members, not file-scope constants: unity batches join this file with turn_target_scenario.
+  static constexpr int kLawClick = 3, kPidClick = 7, kTargetClick = 40;  ///< frames of the clicks
+  /// m: the target's x, right of the box's start (the origin) on its line, clear of the box (half
+  /// side 0.25 m) and of the membranes, where a click lands on empty space; the same every law.
+  static constexpr double kTargetX = 0.4;
+  static constexpr double kWithin = 0.005;     ///< m
+  static constexpr double kSettledFor = 0.5;   ///< s within kWithin before the run ends
+  static constexpr double kLongestRun = 12.0;  ///< s after the target click
 
   Uint32 windowId_;
   bool mpc_;
