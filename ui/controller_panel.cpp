@@ -22,6 +22,7 @@ namespace {
 constexpr float kTargetRange = 1.0f;  // m, the target sliders' range about the origin
 constexpr Colour kPredictionColour{0.0f, 0.55f, 0.55f, 1.0f};
 constexpr Colour kForceColour{0.1f, 0.3f, 0.85f, 1.0f};
+constexpr Colour kPlanColour{0.45f, 0.2f, 0.75f, 1.0f};  // purple: not a tension colour
 constexpr Colour kAngleColour{0.85f, 0.1f, 0.55f, 1.0f};       // the target's (ui/sandbox.cpp)
 constexpr double kAngleArmPixels = 60, kAngleGrabPixels = 12;  // the handle's arm and reach
 constexpr float kAngleRange = 0.6f;                            // rad, the angle field's range
@@ -187,13 +188,23 @@ void handBeforeStep(Sandbox& sandbox, World& world, HandControlState& h) {
   }
   // No target (or the loop switched off): the engine's sequence holds the hand.
   if (h.model.turn) h.grasp->setTargetAngle(h.targetAngle);
-  h.grasp->beforeStep(world, h.enabled ? sandbox.target : std::nullopt);
+  const bool planning = h.law == HandLaw::Mpc && h.enabled && sandbox.target;
+  GraspLaw law;
+  if (planning)  // as runTracking's MPC law: the box's pose and velocity, the target's pose
+    law = [&](const HandJoints& q, const Vec2& at, const HandJoints& commanded) {
+      const BodyState& b = world.body(h.box());
+      const double angle = h.model.turn ? h.targetAngle : 0.0;
+      return h.mpc->update(q, BoxPose(at.x(), at.y(), b.angle), b.velocity,
+                           BoxPose(sandbox.target->x(), sandbox.target->y(), angle), commanded);
+    };
+  h.grasp->beforeStep(world, h.enabled ? sandbox.target : std::nullopt, law);
   const Vec2 box = world.body(h.box()).position;
-  if (h.grasp->updates() != h.seenUpdates) {
+  if (h.grasp->updates() != h.seenUpdates && !planning) {
     h.seenUpdates = h.grasp->updates();
     h.prediction = h.controller().lastPrediction();
     h.predictionTime = t;
-  } else if (!h.grasp->controlling(t) && t >= h.predictionTime + h.params.period - 1e-9) {
+  } else if ((planning || !h.grasp->controlling(t)) &&
+             t >= h.predictionTime + h.params.period - 1e-9) {
     // The statics model's view of the current pose, for the overlay.
     h.prediction = h.controller().predict(h.grasp->joints(world), box);
     h.predictionTime = t;
@@ -251,9 +262,70 @@ void graspStatus(const Sandbox& sandbox, const HandControlState& h, double t) {
   }
 }
 
+/// The screen rectangle of the last widget drawn (px).
+PanelRect lastItemRect() {
+  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+  return {lo.x, lo.y, hi.x - lo.x, hi.y - lo.y};
+}
+
+/// The choice of law on one line, in plain words: react to the error (the Jacobian controller)
+/// or plan ahead (MPC), with how far ahead.
+void lawChoice(HandControlState& h) {
+  int choice = h.law == HandLaw::Mpc ? 1 : 0;
+  // As tall as a line of text: the plots below stay in view on a 720-pixel window.
+  ImGui::PushStyleVar(ImGuiStyleVar_FramePadding, ImVec2(ImGui::GetStyle().FramePadding.x, 0.0f));
+  bool changed = ImGui::RadioButton("react", &choice, 0);
+  h.lawRects[0] = lastItemRect();
+  tooltip(
+      "React to the error: each update moves the fingers to shrink the box's error as it is "
+      "now (the Jacobian controller of thesis section 4.3; PID with the integral term).");
+  sameLineIfRoom(checkboxWidth("plan ahead (MPC)"));
+  changed |= ImGui::RadioButton("plan ahead (MPC)", &choice, 1);
+  h.lawRects[1] = lastItemRect();
+  ImGui::PopStyleVar();
+  tooltip(
+      "Each update plans the fingers' next moves a few steps ahead, keeping the joints in range "
+      "and both membranes on the box, and makes the first move (model-predictive control, "
+      "`cablelab track --controller mpc`).");
+  int horizon = h.horizon;
+  if (choice == 1) {
+    ImGui::SetNextItemWidth(fieldWidth("steps ahead", ImGui::GetFontSize() * 7));
+    changed |= ImGui::SliderInt("steps ahead", &horizon, 1, 20);
+    tooltip("How many updates the plan looks ahead (each lasts 0.053 s).");
+    ImGui::SameLine();
+    ImGui::TextDisabled("%.2f s", horizon * h.params.period);
+  }
+  if (changed) h.setLaw(choice == 1 ? HandLaw::Mpc : HandLaw::Jacobian, horizon);
+}
+
+/// The Jacobian controller's gains and PID toggle; `changed` set when one was edited.
+void gainFields(HandControlState& h, bool& changed) {
+  sameLineIfRoom(checkboxWidth("PID"));
+  changed |= ImGui::Checkbox("PID", &h.pid);
+  h.pidRect = lastItemRect();
+  tooltip("Add the integral term k_i (the `track --pid` controller).");
+  ImGui::PushItemWidth(fieldWidth("k_i (1/s)", ImGui::GetFontSize() * 7));
+  changed |= ImGui::InputDouble("k_p", &h.params.kp, 0.01, 0.1, "%.3f");
+  tooltip("Proportional gain of the outer loop, per update (dimensionless).");
+  changed |= ImGui::InputDouble("k_d", &h.params.kd, 0.01, 0.1, "%.3f");
+  tooltip("Derivative gain of the outer loop.");
+  if (!h.pid) ImGui::BeginDisabled();
+  changed |= ImGui::InputDouble("k_i (1/s)", &h.ki, 0.01, 0.1, "%.3f");
+  tooltip("Integral gain (with PID on).");
+  if (!h.pid) ImGui::EndDisabled();
+  ImGui::PopItemWidth();
+  const bool thesis = ImGui::SmallButton("thesis gains");
+  tooltip("Back to the gains of thesis section 4.3: k_p 0.1, k_d 0.58 (k_i 1 with PID).");
+  if (thesis) {
+    const HandControllerParams d;
+    h.params.kp = d.kp, h.params.kd = d.kd, h.ki = kHandPidKi;
+    changed = true;
+  }
+}
+
 void handPanel(Sandbox& sandbox, HandControlState& h) {
   World* world = sandbox.world();
-  ImGui::TextWrapped("Jacobian controller (thesis 4.3)");
+  lawChoice(h);
 
   // Target: sliders and click-to-set (the overlay cross), or a ramp as `track --ramp`.
   bool hasTarget = sandbox.target.has_value();
@@ -298,30 +370,11 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
   tooltip("Move the target from where it is to the goal in a straight line over the duration.");
   if (h.rampStart >= 0) ImGui::TextDisabled("ramp from %.2f s", h.rampStart);
 
-  // Gains.
+  // Gains (the plan has none).
   bool changed = false;
   ImGui::Checkbox("outer loop on", &h.enabled);
-  tooltip("Run the Jacobian outer loop (else the servos hold the last joint targets).");
-  sameLineIfRoom(checkboxWidth("PID"));
-  changed |= ImGui::Checkbox("PID", &h.pid);
-  tooltip("Add the integral term k_i (the `track --pid` controller).");
-  ImGui::PushItemWidth(fieldWidth("k_i (1/s)", ImGui::GetFontSize() * 7));
-  changed |= ImGui::InputDouble("k_p", &h.params.kp, 0.01, 0.1, "%.3f");
-  tooltip("Proportional gain of the outer loop, per update (dimensionless).");
-  changed |= ImGui::InputDouble("k_d", &h.params.kd, 0.01, 0.1, "%.3f");
-  tooltip("Derivative gain of the outer loop.");
-  if (!h.pid) ImGui::BeginDisabled();
-  changed |= ImGui::InputDouble("k_i (1/s)", &h.ki, 0.01, 0.1, "%.3f");
-  tooltip("Integral gain (with PID on).");
-  if (!h.pid) ImGui::EndDisabled();
-  ImGui::PopItemWidth();
-  const bool thesis = ImGui::SmallButton("thesis gains");
-  tooltip("Back to the gains of thesis section 4.3: k_p 0.1, k_d 0.58 (k_i 1 with PID).");
-  if (thesis) {
-    const HandControllerParams d;
-    h.params.kp = d.kp, h.params.kd = d.kd, h.ki = kHandPidKi;
-    changed = true;
-  }
+  tooltip("Run the outer loop (else the servos hold the last joint targets).");
+  if (h.law == HandLaw::Jacobian) gainFields(h, changed);
   if (changed) {
     h.params.kp = std::clamp(h.params.kp, 0.0, 10.0);
     h.params.kd = std::clamp(h.params.kd, 0.0, 10.0);
@@ -497,8 +550,23 @@ void HandControlState::applyGains() {
   if (grasp) grasp->controller().setParams(gains(*this));
 }
 
+HandMpcParams HandControlState::mpcParams() const {
+  HandMpcParams p;
+  p.horizon = horizon;
+  p.period = params.period;
+  return p;
+}
+
+void HandControlState::setLaw(HandLaw newLaw, int newHorizon) {
+  if (newLaw == HandLaw::Jacobian && law != newLaw && grasp) grasp->controller().reset();
+  law = newLaw;
+  horizon = std::clamp(newHorizon, 1, 40);
+  mpc = std::make_unique<HandMpc>(model, mpcParams());
+}
+
 void HandControlState::newGrasp(const World& world) {
   grasp = std::make_unique<HandGrasp>(model, gains(*this));
+  mpc = std::make_unique<HandMpc>(model, mpcParams());
   if (!grasp->attach(world)) grasp.reset();
   prediction = {};
   predictionTime = -1;
@@ -567,6 +635,7 @@ void controllerOpened(Sandbox& sandbox) {
         h.enabled = old.enabled;
         h.pid = old.pid;
         h.ki = old.ki;
+        h.setLaw(old.law, old.horizon);
       }
       h.applyGains();
       h.grasp->beginPinched(*world);
@@ -613,6 +682,13 @@ void controllerOverlay(const Sandbox& sandbox, Overlay& overlay) {
       overlay.arrows.push_back({*sandbox.target, *handle, "", kAngleColour});
       overlay.keys.push_back(
           {Overlay::Key::Marker::Arrow, "target angle (drag its tip to turn it)", kAngleColour});
+    }
+    if (h->law == HandLaw::Mpc && h->mpc->status().planned) {
+      // Where the plan takes the box by the horizon's end.
+      const Vec2 box = world->body(h->box()).position;
+      overlay.arrows.push_back({box, h->mpc->status().plannedBox.back(), "", kPlanColour});
+      overlay.keys.push_back(
+          {Overlay::Key::Marker::Arrow, "where the plan takes the box", kPlanColour});
     }
     if (h->prediction.valid) {
       // Unlabelled cross, its label below it: the target's label sits above the same spot.

@@ -2,8 +2,10 @@
 // they can be wired in without touching the rest of the sandbox.
 //
 //   hand      the statics-based Jacobian controller of thesis section 4.3
-//             (engine/hand/hand_controller.h) runs live: the target is `sandbox.target` (click
-//             empty space, or the sliders), gains k_p, k_d, k_i and the PID toggle are editable,
+//             (engine/hand/hand_controller.h) or model-predictive control
+//             (engine/hand/hand_mpc.h, "plan ahead", with its horizon) runs live: the target is
+//             `sandbox.target` (click empty space, or the sliders), gains k_p, k_d, k_i and the
+//             PID toggle are editable,
 //             the grasp sequence and the grasp-loss detection are the engine's
 //             (engine/hand/hand_grasp.h, the code `cablelab track` runs) and can be started and
 //             reset; membrane tensions and tracking error are plotted against time; the overlay
@@ -28,6 +30,8 @@
 #include "engine/hand/hand_controller.h"
 #include "engine/hand/hand_grasp.h"
 #include "engine/hand/hand_model.h"
+#include "engine/hand/hand_mpc.h"
+#include "engine/hand/hand_tracking.h"
 #include "engine/membrane/membrane_model.h"
 #include "ui/overlay.h"
 #include "ui/sandbox.h"
@@ -54,7 +58,15 @@ struct HandControlState {
   bool enabled = true;     ///< the outer loop runs (once grasped and settled)
   bool pid = false;        ///< use params.ki (else k_i = 0)
   double ki = kHandPidKi;  ///< the integral gain used when `pid` (per update, 1/s)
+  /// The outer loop's law: the Jacobian controller ("react to the error") or MPC ("plan
+  /// ahead", `cablelab track --controller mpc --horizon N`).
+  HandLaw law = HandLaw::Jacobian;
+  int horizon = HandMpcParams{}.horizon;  ///< MPC: updates planned ahead
   std::unique_ptr<HandGrasp> grasp;
+  std::unique_ptr<HandMpc> mpc;  ///< the MPC's plan and models (used when `law` is Mpc)
+  /// Screen rectangles of the two law choices and the PID toggle, as last drawn (px): where a
+  /// scripted click picks them (ui/law_target_scenario.h).
+  PanelRect lawRects[2], pidRect;
   bool pinchedStart = true;    ///< the scene as built (pinched), not a grasp sequence
   BoxPrediction prediction;    ///< the statics model at the last outer tick
   double predictionTime = -1;  ///< s
@@ -77,8 +89,13 @@ struct HandControlState {
   int box() const { return grasp->boxBody(); }
   /// Applies the edited gains to the running controller.
   void applyGains();
-  /// A fresh grasp sequence for `world` (gains applied).
+  /// A fresh grasp sequence for `world` (gains applied), and a fresh MPC.
   void newGrasp(const World& world);
+  /// Switches the outer loop's law (or the MPC's horizon) from the next update on; the law
+  /// taking over starts afresh from the current joints and box.
+  void setLaw(HandLaw newLaw, int newHorizon);
+  /// The MPC's parameters: the default weights, `horizon`, the Jacobian controller's period.
+  HandMpcParams mpcParams() const;
 };
 
 /// The membrane scene's view: model force and fitted parameters.

@@ -69,6 +69,8 @@ const std::vector<std::string>& ScenarioScript::names() {
     for (const std::string& t : TimelineScenario::names()) all.push_back(t);
     for (const std::string& name : LectureScript::names()) all.push_back(name);
     all.push_back(TurnTargetScenario::kName);
+    all.push_back(LawTargetScenario::kMpc);
+    all.push_back(LawTargetScenario::kPid);
     return all;
   }();
   return n;
@@ -84,6 +86,8 @@ ScenarioScript::ScenarioScript(std::string name, Uint32 windowId, std::string ou
     lecture_ = std::make_unique<LectureScript>(name_, windowId_, out_);
   if (name_ == TurnTargetScenario::kName)
     turnTarget_ = std::make_unique<TurnTargetScenario>(windowId_);
+  if (name_ == LawTargetScenario::kMpc || name_ == LawTargetScenario::kPid)
+    lawTarget_ = std::make_unique<LawTargetScenario>(windowId_, name_ == LawTargetScenario::kMpc);
 }
 
 void ScenarioScript::mouse(Uint32 type, const Vec2& screen, Uint8 button) {
@@ -105,6 +109,7 @@ bool ScenarioScript::beforeFrame(Sandbox& sandbox, int frame) {
     return more;
   }
   if (turnTarget_) return turnTarget_->beforeFrame(sandbox, frame, report_);
+  if (lawTarget_) return lawTarget_->beforeFrame(sandbox, frame, report_);
   if (name_ == "describe") return describe(sandbox, frame);
   if (name_ == "reset-scale") return resetScale(sandbox, frame);
   if (name_ == "rigid-drag") return rigidDrag(sandbox, frame);

@@ -29,6 +29,8 @@
 //   present, grasp-quiet, tension-run   the lecture-hall checks (ui/lecture_scripts.h)
 //   turn-target  the hand with a box that turns: drags the target's angle handle
 //                (ui/turn_target_scenario.h)
+//   target-mpc, target-pid   the hand: picks the controller panel's law, clicks a target
+//                (ui/law_target_scenario.h)
 //
 // Needs: an SDL video subsystem (the sandbox's Window), a Sandbox with a loaded scene.
 #pragma once
@@ -40,6 +42,7 @@
 #include <string>
 #include <vector>
 
+#include "ui/law_target_scenario.h"
 #include "ui/lecture_scripts.h"
 #include "ui/sandbox.h"
 #include "ui/turn_target_scenario.h"
@@ -88,6 +91,7 @@ class ScenarioScript {
   std::shared_ptr<TimelineScenario> timeline_;      ///< the rewind and plot scenarios
   std::unique_ptr<LectureScript> lecture_;          ///< the lecture-hall checks
   std::unique_ptr<TurnTargetScenario> turnTarget_;  ///< turn-target (ui/turn_target_scenario.h)
+  std::unique_ptr<LawTargetScenario> lawTarget_;    ///< target-mpc, target-pid
   std::string bannerSeen_;                          ///< drop-box: a banner shown during the drag
 };
 

@@ -35,6 +35,8 @@ void HandController::reset() {
   status_ = {};
   angleVelocity_ = angleIntegral_ = 0;
   steeringAngle_.setZero();
+  offset_.setZero(), startOffset_.setZero();
+  angleOffset_ = 0;
 }
 
 std::vector<BoxCable> HandController::boxCables(const HandJoints& q) const {
@@ -139,8 +141,10 @@ void HandController::advanceReference(const Vec2& box, const Vec2& target) {
     double v = std::min({speedLimit(stiffness_, d), std::sqrt(2 * a * distance), distance / T});
     // Slow down as the box falls behind its model, or the commanded equilibrium behind the
     // reference (the joints at their limits cannot deliver it).
-    const Vec2 equilibrium = commandedPrediction_.smooth ? commandedPrediction_.box : reference_;
-    const double behind = std::max((modelBox_ - box).norm(), (equilibrium - reference_).norm());
+    const Vec2 equilibrium =
+        commandedPrediction_.smooth ? Vec2(commandedPrediction_.box + offset_) : reference_;
+    const double behind =
+        std::max((modelBox_ + offset_ - startOffset_ - box).norm(), (equilibrium - reference_).norm());
     const double wait =
         std::clamp((params_.leadLimit - behind) / (0.5 * params_.leadLimit), 0.0, 1.0);
     v *= wait;
@@ -402,6 +406,21 @@ HandJoints HandController::update(const HandJoints& q, const BoxPose& boxPose,
   if (!hasSteering_) return HandJoints::Zero();
   const double T = params_.period;
   const bool first = !started_;
+  // Friction: where the box rests against the frictionless statics at the measured joints (zero
+  // without friction, the thesis's model). The box's rest pose then depends on its way there;
+  // unseen, the offset held the box behind the reference model by leadLimit, so the reference
+  // waited and the box crept (docs/model.md#membrane-friction).
+  if (model_.friction > 0 && last_.smooth) {
+    const Vec2 seen = box - last_.box;
+    const double seenAngle = angle - last_.angle;
+    if (first) {
+      offset_ = startOffset_ = seen, angleOffset_ = seenAngle;
+    } else if ((box - previousBox_).norm() < params_.restSpeed * T) {
+      offset_ += params_.offsetGain * (seen - offset_);
+      angleOffset_ += params_.offsetGain * (seenAngle - angleOffset_);
+    }
+  }
+  previousBox_ = box;
   if (first) {
     reference_ = servoReference_ = modelBox_ = box;
     referenceVelocity_.setZero(), modelVelocity_.setZero();
@@ -422,7 +441,7 @@ HandJoints HandController::update(const HandJoints& q, const BoxPose& boxPose,
   // Once the reference rests on the target the lag has gone and k_p acts on the box itself.
   const bool resting = reference_ == target && angleReference_ == targetAngle;
   const Vec2 modelError = resting    ? Vec2(box - target)
-                          : p.smooth ? Vec2(p.box - reference_)
+                          : p.smooth ? Vec2(p.box + offset_ - reference_)
                                      : Vec2::Zero();
   const Vec2 error = box - modelBox_;
   const Vec2 change = first ? Vec2::Zero() : Vec2(error - previousError_);
@@ -439,7 +458,7 @@ HandJoints HandController::update(const HandJoints& q, const BoxPose& boxPose,
   double wantAngle = 0;
   if (turn) {
     const double angleError = resting    ? angle - targetAngle
-                              : p.smooth ? p.angle - angleReference_
+                              : p.smooth ? p.angle + angleOffset_ - angleReference_
                                          : 0.0;
     wantAngle = (angleReference_ - previousAngle) - params_.kp * angleError -
                 params_.ki * T * angleIntegral_;
@@ -500,6 +519,7 @@ HandJoints HandController::update(const HandJoints& q, const BoxPose& boxPose,
   }
   status_.integral = integral_;
   status_.angleReference = angleReference_;
+  status_.offset = offset_;
   return dq;
 }
 

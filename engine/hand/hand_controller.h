@@ -71,6 +71,12 @@ struct HandControllerParams {
   double angleSpeed = 0.25;
   double angleAcceleration = 0.25;
   double angleArm = 0.25;
+  /// Membranes with friction (HandModel::friction > 0): the box rests off the frictionless
+  /// statics' equilibrium by an offset that depends on the way it came. Below this speed (m/s)
+  /// the offset is measured, a share `offsetGain` per update, and the statics' equilibria are
+  /// shifted by it.
+  double restSpeed = 0.02;
+  double offsetGain = 0.3;
 };
 
 /// The integral gain `--pid` uses (1/s per update).
@@ -105,6 +111,7 @@ struct ControllerStatus {
   int jointsAtLimit = 0;          ///< joints taken out of J+ at their limits
   double margin = 0;              ///< faceOnMargin() of the commanded joints' equilibrium (m)
   double angleReference = 0;      ///< the box angle's reference (rad; 0 if it cannot turn)
+  Vec2 offset = Vec2::Zero();     ///< friction: the box's offset from the statics (m)
 };
 
 class HandController {
@@ -207,6 +214,10 @@ class HandController {
   // A box that turns: the angle's reference, its rate, the integral and the last valid d angle/dq.
   double angleReference_ = 0, angleVelocity_ = 0, angleIntegral_ = 0;
   Eigen::Matrix<double, 1, 6> steeringAngle_ = Eigen::Matrix<double, 1, 6>::Zero();
+  // Friction: the box's offset from the frictionless statics at the measured joints (and its
+  // angle's), as measured at the first update and now; the box at the last update.
+  Vec2 offset_ = Vec2::Zero(), startOffset_ = Vec2::Zero(), previousBox_ = Vec2::Zero();
+  double angleOffset_ = 0;
 };
 
 /// Median wall time of one HandController::update at the pinch pose (us), over `repeats` calls.

@@ -74,9 +74,6 @@ TrackOptions trackOptions(const TrackRequest& q, const HandModel& model) {
     throw InputError(kCommandLine, "--target",
                      "THETA must be in [-pi, pi] rad" + gotValue(q.targetAngle));
   o.targetAngle = q.targetAngle;
-  if (q.targetAngle != 0 && q.law == HandLaw::Mpc)
-    throw InputError(kCommandLine, "--controller",
-                     "mpc steers the box's centre only: an angle target needs jacobian (got mpc)");
   if (q.ramp) {
     const auto& v = *q.ramp;
     if (!(v[2] > 0))

@@ -101,6 +101,10 @@ MpcPrediction predictHorizon(const HandModel& m, const HandMpcParams& p,
     out.joints.push_back(affine(s.joints));
     out.box.push_back(affine(s.box));
     out.velocity.push_back(affine(s.velocity));
+    // The angle sits at its equilibrium at the predicted joints (zero for a box that cannot turn).
+    Eigen::MatrixXd angle = lin.angleJacobian * s.joints;
+    angle(0, 0) += lin.angleEquilibrium - lin.angleJacobian.dot(lin.joints);
+    out.angle.push_back(affine(angle));
     before = after;
   }
   return out;
@@ -117,7 +121,7 @@ void HandMpc::reset() {
 }
 
 MpcLinearisation HandMpc::linearise(const HandJoints& q, const Vec2& box, const Vec2& velocity,
-                                    const HandJoints& commanded) {
+                                    const HandJoints& commanded, double angle) {
   const HandModel& m = hand_.model();
   // The servo model: what the joints would be without load, to read their droop off. A command
   // that is not the one this controller last asked for (a re-grasp) restarts it.
@@ -125,6 +129,7 @@ MpcLinearisation HandMpc::linearise(const HandJoints& q, const Vec2& box, const 
   if (fresh) {
     servo_ = previousCommanded_ = commanded;
     offset_.setZero();
+    angleOffset_ = 0;
     plan_.resize(0);
   } else {
     const double h = params_.period / kMpcSubsteps;
@@ -139,13 +144,15 @@ MpcLinearisation HandMpc::linearise(const HandJoints& q, const Vec2& box, const 
   lin.droop = q - servo_;
   lin.box = box;
   lin.velocity = velocity;
-  const BoxPrediction p = hand_.predict(q, box);
+  if (!m.turn) angle = 0;
+  const BoxPrediction p = hand_.predict(q, box, angle);
   if (!p.smooth) return lin;
   lin.jacobian = p.jacobian;
   lin.stiffness = p.stiffness;
   lin.tips = fingertipJacobian(m, q);
-  lin.faceOn = faceOnTerms(m, fingertipPoints(m, q), box);
-  lin.tension = membraneTensions(hand_, q, box, 0, &lin.tensionJoints, &lin.tensionBox);
+  lin.faceOn = m.turn ? faceOnTerms(m, fingertipPoints(m, q), box, angle)
+                      : faceOnTerms(m, fingertipPoints(m, q), box);
+  lin.tension = membraneTensions(hand_, q, box, angle, &lin.tensionJoints, &lin.tensionBox);
   // The model's offset: where the box rests against where the statics puts it. At rest the box
   // sits at e + d; moving, it lags e by K^-1 c v, which is taken off.
   const double drag = m.boxMass * m.boxDamping;
@@ -155,6 +162,16 @@ MpcLinearisation HandMpc::linearise(const HandJoints& q, const Vec2& box, const 
   else if (velocity.norm() < params_.restSpeed)
     offset_ += params_.offsetGain * (seen - offset_);
   lin.equilibrium = p.box + offset_;
+  if (m.turn) {  // the angle's offset the same way (the table damps the turning as the sliding)
+    const double seenAngle = angle - p.angle;
+    if (fresh)
+      angleOffset_ = seenAngle;
+    else if (velocity.norm() < params_.restSpeed)
+      angleOffset_ += params_.offsetGain * (seenAngle - angleOffset_);
+    lin.angle = angle;
+    lin.angleEquilibrium = p.angle + angleOffset_;
+    lin.angleJacobian = p.angleJacobian;
+  }
   lin.valid = true;
   started_ = true;
   return lin;
@@ -167,7 +184,9 @@ HandJoints HandMpc::update(const HandJoints& q, const BoxPose& boxPose, const Ve
   const HandMpcParams& p = params_;
   const int N = p.horizon, n = 6 * N;
   const Vec2 box = boxPose.head<2>(), target = targetPose.head<2>();
-  const MpcLinearisation lin = linearise(q, box, velocity, commanded);
+  const bool turn = m.turn;
+  const double targetAngle = turn ? targetPose[2] : 0;
+  const MpcLinearisation lin = linearise(q, box, velocity, commanded, boxPose[2]);
   status_ = {};
   expectedCommanded_ = commanded;
   if (!lin.valid) {
@@ -185,18 +204,30 @@ HandJoints HandMpc::update(const HandJoints& q, const BoxPose& boxPose, const Ve
     f.noalias() += w * A.transpose() * residual;
   };
   const Eigen::Matrix<double, 2, 8> gapTips = gapOfTips();
+  // The pinch's gap, turned with a box that turns: R(a) g, linear in the predicted angle a about
+  // the measured one.
   const Vec2 pinchGap(0, 2 * (m.baseY - m.paddleOffset));
-  const Vec2 gapNow = gapTips * fingertipPoints(m, q) - pinchGap;
+  const Vec2 gapAt = turn ? rotate(pinchGap, lin.angle) : pinchGap, gapTurn = perp(gapAt);
+  const Vec2 gapNow = gapTips * fingertipPoints(m, q) - gapAt;
   const Eigen::Matrix<double, 2, 6> gapJoints = gapTips * lin.tips;
   for (int k = 0; k < N; ++k) {
     addSquare(pred.box[k].slope, pred.box[k].offset - target, 1.0);
     // The gap and the tilt of the predicted joints, linear about the measured ones.
-    const MpcAffine& joints = pred.joints[k];
-    addSquare(gapJoints * joints.slope, gapNow + gapJoints * (joints.offset - q), p.gapWeight);
-    for (int fgr = 0; fgr < 2; ++fgr) {
-      const Eigen::RowVectorXd tilt =
+    const MpcAffine &joints = pred.joints[k], &angle = pred.angle[k];
+    Eigen::MatrixXd gap = gapJoints * joints.slope;
+    Eigen::Vector2d gap0 = gapNow + gapJoints * (joints.offset - q);
+    if (turn) {
+      gap -= gapTurn * angle.slope;
+      gap0 -= gapTurn * (angle.offset[0] - lin.angle);
+      addSquare(angle.slope, angle.offset - Eigen::VectorXd::Constant(1, targetAngle),
+                p.angleArm * p.angleArm);
+    }
+    addSquare(gap, gap0, p.gapWeight);
+    for (int fgr = 0; fgr < 2; ++fgr) {  // face-on: the paddle turned as the box
+      Eigen::RowVectorXd tilt =
           joints.slope.row(3 * fgr + kProximal) + joints.slope.row(3 * fgr + kDistal);
-      const double tilt0 = joints.offset[3 * fgr + kProximal] + joints.offset[3 * fgr + kDistal];
+      double tilt0 = joints.offset[3 * fgr + kProximal] + joints.offset[3 * fgr + kDistal];
+      if (turn) tilt -= angle.slope, tilt0 -= angle.offset[0];
       addSquare(tilt, Eigen::VectorXd::Constant(1, tilt0), p.tiltWeight);
     }
   }
@@ -237,10 +268,14 @@ HandJoints HandMpc::update(const HandJoints& q, const BoxPose& boxPose, const Ve
       atLeast(v.slope.row(i), v.offset[i], std::min(-p.maxSpeed, lin.velocity[i]));
       atLeast(-v.slope.row(i), -v.offset[i], std::min(-p.maxSpeed, -lin.velocity[i]));
     }
-    // Face-on at the predicted joints and box.
-    const Eigen::MatrixXd face = faceJoints * joints.slope + lin.faceOn.dBox * at.slope;
-    const Eigen::VectorXd face0 =
+    // Face-on at the predicted joints and box (and its angle).
+    Eigen::MatrixXd face = faceJoints * joints.slope + lin.faceOn.dBox * at.slope;
+    Eigen::VectorXd face0 =
         lin.faceOn.value + faceJoints * (joints.offset - q) + lin.faceOn.dBox * (at.offset - box);
+    if (turn) {
+      face += lin.faceOn.dAngle * pred.angle[k].slope;
+      face0 += lin.faceOn.dAngle * (pred.angle[k].offset[0] - lin.angle);
+    }
     for (int i = 0; i < 12; ++i)
       atLeast(face.row(i), face0[i], std::min(p.wrapMargin, lin.faceOn.value[i]));
     const MpcAffine staticTension{

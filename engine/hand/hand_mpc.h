@@ -11,6 +11,9 @@
 //     linear, so every predicted state is an affine map of u (MpcPrediction);
 //   * the cost: the box's distance to the target at every step, its speed at the horizon's end,
 //     the paddles' gap off the pinch's and their tilt off face-on, and a small effort term;
+//   * a box that turns (HandModel::turn): its angle follows the statics' equilibrium angle at the
+//     predicted joints (plus its own offset), costs its distance to the target angle (in metres
+//     at the corners, angleArm per radian), and the gap and the face-on tilt turn with it;
 //   * the constraints, what the Jacobian controller only reacts to: joint limits (targets and
 //     predicted joints), joint rate limits, every face-on condition at the predicted box (both
 //     membranes keep wrapping it face-on, with a margin) and membrane tension bounds.
@@ -46,6 +49,7 @@ struct HandMpcParams {
   /// Active-set iterations per update at most: the solver's iterates stay feasible, so a plan
   /// cut short still meets every constraint; this bounds the worst update's time.
   int maxIterations = 60;
+  double angleArm = 0.25;  ///< m per rad: the angle's error counts as its corners' motion
 };
 
 /// The model at the measured state, what the plan is linear in.
@@ -62,6 +66,10 @@ struct MpcLinearisation {
   Eigen::Vector2d tension = Eigen::Vector2d::Zero();    ///< membranes' tensions (N)
   Eigen::Matrix<double, 2, 6> tensionJoints = Eigen::Matrix<double, 2, 6>::Zero();  ///< dT/dq
   Eigen::Matrix2d tensionBox = Eigen::Matrix2d::Zero();                             ///< dT/db (N/m)
+  // A box that turns (all zero when it cannot):
+  double angle = 0;             ///< measured box angle (rad)
+  double angleEquilibrium = 0;  ///< the statics' angle at q plus the angle's offset (rad)
+  Eigen::Matrix<double, 1, 6> angleJacobian = Eigen::Matrix<double, 1, 6>::Zero();  ///< d angle/dq
   bool valid = false;  ///< the statics is smooth here (a Jacobian exists)
 };
 
@@ -78,6 +86,7 @@ struct MpcPrediction {
   std::vector<MpcAffine> joints;     ///< joints (6)
   std::vector<MpcAffine> box;        ///< box centre (2)
   std::vector<MpcAffine> velocity;   ///< box velocity (2)
+  std::vector<MpcAffine> angle;      ///< box angle (1): the equilibrium's at the joints
 };
 
 /// The horizon's prediction from the targets commanded now (`commanded`, reached by the servo
@@ -109,12 +118,13 @@ class HandMpc {
   void reset();
 
   /// The model at the measured joints q, box centre and velocity, with the targets commanded now
-  /// (advances the servo model by one period: call once per update, as update() does).
+  /// (advances the servo model by one period: call once per update, as update() does); `angle`
+  /// the box's (rad; ignored when it cannot turn).
   MpcLinearisation linearise(const HandJoints& q, const Vec2& box, const Vec2& velocity,
-                             const HandJoints& commanded);
+                             const HandJoints& commanded, double angle = 0);
 
   /// One update: the joint-target increment to apply now (rad, m). `box` and `target` are
-  /// (x, y, theta); the angle is held as it is (the plan steers the centre).
+  /// (x, y, theta); the angles count only for a box that may turn.
   HandJoints update(const HandJoints& q, const BoxPose& box, const Vec2& velocity,
                     const BoxPose& target, const HandJoints& commanded);
 
@@ -127,7 +137,8 @@ class HandMpc {
   HandJoints servo_ = HandJoints::Zero(), previousCommanded_ = HandJoints::Zero();
   HandJoints expectedCommanded_ = HandJoints::Zero();
   Vec2 offset_ = Vec2::Zero();
-  Eigen::VectorXd plan_;  ///< the last plan (6N), for the warm start
+  double angleOffset_ = 0;  ///< rad: the measured angle less the statics' (a box that turns)
+  Eigen::VectorXd plan_;    ///< the last plan (6N), for the warm start
   MpcStatus status_;
 };
 

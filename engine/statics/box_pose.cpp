@@ -10,6 +10,7 @@ namespace {
 
 constexpr double kResidualTolerance = 1e-10;  // |net force, torque / size| per unit max tension
 constexpr double kPoseArmijo = 1e-4;          // sufficient decrease of the line search
+constexpr double kEnergyRounding = 1e-12;     // relative: an energy change E cannot resolve
 
 double tension(const BoxCable& c, const BoxPose& q) {
   const double l = boxSegment(q, c.cornerA, c.a).length + (c.cornerB - c.cornerA).norm() +
@@ -130,11 +131,20 @@ BoxPoseResult minimiseBoxEnergy(const BoxEnergy& energy,
       ldlt.compute(H + shift * Eigen::Matrix3d::Identity());
     }
     const Eigen::Vector3d step = -ldlt.solve(g);
-    // Backtracking: every accepted step lowers E.
+    // Backtracking: every accepted step lowers E. Near the minimum E's decrease (about
+    // g^T H^-1 g / 2) falls below E's rounding, so a step whose energy change is within it is
+    // judged by the gradient it leaves instead (Newton's full step shrinks it quadratically);
+    // judged by the energy alone, the solve stalls a little above the tolerance.
     double t = 1;
-    while (energy(out.pose + t * step, nullptr, nullptr) > E + kPoseArmijo * t * g.dot(step) &&
-           t > 1e-12)
-      t *= 0.5;
+    for (; t > 1e-12; t *= 0.5) {
+      const BoxPose trial = out.pose + t * step;
+      const double trialEnergy = energy(trial, nullptr, nullptr);
+      if (trialEnergy <= E + kPoseArmijo * t * g.dot(step)) break;
+      if (std::abs(trialEnergy - E) > kEnergyRounding * std::abs(E)) continue;
+      Eigen::Vector3d trialGradient;
+      energy(trial, &trialGradient, nullptr);
+      if (residual(trialGradient, trial) < out.residual) break;
+    }
     if (t <= 1e-12) break;  // no descent left at double precision
     out.pose += t * step;
   }

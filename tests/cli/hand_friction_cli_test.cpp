@@ -62,7 +62,9 @@ TEST(HandFrictionCli, TrackTakesMuAndTurn) {
 
 // One sweep per angle: JSON {"angles": [...]} in the order given, CSV with an angle column; the
 // fingertips' set is the same at every angle, the box's may not be.
-// Simulated runs: the quasi-static model reaches nothing with turn=1 (a known gap).
+// The same sweep's quasi-static set (the frictionless statics model's prediction, in the JSON) is
+// the four central targets at both angles, and so is the simulated set with friction (as without,
+// HandTurnReach.QuasiStaticSetIsTheSimulatedOneOnASmallGrid).
 TEST(HandFrictionCli, ReachAtTwoAngles) {
   const std::string csv = tempPath("reach_angles");
   const auto r =
@@ -76,6 +78,8 @@ TEST(HandFrictionCli, ReachAtTwoAngles) {
     EXPECT_EQ(a["points"].get<int>(), 16);
     EXPECT_GT(a["object_area"].get<double>(), 0.0);
     EXPECT_EQ(a["fingertip_area"], j["angles"][0]["fingertip_area"]);
+    EXPECT_EQ(a["quasi_static_points"], 4);
+    EXPECT_EQ(a["object_points"], 4);
   }
   std::ifstream in(csv);
   std::string line;

@@ -43,3 +43,15 @@ def test_mu_defaults_to_the_thesis_and_grips_the_box_corners():
 def test_negative_mu_is_rejected():
     with pytest.raises((cablelab.InputError, ValueError), match="mu"):
         cablelab.HandModel(mu=-0.5)
+
+
+def test_mpc_turns_the_box_to_an_angle_target_as_the_cli_does():
+    # law="mpc" with an angle target (it was refused): the CLI's run, to the bit, at the angle.
+    expected = cli_json("track", "--set", "mu=0.5", "--set", "turn=1", "--target", "0.1,0.05,0.2",
+                        "--controller", "mpc", "--time", "4")
+    got = cablelab.track(target=(0.1, 0.05, 0.2), law="mpc", time=4,
+                         hand=cablelab.HandModel(mu=0.5, turn=True))
+    for key in expected.keys() - {"controller_solve_us", "controller_solve_max_us"}:  # wall times
+        assert got[key] == expected[key], key
+    assert got["controller"] == "mpc"
+    assert got["final_error"] < 0.005 and got["final_angle_error"] < 0.02

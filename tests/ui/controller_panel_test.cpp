@@ -65,6 +65,35 @@ TEST(ControllerPanel, GraspSequenceMatchesCablelabTrack) {
     EXPECT_EQ(h.grasp->events()[k].what, j["events"][k]["what"].get<std::string>());
 }
 
+// "Plan ahead" runs the engine's MPC the way `cablelab track --controller mpc` does (the same
+// box to the bit), and the choice survives the reset the grasp starts with.
+TEST(ControllerPanel, PlanAheadIsTrackControllerMpc) {
+  Sandbox sandbox(800, 600);
+  ASSERT_TRUE(sandbox.open("hand"));
+  sandbox.controller->hand->setLaw(HandLaw::Mpc, 4);
+  sandbox.target = Vec2(0.1, 0.05);
+  ASSERT_TRUE(startHandGrasp(sandbox));
+  runFor(sandbox, 3.0);
+  const HandControlState& h = *sandbox.controller->hand;
+  ASSERT_EQ(h.law, HandLaw::Mpc);
+  EXPECT_TRUE(h.mpc->status().planned);
+  EXPECT_EQ(h.mpc->params().horizon, 4);
+  const Vec2 box = sandbox.world()->body(h.box()).position;
+  const auto r = test::run(
+      std::string(CABLELAB_CLI) + " track --target 0.1,0.05 --time 3 --controller mpc --horizon 4",
+      "track_mpc");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(box.x(), j["final_box"][0].get<double>(), kSameAsTrack);
+  EXPECT_NEAR(box.y(), j["final_box"][1].get<double>(), kSameAsTrack);
+  // The Jacobian controller's run differs (the law was wired in, not just shown).
+  const auto pd =
+      test::run(std::string(CABLELAB_CLI) + " track --target 0.1,0.05 --time 3", "track_pd");
+  const auto k = nlohmann::json::parse(pd.out);
+  EXPECT_GT((box - Vec2(k["final_box"][0].get<double>(), k["final_box"][1].get<double>())).norm(),
+            1e-4);
+}
+
 // A box pulled out of the membranes is the engine's grasp loss: the panel's state says so, with
 // the engine's reason, and the hand stops, then tries to grasp again.
 TEST(ControllerPanel, ABoxPulledOutIsTheEnginesGraspLoss) {

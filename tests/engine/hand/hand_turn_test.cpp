@@ -9,6 +9,7 @@
 #include "engine/hand/hand_controller.h"
 #include "engine/hand/hand_io.h"
 #include "engine/hand/hand_kinematics.h"
+#include "engine/hand/hand_reach.h"
 #include "engine/hand/hand_tracking.h"
 #include "engine/scenes/scene_hand.h"
 #include "engine/scenes/scene_registry.h"
@@ -189,6 +190,34 @@ TEST(HandTurnTracking, HeldOutTargetsInXYThetaAreReached) {
   }
   EXPECT_EQ(held, 10);
   EXPECT_GE(reached, kHeldOutReached);
+}
+
+// The quasi-static sweep's statics solves, one per update from the last pose, converge all the way
+// to the target: the Newton solve of the box's pose judges a step by the gradient it leaves once
+// the energy's decrease falls below the energy's rounding (on the energy alone it stalled just
+// above its tolerance after seven updates, and the sweep reached no target at all).
+TEST(HandTurnReach, QuasiStaticSweepFollowsTheStaticsToTheTarget) {
+  ReachOptions o;
+  o.model = ReachModel::QuasiStatic;
+  EXPECT_TRUE(quasiStaticReach(turningHand(), Vec2(0.3, 0.2), o));
+  o.angle = 0.2;
+  EXPECT_TRUE(quasiStaticReach(turningHand(), Vec2(-0.2, 0.1), o));
+  EXPECT_FALSE(quasiStaticReach(turningHand(), Vec2(1.2, 1.95), o));  // beyond the hand's reach
+}
+
+// On a small grid the statics model's reach with a box that turns is the simulated one, target by
+// target (4 x 4: the four central targets reached, the twelve outer ones not).
+TEST(HandTurnReach, QuasiStaticSetIsTheSimulatedOneOnASmallGrid) {
+  ReachOptions o;
+  o.grid = 4;
+  o.threads = 2;
+  const ReachResult r = runReach(o, turningHand());
+  int simulated = 0;
+  for (const ReachTarget& t : r.targets) {
+    simulated += t.simulated;
+    EXPECT_EQ(t.quasiStatic, t.simulated) << t.point.transpose();
+  }
+  EXPECT_EQ(simulated, 4);
 }
 
 }  // namespace hand_turn_test
