@@ -22,7 +22,7 @@ namespace {
 constexpr float kTargetRange = 1.0f;  // m, the target sliders' range about the origin
 constexpr Colour kPredictionColour{0.0f, 0.55f, 0.55f, 1.0f};
 constexpr Colour kForceColour{0.1f, 0.3f, 0.85f, 1.0f};
-constexpr Colour kPlanColour{0.45f, 0.2f, 0.75f, 1.0f};  // purple: not a tension colour
+constexpr Colour kPlanColour{0.45f, 0.2f, 0.75f, 1.0f};        // purple: not a tension colour
 constexpr Colour kAngleColour{0.85f, 0.1f, 0.55f, 1.0f};       // the target's (ui/sandbox.cpp)
 constexpr double kAngleArmPixels = 60, kAngleGrabPixels = 12;  // the handle's arm and reach
 constexpr float kAngleRange = 0.6f;                            // rad, the angle field's range

@@ -143,8 +143,8 @@ void HandController::advanceReference(const Vec2& box, const Vec2& target) {
     // reference (the joints at their limits cannot deliver it).
     const Vec2 equilibrium =
         commandedPrediction_.smooth ? Vec2(commandedPrediction_.box + offset_) : reference_;
-    const double behind =
-        std::max((modelBox_ + offset_ - startOffset_ - box).norm(), (equilibrium - reference_).norm());
+    const double behind = std::max((modelBox_ + offset_ - startOffset_ - box).norm(),
+                                   (equilibrium - reference_).norm());
     const double wait =
         std::clamp((params_.leadLimit - behind) / (0.5 * params_.leadLimit), 0.0, 1.0);
     v *= wait;
