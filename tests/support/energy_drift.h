@@ -8,6 +8,17 @@
 
 namespace cablelab::test {
 
+/// The kinetic energy (translation and turn) of all of `world`'s moving bodies.
+inline double kineticEnergy(const World& world) {
+  double kinetic = 0;
+  for (int b = 0; b < world.bodyCount(); ++b) {
+    const BodyState& x = world.body(b);
+    if (x.invMass > 0) kinetic += 0.5 * x.velocity.squaredNorm() / x.invMass;
+    if (x.invInertia > 0) kinetic += 0.5 * x.angularVelocity * x.angularVelocity / x.invInertia;
+  }
+  return kinetic;
+}
+
 /// Steps `world` `steps` times (dt, `substeps`) and returns the largest |E - E0| over the largest
 /// kinetic energy (translation and turn) of its body 0. `each` is called after every step.
 template <class Each>

@@ -193,13 +193,7 @@ double worldDriftShare(World& world, double seconds, int substeps) {
   for (int step = 0; step < std::lround(seconds * 60); ++step) {
     world.step(1.0 / 60, substeps);
     worst = std::max(worst, std::abs(world.energy() - e0));
-    double kinetic = 0;
-    for (int b = 0; b < world.bodyCount(); ++b) {
-      const BodyState& s = world.body(b);
-      if (s.invMass > 0) kinetic += 0.5 * s.velocity.squaredNorm() / s.invMass;
-      if (s.invInertia > 0) kinetic += 0.5 * s.angularVelocity * s.angularVelocity / s.invInertia;
-    }
-    scale = std::max(scale, kinetic);
+    scale = std::max(scale, test::kineticEnergy(world));
   }
   return worst / scale;
 }

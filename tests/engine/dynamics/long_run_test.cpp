@@ -13,6 +13,7 @@
 #include "engine/model/scene_json.h"
 #include "engine/scenes/scene_registry.h"
 #include "tests/support/busy_scene.h"
+#include "tests/support/energy_drift.h"
 #include "tests/support/engine_test_support.h"
 
 namespace cablelab {
@@ -139,13 +140,7 @@ TEST(LongRun, UndampedPartsKeepTheirEnergyForTenMinutes) {
   for (int s = 0; s < 10 * kMinute; ++s) {
     world.step(kDt, world.scene().substeps);
     worst = std::max(worst, std::abs(world.energy() - e0));
-    double kinetic = 0;
-    for (int b = 0; b < static_cast<int>(world.scene().bodies.size()); ++b) {
-      const BodyState& x = world.body(b);
-      kinetic += 0.5 * x.velocity.squaredNorm() / x.invMass;
-      if (x.invInertia > 0) kinetic += 0.5 * x.angularVelocity * x.angularVelocity / x.invInertia;
-    }
-    scale = std::max(scale, kinetic);
+    scale = std::max(scale, test::kineticEnergy(world));
     midpoint += world.lastStepStats().midpointSolves > 0;
   }
   EXPECT_LT(worst, 0.02 * scale) << worst / scale;
@@ -174,13 +169,7 @@ TEST(LongRun, AConservativeBusySceneKeepsItsEnergyForTenMinutesWithNoGrowth) {
       const double e = world.energy();
       worst = std::max(worst, std::abs(e - e0));
       highest = std::max(highest, e);
-      double kinetic = 0;
-      for (int b = 0; b < world.bodyCount(); ++b) {
-        const BodyState& x = world.body(b);
-        if (x.invMass > 0) kinetic += 0.5 * x.velocity.squaredNorm() / x.invMass;
-        if (x.invInertia > 0) kinetic += 0.5 * x.angularVelocity * x.angularVelocity / x.invInertia;
-      }
-      scale = std::max(scale, kinetic);
+      scale = std::max(scale, test::kineticEnergy(world));
     }
     byMinute.push_back(worst / scale);
     std::printf("minute %d: |E - E0| up to %.3g%% of the scale (%.3g J)\n", minute + 1,
@@ -206,13 +195,7 @@ std::vector<double> energyDriftByMinute(World& world, int minutes, int substeps)
     for (int s = 0; s < kMinute; ++s) {
       world.step(kDt, substeps);
       worst = std::max(worst, std::abs(world.energy() - e0));
-      double kinetic = 0;
-      for (int b = 0; b < world.bodyCount(); ++b) {
-        const BodyState& x = world.body(b);
-        if (x.invMass > 0) kinetic += 0.5 * x.velocity.squaredNorm() / x.invMass;
-        if (x.invInertia > 0) kinetic += 0.5 * x.angularVelocity * x.angularVelocity / x.invInertia;
-      }
-      scale = std::max(scale, kinetic);
+      scale = std::max(scale, test::kineticEnergy(world));
     }
     byMinute.push_back(worst / scale);
   }
