@@ -9,6 +9,7 @@
 
 #include "engine/dynamics/world.h"
 #include "engine/scenes/scene_registry.h"
+#include "tests/support/energy_drift.h"
 #include "tests/support/engine_test_support.h"
 #include "tests/support/scene_parts.h"
 
@@ -47,16 +48,6 @@ SceneDef pendulum(bool chain, double angle = 0.6) {
   return s;
 }
 
-double kinetic(const World& world) {
-  double e = 0;
-  for (int b = 0; b < world.bodyCount(); ++b) {
-    const BodyState& s = world.body(b);
-    if (s.invMass > 0) e += 0.5 * s.velocity.squaredNorm() / s.invMass;
-    if (s.invInertia > 0) e += 0.5 * s.angularVelocity * s.angularVelocity / s.invInertia;
-  }
-  return e;
-}
-
 // Largest |E - E0| over 60 s at 60 Hz, over the largest kinetic energy.
 double drift(World& world, int substeps) {
   const double e0 = world.energy();
@@ -64,7 +55,7 @@ double drift(World& world, int substeps) {
   for (int step = 0; step < 3600; ++step) {
     world.step(test::kDt, substeps);
     worst = std::max(worst, std::abs(world.energy() - e0));
-    scale = std::max(scale, kinetic(world));
+    scale = std::max(scale, test::kineticEnergy(world));
   }
   return worst / scale;
 }
