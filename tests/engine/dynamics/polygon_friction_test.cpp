@@ -32,15 +32,6 @@ const Shape kSquare{"square", 4, M_PI / 4, {M_PI / 2, M_PI / 2}};
 const Shape kHexagon{"hexagon", 6, 0, {M_PI / 6, M_PI / 3, M_PI / 3, M_PI / 6}};
 const Shape kOctagon{"octagon", 8, 0, {M_PI / 8, M_PI / 4, M_PI / 4, M_PI / 4, M_PI / 8}};
 
-std::vector<Vec2> polygon(const Shape& shape, double radius) {
-  std::vector<Vec2> v;
-  for (int j = 0; j < shape.sides; ++j) {
-    const double a = shape.phase + 2 * M_PI * j / shape.sides;
-    v.push_back(radius * Vec2(std::cos(a), std::sin(a)));
-  }
-  return v;
-}
-
 struct Rope {
   Shape shape = kSquare;
   double radius = 0.3;
@@ -54,7 +45,7 @@ struct Rope {
 // the polygon's width), over its top: 180 degrees in all.
 SceneDef ropeOverPolygon(const Rope& r) {
   const Vec2 centre(0, 3);
-  std::vector<Vec2> vertices = polygon(r.shape, r.radius);
+  std::vector<Vec2> vertices = test::sensorPolygon(r.shape.sides, r.radius, r.shape.phase).vertices;
   double half = 0;
   for (const Vec2& v : vertices) half = std::max(half, v.x());
   SceneDef s;
