@@ -123,7 +123,7 @@ double floorRow(const WrapPoint& p, const WrapPoint& q, const Vec2& n,
 
 bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const Cable> cables,
                              std::span<const int> which, std::span<const char> excluded, double h) {
-  bool wanted = false, any = false;
+  bool wanted = false, any = false, unresolved = false;
   for (const int index : which) {
     const Cable& c = cables[index];
     bool pulls = false;
@@ -160,11 +160,14 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
     // passes over (a point caught on a stiff band) is held sideways by the tension too, a mode
     // as stiff as the cable's that the midpoint rule would keep ringing: the main solve's
     // backward Euler damps both.
-    if (c.elastic() && elasticMode(c, bodies) * h > kMaxElasticOmegaH)
+    if (c.elastic() && elasticMode(c, bodies) * h > kMaxElasticOmegaH) {
+      unresolved = true;
       for (size_t i = 1; i + 1 < path.size(); ++i)
         if (path[i].body >= 0 && moves(bodies[path[i].body])) return false;
+    }
     wanted |= c.elastic();  // resolved or not: an unresolved spring is damped (springAtEnd)
   }
+  if (unresolved && static_cast<int>(which.size()) > kMaxCablesWithUnresolvedSpring) return false;
   return any && wanted;
 }
 

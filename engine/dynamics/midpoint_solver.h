@@ -48,6 +48,10 @@ class MidpointSolver {
   /// cable folds back on itself) the solve keeps exactly: faster springs are not resolved by the
   /// step and pull with their tension at the end of the step, which damps them (stable at any k).
   static constexpr double kMaxElasticOmegaH = 4.0;
+  /// An island of more cables with such a spring (a rope of stiff links) keeps the main solve,
+  /// whose sparse path takes big islands (sparse_island.h, the same default size) and whose
+  /// spring damps the mode too: this solve is dense, O(n^3) a Newton iteration.
+  static constexpr int kMaxCablesWithUnresolvedSpring = 32;
 
   /// Whether this solve should take the step of the cables `which` (an island, cable_islands.h):
   /// some cable is elastic, has a pulley on a moving body (wrapped or not), is a loop on one body
