@@ -35,6 +35,17 @@ SpringSecant springSecant(double k, double phi0, double phi1) {
   return {tension, 0.5 * k * (dv1 * d - (v1 - v0)) / (d * d)};
 }
 
+// The spring of a cable whose axial mode the step does not resolve (elasticMode h above
+// MidpointSolver::kMaxElasticOmegaH), taken at the end of the step: k phi1, slack or not, since
+// the LCP's P >= 0 makes it k max(0, phi1). Its work over the step, k max(0, phi1) (phi1 - phi0),
+// is at least V(phi1) - V(phi0) (V convex), so it can only take energy: it damps the mode the step
+// cannot follow (by k/2 (phi1 - phi0)^2 a taut step) and leaves the slow motion the midpoint rule
+// keeps (docs/cables.md, "Energy"). The secant would keep the fast mode too, ringing at the
+// step's rate.
+SpringSecant springAtEnd(double k, double phi1) {
+  return {k * phi1, k};
+}
+
 // The fastest the axial mode of an elastic cable can get on its current path (rad/s):
 // sqrt(k J M^-1 J^T) with J at its largest. Per body, each segment end on it whose other end is
 // on another body adds at most a unit vector to J's translation and |r| to its turn, so
@@ -112,7 +123,7 @@ double floorRow(const WrapPoint& p, const WrapPoint& q, const Vec2& n,
 
 bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const Cable> cables,
                              std::span<const int> which, std::span<const char> excluded, double h) {
-  bool wanted = false, any = false;
+  bool wanted = false, any = false, unresolved = false;
   for (const int index : which) {
     const Cable& c = cables[index];
     bool pulls = false;
@@ -144,11 +155,19 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
     const int loop = path.front().body;
     wanted |=
         loop >= 0 && path.back().body == loop && moves(bodies[loop]) && bodies[loop].invInertia > 0;
-    if (c.elastic()) {
-      if (elasticMode(c, bodies) * h > kMaxElasticOmegaH) return false;
-      wanted = true;
+    // An elastic cable whose axial mode the step does not resolve pulls with its spring at the
+    // end of the step (springAtEnd), which damps that mode. A moving body the cable wraps or
+    // passes over (a point caught on a stiff band) is held sideways by the tension too, a mode
+    // as stiff as the cable's that the midpoint rule would keep ringing: the main solve's
+    // backward Euler damps both.
+    if (c.elastic() && elasticMode(c, bodies) * h > kMaxElasticOmegaH) {
+      unresolved = true;
+      for (size_t i = 1; i + 1 < path.size(); ++i)
+        if (path[i].body >= 0 && moves(bodies[path[i].body])) return false;
     }
+    wanted |= c.elastic();  // resolved or not: an unresolved spring is damped (springAtEnd)
   }
+  if (unresolved && static_cast<int>(which.size()) > kMaxCablesWithUnresolvedSpring) return false;
   return any && wanted;
 }
 
@@ -273,6 +292,11 @@ bool MidpointSolver::buildRows(std::span<const BodyState> bodies, std::span<Cabl
         normals_.push_back(floorNormal(path[i], path[i + 1], bodies, h, gravity));
       }
   }
+  unresolved_.assign(rows_.size(), 0);
+  for (size_t r = 0; r < cableRows; ++r) {
+    const Cable& c = cables[rows_[r]];
+    unresolved_[r] = c.elastic() && elasticMode(c, bodies) * h > kMaxElasticOmegaH;
+  }
   const int m = static_cast<int>(rows_.size()), n = 3 * static_cast<int>(bodyOfDof_.size());
   if (m == 0) return false;
   invM_.resize(n);
@@ -379,7 +403,8 @@ bool MidpointSolver::newtonStep(std::span<const BodyState> bodies, std::span<con
     }
     // P / h = the secant tension (+ damping) at the new phi1, linearised.
     const double k = c.parameters().stiffness, damp = c.parameters().damping;
-    const SpringSecant sec = springSecant(k, phi0_[r], phi1_[r]);
+    const SpringSecant sec =
+        unresolved_[r] ? springAtEnd(k, phi1_[r]) : springSecant(k, phi0_[r], phi1_[r]);
     const double tension = sec.tension + damp * (phi1_[r] - phi0_[r]) / h;
     const double slope = std::max(sec.slope + damp / h, 1e-12 * (k + damp / h));
     K_(r, r) += 1.0 / (slope * h * h);

@@ -19,12 +19,15 @@
 // The choice is made per cable island (cable_islands.h: cables sharing a moving body). It takes
 // an island when some cable of it is elastic or has a pulley on a moving body (straight cables
 // over fixed pulleys keep Box2D's own integration, which the Box2D pulley-joint comparison
-// relies on), no body its cables move is jointed (the joint projection would have to be redone
-// per iteration) or touching a contact, and every elastic cable's axial mode is resolved
-// (omega h <= kMaxElasticOmegaH); the main solve takes the other islands, and an island whose
-// Newton does not settle. So undamped parts of a busy world keep their energy beside jointed and
-// touching ones (within 5e-6 of their kinetic energy over 12 s in the busy test scene, where the
-// whole-world choice lost 70-90%; docs/cables.md, "Long runs").
+// relies on) and no body its cables move is jointed (the joint projection would have to be
+// redone per iteration) or touching a contact; the main solve takes the other islands, and an
+// island whose Newton does not settle. An elastic cable whose axial mode the step does not
+// resolve (omega h > kMaxElasticOmegaH) pulls with its spring at the end of the step instead of
+// the discrete gradient: that damps the mode, never gains, and keeps the slow swing exact (unless
+// it wraps or passes over a moving body, whose sideways mode is as stiff: the main solve). So
+// undamped parts of a busy world keep their energy beside jointed and touching ones (within 5e-6 of
+// their kinetic energy over 12 s in the busy test scene, where the whole-world choice lost 70-90%;
+// docs/cables.md, "Long runs").
 #pragma once
 
 #include <span>
@@ -42,16 +45,19 @@ namespace cablelab {
 class MidpointSolver {
  public:
   /// Largest omega h of an elastic cable's axial mode bound (elasticMode, reached only where the
-  /// cable folds back on itself) the solve accepts: faster springs are not resolved by the step,
-  /// and the main solve's backward Euler damps them (stable at any k).
+  /// cable folds back on itself) the solve keeps exactly: faster springs are not resolved by the
+  /// step and pull with their tension at the end of the step, which damps them (stable at any k).
   static constexpr double kMaxElasticOmegaH = 4.0;
+  /// An island of more cables with such a spring (a rope of stiff links) keeps the main solve,
+  /// whose sparse path takes big islands (sparse_island.h, the same default size) and whose
+  /// spring damps the mode too: this solve is dense, O(n^3) a Newton iteration.
+  static constexpr int kMaxCablesWithUnresolvedSpring = 32;
 
   /// Whether this solve should take the step of the cables `which` (an island, cable_islands.h):
   /// some cable is elastic, has a pulley on a moving body (wrapped or not), is a loop on one body
   /// that turns, or has a segment short enough to need a floor (a body nearing its pulley)
   /// (straight cables between fixed pulleys and different bodies keep Box2D's own integration),
-  /// no moved body is `excluded` (jointed or in contact), and every
-  /// mode is resolved at h.
+  /// and no moved body is `excluded` (jointed or in contact).
   bool applies(std::span<const BodyState> bodies, std::span<const Cable> cables,
                std::span<const int> which, std::span<const char> excluded, double h);
 
@@ -98,12 +104,13 @@ class MidpointSolver {
               std::span<Vec3> forces, std::span<Vec3> kicks);
   bool redundantActiveRows(std::span<const Cable> cables);
 
-  double share_ = 1;            // this step over the nominal sub-step
-  std::vector<int> rows_;       // cable of each row
-  std::vector<int> segment_;    // -1: the cable's length; i: a floor on its segment i
-  std::vector<Vec2> normals_;   // a floor row's direction (floorNormal)
-  std::vector<int> dofOfBody_;  // body -> first dof, -1: not moved
-  std::vector<int> bodyOfDof_;  // dof / 3 -> body
+  double share_ = 1;              // this step over the nominal sub-step
+  std::vector<int> rows_;         // cable of each row
+  std::vector<int> segment_;      // -1: the cable's length; i: a floor on its segment i
+  std::vector<char> unresolved_;  // an elastic row whose axial mode h does not resolve
+  std::vector<Vec2> normals_;     // a floor row's direction (floorNormal)
+  std::vector<int> dofOfBody_;    // body -> first dof, -1: not moved
+  std::vector<int> bodyOfDof_;    // dof / 3 -> body
   Eigen::VectorXd invM_, vStar_, vFree_, vb_, P_, phi0_, phi1_, b_;
   Eigen::VectorXd residual_, AinvR_, GAinvR_, dP_, dv_;
   Eigen::MatrixXd A_, Gt_, AinvGt_, K_;

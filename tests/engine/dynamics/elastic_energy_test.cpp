@@ -237,10 +237,10 @@ TEST(ElasticEnergy, UndampedRopesOverASpinningPolygonOnItsPivotKeepTheirEnergyFo
 namespace cablelab {
 namespace {
 
-// The midpoint solve takes an elastic cable while a bound on its axial mode, sqrt(k J M^-1 J^T)
-// with J's largest size over poses (midpoint_solver.cpp, elasticMode), keeps omega h <= 4. At 2
-// it gave these to the main solve's backward-Euler spring, which took 66% and 87% of their
-// energy in a minute at 1 sub-step; now 8e-5 and 1e-5 of it (measured).
+// The midpoint solve keeps an elastic cable's energy exactly while a bound on its axial mode,
+// sqrt(k J M^-1 J^T) with J's largest size over poses (midpoint_solver.cpp, elasticMode), keeps
+// omega h <= 4. At 2 it gave these to the main solve's backward-Euler spring, which took 66% and
+// 87% of their energy in a minute at 1 sub-step; now 8e-5 and 1e-5 of it (measured).
 TEST(ElasticEnergy, ASlingAndATautBandWhoseModeTheStepResolvesKeepTheirEnergy) {
   // An octagon (1 kg, 0.2 m) spinning at 8 rad/s dropped into a k = 2000 N/m sling
   // (sqrt(k / m) h = 0.75; the bound reads 2.7 with its turning); a 1 kg bead threaded on a band
