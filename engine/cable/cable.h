@@ -312,6 +312,12 @@ class Cable {
     bool dropped = false;      ///< left by a guard (terminal inside the hull): may rejoin
     double dropCut = 0;        ///< length the drop took out of the path (m): the most a rejoin
                                ///< may put back
+    /// Polygon the cable is tied to (a terminal fixed on its body, on or inside its hull: a
+    /// spool, tied_end.h): which end (-1 start, +1 end, 0 none), the corner the cable leaves the
+    /// hull at towards it, and whether the end lies inside the hull off every edge
+    int tiedEnd = 0;
+    int tiedCorner = -1;
+    bool tiedInside = false;
     double signedRadius() const { return side == WrapSide::Right ? -radius : radius; }
     /// The wrap branch at the start: the turns it was wound with, else within (0, 2 pi).
     double initialArc() const { return turns > 0 ? 2 * M_PI * turns : M_PI; }
@@ -349,6 +355,14 @@ class Cable {
   /// The length of the path between the spans, over the corners of polygons with friction (m).
   double cornerLength(const std::vector<Split>& splits) const;
   bool updateDrumEnd(WrapPoint& end, bool atStart, std::span<const BodyState> bodies);
+  // A cable end tied to the polygon it winds round (tied_end.cpp).
+  void findTiedEnds();
+  /// The chain (and turn) of a tied polygon between path points a and b; nullopt: no taut path.
+  std::optional<double> tiedChain(const PulleyState& p, const Vec2& a, const Vec2& b,
+                                  std::vector<int>& chain) const;
+  /// The corner of a tied polygon that may join path segment `segment` (it runs straight into
+  /// the tied end, no corner in the path), with its pulley; -1 when none.
+  int tiedCornerWaiting(size_t segment, int& pulley) const;
 
   const CableDef* def_;     ///< the scene's, never edited
   CableParameters params_;  ///< live values
