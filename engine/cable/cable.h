@@ -23,6 +23,9 @@
 //    continuous over time, like a circle's arc: a pulley swung round past an end anchor, which
 //    the cable bends round by more than half a turn or winds round for whole turns, STAYS, and a
 //    polygon's chain grows and shrinks one vertex at a time (wrapChainTurning, wrap.h).
+//  * A cable end fixed on a polygon pulley's own body, on or inside its hull, next to it in the
+//    path, ties the cable to that polygon (a spool, tied_end.h): it is engaged from the start,
+//    never leaves, and winds whole turns. The rules below do not apply to that end.
 //  * A terminal inside a polygon pulley's hull (a neighbouring pulley inside it) has no taut path:
 //    the polygon is DROPPED (it leaves the path) and a warning says so. A dropped polygon that
 //    still cuts its segment REJOINS as soon as a taut path round it exists again and that path is
