@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/dynamics/world.h"
@@ -31,6 +32,7 @@ struct Spool {
   double kp = 100, kd = 20;
   double hang = kTurns * 1.3 + 2.5;  // m: the weight below the spool's axle
   double servoSpeed = 0;             // rad/s: the servo's own speed (the scene's "speed")
+  bool tiedAtStart = false;          // the rope runs from the spool to the weight
 };
 
 
@@ -73,6 +75,10 @@ SceneDef spoolScene(const Spool& c) {
   pulley.body = "spool";
   pulley.side = c.side;
   rope.pulleys = {pulley};
+  if (c.tiedAtStart) {  // the same rope walked the other way: the spool on its other side
+    std::swap(rope.start, rope.end);
+    rope.pulleys[0].side = c.side == WrapSide::Right ? WrapSide::Left : WrapSide::Right;
+  }
   s.cables = {rope};
   return s;
 }
@@ -255,9 +261,28 @@ TEST(SpoolWinding, TheIssuesFixtureWindsItsRopeOnePerimeterPerTurnWithoutAJump) 
                   kRadius / 2 + perimeter(6) * (angle - M_PI / 6) / (2 * M_PI), 0.03);
   }
   EXPECT_GT(w.joint(0).value, 2 * M_PI * 3);
+  EXPECT_NEAR(w.body(weight).position.y(), 2.8, 0.05);  // 3.8 m up, at the spool
   EXPECT_LT(largestStretch, 1e-4);
   EXPECT_LT(largestStep, 1e-4);
   for (const std::string& warning : w.warnings()) ADD_FAILURE() << warning;
+}
+
+TEST(SpoolWinding, ARopeTiedAtItsStartWindsAsOneTiedAtItsEnd) {
+  // The fixture's rope walked from the spool to the weight (tied at its start, the spool on its
+  // left): the same motion, step for step.
+  Spool atEnd, atStart;
+  atEnd.hang = atStart.hang = 4;
+  atEnd.servoSpeed = atStart.servoSpeed = 2;
+  atStart.tiedAtStart = true;
+  World a(spoolScene(atEnd)), b(spoolScene(atStart));
+  const int weight = a.findBody("weight");
+  for (int i = 0; i < 570; ++i) {
+    a.step(1.0 / 60);
+    b.step(1.0 / 60);
+    ASSERT_NEAR(a.body(weight).position.y(), b.body(weight).position.y(), 1e-6) << "step " << i;
+  }
+  EXPECT_GT(b.body(weight).position.y(), 2.4);  // 3.4 m up
+  EXPECT_TRUE(b.warnings().empty());
 }
 
 }  // namespace spool_winding_test
