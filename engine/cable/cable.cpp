@@ -87,6 +87,7 @@ Cable::Cable(const SceneDef& scene, int index, const std::string& source)
     ps.arc = ps.initialArc();
     pulleys_.push_back(std::move(ps));
   }
+  findTiedEnds();
 }
 
 void Cable::setParameters(const CableParameters& parameters) {
@@ -166,6 +167,7 @@ Vec2 Cable::entryPoint(int node, const std::vector<std::vector<int>>& chains) co
   const PulleyState& p = pulleys_[node - 1];
   const auto& c = chains[node - 1];
   if (!p.polygon) return p.world[0];
+  if (c.empty() && p.tiedEnd != 0) return p.tiedEnd > 0 ? end_.world : start_.world;
   if (c.empty()) {
     Vec2 centroid = Vec2::Zero();
     for (const Vec2& v : p.world) centroid += v;
@@ -207,7 +209,9 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
       const Vec2 b = entryPoint(nodes[n + 1], chains);
       // The chain that continues the last update's wrap (more than half a turn when the
       // polygon swung round past an end anchor).
-      const auto turn = wrapChainTurning(a, b, p.world, p.side, p.arc, chains[nodes[n] - 1]);
+      const auto turn = p.tiedEnd != 0
+                            ? tiedChain(p, a, b, chains[nodes[n] - 1])
+                            : wrapChainTurning(a, b, p.world, p.side, p.arc, chains[nodes[n] - 1]);
       if (turn) p.arc = *turn;
       if (!turn) {
         p.engaged = false;
@@ -269,10 +273,11 @@ bool Cable::leaveRound() {
       return true;
     }
   }
-  // Polygons with an empty chain have left already in the path (no vertex emitted).
+  // Polygons with an empty chain have left already in the path (no vertex emitted); one the
+  // cable is tied to stays (its end is on it).
   for (size_t j = 0; j < pulleys_.size(); ++j) {
     PulleyState& p = pulleys_[j];
-    if (!p.engaged || !p.polygon) continue;
+    if (!p.engaged || !p.polygon || p.tiedEnd != 0) continue;
     const bool inPath = std::any_of(path_.begin(), path_.end(), [j](const WrapPoint& w) {
       return w.pulley == static_cast<int>(j);
     });

@@ -23,6 +23,9 @@
 //    continuous over time, like a circle's arc: a pulley swung round past an end anchor, which
 //    the cable bends round by more than half a turn or winds round for whole turns, STAYS, and a
 //    polygon's chain grows and shrinks one vertex at a time (wrapChainTurning, wrap.h).
+//  * A cable end fixed on a polygon pulley's own body, on or inside its hull, next to it in the
+//    path, ties the cable to that polygon (a spool, tied_end.h): it is engaged from the start,
+//    never leaves, and winds whole turns. The rules below do not apply to that end.
 //  * A terminal inside a polygon pulley's hull (a neighbouring pulley inside it) has no taut path:
 //    the polygon is DROPPED (it leaves the path) and a warning says so. A dropped polygon that
 //    still cuts its segment REJOINS as soon as a taut path round it exists again and that path is
@@ -312,6 +315,12 @@ class Cable {
     bool dropped = false;      ///< left by a guard (terminal inside the hull): may rejoin
     double dropCut = 0;        ///< length the drop took out of the path (m): the most a rejoin
                                ///< may put back
+    /// Polygon the cable is tied to (a terminal fixed on its body, on or inside its hull: a
+    /// spool, tied_end.h): which end (-1 start, +1 end, 0 none), the corner the cable leaves the
+    /// hull at towards it, and whether the end lies inside the hull off every edge
+    int tiedEnd = 0;
+    int tiedCorner = -1;
+    bool tiedInside = false;
     double signedRadius() const { return side == WrapSide::Right ? -radius : radius; }
     /// The wrap branch at the start: the turns it was wound with, else within (0, 2 pi).
     double initialArc() const { return turns > 0 ? 2 * M_PI * turns : M_PI; }
@@ -349,6 +358,14 @@ class Cable {
   /// The length of the path between the spans, over the corners of polygons with friction (m).
   double cornerLength(const std::vector<Split>& splits) const;
   bool updateDrumEnd(WrapPoint& end, bool atStart, std::span<const BodyState> bodies);
+  // A cable end tied to the polygon it winds round (tied_end.cpp).
+  void findTiedEnds();
+  /// The chain (and turn) of a tied polygon between path points a and b; nullopt: no taut path.
+  std::optional<double> tiedChain(const PulleyState& p, const Vec2& a, const Vec2& b,
+                                  std::vector<int>& chain) const;
+  /// The corner of a tied polygon that may join path segment `segment` (it runs straight into
+  /// the tied end, no corner in the path), with its pulley; -1 when none.
+  int tiedCornerWaiting(size_t segment, int& pulley) const;
 
   const CableDef* def_;     ///< the scene's, never edited
   CableParameters params_;  ///< live values

@@ -91,12 +91,17 @@ std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, 
     // with the polygon on the cable's right) against the segment entering it, the one after its
     // last against the segment leaving it. On a convex polygon no other vertex can reach those
     // segments first, and that vertex may be in the chain already (a wrap of a whole turn).
+    int tied;  // a polygon the cable is tied to joins the segment into its end at its corner
+    if (const int corner = tiedCornerWaiting(i, tied); corner >= 0)
+      tryPoint(tied, pulleys_[tied].local[corner], WrapEvent::Kind::Vertex);
     if (a.kind == WrapPoint::Kind::Vertex && b.kind == WrapPoint::Kind::Vertex &&
         a.pulley == b.pulley)
       continue;  // an edge of the chain: the convex polygon stays on its inner side
     for (const WrapPoint* end : {&a, &b}) {
       if (end->kind != WrapPoint::Kind::Vertex) continue;
       const PulleyState& p = pulleys_[end->pulley];
+      // The edge into a tied end: the next vertex is the end's or beyond it on the same line.
+      if (p.tiedEnd != 0 && (end == &a ? i + 2 == path_.size() : i == 0)) continue;
       const int v = chainEndNeighbour(*end, end == &b);
       tryPoint(end->pulley, p.local[v], WrapEvent::Kind::Vertex);
     }

@@ -106,6 +106,11 @@ int walkStep(WrapSide side) {
 
 }  // namespace
 
+int tangentVertexFrom(const Vec2& a, std::span<const Vec2> polygon, WrapSide side) {
+  int ta, tb;
+  return tangentVertices(a, a, polygon, side, ta, tb) ? ta : -1;
+}
+
 bool wrapChain(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, WrapSide side,
                std::vector<int>& chain) {
   chain.clear();

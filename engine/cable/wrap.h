@@ -45,6 +45,10 @@ double walkTurning(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, 
 /// Turns below this (rad) are straight: no vertex is a wrap point.
 inline constexpr double kStraightWrapTurn = 1e-12;
 
+/// The tangent vertex of the taut path from A round the polygon on `side` (the first vertex of
+/// wrapChain's chain when it bends); -1 when A lies inside the polygon.
+int tangentVertexFrom(const Vec2& a, std::span<const Vec2> polygon, WrapSide side);
+
 /// Length of the path A -> polygon[chain...] -> B.
 double chainLength(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,
                    const std::vector<int>& chain);
