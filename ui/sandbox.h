@@ -68,7 +68,8 @@ class Sandbox {
   /// Loads a built-in scene or a scene file. On failure keeps the current scene, stores the
   /// message in `error`, prints it on stderr and returns false.
   bool open(const std::string& nameOrPath);
-  /// Reopens the current built-in scene with `parameters` (the Scene panel's sliders).
+  /// Reopens the current built-in scene with `parameters` (the Scene panel's sliders); a fitted
+  /// view is fitted again to the new run.
   bool rebuild(const std::vector<std::pair<std::string, double>>& parameters);
   /// Replaces the scene by `def` (authoring) keeping the camera; false + `error` if invalid.
   bool replaceScene(const SceneDef& def);
