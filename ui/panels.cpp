@@ -168,12 +168,14 @@ void simulationPanel(Sandbox& sandbox, PanelState& state, float top) {
     if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) scenePanel(sandbox);
     if (ImGui::CollapsingHeader("Controller", ImGuiTreeNodeFlags_DefaultOpen))
       drawControllerPanel(sandbox);
+    if (!sandbox.plots->charts.empty()) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
+    sandbox.plotsSectionOpen = ImGui::CollapsingHeader("Plots");
+    if (sandbox.plotsSectionOpen) plotsPanel(sandbox);
+    tooltip("Any quantity against time, several at once; export for slides (PNG and CSV).");
     // Open while a tool is chosen (a script or a shortcut can choose one with the section shut).
     if (sandbox.authoring->tool != Authoring::Tool::None) ImGui::SetNextItemOpen(true);
-    if (!sandbox.plots->charts.empty()) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
-    if (ImGui::CollapsingHeader("Plots")) plotsPanel(sandbox);
-    tooltip("Any quantity against time, several at once; export for slides (PNG and CSV).");
-    if (ImGui::CollapsingHeader("Build")) authoringPanel(sandbox);
+    sandbox.buildSectionOpen = ImGui::CollapsingHeader("Build");
+    if (sandbox.buildSectionOpen) authoringPanel(sandbox);
     tooltip("Add bodies, pulleys and cables by clicks; undo, redo; save as scene JSON.");
     if (ImGui::CollapsingHeader("View")) viewPanel(sandbox);
     if (ImGui::CollapsingHeader("Integration")) integrationPanel(sandbox);

@@ -210,6 +210,8 @@ class Sandbox {
   float statusOverflow = 0;
   /// Buttons of the Run row drawn narrower than their text in the last frame (0: none).
   int truncatedButtons = 0;
+  /// Whether the Simulation panel's Plots and Build sections were open in the last frame.
+  bool plotsSectionOpen = false, buildSectionOpen = false;
 
   /// Where the last frame's labels, bars, key, banner and scene went (px), for the scripts.
   DrawnView drawn;
