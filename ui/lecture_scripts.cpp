@@ -79,8 +79,8 @@ std::optional<std::pair<std::string, double>> sliderStep(const std::string& scen
 }  // namespace
 
 const std::vector<std::string>& LectureScript::names() {
-  static const std::vector<std::string> n = {"present", "grasp-quiet", "tension-run",
-                                             "walkthrough"};
+  static const std::vector<std::string> n = {"present", "grasp-quiet", "tension-run", "walkthrough",
+                                             "select-rope"};
   return n;
 }
 
@@ -100,6 +100,7 @@ bool LectureScript::beforeFrame(Sandbox& sandbox, int frame) {
   if (name_ == "grasp-quiet") return graspQuiet(sandbox, frame);
   if (name_ == "tension-run") return tensionRun(sandbox, frame);
   if (name_ == "walkthrough") return walkthrough(sandbox, frame);
+  if (name_ == "select-rope") return selectRope(sandbox, frame);
   report_ = "{\"scenario\": " + jsonQuoted(name_) + ", \"failure\": \"unknown scenario\"}";
   return false;
 }
@@ -339,6 +340,45 @@ bool LectureScript::walkthrough(Sandbox& sandbox, int frame) {
   } else if (frame == 1102) {
     report_ = "{\"scenario\": \"walkthrough\", \"banner\": " + jsonQuoted(sandbox.banner) +
               ", \"views\": " + join(items_) + "}";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace cablelab::ui
+
+namespace cablelab::ui {
+
+bool LectureScript::selectRope(Sandbox& sandbox, int frame) {
+  if (frame == 5) {
+    items_.push_back(std::string("\"open_before\": ") + (sandbox.inspectorOpen ? "true" : "false"));
+    // A point of a cable (none of a body) in the view, as the user clicks it.
+    const PanelRect f = sandbox.freeArea();
+    bool found = false;
+    for (float y = f.y + 4; y < f.y + f.height && !found; y += 3)
+      for (float x = f.x + 4; x < f.x + f.width && !found; x += 3) {
+        const Vec2 p = sandbox.camera.toWorld(Vec2(x, y));
+        if (sandbox.bodyAt(p, true) >= 0) continue;
+        body_ = sandbox.cableAt(p, 2 * sandbox.camera.metresPerPixel);
+        if (body_ >= 0) {
+          from_ = Vec2(x, y);
+          found = true;
+        }
+      }
+    if (!found) {
+      report_ = "{\"scenario\": \"select-rope\", \"failure\": \"no cable in view\"}";
+      return false;
+    }
+    sandbox.selectedCable = -1;
+    mouse(SDL_MOUSEMOTION, from_);
+    mouse(SDL_MOUSEBUTTONDOWN, from_);
+    mouse(SDL_MOUSEBUTTONUP, from_);
+  } else if (frame == 15) {
+    report_ = "{\"scenario\": \"select-rope\", " + items_[0] +
+              ", \"clicked_cable\": " + jsonNumber(body_) +
+              ", \"selected_cable\": " + jsonNumber(sandbox.selectedCable) +
+              ", \"open_after\": " + (sandbox.inspectorOpen ? "true" : "false") +
+              ", \"overflow\": " + jsonNumber(sandbox.panelOverflow[1]) + "}";
     return false;
   }
   return true;

@@ -17,6 +17,9 @@
 //                 3 s and 10 s, while dragging the body at a cable's end and after the drop,
 //                 after the scene's "what to try" slider step (the hand: the grasp sequence),
 //                 paused, after 60 presses of b (rewind) and after playing on; reports each view
+//   select-rope   clicks a point of a cable (none of a body) in the view; reports whether the
+//                 Inspector was open before and after, the cable selected and the Inspector's
+//                 row overflow
 //
 // Needs: an SDL video subsystem (the sandbox's Window), a Sandbox with a loaded scene.
 #pragma once
@@ -44,6 +47,7 @@ class LectureScript {
   bool graspQuiet(Sandbox& sandbox, int frame);
   bool tensionRun(Sandbox& sandbox, int frame);
   bool walkthrough(Sandbox& sandbox, int frame);
+  bool selectRope(Sandbox& sandbox, int frame);
   void key(SDL_Keycode k);
   void mouse(Uint32 type, const Vec2& screen);
 

@@ -185,7 +185,12 @@ void simulationPanel(Sandbox& sandbox, PanelState& state, float top) {
 }
 
 void inspectorPanel(Sandbox& sandbox, PanelState& state, float top) {
-  if (beginSidePanel(sandbox, state, "Inspector", false, top)) {
+  // A cable clicked in the view opens a collapsed Inspector: its tensions are what the scenes'
+  // "what to try" asks to watch (the Inspector starts collapsed on a narrow window).
+  if (sandbox.showInspector) ImGui::SetNextWindowCollapsed(false, ImGuiCond_Always);
+  sandbox.showInspector = false;
+  sandbox.inspectorOpen = beginSidePanel(sandbox, state, "Inspector", false, top);
+  if (sandbox.inspectorOpen) {
     inspectorContents(sandbox);
     sandbox.panelOverflow[1] = rowOverflow();
   }

@@ -210,6 +210,10 @@ class Sandbox {
   float statusOverflow = 0;
   /// Buttons of the Run row drawn narrower than their text in the last frame (0: none).
   int truncatedButtons = 0;
+  /// A cable was clicked in the view: the next frame opens the Inspector if it is collapsed.
+  bool showInspector = false;
+  /// Whether the Inspector was open (not collapsed, not hidden) in the last frame.
+  bool inspectorOpen = false;
   /// Whether the Simulation panel's Plots and Build sections were open in the last frame.
   bool plotsSectionOpen = false, buildSectionOpen = false;
 

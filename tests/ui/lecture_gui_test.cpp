@@ -199,6 +199,22 @@ TEST(Lecture, FirstMechanismAtProjectorScaleOpensTheBuildSection) {
   }
 }
 
+// The capstan's and the membrane's "what to try": "select the rope (click it) and watch the
+// tensions in the Inspector". At 1280x720 at projector scale the Inspector starts collapsed and
+// the click left it so; a click on a cable now opens it.
+TEST(Lecture, ClickingTheRopeOpensTheInspectorAt1280x720) {
+  REQUIRE_XVFB();
+  for (const std::string scene : {"capstan", "membrane"}) {
+    const auto j = lecture(scene, "select-rope", "1280x720", "select-rope-" + scene);
+    ASSERT_TRUE(j.contains("open_after")) << j.dump();
+    EXPECT_FALSE(j["open_before"].get<bool>()) << scene << ": the Inspector starts collapsed";
+    EXPECT_GE(j["clicked_cable"].get<int>(), 0);
+    EXPECT_EQ(j["selected_cable"], j["clicked_cable"]) << j.dump();
+    EXPECT_TRUE(j["open_after"].get<bool>()) << scene << ": " << j.dump();
+    EXPECT_EQ(j["overflow"].get<double>(), 0) << scene << ": " << j.dump();
+  }
+}
+
 TEST(Lecture, GraspSequenceRaisesNoBanner) {
   REQUIRE_XVFB();
   for (const char* size : {"1280x720", "1920x1080"}) {
