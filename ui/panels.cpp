@@ -191,8 +191,9 @@ void inspectorPanel(Sandbox& sandbox, PanelState& state, float top) {
   sandbox.showInspector = false;
   sandbox.inspectorOpen = beginSidePanel(sandbox, state, "Inspector", false, top);
   if (sandbox.inspectorOpen) {
+    sandbox.cutHeaders = 0;
     inspectorContents(sandbox);
-    sandbox.panelOverflow[1] = rowOverflow();
+    sandbox.panelOverflow[1] = std::max(rowOverflow(), sandbox.cutHeaders);
   }
   ImGui::End();
 }

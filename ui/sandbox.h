@@ -203,8 +203,9 @@ class Sandbox {
   /// The selected cable's span table as the Inspector showed it (empty: one span).
   SpanTable shownSpans;
 
-  /// How far (px) the widest row of the Simulation and the Inspector panel reached past the
-  /// panel's width in the last frame each was open (0: every row fits).
+  /// How far (px) the widest row of the Simulation and the Inspector panel (or a header of the
+  /// Inspector's tables) reached past the panel's width or its column in the last frame each
+  /// was open (0: every row fits).
   std::array<float, 2> panelOverflow{};
   /// How far (px) the status line's text reached past the window's width in the last frame.
   float statusOverflow = 0;
@@ -212,6 +213,9 @@ class Sandbox {
   int truncatedButtons = 0;
   /// A cable was clicked in the view: the next frame opens the Inspector if it is collapsed.
   bool showInspector = false;
+  /// How far (px) the widest table header of the Inspector reached past its column (counted
+  /// in panelOverflow[1]).
+  float cutHeaders = 0;
   /// Whether the Inspector was open (not collapsed, not hidden) in the last frame.
   bool inspectorOpen = false;
   /// Whether the Simulation panel's Plots and Build sections were open in the last frame.
