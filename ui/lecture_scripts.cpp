@@ -48,6 +48,7 @@ std::string viewJson(const Sandbox& s, const std::string& name, const std::strin
          ", \"view_fitted\": " + (s.viewFitted ? "true" : "false") + ", \"overflow\": [" +
          jsonNumber(s.panelOverflow[0]) + ", " + jsonNumber(s.panelOverflow[1]) +
          "], \"status_overflow\": " + jsonNumber(s.statusOverflow) +
+         ", \"status\": " + jsonQuoted(s.shownStatus) +
          ", \"truncated_buttons\": " + jsonNumber(s.truncatedButtons) +
          ", \"screenshot\": " + jsonQuoted(shot) + "}";
 }

@@ -208,7 +208,8 @@ void statusLine(Sandbox& sandbox) {
                    ImGuiWindowFlags_NoSavedSettings | kPanelBackground);
   record(sandbox);
   if (const World* world = sandbox.world()) {
-    // The whole line when it fits, else without the timings, else the essentials.
+    // The whole line when it fits, else without the timings, else without the note, else the
+    // essentials.
     const StepStats& s = world->lastStepStats();
     const char* state = sandbox.paused ? "PAUSED" : "running";
     const char* note = sandbox.message.empty() ? "h: help" : sandbox.message.c_str();
@@ -222,9 +223,14 @@ void statusLine(Sandbox& sandbox) {
     if (ImGui::CalcTextSize(line).x > room)
       std::snprintf(line, sizeof line, "%s %.2gx  t %.3f s   energy %.4g J   %s", state,
                     sandbox.speed, world->time(), world->energy(), note);
+    // Without the note before without the energy: the energy readout is what a lecture reads.
+    if (ImGui::CalcTextSize(line).x > room)
+      std::snprintf(line, sizeof line, "%s %.2gx  t %.3f s   energy %.4g J", state, sandbox.speed,
+                    world->time(), world->energy());
     if (ImGui::CalcTextSize(line).x > room)
       std::snprintf(line, sizeof line, "%s  t %.2f s", state, world->time());
     sandbox.statusOverflow = std::max(0.0f, ImGui::CalcTextSize(line).x - room);
+    sandbox.shownStatus = line;
     ImGui::TextUnformatted(line);
   } else {
     ImGui::TextUnformatted("no scene loaded");

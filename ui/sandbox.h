@@ -207,6 +207,8 @@ class Sandbox {
   /// Inspector's tables) reached past the panel's width or its column in the last frame each
   /// was open (0: every row fits).
   std::array<float, 2> panelOverflow{};
+  /// The status line's text in the last frame.
+  std::string shownStatus;
   /// How far (px) the status line's text reached past the window's width in the last frame.
   float statusOverflow = 0;
   /// Buttons of the Run row drawn narrower than their text in the last frame (0: none).
