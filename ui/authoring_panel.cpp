@@ -69,7 +69,7 @@ void bodySettings(Authoring& a) {
       a.bodyType = types[k].first;
     tooltip(tips[k]);
   }
-  ImGui::Checkbox("wind ends on round bodies", &a.drumEnds);
+  ImGui::Checkbox("ends wind on circles", &a.drumEnds);  // fits the panel at projector scale
   tooltip("A cable end clicked on a circle is wound round it, like a rope on a winch drum.");
 }
 

@@ -79,6 +79,7 @@ void leftDown(Sandbox& sandbox, World& world, const Vec2& mouse, const Vec2& poi
   const int cable = sandbox.cableAt(point, 6 * sandbox.camera.metresPerPixel);
   if (cable >= 0) {
     sandbox.selectedCable = cable;
+    sandbox.showInspector = true;
     const Cable& c = world.cable(cable);
     sandbox.cableEdit = {c.restLength(), c.stiffness(), c.preload(), c.damping()};
     return;

@@ -100,10 +100,19 @@ void spanSection(Sandbox& sandbox, const Cable& cable) {
       "holds while the tension ratio is below e^(mu theta) and slips at that ratio; on a "
       "polygon with friction, so does each corner, theta the angle the rope turns there.");
   if (ImGui::BeginTable("spans", 3, ImGuiTableFlags_RowBg)) {
-    ImGui::TableSetupColumn("span");
-    ImGui::TableSetupColumn("tension (N)");
-    ImGui::TableSetupColumn("length (m)");
-    ImGui::TableHeadersRow();
+    // The span number narrow, so that the headers with units fit at projector scale (with three
+    // equal columns "tension (N)" was cut to "tension (...").
+    static const char* const kHeaders[] = {"span", "tension (N)", "length (m)"};
+    ImGui::TableSetupColumn(kHeaders[0], ImGuiTableColumnFlags_WidthFixed);
+    ImGui::TableSetupColumn(kHeaders[1], ImGuiTableColumnFlags_WidthStretch);
+    ImGui::TableSetupColumn(kHeaders[2], ImGuiTableColumnFlags_WidthStretch);
+    ImGui::TableNextRow(ImGuiTableRowFlags_Headers);
+    for (int c = 0; c < 3; ++c) {
+      ImGui::TableSetColumnIndex(c);
+      sandbox.cutHeaders = std::max(sandbox.cutHeaders, ImGui::CalcTextSize(kHeaders[c]).x -
+                                                            ImGui::GetContentRegionAvail().x);
+      ImGui::TableHeader(kHeaders[c]);
+    }
     for (const SpanRow& row : table.spans) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <optional>
 
 #include "ui/controller_panel.h"
 #include "ui/report_json.h"
@@ -27,11 +29,17 @@ std::string viewJson(const Sandbox& s, const std::string& name, const std::strin
   std::string labels = "[";
   for (size_t k = 0; k < d.labels.size(); ++k) labels += (k ? ", " : "") + box(d.labels[k]);
   labels += "]";
+  LabelBox stage;  // a looping demo's whole run on screen (ui/demo_loop.h), px
+  if (!s.demo.stage.empty()) {
+    const Vec2 lo = s.camera.toScreen(s.demo.stage.lo), hi = s.camera.toScreen(s.demo.stage.hi);
+    stage = {lo.x(), hi.y(), hi.x(), lo.y()};
+  }
   return "{\"name\": " + jsonQuoted(name) + ", \"scene_name\": " + jsonQuoted(s.sceneName) +
          ", \"window\": [" + jsonNumber(s.camera.width) + ", " + jsonNumber(s.camera.height) +
          "], \"free\": [" + jsonNumber(free.x) + ", " + jsonNumber(free.y) + ", " +
          jsonNumber(free.width) + ", " + jsonNumber(free.height) + "], \"scene\": " + box(d.scene) +
-         ", \"labels\": " + labels + ", \"hidden_labels\": " + jsonNumber(d.hiddenLabels) +
+         ", \"stage\": " + box(stage) + ", \"labels\": " + labels +
+         ", \"hidden_labels\": " + jsonNumber(d.hiddenLabels) +
          ", \"scale_bar\": " + box(f.scaleBar) + ", \"colour_bar\": " + box(f.colourBar) +
          ", \"key\": " + box(f.key) + ", \"notes\": " + box(f.notes) +
          ", \"banner\": " + box(f.banner) + ", \"paused\": " + box(f.paused) +
@@ -40,6 +48,7 @@ std::string viewJson(const Sandbox& s, const std::string& name, const std::strin
          ", \"view_fitted\": " + (s.viewFitted ? "true" : "false") + ", \"overflow\": [" +
          jsonNumber(s.panelOverflow[0]) + ", " + jsonNumber(s.panelOverflow[1]) +
          "], \"status_overflow\": " + jsonNumber(s.statusOverflow) +
+         ", \"status\": " + jsonQuoted(s.shownStatus) +
          ", \"truncated_buttons\": " + jsonNumber(s.truncatedButtons) +
          ", \"screenshot\": " + jsonQuoted(shot) + "}";
 }
@@ -58,10 +67,21 @@ std::string join(const std::vector<std::string>& items) {
   return out + "]";
 }
 
+/// The slider step of a built-in scene's "what to try" (ui/scene_guide.h), if it has one.
+std::optional<std::pair<std::string, double>> sliderStep(const std::string& scene) {
+  static const std::map<std::string, std::pair<std::string, double>> steps = {
+      {"ballast", {"v0y", 3}},    {"pulley", {"m_left", 1}}, {"wheel", {"I", 0}},
+      {"capstan", {"m_load", 6}}, {"winch", {"omega", -1}},  {"tackle", {"m_effort", 1}}};
+  const auto it = steps.find(scene);
+  if (it == steps.end()) return std::nullopt;
+  return it->second;
+}
+
 }  // namespace
 
 const std::vector<std::string>& LectureScript::names() {
-  static const std::vector<std::string> n = {"present", "grasp-quiet", "tension-run"};
+  static const std::vector<std::string> n = {"present", "grasp-quiet", "tension-run", "walkthrough",
+                                             "select-rope"};
   return n;
 }
 
@@ -80,6 +100,8 @@ bool LectureScript::beforeFrame(Sandbox& sandbox, int frame) {
   if (name_ == "present") return present(sandbox, frame);
   if (name_ == "grasp-quiet") return graspQuiet(sandbox, frame);
   if (name_ == "tension-run") return tensionRun(sandbox, frame);
+  if (name_ == "walkthrough") return walkthrough(sandbox, frame);
+  if (name_ == "select-rope") return selectRope(sandbox, frame);
   report_ = "{\"scenario\": " + jsonQuoted(name_) + ", \"failure\": \"unknown scenario\"}";
   return false;
 }
@@ -243,6 +265,121 @@ bool LectureScript::tensionRun(Sandbox& sandbox, int frame) {
               ", \"next_scene_scale\": " + jsonNumber(loadTensionScale(sandbox.scene)) +
               ", \"after_next_scene\": " + jsonNumber(sandbox.tensionScale) +
               ", \"locked\": " + (sandbox.tensionScaleLocked ? "true" : "false") + "}";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace cablelab::ui
+
+namespace cablelab::ui {
+
+bool LectureScript::walkthrough(Sandbox& sandbox, int frame) {
+  if (!pending_.empty()) {
+    items_.push_back(viewJson(sandbox, pending_, out_ + "-" + pending_ + ".png"));
+    pending_.clear();
+  }
+  auto snapshot = [&](const char* name) {
+    pending_ = name;
+    sandbox.pngRequest = PanelRect{0, 0, static_cast<float>(sandbox.camera.width),
+                                   static_cast<float>(sandbox.camera.height)};
+    sandbox.pngRequestPath = out_ + "-" + pending_ + ".png";
+  };
+  World& world = *sandbox.world();
+  if (frame == 1) {
+    sandbox.projector = true;  // the View menu's projector mode
+    sandbox.uiScale = 2;
+  } else if (frame == 3) {
+    key(SDLK_p);
+  } else if (frame == 10) {
+    snapshot("start");
+  } else if (frame == 180) {
+    snapshot("run-3s");
+  } else if (frame == 600) {
+    snapshot("run-10s");
+  } else if (frame == 605) {  // drag the body at a cable's end sideways and down
+    for (int i = 0; i < world.cableCount() && body_ < 0; ++i) {
+      const int b = world.findBody(world.cable(i).def().end.body);
+      if (b >= 0 && world.scene().bodies[b].type == BodyType::Dynamic) body_ = b;
+    }
+    if (body_ >= 0) {
+      from_ = sandbox.camera.toScreen(world.body(body_).position);
+      to_ = from_ + Vec2(120, 120);
+      mouse(SDL_MOUSEMOTION, from_);
+      mouse(SDL_MOUSEBUTTONDOWN, from_);
+    }
+  } else if (frame > 605 && frame < 650 && body_ >= 0) {
+    mouse(SDL_MOUSEMOTION, from_ + (to_ - from_) * std::min(1.0, (frame - 605) / 20.0));
+    if (frame == 640) snapshot("dragging");
+  } else if (frame == 650 && body_ >= 0) {
+    mouse(SDL_MOUSEBUTTONUP, to_);
+  } else if (frame == 720) {
+    snapshot("dropped");
+  } else if (frame == 725) {
+    if (const auto step = sliderStep(sandbox.sceneName)) {
+      auto values = sandbox.parameters;
+      for (auto& [k, v] : values)
+        if (k == step->first) v = step->second;
+      sandbox.rebuild(values);
+    } else if (sandbox.sceneName == "hand") {
+      startHandGrasp(sandbox);
+    }
+  } else if (frame == 900) {
+    snapshot("try-step");
+  } else if (frame == 902) {
+    key(SDLK_SPACE);
+  } else if (frame == 910) {
+    snapshot("paused");
+  } else if (frame > 912 && frame <= 972) {
+    key(SDLK_b);
+  } else if (frame == 980) {
+    snapshot("rewound");
+  } else if (frame == 982) {
+    key(SDLK_SPACE);
+  } else if (frame == 1100) {
+    snapshot("play-on");
+  } else if (frame == 1102) {
+    report_ = "{\"scenario\": \"walkthrough\", \"banner\": " + jsonQuoted(sandbox.banner) +
+              ", \"views\": " + join(items_) + "}";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace cablelab::ui
+
+namespace cablelab::ui {
+
+bool LectureScript::selectRope(Sandbox& sandbox, int frame) {
+  if (frame == 5) {
+    items_.push_back(std::string("\"open_before\": ") + (sandbox.inspectorOpen ? "true" : "false"));
+    // A point of a cable (none of a body) in the view, as the user clicks it.
+    const PanelRect f = sandbox.freeArea();
+    bool found = false;
+    for (float y = f.y + 4; y < f.y + f.height && !found; y += 3)
+      for (float x = f.x + 4; x < f.x + f.width && !found; x += 3) {
+        const Vec2 p = sandbox.camera.toWorld(Vec2(x, y));
+        if (sandbox.bodyAt(p, true) >= 0) continue;
+        body_ = sandbox.cableAt(p, 2 * sandbox.camera.metresPerPixel);
+        if (body_ >= 0) {
+          from_ = Vec2(x, y);
+          found = true;
+        }
+      }
+    if (!found) {
+      report_ = "{\"scenario\": \"select-rope\", \"failure\": \"no cable in view\"}";
+      return false;
+    }
+    sandbox.selectedCable = -1;
+    mouse(SDL_MOUSEMOTION, from_);
+    mouse(SDL_MOUSEBUTTONDOWN, from_);
+    mouse(SDL_MOUSEBUTTONUP, from_);
+  } else if (frame == 15) {
+    report_ = "{\"scenario\": \"select-rope\", " + items_[0] +
+              ", \"clicked_cable\": " + jsonNumber(body_) +
+              ", \"selected_cable\": " + jsonNumber(sandbox.selectedCable) +
+              ", \"open_after\": " + (sandbox.inspectorOpen ? "true" : "false") +
+              ", \"overflow\": " + jsonNumber(sandbox.panelOverflow[1]) + "}";
     return false;
   }
   return true;

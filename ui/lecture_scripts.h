@@ -13,6 +13,13 @@
 //                 the log's size
 //   tension-run   a hard drag, a reset, then the scale locked and the next scene opened; reports
 //                 the colour bar's maximum over every frame and the scenes' load scales
+//   walkthrough   a lecture with one scene: projector mode and p, screenshots at the start, after
+//                 3 s and 10 s, while dragging the body at a cable's end and after the drop,
+//                 after the scene's "what to try" slider step (the hand: the grasp sequence),
+//                 paused, after 60 presses of b (rewind) and after playing on; reports each view
+//   select-rope   clicks a point of a cable (none of a body) in the view; reports whether the
+//                 Inspector was open before and after, the cable selected and the Inspector's
+//                 row overflow
 //
 // Needs: an SDL video subsystem (the sandbox's Window), a Sandbox with a loaded scene.
 #pragma once
@@ -39,6 +46,8 @@ class LectureScript {
   bool present(Sandbox& sandbox, int frame);
   bool graspQuiet(Sandbox& sandbox, int frame);
   bool tensionRun(Sandbox& sandbox, int frame);
+  bool walkthrough(Sandbox& sandbox, int frame);
+  bool selectRope(Sandbox& sandbox, int frame);
   void key(SDL_Keycode k);
   void mouse(Uint32 type, const Vec2& screen);
 

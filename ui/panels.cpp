@@ -168,12 +168,14 @@ void simulationPanel(Sandbox& sandbox, PanelState& state, float top) {
     if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) scenePanel(sandbox);
     if (ImGui::CollapsingHeader("Controller", ImGuiTreeNodeFlags_DefaultOpen))
       drawControllerPanel(sandbox);
+    if (!sandbox.plots->charts.empty()) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
+    sandbox.plotsSectionOpen = ImGui::CollapsingHeader("Plots");
+    if (sandbox.plotsSectionOpen) plotsPanel(sandbox);
+    tooltip("Any quantity against time, several at once; export for slides (PNG and CSV).");
     // Open while a tool is chosen (a script or a shortcut can choose one with the section shut).
     if (sandbox.authoring->tool != Authoring::Tool::None) ImGui::SetNextItemOpen(true);
-    if (!sandbox.plots->charts.empty()) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
-    if (ImGui::CollapsingHeader("Plots")) plotsPanel(sandbox);
-    tooltip("Any quantity against time, several at once; export for slides (PNG and CSV).");
-    if (ImGui::CollapsingHeader("Build")) authoringPanel(sandbox);
+    sandbox.buildSectionOpen = ImGui::CollapsingHeader("Build");
+    if (sandbox.buildSectionOpen) authoringPanel(sandbox);
     tooltip("Add bodies, pulleys and cables by clicks; undo, redo; save as scene JSON.");
     if (ImGui::CollapsingHeader("View")) viewPanel(sandbox);
     if (ImGui::CollapsingHeader("Integration")) integrationPanel(sandbox);
@@ -183,9 +185,15 @@ void simulationPanel(Sandbox& sandbox, PanelState& state, float top) {
 }
 
 void inspectorPanel(Sandbox& sandbox, PanelState& state, float top) {
-  if (beginSidePanel(sandbox, state, "Inspector", false, top)) {
+  // A cable clicked in the view opens a collapsed Inspector: its tensions are what the scenes'
+  // "what to try" asks to watch (the Inspector starts collapsed on a narrow window).
+  if (sandbox.showInspector) ImGui::SetNextWindowCollapsed(false, ImGuiCond_Always);
+  sandbox.showInspector = false;
+  sandbox.inspectorOpen = beginSidePanel(sandbox, state, "Inspector", false, top);
+  if (sandbox.inspectorOpen) {
+    sandbox.cutHeaders = 0;
     inspectorContents(sandbox);
-    sandbox.panelOverflow[1] = rowOverflow();
+    sandbox.panelOverflow[1] = std::max(rowOverflow(), sandbox.cutHeaders);
   }
   ImGui::End();
 }
@@ -200,7 +208,8 @@ void statusLine(Sandbox& sandbox) {
                    ImGuiWindowFlags_NoSavedSettings | kPanelBackground);
   record(sandbox);
   if (const World* world = sandbox.world()) {
-    // The whole line when it fits, else without the timings, else the essentials.
+    // The whole line when it fits, else without the timings, else without the note, else the
+    // essentials.
     const StepStats& s = world->lastStepStats();
     const char* state = sandbox.paused ? "PAUSED" : "running";
     const char* note = sandbox.message.empty() ? "h: help" : sandbox.message.c_str();
@@ -214,9 +223,14 @@ void statusLine(Sandbox& sandbox) {
     if (ImGui::CalcTextSize(line).x > room)
       std::snprintf(line, sizeof line, "%s %.2gx  t %.3f s   energy %.4g J   %s", state,
                     sandbox.speed, world->time(), world->energy(), note);
+    // Without the note before without the energy: the energy readout is what a lecture reads.
+    if (ImGui::CalcTextSize(line).x > room)
+      std::snprintf(line, sizeof line, "%s %.2gx  t %.3f s   energy %.4g J", state, sandbox.speed,
+                    world->time(), world->energy());
     if (ImGui::CalcTextSize(line).x > room)
       std::snprintf(line, sizeof line, "%s  t %.2f s", state, world->time());
     sandbox.statusOverflow = std::max(0.0f, ImGui::CalcTextSize(line).x - room);
+    sandbox.shownStatus = line;
     ImGui::TextUnformatted(line);
   } else {
     ImGui::TextUnformatted("no scene loaded");

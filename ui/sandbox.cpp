@@ -97,6 +97,9 @@ bool Sandbox::rebuild(const std::vector<std::pair<std::string, double>>& values)
     const Camera keep = camera;
     adopt(loadScene(sceneName, values), sceneName, false);
     camera = keep;
+    // A fitted view is fitted again to the new run (a demo's stage changes with its loads);
+    // a view the user chose stays (ui/presentation.h).
+    if (viewFitted) fitPending = true;
     parameters = values;
     return true;
   } catch (const std::exception& e) {

@@ -68,7 +68,8 @@ class Sandbox {
   /// Loads a built-in scene or a scene file. On failure keeps the current scene, stores the
   /// message in `error`, prints it on stderr and returns false.
   bool open(const std::string& nameOrPath);
-  /// Reopens the current built-in scene with `parameters` (the Scene panel's sliders).
+  /// Reopens the current built-in scene with `parameters` (the Scene panel's sliders); a fitted
+  /// view is fitted again to the new run.
   bool rebuild(const std::vector<std::pair<std::string, double>>& parameters);
   /// Replaces the scene by `def` (authoring) keeping the camera; false + `error` if invalid.
   bool replaceScene(const SceneDef& def);
@@ -202,13 +203,25 @@ class Sandbox {
   /// The selected cable's span table as the Inspector showed it (empty: one span).
   SpanTable shownSpans;
 
-  /// How far (px) the widest row of the Simulation and the Inspector panel reached past the
-  /// panel's width in the last frame each was open (0: every row fits).
+  /// How far (px) the widest row of the Simulation and the Inspector panel (or a header of the
+  /// Inspector's tables) reached past the panel's width or its column in the last frame each
+  /// was open (0: every row fits).
   std::array<float, 2> panelOverflow{};
+  /// The status line's text in the last frame.
+  std::string shownStatus;
   /// How far (px) the status line's text reached past the window's width in the last frame.
   float statusOverflow = 0;
   /// Buttons of the Run row drawn narrower than their text in the last frame (0: none).
   int truncatedButtons = 0;
+  /// A cable was clicked in the view: the next frame opens the Inspector if it is collapsed.
+  bool showInspector = false;
+  /// How far (px) the widest table header of the Inspector reached past its column (counted
+  /// in panelOverflow[1]).
+  float cutHeaders = 0;
+  /// Whether the Inspector was open (not collapsed, not hidden) in the last frame.
+  bool inspectorOpen = false;
+  /// Whether the Simulation panel's Plots and Build sections were open in the last frame.
+  bool plotsSectionOpen = false, buildSectionOpen = false;
 
   /// Where the last frame's labels, bars, key, banner and scene went (px), for the scripts.
   DrawnView drawn;

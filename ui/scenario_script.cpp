@@ -447,7 +447,11 @@ bool ScenarioScript::build(Sandbox& sandbox, int frame) {
         ", \"undo\": " + jsonNumber(sandbox.authoring->undo.size()) +
         ", \"redo\": " + jsonNumber(sandbox.authoring->redo.size()) +
         ", \"error\": " + jsonQuoted(sandbox.error) + ", \"save_error\": " + jsonQuoted(saveError) +
-        ", \"file\": " + jsonQuoted(out_);
+        ", \"file\": " + jsonQuoted(out_) +
+        ", \"plots_open\": " + (sandbox.plotsSectionOpen ? "true" : "false") +
+        ", \"build_open\": " + (sandbox.buildSectionOpen ? "true" : "false") +
+        ", \"panel_overflow\": [" + jsonNumber(sandbox.panelOverflow[0]) + ", " +
+        jsonNumber(sandbox.panelOverflow[1]) + "]";
     playing_ = true;
     playFrom_ = world.time();
     key(SDLK_SPACE);

@@ -23,7 +23,10 @@ void stepBack(Sandbox& sandbox) {
 void timelinePanel(Sandbox& sandbox) {
   Timeline& t = *sandbox.timeline;
   if (t.frameCount() < 2) {
-    ImGui::TextDisabled("timeline: run the scene to go back in it");
+    // Wrapped: at projector scale the line is wider than the panel (shown after every edit).
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("timeline: run the scene to go back in it");
+    ImGui::PopStyleColor();
     tooltip("The last 30 s of the run are kept: go back to any moment and play on from there.");
     return;
   }

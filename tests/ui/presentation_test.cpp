@@ -74,3 +74,41 @@ TEST(Presentation, TheViewStaysFittedUntilTheUserMovesIt) {
 
 }  // namespace presentation_test
 }  // namespace cablelab::ui
+
+namespace cablelab::ui {
+namespace presentation_test {
+
+// A slider that changes a demo's run (the capstan's "what to try": m_load to 6, the rope slips
+// and the load falls) fits the view again to the new run, while the view is the fitted one: the
+// falling load stayed off the bottom of the old view.
+TEST(Presentation, ASliderStepKeepsTheNewRunInTheFittedView) {
+  Sandbox sandbox(1280, 720);
+  ASSERT_TRUE(sandbox.open("capstan"));
+  sandbox.panels = {{0, 0, 1280, 38}, {0, 672, 1280, 48}};  // the slim strip, the status line
+  togglePresentation(sandbox);
+  keepViewFitted(sandbox);
+  auto values = sandbox.parameters;
+  for (auto& [name, v] : values)
+    if (name == "m_load") v = 6;
+  ASSERT_TRUE(sandbox.rebuild(values)) << sandbox.error;
+  keepViewFitted(sandbox);
+  const PanelRect f = sandbox.freeArea();
+  const int load = sandbox.world()->findBody("load");
+  double lowest = -1e300;  // px, down positive
+  for (int i = 0; i < 3 * 60; ++i) {
+    sandbox.advance(sandbox.dt, true);
+    lowest = std::max(lowest, sandbox.camera.toScreen(sandbox.world()->body(load).position).y());
+  }
+  EXPECT_LE(lowest, f.y + f.height - barRowHeight(sandbox)) << "the load fell out of the view";
+  // A view the user chose stays through the slider.
+  sandbox.viewFitted = false;
+  sandbox.camera.metresPerPixel *= 0.5;
+  const Camera mine = sandbox.camera;
+  ASSERT_TRUE(sandbox.rebuild(values));
+  keepViewFitted(sandbox);
+  EXPECT_EQ(sandbox.camera.metresPerPixel, mine.metresPerPixel);
+  EXPECT_EQ(sandbox.camera.center, mine.center);
+}
+
+}  // namespace presentation_test
+}  // namespace cablelab::ui
