@@ -23,7 +23,12 @@
 //    continuous over time, like a circle's arc: a pulley swung round past an end anchor, which
 //    the cable bends round by more than half a turn or winds round for whole turns, STAYS, and a
 //    polygon's chain grows and shrinks one vertex at a time (wrapChainTurning, wrap.h).
-//  * A terminal inside a polygon pulley's hull (a neighbouring pulley inside it) has no taut path:
+//  * Neighbouring polygons meet on their common tangent (commonTangent, wrap_hold.h). A point fixed
+//    in the world or a neighbouring polygon's corner pressed into an engaged polygon's hull (no
+//    taut path exists) HOLDS the chain end it was on, which then moves one vertex at a time as a
+//    wrap point does, so the length stays continuous (wrapChainHeld, wrap_hold.h).
+//  * Any other terminal inside a polygon pulley's hull (a point on a body that the polygon passes
+//    through, as the hand's box through a finger) has no taut path:
 //    the polygon is DROPPED (it leaves the path) and a warning says so. A dropped polygon that
 //    still cuts its segment REJOINS as soon as a taut path round it exists again and that path is
 //    no longer than the straight segment by more than the drop took out (+ kLengthJump), with a
@@ -50,6 +55,7 @@
 #include <utility>
 #include <vector>
 
+#include "engine/cable/wrap_hold.h"
 #include "engine/model/scene.h"
 
 namespace cablelab {
@@ -312,6 +318,7 @@ class Cable {
     bool dropped = false;      ///< left by a guard (terminal inside the hull): may rejoin
     double dropCut = 0;        ///< length the drop took out of the path (m): the most a rejoin
                                ///< may put back
+    ChainHold hold;            ///< polygon: its chain's ends, held through a point in its hull
     double signedRadius() const { return side == WrapSide::Right ? -radius : radius; }
     /// The wrap branch at the start: the turns it was wound with, else within (0, 2 pi).
     double initialArc() const { return turns > 0 ? 2 * M_PI * turns : M_PI; }
@@ -325,6 +332,8 @@ class Cable {
   };
   void placePulleys(std::span<const BodyState> bodies);
   bool buildPath(std::vector<std::string>* warnings);
+  bool seedCommonTangents(std::vector<std::vector<int>>& chains) const;
+  bool holdsAgainst(int node) const;
   Vec2 entryPoint(int node, const std::vector<std::vector<int>>& chains) const;
   Vec2 exitPoint(int node, const std::vector<std::vector<int>>& chains) const;
   bool leaveRound();

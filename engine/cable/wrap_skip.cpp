@@ -76,7 +76,8 @@ bool Cable::skipEligible() const {
     return false;
   for (size_t j = 0; j < pulleys_.size(); ++j) {
     const PulleyState& p = pulleys_[j];
-    if (!p.engaged || p.circle || p.autoSide || p.dropped ||
+    if (!p.engaged || p.circle || p.autoSide || p.dropped || p.hold.holdingFrom ||
+        p.hold.holdingInto ||
         (p.polygon && p.side == WrapSide::Threaded))
       return false;
     // Neighbouring polygons settle their common tangent over several passes (buildPath).
