@@ -9,10 +9,6 @@ namespace cablelab {
 
 namespace {
 
-// The end of the chain into `b` continued from `t` (its last vertex at the last update) with the
-// turn at it `turn` (continued over time); the chain's other end `first` bounds the shrinking.
-// The from-end is the same walk mirrored (`into` false: `b` is the start terminal and the walk
-// goes the other way).
 // The turn at end vertex `at` of a chain between its chain neighbour `before` and the terminal
 // `b` (walking the path), on the branch nearest `previous`.
 double endTurn(const Vec2& b, std::span<const Vec2> polygon, WrapSide side, int before, int at,
@@ -32,6 +28,10 @@ double heldWholeTurns(const Vec2& b, std::span<const Vec2> polygon, WrapSide sid
   return 2 * M_PI * std::round((turn - raw) / (2 * M_PI));
 }
 
+// The end of the chain into `b` continued from `t` (its last vertex at the last update) with the
+// turn at it `turn` (continued over time); the chain's other end `first` bounds the shrinking.
+// The from-end is the same walk mirrored (`into` false: `b` is the start terminal and the walk
+// goes the other way).
 int continuedEnd(const Vec2& b, std::span<const Vec2> polygon, WrapSide side, int t, int first,
                  bool into, double& turn) {
   const int n = static_cast<int>(polygon.size());
@@ -98,15 +98,13 @@ std::optional<double> wrapChainHeld(const Vec2& a, const Vec2& b, std::span<cons
   chain.clear();
   const int tangentFrom = tangentVertex(a, polygon, side, false);
   const int tangentInto = tangentVertex(b, polygon, side, true);
-  // A hold starts from the turn the end vertex has now (less than half a turn: the terminal has
-  // just gone in).
-  if (!hold.holdingFrom) hold.turnFrom = 0;
-  if (!hold.holdingInto) hold.turnInto = 0;
   // While one end is held the other follows the old chain too: its tangent vertex can pass the
   // held end (the rope pulled into the hull), where the walk between them would be a lap long.
   const bool holding = hold.from >= 0 && hold.into >= 0 &&
                        (hold.holdingFrom || hold.holdingInto || (tangentFrom < 0 && mayHoldFrom) ||
                         (tangentInto < 0 && mayHoldInto));
+  // A hold starts from the turn the end vertex has now (less than half a turn: the terminal has
+  // just gone in).
   if (holding && !hold.holdingFrom) hold.turnFrom = 0;
   if (holding && !hold.holdingInto) hold.turnInto = 0;
   hold.holdingFrom = hold.holdingInto = holding;
@@ -120,8 +118,8 @@ std::optional<double> wrapChainHeld(const Vec2& a, const Vec2& b, std::span<cons
       ta = tb = hold.into;
       const Vec2 in = polygon[tb] - a, out = b - polygon[tb];
       hold.turnInto = continuedPointTurn(in, out, side, hold.turnInto);
-      singleWhole = 2 * M_PI *
-                    std::round((hold.turnInto - continuedPointTurn(in, out, side, 0.0)) / (2 * M_PI));
+      const double raw = continuedPointTurn(in, out, side, 0.0);
+      singleWhole = 2 * M_PI * std::round((hold.turnInto - raw) / (2 * M_PI));
     } else {
       tb = continuedEnd(b, polygon, side, hold.into, hold.from, true, hold.turnInto);
       ta = continuedEnd(a, polygon, side, hold.from, tb, false, hold.turnFrom);
