@@ -7,6 +7,7 @@
 
 #include "engine/cable/circle_wrap.h"
 #include "engine/cable/wrap.h"
+#include "engine/cable/wrap_hold.h"
 #include "engine/core/error.h"
 
 namespace cablelab {
@@ -183,6 +184,32 @@ Vec2 Cable::exitPoint(int node, const std::vector<std::vector<int>>& chains) con
   return entryPoint(node, chains);
 }
 
+// Seeds the chains of engaged neighbouring polygons with their common tangent (it holds whether
+// their hulls are apart or overlap). True if the path has neighbouring polygons.
+bool Cable::seedCommonTangents(std::vector<std::vector<int>>& chains) const {
+  bool any = false;
+  for (size_t n = 1; n + 2 < nodes_.size(); ++n) {
+    const PulleyState &first = pulleys_[nodes_[n] - 1], &second = pulleys_[nodes_[n + 1] - 1];
+    if (!first.polygon || !second.polygon) continue;
+    any = true;
+    int from, into;
+    if (!commonTangent(first.world, first.side, second.world, second.side, from, into)) continue;
+    chains[nodes_[n] - 1].push_back(from);  // after its entry from a polygon before it, if any
+    chains[nodes_[n + 1] - 1].assign(1, into);
+  }
+  return any;
+}
+
+// Whether chain node `node` (0 start, 1..P pulley, P+1 end) may be pressed into its neighbouring
+// polygon's hull and hold the chain end there: a point fixed in the world, or a neighbouring
+// polygon's corner (docs/cables.md, "Points inside a hull"). A point on another body drops it.
+bool Cable::holdsAgainst(int node) const {
+  if (node == 0) return start_.body < 0;
+  if (node == static_cast<int>(pulleys_.size()) + 1) return end_.body < 0;
+  const PulleyState& p = pulleys_[node - 1];
+  return p.polygon || p.body < 0;
+}
+
 // Rebuilds path_ from the engaged pulleys. Returns false if a polygon had to leave.
 bool Cable::buildPath(std::vector<std::string>* warnings) {
   const int count = static_cast<int>(pulleys_.size());
@@ -192,14 +219,12 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
     if (pulleys_[j].engaged) nodes.push_back(j + 1);
   nodes.push_back(count + 1);
 
-  // Polygon chains depend on their neighbours' contact points; neighbouring polygons need a few
-  // passes to settle on the common tangent.
+  // Polygon chains depend on their neighbours' contact points. Neighbouring polygons start from
+  // their common tangent, and a few passes settle a chain of three or more.
   std::vector<std::vector<int>>& chains = chains_;
   chains.resize(count);
   for (std::vector<int>& c : chains) c.clear();
-  bool neighbouringPolygons = false;
-  for (size_t n = 1; n + 2 < nodes.size(); ++n)
-    neighbouringPolygons |= pulleys_[nodes[n] - 1].polygon && pulleys_[nodes[n + 1] - 1].polygon;
+  const bool neighbouringPolygons = seedCommonTangents(chains);
   const int passes = neighbouringPolygons ? 4 : 1;
   for (int pass = 0; pass < passes; ++pass)
     for (size_t n = 1; n + 1 < nodes.size(); ++n) {
@@ -208,10 +233,13 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
       const Vec2 a = exitPoint(nodes[n - 1], chains);
       const Vec2 b = entryPoint(nodes[n + 1], chains);
       // The chain that continues the last update's wrap (more than half a turn when the
-      // polygon swung round past an end anchor).
-      const auto turn = p.tiedEnd != 0
-                            ? tiedChain(p, a, b, chains[nodes[n] - 1])
-                            : wrapChainTurning(a, b, p.world, p.side, p.arc, chains[nodes[n] - 1]);
+      // polygon swung round past an end anchor), holding its end where a terminal that may be
+      // pressed into the hull is inside it; a spool's chain runs to the corner its rope is tied at.
+      const auto turn =
+          p.tiedEnd != 0
+              ? tiedChain(p, a, b, chains[nodes[n] - 1])
+              : wrapChainHeld(a, b, p.world, p.side, p.arc, holdsAgainst(nodes[n - 1]),
+                              holdsAgainst(nodes[n + 1]), p.hold, chains[nodes[n] - 1]);
       if (turn) p.arc = *turn;
       if (!turn) {
         p.engaged = false;
@@ -222,6 +250,17 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
                               " left the path: a neighbouring point lies inside its hull");
         return false;
       }
+    }
+  // A neighbouring polygon the path no longer bends round leaves before the next build takes its
+  // centre as its neighbour's terminal (leaveRound would see its empty chain only after that).
+  if (neighbouringPolygons)
+    for (size_t n = 1; n + 1 < nodes.size(); ++n) {
+      PulleyState& p = pulleys_[nodes[n] - 1];
+      if (!p.polygon || !chains[nodes[n] - 1].empty()) continue;
+      p.engaged = false;
+      p.previousDepth = 0;
+      p.arc = 0;
+      return false;
     }
 
   // Keep the terminals' last contact points (circle tangents) for the next build.
@@ -322,6 +361,7 @@ bool Cable::joinRound(std::vector<std::string>* warnings) {
       if (touches || crossed) {
         p.engaged = true;
         p.arc = 0;
+        p.hold = ChainHold{};
         return true;
       }
       continue;
@@ -352,6 +392,7 @@ bool Cable::joinRound(std::vector<std::string>* warnings) {
     if (cuts && crossed) {
       p.engaged = true;
       p.dropped = false;
+      p.hold = ChainHold{};
       // A circle joins at zero wrap; at the start its wrap is the one it was wound with. A
       // point or a polygon joins at zero turn.
       p.arc = firstUpdate_ && p.circle ? p.initialArc() : 0.0;

@@ -26,7 +26,12 @@
 //  * A cable end fixed on a polygon pulley's own body, on or inside its hull, next to it in the
 //    path, ties the cable to that polygon (a spool, tied_end.h): it is engaged from the start,
 //    never leaves, and winds whole turns. The rules below do not apply to that end.
-//  * A terminal inside a polygon pulley's hull (a neighbouring pulley inside it) has no taut path:
+//  * Neighbouring polygons meet on their common tangent (commonTangent, wrap_hold.h). A point fixed
+//    in the world or a neighbouring polygon's corner pressed into an engaged polygon's hull (no
+//    taut path exists) HOLDS the chain end it was on, which then moves one vertex at a time as a
+//    wrap point does, so the length stays continuous (wrapChainHeld, wrap_hold.h).
+//  * Any other terminal inside a polygon pulley's hull (a point on a body that the polygon passes
+//    through, as the hand's box through a finger) has no taut path:
 //    the polygon is DROPPED (it leaves the path) and a warning says so. A dropped polygon that
 //    still cuts its segment REJOINS as soon as a taut path round it exists again and that path is
 //    no longer than the straight segment by more than the drop took out (+ kLengthJump), with a
@@ -53,6 +58,7 @@
 #include <utility>
 #include <vector>
 
+#include "engine/cable/wrap_hold.h"
 #include "engine/model/scene.h"
 
 namespace cablelab {
@@ -321,6 +327,7 @@ class Cable {
     int tiedEnd = 0;
     int tiedCorner = -1;
     bool tiedInside = false;
+    ChainHold hold;            ///< polygon: its chain's ends, held through a point in its hull
     double signedRadius() const { return side == WrapSide::Right ? -radius : radius; }
     /// The wrap branch at the start: the turns it was wound with, else within (0, 2 pi).
     double initialArc() const { return turns > 0 ? 2 * M_PI * turns : M_PI; }
@@ -334,6 +341,8 @@ class Cable {
   };
   void placePulleys(std::span<const BodyState> bodies);
   bool buildPath(std::vector<std::string>* warnings);
+  bool seedCommonTangents(std::vector<std::vector<int>>& chains) const;
+  bool holdsAgainst(int node) const;
   Vec2 entryPoint(int node, const std::vector<std::vector<int>>& chains) const;
   Vec2 exitPoint(int node, const std::vector<std::vector<int>>& chains) const;
   bool leaveRound();

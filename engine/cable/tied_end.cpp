@@ -47,10 +47,10 @@ std::optional<double> wrapChainToTiedEnd(const Vec2& a, std::span<const Vec2> po
                                          WrapSide side, int corner, double reference, int held,
                                          std::vector<int>& chain) {
   chain.clear();
-  int ta = tangentVertexFrom(a, polygon, side);
+  int ta = tangentVertex(a, polygon, side, false);
   if (ta < 0) ta = held;
   if (ta < 0) return std::nullopt;
-  const int n = static_cast<int>(polygon.size()), step = side == WrapSide::Right ? 1 : -1;
+  const int n = static_cast<int>(polygon.size()), step = walkStep(side);
   // The path turns at `corner` onto its edge: walkTurning's B is the edge's next vertex.
   int walk, loops;
   const double turn = walkTurning(a, polygon[(corner + step + n) % n], polygon, side, ta, corner,

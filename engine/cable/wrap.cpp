@@ -62,53 +62,48 @@ std::optional<std::vector<int>> wrapChain(const Vec2& a, const Vec2& b,
   return chain;
 }
 
+bool insideConvex(const Vec2& p, std::span<const Vec2> polygon) {
+  const int n = static_cast<int>(polygon.size());
+  for (int i = 0; i < n; ++i)
+    if (cross(polygon[(i + 1) % n] - polygon[i], p - polygon[i]) <= 0) return false;
+  return true;
+}
+
+int tangentVertex(const Vec2& terminal, std::span<const Vec2> polygon, WrapSide side, bool into) {
+  if (insideConvex(terminal, polygon)) return -1;
+  const int n = static_cast<int>(polygon.size());
+  // Mirror Right into Left: walking the path, the polygon must stay on the right (s = +1). Seen
+  // from an outside point the polygon spans less than half a turn, so "more to the left" is a
+  // total order: from a, the vertex with nothing on the left of a->v; into b, the vertex with
+  // nothing on the left of v->b. Ties (collinear): the vertex farther from the terminal, so
+  // collinear points never become wrap points.
+  const double s = side == WrapSide::Right ? -1.0 : 1.0;
+  int t = 0;
+  for (int i = 1; i < n; ++i) {
+    const double r = into ? -s * cross(terminal - polygon[t], polygon[i] - polygon[t])
+                          : -s * cross(polygon[t] - terminal, polygon[i] - terminal);
+    if (r < 0 ||
+        (r == 0 && (polygon[i] - terminal).squaredNorm() > (polygon[t] - terminal).squaredNorm()))
+      t = i;
+  }
+  return t;
+}
+
 namespace {
 
 // The tangent vertices of the taut path a -> polygon -> b on `side`: ta from a, tb into b.
 // False when a terminal lies inside the polygon (no taut path round it exists).
 bool tangentVertices(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, WrapSide side,
                      int& ta, int& tb) {
-  const int n = static_cast<int>(polygon.size());
-  // Mirror Right into Left: walking the path, the polygon must stay on the right (s = +1).
-  const double s = side == WrapSide::Right ? -1.0 : 1.0;
-  auto right = [&](const Vec2& from, const Vec2& to, const Vec2& p) {
-    return -s * cross(to - from, p - from);
-  };
-  auto insidePolygon = [&](const Vec2& p) {
-    for (int i = 0; i < n; ++i)
-      if (cross(polygon[(i + 1) % n] - polygon[i], p - polygon[i]) <= 0) return false;
-    return true;
-  };
-  if (insidePolygon(a) || insidePolygon(b)) return false;
-  // Tangent vertices by one sweep each (seen from an outside point the polygon spans less than
-  // half a turn, so "more to the left" is a total order): from a, the vertex with nothing on the
-  // left of a->v; into b, the vertex with nothing on the left of v->b. Ties (collinear): the
-  // vertex farther from the terminal, so collinear points never become wrap points.
-  ta = 0, tb = 0;
-  for (int i = 1; i < n; ++i) {
-    const double r = right(a, polygon[ta], polygon[i]);
-    if (r < 0 || (r == 0 && (polygon[i] - a).squaredNorm() > (polygon[ta] - a).squaredNorm()))
-      ta = i;
-  }
-  for (int i = 1; i < n; ++i) {
-    const double r = right(polygon[tb], b, polygon[i]);
-    if (r < 0 || (r == 0 && (polygon[i] - b).squaredNorm() > (polygon[tb] - b).squaredNorm()))
-      tb = i;
-  }
-  return true;
-}
-
-// The walk round the boundary with the polygon on the right (clockwise for Left,
-// counter-clockwise for Right): +1 or -1 per vertex.
-int walkStep(WrapSide side) {
-  return side == WrapSide::Right ? 1 : -1;
+  ta = tangentVertex(a, polygon, side, false);
+  tb = tangentVertex(b, polygon, side, true);
+  return ta >= 0 && tb >= 0;
 }
 
 }  // namespace
 
-int tangentVertexFrom(const Vec2& a, std::span<const Vec2> polygon, WrapSide side) {
-  int ta, tb;
-  return tangentVertices(a, a, polygon, side, ta, tb) ? ta : -1;
+int walkStep(WrapSide side) {
+  return side == WrapSide::Right ? 1 : -1;
 }
 
 bool wrapChain(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, WrapSide side,

@@ -45,10 +45,6 @@ double walkTurning(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon, 
 /// Turns below this (rad) are straight: no vertex is a wrap point.
 inline constexpr double kStraightWrapTurn = 1e-12;
 
-/// The tangent vertex of the taut path from A round the polygon on `side` (the first vertex of
-/// wrapChain's chain when it bends); -1 when A lies inside the polygon.
-int tangentVertexFrom(const Vec2& a, std::span<const Vec2> polygon, WrapSide side);
-
 /// Length of the path A -> polygon[chain...] -> B.
 double chainLength(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,
                    const std::vector<int>& chain);
@@ -62,6 +58,17 @@ double wrapSideDistance(const Vec2& a, const Vec2& b, const Vec2& p, WrapSide si
 /// half a turn (the cable doubled back round the point, e.g. swung round past an end anchor) it
 /// goes on growing instead of flipping sign. The point leaves the path when it goes below 0.
 double continuedPointTurn(const Vec2& in, const Vec2& out, WrapSide side, double previous);
+
+/// True when p lies strictly inside the convex CCW polygon.
+bool insideConvex(const Vec2& p, std::span<const Vec2> polygon);
+
+/// The tangent vertex of the taut path from `terminal` round the polygon on `side` (`into`
+/// false), or into `terminal` (`into` true); -1 when the terminal lies inside the polygon.
+int tangentVertex(const Vec2& terminal, std::span<const Vec2> polygon, WrapSide side, bool into);
+
+/// The walk round the boundary with the polygon on the cable's right (clockwise for Left,
+/// counter-clockwise for Right): +1 or -1 per vertex index.
+int walkStep(WrapSide side);
 
 /// True when the segment a-b passes through the interior of the convex CCW polygon.
 bool segmentCutsPolygon(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon);
