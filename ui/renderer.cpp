@@ -157,6 +157,15 @@ class Painter {
   void placeLabels(const LabelBox& view, const std::vector<LabelBox>& reserved,
                    DrawnView& drawn) const {
     if (!text_) return;
+    // A thing out of view (a close-up's far weight, ui/presentation.h) has no label: a leader
+    // line across the view to the edge would point at nothing.
+    const auto outOfView = [&](const Label& l) {
+      const Vec2& a = l.anchor;
+      const bool out = a.x() < view.x0 || a.x() > view.x1 || a.y() < view.y0 || a.y() > view.y1;
+      drawn.hiddenLabels += out;
+      return out;
+    };
+    labels_.erase(std::remove_if(labels_.begin(), labels_.end(), outOfView), labels_.end());
     std::vector<LabelRequest> requests;
     requests.reserve(labels_.size());
     for (const Label& l : labels_) {
