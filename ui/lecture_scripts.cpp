@@ -48,6 +48,7 @@ std::string viewJson(const Sandbox& s, const std::string& name, const std::strin
          jsonNumber(free.width) + ", " + jsonNumber(free.height) + "], \"scene\": " + box(d.scene) +
          ", \"stage\": " + box(stage) + ", \"labels\": " + labels +
          ", \"hidden_labels\": " + jsonNumber(d.hiddenLabels) +
+         ", \"labels_on_cables\": " + jsonNumber(d.labelsOnCables) +
          ", \"scale_bar\": " + box(f.scaleBar) + ", \"colour_bar\": " + box(f.colourBar) +
          ", \"key\": " + box(f.key) + ", \"notes\": " + box(f.notes) +
          ", \"banner\": " + box(f.banner) + ", \"paused\": " + box(f.paused) +

@@ -99,6 +99,8 @@ void expectReadable(const nlohmann::json& v) {
                 labels[i].y1 <= free.y1)
         << "label " << i << " " << where;
   }
+  // No label across a cable's line or its end dot ("cable", "band", "block" were).
+  EXPECT_EQ(v["labels_on_cables"].get<int>(), 0) << where;
   for (size_t i = 0; i < pieces.size(); ++i)
     for (size_t j = 0; j < i; ++j)
       EXPECT_FALSE(pieces[i].overlaps(pieces[j])) << i << "," << j << " " << where;
