@@ -40,6 +40,22 @@ double LabelBox::overlapArea(const LabelBox& o) const {
          std::max(0.0, std::min(y1, o.y1) - std::max(y0, o.y0));
 }
 
+bool crossesConvex(const LabelBox& box, const LabelObstacle& poly) {
+  if (poly.size() < 3) return false;
+  const LabelBox b = bounds(poly);
+  if (b.x1 < box.x0 || b.x0 > box.x1 || b.y1 < box.y0 || b.y0 > box.y1) return false;
+  const Vec2 corners[] = {{box.x0, box.y0}, {box.x1, box.y0}, {box.x1, box.y1}, {box.x0, box.y1}};
+  for (size_t k = 0; k < poly.size(); ++k) {  // each edge's normal as a separating axis
+    const Vec2 edge = poly[(k + 1) % poly.size()] - poly[k];
+    const Vec2 axis(-edge.y(), edge.x());
+    double lo = 1e300, hi = -1e300, plo = 1e300, phi = -1e300;
+    for (const Vec2& c : corners) lo = std::min(lo, axis.dot(c)), hi = std::max(hi, axis.dot(c));
+    for (const Vec2& p : poly) plo = std::min(plo, axis.dot(p)), phi = std::max(phi, axis.dot(p));
+    if (hi < plo || phi < lo) return false;
+  }
+  return true;
+}
+
 double obstacleCover(const LabelBox& box, const std::vector<LabelObstacle>& obstacles) {
   int hits = 0, samples = kColumns * kRows;
   for (const LabelObstacle& poly : obstacles) {
@@ -51,8 +67,10 @@ double obstacleCover(const LabelBox& box, const std::vector<LabelObstacle>& obst
                      box.y0 + (box.y1 - box.y0) * j / (kRows - 1));
         hits += insideConvex(poly, p);
       }
+    const int before = hits;
     for (const Vec2& v : poly)
       hits += v.x() > box.x0 && v.x() < box.x1 && v.y() > box.y0 && v.y() < box.y1;
+    if (hits == before && crossesConvex(box, poly)) ++hits;
   }
   return std::min(1.0, static_cast<double>(hits) / samples);
 }

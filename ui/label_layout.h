@@ -1,7 +1,7 @@
 // Label placement in screen space (pixels, y down), without GL: each label goes to the first of
 // its candidate places, nearest to its anchor first, that overlaps no label placed before it,
 // no reserved rectangle (the scale bar, the colour bar, the key), no body and stays inside the
-// view. Bodies are a soft limit (the least-covered place wins when none is clear of them); the
+// view, and off the cables' lines (thin strips). Bodies and cables are a soft limit (the least-covered place wins when none is clear of them); the
 // other labels, the reserved rectangles and the view's edges are hard ones: a label with no
 // place that keeps them is not shown. A label placed away from its anchor gets a leader line.
 #pragma once
@@ -41,8 +41,13 @@ std::vector<LabelPlacement> placeLabels(const std::vector<LabelRequest>& labels,
                                         const LabelBox& view, double gap,
                                         const std::vector<LabelBox>& reserved = {});
 
+/// Whether the convex polygon `poly` and `box` overlap (separating axes): a thin strip along a
+/// cable that no sample point of the box falls on still counts.
+bool crossesConvex(const LabelBox& box, const LabelObstacle& poly);
+
 /// How much of `box` the obstacles cover, 0..1 (a grid of sample points, plus obstacle
-/// vertices inside the box, so that a small body under a big label counts).
+/// vertices inside the box, so that a small body under a big label counts; an obstacle that
+/// crosses the box between the samples, a cable's strip, counts as one sample).
 double obstacleCover(const LabelBox& box, const std::vector<LabelObstacle>& obstacles);
 
 }  // namespace cablelab::ui

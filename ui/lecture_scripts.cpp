@@ -34,18 +34,29 @@ std::string viewJson(const Sandbox& s, const std::string& name, const std::strin
     const Vec2 lo = s.camera.toScreen(s.demo.stage.lo), hi = s.camera.toScreen(s.demo.stage.hi);
     stage = {lo.x(), hi.y(), hi.x(), lo.y()};
   }
+  int bodiesInView = 0;  // dynamic bodies whose centre is in the free area
+  if (const World* world = s.world())
+    for (int i = 0; i < world->bodyCount(); ++i) {
+      const Vec2 p = s.camera.toScreen(world->body(i).position);
+      bodiesInView += world->scene().bodies[i].type == BodyType::Dynamic && p.x() >= free.x &&
+                      p.x() <= free.x + free.width && p.y() >= free.y &&
+                      p.y() <= free.y + free.height;
+    }
   return "{\"name\": " + jsonQuoted(name) + ", \"scene_name\": " + jsonQuoted(s.sceneName) +
          ", \"window\": [" + jsonNumber(s.camera.width) + ", " + jsonNumber(s.camera.height) +
          "], \"free\": [" + jsonNumber(free.x) + ", " + jsonNumber(free.y) + ", " +
          jsonNumber(free.width) + ", " + jsonNumber(free.height) + "], \"scene\": " + box(d.scene) +
          ", \"stage\": " + box(stage) + ", \"labels\": " + labels +
          ", \"hidden_labels\": " + jsonNumber(d.hiddenLabels) +
+         ", \"labels_on_cables\": " + jsonNumber(d.labelsOnCables) +
          ", \"scale_bar\": " + box(f.scaleBar) + ", \"colour_bar\": " + box(f.colourBar) +
          ", \"key\": " + box(f.key) + ", \"notes\": " + box(f.notes) +
          ", \"banner\": " + box(f.banner) + ", \"paused\": " + box(f.paused) +
          ", \"ui_scale\": " + jsonNumber(s.uiScale) +
          ", \"presentation\": " + (s.presentation ? "true" : "false") +
-         ", \"view_fitted\": " + (s.viewFitted ? "true" : "false") + ", \"overflow\": [" +
+         ", \"view_fitted\": " + (s.viewFitted ? "true" : "false") +
+         ", \"close_up\": " + (s.closeUp ? "true" : "false") +
+         ", \"bodies_in_view\": " + jsonNumber(bodiesInView) + ", \"overflow\": [" +
          jsonNumber(s.panelOverflow[0]) + ", " + jsonNumber(s.panelOverflow[1]) +
          "], \"status_overflow\": " + jsonNumber(s.statusOverflow) +
          ", \"status\": " + jsonQuoted(s.shownStatus) +

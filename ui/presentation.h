@@ -10,6 +10,14 @@
 // or is resized, the UI scale (projector mode) changes, the window is resized or another scene
 // opens, it is fitted again. The fit key (v, or View > fit scene view) fits it at any time.
 //
+// A looping demo that is thin and tall (the wheel's Atwood machine, the winch, the tackle: a
+// long rope under a small wheel) would be a sliver at a whole-run fit, a few percent of the
+// window's width. Presentation mode shows it in close-up instead: the top of the mechanism (the
+// wheel, drum or pulleys the rope hangs from) and the nearest body hanging below it, at least
+// kCloseUpSpan times the scene's width tall; the view follows the run (zooms out at once when
+// that body moves away, in and along smoothly when it comes nearer). A body farther away than
+// three times that leaves the view until it comes back: the wheel stays readable.
+//
 // Needs: ui/sandbox.h only (no SDL, no GL, no ImGui frame).
 #pragma once
 
@@ -33,6 +41,32 @@ float barRowHeight(const Sandbox& sandbox);
 /// The camera that shows the scene's moving parts (and `stage`, a demo's whole run, when not
 /// empty) as large as `area` (px) allows, with a margin, keeping `bottomReserve` px at the
 /// bottom of the area for the colour bar's row.
+/// The close-up's height, in units of the scene's width (ui/presentation.h's comment).
+inline constexpr double kCloseUpSpan = 2.4;
+
+/// True when presentation mode shows `sandbox`'s scene in close-up: a looping demo whose whole
+/// run, fitted to the free area, would be narrower than kCloseUpBelow of its width.
+bool wantsCloseUp(const Sandbox& sandbox);
+
+/// What a close-up shows: a view `span` m tall with `focus` (m) at its middle, of a scene
+/// `width` m wide.
+struct CloseUpFrame {
+  Vec2 focus = Vec2::Zero();
+  double span = 0, width = 0;
+};
+
+/// The close-up of the run as it is now: the top of the mechanism (the wheel, drum or pulleys
+/// the rope hangs from) and the nearest body hanging below it, at least kCloseUpSpan times the
+/// scene's width tall.
+CloseUpFrame closeUpFrame(const World& world);
+
+/// The close-up camera: closeUpFrame() fills the area above `bottomReserve`.
+Camera closeUpCamera(const World& world, const Camera& camera, const PanelRect& area,
+                     float bottomReserve);
+
+/// Moves a close-up view towards its focus (called once a frame, `seconds` since the last).
+void followCloseUp(Sandbox& sandbox, double seconds);
+
 Camera fitToContent(const World& world, const Camera& camera, const PanelRect& area,
                     float bottomReserve, const WorldBounds& stage = {});
 

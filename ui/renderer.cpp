@@ -151,12 +151,33 @@ class Painter {
     for (const Vec2& p : worldPoints) o.push_back(cam_.toScreen(p));
   }
 
+  /// A cable's straight piece (world points) that labels keep off: a strip `halfPx` either
+  /// side of it, reaching `halfPx` past its ends (the end dots).
+  void strip(const Vec2& from, const Vec2& to, double halfPx) const {
+    if (!text_) return;
+    const Vec2 a = cam_.toScreen(from), b = cam_.toScreen(to);
+    if ((b - a).norm() < 1e-9) return;
+    const Vec2 along = halfPx * (b - a).normalized(), across(-along.y(), along.x());
+    obstacles_.push_back({a - along + across, b + along + across, b + along - across,
+                          a - along - across});
+    ++strips_;
+  }
+
   /// Draws the queued labels where label_layout.h puts them inside `view` (px): off the bodies,
   /// each other and `reserved`, a leader line to those placed away from their anchor; a label
   /// with no such place is left out. Adds what it drew to `drawn`.
   void placeLabels(const LabelBox& view, const std::vector<LabelBox>& reserved,
                    DrawnView& drawn) const {
     if (!text_) return;
+    // A thing out of view (a close-up's far weight, ui/presentation.h) has no label: a leader
+    // line across the view to the edge would point at nothing.
+    const auto outOfView = [&](const Label& l) {
+      const Vec2& a = l.anchor;
+      const bool out = a.x() < view.x0 || a.x() > view.x1 || a.y() < view.y0 || a.y() > view.y1;
+      drawn.hiddenLabels += out;
+      return out;
+    };
+    labels_.erase(std::remove_if(labels_.begin(), labels_.end(), outOfView), labels_.end());
     std::vector<LabelRequest> requests;
     requests.reserve(labels_.size());
     for (const Label& l : labels_) {
@@ -171,6 +192,11 @@ class Painter {
         continue;
       }
       drawn.labels.push_back(b);
+      for (size_t k2 = obstacles_.size() - strips_; k2 < obstacles_.size(); ++k2)
+        if (crossesConvex(b, obstacles_[k2])) {
+          ++drawn.labelsOnCables;
+          break;
+        }
       const ImU32 colour = toImU32(labels_[k].colour);
       if (placed[k].leader) {
         const Vec2& a = labels_[k].anchor;
@@ -184,6 +210,7 @@ class Painter {
     }
     labels_.clear();
     obstacles_.clear();
+    strips_ = 0;
   }
 
   const Camera& camera() const { return cam_; }
@@ -200,6 +227,7 @@ class Painter {
   ImDrawList* text_;
   float scale_;
   mutable std::vector<Label> labels_;
+  mutable size_t strips_ = 0;  ///< the last obstacles_ are cables' strips
   mutable std::vector<LabelObstacle> obstacles_;
 };
 
@@ -376,6 +404,7 @@ void drawCables(const World& world, const RenderOptions& options, double scale,
       const Vec2 from = path[k - 1].radius == 0 ? path[k - 1].world : path[k - 1].tangentOut;
       const Vec2 to = path[k].radius == 0 ? path[k].world : path[k].tangentIn;
       const double tension = cable.segmentTension(k - 1);
+      paint.strip(from, to, 0.5 * width * paint.scale() + 2);
       if (tension <= 0)
         paint.dashed(from, to, kSlack, width - 1, phase);
       else

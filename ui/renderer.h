@@ -38,6 +38,7 @@ bool overstretched(const Cable& cable);
 struct DrawnView {
   std::vector<LabelBox> labels;  ///< every label shown
   int hiddenLabels = 0;          ///< labels with no free place (not drawn)
+  int labelsOnCables = 0;        ///< labels drawn across a cable's line (no place off them)
   FurnitureLayout furniture;     ///< scale bar, colour bar, key, notes, banner, PAUSED sign
   LabelBox scene;                ///< the moving bodies, pulleys and cables (ui/scene_bounds.h)
 };

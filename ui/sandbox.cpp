@@ -191,6 +191,7 @@ void Sandbox::advance(double frameSeconds, bool fixedStep) {
     std::cerr << "cablelab-gui: " << error << "\n";
   }
   checkWarnings();
+  followCloseUp(*this, frameSeconds);
   if (follow && selectedBody >= 0 && selectedBody < world_->bodyCount())
     camera.center = centreFor(world_->body(selectedBody).position);
 }
@@ -451,6 +452,11 @@ void Sandbox::fitView() {
   fittedScale = uiScale;
   viewFitted = true;
   if (!world_ || f.width < 40 || f.height < 40) return;
+  closeUp = presentation && wantsCloseUp(*this);
+  if (closeUp) {
+    camera = closeUpCamera(*world_, camera, f, barRowHeight(*this));
+    return;
+  }
   if (presentation) {
     camera = fitToContent(*world_, camera, f, barRowHeight(*this), demo.stage);
     return;

@@ -107,6 +107,9 @@ class Sandbox {
   /// The camera is as the last fit left it (no pan or zoom since): a change of the free area or
   /// the UI scale fits it again (ui/presentation.h).
   bool viewFitted = true;
+  /// The fitted view is a close-up that follows the run (a thin, tall demo in presentation
+  /// mode, ui/presentation.h).
+  bool closeUp = false;
   PanelRect fittedArea;       ///< the free area of the last fit
   float fittedScale = 0;      ///< the UI scale of the last fit
   bool presentation = false;  ///< presentation mode: side panels hidden, the scene fitted

@@ -97,3 +97,24 @@ TEST(LabelLayout, ALabelWithNoFreePlaceIsLeftOut) {
 
 }  // namespace
 }  // namespace cablelab::ui
+
+namespace cablelab::ui {
+namespace label_layout_strip_test {  // named: unity batches join test files
+
+// A cable's line is a strip 3 px wide: no sample point of a 60x20 label falls on it, yet the
+// label at its preferred place would be drawn across it. It moves off the line.
+TEST(LabelLayout, ALabelKeepsOffACablesThinStrip) {
+  const LabelObstacle strip = {{129, 0}, {131, 0}, {131, 400}, {129, 400}};  // x = 130, vertical
+  const LabelBox across{100, 50, 160, 70};
+  EXPECT_TRUE(crossesConvex(across, strip));
+  EXPECT_FALSE(crossesConvex({140, 50, 200, 70}, strip));
+  EXPECT_GT(obstacleCover(across, {strip}), 0);
+  const auto placed = placeLabels({{Vec2(125, 60), Vec2(-25, -10), 60, 20}}, {strip},
+                                  {0, 0, 400, 400}, 4);
+  ASSERT_EQ(placed.size(), 1u);
+  EXPECT_TRUE(placed[0].shown);
+  EXPECT_FALSE(crossesConvex(placed[0].box, strip)) << placed[0].box.x0 << " " << placed[0].box.x1;
+}
+
+}  // namespace label_layout_strip_test
+}  // namespace cablelab::ui

@@ -18,6 +18,7 @@ namespace lecture_gui_test {  // named: unity batches join test files
 constexpr double kSceneShare = 0.6;  // of the window's width, in presentation mode
 constexpr double kTallShare = 0.7;   // of the view's height, for a scene taller than wide
 constexpr double kEdge = 1.0;        // px
+constexpr double kCloseUpShare = 0.04;  // of the window's width, for a thin, tall demo
 
 const std::string kXvfb1080 = "xvfb-run -a -s \"-screen 0 1920x1080x24\" ";
 
@@ -54,12 +55,20 @@ void expectReadable(const nlohmann::json& v) {
                  v["free"][1].get<double>() + v["free"][3].get<double>()};
   ASSERT_FALSE(v["scene"].is_null()) << where;
   const Box scene = boxes(nlohmann::json::array({v["scene"]}))[0];
-  // The scene inside the view (between the panels), nothing of it cut off.
+  // The scene inside the view (between the panels), nothing of it cut off; a close-up's rope
+  // runs on below it (ui/presentation.h).
+  const bool closeUp = v["close_up"].get<bool>();
   EXPECT_GE(scene.x0, free.x0 - kEdge) << where;
   EXPECT_GE(scene.y0, free.y0 - kEdge) << where;
   EXPECT_LE(scene.x1, free.x1 + kEdge) << where;
-  EXPECT_LE(scene.y1, free.y1 + kEdge) << where;
-  if (v["presentation"].get<bool>()) {
+  if (!closeUp) EXPECT_LE(scene.y1, free.y1 + kEdge) << where;
+  if (closeUp) {
+    // The top of the mechanism in view, at least kCloseUpShare of the window's width (a
+    // whole-run fit left the wheel's scene 3% of it).
+    EXPECT_TRUE(v["presentation"].get<bool>()) << where;
+    EXPECT_GE(v["bodies_in_view"].get<int>(), 1) << where;
+    EXPECT_GE((scene.x1 - scene.x0) / w, kCloseUpShare) << where;
+  } else if (v["presentation"].get<bool>()) {
     EXPECT_GE(free.x1 - free.x0, 0.95 * w) << "panels left in presentation mode: " << where;
     // As large as it fits: 60% of the window's width, or, for a scene taller than the window's
     // shape (the hexagon's weight hangs below it), most of the view's height.
@@ -90,6 +99,8 @@ void expectReadable(const nlohmann::json& v) {
                 labels[i].y1 <= free.y1)
         << "label " << i << " " << where;
   }
+  // No label across a cable's line or its end dot ("cable", "band", "block" were).
+  EXPECT_EQ(v["labels_on_cables"].get<int>(), 0) << where;
   for (size_t i = 0; i < pieces.size(); ++i)
     for (size_t j = 0; j < i; ++j)
       EXPECT_FALSE(pieces[i].overlaps(pieces[j])) << i << "," << j << " " << where;
@@ -178,6 +189,30 @@ nlohmann::json walkthroughAt(const std::string& scene, const std::string& size) 
 TEST(Lecture, WalkthroughCapstanSliderStepStaysInView) {
   REQUIRE_XVFB();
   for (const char* size : {"1280x720", "1920x1080"}) walkthroughAt("capstan", size);
+}
+
+// The wheel, the winch and the tackle are a long rope under a small wheel: fitted to their
+// whole run they were 3-5% of the window's width (the wheel 40 px at 1280x720). In
+// presentation mode they are shown in close-up: the wheel, drum or pulleys and the nearest body
+// hanging from them stay in view through the run, the drag, the slider step and the rewind.
+TEST(Lecture, ThinDemosInCloseUpKeepTheWheelAndAWeightInView) {
+  REQUIRE_XVFB();
+  for (const std::string scene : {"wheel", "winch", "tackle"})
+    for (const char* size : {"1280x720", "1920x1080"}) {
+      if (scene != "wheel" && std::string(size) != "1280x720") continue;  // one size each
+      const auto j = walkthroughAt(scene, size);
+      ASSERT_TRUE(j.contains("views"));
+      double widest = 0;
+      int withAWeight = 0;  // views that hold the mechanism and a body hanging from it
+      EXPECT_TRUE(j["views"][0]["close_up"].get<bool>()) << scene << " " << size;
+      for (const auto& v : j["views"]) {
+        withAWeight += v["bodies_in_view"].get<int>() >= 2;
+        widest = std::max(widest, (v["scene"][2].get<double>() - v["scene"][0].get<double>()) /
+                                      v["window"][0].get<double>());
+      }
+      EXPECT_GE(widest, 0.14) << scene << " " << size;
+      EXPECT_GE(withAWeight, 3) << scene << " " << size << ": of 9 views";
+    }
 }
 
 // A student's first mechanism, built at 1280x720 at projector scale: a weight over a circle

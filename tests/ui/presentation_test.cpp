@@ -25,7 +25,7 @@ LabelBox onScreen(const Sandbox& sandbox) {
 }
 
 TEST(Presentation, TheSceneFillsTheAreaAboveTheBarRow) {
-  for (const char* scene : {"hand", "hexagon", "tackle"}) {
+  for (const char* scene : {"hand", "hexagon", "capstan"}) {
     Sandbox sandbox(1280, 720);
     ASSERT_TRUE(sandbox.open(scene));
     sandbox.panels = {{0, 0, 1280, 30}, {0, 690, 1280, 30}};  // a menu strip and a status line
@@ -43,6 +43,37 @@ TEST(Presentation, TheSceneFillsTheAreaAboveTheBarRow) {
     const double wide = (s.x1 - s.x0) / f.width, tall = (s.y1 - s.y0) / (f.height - reserve);
     EXPECT_NEAR(std::max(wide, tall), 1 / 1.12, 0.01) << scene;
   }
+}
+
+// The wheel, the winch and the tackle hang a long rope under a small wheel: a whole-run fit
+// left them 3-5% of the window's width. Presentation mode shows them in close-up: the top of
+// the mechanism at the top of the area, the scene's width a kCloseUpSpan-th of the view's
+// height or more, and a hanging body within reach in view.
+TEST(Presentation, AThinTallDemoIsShownInCloseUp) {
+  for (const char* scene : {"wheel", "winch", "tackle"}) {
+    Sandbox sandbox(1280, 720);
+    ASSERT_TRUE(sandbox.open(scene));
+    sandbox.panels = {{0, 0, 1280, 30}, {0, 690, 1280, 30}};
+    togglePresentation(sandbox);
+    keepViewFitted(sandbox);
+    EXPECT_TRUE(sandbox.closeUp) << scene;
+    const PanelRect f = sandbox.freeArea();
+    const double height = f.height - barRowHeight(sandbox);
+    const WorldBounds b = sceneBounds(*sandbox.world());
+    const Vec2 lo = sandbox.camera.toScreen(b.lo), hi = sandbox.camera.toScreen(b.hi);
+    EXPECT_GE(hi.y(), f.y) << scene;
+    EXPECT_LE(hi.y(), f.y + 0.2 * height) << scene << ": the top of the mechanism at the top";
+    EXPECT_GE(hi.x() - lo.x(), height / kCloseUpSpan / 3 - kPixel) << scene;
+    // The stage fit it replaces, for comparison: 3-5% of the width.
+    const Camera whole = fitToContent(*sandbox.world(), sandbox.camera, f, barRowHeight(sandbox),
+                                      sandbox.demo.stage);
+    EXPECT_GT(whole.metresPerPixel, 1.8 * sandbox.camera.metresPerPixel) << scene;
+  }
+  Sandbox hexagon(1280, 720);  // not a demo that loops: fitted whole
+  ASSERT_TRUE(hexagon.open("hexagon"));
+  togglePresentation(hexagon);
+  keepViewFitted(hexagon);
+  EXPECT_FALSE(hexagon.closeUp);
 }
 
 TEST(Presentation, TheViewStaysFittedUntilTheUserMovesIt) {
