@@ -19,7 +19,7 @@ CornerRow cornerRow(const CornerTension& c, double mu) {
   row.capstanRatio = std::exp(mu * c.turn);
   char text[160];
   std::snprintf(text, sizeof text,
-                "  corner %d: theta %.3f rad, %.4g N -> %.4g N, ratio %.4g (e^(mu theta) %.4g)",
+                "  corner %d: turns %.3f rad, %.4g N -> %.4g N, pull ratio %.4g (slips at %.4g)",
                 c.vertex, c.turn, c.tensionIn, c.tensionOut, row.ratio, row.capstanRatio);
   row.text = text;
   return row;
@@ -44,13 +44,13 @@ WheelRow wheelRow(const Cable& cable, int k) {
   if (link.grip == Grip::Capstan) {
     w.capstanRatio = std::exp(link.mu * link.wrapAngle);
     w.state = link.slipped ? "slipping" : "holding";
-    std::snprintf(text, sizeof text, "%s %d: %s, theta %.3f rad, ratio %.4g (e^(mu theta) %.4g)",
+    std::snprintf(text, sizeof text, "%s %d: %s, wrapped %.3f rad, pull ratio %.4g (slips at %.4g)",
                   what, link.pulley, w.state.c_str(), link.wrapAngle, w.ratio, w.capstanRatio);
     for (const CornerTension& c : corners) w.corners.push_back(cornerRow(c, link.mu));
   } else {
     w.state = "no slip";
-    std::snprintf(text, sizeof text, "wheel %d: no slip, theta %.3f rad, ratio %.4g", link.pulley,
-                  link.wrapAngle, w.ratio);
+    std::snprintf(text, sizeof text, "wheel %d: no slip, wrapped %.3f rad, pull ratio %.4g",
+                  link.pulley, link.wrapAngle, w.ratio);
   }
   w.text = text;
   return w;

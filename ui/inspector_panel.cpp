@@ -96,9 +96,10 @@ void spanSection(Sandbox& sandbox, const Cable& cable) {
   }
   ImGui::Text("spans (%d)", cable.spanCount());
   tooltip(
-      "Each span between gripping wheels carries its own tension (docs/wheels.md). A capstan "
-      "holds while the tension ratio is below e^(mu theta) and slips at that ratio; on a "
-      "polygon with friction, so does each corner, theta the angle the rope turns there.");
+      "Each stretch of rope between gripping wheels has its own pull. A rope round a drum holds "
+      "while the pull on one side is less than the 'slips at' ratio times the other, and slips "
+      "at that ratio: more friction or more rope round the drum holds a bigger ratio. On a "
+      "polygon with friction each corner does the same.");
   if (ImGui::BeginTable("spans", 3, ImGuiTableFlags_RowBg)) {
     // The span number narrow, so that the headers with units fit at projector scale (with three
     // equal columns "tension (N)" was cut to "tension (...").

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "tests/ui/test_support.h"
 
@@ -71,6 +72,12 @@ TEST(CableSpans, CapstanHoldingRatioIsTheMassRatioBelowTheCapstanBound) {
   EXPECT_NEAR(w.capstanRatio, std::exp(mu * 2 * M_PI * turns), 1e-6);
   EXPECT_NEAR(w.ratio, mLoad / mHold, 1e-6);  // at rest: the tensions are the weights
   EXPECT_LT(w.ratio, w.capstanRatio);
+  // Words for students: the slipping ratio as a number, no formula (issue 38, item 3).
+  char slips[32];
+  std::snprintf(slips, sizeof slips, "slips at %.4g", w.capstanRatio);
+  EXPECT_NE(w.text.find(slips), std::string::npos) << w.text;
+  for (const char* term : {"e^", "theta", "mu"})
+    EXPECT_EQ(w.text.find(term), std::string::npos) << w.text;
 }
 
 // A rope over a fixed square's two top corners (90 degrees each) with mu 0.2: 3 kg against 1 kg
