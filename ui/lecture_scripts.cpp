@@ -107,6 +107,19 @@ void LectureScript::mouse(Uint32 type, const Vec2& screen) {
   pushMouseEvent(windowId_, type, screen);
 }
 
+void LectureScript::recordPendingView(Sandbox& sandbox) {
+  if (pending_.empty()) return;
+  items_.push_back(viewJson(sandbox, pending_, out_ + "-" + pending_ + ".png"));
+  pending_.clear();
+}
+
+void LectureScript::snapshot(Sandbox& sandbox, const char* name) {
+  pending_ = name;
+  sandbox.pngRequest = PanelRect{0, 0, static_cast<float>(sandbox.camera.width),
+                                 static_cast<float>(sandbox.camera.height)};
+  sandbox.pngRequestPath = out_ + "-" + pending_ + ".png";
+}
+
 bool LectureScript::beforeFrame(Sandbox& sandbox, int frame) {
   if (name_ == "present") return present(sandbox, frame);
   if (name_ == "grasp-quiet") return graspQuiet(sandbox, frame);
@@ -118,17 +131,8 @@ bool LectureScript::beforeFrame(Sandbox& sandbox, int frame) {
 }
 
 bool LectureScript::present(Sandbox& sandbox, int frame) {
-  // The view drawn in the frame the screenshot was taken of is recorded one frame later.
-  if (!pending_.empty()) {
-    items_.push_back(viewJson(sandbox, pending_, out_ + "-" + pending_ + ".png"));
-    pending_.clear();
-  }
-  auto snapshot = [&](const char* name) {
-    pending_ = name;
-    sandbox.pngRequest = PanelRect{0, 0, static_cast<float>(sandbox.camera.width),
-                                   static_cast<float>(sandbox.camera.height)};
-    sandbox.pngRequestPath = out_ + "-" + pending_ + ".png";
-  };
+  recordPendingView(sandbox);
+  auto snapshot = [&](const char* name) { this->snapshot(sandbox, name); };
   SDL_Window* window = SDL_GetWindowFromID(windowId_);
   switch (frame) {
     case 3:
@@ -286,16 +290,8 @@ bool LectureScript::tensionRun(Sandbox& sandbox, int frame) {
 namespace cablelab::ui {
 
 bool LectureScript::walkthrough(Sandbox& sandbox, int frame) {
-  if (!pending_.empty()) {
-    items_.push_back(viewJson(sandbox, pending_, out_ + "-" + pending_ + ".png"));
-    pending_.clear();
-  }
-  auto snapshot = [&](const char* name) {
-    pending_ = name;
-    sandbox.pngRequest = PanelRect{0, 0, static_cast<float>(sandbox.camera.width),
-                                   static_cast<float>(sandbox.camera.height)};
-    sandbox.pngRequestPath = out_ + "-" + pending_ + ".png";
-  };
+  recordPendingView(sandbox);
+  auto snapshot = [&](const char* name) { this->snapshot(sandbox, name); };
   World& world = *sandbox.world();
   if (frame == 1) {
     sandbox.projector = true;  // the View menu's projector mode

@@ -50,6 +50,11 @@ class LectureScript {
   bool selectRope(Sandbox& sandbox, int frame);
   void key(SDL_Keycode k);
   void mouse(Uint32 type, const Vec2& screen);
+  /// Records the view whose screenshot the last frame took, if any.
+  void recordPendingView(Sandbox& sandbox);
+  /// Takes a screenshot of the whole window this frame, named `name`; its view is recorded next
+  /// frame (the view drawn in the frame the screenshot was taken of).
+  void snapshot(Sandbox& sandbox, const char* name);
 
   std::string name_, out_, report_ = "{}";
   Uint32 windowId_;

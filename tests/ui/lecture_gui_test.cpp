@@ -15,9 +15,9 @@ namespace lecture_gui_test {  // named: unity batches join test files
 #define REQUIRE_XVFB() \
   if (!onPath("xvfb-run")) GTEST_SKIP() << "xvfb-run not installed: GUI tests skipped"
 
-constexpr double kSceneShare = 0.6;  // of the window's width, in presentation mode
-constexpr double kTallShare = 0.7;   // of the view's height, for a scene taller than wide
-constexpr double kEdge = 1.0;        // px
+constexpr double kSceneShare = 0.6;     // of the window's width, in presentation mode
+constexpr double kTallShare = 0.7;      // of the view's height, for a scene taller than wide
+constexpr double kEdge = 1.0;           // px
 constexpr double kCloseUpShare = 0.04;  // of the window's width, for a thin, tall demo
 
 const std::string kXvfb1080 = "xvfb-run -a -s \"-screen 0 1920x1080x24\" ";
@@ -61,7 +61,9 @@ void expectReadable(const nlohmann::json& v) {
   EXPECT_GE(scene.x0, free.x0 - kEdge) << where;
   EXPECT_GE(scene.y0, free.y0 - kEdge) << where;
   EXPECT_LE(scene.x1, free.x1 + kEdge) << where;
-  if (!closeUp) EXPECT_LE(scene.y1, free.y1 + kEdge) << where;
+  if (!closeUp) {
+    EXPECT_LE(scene.y1, free.y1 + kEdge) << where;
+  }
   if (closeUp) {
     // The top of the mechanism in view, at least kCloseUpShare of the window's width (a
     // whole-run fit left the wheel's scene 3% of it).

@@ -13,6 +13,7 @@
 
 #include "engine/dynamics/world.h"
 #include "engine/model/scene_json.h"
+#include "tests/support/energy_drift.h"
 #include "tests/support/engine_test_support.h"
 
 namespace cablelab {
@@ -33,17 +34,6 @@ std::string jumpWarning(const World& world) {
   return "";
 }
 
-/// Kinetic energy of every body (J).
-double kinetic(const World& world) {
-  double e = 0;
-  for (int b = 0; b < world.bodyCount(); ++b) {
-    const BodyState& s = world.body(b);
-    if (s.invMass > 0) e += 0.5 * s.velocity.squaredNorm() / s.invMass;
-    if (s.invInertia > 0) e += 0.5 * s.angularVelocity * s.angularVelocity / s.invInertia;
-  }
-  return e;
-}
-
 struct Figures {
   double drift = 0;     ///< largest |E - E0| over the largest kinetic energy
   double lowest = 0;    ///< lowest y any body reached (m)
@@ -54,14 +44,14 @@ struct Figures {
 Figures measure(World& world, double seconds, double dt, int substeps) {
   Figures r;
   const double e0 = world.energy();
-  double scale = kinetic(world);
+  double scale = test::kineticEnergy(world);
   const int steps = static_cast<int>(std::lround(seconds / dt));
   std::vector<std::vector<char>> joined(world.cableCount());
   for (int c = 0; c < world.cableCount(); ++c) joined[c].assign(world.cable(c).pulleyCount(), 0);
   for (int s = 0; s < steps; ++s) {
     world.step(dt, substeps);
     r.drift = std::max(r.drift, std::abs(world.energy() - e0));
-    scale = std::max(scale, kinetic(world));
+    scale = std::max(scale, test::kineticEnergy(world));
     for (int b = 0; b < world.bodyCount(); ++b)
       r.lowest = std::min(r.lowest, world.body(b).position.y());
     for (int c = 0; c < world.cableCount(); ++c) {
@@ -157,7 +147,9 @@ TEST(HullContact, DISABLED_NoWrapChangeMovesTheLengthAndTheHookedSquareKeepsItsE
       World world(fixture(name));
       const Figures f = measure(world, 20, 1.0 / 60, substeps);
       EXPECT_EQ(f.warning, "");
-      if (std::string(name) == "hooked_polygon") EXPECT_LT(f.drift, 0.02) << f.drift;
+      if (std::string(name) == "hooked_polygon") {
+        EXPECT_LT(f.drift, 0.02) << f.drift;
+      }
     }
 }
 
@@ -172,11 +164,11 @@ TEST(HullContact, DISABLED_TwoPolygonsSideBySideAtOtherSpacingsSpinsAndStepsKeep
   for (const bool sameSide : {false, true})
     for (const double spacing : {0.5, 0.57, 0.7})
       for (const double spin : {4.0, 20.0})
-        for (const Step step : {Step{1.0 / 60, 1}, Step{1.0 / 30, 2}, Step{1.0 / 240, 1},
-                                Step{1.0 / 60, 4}}) {
+        for (const Step step :
+             {Step{1.0 / 60, 1}, Step{1.0 / 30, 2}, Step{1.0 / 240, 1}, Step{1.0 / 60, 4}}) {
           SCOPED_TRACE("spacing " + std::to_string(spacing) + " spin " + std::to_string(spin) +
-                       " dt " + std::to_string(step.dt) + " x " +
-                       std::to_string(step.substeps) + (sameSide ? " same" : " opposite"));
+                       " dt " + std::to_string(step.dt) + " x " + std::to_string(step.substeps) +
+                       (sameSide ? " same" : " opposite"));
           SceneDef scene = base;
           scene.bodies[0].position.x() = scene.joints[0].anchor.x() = -spacing / 2;
           scene.bodies[1].position.x() = scene.joints[1].anchor.x() = spacing / 2;
@@ -224,8 +216,8 @@ TEST(HullContact, DISABLED_OtherHookedPolygonsKeepTheirEnergy) {
   for (const double speed : {0.7, 1.0, 1.3})
     for (const double size : {0.7, 1.5})
       for (const double hz : {30.0, 60.0, 240.0}) {
-        SCOPED_TRACE("speed x" + std::to_string(speed) + " size x" + std::to_string(size) +
-                     " at " + std::to_string(hz) + " Hz");
+        SCOPED_TRACE("speed x" + std::to_string(speed) + " size x" + std::to_string(size) + " at " +
+                     std::to_string(hz) + " Hz");
         SceneDef scene = base;
         scene.bodies[0].velocity *= speed;
         scene.bodies[0].mass *= size;
