@@ -51,7 +51,7 @@ int continuedEnd(const Vec2& b, std::span<const Vec2> polygon, WrapSide side, in
   // vertex, the segment holds its vertex.
   if (turn >= M_PI || insideConvex(b, polygon)) return t;
   for (int k = 0; k < n; ++k) {
-    const int next = (t + step) % n;
+    const int next = (t + step + n) % n;
     const double across = into ? wrapSideDistance(polygon[t], b, polygon[next], side)
                                : -wrapSideDistance(polygon[t], b, polygon[next], side);
     if (segmentCutsPolygon(polygon[t], b, polygon) || across <= 0) break;
@@ -144,7 +144,7 @@ std::optional<double> wrapChainHeld(const Vec2& a, const Vec2& b, std::span<cons
     // Whole laps from one vertex: walkTurning sums the turn from a to b there, the held ends
     // turn into the lap and out of it, and the corner's own turn is counted twice by them.
     const Vec2 &v = polygon[ta], &before = polygon[(ta - step + n) % n];
-    const Vec2& after = polygon[(ta + step) % n];
+    const Vec2& after = polygon[(ta + step + n) % n];
     const double corner = continuedPointTurn(v - before, after - v, side, 0.0);
     const double raw = continuedPointTurn(v - a, b - v, side, 0.0);
     whole += 2 * M_PI *
