@@ -1,9 +1,10 @@
 // Label placement in screen space (pixels, y down), without GL: each label goes to the first of
 // its candidate places, nearest to its anchor first, that overlaps no label placed before it,
 // no reserved rectangle (the scale bar, the colour bar, the key), no body and stays inside the
-// view, and off the cables' lines (thin strips). Bodies and cables are a soft limit (the least-covered place wins when none is clear of them); the
-// other labels, the reserved rectangles and the view's edges are hard ones: a label with no
-// place that keeps them is not shown. A label placed away from its anchor gets a leader line.
+// view, and off the cables' lines (thin strips). Bodies and cables are a soft limit (the
+// least-covered place wins when none is clear of them); the other labels, the reserved rectangles
+// and the view's edges are hard ones: a label with no place that keeps them is not shown. A label
+// placed away from its anchor gets a leader line.
 #pragma once
 
 #include <vector>

@@ -8,13 +8,13 @@
 namespace cablelab::ui {
 namespace {
 
-constexpr double kMargin = 0.06;      // of the content's size, on every side
+constexpr double kMargin = 0.06;     // of the content's size, on every side
 constexpr float kBarRowLines = 4.0;  // the colour bar's row, in text lines (view_furniture.h)
 
-constexpr double kCloseUpBelow = 0.15;  // of the area's width: a thinner whole-run fit
-constexpr double kCloseUpWidest = 3;   // of kCloseUpSpan: the farthest a close-up zooms out
-constexpr double kCloseUpRoom = 0.12;   // of the close-up's height, kept above and below
-constexpr double kFollowSeconds = 0.25; // how fast the close-up catches up with its focus
+constexpr double kCloseUpBelow = 0.15;   // of the area's width: a thinner whole-run fit
+constexpr double kCloseUpWidest = 3;     // of kCloseUpSpan: the farthest a close-up zooms out
+constexpr double kCloseUpRoom = 0.12;    // of the close-up's height, kept above and below
+constexpr double kFollowSeconds = 0.25;  // how fast the close-up catches up with its focus
 
 /// The camera centre that puts world point `p` at the centre of `area` above `bottomReserve`.
 Vec2 centreAt(const Vec2& p, const Camera& camera, const PanelRect& area, float bottomReserve) {

@@ -158,8 +158,8 @@ class Painter {
     const Vec2 a = cam_.toScreen(from), b = cam_.toScreen(to);
     if ((b - a).norm() < 1e-9) return;
     const Vec2 along = halfPx * (b - a).normalized(), across(-along.y(), along.x());
-    obstacles_.push_back({a - along + across, b + along + across, b + along - across,
-                          a - along - across});
+    obstacles_.push_back(
+        {a - along + across, b + along + across, b + along - across, a - along - across});
     ++strips_;
   }
 

@@ -236,10 +236,9 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
       // polygon swung round past an end anchor), holding its end where a terminal that may be
       // pressed into the hull is inside it; a spool's chain runs to the corner its rope is tied at.
       const auto turn =
-          p.tiedEnd != 0
-              ? tiedChain(p, a, b, chains[nodes[n] - 1])
-              : wrapChainHeld(a, b, p.world, p.side, p.arc, holdsAgainst(nodes[n - 1]),
-                              holdsAgainst(nodes[n + 1]), p.hold, chains[nodes[n] - 1]);
+          p.tiedEnd != 0 ? tiedChain(p, a, b, chains[nodes[n] - 1])
+                         : wrapChainHeld(a, b, p.world, p.side, p.arc, holdsAgainst(nodes[n - 1]),
+                                         holdsAgainst(nodes[n + 1]), p.hold, chains[nodes[n] - 1]);
       if (turn) p.arc = *turn;
       if (!turn) {
         p.engaged = false;

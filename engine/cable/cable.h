@@ -327,7 +327,7 @@ class Cable {
     int tiedEnd = 0;
     int tiedCorner = -1;
     bool tiedInside = false;
-    ChainHold hold;            ///< polygon: its chain's ends, held through a point in its hull
+    ChainHold hold;  ///< polygon: its chain's ends, held through a point in its hull
     double signedRadius() const { return side == WrapSide::Right ? -radius : radius; }
     /// The wrap branch at the start: the turns it was wound with, else within (0, 2 pi).
     double initialArc() const { return turns > 0 ? 2 * M_PI * turns : M_PI; }

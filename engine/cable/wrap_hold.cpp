@@ -20,8 +20,8 @@ double endTurn(const Vec2& b, std::span<const Vec2> polygon, WrapSide side, int 
 
 // The whole turns (rad) by which a held end's turn, continued over time, differs from the one
 // walkTurning sums there (within half a turn of zero).
-double heldWholeTurns(const Vec2& b, std::span<const Vec2> polygon, WrapSide side, int t,
-                      bool into, double turn) {
+double heldWholeTurns(const Vec2& b, std::span<const Vec2> polygon, WrapSide side, int t, bool into,
+                      double turn) {
   const int n = static_cast<int>(polygon.size());
   const int step = into ? walkStep(side) : -walkStep(side);
   const double raw = endTurn(b, polygon, side, (t - step + n) % n, t, into, 0.0);
@@ -147,8 +147,7 @@ std::optional<double> wrapChainHeld(const Vec2& a, const Vec2& b, std::span<cons
     const Vec2& after = polygon[(ta + step + n) % n];
     const double corner = continuedPointTurn(v - before, after - v, side, 0.0);
     const double raw = continuedPointTurn(v - a, b - v, side, 0.0);
-    whole += 2 * M_PI *
-             std::round((hold.turnFrom + hold.turnInto - corner - raw) / (2 * M_PI));
+    whole += 2 * M_PI * std::round((hold.turnFrom + hold.turnInto - corner - raw) / (2 * M_PI));
   }
   int walk, loops;
   const double turn =

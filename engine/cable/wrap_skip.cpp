@@ -76,9 +76,8 @@ bool Cable::skipEligible() const {
     return false;
   for (size_t j = 0; j < pulleys_.size(); ++j) {
     const PulleyState& p = pulleys_[j];
-    if (!p.engaged || p.circle || p.autoSide || p.dropped || p.tiedEnd != 0 ||
-        p.hold.holdingFrom || p.hold.holdingInto ||
-        (p.polygon && p.side == WrapSide::Threaded))
+    if (!p.engaged || p.circle || p.autoSide || p.dropped || p.tiedEnd != 0 || p.hold.holdingFrom ||
+        p.hold.holdingInto || (p.polygon && p.side == WrapSide::Threaded))
       return false;
     // Neighbouring polygons settle their common tangent over several passes (buildPath).
     if (p.polygon && j + 1 < pulleys_.size() && pulleys_[j + 1].polygon) return false;

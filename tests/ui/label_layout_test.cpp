@@ -109,8 +109,8 @@ TEST(LabelLayout, ALabelKeepsOffACablesThinStrip) {
   EXPECT_TRUE(crossesConvex(across, strip));
   EXPECT_FALSE(crossesConvex({140, 50, 200, 70}, strip));
   EXPECT_GT(obstacleCover(across, {strip}), 0);
-  const auto placed = placeLabels({{Vec2(125, 60), Vec2(-25, -10), 60, 20}}, {strip},
-                                  {0, 0, 400, 400}, 4);
+  const auto placed =
+      placeLabels({{Vec2(125, 60), Vec2(-25, -10), 60, 20}}, {strip}, {0, 0, 400, 400}, 4);
   ASSERT_EQ(placed.size(), 1u);
   EXPECT_TRUE(placed[0].shown);
   EXPECT_FALSE(crossesConvex(placed[0].box, strip)) << placed[0].box.x0 << " " << placed[0].box.x1;

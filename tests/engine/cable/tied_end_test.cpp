@@ -59,8 +59,8 @@ struct Wound {
   std::vector<Vec2> polygon;
 };
 
-Wound woundPath(int sides, double radius, bool atVertex, WrapSide side, double phi,
-                const Vec2& a, double reference) {
+Wound woundPath(int sides, double radius, bool atVertex, WrapSide side, double phi, const Vec2& a,
+                double reference) {
   // The cable hangs from the polygon's outermost corner on its side (+x for Right), the end tied
   // at that corner or in the middle of the edge the walk goes on along.
   const double phase = (side == WrapSide::Right ? 0.0 : M_PI) + phi;
@@ -83,8 +83,9 @@ TEST(TiedEnd, EachTurnWindsOnePerimeterAndTheLengthFollowsTheLeverArm) {
   // Turning the polygon in its winding sense by phi lengthens the path to the fixed free end (a
   // rope of fixed length pulls that end in) at the rate of the distance from the centre to the
   // free segment's line (the lever arm): checked by central differences at every 0.05 rad over
-  // 12 turns and back, and the length after k whole turns is the start's plus k perimeters. Triangle to octagon, both sides, end at a corner and
-  // mid-edge; the free end below, off the spool's axis.
+  // 12 turns and back, and the length after k whole turns is the start's plus k perimeters.
+  // Triangle to octagon, both sides, end at a corner and mid-edge; the free end below, off the
+  // spool's axis.
   for (const int sides : {3, 4, 6, 8})
     for (const WrapSide side : {WrapSide::Right, WrapSide::Left})
       for (const bool atVertex : {true, false}) {

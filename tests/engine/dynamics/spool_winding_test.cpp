@@ -35,7 +35,6 @@ struct Spool {
   bool tiedAtStart = false;          // the rope runs from the spool to the weight
 };
 
-
 double perimeter(int sides) {
   return 2 * sides * kRadius * std::sin(M_PI / sides);
 }
