@@ -31,6 +31,10 @@ bool mp4Available() {
 #endif
 }
 
+double defaultClipFps(ClipFormat format) {
+  return format == ClipFormat::Gif ? 15 : 30;
+}
+
 double maxClipFps(ClipFormat format) {
   return format == ClipFormat::Gif ? 50 : 120;
 }

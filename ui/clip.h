@@ -37,6 +37,11 @@ bool mp4Available();
 /// The sentence shown when an MP4 is asked for and this build has no FFmpeg.
 extern const char* const kNoMp4;
 
+/// The frame rate a window clip gets unless the user picks one: MP4 30 fps; GIF 15 fps, the
+/// usual rate for GIF animations (a GIF stores every frame's moving edges again, so half the
+/// frames make about half the file; the time stamp is each frame's own simulated time).
+double defaultClipFps(ClipFormat format);
+
 /// The largest frame rate a format plays back faithfully (GIF: whole centiseconds of delay,
 /// viewers slow frames under 2 cs down to 10 cs).
 double maxClipFps(ClipFormat format);

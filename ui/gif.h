@@ -1,9 +1,10 @@
 // GifWriter: an animated GIF written frame by frame with giflib (Debian's libgif), small
-// because it uses what GIF does well: one global palette chosen from the first frame
-// (ui/gif_palette.h), and each later frame only the rectangle whose palette indices changed
-// since the frame before, its unchanged pixels written as the transparent index ("do not
-// dispose": the viewer keeps the previous frame under them). Long transparent runs are what LZW
-// compresses best, and no dithering changes pixels that did not move.
+// because it uses what GIF does well: one global palette of 127 colours chosen from the first
+// frame (ui/gif_palette.h), and each later frame only the rectangle of the pixels that changed
+// visibly since the frame before (by more than a few levels), every other pixel written as the
+// transparent index ("do not dispose": the viewer keeps the previous frame under them). Long
+// transparent runs are what LZW compresses best, and no dithering changes pixels that did not
+// move. What is left is the moving edges and the first frame (docs/sandbox.md, Clips).
 //
 // Needs: giflib only (no GL), ui/image.h. Frames must all have the writer's size. The delay
 // of each frame is in GIF's centiseconds; frameSeconds that are not a whole number of them

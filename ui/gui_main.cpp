@@ -112,8 +112,10 @@ void toggleRecording(cablelab::ui::Sandbox& sandbox, cablelab::ui::Recorder& rec
             h = std::max(16, static_cast<int>(free.height));
   try {
     const char* extension = mp4Available() ? ".mp4" : ".gif";
-    recorder.start(path.empty() ? freshName(sandbox.sceneName, extension) : path, w, h,
-                   sandbox.recordFps, sandbox.world() ? sandbox.world()->time() : 0);
+    const std::string file = path.empty() ? freshName(sandbox.sceneName, extension) : path;
+    const double fps =
+        sandbox.recordFps > 0 ? sandbox.recordFps : defaultClipFps(clipFormatFor(file));
+    recorder.start(file, w, h, fps, sandbox.world() ? sandbox.world()->time() : 0);
     recordArea = {free.x, free.y, static_cast<float>(recorder.width()),
                   static_cast<float>(recorder.height())};
     const Camera& c = sandbox.camera;

@@ -140,7 +140,9 @@ void runPanel(Sandbox& sandbox) {
               : "Record the world view as an animated GIF (F9), one frame per 1/fps s of simulated "
                 "time: it plays at the simulation's own speed. Saved in the working directory. "
                 "(This build has no FFmpeg, so no MP4.)");
-  float fps = static_cast<float>(sandbox.recordFps);
+  float fps = static_cast<float>(
+      sandbox.recordFps > 0 ? sandbox.recordFps
+                            : defaultClipFps(mp4Available() ? ClipFormat::Mp4 : ClipFormat::Gif));
   sameLineIfRoom(ImGui::GetFontSize() * 3.5f + ImGui::GetStyle().ItemInnerSpacing.x +
                  ImGui::CalcTextSize("fps").x);
   ImGui::SetNextItemWidth(ImGui::GetFontSize() * 3.5f);

@@ -107,6 +107,51 @@ TEST(Gif, LaterFramesStoreOnlyWhatChangedWithTheOnePalette) {
     EXPECT_EQ(countDiffering(a.frames[k], picture(std::min(k, 4)), 7), 0) << "frame " << k;
 }
 
+// A colour that drifts by a few levels (a cable's tension colour from one frame to the next) is
+// left as shown: the frame stores nothing for it; a visible change is written. Both colours are
+// in the first frame, so the palette holds each exactly.
+TEST(Gif, SmallColourDriftIsLeftVisibleChangesAreWritten) {
+  const std::string path = (outputDir("gif") / "drift.gif").string();
+  auto picture = [](int left) {  // three grey strips: `left`, 106 and 140
+    ui::Image image;
+    image.width = 39;
+    image.height = 10;
+    image.rgba.assign(39 * 10 * 4, 255);
+    for (int y = 0; y < 10; ++y)
+      for (int x = 0; x < 39; ++x) {
+        std::uint8_t* p = image.pixel(x, y);
+        p[0] = p[1] = p[2] = static_cast<std::uint8_t>(x < 13 ? left : x < 26 ? 106 : 140);
+      }
+    return image;
+  };
+  {
+    ui::GifWriter gif(path, 39, 10, 0.1);
+    gif.add(picture(100));
+    gif.add(picture(106));  // 6 levels: left as it was
+    gif.add(picture(140));  // 40 levels: written
+    gif.close();
+  }
+  int error = 0;
+  GifFileType* file = DGifOpenFileName(path.c_str(), &error);
+  ASSERT_NE(file, nullptr);
+  ASSERT_NE(DGifSlurp(file), GIF_ERROR);
+  ASSERT_EQ(file->ImageCount, 3);
+  // 127 colours and the transparent one: LZW codes from 8 bits.
+  EXPECT_EQ(file->SColorMap->ColorCount, 128);
+  const GifImageDesc& still = file->SavedImages[1].ImageDesc;
+  EXPECT_EQ(still.Width * still.Height, 1);  // nothing to write
+  const GifImageDesc& changed = file->SavedImages[2].ImageDesc;
+  EXPECT_EQ(changed.Left, 0);
+  EXPECT_EQ(changed.Width, 13);
+  EXPECT_EQ(changed.Height, 10);
+  DGifCloseFile(file, &error);
+  const ui::GifAnimation a = ui::readGif(path);
+  ASSERT_EQ(a.frames.size(), 3u);
+  EXPECT_EQ(a.frames[1].pixel(5, 5)[0], 100);  // shown 6 levels off the render
+  EXPECT_EQ(a.frames[2].pixel(5, 5)[0], 140);
+  EXPECT_EQ(a.frames[2].pixel(20, 5)[0], 106);
+}
+
 TEST(Gif, WriterRejectsAWrongSizeAndAnUnwritablePath) {
   EXPECT_THROW(ui::GifWriter("/nonexistent/dir/x.gif", 10, 10, 0.1), std::runtime_error);
   ui::GifWriter gif((outputDir("gif") / "size.gif").string(), 10, 10, 0.1);
