@@ -36,8 +36,8 @@ constexpr std::uint8_t kTransparent = kPaletteSize - 1;
 constexpr int kTolerance = 12;
 
 int channelError(const std::uint8_t* rgb, const GifPalette::Rgb& colour) {
-  return std::max({std::abs(rgb[0] - colour[0]), std::abs(rgb[1] - colour[1]),
-                   std::abs(rgb[2] - colour[2])});
+  return std::max(
+      {std::abs(rgb[0] - colour[0]), std::abs(rgb[1] - colour[1]), std::abs(rgb[2] - colour[2])});
 }
 
 }  // namespace
@@ -62,11 +62,11 @@ GifWriter::GifWriter(const std::string& path, int width, int height, double fram
   shown_.assign(static_cast<size_t>(width) * height, kTransparent);  // nothing shown yet
 }
 
-void GifWriter::writeHeader(const Image* first) {
+void GifWriter::writeHeader(const std::vector<const Image*>& frames) {
   GifColorType colours[kPaletteSize];
   std::memset(colours, 0, sizeof colours);
-  if (first) {
-    palette_ = std::make_unique<GifPalette>(*first, kColours);
+  if (!frames.empty()) {
+    palette_ = std::make_unique<GifPalette>(frames, kColours);
     const auto& chosen = palette_->colours();
     for (size_t i = 0; i < chosen.size(); ++i)
       colours[i] = {chosen[i][0], chosen[i][1], chosen[i][2]};
@@ -98,7 +98,20 @@ void GifWriter::add(const Image& frame) {
   if (frame.width != width_ || frame.height != height_)
     throw std::runtime_error(path_ + ": frame size " + std::to_string(frame.width) + "x" +
                              std::to_string(frame.height) + " differs from the GIF's");
-  if (!palette_) writeHeader(&frame);
+  ++frames_;
+  if (!palette_ && !first_) {
+    first_ = std::make_unique<Image>(frame);
+    return;
+  }
+  if (!palette_) {
+    writeHeader({first_.get(), &frame});
+    writeFrame(*first_);
+    first_.reset();
+  }
+  writeFrame(frame);
+}
+
+void GifWriter::writeFrame(const Image& frame) {
   // The frame in palette indices (kTransparent where what is shown is close enough), and the
   // rectangle of the pixels to write.
   const auto& colours = palette_->colours();
@@ -109,10 +122,10 @@ void GifWriter::add(const Image& frame) {
       const size_t i = static_cast<size_t>(y) * width_ + x;
       const std::uint8_t* rgb = frame.pixel(x, y);
       const std::uint8_t index = palette_->indexOf(rgb);
-      const bool keep = shown_[i] == index ||
-                        (shown_[i] != kTransparent &&
-                         channelError(rgb, colours[shown_[i]]) <=
-                             std::max(kTolerance, channelError(rgb, colours[index])));
+      const bool keep =
+          shown_[i] == index || (shown_[i] != kTransparent &&
+                                 channelError(rgb, colours[shown_[i]]) <=
+                                     std::max(kTolerance, channelError(rgb, colours[index])));
       indices[i] = keep ? kTransparent : index;
       if (!keep)
         x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
@@ -120,7 +133,7 @@ void GifWriter::add(const Image& frame) {
   if (x1 < 0) x0 = y0 = x1 = y1 = 0;  // nothing changed: one transparent pixel (no empty frame)
   const int w = x1 - x0 + 1, h = y1 - y0 + 1;
   // Whole centiseconds per frame, spread so that the total stays on frames * frameSeconds.
-  const double end = std::round((frames_ + 1) * frameSeconds_ * 100);
+  const double end = std::round((stored_ + 1) * frameSeconds_ * 100);
   const int delay = static_cast<int>(end - written_);
   written_ = end;
   GraphicsControlBlock gcb{};
@@ -141,13 +154,17 @@ void GifWriter::add(const Image& frame) {
     }
     ok = EGifPutLine(gif_, line.data(), w) != GIF_ERROR;
   }
-  if (!ok) fail(path_, "cannot write GIF frame " + std::to_string(frames_), gif_->Error);
-  ++frames_;
+  if (!ok) fail(path_, "cannot write GIF frame " + std::to_string(stored_), gif_->Error);
+  ++stored_;
 }
 
 void GifWriter::close() {
   if (!gif_) return;
-  if (!palette_) writeHeader(nullptr);  // a valid GIF without frames
+  if (!palette_) {  // no frame or one
+    writeHeader(first_ ? std::vector<const Image*>{first_.get()} : std::vector<const Image*>{});
+    if (first_) writeFrame(*first_);
+    first_.reset();
+  }
   int error = 0;
   const int result = EGifCloseFile(gif_, &error);
   gif_ = nullptr;

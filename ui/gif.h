@@ -1,6 +1,6 @@
 // GifWriter: an animated GIF written frame by frame with giflib (Debian's libgif), small
 // because it uses what GIF does well: one global palette of 127 colours chosen from the first
-// frame (ui/gif_palette.h), and each later frame only the rectangle of the pixels that changed
+// two frames (ui/gif_palette.h), and each later frame only the rectangle of the pixels that changed
 // visibly since the frame before (by more than a few levels), every other pixel written as the
 // transparent index ("do not dispose": the viewer keeps the previous frame under them). Long
 // transparent runs are what LZW compresses best, and no dithering changes pixels that did not
@@ -44,17 +44,22 @@ class GifWriter : public ClipWriter {
   const std::string& path() const { return path_; }
 
  private:
-  /// The screen descriptor with the global palette (from `first`, or one colour without a
+  /// The screen descriptor with the global palette (from `frames`, or one colour without a
   /// frame) and the looping extension.
-  void writeHeader(const Image* first);
+  void writeHeader(const std::vector<const Image*>& frames);
+  /// Writes one frame: what changed since the frame before.
+  void writeFrame(const Image& frame);
 
   std::string path_;
   GifFileType* gif_ = nullptr;
   int width_, height_;
   double frameSeconds_;
-  double written_ = 0;  ///< centiseconds of delay written so far
-  int frames_ = 0;
-  std::unique_ptr<GifPalette> palette_;  ///< from the first frame
+  double written_ = 0;           ///< centiseconds of delay written so far
+  int frames_ = 0, stored_ = 0;  ///< frames added, frames written
+  /// The first frame, held until the second: the palette is chosen from both (the second has
+  /// the colours of the cables' first tensions, which a scene at rest lacks).
+  std::unique_ptr<Image> first_;
+  std::unique_ptr<GifPalette> palette_;  ///< from the first two frames
   std::vector<std::uint8_t> shown_;      ///< width x height: the index a viewer shows now
 };
 

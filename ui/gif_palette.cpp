@@ -17,18 +17,20 @@ long squaredDistance(const GifPalette::Rgb& a, const GifPalette::Rgb& b) {
 
 }  // namespace gif_palette
 
-GifPalette::GifPalette(const Image& image, int size) : entryOf_(gif_palette::kGroups, -1) {
+GifPalette::GifPalette(const std::vector<const Image*>& images, int size)
+    : entryOf_(gif_palette::kGroups, -1) {
   using namespace gif_palette;
   if (size < 1 || size > 256) throw std::invalid_argument("GIF palette size must be 1..256");
   std::vector<std::uint32_t> count(kGroups, 0);
   std::vector<std::array<std::uint64_t, 3>> sum(kGroups, {0, 0, 0});
-  for (int y = 0; y < image.height; ++y)
-    for (int x = 0; x < image.width; ++x) {
-      const std::uint8_t* p = image.pixel(x, y);
-      const int g = groupOf(p);
-      ++count[g];
-      for (int c = 0; c < 3; ++c) sum[g][c] += p[c];
-    }
+  for (const Image* image : images)
+    for (int y = 0; y < image->height; ++y)
+      for (int x = 0; x < image->width; ++x) {
+        const std::uint8_t* p = image->pixel(x, y);
+        const int g = groupOf(p);
+        ++count[g];
+        for (int c = 0; c < 3; ++c) sum[g][c] += p[c];
+      }
   struct Group {
     int id;
     double count;

@@ -25,7 +25,9 @@ class GifPalette {
   using Rgb = std::array<std::uint8_t, 3>;
 
   /// At most `size` (1..256) colours for `image` (RGB; alpha ignored).
-  GifPalette(const Image& image, int size);
+  GifPalette(const Image& image, int size) : GifPalette(std::vector<const Image*>{&image}, size) {}
+  /// At most `size` colours for the pixels of all `images` together.
+  GifPalette(const std::vector<const Image*>& images, int size);
 
   /// The palette, commonest colour first.
   const std::vector<Rgb>& colours() const { return colours_; }

@@ -219,7 +219,7 @@ long insideDiffering(const ui::Image& actual, const ui::Image& expected, int lev
 // the GIF the old writer (a palette per frame, the changed rectangle, no transparency) made of
 // the same renders at 30 fps, in bytes; and its last frame against the render at 2 s.
 const std::map<std::string, double> kOldGifBytes640x360x2s = {
-    {"ballast", 182443}, {"capstan", 62024}, {"hand", 298387},
+    {"ballast", 182443}, {"capstan", 62024},   {"hand", 298387},
     {"hexagon", 316010}, {"membrane", 221470}, {"pulley", 315045},
     {"tackle", 344407},  {"wheel", 214793},    {"winch", 214104}};
 

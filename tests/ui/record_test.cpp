@@ -152,6 +152,46 @@ TEST(Gif, SmallColourDriftIsLeftVisibleChangesAreWritten) {
   EXPECT_EQ(a.frames[2].pixel(20, 5)[0], 106);
 }
 
+// A scene at rest in its first frame shows its cables' tension colours from the second on: the
+// palette is chosen from both, so they come back exactly (with the first frame's palette alone,
+// the red below would be drawn grey).
+TEST(Gif, ThePaletteHasTheSecondFramesColoursToo) {
+  const std::string path = (outputDir("gif") / "second.gif").string();
+  ui::Image grey = bands(32, 16, 0);
+  for (size_t i = 0; i < grey.rgba.size(); i += 4)
+    grey.rgba[i] = grey.rgba[i + 1] = grey.rgba[i + 2] = 100;
+  ui::Image red = grey;
+  for (int x = 0; x < 16; ++x)
+    for (int y = 0; y < 16; ++y) {
+      std::uint8_t* p = red.pixel(x, y);
+      p[0] = 200, p[1] = 30, p[2] = 30;
+    }
+  {
+    ui::GifWriter gif(path, 32, 16, 0.1);
+    gif.add(grey);
+    EXPECT_EQ(gif.frames(), 1);  // counted, held for the palette
+    gif.add(red);
+    gif.add(grey);
+    gif.close();
+    EXPECT_EQ(gif.frames(), 3);
+  }
+  const ui::GifAnimation a = ui::readGif(path);
+  ASSERT_EQ(a.frames.size(), 3u);
+  EXPECT_EQ(countDiffering(a.frames[0], grey, 0), 0);
+  EXPECT_EQ(countDiffering(a.frames[1], red, 0), 0);
+  EXPECT_EQ(countDiffering(a.frames[2], grey, 0), 0);
+  // One frame only: still written, at close.
+  const std::string one = (outputDir("gif") / "one.gif").string();
+  {
+    ui::GifWriter gif(one, 32, 16, 0.1);
+    gif.add(red);
+    gif.close();
+  }
+  const ui::GifAnimation b = ui::readGif(one);
+  ASSERT_EQ(b.frames.size(), 1u);
+  EXPECT_EQ(countDiffering(b.frames[0], red, 0), 0);
+}
+
 TEST(Gif, WriterRejectsAWrongSizeAndAnUnwritablePath) {
   EXPECT_THROW(ui::GifWriter("/nonexistent/dir/x.gif", 10, 10, 0.1), std::runtime_error);
   ui::GifWriter gif((outputDir("gif") / "size.gif").string(), 10, 10, 0.1);
