@@ -190,7 +190,7 @@ class Sandbox {
   std::string pngRequestPath;
   bool recording = false;  ///< set by the platform
   int recordedFrames = 0;  ///< set by the platform
-  double recordFps = 0;  ///< clip frames per simulated second; 0: the format's (defaultClipFps)
+  double recordFps = 0;    ///< clip frames per simulated second; 0: the format's (defaultClipFps)
 
   /// The current scene's controller or view (ui/controller_panel.h); rebuilt by open/reset.
   std::unique_ptr<ControllerState> controller;
