@@ -288,6 +288,16 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
   return true;
 }
 
+bool Cable::mayEnterHull(size_t i) const {
+  // A point fixed in the world holds the chain end it is pressed in at (holdsAgainst). A
+  // neighbouring polygon's corner holds it too, but the floor between two polygons' corners
+  // stays: it keeps the corners apart where they would sweep into each other's hulls.
+  const WrapPoint &p = path_[i], &q = path_[i + 1];
+  if (p.body == q.body) return false;
+  return (p.kind == WrapPoint::Kind::Vertex && q.body < 0) ||
+         (q.kind == WrapPoint::Kind::Vertex && p.body < 0);
+}
+
 // Leave: the path no longer bends around the pulley. Returns true if one left.
 bool Cable::leaveRound() {
   for (size_t i = 1; i + 1 < path_.size(); ++i) {
@@ -370,7 +380,14 @@ bool Cable::joinRound(std::vector<std::string>* warnings) {
     depth += p.radius;
     bool cuts;
     if (p.polygon) {
-      cuts = segmentCutsPolygon(a, b, p.world);
+      // With a point fixed in the world inside the hull there is no taut path round the polygon
+      // to join: the segment "cuts" it only because it ends inside (docs/cables.md, "Points
+      // inside a hull").
+      auto fixedInside = [&](const WrapPoint& w, const Vec2& x) {
+        return w.body < 0 && insideConvex(x, p.world);
+      };
+      cuts = segmentCutsPolygon(a, b, p.world) && !fixedInside(path_[host], a) &&
+             !fixedInside(path_[host + 1], b);
     } else {
       const double t = len > 0 ? (p.world[0] - a).dot(ab) / (len * len) : -1;
       cuts = t > 0 && t < 1 && (firstUpdate_ ? depth >= 0 : depth > 0);

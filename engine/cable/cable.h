@@ -278,6 +278,11 @@ class Cable {
   /// The solver let the cable slide on link k's wheel this sub-step: the next update moves rest
   /// length between the two spans so that the slide is not undone.
   void setSlipped(int k, bool slipped) { links_[k].slipped = slipped; }
+  /// Whether path segment i runs from a polygon's corner to a point fixed in the world, which
+  /// may be pressed into its hull and hold its chain there (wrap_hold.h): the point goes into the
+  /// hull rather than stopping it, so the segment has no floor (floors.h; docs/cables.md, "Points
+  /// inside a hull").
+  bool mayEnterHull(size_t i) const;
   /// Tension on path segment i (path()[i] -> path()[i + 1]): its span's, or between two corners
   /// of a polygon with friction, what cornerTensions() gives it.
   double segmentTension(size_t i) const;

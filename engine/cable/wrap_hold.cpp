@@ -18,44 +18,52 @@ double endTurn(const Vec2& b, std::span<const Vec2> polygon, WrapSide side, int 
               : continuedPointTurn(q - b, p - q, side, previous);
 }
 
-// The whole turns (rad) by which a held end's turn, continued over time, differs from the one
-// walkTurning sums there (within half a turn of zero).
-double heldWholeTurns(const Vec2& b, std::span<const Vec2> polygon, WrapSide side, int t, bool into,
-                      double turn) {
-  const int n = static_cast<int>(polygon.size());
-  const int step = into ? walkStep(side) : -walkStep(side);
-  const double raw = endTurn(b, polygon, side, (t - step + n) % n, t, into, 0.0);
-  return 2 * M_PI * std::round((turn - raw) / (2 * M_PI));
+// The turn (rad) along a held chain of `count` >= 2 vertices from `ta`: the held ends' turns,
+// continued over time, and the corners between them (laps included).
+double heldChainTurn(std::span<const Vec2> polygon, WrapSide side, int ta, int count,
+                     double turnFrom, double turnInto) {
+  const int n = static_cast<int>(polygon.size()), step = walkStep(side);
+  double turn = turnFrom + turnInto;
+  for (int k = 1, i = (ta + step + n) % n; k + 1 < count; ++k, i = (i + step + n) % n) {
+    const Vec2 &v = polygon[i], &before = polygon[(i - step + n) % n];
+    turn += continuedPointTurn(v - before, polygon[(i + step + n) % n] - v, side, 0.0);
+  }
+  return turn;
 }
 
 // The end of the chain into `b` continued from `t` (its last vertex at the last update) with the
-// turn at it `turn` (continued over time); the chain's other end `first` bounds the shrinking.
-// The from-end is the same walk mirrored (`into` false: `b` is the start terminal and the walk
-// goes the other way).
-int continuedEnd(const Vec2& b, std::span<const Vec2> polygon, WrapSide side, int t, int first,
-                 bool into, double& turn) {
+// turn at it `turn` (continued over time); `count`, the chain's vertices, follows each leave and
+// join, and the last vertex does not leave here. The from-end is the same walk mirrored (`into`
+// false: `b` is the start terminal and the walk goes the other way).
+int continuedEnd(const Vec2& b, std::span<const Vec2> polygon, WrapSide side, int t, bool into,
+                 double& turn, int& count) {
   const int n = static_cast<int>(polygon.size());
   const int step = into ? walkStep(side) : -walkStep(side);
   auto turnAt = [&](int before, int at, double previous) {
     return endTurn(b, polygon, side, before, at, into, previous);
   };
-  turn = turnAt((t - step + n) % n, t, turn);
-  // Leave: the end vertex no longer bends the path (one whose chain neighbour is the other end
-  // leaves with the whole chain, walkTurning).
-  for (int k = 0; k < n && turn < 0 && t != first; ++k) {
+  // A chain of one vertex keeps the turn from one terminal to the other (wrapChainHeld).
+  if (count > 1) turn = turnAt((t - step + n) % n, t, turn);
+  // Leave: the end vertex no longer bends the path (the last one leaves with the whole chain,
+  // when the turn from one terminal to the other goes below zero). Counted, not bounded by the
+  // other end's vertex: a chain of one vertex and a lap has that vertex at both ends.
+  for (; turn < 0 && count > 1; --count) {
     t = (t - step + n) % n;
     turn = turnAt((t - step + n) % n, t, 0.0);
   }
-  // Join: the next vertex reaches the wrap side of the segment to an outside terminal. Through
-  // the hull (the terminal went in one side and out of another) or doubled back round the end
-  // vertex, the segment holds its vertex.
+  // Join: the next vertex reaches the wrap side of the segment to an outside terminal, ahead of
+  // the end vertex (behind it, on the line's extension, it crossed no segment: joined, the rope
+  // would double back on the edge). Through the hull (the terminal went in one side and out of
+  // another) or doubled back round the end vertex, the segment holds its vertex.
   if (turn >= M_PI || insideConvex(b, polygon)) return t;
   for (int k = 0; k < n; ++k) {
     const int next = (t + step + n) % n;
     const double across = into ? wrapSideDistance(polygon[t], b, polygon[next], side)
                                : -wrapSideDistance(polygon[t], b, polygon[next], side);
-    if (segmentCutsPolygon(polygon[t], b, polygon) || across <= 0) break;
+    const bool ahead = (polygon[next] - polygon[t]).dot(b - polygon[t]) > 0;
+    if (segmentCutsPolygon(polygon[t], b, polygon) || across <= 0 || !ahead) break;
     t = next;
+    ++count;
     turn = turnAt((t - step + n) % n, t, 0.0);
   }
   return t;
@@ -98,9 +106,12 @@ std::optional<double> wrapChainHeld(const Vec2& a, const Vec2& b, std::span<cons
   chain.clear();
   const int tangentFrom = tangentVertex(a, polygon, side, false);
   const int tangentInto = tangentVertex(b, polygon, side, true);
+  // The chain's last vertex at the last update: `count` vertices from its first.
+  const int n = static_cast<int>(polygon.size()), step = walkStep(side);
+  const int last = hold.from < 0 ? -1 : (hold.from + (hold.count - 1) * step % n + n) % n;
   // While one end is held the other follows the old chain too: its tangent vertex can pass the
   // held end (the rope pulled into the hull), where the walk between them would be a lap long.
-  const bool holding = hold.from >= 0 && hold.into >= 0 &&
+  const bool holding = hold.from >= 0 &&
                        (hold.holdingFrom || hold.holdingInto || (tangentFrom < 0 && mayHoldFrom) ||
                         (tangentInto < 0 && mayHoldInto));
   // A hold starts from the turn the end vertex has now (less than half a turn: the terminal has
@@ -109,57 +120,44 @@ std::optional<double> wrapChainHeld(const Vec2& a, const Vec2& b, std::span<cons
   if (holding && !hold.holdingInto) hold.turnInto = 0;
   hold.holdingFrom = hold.holdingInto = holding;
   int ta = tangentFrom, tb = tangentInto;
-  bool single = false;
-  double singleWhole = 0;
+  int count = hold.count;
+  // A single vertex turns the path from a to b, that turn continued over time (both ends hold it);
+  // it leaves with the whole chain.
+  auto singleTurn = [&](int v) {
+    hold.turnFrom = hold.turnInto =
+        continuedPointTurn(polygon[v] - a, b - polygon[v], side, reference);
+  };
   if (holding) {
-    // A single vertex turns the path from a to b; it leaves with the whole chain (walkTurning).
-    single = hold.from == hold.into && reference < 2 * M_PI;
-    if (single) {
-      ta = tb = hold.into;
-      const Vec2 in = polygon[tb] - a, out = b - polygon[tb];
-      hold.turnInto = continuedPointTurn(in, out, side, hold.turnInto);
-      const double raw = continuedPointTurn(in, out, side, 0.0);
-      singleWhole = 2 * M_PI * std::round((hold.turnInto - raw) / (2 * M_PI));
-    } else {
-      tb = continuedEnd(b, polygon, side, hold.into, hold.from, true, hold.turnInto);
-      ta = continuedEnd(a, polygon, side, hold.from, tb, false, hold.turnFrom);
-    }
+    if (count == 1) singleTurn(last);
+    tb = continuedEnd(b, polygon, side, last, true, hold.turnInto, count);
+    if (count == 1) singleTurn(tb);
+    ta = continuedEnd(a, polygon, side, hold.from, false, hold.turnFrom, count);
   }
   if (ta < 0 || tb < 0) {
     hold = ChainHold{};
     return std::nullopt;
   }
-  // Let go where the held ends are the taut path's own again.
+  double turn;
+  if (holding && count == 1) {
+    turn = hold.turnInto;
+  } else if (holding) {
+    turn = heldChainTurn(polygon, side, ta, count, hold.turnFrom, hold.turnInto);
+  } else {
+    int walk, loops;
+    turn = walkTurning(a, b, polygon, side, ta, tb, reference, walk, loops);
+    count = walk + loops * n;
+  }
+  // Let go where the held ends are the taut path's own again (a chain of `count` vertices from
+  // them is then the one walkTurning gives for this turn).
   if (holding && ta == tangentFrom && tb == tangentInto && hold.turnInto < M_PI &&
-      (single || hold.turnFrom < M_PI))
+      hold.turnFrom < M_PI)
     hold.holdingFrom = hold.holdingInto = false;
-  const int n = static_cast<int>(polygon.size()), step = walkStep(side);
-  // A held end doubled back past half a turn turns by more than walkTurning's sum there: the
-  // chain has as many loops fewer as that sum misses whole turns.
-  double whole = singleWhole;
-  if (holding && !single && ta != tb) {
-    whole += heldWholeTurns(b, polygon, side, tb, true, hold.turnInto);
-    whole += heldWholeTurns(a, polygon, side, ta, false, hold.turnFrom);
-  } else if (holding && !single) {
-    // Whole laps from one vertex: walkTurning sums the turn from a to b there, the held ends
-    // turn into the lap and out of it, and the corner's own turn is counted twice by them.
-    const Vec2 &v = polygon[ta], &before = polygon[(ta - step + n) % n];
-    const Vec2& after = polygon[(ta + step + n) % n];
-    const double corner = continuedPointTurn(v - before, after - v, side, 0.0);
-    const double raw = continuedPointTurn(v - a, b - v, side, 0.0);
-    whole += 2 * M_PI * std::round((hold.turnFrom + hold.turnInto - corner - raw) / (2 * M_PI));
-  }
-  int walk, loops;
-  const double turn =
-      walkTurning(a, b, polygon, side, ta, tb, reference - whole, walk, loops) + whole;
-  if (turn > kStraightWrapTurn) {
-    for (int k = 0, i = ta; k < walk; ++k, i = (i + step + n) % n) chain.push_back(i);
-    for (int k = 0; k < loops * n; ++k) chain.push_back((chain.back() + step + n) % n);
-  }
+  if (turn > kStraightWrapTurn)
+    for (int k = 0, i = ta; k < count; ++k, i = (i + step + n) % n) chain.push_back(i);
   hold.from = chain.empty() ? -1 : chain.front();
-  hold.into = chain.empty() ? -1 : chain.back();
+  hold.count = static_cast<int>(chain.size());
   if (chain.empty()) hold.holdingFrom = hold.holdingInto = false;
-  return turn;
+  return turn > kStraightWrapTurn ? turn : std::min(turn, 0.0);
 }
 
 }  // namespace cablelab

@@ -19,11 +19,12 @@ namespace cablelab {
 bool commonTangent(std::span<const Vec2> first, WrapSide firstSide, std::span<const Vec2> second,
                    WrapSide secondSide, int& from, int& into);
 
-/// The ends of a polygon's chain kept from one update to the next: the first and last vertex at
-/// the last update (-1: none), and whether each end is held (its terminal went inside the hull,
-/// or it has not yet met the tangent vertex again since it came out).
+/// A polygon's chain kept from one update to the next: its first vertex at the last update (-1:
+/// none) and how many vertices it had, whole laps included (its two end vertices alone cannot tell
+/// one vertex from one vertex and a lap), and whether each end is held (its terminal went inside
+/// the hull, or it has not yet met the tangent vertex again since it came out).
 struct ChainHold {
-  int from = -1, into = -1;
+  int from = -1, count = 0;
   bool holdingFrom = false, holdingInto = false;
   /// The angle the path turns at each held end vertex (rad, in the wrap sense), continued over
   /// time: past half a turn the terminal went through the hull and the rope doubles back there.

@@ -127,12 +127,29 @@ bool nearFloor(std::span<const WrapPoint> path, size_t i, std::span<const BodySt
   return gap < kFloorWatch || gap < 2 * floorDrift(path[i], path[i + 1], bodies, h, gravity).norm();
 }
 
-/// Whether segment i of `cable`'s path needs a floor row this sub-step: the cable has floors and
-/// the segment is near its floor.
+/// Whether `cable` is elastic and stays slack over the sub-step: its stretch, with every segment
+/// opening by twice the way its ends can move apart (floorDrift), stays below zero. Nothing pulls
+/// along it, so its direction may turn over: a body passing over the anchor of a slack tether
+/// passes on, where a floor would stop it and take its energy.
+inline bool staysSlack(const Cable& cable, std::span<const BodyState> bodies, double h,
+                       const Vec2& gravity) {
+  if (!cable.elastic()) return false;
+  const auto& path = cable.path();
+  double stretch = cable.stretch();
+  for (size_t i = 0; i + 1 < path.size() && stretch < 0; ++i)
+    stretch += 2 * floorDrift(path[i], path[i + 1], bodies, h, gravity).norm();
+  return stretch < 0;
+}
+
+/// Whether segment i of `cable`'s path needs a floor row this sub-step: the cable has floors, the
+/// segment is near its floor and does not run to a point that may enter a polygon's hull
+/// (Cable::mayEnterHull), and the cable does not stay slack.
 template <class Moved>
 bool needsFloor(const Cable& cable, size_t i, std::span<const BodyState> bodies, double h,
                 const Vec2& gravity, Moved moved) {
-  return hasFloors(cable) && nearFloor(cable.path(), i, bodies, h, gravity, moved);
+  return hasFloors(cable) && !cable.mayEnterHull(i) &&
+         nearFloor(cable.path(), i, bodies, h, gravity, moved) &&
+         !staysSlack(cable, bodies, h, gravity);
 }
 
 /// The direction n a floor row measures segment (p, q) along: its constraint is

@@ -179,7 +179,7 @@ void PoseSolver::addFloorRows() {
       const bool dofs =
           (p.body >= 0 && dofOf_[p.body] >= 0) || (q.body >= 0 && dofOf_[q.body] >= 0);
       const double gap = floorGap(p, q);
-      if (p.body == q.body || !dofs || !(gap < kFloorWatch)) continue;
+      if (p.body == q.body || !dofs || !(gap < kFloorWatch) || c.mayEnterHull(i)) continue;
       if (gap > 0) {
         const Vec2 n = (floorTo(q) - floorFrom(p)) / gap;
         addRow(pointRow(q.body, floorTo(q), n) - pointRow(p.body, floorFrom(p), n),

@@ -419,13 +419,15 @@ double World::advance(double left, double h, bool locate) {
     auto floorArrivals = [&](std::optional<double>& soonest) {
       bool any = false;
       for (const Cable& c : cables_) {
-        if (!hasFloors(c)) continue;
+        if (!hasFloors(c) || staysSlack(c, bodies_, dt, gravity_)) continue;
         const auto& path = c.path();
-        for (size_t i = 0; i + 1 < path.size(); ++i)
+        for (size_t i = 0; i + 1 < path.size(); ++i) {
+          if (c.mayEnterHull(i)) continue;
           if (auto t = floorArrival(path[i], path[i + 1], motion_, soonest ? *soonest : dt)) {
             soonest = t;
             any = true;
           }
+        }
       }
       return any;
     };

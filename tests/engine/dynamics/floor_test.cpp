@@ -278,6 +278,27 @@ TEST(Floors, APuckFlyingPastItsAnchorOnASlackRopeFliesStraightOn) {
     }
 }
 
+// An elastic rope that stays slack over the step has no floor (floors.h, staysSlack): nothing
+// pulls along it, so a puck thrown straight through its anchor, at 5 and 50 m/s, flies on at its
+// speed (the floor stopped it 1 cm short of the anchor, all its energy gone).
+TEST(Floors, APuckThrownThroughItsAnchorOnASlackElasticRopeFliesOn) {
+  for (const double v : {5.0, 50.0}) {
+    SCOPED_TRACE("v " + std::to_string(v) + " m/s");
+    SceneDef scene;
+    scene.gravity = Vec2::Zero();
+    scene.bodies = {puck("puck", Vec2(-1, 0), Vec2(v, 0), 1.0)};
+    scene.cables = {rope("world", "puck")};
+    scene.cables[0].stiffness = 100;
+    scene.cables[0].restLength = 3;  // the puck never gets further than 1.1 m from the anchor
+    World world(scene);
+    const int steps = static_cast<int>(std::lround(2.0 / v / scene.dt)) + 1;  // 1 m past it
+    for (int s = 0; s < steps; ++s) world.step(scene.dt, 1);
+    EXPECT_GT(world.body(0).position.x(), 0.5);
+    EXPECT_NEAR(world.body(0).velocity.x(), v, 1e-6 * v);
+    EXPECT_EQ(world.cable(0).tension(), 0);
+  }
+}
+
 // A rope no longer than kShortestFlooredCable has no floor, which would hold its segment at 1 cm
 // against the rope itself: a bob swinging on 5 mm and 1 cm ropes from the world, at 1 and 4
 // sub-steps, keeps its rope at its length (it was held at 7.5 mm on the 5 mm rope).
