@@ -1,0 +1,101 @@
+#include "engine/dynamics/hull_contacts.h"
+
+#include <cmath>
+
+#include "engine/cable/wrap.h"
+
+namespace cablelab {
+
+namespace {
+
+constexpr size_t kMostVertices = 8;  // Box2D's b2_maxPolygonVertices
+
+// `local` placed at body `body`'s pose in the scene (the world's frame for -1).
+std::vector<Vec2> placed(const SceneDef& scene, int body, const std::vector<Vec2>& local) {
+  if (body < 0) return local;
+  const BodyDef& b = scene.bodies[body];
+  const double c = std::cos(b.angle), s = std::sin(b.angle);
+  std::vector<Vec2> out;
+  for (const Vec2& v : local) out.push_back(b.position + Vec2(c * v.x() - s * v.y(), s * v.x() + c * v.y()));
+  return out;
+}
+
+// Whether convex counter-clockwise `q` lies wholly outside one edge of convex `p`.
+bool separatedByAnEdgeOf(const std::vector<Vec2>& p, const std::vector<Vec2>& q) {
+  for (size_t i = 0; i < p.size(); ++i) {
+    const Vec2 edge = p[(i + 1) % p.size()] - p[i];
+    bool outside = true;
+    for (const Vec2& v : q) outside &= cross(edge, v - p[i]) < 0;
+    if (outside) return true;
+  }
+  return false;
+}
+
+bool overlap(const std::vector<Vec2>& p, const std::vector<Vec2>& q) {
+  return !separatedByAnEdgeOf(p, q) && !separatedByAnEdgeOf(q, p);
+}
+
+bool samePair(const HullContact& a, const HullContact& b) {
+  const bool polygons = !a.otherPolygon.empty() && !b.otherPolygon.empty();
+  if (polygons)
+    return (a.body == b.body && a.otherBody == b.otherBody) ||
+           (a.body == b.otherBody && a.otherBody == b.body);
+  return a.otherPolygon.empty() && b.otherPolygon.empty() && a.body == b.body &&
+         a.point == b.point;
+}
+
+}  // namespace
+
+std::vector<HullContact> hullContacts(const SceneDef& scene) {
+  std::vector<HullContact> out;
+  // A shapeless body is a point mass: its pulley's polygon guides the rope and touches nothing.
+  auto solid = [&](int body) { return body < 0 || !scene.bodies[body].shapes.empty(); };
+  auto moving = [&](int body) {
+    return body >= 0 && scene.bodies[body].type == BodyType::Dynamic && solid(body);
+  };
+  auto add = [&](HullContact c) {
+    if (c.polygon.size() > kMostVertices || c.otherPolygon.size() > kMostVertices) return;
+    const std::vector<Vec2> hull = placed(scene, c.body, c.polygon);
+    const bool overlapping =
+        c.otherPolygon.empty() ? insideConvex(c.point, hull)
+                               : overlap(hull, placed(scene, c.otherBody, c.otherPolygon));
+    if (overlapping) return;
+    for (const HullContact& d : out)
+      if (samePair(c, d)) return;
+    out.push_back(std::move(c));
+  };
+  for (const CableDef& cable : scene.cables) {
+    const int count = static_cast<int>(cable.pulleys.size());
+    for (int j = 0; j < count; ++j) {
+      const PulleyDef& pd = cable.pulleys[j];
+      const int body = findBodyIndex(scene, pd.body);
+      if (pd.kind != PulleyDef::Kind::Polygon || !moving(body)) continue;
+      HullContact c;
+      c.body = body;
+      c.polygon = pulleyPolygon(scene, pd);
+      for (const int n : {j - 1, j + 1}) {
+        HullContact pair = c;
+        if (n < 0 || n >= count) {  // the start or end anchor
+          const AnchorDef& anchor = n < 0 ? cable.start : cable.end;
+          if (findBodyIndex(scene, anchor.body) != -1 || anchor.radius > 0) continue;
+          pair.point = anchor.point;
+        } else {
+          const PulleyDef& next = cable.pulleys[n];
+          pair.otherBody = findBodyIndex(scene, next.body);
+          if (next.kind == PulleyDef::Kind::Polygon && pair.otherBody != body &&
+              solid(pair.otherBody)) {
+            pair.otherPolygon = pulleyPolygon(scene, next);
+          } else if (next.kind == PulleyDef::Kind::Point && pair.otherBody == -1) {
+            pair.point = next.point;
+          } else {
+            continue;
+          }
+        }
+        add(std::move(pair));
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace cablelab
