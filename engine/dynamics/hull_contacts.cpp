@@ -65,6 +65,14 @@ std::vector<HullContact> hullContacts(const SceneDef& scene) {
     out.push_back(std::move(c));
   };
   for (const CableDef& cable : scene.cables) {
+    // The cable's points fixed in the world: its anchors and point pulleys there.
+    std::vector<Vec2> points;
+    for (const AnchorDef* anchor : {&cable.start, &cable.end})
+      if (findBodyIndex(scene, anchor->body) == -1 && anchor->radius == 0)
+        points.push_back(anchor->point);
+    for (const PulleyDef& pd : cable.pulleys)
+      if (pd.kind == PulleyDef::Kind::Point && findBodyIndex(scene, pd.body) == -1)
+        points.push_back(pd.point);
     const int count = static_cast<int>(cable.pulleys.size());
     for (int j = 0; j < count; ++j) {
       const PulleyDef& pd = cable.pulleys[j];
@@ -73,24 +81,19 @@ std::vector<HullContact> hullContacts(const SceneDef& scene) {
       HullContact c;
       c.body = body;
       c.polygon = pulleyPolygon(scene, pd);
-      for (const int n : {j - 1, j + 1}) {
+      for (const Vec2& p : points) {
         HullContact pair = c;
-        if (n < 0 || n >= count) {  // the start or end anchor
-          const AnchorDef& anchor = n < 0 ? cable.start : cable.end;
-          if (findBodyIndex(scene, anchor.body) != -1 || anchor.radius > 0) continue;
-          pair.point = anchor.point;
-        } else {
-          const PulleyDef& next = cable.pulleys[n];
-          pair.otherBody = findBodyIndex(scene, next.body);
-          if (next.kind == PulleyDef::Kind::Polygon && pair.otherBody != body &&
-              solid(pair.otherBody)) {
-            pair.otherPolygon = pulleyPolygon(scene, next);
-          } else if (next.kind == PulleyDef::Kind::Point && pair.otherBody == -1) {
-            pair.point = next.point;
-          } else {
-            continue;
-          }
-        }
+        pair.point = p;
+        add(std::move(pair));
+      }
+      for (int k = 0; k < count; ++k) {
+        const PulleyDef& other = cable.pulleys[k];
+        HullContact pair = c;
+        pair.otherBody = findBodyIndex(scene, other.body);
+        if (k == j || other.kind != PulleyDef::Kind::Polygon || pair.otherBody == body ||
+            !solid(pair.otherBody))
+          continue;
+        pair.otherPolygon = pulleyPolygon(scene, other);
         add(std::move(pair));
       }
     }

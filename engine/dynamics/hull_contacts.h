@@ -1,6 +1,6 @@
 // Contacts between a polygon pulley and its neighbours on a cable (docs/cables.md, "Points inside
-// a hull"): a neighbouring polygon pulley on another body, or an anchor or point pulley fixed in
-// the world, may not enter the polygon's hull, whatever the bodies' own shapes (pulleys are often
+// a hull"): another polygon pulley of the cable, or an anchor or point pulley of it fixed in the
+// world, may not enter the polygon's hull, whatever the bodies' own shapes (pulleys are often
 // sensors). Box2D keeps them apart (box2d_bridge.cpp): the rope then always has a taut path round
 // each polygon and no guard has to drop one.
 #pragma once
@@ -23,10 +23,11 @@ struct HullContact {
   Vec2 point = Vec2::Zero();
 };
 
-/// The pairs of `scene`'s cables: each polygon pulley on a dynamic body with the pulley or anchor
-/// next to it in the cable's list, when that is a polygon pulley on another body or a point fixed
-/// in the world. Pairs that overlap in the scene's pose (placed so on purpose) and polygons of
-/// more vertices than Box2D holds are left out, as are repeats.
+/// The pairs of `scene`'s cables: each polygon pulley on a dynamic body with every other polygon
+/// pulley on the same cable (on another body) and every point of the cable fixed in the world (an
+/// anchor, a point pulley), any of which becomes its neighbour on the path once the pulleys
+/// between leave. Pairs that overlap in the scene's pose (placed so on purpose), polygons of
+/// more vertices than Box2D holds, shapeless bodies (point masses) and repeats are left out.
 std::vector<HullContact> hullContacts(const SceneDef& scene);
 
 }  // namespace cablelab
