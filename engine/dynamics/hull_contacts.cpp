@@ -1,22 +1,19 @@
 #include "engine/dynamics/hull_contacts.h"
 
-#include <cmath>
-
 #include "engine/cable/wrap.h"
 
 namespace cablelab {
 
 namespace {
 
-constexpr size_t kMostVertices = 8;  // Box2D's b2_maxPolygonVertices
+constexpr size_t kMostHullVertices = 8;  // Box2D's b2_maxPolygonVertices
 
 // `local` placed at body `body`'s pose in the scene (the world's frame for -1).
-std::vector<Vec2> placed(const SceneDef& scene, int body, const std::vector<Vec2>& local) {
+std::vector<Vec2> placedInScene(const SceneDef& scene, int body, const std::vector<Vec2>& local) {
   if (body < 0) return local;
   const BodyDef& b = scene.bodies[body];
-  const double c = std::cos(b.angle), s = std::sin(b.angle);
   std::vector<Vec2> out;
-  for (const Vec2& v : local) out.push_back(b.position + Vec2(c * v.x() - s * v.y(), s * v.x() + c * v.y()));
+  for (const Vec2& v : local) out.push_back(b.position + rotate(v, b.angle));
   return out;
 }
 
@@ -31,17 +28,16 @@ bool separatedByAnEdgeOf(const std::vector<Vec2>& p, const std::vector<Vec2>& q)
   return false;
 }
 
-bool overlap(const std::vector<Vec2>& p, const std::vector<Vec2>& q) {
+bool hullsOverlap(const std::vector<Vec2>& p, const std::vector<Vec2>& q) {
   return !separatedByAnEdgeOf(p, q) && !separatedByAnEdgeOf(q, p);
 }
 
-bool samePair(const HullContact& a, const HullContact& b) {
+bool sameHullPair(const HullContact& a, const HullContact& b) {
   const bool polygons = !a.otherPolygon.empty() && !b.otherPolygon.empty();
   if (polygons)
     return (a.body == b.body && a.otherBody == b.otherBody) ||
            (a.body == b.otherBody && a.otherBody == b.body);
-  return a.otherPolygon.empty() && b.otherPolygon.empty() && a.body == b.body &&
-         a.point == b.point;
+  return a.otherPolygon.empty() && b.otherPolygon.empty() && a.body == b.body && a.point == b.point;
 }
 
 }  // namespace
@@ -54,14 +50,15 @@ std::vector<HullContact> hullContacts(const SceneDef& scene) {
     return body >= 0 && scene.bodies[body].type == BodyType::Dynamic && solid(body);
   };
   auto add = [&](HullContact c) {
-    if (c.polygon.size() > kMostVertices || c.otherPolygon.size() > kMostVertices) return;
-    const std::vector<Vec2> hull = placed(scene, c.body, c.polygon);
+    if (c.polygon.size() > kMostHullVertices || c.otherPolygon.size() > kMostHullVertices) return;
+    const std::vector<Vec2> hull = placedInScene(scene, c.body, c.polygon);
     const bool overlapping =
-        c.otherPolygon.empty() ? insideConvex(c.point, hull)
-                               : overlap(hull, placed(scene, c.otherBody, c.otherPolygon));
+        c.otherPolygon.empty()
+            ? insideConvex(c.point, hull)
+            : hullsOverlap(hull, placedInScene(scene, c.otherBody, c.otherPolygon));
     if (overlapping) return;
     for (const HullContact& d : out)
-      if (samePair(c, d)) return;
+      if (sameHullPair(c, d)) return;
     out.push_back(std::move(c));
   };
   for (const CableDef& cable : scene.cables) {

@@ -71,7 +71,8 @@ double deepestInAHull(const World& world, const SceneDef& scene) {
   double deepest = 0;
   for (int b = 0; b < world.bodyCount(); ++b)
     if (scene.bodies[b].shapes[0].kind == ShapeDef::Kind::Polygon)
-      for (const Vec2& p : points) deepest = std::max(deepest, depthInside(p, hullNow(world, scene, b)));
+      for (const Vec2& p : points)
+        deepest = std::max(deepest, depthInside(p, hullNow(world, scene, b)));
   for (size_t j = 0; j + 1 < cable.pulleys.size(); ++j) {
     const int first = findBodyIndex(scene, cable.pulleys[j].body);
     const int second = findBodyIndex(scene, cable.pulleys[j + 1].body);
