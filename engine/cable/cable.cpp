@@ -61,13 +61,7 @@ Cable::Cable(const SceneDef& scene, int index, const std::string& source)
     ps.polygon = pd.kind == PulleyDef::Kind::Polygon;
     ps.circle = pd.kind == PulleyDef::Kind::Circle;
     if (ps.polygon) {
-      ps.local = pd.vertices;
-      if (ps.local.empty() && ps.body >= 0)
-        for (const ShapeDef& s : scene.bodies[ps.body].shapes)
-          if (s.kind == ShapeDef::Kind::Polygon) {
-            ps.local = s.vertices;
-            break;
-          }
+      ps.local = pulleyPolygon(scene, pd);
       if (!isConvexCCW(ps.local))
         throw InputError(source, cableField(index, field + ".vertices"),
                          "polygon pulley needs a convex counter-clockwise polygon");

@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+
+#include "engine/dynamics/hull_contacts.h"
 
 namespace cablelab {
 
@@ -140,9 +143,51 @@ struct ContactImpulses : b2ContactListener {
   }
 };
 
+namespace {
+
+// The fixtures that keep a polygon pulley and its neighbours apart (hull_contacts.h) touch only
+// their own partners; every other pair keeps Box2D's filtering.
+constexpr uintptr_t kHullFixture = 1;  // a fixture's user data: one of hull_contacts.h's
+
+struct HullContactFilter : b2ContactFilter {
+  std::vector<std::pair<b2Fixture*, b2Fixture*>> pairs;
+  bool ShouldCollide(b2Fixture* a, b2Fixture* b) override {
+    const bool hullA = a->GetUserData().pointer == kHullFixture;
+    const bool hullB = b->GetUserData().pointer == kHullFixture;
+    if (!hullA && !hullB) return b2ContactFilter::ShouldCollide(a, b);
+    return std::find(pairs.begin(), pairs.end(), std::make_pair(a, b)) != pairs.end() ||
+           std::find(pairs.begin(), pairs.end(), std::make_pair(b, a)) != pairs.end();
+  }
+};
+
+// A smooth, massless fixture (density 0 leaves the body's mass as set) of a hull contact: the
+// polygon, or a point as a circle of Box2D's slop.
+b2Fixture* addHullFixture(b2Body* body, const std::vector<Vec2>& polygon, const Vec2& point) {
+  b2FixtureDef fd;
+  b2CircleShape circle;
+  b2PolygonShape hull;
+  if (polygon.empty()) {
+    circle.m_radius = b2_linearSlop;
+    circle.m_p = toB2(point);
+    fd.shape = &circle;
+  } else {
+    std::vector<b2Vec2> v;
+    for (const Vec2& p : polygon) v.push_back(toB2(p));
+    hull.Set(v.data(), static_cast<int32>(v.size()));
+    fd.shape = &hull;
+  }
+  fd.density = 0;
+  fd.friction = 0;
+  fd.userData.pointer = kHullFixture;
+  return body->CreateFixture(&fd);
+}
+
+}  // namespace
+
 struct Box2DBridge::Impl {
   b2World world{b2Vec2(0, 0)};
   ContactImpulses contacts;
+  HullContactFilter hullFilter;
   b2Body* ground = nullptr;
   double lastStep = 0;  ///< the last step()'s h (s)
   std::vector<b2Body*> bodies;
@@ -195,6 +240,15 @@ Box2DBridge::Box2DBridge(const SceneDef& scene) : impl_(std::make_unique<Impl>()
     impl_->joints.push_back(createJoint(w, jd, bodyOf(jd.bodyA), bodyOf(jd.bodyB)));
     impl_->kinds.push_back(jd.kind);
   }
+  for (const HullContact& c : hullContacts(scene)) {
+    b2Body* other = c.otherBody < 0 ? impl_->ground : impl_->bodies[c.otherBody];
+    // Box2D sweeps a moving body against the world's fixtures, but against another moving body
+    // only if one is a bullet: fast corners would go through a step's worth into the hull.
+    if (c.otherBody >= 0) impl_->bodies[c.body]->SetBullet(true);
+    impl_->hullFilter.pairs.emplace_back(addHullFixture(impl_->bodies[c.body], c.polygon, {}),
+                                         addHullFixture(other, c.otherPolygon, c.point));
+  }
+  w.SetContactFilter(&impl_->hullFilter);
   impl_->turns.assign(scene.bodies.size(), 0.0);
   impl_->rewinds.assign(scene.bodies.size(), 1);
   for (const JointDef& jd : scene.joints) {

@@ -17,6 +17,14 @@ int findBodyIndex(const SceneDef& scene, const std::string& name) {
   return -2;
 }
 
+std::vector<Vec2> pulleyPolygon(const SceneDef& scene, const PulleyDef& pulley) {
+  const int body = findBodyIndex(scene, pulley.body);
+  if (!pulley.vertices.empty() || body < 0) return pulley.vertices;
+  for (const ShapeDef& s : scene.bodies[body].shapes)
+    if (s.kind == ShapeDef::Kind::Polygon) return s.vertices;
+  return {};
+}
+
 namespace {
 
 class Checker {

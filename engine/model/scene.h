@@ -179,4 +179,8 @@ void validateScene(const SceneDef& scene, const std::string& source);
 /// Index of the body called `name` in scene.bodies, -1 for "world", -2 if unknown.
 int findBodyIndex(const SceneDef& scene, const std::string& name);
 
+/// A polygon pulley's vertices in its body's frame (the world's for "world"): its own, or else its
+/// body's first polygon shape (empty if it has neither).
+std::vector<Vec2> pulleyPolygon(const SceneDef& scene, const PulleyDef& pulley);
+
 }  // namespace cablelab
