@@ -21,6 +21,12 @@ std::string box(const LabelBox& b) {
          jsonNumber(b.y1) + "]";
 }
 
+std::string join(const std::vector<std::string>& items) {
+  std::string out = "[";
+  for (size_t k = 0; k < items.size(); ++k) out += (k ? ", " : "") + items[k];
+  return out + "]";
+}
+
 /// What the last frame showed, as JSON (see lecture_scripts.h, `present`).
 std::string viewJson(const Sandbox& s, const std::string& name, const std::string& shot) {
   const DrawnView& d = s.drawn;
@@ -29,6 +35,17 @@ std::string viewJson(const Sandbox& s, const std::string& name, const std::strin
   std::string labels = "[";
   for (size_t k = 0; k < d.labels.size(); ++k) labels += (k ? ", " : "") + box(d.labels[k]);
   labels += "]";
+  std::string lines = "[";  // the overlay's lines as drawn, each [x0, y0, x1, y1] (px)
+  for (size_t k = 0; k < d.overlayLines.size(); ++k) {
+    const ScreenSegment& l = d.overlayLines[k];
+    lines += std::string(k ? ", " : "") + "[" + jsonNumber(l.a.x()) + ", " + jsonNumber(l.a.y()) +
+             ", " + jsonNumber(l.b.x()) + ", " + jsonNumber(l.b.y()) + "]";
+  }
+  lines += "]";
+  std::vector<std::string> shownKeys, markerKeys;  // the key's rows; the overlay's markers' keys
+  if (!f.key.empty())
+    for (const MarkerKeyRow& r : f.keyRows) shownKeys.push_back(jsonQuoted(r.label));
+  for (const Overlay::Key& k : s.overlay().keys) markerKeys.push_back(jsonQuoted(k.label));
   LabelBox stage;  // a looping demo's whole run on screen (ui/demo_loop.h), px
   if (!s.demo.stage.empty()) {
     const Vec2 lo = s.camera.toScreen(s.demo.stage.lo), hi = s.camera.toScreen(s.demo.stage.hi);
@@ -47,6 +64,8 @@ std::string viewJson(const Sandbox& s, const std::string& name, const std::strin
          "], \"free\": [" + jsonNumber(free.x) + ", " + jsonNumber(free.y) + ", " +
          jsonNumber(free.width) + ", " + jsonNumber(free.height) + "], \"scene\": " + box(d.scene) +
          ", \"stage\": " + box(stage) + ", \"labels\": " + labels +
+         ", \"overlay_lines\": " + lines + ", \"key_rows\": " + join(shownKeys) +
+         ", \"marker_keys\": " + join(markerKeys) +
          ", \"hidden_labels\": " + jsonNumber(d.hiddenLabels) +
          ", \"labels_on_cables\": " + jsonNumber(d.labelsOnCables) +
          ", \"scale_bar\": " + box(f.scaleBar) + ", \"colour_bar\": " + box(f.colourBar) +
@@ -72,10 +91,17 @@ std::string nextScene(const std::string& name) {
   return all.front().name;
 }
 
-std::string join(const std::vector<std::string>& items) {
-  std::string out = "[";
-  for (size_t k = 0; k < items.size(); ++k) out += (k ? ", " : "") + items[k];
-  return out + "]";
+/// The first dynamic body at a cable's end, or -1.
+int bodyAtACableEnd(const World& world) {
+  for (int i = 0; i < world.cableCount(); ++i) {
+    const int b = world.findBody(world.cable(i).def().end.body);
+    if (b >= 0 && world.scene().bodies[b].type == BodyType::Dynamic) return b;
+  }
+  return -1;
+}
+
+Vec2 middle(const LabelBox& b) {
+  return Vec2(0.5 * (b.x0 + b.x1), 0.5 * (b.y0 + b.y1));
 }
 
 /// The slider step of a built-in scene's "what to try" (ui/scene_guide.h), if it has one.
@@ -88,11 +114,24 @@ std::optional<std::pair<std::string, double>> sliderStep(const std::string& scen
   return it->second;
 }
 
+/// The scene's "what to try" step that is not a drag: its slider step (the slider moved and let
+/// go), or the hand's grasp sequence (the Controller section's "open (grasp)").
+void tryStep(Sandbox& sandbox) {
+  if (const auto step = sliderStep(sandbox.sceneName)) {
+    auto values = sandbox.parameters;
+    for (auto& [k, v] : values)
+      if (k == step->first) v = step->second;
+    sandbox.rebuild(values);
+  } else if (sandbox.sceneName == "hand") {
+    startHandGrasp(sandbox);
+  }
+}
+
 }  // namespace
 
 const std::vector<std::string>& LectureScript::names() {
-  static const std::vector<std::string> n = {"present", "grasp-quiet", "tension-run", "walkthrough",
-                                             "select-rope"};
+  static const std::vector<std::string> n = {"present",     "grasp-quiet", "tension-run",
+                                             "walkthrough", "select-rope", "tour"};
   return n;
 }
 
@@ -126,6 +165,7 @@ bool LectureScript::beforeFrame(Sandbox& sandbox, int frame) {
   if (name_ == "tension-run") return tensionRun(sandbox, frame);
   if (name_ == "walkthrough") return walkthrough(sandbox, frame);
   if (name_ == "select-rope") return selectRope(sandbox, frame);
+  if (name_ == "tour") return tour(sandbox, frame);
   report_ = "{\"scenario\": " + jsonQuoted(name_) + ", \"failure\": \"unknown scenario\"}";
   return false;
 }
@@ -245,10 +285,7 @@ bool LectureScript::tensionRun(Sandbox& sandbox, int frame) {
       largest_ = std::max(largest_, world.cable(i).tension());
   }
   if (frame == 5) {  // the body at a cable's end, pulled down hard
-    for (int i = 0; i < world.cableCount() && body_ < 0; ++i) {
-      const int b = world.findBody(world.cable(i).def().end.body);
-      if (b >= 0 && world.scene().bodies[b].type == BodyType::Dynamic) body_ = b;
-    }
+    body_ = bodyAtACableEnd(world);
     if (body_ < 0) {
       report_ = "{\"scenario\": \"tension-run\", \"failure\": \"no body at a cable's end\"}";
       return false;
@@ -305,10 +342,7 @@ bool LectureScript::walkthrough(Sandbox& sandbox, int frame) {
   } else if (frame == 600) {
     snapshot("run-10s");
   } else if (frame == 605) {  // drag the body at a cable's end sideways and down
-    for (int i = 0; i < world.cableCount() && body_ < 0; ++i) {
-      const int b = world.findBody(world.cable(i).def().end.body);
-      if (b >= 0 && world.scene().bodies[b].type == BodyType::Dynamic) body_ = b;
-    }
+    body_ = bodyAtACableEnd(world);
     if (body_ >= 0) {
       from_ = sandbox.camera.toScreen(world.body(body_).position);
       to_ = from_ + Vec2(120, 120);
@@ -323,14 +357,7 @@ bool LectureScript::walkthrough(Sandbox& sandbox, int frame) {
   } else if (frame == 720) {
     snapshot("dropped");
   } else if (frame == 725) {
-    if (const auto step = sliderStep(sandbox.sceneName)) {
-      auto values = sandbox.parameters;
-      for (auto& [k, v] : values)
-        if (k == step->first) v = step->second;
-      sandbox.rebuild(values);
-    } else if (sandbox.sceneName == "hand") {
-      startHandGrasp(sandbox);
-    }
+    tryStep(sandbox);
   } else if (frame == 900) {
     snapshot("try-step");
   } else if (frame == 902) {
@@ -388,6 +415,87 @@ bool LectureScript::selectRope(Sandbox& sandbox, int frame) {
               ", \"open_after\": " + (sandbox.inspectorOpen ? "true" : "false") +
               ", \"overflow\": " + jsonNumber(sandbox.panelOverflow[1]) + "}";
     return false;
+  }
+  return true;
+}
+
+}  // namespace cablelab::ui
+
+namespace cablelab::ui {
+
+bool LectureScript::tour(Sandbox& sandbox, int frame) {
+  // The built-in scenes the walkthrough tests do not walk (tests/ui/lecture_gui_test.cpp).
+  static const std::vector<std::string> kScenes = {"ballast", "pulley", "hexagon", "membrane",
+                                                   "hand"};
+  constexpr int kFramesPerScene = 100;
+  recordPendingView(sandbox);
+  if (frame == 1) {
+    sandbox.projector = true;  // the View menu's projector mode
+    sandbox.uiScale = 2;
+    key(SDLK_p);
+    return true;
+  }
+  const int k = (frame - 2) / kFramesPerScene, f = (frame - 2) % kFramesPerScene;
+  if (k >= static_cast<int>(kScenes.size())) {
+    report_ = "{\"scenario\": \"tour\", \"banners\": " + join(banners_) +
+              ", \"views\": " + join(items_) + "}";
+    return false;
+  }
+  const std::string& scene = kScenes[k];
+  if (f > 0 && !sandbox.banner.empty() &&
+      (banners_.empty() || banners_.back() != jsonQuoted(scene + ": " + sandbox.banner)))
+    banners_.push_back(jsonQuoted(scene + ": " + sandbox.banner));
+  SDL_Window* window = SDL_GetWindowFromID(windowId_);
+  const FurnitureLayout& furniture = sandbox.drawn.furniture;
+  const auto shot = [&](const char* what) {
+    shotName_ = scene + "-" + what;
+    snapshot(sandbox, shotName_.c_str());
+  };
+  if (f == 0) {
+    SDL_SetWindowSize(window, 1280, 720);
+    sandbox.open(scene);  // the Scene menu's choice
+  } else if (f == 8) {
+    shot("720-start");
+  } else if (f == 10) {  // drag the body at a cable's end (the membrane's weighted point)
+    const World& world = *sandbox.world();
+    body_ = bodyAtACableEnd(world);
+    for (int i = 0; i < world.bodyCount() && body_ < 0; ++i)
+      if (world.scene().bodies[i].type == BodyType::Dynamic) body_ = i;
+    if (body_ >= 0) {
+      from_ = sandbox.camera.toScreen(sandbox.world()->body(body_).position);
+      to_ = scene == "hexagon" && !furniture.colourBar.empty() ? middle(furniture.colourBar)
+                                                               : from_ + Vec2(120, 120);
+      mouse(SDL_MOUSEMOTION, from_);
+      mouse(SDL_MOUSEBUTTONDOWN, from_);
+    }
+  } else if (f > 10 && f <= 20 && body_ >= 0) {
+    mouse(SDL_MOUSEMOTION, from_ + (to_ - from_) * ((f - 10) / 10.0));
+  } else if (f == 22 && body_ >= 0) {
+    shot("720-drag");
+  } else if (f > 22 && f <= 32 && scene == "hexagon" && !furniture.scaleBar.empty()) {
+    // on along the bottom onto the scale bar
+    mouse(SDL_MOUSEMOTION, to_ + (middle(furniture.scaleBar) - to_) * ((f - 22) / 10.0));
+    if (f == 32) to_ = middle(furniture.scaleBar);
+  } else if (f == 34 && scene == "hexagon") {
+    shot("720-drag-scale-bar");
+  } else if (f == 36 && body_ >= 0) {
+    mouse(SDL_MOUSEBUTTONUP, to_);
+  } else if (f == 38) {
+    tryStep(sandbox);
+  } else if (f == 66) {
+    shot("720-try");
+  } else if (f == 68) {
+    key(SDLK_SPACE);
+  } else if (f == 72) {
+    shot("720-paused");
+  } else if (f == 74) {
+    SDL_SetWindowSize(window, 1920, 1080);
+  } else if (f == 84) {
+    shot("1080-paused");
+  } else if (f == 86) {
+    key(SDLK_SPACE);
+  } else if (f == 98) {
+    shot("1080-run");
   }
   return true;
 }

@@ -20,6 +20,11 @@
 //   select-rope   clicks a point of a cable (none of a body) in the view; reports whether the
 //                 Inspector was open before and after, the cable selected and the Inspector's
 //                 row overflow
+//   tour          the built-in scenes the walkthrough tests do not walk (ballast, pulley, hexagon,
+//                 membrane, hand), each opened from the Scene menu in presentation mode at
+//                 projector scale, 1280x720: the body at a cable's end dragged (the hexagon's onto
+//                 the colour bar, then onto the scale bar), the scene's "what to try" step, Space;
+//                 then 1920x1080 paused and running again. Reports each view and every banner shown
 //
 // Needs: an SDL video subsystem (the sandbox's Window), a Sandbox with a loaded scene.
 #pragma once
@@ -48,6 +53,7 @@ class LectureScript {
   bool tensionRun(Sandbox& sandbox, int frame);
   bool walkthrough(Sandbox& sandbox, int frame);
   bool selectRope(Sandbox& sandbox, int frame);
+  bool tour(Sandbox& sandbox, int frame);
   void key(SDL_Keycode k);
   void mouse(Uint32 type, const Vec2& screen);
   /// Records the view whose screenshot the last frame took, if any.
@@ -65,7 +71,9 @@ class LectureScript {
   Vec2 target_ = Vec2::Zero();  ///< grasp-quiet: the point clicked (m)
   double lowest_ = 1e300, highest_ = -1e300, largest_ = 0;
   int bannerFrames_ = 0;
-  int width_ = 0, height_ = 0;  ///< present: the window's size before the resize
+  int width_ = 0, height_ = 0;        ///< present: the window's size before the resize
+  std::vector<std::string> banners_;  ///< tour: every banner shown, "scene: text"
+  std::string shotName_;              ///< tour: the screenshot's name, "scene-what"
 };
 
 }  // namespace cablelab::ui

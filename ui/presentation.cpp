@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include <imgui.h>
+
 #include "ui/scene_bounds.h"
+#include "ui/view_furniture.h"
 
 namespace cablelab::ui {
 namespace {
@@ -15,6 +18,8 @@ constexpr double kCloseUpBelow = 0.15;   // of the area's width: a thinner whole
 constexpr double kCloseUpWidest = 3;     // of kCloseUpSpan: the farthest a close-up zooms out
 constexpr double kCloseUpRoom = 0.12;    // of the close-up's height, kept above and below
 constexpr double kFollowSeconds = 0.25;  // how fast the close-up catches up with its focus
+constexpr double kKeyRoomCost = 0.1;     // of the scene's size, the most the key's room may take
+constexpr double kRefitBelow = 0.55;  // of the view both ways: a scene that shrank so is refitted
 
 /// The camera centre that puts world point `p` at the centre of `area` above `bottomReserve`.
 Vec2 centreAt(const Vec2& p, const Camera& camera, const PanelRect& area, float bottomReserve) {
@@ -28,6 +33,31 @@ bool sameArea(const PanelRect& a, const PanelRect& b) {
          std::abs(a.width - b.width) < 0.5f && std::abs(a.height - b.height) < 0.5f;
 }
 
+/// In presentation mode the fit follows the scene (not while the user drags a body): fitted
+/// again when a moving part leaves the view or the scene (with a demo's whole run) shrank to
+/// less than kRefitBelow of it both ways (the hand opening its fingers wide for a new grasp and
+/// closing them), or when the marker key grew over it (a new marker).
+bool outgrown(const Sandbox& sandbox) {
+  if (!sandbox.presentation || !sandbox.viewFitted || sandbox.closeUp || sandbox.drag.body >= 0)
+    return false;
+  const FurnitureLayout& f = sandbox.drawn.furniture;
+  if (f.keyOnScene && f.keyRows.size() != sandbox.fittedKeyRows) return true;
+  LabelBox s = sandbox.drawn.scene;
+  if (s.empty()) return false;
+  if (!sandbox.demo.stage.empty()) {
+    const Vec2 lo = sandbox.camera.toScreen(sandbox.demo.stage.lo);
+    const Vec2 hi = sandbox.camera.toScreen(sandbox.demo.stage.hi);
+    s = {std::min(s.x0, lo.x()), std::min(s.y0, hi.y()), std::max(s.x1, hi.x()),
+         std::max(s.y1, lo.y())};
+  }
+  const PanelRect a = sandbox.freeArea();
+  const float height = a.height - barRowHeight(sandbox);
+  const bool out =
+      s.x0 < a.x - 1 || s.y0 < a.y - 1 || s.x1 > a.x + a.width + 1 || s.y1 > a.y + height + 1;
+  const bool small = s.x1 - s.x0 < kRefitBelow * a.width && s.y1 - s.y0 < kRefitBelow * height;
+  return out || small;
+}
+
 }  // namespace
 
 void togglePresentation(Sandbox& sandbox) {
@@ -38,7 +68,7 @@ void togglePresentation(Sandbox& sandbox) {
 void keepViewFitted(Sandbox& sandbox) {
   const bool moved =
       !sameArea(sandbox.freeArea(), sandbox.fittedArea) || sandbox.fittedScale != sandbox.uiScale;
-  if (sandbox.fitPending || (sandbox.viewFitted && moved)) sandbox.fitView();
+  if (sandbox.fitPending || (sandbox.viewFitted && moved) || outgrown(sandbox)) sandbox.fitView();
 }
 
 float barRowHeight(const Sandbox& sandbox) {
@@ -94,8 +124,7 @@ Camera closeUpCamera(const World& world, const Camera& camera, const PanelRect& 
 void followCloseUp(Sandbox& sandbox, double seconds) {
   const World* world = sandbox.world();
   if (!world || !sandbox.closeUp || !sandbox.viewFitted || !sandbox.presentation) return;
-  const Camera goal =
-      closeUpCamera(*world, sandbox.camera, sandbox.freeArea(), barRowHeight(sandbox));
+  const Camera goal = presentationFit(sandbox, sandbox.freeArea());
   // Out quickly (nothing leaves the view), in and along smoothly.
   const double share = 1 - std::exp(-std::max(seconds, 0.0) / kFollowSeconds);
   Camera& c = sandbox.camera;
@@ -104,6 +133,43 @@ void followCloseUp(Sandbox& sandbox, double seconds) {
                          : c.metresPerPixel + share * (goal.metresPerPixel - c.metresPerPixel);
   c.center += share * (goal.center - c.center);
   if (goal.metresPerPixel >= c.metresPerPixel) c.center = goal.center;
+}
+
+Camera presentationFit(const Sandbox& sandbox, const PanelRect& free) {
+  const World& world = *sandbox.world();
+  const float bars = barRowHeight(sandbox);
+  const auto fitIn = [&](const PanelRect& area) {
+    return sandbox.closeUp ? closeUpCamera(world, sandbox.camera, area, bars)
+                           : fitToContent(world, sandbox.camera, area, bars, sandbox.demo.stage);
+  };
+  const Camera whole = fitIn(free);
+  // The marker key's size needs the text font: none before the first frame (nor in the tests
+  // of the sandbox without a window).
+  if (!ImGui::GetCurrentContext() || !ImGui::GetFont()) return whole;
+  const Overlay overlay = sandbox.overlay();
+  RenderOptions options = sandbox.renderOptions();
+  options.keyGivesWay = true;
+  const auto keyOnScene = [&](const Camera& camera) {
+    const WorldBounds b = sceneBounds(world);
+    if (b.empty()) return FurnitureLayout{};
+    const Vec2 lo = camera.toScreen(b.lo), hi = camera.toScreen(b.hi);
+    const LabelBox scene{lo.x(), hi.y(), hi.x(), lo.y()};
+    return layoutFurniture(world, overlay, options, camera, true, scene);
+  };
+  const FurnitureLayout l = keyOnScene(whole);
+  if (l.keyRows.empty() || !l.keyOnScene) return whole;
+  // Room for the key: below its strip along the top, or left of its column.
+  PanelRect below = free, left = free;
+  const float band = static_cast<float>(l.keyAsStrip.y1) + 6 - free.y;
+  below.y += band;
+  below.height -= band;
+  left.width = static_cast<float>(l.keyAsColumn.x0) - 6 - free.x;
+  if (below.height < 40 || left.width < 40) return whole;
+  const Camera a = fitIn(below), b = fitIn(left);
+  const Camera& roomy = a.metresPerPixel <= b.metresPerPixel ? a : b;
+  // A window too small for both (the scene would lose more than kKeyRoomCost of its size): the
+  // scene wins, the key gives way (ui/view_furniture.h).
+  return roomy.metresPerPixel * (1 - kKeyRoomCost) <= whole.metresPerPixel ? roomy : whole;
 }
 
 Camera fitToContent(const World& world, const Camera& camera, const PanelRect& area,

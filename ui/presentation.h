@@ -18,7 +18,8 @@
 // that body moves away, in and along smoothly when it comes nearer). A body farther away than
 // three times that leaves the view until it comes back: the wheel stays readable.
 //
-// Needs: ui/sandbox.h only (no SDL, no GL, no ImGui frame).
+// Needs: ui/sandbox.h (no SDL, no GL); the marker key's room in the fit is measured with the
+// text font when an ImGui context has one.
 #pragma once
 
 #include "ui/sandbox.h"
@@ -66,6 +67,12 @@ Camera closeUpCamera(const World& world, const Camera& camera, const PanelRect& 
 
 /// Moves a close-up view towards its focus (called once a frame, `seconds` since the last).
 void followCloseUp(Sandbox& sandbox, double seconds);
+
+/// The presentation fit of `sandbox`'s scene in the `free` area (px): fitToContent(), or its
+/// close-up (closeUpCamera()), made smaller where the marker key would cover it: in the area
+/// below the key's strip along the top or left of its column, whichever shows it larger, unless
+/// that would take a tenth of the scene's size (a small window: the key gives way).
+Camera presentationFit(const Sandbox& sandbox, const PanelRect& free);
 
 Camera fitToContent(const World& world, const Camera& camera, const PanelRect& area,
                     float bottomReserve, const WorldBounds& stage = {});

@@ -32,8 +32,9 @@ struct RenderOptions {
   /// Clear and draw only inside the free rectangle (GL scissor): the sandbox's panels cover the
   /// rest, and on a software rasteriser every pixel drawn under them is time lost.
   bool clipToFree = false;
-  /// The marker key is left out where it would cover the scene's moving parts (presentation
-  /// mode: the scene fills the view).
+  /// Presentation mode: the marker key goes as a column top right or a strip along the top,
+  /// whichever keeps off the scene's moving parts, and gives way where neither does (out of
+  /// it, a key too wide or too long for the view is left out).
   bool keyGivesWay = false;
   /// A large "PAUSED" sign in the view (the sandbox while its simulation is paused).
   bool paused = false;

@@ -55,9 +55,27 @@ class Painter {
     glLineWidth(width * scale_);
     colour(c);
     glBegin(GL_LINES);
-    vertex(a);
-    vertex(b);
+    if (keepOff_.empty()) {
+      vertex(a);
+      vertex(b);
+    } else {  // an overlay: only its parts off the screen pieces (ui/overlay_clip.h), kept
+      // half the line's width and its smoothed edge away from them
+      const double grow = 0.5 * width * scale_ + 1;
+      std::vector<LabelBox> grown = keepOff_;
+      for (LabelBox& g : grown) g = {g.x0 - grow, g.y0 - grow, g.x1 + grow, g.y1 + grow};
+      for (const ScreenSegment& s : partsOutside(cam_.toScreen(a), cam_.toScreen(b), grown)) {
+        vertex(cam_.toWorld(s.a));
+        vertex(cam_.toWorld(s.b));
+        if (drawnLines_) drawnLines_->push_back(s);
+      }
+    }
     glEnd();
+  }
+
+  /// From now on lines keep off `boxes` (px), and what they draw is added to `drawn`.
+  void keepOff(std::vector<LabelBox> boxes, std::vector<ScreenSegment>* drawn) const {
+    keepOff_ = std::move(boxes);
+    drawnLines_ = drawn;
   }
 
   /// Dashes of `on` px separated by `off` px; `phase` carries the pattern across segments.
@@ -89,6 +107,11 @@ class Painter {
       glBegin(GL_TRIANGLE_FAN);
       for (const Vec2& p : points) vertex(p);
       glEnd();
+    }
+    if (!keepOff_.empty()) {  // an overlay's outline, piece by piece
+      for (size_t k = 0; k < points.size(); ++k)
+        line(points[k], points[(k + 1) % points.size()], outline, width);
+      return;
     }
     glLineWidth(width * scale_);
     colour(outline);
@@ -202,8 +225,12 @@ class Painter {
         const Vec2& a = labels_[k].anchor;
         const ImVec2 near(static_cast<float>(std::clamp(a.x(), b.x0, b.x1)),
                           static_cast<float>(std::clamp(a.y(), b.y0, b.y1)));
-        text_->AddLine(ImVec2(static_cast<float>(a.x()), static_cast<float>(a.y())), near,
-                       (colour & 0x00FFFFFF) | 0x99000000, scale_);
+        for (const ScreenSegment& s : partsOutside(a, Vec2(near.x, near.y), reserved)) {
+          text_->AddLine(ImVec2(static_cast<float>(s.a.x()), static_cast<float>(s.a.y())),
+                         ImVec2(static_cast<float>(s.b.x()), static_cast<float>(s.b.y())),
+                         (colour & 0x00FFFFFF) | 0x99000000, scale_);
+          drawn.overlayLines.push_back(s);
+        }
       }
       text_->AddText(ImVec2(static_cast<float>(b.x0), static_cast<float>(b.y0)), colour,
                      labels_[k].text.c_str());
@@ -229,6 +256,8 @@ class Painter {
   mutable std::vector<Label> labels_;
   mutable size_t strips_ = 0;  ///< the last obstacles_ are cables' strips
   mutable std::vector<LabelObstacle> obstacles_;
+  mutable std::vector<LabelBox> keepOff_;  ///< the screen pieces overlay lines keep off
+  mutable std::vector<ScreenSegment>* drawnLines_ = nullptr;
 };
 
 Vec2 bodyPoint(const World& world, int body, const Vec2& local) {
@@ -528,7 +557,9 @@ DrawnView drawWorld(const World& world, const Camera& camera, const Overlay& ove
   drawPulleys(world, paint);
   drawJoints(world, paint);
   drawCables(world, options, scale, paint);
+  paint.keepOff(reservedForLabels(drawn.furniture, options), &drawn.overlayLines);
   drawOverlay(overlay, paint);
+  paint.keepOff({}, nullptr);
   const bool free = options.freeWidth > 0 && options.freeHeight > 0;
   paint.placeLabels(
       free ? LabelBox{options.freeX, options.freeY, options.freeX + options.freeWidth,

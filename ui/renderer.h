@@ -17,6 +17,7 @@
 #include "engine/dynamics/world.h"
 #include "ui/camera.h"
 #include "ui/overlay.h"
+#include "ui/overlay_clip.h"
 #include "ui/render_options.h"
 #include "ui/view_furniture.h"
 
@@ -41,6 +42,7 @@ struct DrawnView {
   int labelsOnCables = 0;        ///< labels drawn across a cable's line (no place off them)
   FurnitureLayout furniture;     ///< scale bar, colour bar, key, notes, banner, PAUSED sign
   LabelBox scene;                ///< the moving bodies, pulleys and cables (ui/scene_bounds.h)
+  std::vector<ScreenSegment> overlayLines;  ///< drawn arrows, target marks and leader lines (px)
 };
 
 /// Clears the viewport (the free rectangle with `clipToFree`) and draws `world` seen by

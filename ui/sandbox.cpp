@@ -450,15 +450,12 @@ void Sandbox::fitView() {
   const PanelRect f = freeArea();
   fittedArea = f;
   fittedScale = uiScale;
+  fittedKeyRows = drawn.furniture.keyRows.size();
   viewFitted = true;
   if (!world_ || f.width < 40 || f.height < 40) return;
   closeUp = presentation && wantsCloseUp(*this);
-  if (closeUp) {
-    camera = closeUpCamera(*world_, camera, f, barRowHeight(*this));
-    return;
-  }
   if (presentation) {
-    camera = fitToContent(*world_, camera, f, barRowHeight(*this), demo.stage);
+    camera = presentationFit(*this, f);
     return;
   }
   // The scene's view grown to hold the moving parts, above the colour bar's row.

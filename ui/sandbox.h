@@ -112,6 +112,7 @@ class Sandbox {
   bool closeUp = false;
   PanelRect fittedArea;       ///< the free area of the last fit
   float fittedScale = 0;      ///< the UI scale of the last fit
+  size_t fittedKeyRows = 0;   ///< the marker key's rows drawn before the last fit
   bool presentation = false;  ///< presentation mode: side panels hidden, the scene fitted
 
   // Drag (see Drag).

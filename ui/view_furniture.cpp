@@ -140,6 +140,12 @@ void layoutNotes(FurnitureLayout& l, const Overlay& overlay, const RenderOptions
   l.notes = {l.x + 8, y0, l.x + 8 + width, y0 + height};
 }
 
+/// The key's rows in `columns` columns, its top right corner at (x1, y0).
+LabelBox keyBoxAt(const FurnitureLayout& l, float x1, float y0, int columns) {
+  const int perColumn = (static_cast<int>(l.keyRows.size()) + columns - 1) / columns;
+  return {x1 - columns * l.keyColumnWidth - 8, y0, x1, y0 + perColumn * l.keyRowHeight + 8};
+}
+
 void layoutKey(FurnitureLayout& l, const World& world, const Overlay& overlay,
                const RenderOptions& options, bool text, const LabelBox& scene) {
   if (!options.markerLegend || !text) return;
@@ -151,21 +157,50 @@ void layoutKey(FurnitureLayout& l, const World& world, const Overlay& overlay,
   for (const MarkerKeyRow& r : l.keyRows)
     width = std::max(width, ImGui::CalcTextSize(r.label.c_str()).x);
   l.keyRowHeight = std::max(lh + 2, 16 * s);
-  const float x1 = l.x + l.w - 8, x0 = x1 - width - l.keySampleWidth - 16;
+  l.keyColumnWidth = width + l.keySampleWidth + 16;
+  const float x1 = l.x + l.w - 8;
   float y0 = l.y + 8 + options.keyTop;
-  if (!l.notes.empty() && l.notes.x1 + 8 > x0) y0 = static_cast<float>(l.notes.y1) + 6;
-  const LabelBox key{x0, y0, x1, y0 + l.keyRows.size() * l.keyRowHeight + 8};
-  // The key gives way on a small view, where it would hide the scene or reach the bars (the
-  // View toggle brings it back once the window is larger).
-  const bool tooWide = width + l.keySampleWidth + 16 > 0.4f * l.w;
-  const bool tooLong = (!l.colourBar.empty() && key.overlaps(l.colourBar)) ||
-                       (!l.scaleBar.empty() && key.overlaps(l.scaleBar)) || key.y1 > l.y + l.h;
-  const bool onScene = options.keyGivesWay && !scene.empty() && key.overlaps(scene);
-  if (tooWide || tooLong || onScene) {
-    l.keyRows.clear();
+  if (!l.notes.empty() && l.notes.x1 + 8 > x1 - l.keyColumnWidth - 8)
+    y0 = static_cast<float>(l.notes.y1) + 6;
+  l.keyAsColumn = keyBoxAt(l, x1, y0, 1);
+  const auto reachesBars = [&](const LabelBox& key) {
+    return (!l.colourBar.empty() && key.overlaps(l.colourBar)) ||
+           (!l.scaleBar.empty() && key.overlaps(l.scaleBar)) || key.y1 > l.y + l.h;
+  };
+  if (!options.keyGivesWay) {
+    // Out of presentation mode the key gives way on a small view, where it would be too wide
+    // or reach the bars (the View toggle brings it back once the window is larger).
+    if (l.keyColumnWidth > 0.4f * l.w || reachesBars(l.keyAsColumn)) {
+      l.keyRows.clear();
+      return;
+    }
+    l.key = l.keyAsColumn;
     return;
   }
-  l.key = key;
+  // Presentation mode: every marker drawn keeps its key in view, off the scene's moving parts:
+  // a column top right, else a strip along the top in as many columns as the view's width
+  // holds (the presentation fit leaves room for one of them, ui/presentation.h, on a window
+  // large enough for both).
+  const int columns = std::clamp(static_cast<int>((l.w - 24) / l.keyColumnWidth), 1,
+                                 static_cast<int>(l.keyRows.size()));
+  float stripTop = y0;
+  if (!l.notes.empty() && l.notes.x1 + 8 > x1 - columns * l.keyColumnWidth - 8)
+    stripTop = static_cast<float>(l.notes.y1) + 6;
+  l.keyAsStrip = keyBoxAt(l, x1, stripTop, columns);
+  l.keyColumns = 1;
+  l.key = l.keyAsColumn;
+  const auto onScene = [&](const LabelBox& key) {
+    return scene.empty() ? 0.0 : key.overlapArea(scene);
+  };
+  if (onScene(l.keyAsColumn) == 0 && !reachesBars(l.keyAsColumn)) return;
+  if (onScene(l.keyAsStrip) < onScene(l.keyAsColumn) || reachesBars(l.keyAsColumn)) {
+    l.keyColumns = columns;
+    l.key = l.keyAsStrip;
+  }
+  // Neither keeps off the scene: a window too small for both, or a body dragged under the key.
+  // The key gives way (its rows are kept: the fit makes room when they change).
+  l.keyOnScene = onScene(l.key) > 0;
+  if (l.keyOnScene) l.key = {};
 }
 
 void layoutTexts(FurnitureLayout& l, const Overlay& overlay, const RenderOptions& options,
@@ -322,10 +357,12 @@ void drawMarkerKey(const FurnitureLayout& l, const RenderOptions& options, ImDra
   const float x0 = static_cast<float>(l.key.x0), y0 = static_cast<float>(l.key.y0);
   glColor4f(kBackground[0], kBackground[1], kBackground[2], 0.85f);
   quad(x0, y0, static_cast<float>(l.key.x1), static_cast<float>(l.key.y1));
+  const size_t perColumn = (l.keyRows.size() + l.keyColumns - 1) / l.keyColumns;
   for (size_t k = 0; k < l.keyRows.size(); ++k) {
-    const float cy = y0 + 4 + (k + 0.5f) * l.keyRowHeight;
-    drawSample(l.keyRows[k], x0 + 6 + 0.5f * l.keySampleWidth, cy, options.lineScale);
-    text->AddText(ImVec2(x0 + 10 + l.keySampleWidth, cy - 0.5f * l.lineHeight),
+    const float cx = x0 + (k / perColumn) * l.keyColumnWidth;
+    const float cy = y0 + 4 + (k % perColumn + 0.5f) * l.keyRowHeight;
+    drawSample(l.keyRows[k], cx + 6 + 0.5f * l.keySampleWidth, cy, options.lineScale);
+    text->AddText(ImVec2(cx + 10 + l.keySampleWidth, cy - 0.5f * l.lineHeight),
                   IM_COL32(40, 40, 40, 255), l.keyRows[k].label.c_str());
   }
 }

@@ -7,8 +7,9 @@
 //
 // Places in the free area (px, top-left origin): the scale bar bottom left; the colour bar
 // bottom right (narrower when the scale bar would reach it, or stacked above it when even a
-// narrow one would not fit); the notes top left; the key top right below `keyTop`; the banner
-// under the notes, left of the key (below it when the room beside it is too narrow); the
+// narrow one would not fit); the notes top left; the key top right below `keyTop` (in
+// presentation mode, where that would cover the scene, a strip of columns along the top); the
+// banner under the notes, left of the key (below it when the room beside it is too narrow); the
 // PAUSED sign centred just above the bars.
 #pragma once
 
@@ -52,7 +53,12 @@ struct FurnitureLayout {
   float bannerWrap = 0;  ///< the banner's text wrap width (px)
   float pausedSize = 0;  ///< the PAUSED sign's font size (px)
   std::vector<MarkerKeyRow> keyRows;
-  float keyRowHeight = 0, keySampleWidth = 0;
+  float keyRowHeight = 0, keySampleWidth = 0, keyColumnWidth = 0;
+  int keyColumns = 1;
+  /// Presentation mode (RenderOptions::keyGivesWay): where the key would go as one column top
+  /// right and as a strip along the top, and whether the one chosen covers the scene.
+  LabelBox keyAsColumn, keyAsStrip;
+  bool keyOnScene = false;
 
   /// The pieces that are drawn, for the labels to keep off.
   std::vector<LabelBox> occupied() const;
