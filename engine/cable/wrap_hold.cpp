@@ -111,9 +111,9 @@ std::optional<double> wrapChainHeld(const Vec2& a, const Vec2& b, std::span<cons
   const int last = hold.from < 0 ? -1 : (hold.from + (hold.count - 1) * step % n + n) % n;
   // While one end is held the other follows the old chain too: its tangent vertex can pass the
   // held end (the rope pulled into the hull), where the walk between them would be a lap long.
-  const bool holding = hold.from >= 0 &&
-                       (hold.holdingFrom || hold.holdingInto || (tangentFrom < 0 && mayHoldFrom) ||
-                        (tangentInto < 0 && mayHoldInto));
+  const bool holding =
+      hold.from >= 0 && (hold.holdingFrom || hold.holdingInto || (tangentFrom < 0 && mayHoldFrom) ||
+                         (tangentInto < 0 && mayHoldInto));
   // A hold starts from the turn the end vertex has now (less than half a turn: the terminal has
   // just gone in).
   if (holding && !hold.holdingFrom) hold.turnFrom = 0;

@@ -34,8 +34,8 @@ constexpr double kMinEventStep = 1e-4;  // events closer than this are taken at 
 constexpr double kCutReach = 0.05;
 constexpr int kMaxEventsPerSubstep = 16;
 constexpr int kMaxUnsettledHalvings = 4;  // of a step whose main-solve Newton found no answer
-constexpr int kFloorRelocations = 3;   // a floor arrival's cut is located again at most this often
-constexpr double kMaxOmegaDt = 0.3;    // longest midpoint step over the fastest transverse mode
+constexpr int kFloorRelocations = 3;  // a floor arrival's cut is located again at most this often
+constexpr double kMaxOmegaDt = 0.3;   // longest midpoint step over the fastest transverse mode
 // The most Box2D moves a body in a step (b2_maxRotation, b2_maxTranslation in b2_common.h), less a
 // margin for its float arithmetic, and how often a step is shortened to keep within them.
 constexpr double kBox2DMaxTurn = 0.9 * 0.5 * std::numbers::pi;  // rad
