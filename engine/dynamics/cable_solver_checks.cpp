@@ -3,15 +3,12 @@
 #include "engine/dynamics/cable_solver_stages.h"
 
 #include <cmath>
-#include <numbers>
+
+#include "engine/dynamics/box2d_limits.h"
 
 namespace cablelab::cable_stages {
 
 namespace {
-
-// The most Box2D moves a body in a step (b2_maxTranslation, b2_maxRotation in b2_settings.h).
-constexpr double kMaxStepTranslation = 2.0;              // m
-constexpr double kMaxStepTurn = 0.5 * std::numbers::pi;  // rad
 
 // Whether row r pulls on a kinematic body that moves (it hauls the row, stage 6d).
 bool pullsOnDriven(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables, int r) {
@@ -32,7 +29,7 @@ bool realisable(Workspace& ws, double h) {
   timesImpulses(ws, ws.P);
   for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
     const Vec3 v1 = ws.vStar.segment<3>(3 * k) - ws.WP.segment<3>(3 * k);
-    if (!(h * v1.head<2>().norm() <= kMaxStepTranslation && h * std::abs(v1[2]) <= kMaxStepTurn))
+    if (!(h * v1.head<2>().norm() <= kBox2DMaxStepMove && h * std::abs(v1[2]) <= kBox2DMaxStepTurn))
       return false;
   }
   return true;

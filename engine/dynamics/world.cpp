@@ -5,12 +5,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <numbers>
 #include <optional>
 #include <span>
 
 #include "engine/core/error.h"
 #include "engine/dynamics/box2d_bridge.h"
+#include "engine/dynamics/box2d_limits.h"
 #include "engine/dynamics/cable_islands.h"
 #include "engine/dynamics/cable_solver.h"
 #include "engine/dynamics/floors.h"
@@ -36,10 +36,10 @@ constexpr int kMaxEventsPerSubstep = 16;
 constexpr int kMaxUnsettledHalvings = 4;  // of a step whose main-solve Newton found no answer
 constexpr int kFloorRelocations = 3;  // a floor arrival's cut is located again at most this often
 constexpr double kMaxOmegaDt = 0.3;   // longest midpoint step over the fastest transverse mode
-// The most Box2D moves a body in a step (b2_maxRotation, b2_maxTranslation in b2_common.h), less a
-// margin for its float arithmetic, and how often a step is shortened to keep within them.
-constexpr double kBox2DMaxTurn = 0.9 * 0.5 * std::numbers::pi;  // rad
-constexpr double kBox2DMaxMove = 0.9 * 2.0;                     // m
+// Box2D's step limits (box2d_limits.h), less a margin for its float arithmetic, and how often a
+// step is shortened to keep within them.
+constexpr double kBox2DMaxTurn = 0.9 * kBox2DMaxStepTurn;  // rad
+constexpr double kBox2DMaxMove = 0.9 * kBox2DMaxStepMove;  // m
 constexpr int kMaxLimitShortenings = 4;
 constexpr double kStillTurn = 1e-5;    // rad a step: joints that turn less keep Box2D's solve
 constexpr double kStallRate = 1e-3;    // rad/s or m/s: a servo's joint moving slower is stalled
