@@ -8,6 +8,7 @@
 
 #include "ui/controller_panel.h"
 #include "ui/report_json.h"
+#include "ui/scene_bounds.h"
 #include "ui/scene_catalog.h"
 #include "ui/synthetic_events.h"
 #include "ui/tension_scale.h"
@@ -46,11 +47,8 @@ std::string viewJson(const Sandbox& s, const std::string& name, const std::strin
   if (!f.key.empty())
     for (const MarkerKeyRow& r : f.keyRows) shownKeys.push_back(jsonQuoted(r.label));
   for (const Overlay::Key& k : s.overlay().keys) markerKeys.push_back(jsonQuoted(k.label));
-  LabelBox stage;  // a looping demo's whole run on screen (ui/demo_loop.h), px
-  if (!s.demo.stage.empty()) {
-    const Vec2 lo = s.camera.toScreen(s.demo.stage.lo), hi = s.camera.toScreen(s.demo.stage.hi);
-    stage = {lo.x(), hi.y(), hi.x(), lo.y()};
-  }
+  // a looping demo's whole run on screen (ui/demo_loop.h), px
+  const LabelBox stage = screenBox(s.demo.stage, s.camera);
   int bodiesInView = 0;  // dynamic bodies whose centre is in the free area
   if (const World* world = s.world())
     for (int i = 0; i < world->bodyCount(); ++i) {

@@ -45,10 +45,9 @@ bool outgrown(const Sandbox& sandbox) {
   LabelBox s = sandbox.drawn.scene;
   if (s.empty()) return false;
   if (!sandbox.demo.stage.empty()) {
-    const Vec2 lo = sandbox.camera.toScreen(sandbox.demo.stage.lo);
-    const Vec2 hi = sandbox.camera.toScreen(sandbox.demo.stage.hi);
-    s = {std::min(s.x0, lo.x()), std::min(s.y0, hi.y()), std::max(s.x1, hi.x()),
-         std::max(s.y1, lo.y())};
+    const LabelBox stage = screenBox(sandbox.demo.stage, sandbox.camera);
+    s = {std::min(s.x0, stage.x0), std::min(s.y0, stage.y0), std::max(s.x1, stage.x1),
+         std::max(s.y1, stage.y1)};
   }
   const PanelRect a = sandbox.freeArea();
   const float height = a.height - barRowHeight(sandbox);
@@ -152,9 +151,7 @@ Camera presentationFit(const Sandbox& sandbox, const PanelRect& free) {
   const auto keyOnScene = [&](const Camera& camera) {
     const WorldBounds b = sceneBounds(world);
     if (b.empty()) return FurnitureLayout{};
-    const Vec2 lo = camera.toScreen(b.lo), hi = camera.toScreen(b.hi);
-    const LabelBox scene{lo.x(), hi.y(), hi.x(), lo.y()};
-    return layoutFurniture(world, overlay, options, camera, true, scene);
+    return layoutFurniture(world, overlay, options, camera, true, screenBox(b, camera));
   };
   const FurnitureLayout l = keyOnScene(whole);
   if (l.keyRows.empty() || !l.keyOnScene) return whole;

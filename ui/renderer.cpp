@@ -545,12 +545,7 @@ DrawnView drawWorld(const World& world, const Camera& camera, const Overlay& ove
   const Painter paint(camera, text, std::max(options.lineScale, 0.25f));
   const double scale = tensionScaleFor(world, options);
   DrawnView drawn;
-  const WorldBounds bounds = sceneBounds(world);
-  if (!bounds.empty()) {
-    const Vec2 a = camera.toScreen(bounds.lo), b = camera.toScreen(bounds.hi);
-    drawn.scene = {std::min(a.x(), b.x()), std::min(a.y(), b.y()), std::max(a.x(), b.x()),
-                   std::max(a.y(), b.y())};
-  }
+  drawn.scene = screenBox(sceneBounds(world), camera);
   drawn.furniture = layoutFurniture(world, overlay, options, camera, text != nullptr, drawn.scene);
   if (options.grid) drawGrid(paint);
   drawBodies(world, options, paint);

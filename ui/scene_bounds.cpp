@@ -1,5 +1,7 @@
 #include "ui/scene_bounds.h"
 
+#include <algorithm>
+
 namespace cablelab::ui {
 namespace {
 
@@ -36,6 +38,13 @@ WorldBounds sceneBounds(const World& world, double margin) {
         b.include(onBody(world, body, p.point), std::abs(p.radius) + margin);
     }
   return b;
+}
+
+LabelBox screenBox(const WorldBounds& bounds, const Camera& camera) {
+  if (bounds.empty()) return {};
+  const Vec2 a = camera.toScreen(bounds.lo), b = camera.toScreen(bounds.hi);
+  return {std::min(a.x(), b.x()), std::min(a.y(), b.y()), std::max(a.x(), b.x()),
+          std::max(a.y(), b.y())};
 }
 
 }  // namespace cablelab::ui

@@ -6,6 +6,8 @@
 #pragma once
 
 #include "engine/dynamics/world.h"
+#include "ui/camera.h"
+#include "ui/label_layout.h"
 
 namespace cablelab::ui {
 
@@ -21,5 +23,8 @@ struct WorldBounds {
 /// The shapes of the dynamic and kinematic bodies, the cables' paths and their pulleys, each
 /// grown by `margin` (m), as they are now.
 WorldBounds sceneBounds(const World& world, double margin = 0);
+
+/// `bounds` on screen through `camera` (px, y down); empty when `bounds` is.
+LabelBox screenBox(const WorldBounds& bounds, const Camera& camera);
 
 }  // namespace cablelab::ui
