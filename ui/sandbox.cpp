@@ -191,7 +191,9 @@ void Sandbox::advance(double frameSeconds, bool fixedStep) {
     std::cerr << "cablelab-gui: " << error << "\n";
   }
   checkWarnings();
-  followCloseUp(*this, frameSeconds);
+  // A scripted run steps one dt a frame, and its camera follows at the same pace: the views it
+  // checks do not depend on how fast the machine draws.
+  followCloseUp(*this, fixedStep ? dt : frameSeconds);
   if (follow && selectedBody >= 0 && selectedBody < world_->bodyCount())
     camera.center = centreFor(world_->body(selectedBody).position);
 }
