@@ -171,6 +171,14 @@ Vec2 Cable::entryPoint(int node, const std::vector<std::vector<int>>& chains) co
   return p.world[c.front()];
 }
 
+// Whether node's entry and exit points are where the path touches it (not an empty polygon's
+// centre).
+bool Cable::touchesPath(int node, const std::vector<std::vector<int>>& chains) const {
+  if (node == 0 || node == static_cast<int>(pulleys_.size()) + 1) return true;
+  const PulleyState& p = pulleys_[node - 1];
+  return !p.polygon || p.tiedEnd != 0 || !chains[node - 1].empty();
+}
+
 Vec2 Cable::exitPoint(int node, const std::vector<std::vector<int>>& chains) const {
   if (node >= 1 && node <= static_cast<int>(pulleys_.size()) && pulleys_[node - 1].polygon &&
       !chains[node - 1].empty())
@@ -234,6 +242,17 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
                          : wrapChainHeld(a, b, p.world, p.side, p.arc, holdsAgainst(nodes[n - 1]),
                                          holdsAgainst(nodes[n + 1]), p.hold, chains[nodes[n] - 1]);
       if (turn) p.arc = *turn;
+      // Between real contacts (not a neighbour's centre) a polygon the path no longer bends round
+      // leaves now. Kept to the last pass, its empty chain would make its centre the neighbour's
+      // terminal, that neighbour's chain would bend the path round it again, and the two would
+      // take turns over the passes (docs/cables.md, "Points inside a hull").
+      if (turn && neighbouringPolygons && chains[nodes[n] - 1].empty() && p.tiedEnd == 0 &&
+          touchesPath(nodes[n - 1], chains) && touchesPath(nodes[n + 1], chains)) {
+        p.engaged = false;
+        p.previousDepth = 0;
+        p.arc = 0;
+        return false;
+      }
       if (!turn) {
         p.engaged = false;
         p.dropped = true;

@@ -350,6 +350,7 @@ class Cable {
   bool holdsAgainst(int node) const;
   Vec2 entryPoint(int node, const std::vector<std::vector<int>>& chains) const;
   Vec2 exitPoint(int node, const std::vector<std::vector<int>>& chains) const;
+  bool touchesPath(int node, const std::vector<std::vector<int>>& chains) const;
   bool leaveRound();
   bool joinRound(std::vector<std::string>* warnings);
   void storeArcs();
