@@ -290,6 +290,51 @@ TEST(HullContact, TrianglesSideBySideKeepTheRope) {
     }
 }
 
+/// The spinning pair with regular polygons of `leftSides` and `rightSides` corners (circumradius
+/// 0.33 m, a corner pointing away from the other in the body frame), their pivots `spacing` apart,
+/// the left one spinning at `spin` and the right one at -0.6 `spin`.
+SceneDef regularPair(int leftSides, int rightSides, double spacing, double spin) {
+  SceneDef scene = fixture("two_polygons_spinning");
+  for (int b = 0; b < 2; ++b) {
+    const int sides = b == 0 ? leftSides : rightSides;
+    scene.bodies[b].position.x() = scene.joints[b].anchor.x() = (b == 0 ? -0.5 : 0.5) * spacing;
+    std::vector<Vec2>& corners = scene.bodies[b].shapes[0].vertices;
+    corners.clear();
+    for (int k = 0; k < sides; ++k) {
+      const double angle = (b == 0 ? M_PI : 0.0) + 2 * M_PI * k / sides;
+      corners.push_back(0.33 * Vec2(std::cos(angle), std::sin(angle)));
+    }
+  }
+  scene.bodies[0].angularVelocity = spin;
+  scene.bodies[1].angularVelocity = -0.6 * spin;
+  return scene;
+}
+
+// Adversarial variants of the triangles: a triangle beside a triangle and beside a square, 0.66 m
+// apart (a corner just reaches the other's pivot) and 0.7 m, at 4, 11 and 20 rad/s, 1 and 4
+// sub-steps: no wrap change moves the length by 1 mm, no corner goes into the other hull, the
+// energy never rises and the weight stays on its rope. Not held yet (docs/cables.md, "Points
+// inside a hull", not done): closer, where the corners knock (0.55 m; a square 0.6 m away, and the
+// triangles 0.6 m apart at 20 rad/s x 1), a corner goes 2-4 cm into the other hull and wrap
+// changes jump the length 2 mm to 0.18 m.
+TEST(HullContact, TrianglesAndSquaresSideBySideAtOtherSpacingsAndSpinsKeepTheRope) {
+  for (const int rightSides : {3, 4})
+    for (const double spacing : {0.66, 0.7})
+      for (const double spin : {4.0, 11.0, 20.0})
+        for (const int substeps : {1, 4}) {
+          SCOPED_TRACE("sides 3/" + std::to_string(rightSides) + " spacing " +
+                       std::to_string(spacing) + " spin " + std::to_string(spin) + " x " +
+                       std::to_string(substeps));
+          const SceneDef scene = regularPair(3, rightSides, spacing, spin);
+          World world(scene);
+          const Figures f = measure(world, 6, 1.0 / 60, substeps, &scene);
+          EXPECT_EQ(f.warning, "");
+          EXPECT_LT(f.deepest, 0.015);
+          EXPECT_LT(f.rise, 0.01) << f.rise;
+          EXPECT_GT(f.lowest, -1.9);
+        }
+}
+
 // Mixed neighbours (a hexagon and a triangle, a square and a triangle, an octagon and a pentagon, a
 // triangle and a pentagon), light and heavy weights, spins up to 19 rad/s, at 60 Hz and one
 // sub-step, the scene file's default. When a corner turns so that the rope no longer bends round
