@@ -359,7 +359,7 @@ void expectHeldOutOfTheSpool(const WoundUp& run, double wrapJump, double stretch
 TEST(SpoolWinding, AWeightWoundRightUpToItsSpoolRidesRoundItWithoutAJump) {
   // The fixture wound on past the weight reaching its spool (10 s). Before, the weight's
   // anchor went into the spool's hull, which nothing kept it from, and at 11.27 s the rope's
-  // length jumped 0.80 m (the weight was thrown 2.6 m above the axle). Now the anchor touches the
+  // length jumped 0.80 m (the weight was thrown 2.9 m above the axle). Now the anchor touches the
   // spool: the turning spool winds it round, over the top (frictionless, nothing holds it
   // back), where it falls off ahead of its rope and is caught, again and again; the length never
   // jumps, the rope never runs long, the anchor never goes in, and no warning at all.
@@ -425,7 +425,7 @@ TEST(SpoolWinding, WeightsWoundRightUpToOtherSpoolsAreHeldOutWithoutADrop) {
         std::any_of(run.warnings.begin(), run.warnings.end(), [](const std::string& w) {
           return w.find("joint 'axle'") == 0 && w.find("stalled") != std::string::npos;
         });
-    EXPECT_EQ(stalled, k.maxForce < 100);  // the weak servos stall and say so, no other does
+    EXPECT_EQ(stalled, k.maxForce < 100);  // the weak servos stall at times, no other does
   }
 }
 
