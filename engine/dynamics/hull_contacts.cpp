@@ -79,14 +79,13 @@ std::vector<HullContact> hullContacts(const SceneDef& scene) {
   auto add = [&](HullContact c) {
     if (c.polygon.size() > kMostHullVertices || c.otherPolygon.size() > kMostHullVertices) return;
     const std::vector<Vec2> hull = placedInScene(scene, c.body, c.polygon);
-    // A point on a moving body whose shapes meet the hull was placed so too: the bodies pass
-    // through each other by design (the hand's box between its fingers).
-    const bool overlapping =
-        c.otherPolygon.empty()
-            ? insideConvex(placedInScene(scene, c.otherBody, {c.point})[0], hull) ||
-                  (c.otherBody >= 0 && bodyMeetsHull(scene, c.otherBody, hull))
-            : hullsOverlap(hull, placedInScene(scene, c.otherBody, c.otherPolygon));
-    if (overlapping) return;
+    // A point on a moving body whose shapes meet the hull: the bodies pass through each other
+    // by design (the hand's box between its fingers).
+    if (c.otherPolygon.empty() && c.otherBody >= 0 && bodyMeetsHull(scene, c.otherBody, hull))
+      return;
+    c.apartFirst = c.otherPolygon.empty()
+                       ? insideConvex(placedInScene(scene, c.otherBody, {c.point})[0], hull)
+                       : hullsOverlap(hull, placedInScene(scene, c.otherBody, c.otherPolygon));
     for (const HullContact& d : out)
       if (sameHullPair(c, d)) return;
     out.push_back(std::move(c));

@@ -21,14 +21,18 @@ struct HullContact {
   int otherBody = -1;
   std::vector<Vec2> otherPolygon;
   Vec2 point = Vec2::Zero();
+  /// The two overlap in the scene's pose (placed so on purpose): they touch only once they
+  /// have come apart.
+  bool apartFirst = false;
 };
 
 /// The pairs of `scene`'s cables: each polygon pulley on a dynamic body with every other polygon
 /// pulley on the same cable (on another body) and every point of the cable (an anchor, a point
 /// pulley) not on its own body, any of which becomes its neighbour on the path once the pulleys
-/// between leave. Pairs that overlap in the scene's pose (placed so on purpose), a point whose
-/// body's shapes meet the polygon there (the bodies pass through each other by design), polygons
-/// of more vertices than Box2D holds, shapeless bodies (point masses) and repeats are left out.
+/// between leave. Pairs that overlap in the scene's pose (placed so on purpose) touch once apart.
+/// A point whose body's shapes meet the polygon there (the bodies pass through each other by
+/// design), polygons of more vertices than Box2D holds, shapeless bodies (point masses) and
+/// repeats are left out.
 std::vector<HullContact> hullContacts(const SceneDef& scene);
 
 }  // namespace cablelab

@@ -40,14 +40,22 @@ TEST(HullContacts, EverySquareOfTheLoopsTouchesTheWorldPointsAndTheOtherSquare) 
     }
 }
 
-// Hexagons placed overlapping (0.5 m apart, 0.52 m across their flats) do not touch: the scene
-// put them so. Just clear of each other (0.57 m: a corner 1 cm from the facing flat) they do.
-TEST(HullContacts, PolygonsPlacedOverlappingDoNotTouch) {
+// Hexagons placed overlapping (0.5 m apart, 0.52 m across their flats) touch only once apart: the
+// scene put them so. Just clear of each other (0.57 m: a corner 1 cm from the facing flat) they
+// touch from the start.
+TEST(HullContacts, PolygonsPlacedOverlappingArePairedToTouchOnceApart) {
   SceneDef scene = polygons("two_polygons_spinning");
+  auto apartFirst = [](const std::vector<HullContact>& pairs) {
+    int n = 0;
+    for (const HullContact& c : pairs) n += !c.otherPolygon.empty() && c.apartFirst;
+    return n;
+  };
   EXPECT_EQ(polygonPairs(hullContacts(scene)), 1);
+  EXPECT_EQ(apartFirst(hullContacts(scene)), 0);
   scene.bodies[0].position.x() = -0.25;
   scene.bodies[1].position.x() = 0.25;
-  EXPECT_EQ(polygonPairs(hullContacts(scene)), 0);
+  EXPECT_EQ(polygonPairs(hullContacts(scene)), 1);
+  EXPECT_EQ(apartFirst(hullContacts(scene)), 1);
 }
 
 // A shapeless body is a point mass whose pulley only guides the rope (the hooked square), and
@@ -125,6 +133,65 @@ TEST(HullContacts, APointWhoseBodyIsPlacedInTheHullOrHasNoShapeDoesNotTouchIt) {
     disc.bodies[1].shapes = {test::sensorDisc(0.1)};
     EXPECT_EQ(hullContacts(disc).size(), gap > 0 ? 2u : 1u) << gap;
   }
+}
+
+// The last time (s) a wrap change moved the rope's length above 1 mm or a guard dropped a polygon
+// (their warnings, cable.h) in `seconds` at `hz` (0 if none), and whether one was a drop.
+struct LastJump {
+  double at = 0;
+  bool dropped = false;
+};
+
+LastJump lastJump(const SceneDef& scene, double seconds, double hz, int substeps) {
+  World world(scene);
+  LastJump last;
+  size_t seen = 0;
+  for (int i = 1; i <= std::lround(seconds * hz); ++i) {
+    world.step(1 / hz, substeps);
+    for (; seen < world.warnings().size(); ++seen) {
+      const std::string& w = world.warnings()[seen];
+      const bool dropped = w.find("left the path") != std::string::npos ||
+                           w.find("released with") != std::string::npos;
+      const size_t moved = w.find("moved the length by ");
+      if (dropped ||
+          (moved != std::string::npos && std::abs(std::stod(w.substr(moved + 20))) > 1e-3))
+        last.at = i / hz;
+      last.dropped |= dropped;
+    }
+  }
+  return last;
+}
+
+// Hexagons on their pivots 0.55 m apart (0.52 m across their flats, 0.6 m across their corners),
+// placed overlapping, spinning: once they have come apart they touch. Before, they never touched
+// and a wrap change moved the rope's length above 1 mm 13, 22 and 11 times in 20 s at 1, 2 and 4
+// sub-steps (up to 1.54 m), a guard dropping a hexagon at 2 and 4, all but 2 or 3 of them after
+// the first second. Now only the wrap changes while they still overlap move it (6.6 cm at 0.07 s,
+// 12 cm at 0.63 s at 1 sub-step): none after 1 s and no drop. Variants: 0.56 m apart, spinning
+// twice as fast, the rope on the same side of both, 1 sub-step at 60 Hz, 2 at 120 Hz, 4 at 60 Hz:
+// none after 4.3 s (the fastest at 1 sub-step, same side), after 1 s in all others; drops only
+// within the first second, while they overlap (docs/cables.md, "Points inside a hull").
+TEST(HullContacts, HexagonsPlacedOverlappingNoLongerJumpTheRopeOnceApart) {
+  const SceneDef base = polygons("two_polygons_spinning");
+  for (const double spacing : {0.55, 0.56})
+    for (const double spin : {10.0, 20.0})
+      for (const bool sameSide : {false, true})
+        for (const int substeps : {1, 2, 4}) {
+          SCOPED_TRACE(std::to_string(spacing) + " m apart, " + std::to_string(spin) + " rad/s" +
+                       (sameSide ? ", same side, " : ", opposite sides, ") +
+                       std::to_string(substeps) + " sub-steps");
+          SceneDef scene = base;
+          scene.bodies[0].position.x() = scene.joints[0].anchor.x() = -spacing / 2;
+          scene.bodies[1].position.x() = scene.joints[1].anchor.x() = spacing / 2;
+          scene.bodies[0].angularVelocity = spin;
+          if (sameSide) scene.cables[0].pulleys[1].side = scene.cables[0].pulleys[0].side;
+          const LastJump last = lastJump(scene, 20, substeps == 2 ? 120 : 60, substeps);
+          const bool asInTheFixture = spacing == 0.55 && spin == 10 && !sameSide;
+          EXPECT_LT(last.at, asInTheFixture ? 1.0 : 4.5);
+          if (asInTheFixture) {
+            EXPECT_FALSE(last.dropped);
+          }
+        }
 }
 
 }  // namespace hull_contacts_test
