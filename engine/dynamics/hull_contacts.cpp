@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "engine/cable/tied_end.h"
 #include "engine/cable/wrap.h"
 
 namespace cablelab {
@@ -109,8 +110,19 @@ std::vector<HullContact> hullContacts(const SceneDef& scene) {
       HullContact c;
       c.body = body;
       c.polygon = pulleyPolygon(scene, pd);
+      // A spool: a cable end next to it is tied on its body, on or in its hull (tied_end.h; the
+      // side only picks the corner).
+      auto tiedOn = [&](const AnchorDef& end) {
+        bool inside = false;
+        return findBodyIndex(scene, end.body) == body && end.radius == 0 &&
+               tiedEndCorner(end.point, c.polygon, pd.side, inside) >= 0;
+      };
+      const bool spool = (j == 0 && tiedOn(cable.start)) || (j == count - 1 && tiedOn(cable.end));
       for (const auto& [pointBody, point] : points) {
-        if (pointBody == body) continue;  // a rope tied to its own spool (tied_end.h)
+        // A point on another moving body touches a spool only: wound right up to it, the rope
+        // pulls it there. One that swings into a free pulley would be knocked (Box2D's contacts
+        // are inelastic) out of a scene that keeps its energy; there the guard drops the pulley.
+        if (pointBody == body || (pointBody >= 0 && !spool)) continue;
         HullContact pair = c;
         pair.otherBody = pointBody;
         pair.point = point;

@@ -106,8 +106,8 @@ SceneDef spoolAndWeight(const Vec2& weightAt) {
   return s;
 }
 
-// The weight's anchor and the block's point pulley touch the spool (each once, in its body's
-// frame); the rope's end tied on the spool itself does not.
+// The weight's anchor and the block's point pulley touch the spool the rope is tied to (each
+// once, in its body's frame); the rope's end tied on the spool itself does not.
 TEST(HullContacts, PointsOnOtherMovingBodiesTouchThePolygon) {
   const std::vector<HullContact> pairs = hullContacts(spoolAndWeight(Vec2(0.2, -1)));
   ASSERT_EQ(pairs.size(), 2u);
@@ -116,6 +116,18 @@ TEST(HullContacts, PointsOnOtherMovingBodiesTouchThePolygon) {
   EXPECT_EQ(pairs[0].otherBody, 1);
   EXPECT_EQ(pairs[0].point, Vec2::Zero());
   EXPECT_EQ(pairs[1].otherBody, 2);
+}
+
+// A pulley the rope is not tied to touches no point on a moving body: one swinging into it would
+// be knocked, inelastically, out of a scene that keeps its energy (docs/cables.md).
+TEST(HullContacts, AFreePulleyTouchesOnlyTheWorldsPoints) {
+  SceneDef scene = spoolAndWeight(Vec2(0.2, -1));
+  scene.cables[0].end.body = "world";
+  scene.cables[0].end.point = Vec2(-1, 4);
+  const std::vector<HullContact> pairs = hullContacts(scene);
+  ASSERT_EQ(pairs.size(), 1u);
+  EXPECT_EQ(pairs[0].otherBody, -1);
+  EXPECT_EQ(pairs[0].point, Vec2(-1, 4));
 }
 
 // A weight placed with its shape meeting the spool's hull (its anchor 5 cm outside it) passes
