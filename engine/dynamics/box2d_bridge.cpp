@@ -124,6 +124,15 @@ b2Joint* createJoint(b2World& w, const JointDef& jd, b2Body* a, b2Body* b) {
 // origin, the same frame as the loads.
 struct ContactImpulses : b2ContactListener {
   std::vector<Vec3> perBody;
+  /// Fixture pairs that do not touch yet (hull_contacts.h's apartFirst), each as (A, B) and
+  /// (B, A): their contacts are switched off for the step.
+  const std::vector<std::pair<b2Fixture*, b2Fixture*>>* untilApart = nullptr;
+  void PreSolve(b2Contact* contact, const b2Manifold*) override {
+    if (untilApart->empty()) return;
+    const auto pair = std::make_pair(contact->GetFixtureA(), contact->GetFixtureB());
+    if (std::find(untilApart->begin(), untilApart->end(), pair) != untilApart->end())
+      contact->SetEnabled(false);
+  }
   void PostSolve(b2Contact* contact, const b2ContactImpulse* impulse) override {
     b2WorldManifold m;
     contact->GetWorldManifold(&m);
@@ -151,6 +160,20 @@ constexpr uintptr_t kHullFixture = 1;  // a fixture's user data: one of hull_con
 
 struct HullContactFilter : b2ContactFilter {
   std::vector<std::pair<b2Fixture*, b2Fixture*>> pairs;
+  /// The pairs placed overlapping, both ways round, until a step starts with them apart.
+  std::vector<std::pair<b2Fixture*, b2Fixture*>> untilApart;
+  void keepApartOnceApart() {
+    std::erase_if(untilApart, [](const std::pair<b2Fixture*, b2Fixture*>& pair) {
+      for (b2ContactEdge* e = pair.first->GetBody()->GetContactList(); e; e = e->next) {
+        const b2Contact* c = e->contact;
+        if (c->GetFixtureA() == pair.first && c->GetFixtureB() == pair.second)
+          return !c->IsTouching();
+        if (c->GetFixtureA() == pair.second && c->GetFixtureB() == pair.first)
+          return !c->IsTouching();
+      }
+      return true;  // no contact: their boxes do not even overlap
+    });
+  }
   bool ShouldCollide(b2Fixture* a, b2Fixture* b) override {
     const bool hullA = a->GetUserData().pointer == kHullFixture;
     const bool hullB = b->GetUserData().pointer == kHullFixture;
@@ -245,10 +268,15 @@ Box2DBridge::Box2DBridge(const SceneDef& scene) : impl_(std::make_unique<Impl>()
     // Box2D sweeps a moving body against the world's fixtures, but against another moving body
     // only if one is a bullet: fast corners would go through a step's worth into the hull.
     if (c.otherBody >= 0) impl_->bodies[c.body]->SetBullet(true);
-    impl_->hullFilter.pairs.emplace_back(addHullFixture(impl_->bodies[c.body], c.polygon, {}),
-                                         addHullFixture(other, c.otherPolygon, c.point));
+    const auto pair = std::make_pair(addHullFixture(impl_->bodies[c.body], c.polygon, {}),
+                                     addHullFixture(other, c.otherPolygon, c.point));
+    impl_->hullFilter.pairs.push_back(pair);
+    if (c.apartFirst)
+      impl_->hullFilter.untilApart.insert(impl_->hullFilter.untilApart.end(),
+                                          {pair, {pair.second, pair.first}});
   }
   w.SetContactFilter(&impl_->hullFilter);
+  impl_->contacts.untilApart = &impl_->hullFilter.untilApart;
   impl_->turns.assign(scene.bodies.size(), 0.0);
   impl_->rewinds.assign(scene.bodies.size(), 1);
   for (const JointDef& jd : scene.joints) {
@@ -308,6 +336,7 @@ void Box2DBridge::step(double h) {
   impl_->lastStep = h;
   std::fill(impl_->contacts.perBody.begin(), impl_->contacts.perBody.end(), Vec3::Zero());
   impl_->world.Step(static_cast<float>(h), kVelocityIterations, kPositionIterations);
+  if (!impl_->hullFilter.untilApart.empty()) impl_->hullFilter.keepApartOnceApart();
   impl_->rewind();
 }
 
@@ -328,7 +357,9 @@ std::vector<ContactForce> Box2DBridge::contactForces() const {
   std::vector<ContactForce> out;
   if (!(impl_->lastStep > 0)) return out;
   for (b2Contact* c = impl_->world.GetContactList(); c; c = c->GetNext()) {
-    if (!c->IsTouching() || c->GetFixtureA()->IsSensor() || c->GetFixtureB()->IsSensor()) continue;
+    if (!c->IsTouching() || !c->IsEnabled() || c->GetFixtureA()->IsSensor() ||
+        c->GetFixtureB()->IsSensor())
+      continue;
     const b2Manifold* manifold = c->GetManifold();
     b2WorldManifold m;
     c->GetWorldManifold(&m);
@@ -371,7 +402,9 @@ std::vector<ContactForce> Box2DBridge::contactForces() const {
 
 void Box2DBridge::markTouching(std::vector<char>& touching) const {
   for (b2Contact* c = impl_->world.GetContactList(); c; c = c->GetNext()) {
-    if (!c->IsTouching() || c->GetFixtureA()->IsSensor() || c->GetFixtureB()->IsSensor()) continue;
+    if (!c->IsTouching() || !c->IsEnabled() || c->GetFixtureA()->IsSensor() ||
+        c->GetFixtureB()->IsSensor())
+      continue;
     for (b2Body* body : {c->GetFixtureA()->GetBody(), c->GetFixtureB()->GetBody()})
       if (const uintptr_t index = body->GetUserData().pointer;  // body index + 1, 0: ground
           index > 0 && index <= touching.size())

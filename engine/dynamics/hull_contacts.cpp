@@ -1,5 +1,8 @@
 #include "engine/dynamics/hull_contacts.h"
 
+#include <algorithm>
+
+#include "engine/cable/tied_end.h"
 #include "engine/cable/wrap.h"
 
 namespace cablelab {
@@ -37,7 +40,32 @@ bool sameHullPair(const HullContact& a, const HullContact& b) {
   if (polygons)
     return (a.body == b.body && a.otherBody == b.otherBody) ||
            (a.body == b.otherBody && a.otherBody == b.body);
-  return a.otherPolygon.empty() && b.otherPolygon.empty() && a.body == b.body && a.point == b.point;
+  return a.otherPolygon.empty() && b.otherPolygon.empty() && a.body == b.body &&
+         a.otherBody == b.otherBody && a.point == b.point;
+}
+
+// Whether the disc of `radius` round `centre` meets convex counter-clockwise `hull`.
+bool discMeetsHull(const Vec2& centre, double radius, const std::vector<Vec2>& hull) {
+  if (insideConvex(centre, hull)) return true;
+  for (size_t i = 0; i < hull.size(); ++i) {
+    const Vec2 a = hull[i], edge = hull[(i + 1) % hull.size()] - a;
+    const double along = std::clamp((centre - a).dot(edge) / edge.squaredNorm(), 0.0, 1.0);
+    if ((a + along * edge - centre).norm() <= radius) return true;
+  }
+  return false;
+}
+
+// Whether a shape of body `body` meets `hull` (world frame) in the scene's pose.
+bool bodyMeetsHull(const SceneDef& scene, int body, const std::vector<Vec2>& hull) {
+  const BodyDef& b = scene.bodies[body];
+  for (const ShapeDef& shape : b.shapes) {
+    const bool meets =
+        shape.kind == ShapeDef::Kind::Circle
+            ? discMeetsHull(placedInScene(scene, body, {shape.center})[0], shape.radius, hull)
+            : hullsOverlap(hull, placedInScene(scene, body, shape.vertices));
+    if (meets) return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -52,24 +80,28 @@ std::vector<HullContact> hullContacts(const SceneDef& scene) {
   auto add = [&](HullContact c) {
     if (c.polygon.size() > kMostHullVertices || c.otherPolygon.size() > kMostHullVertices) return;
     const std::vector<Vec2> hull = placedInScene(scene, c.body, c.polygon);
-    const bool overlapping =
-        c.otherPolygon.empty()
-            ? insideConvex(c.point, hull)
-            : hullsOverlap(hull, placedInScene(scene, c.otherBody, c.otherPolygon));
-    if (overlapping) return;
+    // A point on a moving body whose shapes meet the hull: the bodies pass through each other
+    // by design (the hand's box between its fingers).
+    if (c.otherPolygon.empty() && c.otherBody >= 0 && bodyMeetsHull(scene, c.otherBody, hull))
+      return;
+    c.apartFirst = c.otherPolygon.empty()
+                       ? insideConvex(placedInScene(scene, c.otherBody, {c.point})[0], hull)
+                       : hullsOverlap(hull, placedInScene(scene, c.otherBody, c.otherPolygon));
     for (const HullContact& d : out)
       if (sameHullPair(c, d)) return;
     out.push_back(std::move(c));
   };
   for (const CableDef& cable : scene.cables) {
-    // The cable's points fixed in the world: its anchors and point pulleys there.
-    std::vector<Vec2> points;
+    // The cable's points: its anchors (not drums) and point pulleys, each on its body (-1: the
+    // world), a shapeless body's left out.
+    std::vector<std::pair<int, Vec2>> points;
     for (const AnchorDef* anchor : {&cable.start, &cable.end})
-      if (findBodyIndex(scene, anchor->body) == -1 && anchor->radius == 0)
-        points.push_back(anchor->point);
+      if (const int body = findBodyIndex(scene, anchor->body); anchor->radius == 0 && solid(body))
+        points.emplace_back(body, anchor->point);
     for (const PulleyDef& pd : cable.pulleys)
-      if (pd.kind == PulleyDef::Kind::Point && findBodyIndex(scene, pd.body) == -1)
-        points.push_back(pd.point);
+      if (const int body = findBodyIndex(scene, pd.body);
+          pd.kind == PulleyDef::Kind::Point && solid(body))
+        points.emplace_back(body, pd.point);
     const int count = static_cast<int>(cable.pulleys.size());
     for (int j = 0; j < count; ++j) {
       const PulleyDef& pd = cable.pulleys[j];
@@ -78,9 +110,22 @@ std::vector<HullContact> hullContacts(const SceneDef& scene) {
       HullContact c;
       c.body = body;
       c.polygon = pulleyPolygon(scene, pd);
-      for (const Vec2& p : points) {
+      // A spool: a cable end next to it is tied on its body, on or in its hull (tied_end.h; the
+      // side only picks the corner).
+      auto tiedOn = [&](const AnchorDef& end) {
+        bool inside = false;
+        return findBodyIndex(scene, end.body) == body && end.radius == 0 &&
+               tiedEndCorner(end.point, c.polygon, pd.side, inside) >= 0;
+      };
+      const bool spool = (j == 0 && tiedOn(cable.start)) || (j == count - 1 && tiedOn(cable.end));
+      for (const auto& [pointBody, point] : points) {
+        // A point on another moving body touches a spool only: wound right up to it, the rope
+        // pulls it there. One that swings into a free pulley would be knocked (Box2D's contacts
+        // are inelastic) out of a scene that keeps its energy; there the guard drops the pulley.
+        if (pointBody == body || (pointBody >= 0 && !spool)) continue;
         HullContact pair = c;
-        pair.point = p;
+        pair.otherBody = pointBody;
+        pair.point = point;
         add(std::move(pair));
       }
       for (int k = 0; k < count; ++k) {

@@ -1,8 +1,8 @@
 // Contacts between a polygon pulley and its neighbours on a cable (docs/cables.md, "Points inside
 // a hull"): another polygon pulley of the cable, or an anchor or point pulley of it fixed in the
-// world, may not enter the polygon's hull, whatever the bodies' own shapes (pulleys are often
-// sensors). Box2D keeps them apart (box2d_bridge.cpp): the rope then always has a taut path round
-// each polygon and no guard has to drop one.
+// world (or, for a spool, on another body), may not enter the polygon's hull, whatever the bodies'
+// own shapes (pulleys are often sensors). Box2D keeps them apart (box2d_bridge.cpp): the rope then
+// always has a taut path round each polygon and no guard has to drop one.
 #pragma once
 
 #include <vector>
@@ -14,20 +14,25 @@ namespace cablelab {
 
 /// One pair kept apart: the polygon pulley on moving body `body` and its neighbour on body
 /// `otherBody` (-1: the world), a polygon pulley (`otherPolygon`, in that body's frame) or, where
-/// `otherPolygon` is empty, the point `point` fixed in the world.
+/// `otherPolygon` is empty, the point `point` (in that body's frame).
 struct HullContact {
   int body = -1;
   std::vector<Vec2> polygon;  ///< in `body`'s frame
   int otherBody = -1;
   std::vector<Vec2> otherPolygon;
   Vec2 point = Vec2::Zero();
+  /// The two overlap in the scene's pose (placed so on purpose): they touch only once they
+  /// have come apart.
+  bool apartFirst = false;
 };
 
 /// The pairs of `scene`'s cables: each polygon pulley on a dynamic body with every other polygon
-/// pulley on the same cable (on another body) and every point of the cable fixed in the world (an
-/// anchor, a point pulley), any of which becomes its neighbour on the path once the pulleys
-/// between leave. Pairs that overlap in the scene's pose (placed so on purpose), polygons of
-/// more vertices than Box2D holds, shapeless bodies (point masses) and repeats are left out.
+/// pulley on the same cable (on another body) and every point of the cable (an anchor, a point
+/// pulley) fixed in the world, or for a spool (a cable end tied on its body) not on its own body,
+/// any of which becomes its neighbour on the path once the pulleys between leave. Pairs that
+/// overlap in the scene's pose (placed so on purpose) touch once apart. A point whose body's shapes
+/// meet the polygon there (the bodies pass through each other by design), polygons of more vertices
+/// than Box2D holds, shapeless bodies (point masses) and repeats are left out.
 std::vector<HullContact> hullContacts(const SceneDef& scene);
 
 }  // namespace cablelab
