@@ -30,6 +30,8 @@ const char* const kShortcuts[][2] = {{"space", "play / pause"},
                                      {"click empty space", "set the target (hand scene)"},
                                      {"Ctrl + click", "set a target anywhere"},
                                      {"right drag", "pan"},
+                                     {"Build menu", "add boxes, pulleys, cables by clicks"},
+                                     {"Esc", "stop building: clicks select and drag"},
                                      {"Ctrl+Z / Ctrl+Y", "undo / redo a scene edit"},
                                      {"Delete", "delete the selected body"},
                                      {"drop a .json file", "open it as a scene"},
@@ -194,7 +196,8 @@ void key(Sandbox& sandbox, const SDL_KeyboardEvent& e) {
     case SDLK_v:
       sandbox.fitView();
       break;
-    case SDLK_ESCAPE:
+    case SDLK_ESCAPE:  // closes the help, else stops building
+      if (!sandbox.showHelp) chooseTool(*sandbox.authoring, Authoring::Tool::None);
       sandbox.showHelp = false;
       break;
     default:
