@@ -91,6 +91,7 @@ std::string viewJson(const Sandbox& s, const std::string& name, const std::strin
          ", \"strip_overflow\": " + jsonNumber(s.stripOverflow) +
          ", \"title\": " + jsonQuoted(s.shownTitle) +
          ", \"controller_section\": " + jsonQuoted(s.controllerSection) +
+         ", \"building\": " + (s.building() ? "true" : "false") +
          ", \"screenshot\": " + jsonQuoted(shot) + "}";
 }
 
@@ -520,7 +521,7 @@ namespace cablelab::ui {
 bool LectureScript::firstMechanism(Sandbox& sandbox, int frame) {
   // Per window size: New, the build (a step every 3 frames), Esc, Space, a drag, Space.
   constexpr int kSizes[2][2] = {{1280, 720}, {1920, 1080}};
-  constexpr int kFramesPerSize = 112, kBuildFrom = 12, kBuildEvery = 3;
+  constexpr int kFramesPerSize = 96, kBuildFrom = 9, kBuildEvery = 3;
   const BuildScenario& build = *findBuildScenario("build-circle-pulley");
   const int buildTo = kBuildFrom + kBuildEvery * static_cast<int>(build.steps.size());
   recordPendingView(sandbox);
@@ -561,11 +562,11 @@ bool LectureScript::firstMechanism(Sandbox& sandbox, int frame) {
   };
   if (f == 0) {
     SDL_SetWindowSize(SDL_GetWindowFromID(windowId_), kSizes[k][0], kSizes[k][1]);
-  } else if (f == 6) {
+  } else if (f == 4) {
     newScene(sandbox);  // Build > New scene, its size and kg fields at the first box's
     sandbox.authoring->size = Authoring{}.size;
     sandbox.authoring->mass = Authoring{}.mass;
-  } else if (f == 10) {
+  } else if (f == 7) {
     shot("new");
   } else if (f >= kBuildFrom && f < buildTo) {
     // While building the view holds still (the clicks go on it), every click inside it.
@@ -584,13 +585,13 @@ bool LectureScript::firstMechanism(Sandbox& sandbox, int frame) {
     }
   } else if (f == buildTo + 1) {
     key(SDLK_ESCAPE);  // stop building: the view fits the mechanism
-  } else if (f == buildTo + 6) {
+  } else if (f == buildTo + 5) {
     shot("built");
-  } else if (f == buildTo + 8) {
+  } else if (f == buildTo + 7) {
     key(SDLK_SPACE);
-  } else if (f == buildTo + 38) {
+  } else if (f == buildTo + 27) {
     shot("run");
-  } else if (f == buildTo + 40) {  // drag the lighter box sideways as it rises
+  } else if (f == buildTo + 29) {  // drag the lighter box sideways as it rises
     body_ = sandbox.world()->findBody("box1");
     if (body_ >= 0) {
       from_ = sandbox.camera.toScreen(sandbox.world()->body(body_).position);
@@ -598,15 +599,15 @@ bool LectureScript::firstMechanism(Sandbox& sandbox, int frame) {
       mouse(SDL_MOUSEMOTION, from_);
       mouse(SDL_MOUSEBUTTONDOWN, from_);
     }
-  } else if (f > buildTo + 40 && f <= buildTo + 50 && body_ >= 0) {
-    mouse(SDL_MOUSEMOTION, from_ + (to_ - from_) * ((f - buildTo - 40) / 10.0));
-  } else if (f == buildTo + 52 && body_ >= 0) {
+  } else if (f > buildTo + 29 && f <= buildTo + 39 && body_ >= 0) {
+    mouse(SDL_MOUSEMOTION, from_ + (to_ - from_) * ((f - buildTo - 29) / 10.0));
+  } else if (f == buildTo + 41 && body_ >= 0) {
     shot("drag");
-  } else if (f == buildTo + 54) {
+  } else if (f == buildTo + 43) {
     mouse(SDL_MOUSEBUTTONUP, to_);
-  } else if (f == buildTo + 56) {
+  } else if (f == buildTo + 45) {
     key(SDLK_SPACE);
-  } else if (f == buildTo + 62) {
+  } else if (f == buildTo + 50) {
     shot("paused");
   }
   return true;

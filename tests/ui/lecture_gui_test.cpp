@@ -440,6 +440,7 @@ TEST(Lecture, FirstMechanismInPresentationModeAtBothSizes) {
       continue;
     }
     EXPECT_TRUE(v["presentation"].get<bool>()) << where;
+    EXPECT_FALSE(v["building"].get<bool>()) << "Esc left a Build tool chosen: " << where;
     EXPECT_EQ(v["window"][1].get<double>(), name.rfind("1080-", 0) == 0 ? 1080 : 720) << where;
     EXPECT_EQ(v["strip_name"], "my mechanism") << where;
     EXPECT_EQ(v["strip_overflow"].get<double>(), 0) << where;
