@@ -420,6 +420,7 @@ TEST(Lecture, FirstMechanismInPresentationModeAtBothSizes) {
     EXPECT_TRUE(v["banner"].is_null()) << where;
     // The ground (whole) and the mechanism in the view, clear of the bars.
     ASSERT_FALSE(v["fixed"].is_null()) << where;
+    if (v["scene"].is_null()) continue;  // said by expectReadable
     const Box ground = boxes(nlohmann::json::array({v["fixed"]}))[0];
     const Box scene = boxes(nlohmann::json::array({v["scene"]}))[0];
     const double fx = v["free"][0], fy = v["free"][1];
