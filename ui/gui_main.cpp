@@ -215,7 +215,8 @@ int run(const cablelab::ui::GuiOptions& options) {
                    now);
     if (screenshot) {
       const std::optional<PanelRect> part = sandbox.pngRequest;
-      const std::string name = part ? sandbox.pngRequestPath : freshName(sandbox.fileStem(), ".png");
+      const std::string name =
+          part ? sandbox.pngRequestPath : freshName(sandbox.fileStem(), ".png");
       sandbox.pngRequest.reset();
       try {
         if (part)

@@ -142,8 +142,8 @@ void tryStep(Sandbox& sandbox) {
 }  // namespace
 
 const std::vector<std::string>& LectureScript::names() {
-  static const std::vector<std::string> n = {"present",     "grasp-quiet", "tension-run",
-                                             "walkthrough", "select-rope", "tour",
+  static const std::vector<std::string> n = {"present",        "grasp-quiet", "tension-run",
+                                             "walkthrough",    "select-rope", "tour",
                                              "first-mechanism"};
   return n;
 }
@@ -545,9 +545,9 @@ bool LectureScript::firstMechanism(Sandbox& sandbox, int frame) {
               jsonNumber(sandbox.scene.bodies.size()) +
               ", \"cables\": " + jsonNumber(sandbox.scene.cables.size()) +
               ", \"wraps\": " + jsonNumber(wraps) + ", \"error\": " + jsonQuoted(sandbox.error) +
-              ", \"banners\": " + join(banners_) + ", \"build_view_moves\": " +
-              jsonNumber(buildViewMoves_) + ", \"build_clicks_outside\": " +
-              jsonNumber(clicksOffView_) +
+              ", \"banners\": " + join(banners_) +
+              ", \"build_view_moves\": " + jsonNumber(buildViewMoves_) +
+              ", \"build_clicks_outside\": " + jsonNumber(clicksOffView_) +
               ", \"views\": " + join(items_) + "}";
     return false;
   }
@@ -571,8 +571,8 @@ bool LectureScript::firstMechanism(Sandbox& sandbox, int frame) {
   } else if (f >= kBuildFrom && f < buildTo) {
     // While building the view holds still (the clicks go on it), every click inside it.
     const Camera& c = sandbox.camera;
-    if (f > kBuildFrom + 1 && (c.center != buildCamera_.center ||
-                               c.metresPerPixel != buildCamera_.metresPerPixel))
+    if (f > kBuildFrom + 1 &&
+        (c.center != buildCamera_.center || c.metresPerPixel != buildCamera_.metresPerPixel))
       ++buildViewMoves_;
     buildCamera_ = c;
     if ((f - kBuildFrom) % kBuildEvery == 0) {

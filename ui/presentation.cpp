@@ -84,8 +84,7 @@ void keepViewFitted(Sandbox& sandbox) {
 
 float barRowHeight(const Sandbox& sandbox) {
   const World* world = sandbox.world();
-  if (!world || (!sandbox.draw.grid && !(sandbox.draw.legend && world->cableCount() > 0)))
-    return 0;
+  if (!world || (!sandbox.draw.grid && !(sandbox.draw.legend && world->cableCount() > 0))) return 0;
   // The colour bar's row, also without a cable (the scale bar and the PAUSED sign are in it, and
   // a student's first cable does not move the view).
   return kBarRowLines * std::round(13.0f * sandbox.uiScale);  // the font is 13 px x UI scale

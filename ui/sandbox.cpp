@@ -20,11 +20,12 @@
 namespace cablelab::ui {
 namespace {
 
-const std::string kEdited = "edited-";  // sceneName's prefix for a scene changed in the window
 constexpr double kBannerSeconds = 6;  // a banner stays this long (wall time)
 constexpr double kActionSeconds = 1;  // a warning this soon after a drag or edit is its doing
 constexpr double kOverLength = 1e-5;  // m: a rigid cable longer than its rest length by more
                                       // is settled before a paused world runs again
+
+const std::string kEdited = "edited-";  // sceneName's prefix for a scene changed in the window
 
 }  // namespace
 
