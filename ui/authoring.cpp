@@ -279,6 +279,13 @@ bool applyEdit(Sandbox& sandbox, SceneDef next) {
   return true;
 }
 
+void chooseTool(Authoring& a, Authoring::Tool tool) {
+  a.tool = tool;
+  a.polygon.clear();
+  a.route.clear();
+  a.cableStarted = a.jointStarted = false;
+}
+
 bool undoEdit(Sandbox& sandbox) {
   Authoring& a = state(sandbox);
   if (a.undo.empty()) return false;
@@ -303,7 +310,7 @@ bool redoEdit(Sandbox& sandbox) {
 
 void newScene(Sandbox& sandbox) {
   SceneDef s;
-  s.name = "my_scene";
+  s.name = "my_mechanism";  // shown as "my mechanism"; saved as my_mechanism.json
   s.description = "built in the sandbox";
   s.view = {Vec2(0, 1.5), 4.0};
   BodyDef ground;
@@ -312,7 +319,10 @@ void newScene(Sandbox& sandbox) {
   ground.position = Vec2(0, -0.1);
   ground.shapes = {polygonShape({Vec2(-3, -0.1), Vec2(3, -0.1), Vec2(3, 0.1), Vec2(-3, 0.1)})};
   s.bodies = {ground};
-  if (applyEdit(sandbox, std::move(s))) sandbox.fitView();
+  if (!applyEdit(sandbox, std::move(s))) return;
+  sandbox.sceneFile.clear();  // a new scene is not the file opened before
+  sandbox.paused = true;      // it waits for its first bodies; Space runs it
+  sandbox.fitView();
 }
 
 bool finishPolygon(Sandbox& sandbox) {

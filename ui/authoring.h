@@ -78,7 +78,7 @@ bool finishPolygon(Sandbox& sandbox);
 bool applyEdit(Sandbox& sandbox, SceneDef next);
 bool undoEdit(Sandbox& sandbox);
 bool redoEdit(Sandbox& sandbox);
-/// Replaces the scene by an empty one (a ground and nothing else), as an edit.
+/// Replaces the scene by an empty one (a ground and nothing else), as an edit, paused.
 void newScene(Sandbox& sandbox);
 /// Replaces pulley `k` of cable `cable` by `p` as an edit (side auto: it joins when the cable
 /// touches it, so no wrap at the start); says so in `error` when the cable then misses a pulley.
@@ -92,8 +92,14 @@ SceneDef sceneToSave(const Sandbox& sandbox);
 /// failure.
 void saveScene(const Sandbox& sandbox, const std::string& path);
 
+/// Chooses `tool`, dropping a polygon, cable or joint in progress.
+void chooseTool(Authoring& authoring, Authoring::Tool tool);
+
 /// The Build section of the Simulation panel (tools, sizes, undo, redo, save).
 void authoringPanel(Sandbox& sandbox);
+/// The menu bar's Build menu, there in presentation mode too: New scene (paused), the tools (Esc
+/// goes back to selecting), the next body's size, mass and type, undo and redo.
+void buildMenu(Sandbox& sandbox);
 
 /// World points the tool has collected so far (polygon vertices, cable route), for the overlay.
 void authoringOverlay(const Sandbox& sandbox, Overlay& overlay);

@@ -12,8 +12,10 @@ namespace {
 
 constexpr Colour kDraft{0.1f, 0.45f, 0.2f, 1.0f};
 
-void toolButtons(Authoring& a) {
-  using Tool = Authoring::Tool;
+using Tool = Authoring::Tool;
+
+/// Every tool with its tooltip, in the buttons' and the Build menu's order.
+const std::array<std::pair<Tool, const char*>, Authoring::kToolCount>& toolTips() {
   static const std::array<std::pair<Tool, const char*>, Authoring::kToolCount> tools = {{
       {Tool::None, "Clicks select and drag, as usual."},
       {Tool::Box, "Click to add a box."},
@@ -36,14 +38,13 @@ void toolButtons(Authoring& a) {
       {Tool::Weld, "Click two bodies: they are glued together at the second click."},
       {Tool::Delete, "Click a body or a cable to delete it (with its cables and joints)."},
   }};
-  for (const auto& [tool, tip] : tools) {
+  return tools;
+}
+
+void toolButtons(Authoring& a) {
+  for (const auto& [tool, tip] : toolTips()) {
     if (tool != Tool::None) sameLineIfRoom(checkboxWidth(toolName(tool)));
-    if (ImGui::RadioButton(toolName(tool), a.tool == tool)) {
-      a.tool = tool;
-      a.polygon.clear();
-      a.route.clear();
-      a.cableStarted = a.jointStarted = false;
-    }
+    if (ImGui::RadioButton(toolName(tool), a.tool == tool)) chooseTool(a, tool);
     tooltip(tip);
   }
 }
@@ -95,6 +96,26 @@ void authoringPanel(Sandbox& sandbox) {
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
   ImGui::TextWrapped("%zu undo, %zu redo; Scene > Save scene as...", a.undo.size(), a.redo.size());
   ImGui::PopStyleColor();
+}
+
+void buildMenu(Sandbox& sandbox) {
+  if (!ImGui::BeginMenu("Build")) return;
+  Authoring& a = *sandbox.authoring;
+  if (ImGui::MenuItem("New scene")) newScene(sandbox);
+  tooltip("An empty scene with a ground, paused (undo brings the old one back).");
+  ImGui::Separator();
+  for (const auto& [tool, tip] : toolTips()) {
+    if (ImGui::MenuItem(toolName(tool), tool == Tool::None ? "Esc" : nullptr, a.tool == tool))
+      chooseTool(a, tool);
+    tooltip(tip);
+  }
+  if (a.tool == Tool::Polygon && ImGui::MenuItem("finish the polygon")) finishPolygon(sandbox);
+  ImGui::Separator();
+  bodySettings(a);
+  ImGui::Separator();
+  if (ImGui::MenuItem("Undo", "Ctrl+Z", false, !a.undo.empty())) undoEdit(sandbox);
+  if (ImGui::MenuItem("Redo", "Ctrl+Y", false, !a.redo.empty())) redoEdit(sandbox);
+  ImGui::EndMenu();
 }
 
 void authoringOverlay(const Sandbox& sandbox, Overlay& overlay) {

@@ -1,5 +1,9 @@
 #include "ui/build_scenarios.h"
 
+#include <algorithm>
+
+#include "ui/synthetic_events.h"
+
 namespace cablelab::ui {
 namespace {
 
@@ -208,6 +212,55 @@ std::vector<BuildScenario> makeScenarios() {
 const std::vector<BuildScenario>& buildScenarios() {
   static const std::vector<BuildScenario> all = makeScenarios();
   return all;
+}
+
+const BuildScenario* findBuildScenario(const std::string& name) {
+  const auto& all = buildScenarios();
+  const auto it =
+      std::find_if(all.begin(), all.end(), [&](const BuildScenario& b) { return b.name == name; });
+  return it == all.end() ? nullptr : &*it;
+}
+
+void playBuildStep(Sandbox& sandbox, std::uint32_t windowId, const BuildStep& s) {
+  const Vec2 at = sandbox.camera.toScreen(s.at);
+  auto clickAt = [&](Uint8 button) {
+    pushMouseEvent(windowId, SDL_MOUSEMOTION, at);
+    pushMouseEvent(windowId, SDL_MOUSEBUTTONDOWN, at, button);
+    pushMouseEvent(windowId, SDL_MOUSEBUTTONUP, at, button);
+  };
+  switch (s.kind) {
+    case Kind::Tool:
+      chooseTool(*sandbox.authoring, s.tool);
+      break;
+    case Kind::Click:
+      clickAt(SDL_BUTTON_LEFT);
+      break;
+    case Kind::ShiftClick:
+      SDL_SetModState(KMOD_LSHIFT);
+      clickAt(SDL_BUTTON_LEFT);
+      break;
+    case Kind::AltClick:
+      SDL_SetModState(KMOD_LALT);
+      clickAt(SDL_BUTTON_LEFT);
+      break;
+    case Kind::RightClick:
+      clickAt(SDL_BUTTON_RIGHT);
+      break;
+    case Kind::Undo:
+      SDL_SetModState(KMOD_LCTRL);
+      pushKeyPress(windowId, SDLK_z);
+      break;
+    case Kind::Redo:
+      SDL_SetModState(KMOD_LCTRL);
+      pushKeyPress(windowId, SDLK_y);
+      break;
+    case Kind::DeleteKey:
+      pushKeyPress(windowId, SDLK_DELETE);
+      break;
+    case Kind::Setting:
+      s.set(sandbox);
+      break;
+  }
 }
 
 }  // namespace cablelab::ui

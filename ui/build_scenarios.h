@@ -9,6 +9,7 @@
 // pushed events do not move, so the script cannot click the panels' widgets.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -35,5 +36,13 @@ inline constexpr int kBuildPlaySteps = 30;
 
 /// Every build scenario.
 const std::vector<BuildScenario>& buildScenarios();
+/// The build scenario called `name`; null if none.
+const BuildScenario* findBuildScenario(const std::string& name);
+
+/// Plays `step` in window `windowId` as the user does: clicks as synthetic SDL events at the
+/// step's point in the view, tools and fields as the panels and the Build menu set them. A
+/// modifier key (Shift, Alt, Ctrl) stays held in SDL's modifier state until the caller clears it
+/// (the next frame: the events are handled in this one).
+void playBuildStep(Sandbox& sandbox, std::uint32_t windowId, const BuildStep& step);
 
 }  // namespace cablelab::ui

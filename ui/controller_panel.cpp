@@ -649,19 +649,22 @@ void controllerOpened(Sandbox& sandbox) {
   sandbox.controller = std::move(state);
 }
 
+const char* controllerSectionTitle(const Sandbox& sandbox) {
+  const ControllerState* c = sandbox.controller.get();
+  if (sandbox.world() && c && (c->hand || c->membrane)) return "Controller";
+  return sandbox.target ? "Marked point" : nullptr;
+}
+
 void drawControllerPanel(Sandbox& sandbox) {
   ControllerState* c = sandbox.controller.get();
   if (c && c->hand && sandbox.world()) return handPanel(sandbox, *c->hand);
   if (c && c->membrane && sandbox.world()) return membranePanel(sandbox, *c->membrane);
-  ImGui::PushTextWrapPos(0);  // a narrow panel at a large UI scale wraps them
-  ImGui::TextDisabled("no controller in this scene");
-  if (sandbox.target)
-    ImGui::Text("marked point (%.3f, %.3f) m", sandbox.target->x(), sandbox.target->y());
-  else
-    ImGui::TextDisabled("Ctrl + click marks a point");
+  if (!sandbox.target) return;
+  ImGui::PushTextWrapPos(0);  // a narrow panel at a large UI scale wraps it
+  ImGui::Text("(%.3f, %.3f) m", sandbox.target->x(), sandbox.target->y());
   ImGui::PopTextWrapPos();
-  if (sandbox.target && ImGui::Button("Clear mark")) sandbox.target.reset();
-  tooltip("Remove the marked point.");
+  if (ImGui::Button("Clear mark")) sandbox.target.reset();
+  tooltip("Remove the marked point (Ctrl + click marks another).");
 }
 
 void controllerBeforeStep(Sandbox& sandbox, World& world) {

@@ -130,7 +130,13 @@ void controllerOpened(Sandbox& sandbox);
 /// (0, 0) if unset). False if the current scene is not the hand.
 bool startHandGrasp(Sandbox& sandbox);
 
-/// ImGui widgets for the current scene's controller; called inside an open window.
+/// The Simulation panel's section for the controller: "Controller" when the scene has one (the
+/// hand, the membrane), "Marked point" when it has none but a point is marked (Ctrl + click),
+/// null otherwise (no section: a line saying there is no controller told a student nothing).
+const char* controllerSectionTitle(const Sandbox& sandbox);
+
+/// ImGui widgets for the current scene's controller, or the marked point; called inside an open
+/// window.
 void drawControllerPanel(Sandbox& sandbox);
 
 /// Applies the controller to `world` before a step (servo targets, forces).

@@ -88,9 +88,7 @@ double median(std::vector<double> v) {
 }
 
 /// A file name in the working directory that does not exist yet: cablelab-SCENE-N.EXT.
-std::string freshName(const std::string& scene, const char* extension) {
-  std::string base = std::filesystem::path(scene).stem().string();
-  if (base.empty()) base = "scene";
+std::string freshName(const std::string& base, const char* extension) {
   for (int n = 1;; ++n) {
     const std::string name = "cablelab-" + base + "-" + std::to_string(n) + extension;
     if (!std::filesystem::exists(name)) return name;
@@ -112,7 +110,7 @@ void toggleRecording(cablelab::ui::Sandbox& sandbox, cablelab::ui::Recorder& rec
             h = std::max(16, static_cast<int>(free.height));
   try {
     const char* extension = mp4Available() ? ".mp4" : ".gif";
-    const std::string file = path.empty() ? freshName(sandbox.sceneName, extension) : path;
+    const std::string file = path.empty() ? freshName(sandbox.fileStem(), extension) : path;
     const double fps =
         sandbox.recordFps > 0 ? sandbox.recordFps : defaultClipFps(clipFormatFor(file));
     recorder.start(file, w, h, fps, sandbox.world() ? sandbox.world()->time() : 0);
@@ -186,7 +184,7 @@ int run(const cablelab::ui::GuiOptions& options) {
       options.clipToFree = true;
       Overlay overlay = sandbox.overlay();
       if (recorder.recording()) {  // the time stamp every clip carries (as `cablelab record`)
-        const auto notes = clipNotes(*world, sandbox.sceneName);
+        const auto notes = clipNotes(sandbox.displayName(), world->time());
         overlay.notes.insert(overlay.notes.begin(), notes.begin(), notes.end());
       }
       sandbox.drawn =
@@ -217,7 +215,8 @@ int run(const cablelab::ui::GuiOptions& options) {
                    now);
     if (screenshot) {
       const std::optional<PanelRect> part = sandbox.pngRequest;
-      const std::string name = part ? sandbox.pngRequestPath : freshName(sandbox.sceneName, ".png");
+      const std::string name =
+          part ? sandbox.pngRequestPath : freshName(sandbox.fileStem(), ".png");
       sandbox.pngRequest.reset();
       try {
         if (part)

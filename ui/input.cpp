@@ -19,6 +19,8 @@ const char* const kShortcuts[][2] = {{"space", "play / pause"},
                                      {"f", "camera follows the selected body"},
                                      {"p", "presentation mode: panels hidden, scene fitted"},
                                      {"v", "fit the scene to the view"},
+                                     {"Build menu", "add boxes, pulleys, cables by clicks"},
+                                     {"Esc", "stop building: clicks select and drag"},
                                      {"F12", "screenshot (PNG in the working directory)"},
                                      {"F9", "start / stop recording a clip (MP4 or GIF)"},
                                      {"h, F1", "this help"},
@@ -194,7 +196,8 @@ void key(Sandbox& sandbox, const SDL_KeyboardEvent& e) {
     case SDLK_v:
       sandbox.fitView();
       break;
-    case SDLK_ESCAPE:
+    case SDLK_ESCAPE:  // closes the help, else stops building
+      if (!sandbox.showHelp) chooseTool(*sandbox.authoring, Authoring::Tool::None);
       sandbox.showHelp = false;
       break;
     default:

@@ -6,6 +6,8 @@
 #include <map>
 #include <optional>
 
+#include "ui/authoring.h"
+#include "ui/build_scenarios.h"
 #include "ui/controller_panel.h"
 #include "ui/report_json.h"
 #include "ui/scene_bounds.h"
@@ -49,9 +51,15 @@ std::string viewJson(const Sandbox& s, const std::string& name, const std::strin
   for (const Overlay::Key& k : s.overlay().keys) markerKeys.push_back(jsonQuoted(k.label));
   // a looping demo's whole run on screen (ui/demo_loop.h), px
   const LabelBox stage = screenBox(s.demo.stage, s.camera);
+  WorldBounds fixed;     // the fixed bodies (a ground), whole
   int bodiesInView = 0;  // dynamic bodies whose centre is in the free area
   if (const World* world = s.world())
     for (int i = 0; i < world->bodyCount(); ++i) {
+      if (world->scene().bodies[i].type == BodyType::Static) {
+        const WorldBounds b = bodyBounds(*world, i);
+        fixed.include(b.lo);
+        fixed.include(b.hi);
+      }
       const Vec2 p = s.camera.toScreen(world->body(i).position);
       bodiesInView += world->scene().bodies[i].type == BodyType::Dynamic && p.x() >= free.x &&
                       p.x() <= free.x + free.width && p.y() >= free.y &&
@@ -78,6 +86,12 @@ std::string viewJson(const Sandbox& s, const std::string& name, const std::strin
          "], \"status_overflow\": " + jsonNumber(s.statusOverflow) +
          ", \"status\": " + jsonQuoted(s.shownStatus) +
          ", \"truncated_buttons\": " + jsonNumber(s.truncatedButtons) +
+         ", \"fixed\": " + box(screenBox(fixed, s.camera)) +
+         ", \"strip_name\": " + jsonQuoted(s.shownStripName) +
+         ", \"strip_overflow\": " + jsonNumber(s.stripOverflow) +
+         ", \"title\": " + jsonQuoted(s.shownTitle) +
+         ", \"controller_section\": " + jsonQuoted(s.controllerSection) +
+         ", \"building\": " + (s.building() ? "true" : "false") +
          ", \"screenshot\": " + jsonQuoted(shot) + "}";
 }
 
@@ -128,8 +142,9 @@ void tryStep(Sandbox& sandbox) {
 }  // namespace
 
 const std::vector<std::string>& LectureScript::names() {
-  static const std::vector<std::string> n = {"present",     "grasp-quiet", "tension-run",
-                                             "walkthrough", "select-rope", "tour"};
+  static const std::vector<std::string> n = {"present",        "grasp-quiet", "tension-run",
+                                             "walkthrough",    "select-rope", "tour",
+                                             "first-mechanism"};
   return n;
 }
 
@@ -164,6 +179,7 @@ bool LectureScript::beforeFrame(Sandbox& sandbox, int frame) {
   if (name_ == "walkthrough") return walkthrough(sandbox, frame);
   if (name_ == "select-rope") return selectRope(sandbox, frame);
   if (name_ == "tour") return tour(sandbox, frame);
+  if (name_ == "first-mechanism") return firstMechanism(sandbox, frame);
   report_ = "{\"scenario\": " + jsonQuoted(name_) + ", \"failure\": \"unknown scenario\"}";
   return false;
 }
@@ -494,6 +510,105 @@ bool LectureScript::tour(Sandbox& sandbox, int frame) {
     key(SDLK_SPACE);
   } else if (f == 98) {
     shot("1080-run");
+  }
+  return true;
+}
+
+}  // namespace cablelab::ui
+
+namespace cablelab::ui {
+
+bool LectureScript::firstMechanism(Sandbox& sandbox, int frame) {
+  // Per window size: New, the build (a step every 3 frames), Esc, Space, a drag, Space.
+  constexpr int kSizes[2][2] = {{1280, 720}, {1920, 1080}};
+  constexpr int kFramesPerSize = 96, kBuildFrom = 9, kBuildEvery = 3;
+  const BuildScenario& build = *findBuildScenario("build-circle-pulley");
+  const int buildTo = kBuildFrom + kBuildEvery * static_cast<int>(build.steps.size());
+  recordPendingView(sandbox);
+  SDL_SetModState(KMOD_NONE);
+  if (frame == 1) {
+    sandbox.projector = true;  // the View menu's projector mode
+    sandbox.uiScale = 2;
+    key(SDLK_p);
+    return true;
+  }
+  const int k = (frame - 2) / kFramesPerSize, f = (frame - 2) % kFramesPerSize;
+  if (k == 2 && f == 0) {
+    key(SDLK_p);  // the Panels button: the side panels again
+  } else if (k == 2 && f == 8) {
+    snapshot(sandbox, "panels");
+  } else if (k == 2 && f == 10) {
+    const World& world = *sandbox.world();
+    int wraps = 0;
+    for (int i = 0; i < world.cableCount(); ++i) wraps += world.cable(i).wraps();
+    report_ = "{\"scenario\": \"first-mechanism\", \"bodies\": " +
+              jsonNumber(sandbox.scene.bodies.size()) +
+              ", \"cables\": " + jsonNumber(sandbox.scene.cables.size()) +
+              ", \"wraps\": " + jsonNumber(wraps) + ", \"error\": " + jsonQuoted(sandbox.error) +
+              ", \"banners\": " + join(banners_) +
+              ", \"build_view_moves\": " + jsonNumber(buildViewMoves_) +
+              ", \"build_clicks_outside\": " + jsonNumber(clicksOffView_) +
+              ", \"views\": " + join(items_) + "}";
+    return false;
+  }
+  if (k >= 2) return true;
+  if (!sandbox.banner.empty() &&
+      (banners_.empty() || banners_.back() != jsonQuoted(sandbox.banner)))
+    banners_.push_back(jsonQuoted(sandbox.banner));
+  const std::string size = std::to_string(kSizes[k][1]);
+  const auto shot = [&](const char* what) {
+    shotName_ = size + "-" + what;
+    snapshot(sandbox, shotName_.c_str());
+  };
+  if (f == 0) {
+    SDL_SetWindowSize(SDL_GetWindowFromID(windowId_), kSizes[k][0], kSizes[k][1]);
+  } else if (f == 4) {
+    newScene(sandbox);  // Build > New scene, its size and kg fields at the first box's
+    sandbox.authoring->size = Authoring{}.size;
+    sandbox.authoring->mass = Authoring{}.mass;
+  } else if (f == 7) {
+    shot("new");
+  } else if (f >= kBuildFrom && f < buildTo) {
+    // While building the view holds still (the clicks go on it), every click inside it.
+    const Camera& c = sandbox.camera;
+    if (f > kBuildFrom + 1 &&
+        (c.center != buildCamera_.center || c.metresPerPixel != buildCamera_.metresPerPixel))
+      ++buildViewMoves_;
+    buildCamera_ = c;
+    if ((f - kBuildFrom) % kBuildEvery == 0) {
+      const BuildStep& step = build.steps[(f - kBuildFrom) / kBuildEvery];
+      const PanelRect view = sandbox.freeArea();
+      if (step.kind != BuildStep::Kind::Tool && step.kind != BuildStep::Kind::Setting &&
+          !view.contains(sandbox.camera.toScreen(step.at)))
+        ++clicksOffView_;
+      playBuildStep(sandbox, windowId_, step);
+    }
+  } else if (f == buildTo + 1) {
+    key(SDLK_ESCAPE);  // stop building: the view fits the mechanism
+  } else if (f == buildTo + 5) {
+    shot("built");
+  } else if (f == buildTo + 7) {
+    key(SDLK_SPACE);
+  } else if (f == buildTo + 27) {
+    shot("run");
+  } else if (f == buildTo + 29) {  // drag the lighter box sideways as it rises
+    body_ = sandbox.world()->findBody("box1");
+    if (body_ >= 0) {
+      from_ = sandbox.camera.toScreen(sandbox.world()->body(body_).position);
+      to_ = from_ + Vec2(-0.1 * kSizes[k][0], 0);
+      mouse(SDL_MOUSEMOTION, from_);
+      mouse(SDL_MOUSEBUTTONDOWN, from_);
+    }
+  } else if (f > buildTo + 29 && f <= buildTo + 39 && body_ >= 0) {
+    mouse(SDL_MOUSEMOTION, from_ + (to_ - from_) * ((f - buildTo - 29) / 10.0));
+  } else if (f == buildTo + 41 && body_ >= 0) {
+    shot("drag");
+  } else if (f == buildTo + 43) {
+    mouse(SDL_MOUSEBUTTONUP, to_);
+  } else if (f == buildTo + 45) {
+    key(SDLK_SPACE);
+  } else if (f == buildTo + 50) {
+    shot("paused");
   }
   return true;
 }

@@ -25,6 +25,12 @@
 //                 projector scale, 1280x720: the body at a cable's end dragged (the hexagon's onto
 //                 the colour bar, then onto the scale bar), the scene's "what to try" step, Space;
 //                 then 1920x1080 paused and running again. Reports each view and every banner shown
+//   first-mechanism  a student's first mechanism in presentation mode at projector scale, at
+//                 1280x720 then 1920x1080: Build > New scene, an Atwood machine built by clicks
+//                 (ui/build_scenarios.h, build-circle-pulley: two boxes, a round pulley, a cable),
+//                 Esc, Space, the lighter box dragged sideways, Space; then the side panels.
+//                 Reports each view, every banner, the built scene's counts, how often the view
+//                 moved while building and how many clicks fell outside it
 //
 // Needs: an SDL video subsystem (the sandbox's Window), a Sandbox with a loaded scene.
 #pragma once
@@ -54,6 +60,7 @@ class LectureScript {
   bool walkthrough(Sandbox& sandbox, int frame);
   bool selectRope(Sandbox& sandbox, int frame);
   bool tour(Sandbox& sandbox, int frame);
+  bool firstMechanism(Sandbox& sandbox, int frame);
   void key(SDL_Keycode k);
   void mouse(Uint32 type, const Vec2& screen);
   /// Records the view whose screenshot the last frame took, if any.
@@ -74,6 +81,9 @@ class LectureScript {
   int width_ = 0, height_ = 0;        ///< present: the window's size before the resize
   std::vector<std::string> banners_;  ///< tour: every banner shown, "scene: text"
   std::string shotName_;              ///< tour: the screenshot's name, "scene-what"
+  Camera buildCamera_;                ///< first-mechanism: the view at the last frame's build
+  int buildViewMoves_ = 0;            ///< first-mechanism: frames the view moved while building
+  int clicksOffView_ = 0;             ///< first-mechanism: build clicks outside the view
 };
 
 }  // namespace cablelab::ui

@@ -108,13 +108,22 @@ float menuBar(Sandbox& sandbox, PanelState& state) {
   float height = 0;
   if (ImGui::BeginMainMenuBar()) {
     sceneMenu(sandbox, state);
+    buildMenu(sandbox);
     viewMenu(sandbox, state);
     if (ImGui::BeginMenu("Help")) {
       ImGui::MenuItem("Shortcuts", "h", &sandbox.showHelp);
       ImGui::EndMenu();
     }
     if (sandbox.presentation) presentationControls(sandbox);
-    ImGui::TextDisabled("  %s", sandbox.sceneName.c_str());
+    // The scene's name where it fits whole (a small window at projector scale has no room).
+    const std::string name = "  " + sandbox.displayName();
+    const float right = static_cast<float>(sandbox.camera.width) - ImGui::GetStyle().ItemSpacing.x;
+    sandbox.shownStripName.clear();
+    if (ImGui::GetCursorScreenPos().x + ImGui::CalcTextSize(name.c_str()).x <= right) {
+      ImGui::TextDisabled("%s", name.c_str());
+      sandbox.shownStripName = sandbox.displayName();
+    }
+    sandbox.stripOverflow = std::max(0.0f, ImGui::GetItemRectMax().x - right);
     height = ImGui::GetWindowSize().y;
     sandbox.panels.push_back({0, 0, static_cast<float>(sandbox.camera.width), height});
     ImGui::EndMainMenuBar();
@@ -166,7 +175,9 @@ void simulationPanel(Sandbox& sandbox, PanelState& state, float top) {
     runPanel(sandbox);
     timelinePanel(sandbox);
     if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) scenePanel(sandbox);
-    if (ImGui::CollapsingHeader("Controller", ImGuiTreeNodeFlags_DefaultOpen))
+    const char* controller = controllerSectionTitle(sandbox);
+    sandbox.controllerSection = controller ? controller : "";
+    if (controller && ImGui::CollapsingHeader(controller, ImGuiTreeNodeFlags_DefaultOpen))
       drawControllerPanel(sandbox);
     if (!sandbox.plots->charts.empty()) ImGui::SetNextItemOpen(true, ImGuiCond_Once);
     sandbox.plotsSectionOpen = ImGui::CollapsingHeader("Plots");
@@ -304,6 +315,7 @@ void saveDialog(Sandbox& sandbox, PanelState& state) {
   if (pathRow("##save", state.savePath, "Save", state.showSave, nullptr)) {
     try {
       saveScene(sandbox, state.savePath.data());
+      sandbox.sceneFile = state.savePath.data();  // its name is the scene's now
       sandbox.message = std::string("saved ") + state.savePath.data();
       state.showSave = false;
     } catch (const std::exception& e) {

@@ -17,9 +17,7 @@ namespace cablelab::ui {
 namespace {
 
 /// cablelab-SCENE-plot-N, the first N with neither a .png nor a .csv in the working directory.
-std::string freshStem(const std::string& scene) {
-  std::string base = std::filesystem::path(scene).stem().string();
-  if (base.empty()) base = "scene";
+std::string freshStem(const std::string& base) {
   for (int n = 1;; ++n) {
     const std::string stem = "cablelab-" + base + "-plot-" + std::to_string(n);
     if (!std::filesystem::exists(stem + ".png") && !std::filesystem::exists(stem + ".csv"))
@@ -81,7 +79,7 @@ void chartView(Sandbox& sandbox, const World& world, size_t index) {
   ImGui::PushID(static_cast<int>(index));
   if (ImGui::SmallButton("Export PNG + CSV")) {
     try {
-      sandbox.message = exportChart(sandbox, index, freshStem(sandbox.sceneName));
+      sandbox.message = exportChart(sandbox, index, freshStem(sandbox.fileStem()));
     } catch (const std::exception& e) {
       sandbox.error = e.what();
     }

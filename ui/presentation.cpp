@@ -53,11 +53,22 @@ bool outgrown(const Sandbox& sandbox) {
   const float height = a.height - barRowHeight(sandbox);
   const bool out =
       s.x0 < a.x - 1 || s.y0 < a.y - 1 || s.x1 > a.x + a.width + 1 || s.y1 > a.y + height + 1;
-  const bool small = s.x1 - s.x0 < kRefitBelow * a.width && s.y1 - s.y0 < kRefitBelow * height;
+  // While building the view is the scene's own, which a small scene does not fill.
+  const bool small = !sandbox.fittedCanvas && s.x1 - s.x0 < kRefitBelow * a.width &&
+                     s.y1 - s.y0 < kRefitBelow * height;
   return out || small;
 }
 
 }  // namespace
+
+bool showsCanvas(const Sandbox& sandbox) {
+  const World* world = sandbox.world();
+  if (sandbox.building() || !world) return true;
+  if (world->cableCount() > 0) return false;
+  for (int i = 0; i < world->bodyCount(); ++i)
+    if (world->scene().bodies[i].type != BodyType::Static) return false;
+  return true;  // a new scene: its ground alone
+}
 
 void togglePresentation(Sandbox& sandbox) {
   sandbox.presentation = !sandbox.presentation;
@@ -65,14 +76,17 @@ void togglePresentation(Sandbox& sandbox) {
 }
 
 void keepViewFitted(Sandbox& sandbox) {
-  const bool moved =
-      !sameArea(sandbox.freeArea(), sandbox.fittedArea) || sandbox.fittedScale != sandbox.uiScale;
+  const bool moved = !sameArea(sandbox.freeArea(), sandbox.fittedArea) ||
+                     sandbox.fittedScale != sandbox.uiScale ||
+                     (sandbox.presentation && sandbox.fittedCanvas != showsCanvas(sandbox));
   if (sandbox.fitPending || (sandbox.viewFitted && moved) || outgrown(sandbox)) sandbox.fitView();
 }
 
 float barRowHeight(const Sandbox& sandbox) {
   const World* world = sandbox.world();
-  if (!sandbox.draw.legend || !world || world->cableCount() == 0) return 0;
+  if (!world || (!sandbox.draw.grid && !(sandbox.draw.legend && world->cableCount() > 0))) return 0;
+  // The colour bar's row, also without a cable (the scale bar and the PAUSED sign are in it, and
+  // a student's first cable does not move the view).
   return kBarRowLines * std::round(13.0f * sandbox.uiScale);  // the font is 13 px x UI scale
 }
 

@@ -1,9 +1,10 @@
 // Presentation mode and the fitted view: the sandbox in a lecture hall.
 //
 // One key (p, or View > presentation mode) hides the side panels; a slim strip stays at the top
-// (the menus, Play/Pause, Step, Reset and the scene's name, ui/panels.cpp) with the status line
-// at the bottom, and the scene is fitted to the window: its moving bodies, cables and pulleys
-// (ui/scene_bounds.h) fill the view above the colour bar's row. Out of it, a fit shows the
+// (the menus, Build among them, Play/Pause, Step, Reset and the scene's name, ui/panels.cpp)
+// with the status line at the bottom, and the scene is fitted to the window: its moving bodies,
+// cables, pulleys and the fixed bodies near them (a ground, ui/scene_bounds.h) fill the view
+// above the bars' row. Out of it, and while a student builds (showsCanvas()), a fit shows the
 // scene's own view, grown to hold the same.
 //
 // The view stays fitted while the user has not panned or zoomed it: when a panel opens, closes
@@ -27,6 +28,11 @@
 
 namespace cablelab::ui {
 
+/// True when presentation mode fits the scene's own view (its canvas) rather than its parts: while
+/// a Build tool is chosen (the clicks go on the view, which holds still as the scene grows) and
+/// while nothing moves in it yet (a new scene's ground alone).
+bool showsCanvas(const Sandbox& sandbox);
+
 /// Turns presentation mode on or off; the view is fitted again once the panels are laid out.
 void togglePresentation(Sandbox& sandbox);
 
@@ -35,8 +41,8 @@ void togglePresentation(Sandbox& sandbox);
 /// once a frame, after the panels are laid out.
 void keepViewFitted(Sandbox& sandbox);
 
-/// The height (px) of the colour bar's row at the bottom of the view, kept free of the scene by
-/// a presentation fit (0 when no colour bar is drawn).
+/// The height (px) of the bars' row at the bottom of the view (the colour bar's, else the scale
+/// bar's), kept free of the scene by a fit (0 when neither is drawn).
 float barRowHeight(const Sandbox& sandbox);
 
 /// The camera that shows the scene's moving parts (and `stage`, a demo's whole run, when not

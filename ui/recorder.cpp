@@ -8,10 +8,14 @@ namespace {
 constexpr size_t kMaxQueued = 8;  // frames waiting for the encoder before add() blocks
 }
 
+std::vector<std::string> clipNotes(const std::string& name, double time) {
+  char text[48];
+  std::snprintf(text, sizeof text, "t = %.2f s", time);
+  return {name, text};
+}
+
 std::vector<std::string> clipNotes(const World& world, const std::string& fallbackName) {
-  char time[48];
-  std::snprintf(time, sizeof time, "t = %.2f s", world.time());
-  return {world.scene().name.empty() ? fallbackName : world.scene().name, time};
+  return clipNotes(world.scene().name.empty() ? fallbackName : world.scene().name, world.time());
 }
 
 Recorder::~Recorder() {

@@ -24,8 +24,10 @@
 
 namespace cablelab::ui {
 
-/// The lines a clip's frames carry in their top-left corner: the scene's title (its name, else
-/// `fallbackName`) and the simulated time, "t = 1.23 s".
+/// The lines a clip's frames carry in their top-left corner: the scene's title `name` and the
+/// simulated time `time` (s), "t = 1.23 s".
+std::vector<std::string> clipNotes(const std::string& name, double time);
+/// The same with the scene's own name (else `fallbackName`) and the world's time.
 std::vector<std::string> clipNotes(const World& world, const std::string& fallbackName);
 
 class Recorder {

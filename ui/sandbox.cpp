@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 
 #include "engine/core/error.h"
@@ -23,6 +24,8 @@ constexpr double kBannerSeconds = 6;  // a banner stays this long (wall time)
 constexpr double kActionSeconds = 1;  // a warning this soon after a drag or edit is its doing
 constexpr double kOverLength = 1e-5;  // m: a rigid cable longer than its rest length by more
                                       // is settled before a paused world runs again
+
+const std::string kEdited = "edited-";  // sceneName's prefix for a scene changed in the window
 
 }  // namespace
 
@@ -76,6 +79,7 @@ bool Sandbox::adopt(SceneDef def, const std::string& name, bool fitCamera) {
 bool Sandbox::open(const std::string& nameOrPath) {
   try {
     adopt(loadScene(nameOrPath), nameOrPath, true);
+    sceneFile = isBuiltinScene(nameOrPath) ? "" : nameOrPath;
     paused = false;  // every scene starts running (a paused one said so only in small print)
     pendingSteps = 0;
     const Authoring::Tool tool = authoring->tool;
@@ -90,6 +94,22 @@ bool Sandbox::open(const std::string& nameOrPath) {
     std::cerr << "cablelab-gui: cannot open " << nameOrPath << ": " << e.what() << "\n";
     return false;
   }
+}
+
+std::string Sandbox::displayName() const {
+  if (!sceneFile.empty()) return std::filesystem::path(sceneFile).filename().string();
+  if (sceneName.rfind(kEdited, 0) != 0) return sceneName;
+  std::string name = scene.name.empty() ? "my mechanism" : scene.name;
+  std::replace(name.begin(), name.end(), '_', ' ');
+  return isBuiltinScene(scene.name) ? name + " (edited)" : name;
+}
+
+std::string Sandbox::fileStem() const {
+  std::string stem = std::filesystem::path(displayName()).stem().string();
+  std::replace(stem.begin(), stem.end(), ' ', '_');  // "hexagon (edited)": hexagon_edited
+  std::erase(stem, '(');
+  std::erase(stem, ')');
+  return stem.empty() ? "scene" : stem;
 }
 
 bool Sandbox::rebuild(const std::vector<std::pair<std::string, double>>& values) {
@@ -114,7 +134,7 @@ bool Sandbox::replaceScene(const SceneDef& def) {
     validateScene(def, "edited scene");
     // An edited scene is no longer the built-in one: its --set sliders no longer apply.
     const std::string base = def.name.empty() ? "scene" : def.name;
-    adopt(def, base.rfind("edited-", 0) == 0 ? base : "edited-" + base, false);
+    adopt(def, base.rfind(kEdited, 0) == 0 ? base : kEdited + base, false);
     parameters.clear();
     return true;
   } catch (const std::exception& e) {
@@ -321,6 +341,10 @@ void Sandbox::endDrag() {
   drag = {};
 }
 
+bool Sandbox::building() const {
+  return authoring && authoring->tool != Authoring::Tool::None;
+}
+
 bool Sandbox::hasController() const {
   return controller && controller->hand;
 }
@@ -454,13 +478,15 @@ void Sandbox::fitView() {
   fittedScale = uiScale;
   fittedKeyRows = drawn.furniture.keyRows.size();
   viewFitted = true;
+  fittedCanvas = showsCanvas(*this);
   if (!world_ || f.width < 40 || f.height < 40) return;
-  closeUp = presentation && wantsCloseUp(*this);
-  if (presentation) {
+  closeUp = presentation && !fittedCanvas && wantsCloseUp(*this);
+  if (presentation && !fittedCanvas) {
     camera = presentationFit(*this, f);
     return;
   }
-  // The scene's view grown to hold the moving parts, above the colour bar's row.
+  // The scene's view grown to hold the moving parts, above the bars' row; in presentation mode
+  // too while a student builds (ui/presentation.h, showsCanvas).
   PanelRect area = f;
   area.height = std::max(40.0f, f.height - barRowHeight(*this));
   const double aspect = area.width / area.height;

@@ -99,7 +99,8 @@ class Sandbox {
   PanelRect freeArea() const;
   /// Fits the camera to the free area: the scene's view, grown to hold every dynamic body,
   /// cable and pulley (so nothing starts cut off), centred in the area between the panels; in
-  /// presentation mode the moving parts alone, as large as they fit (ui/presentation.h).
+  /// presentation mode, unless a student builds, the scene's parts alone, as large as they fit
+  /// (ui/presentation.h).
   void fitView();
   /// The camera centre that puts world point `p` at the free area's centre (current scale).
   Vec2 centreFor(const Vec2& p) const;
@@ -110,6 +111,9 @@ class Sandbox {
   /// The fitted view is a close-up that follows the run (a thin, tall demo in presentation
   /// mode, ui/presentation.h).
   bool closeUp = false;
+  /// The last fit in presentation mode showed the scene's own view while a student builds
+  /// (ui/presentation.h, showsCanvas).
+  bool fittedCanvas = false;
   PanelRect fittedArea;       ///< the free area of the last fit
   float fittedScale = 0;      ///< the UI scale of the last fit
   size_t fittedKeyRows = 0;   ///< the marker key's rows drawn before the last fit
@@ -123,6 +127,8 @@ class Sandbox {
   double dragLimit(int body) const;
   /// Whether an empty-space click sets the target (a controller uses it).
   bool hasController() const;
+  /// A Build tool is chosen (ui/authoring.h): clicks in the view add to the scene.
+  bool building() const;
 
   /// Takes a world the timeline rewound (null: the current one, played forward to the moment);
   /// drops the drag, so that playing on repeats the run (ui/timeline.h).
@@ -132,7 +138,16 @@ class Sandbox {
   const World* world() const { return world_.get(); }
 
   // Scene and settings (edited by the panels).
-  std::string sceneName;                                   ///< built-in name or file path
+  /// Built-in name or file path; "edited-" and the scene's name once built or changed in the
+  /// window (its built-in sliders no longer apply).
+  std::string sceneName;
+  /// The file the scene was opened from or last saved to (empty: none since New or a built-in).
+  std::string sceneFile;
+  /// The scene's name as the window shows it to students: the built-in's name, the file's name,
+  /// or the edited scene's own ("my mechanism" for a new one; "hexagon (edited)").
+  std::string displayName() const;
+  /// displayName() as a file name's stem (no spaces, no extension), for screenshots and plots.
+  std::string fileStem() const;
   SceneDef scene;                                          ///< as loaded (reset rebuilds from it)
   std::vector<std::pair<std::string, double>> parameters;  ///< built-in scene's --set values
   bool paused = false;
@@ -213,6 +228,10 @@ class Sandbox {
   std::array<float, 2> panelOverflow{};
   /// The status line's text in the last frame.
   std::string shownStatus;
+  /// The scene's name as the menu strip showed it in the last frame ("": no room for it).
+  std::string shownStripName;
+  /// How far (px) the menu strip's items reached past the window's width in the last frame.
+  float stripOverflow = 0;
   /// How far (px) the status line's text reached past the window's width in the last frame.
   float statusOverflow = 0;
   /// Buttons of the Run row drawn narrower than their text in the last frame (0: none).
@@ -226,6 +245,8 @@ class Sandbox {
   bool inspectorOpen = false;
   /// Whether the Simulation panel's Plots and Build sections were open in the last frame.
   bool plotsSectionOpen = false, buildSectionOpen = false;
+  /// The title of the Simulation panel's controller section in the last frame ("": none).
+  std::string controllerSection;
 
   /// Where the last frame's labels, bars, key, banner and scene went (px), for the scripts.
   DrawnView drawn;

@@ -377,9 +377,7 @@ bool ScenarioScript::author(Sandbox& sandbox, int frame) {
 // One step every 3 frames (a click's events are handled in the frame they are pushed); modifier
 // keys are held for one frame through SDL's modifier state, which the handlers read.
 bool ScenarioScript::build(Sandbox& sandbox, int frame) {
-  const auto& all = buildScenarios();
-  const auto it =
-      std::find_if(all.begin(), all.end(), [&](const BuildScenario& b) { return b.name == name_; });
+  const BuildScenario* it = findBuildScenario(name_);
   SDL_SetModState(KMOD_NONE);
   if (frame == 2) {
     newScene(sandbox);
@@ -387,46 +385,7 @@ bool ScenarioScript::build(Sandbox& sandbox, int frame) {
   }
   if (frame < 6 || frame % 3 != 0) return true;
   if (step_ < it->steps.size()) {
-    const BuildStep& s = it->steps[step_++];
-    const Vec2 at = sandbox.camera.toScreen(s.at);
-    auto clickAt = [&](Uint8 button) {
-      mouse(SDL_MOUSEMOTION, at);
-      mouse(SDL_MOUSEBUTTONDOWN, at, button);
-      mouse(SDL_MOUSEBUTTONUP, at, button);
-    };
-    switch (s.kind) {
-      case BuildStep::Kind::Tool:
-        sandbox.authoring->tool = s.tool;
-        break;
-      case BuildStep::Kind::Click:
-        clickAt(SDL_BUTTON_LEFT);
-        break;
-      case BuildStep::Kind::ShiftClick:
-        SDL_SetModState(KMOD_LSHIFT);
-        clickAt(SDL_BUTTON_LEFT);
-        break;
-      case BuildStep::Kind::AltClick:
-        SDL_SetModState(KMOD_LALT);
-        clickAt(SDL_BUTTON_LEFT);
-        break;
-      case BuildStep::Kind::RightClick:
-        clickAt(SDL_BUTTON_RIGHT);
-        break;
-      case BuildStep::Kind::Undo:
-        SDL_SetModState(KMOD_LCTRL);
-        key(SDLK_z);
-        break;
-      case BuildStep::Kind::Redo:
-        SDL_SetModState(KMOD_LCTRL);
-        key(SDLK_y);
-        break;
-      case BuildStep::Kind::DeleteKey:
-        key(SDLK_DELETE);
-        break;
-      case BuildStep::Kind::Setting:
-        s.set(sandbox);
-        break;
-    }
+    playBuildStep(sandbox, windowId_, it->steps[step_++]);
     return true;
   }
   const World& world = *sandbox.world();

@@ -21,6 +21,12 @@ void includeShapes(WorldBounds& b, const World& world, int body, double margin) 
 
 }  // namespace
 
+WorldBounds bodyBounds(const World& world, int body, double margin) {
+  WorldBounds b;
+  includeShapes(b, world, body, margin);
+  return b;
+}
+
 WorldBounds sceneBounds(const World& world, double margin) {
   WorldBounds b;
   const SceneDef& scene = world.scene();
@@ -37,6 +43,20 @@ WorldBounds sceneBounds(const World& world, double margin) {
       if (p.kind != PulleyDef::Kind::Polygon)
         b.include(onBody(world, body, p.point), std::abs(p.radius) + margin);
     }
+  // The fixed bodies, each cut to the reach of the moving parts (a wide ground's middle part).
+  const WorldBounds moving = b;
+  for (int i = 0; i < world.bodyCount(); ++i) {
+    if (scene.bodies[i].type != BodyType::Static) continue;
+    WorldBounds fixed = bodyBounds(world, i, margin);
+    if (!moving.empty()) {
+      const double reach = kFixedReach * (moving.hi - moving.lo).maxCoeff();
+      fixed.lo = fixed.lo.cwiseMax(moving.lo - Vec2(reach, reach));
+      fixed.hi = fixed.hi.cwiseMin(moving.hi + Vec2(reach, reach));
+    }
+    if (fixed.empty()) continue;  // far from the moving parts
+    b.include(fixed.lo);
+    b.include(fixed.hi);
+  }
   return b;
 }
 

@@ -23,6 +23,10 @@ SceneDef loadScene(const std::string& name,
   return makeScene(name, overrides);
 }
 
+bool isBuiltinScene(const std::string& name) {
+  return findBuiltinScene(name) != nullptr;
+}
+
 std::vector<SceneParameter> sceneParameters(const std::string& name) {
   std::vector<SceneParameter> list;
   const SceneInfo* info = findBuiltinScene(name);

@@ -36,6 +36,8 @@ std::vector<std::string> bundledSceneFiles();
 
 /// Every built-in scene, in the registry's order.
 std::vector<SceneEntry> builtinSceneList();
+/// Whether `name` names a built-in scene (not a file).
+bool isBuiltinScene(const std::string& name);
 
 /// A built-in scene by name, or a scene JSON file by path; throws InputError naming the
 /// file or scene on failure.

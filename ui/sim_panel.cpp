@@ -56,7 +56,7 @@ void parameterSliders(Sandbox& sandbox) {
 }  // namespace
 
 void scenePanel(Sandbox& sandbox) {
-  const std::string title = sandbox.scene.name.empty() ? sandbox.sceneName : sandbox.scene.name;
+  const std::string title = sandbox.displayName();
   ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(20, 60, 140, 255));
   ImGui::TextUnformatted(title.c_str());
   ImGui::PopStyleColor();

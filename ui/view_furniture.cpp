@@ -223,11 +223,18 @@ void layoutTexts(FurnitureLayout& l, const Overlay& overlay, const RenderOptions
     l.pausedSize = kPausedFont * lh;
     const float w = text ? ImGui::GetFont()->CalcTextSizeA(l.pausedSize, 1e9f, 0, kPausedText).x
                          : 0.6f * l.pausedSize * 6;
-    float bottom = l.y + l.h - 6;
-    for (const LabelBox* b : {&l.scaleBar, &l.colourBar})
-      if (!b->empty()) bottom = std::min(bottom, static_cast<float>(b->y0) - 6);
-    const float x0 = l.x + 0.5f * (l.w - w) - 10;
+    // In the bars' row between the bars, which the fit keeps free of the scene (a ground sits
+    // just above it); above the bars where they leave no room.
+    const float bottom = l.y + l.h - 6, x0 = l.x + 0.5f * (l.w - w) - 10;
     l.paused = {x0, bottom - l.pausedSize - 8, x0 + w + 20, bottom};
+    bool onABar = false;
+    float above = bottom;
+    for (const LabelBox* b : {&l.scaleBar, &l.colourBar})
+      if (!b->empty()) {
+        onABar |= b->overlaps(l.paused);
+        above = std::min(above, static_cast<float>(b->y0) - 6);
+      }
+    if (onABar) l.paused = {x0, above - l.pausedSize - 8, x0 + w + 20, above};
   }
 }
 

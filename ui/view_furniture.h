@@ -10,7 +10,7 @@
 // narrow one would not fit); the notes top left; the key top right below `keyTop` (in
 // presentation mode, where that would cover the scene, a strip of columns along the top); the
 // banner under the notes, left of the key (below it when the room beside it is too narrow); the
-// PAUSED sign centred just above the bars.
+// PAUSED sign centred in the bars' row between them (just above them where they leave no room).
 #pragma once
 
 #include <string>

@@ -193,5 +193,34 @@ TEST(Authoring, EveryEditUndoesAndRedoes) {
   }
 }
 
+// The name the window shows a student (the strip, the Scene panel, clip time stamps, file
+// names): "edited-my_scene" was the internal one. A new scene is "my mechanism"; once saved or
+// opened from a file, the file's name; a changed built-in says so.
+TEST(SceneName, IsPlainForANewSceneAChangedOneAndAFile) {
+  Sandbox sandbox(800, 600);
+  ASSERT_TRUE(sandbox.open("hexagon"));
+  EXPECT_EQ(sandbox.displayName(), "hexagon");
+  clickWith(sandbox, Authoring::Tool::Box, {Vec2(0, 3)});
+  EXPECT_EQ(sandbox.displayName(), "hexagon (edited)");
+  EXPECT_EQ(sandbox.fileStem(), "hexagon_edited");
+  newScene(sandbox);
+  EXPECT_TRUE(sandbox.paused) << "a new scene waits for its first bodies";
+  EXPECT_EQ(sandbox.displayName(), "my mechanism");
+  EXPECT_EQ(sandbox.fileStem(), "my_mechanism");
+  clickWith(sandbox, Authoring::Tool::Box, {Vec2(0, 1)});
+  EXPECT_EQ(sandbox.displayName(), "my mechanism");
+  // Saved (the Save dialog sets the file), edited on, opened again: the file's name.
+  const std::string file = (test::outputDir("save") / "first_pulley.json").string();
+  saveScene(sandbox, file);
+  sandbox.sceneFile = file;
+  clickWith(sandbox, Authoring::Tool::Box, {Vec2(1, 1)});
+  EXPECT_EQ(sandbox.displayName(), "first_pulley.json");
+  ASSERT_TRUE(sandbox.open(file));
+  EXPECT_EQ(sandbox.displayName(), "first_pulley.json");
+  EXPECT_EQ(sandbox.fileStem(), "first_pulley");
+  newScene(sandbox);
+  EXPECT_EQ(sandbox.displayName(), "my mechanism");
+}
+
 }  // namespace
 }  // namespace cablelab::ui

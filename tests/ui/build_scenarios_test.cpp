@@ -27,7 +27,7 @@ constexpr double kG = 9.81;
 /// A scene as the sandbox's New makes it (a 6 m ground), with these bodies, joints and cables.
 std::string handScene(const std::string& bodies, const std::string& joints,
                       const std::string& cables) {
-  return R"({"name": "my_scene", "description": "built in the sandbox",
+  return R"({"name": "my_mechanism", "description": "built in the sandbox",
              "view": {"center": [0, 1.5], "height": 4},
              "bodies": [{"name": "ground", "type": "static", "position": [0, -0.1],
                          "shapes": [{"type": "box", "half_size": [3, 0.1]}]}, )" +

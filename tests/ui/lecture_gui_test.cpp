@@ -395,5 +395,64 @@ TEST(Lecture, TourOfTheOtherScenesAtBothSizes) {
   }
 }
 
+// A student's first mechanism in presentation mode at projector scale, at 1280x720 then
+// 1920x1080 (ui/lecture_scripts.h, `first-mechanism`): Build > New scene, two boxes, a round
+// pulley and a cable by clicks, Esc, Space, the lighter box dragged, Space; then the panels.
+// The ground sat under the bars' row (a fixed body was not in the fit), the strip named the
+// scene "edited-my_scene", building took the Panels button, and the Controller section said
+// "no controller in this scene".
+TEST(Lecture, FirstMechanismInPresentationModeAtBothSizes) {
+  REQUIRE_XVFB();
+  const auto j = lecture("hexagon", "first-mechanism", "1280x720", "first-mechanism");
+  ASSERT_TRUE(j.contains("views")) << j.dump();
+  EXPECT_EQ(j["error"], "");
+  EXPECT_EQ(j["bodies"], 4) << "the ground, two boxes and the pulley";
+  EXPECT_EQ(j["cables"], 1);
+  EXPECT_GT(j["wraps"].get<int>(), 0) << "the cable runs over the pulley";
+  EXPECT_EQ(j["banners"].size(), 0u) << j["banners"].dump();
+  EXPECT_EQ(j["build_view_moves"], 0) << "the view moved under the student's clicks";
+  EXPECT_EQ(j["build_clicks_outside"], 0);
+  ASSERT_EQ(j["views"].size(), 2u * 5 + 1) << j.dump();
+  for (const auto& v : j["views"]) {
+    const std::string name = v["name"], where = name + " " + v["screenshot"].get<std::string>();
+    std::cout << v.dump() << "\n";
+    expectReadable(v);
+    EXPECT_TRUE(v["banner"].is_null()) << where;
+    // The ground (whole) and the mechanism in the view, clear of the bars.
+    ASSERT_FALSE(v["fixed"].is_null()) << where;
+    if (v["scene"].is_null()) continue;  // said by expectReadable
+    const Box ground = boxes(nlohmann::json::array({v["fixed"]}))[0];
+    const Box scene = boxes(nlohmann::json::array({v["scene"]}))[0];
+    const double fx = v["free"][0], fy = v["free"][1];
+    const Box free{fx, fy, fx + v["free"][2].get<double>(), fy + v["free"][3].get<double>()};
+    EXPECT_TRUE(ground.x0 >= free.x0 - kEdge && ground.x1 <= free.x1 + kEdge &&
+                ground.y0 >= free.y0 - kEdge && ground.y1 <= free.y1 + kEdge)
+        << "the ground out of the view: " << where;
+    for (const char* bar : {"scale_bar", "colour_bar"})
+      if (!v[bar].is_null()) {
+        const Box b = boxes(nlohmann::json::array({v[bar]}))[0];
+        EXPECT_FALSE(ground.overlaps(b)) << "the ground under the " << bar << ": " << where;
+        EXPECT_FALSE(scene.overlaps(b)) << "the scene under the " << bar << ": " << where;
+      }
+    if (name == "panels") {  // the side panels shown again
+      EXPECT_FALSE(v["presentation"].get<bool>());
+      EXPECT_EQ(v["title"], "my mechanism") << where;
+      EXPECT_EQ(v["controller_section"], "") << "a section for no controller: " << where;
+      continue;
+    }
+    EXPECT_TRUE(v["presentation"].get<bool>()) << where;
+    EXPECT_FALSE(v["building"].get<bool>()) << "Esc left a Build tool chosen: " << where;
+    EXPECT_EQ(v["window"][1].get<double>(), name.rfind("1080-", 0) == 0 ? 1080 : 720) << where;
+    EXPECT_EQ(v["strip_name"], "my mechanism") << where;
+    EXPECT_EQ(v["strip_overflow"].get<double>(), 0) << where;
+    const bool paused = name.find("-run") == std::string::npos &&
+                        name.find("-drag") == std::string::npos;  // new, built, paused
+    ASSERT_EQ(v["paused"].is_null(), !paused) << where;
+    if (paused) {  // large: 2.5 text lines at projector scale
+      EXPECT_GE(v["paused"][3].get<double>() - v["paused"][1].get<double>(), 60) << where;
+    }
+  }
+}
+
 }  // namespace lecture_gui_test
 }  // namespace cablelab::test

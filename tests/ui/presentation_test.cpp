@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "ui/authoring.h"
 #include "ui/scene_bounds.h"
 
 namespace cablelab::ui {
@@ -139,6 +140,98 @@ TEST(Presentation, ASliderStepKeepsTheNewRunInTheFittedView) {
   keepViewFitted(sandbox);
   EXPECT_EQ(sandbox.camera.metresPerPixel, mine.metresPerPixel);
   EXPECT_EQ(sandbox.camera.center, mine.center);
+}
+
+/// `b` on screen inside the free area above the bars' row.
+void expectAboveTheBars(const Sandbox& sandbox, const WorldBounds& b, const char* what) {
+  const PanelRect f = sandbox.freeArea();
+  const LabelBox s = screenBox(b, sandbox.camera);
+  EXPECT_GE(s.x0, f.x - kPixel) << what;
+  EXPECT_LE(s.x1, f.x + f.width + kPixel) << what;
+  EXPECT_GE(s.y0, f.y - kPixel) << what;
+  EXPECT_LE(s.y1, f.y + f.height - barRowHeight(sandbox) + kPixel) << what;
+}
+
+// A student's first mechanism in presentation mode: the ground (a fixed body) is in the fit,
+// above the bars' row (it sat under the scale bar, fixed bodies being left out); while a Build
+// tool is chosen the view is the scene's own and holds still as the scene grows; Esc (the
+// select tool) fits the mechanism and its ground as large as they fit.
+TEST(Presentation, AStudentsMechanismAndItsGroundAreFittedAboveTheBars) {
+  Sandbox sandbox(1280, 720);
+  ASSERT_TRUE(sandbox.open("hexagon"));
+  sandbox.panels = {{0, 0, 1280, 38}, {0, 672, 1280, 48}};  // the slim strip, the status line
+  togglePresentation(sandbox);
+  newScene(sandbox);
+  keepViewFitted(sandbox);
+  const int ground = sandbox.world()->findBody("ground");
+  ASSERT_GE(ground, 0);
+  EXPECT_GT(barRowHeight(sandbox), 0) << "no cable, but the scale bar";
+  expectAboveTheBars(sandbox, bodyBounds(*sandbox.world(), ground), "the new scene's ground");
+
+  chooseTool(*sandbox.authoring, Authoring::Tool::Box);
+  keepViewFitted(sandbox);
+  const Camera building = sandbox.camera;
+  EXPECT_LE(screenBox(WorldBounds{Vec2(-2, -0.5), Vec2(2, 3.5)}, building).y1,
+            sandbox.freeArea().y + sandbox.freeArea().height)
+      << "the scene's view (4 m tall about (0, 1.5)) is the canvas";
+  for (const Vec2& p : {Vec2(-0.4, 1), Vec2(0.4, 1)}) {
+    ASSERT_TRUE(authoringClick(sandbox, p, false)) << sandbox.error;
+    keepViewFitted(sandbox);
+    EXPECT_EQ(sandbox.camera.center, building.center);
+    EXPECT_EQ(sandbox.camera.metresPerPixel, building.metresPerPixel);
+  }
+  chooseTool(*sandbox.authoring, Authoring::Tool::CirclePulley);
+  ASSERT_TRUE(authoringClick(sandbox, Vec2(0, 2.5), false));
+  chooseTool(*sandbox.authoring, Authoring::Tool::Cable);
+  for (const Vec2& p : {Vec2(-0.4, 1.1), Vec2(0, 2.5), Vec2(0.4, 1.1)})
+    ASSERT_TRUE(authoringClick(sandbox, p, false)) << sandbox.error;
+  ASSERT_EQ(sandbox.world()->cableCount(), 1);
+  keepViewFitted(sandbox);
+  EXPECT_EQ(sandbox.camera.metresPerPixel, building.metresPerPixel);
+
+  chooseTool(*sandbox.authoring, Authoring::Tool::None);  // Esc
+  keepViewFitted(sandbox);
+  expectAboveTheBars(sandbox, bodyBounds(*sandbox.world(), ground), "the ground");
+  expectAboveTheBars(sandbox, sceneBounds(*sandbox.world()), "the mechanism");
+  // As large as it fits: the limiting side spans the area less the margins (6% each side).
+  const LabelBox s = screenBox(sceneBounds(*sandbox.world()), sandbox.camera);
+  const PanelRect f = sandbox.freeArea();
+  const double wide = (s.x1 - s.x0) / f.width;
+  const double tall = (s.y1 - s.y0) / (f.height - barRowHeight(sandbox));
+  EXPECT_NEAR(std::max(wide, tall), 1 / 1.12, 0.01);
+  EXPECT_GE(wide, 0.6) << "the ground's 6 m";
+}
+
+/// A rectangle shape from (x0, y0) to (x1, y1), body frame (m).
+ShapeDef rectangle(double x0, double y0, double x1, double y1) {
+  ShapeDef r;
+  r.kind = ShapeDef::Kind::Polygon;
+  r.vertices = {Vec2(x0, y0), Vec2(x1, y0), Vec2(x1, y1), Vec2(x0, y1)};
+  return r;
+}
+
+// A ground much wider than the mechanism counts only near it (whole, it would shrink the
+// mechanism to a sliver); a fixed body far from it not at all.
+TEST(SceneBounds, FixedBodiesCountNearTheMovingParts) {
+  SceneDef s;
+  BodyDef ground, far, box;
+  ground.name = "ground", far.name = "far", box.name = "box";
+  ground.type = far.type = BodyType::Static;
+  ground.shapes = {rectangle(-50, -0.1, 50, 0)};
+  far.position = Vec2(30, 5);
+  far.shapes = {rectangle(-1, -1, 1, 1)};
+  box.position = Vec2(0, 1);
+  box.shapes = {rectangle(-0.5, -0.5, 0.5, 0.5)};
+  s.bodies = {ground, far, box};
+  const WorldBounds b = sceneBounds(World(s, "fixed"));
+  // The box is 1 m across: the ground counts 1 m (kFixedReach) either side of it, down to -0.1.
+  EXPECT_NEAR(b.lo.x(), -0.5 - kFixedReach, 1e-6);
+  EXPECT_NEAR(b.hi.x(), 0.5 + kFixedReach, 1e-6);
+  EXPECT_NEAR(b.lo.y(), -0.1, 1e-6);
+  EXPECT_NEAR(b.hi.y(), 1.5, 1e-6);
+  // Nothing moving: the fixed bodies whole.
+  s.bodies = {ground};
+  EXPECT_NEAR(sceneBounds(World(s, "ground")).lo.x(), -50, 1e-6);
 }
 
 }  // namespace presentation_test
