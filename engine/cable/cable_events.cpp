@@ -99,6 +99,16 @@ std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, 
       const PulleyState& p = pulleys_[j];
       if (!p.polygon || p.body < 0 || p.tiedEnd != 0 || terminal.body >= 0 || terminal.radius != 0)
         return;
+      // Most steps the hull stays farther from the point than its farthest vertex from the body's
+      // origin, which moves on a straight line over the sub-step: nothing to search.
+      const BodyState& body = motion[p.body];
+      const double horizon = best ? best->time : h, speed2 = body.velocity.squaredNorm();
+      const Vec2 away = body.position - terminal.world;
+      const double closest =
+          speed2 > 0 ? std::clamp(-away.dot(body.velocity) / speed2, 0.0, horizon) : 0.0;
+      double reach = 0;
+      for (const Vec2& v : p.local) reach = std::max(reach, v.norm());
+      if ((away + closest * body.velocity).norm() > reach) return;
       const MovingPoint point = MovingPoint::on(motion, -1, terminal.world);
       const int n = static_cast<int>(p.local.size());
       for (int k = 0; k < n; ++k) {
