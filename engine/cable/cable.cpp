@@ -344,7 +344,15 @@ bool Cable::leaveRound() {
     });
     if (!inPath) {
       p.engaged = false;
-      p.previousDepth = 0;
+      // It left on the old path, its last corner on the straight segment. A hull left lying
+      // across that segment (a hold had wrapped it from the far side) came from the wrap side:
+      // it joins only after clearing the segment, or the fresh walk round its far side would
+      // jump the length (docs/cables.md, "Points inside a hull").
+      size_t host = 0;
+      while (host + 2 < path_.size() && path_[host + 1].pulley < static_cast<int>(j)) ++host;
+      const bool across =
+          segmentCutsPolygon(leaving(path_[host]), arriving(path_[host + 1]), p.world);
+      p.previousDepth = across ? 1.0 : 0.0;
       p.arc = 0;
       return true;
     }

@@ -161,12 +161,14 @@ double lengthRemainderBound(std::span<const WrapPoint> path, std::span<const Bod
 double lengthDiscreteGradient(std::span<WrapPoint> path, std::span<const BodyState> q0,
                               std::span<const BodyState> q1, std::vector<BodyJacobian>& gradient);
 
-/// A wrap change inside a sub-step (docs/cables.md, "Events").
+/// A wrap change inside a sub-step (docs/cables.md, "Events"); Hull: a point fixed in the world
+/// at an end of a segment goes into or out of a polygon's hull across edge `vertex`.
 struct WrapEvent {
-  enum class Kind { Join, Leave, Vertex };
+  enum class Kind { Join, Leave, Vertex, Hull };
   double time = 0;  ///< s into the sub-step
   int pulley = -1;  ///< index into CableDef::pulleys
   Kind kind = Kind::Join;
+  int vertex = -1;  ///< the polygon vertex that crosses or straightens (Hull: the edge from it)
 };
 
 /// A cable's parameters as they are now: the scene's values until World::setCableParameters

@@ -11,6 +11,7 @@
 #include "engine/cable/body_frames.h"
 #include "engine/cable/cable.h"
 #include "engine/cable/crossing.h"
+#include "engine/cable/wrap.h"
 
 namespace cablelab {
 
@@ -24,8 +25,9 @@ MovingPoint startPoint(std::span<const BodyState> motion, BodyFrames& frames, in
   return MovingPoint::on(motion, body, local, r.c, r.s);
 }
 
-void keepEarliest(std::optional<WrapEvent>& best, double time, int pulley, WrapEvent::Kind kind) {
-  if (!best || time < best->time) best = WrapEvent{time, pulley, kind};
+void keepEarliest(std::optional<WrapEvent>& best, double time, int pulley, WrapEvent::Kind kind,
+                  int vertex) {
+  if (!best || time < best->time) best = WrapEvent{time, pulley, kind, vertex};
 }
 
 }  // namespace
@@ -68,15 +70,15 @@ std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, 
     const MovingPoint ma = contact(a, a.tangentOut), mb = contact(b, b.tangentIn);
     // A circle joins when it comes within its radius of the segment; an auto pulley from
     // either side.
-    auto tryPoint = [&](int j, const Vec2& local, WrapEvent::Kind kind) {
+    auto tryPoint = [&](int j, int vertex, WrapEvent::Kind kind) {
       const PulleyState& p = pulleys_[j];
-      const MovingPoint mp = startPoint(motion, frames, p.body, local);
+      const MovingPoint mp = startPoint(motion, frames, p.body, p.local[vertex]);
       const double reach = p.circle ? p.radius : 0.0;
       for (const WrapSide side : {WrapSide::Left, WrapSide::Right}) {
         if (!p.autoSide && side != p.side) continue;
         const double horizon = best ? best->time : h;
         if (auto c = pointCrossesSegment(ma, mb, mp, side, horizon, reach))
-          keepEarliest(best, c->time, j, kind);
+          keepEarliest(best, c->time, j, kind, p.polygon ? vertex : -1);
       }
     };
     // Disengaged pulleys ordered between the segment's ends.
@@ -85,15 +87,52 @@ std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, 
     for (int j = lo + 1; j < hi; ++j) {
       const PulleyState& p = pulleys_[j];
       if (p.engaged || p.side == WrapSide::Threaded) continue;
-      for (const Vec2& v : p.local) tryPoint(j, v, WrapEvent::Kind::Join);
+      for (int v = 0; v < static_cast<int>(p.local.size()); ++v)
+        tryPoint(j, v, WrapEvent::Kind::Join);
     }
+    // A point fixed in the world at an end of the segment going into or out of a moving polygon's
+    // hull (across edge k): a polygon off the path must not join round it then, and one on it
+    // holds its chain end there (docs/cables.md, "Points inside a hull"). A fast hull can take
+    // the point in and out within one step, and the next update would walk the polygon afresh,
+    // off the old path.
+    auto tryHull = [&](int j, const WrapPoint& terminal) {
+      const PulleyState& p = pulleys_[j];
+      if (!p.polygon || p.body < 0 || p.tiedEnd != 0 || terminal.body >= 0 || terminal.radius != 0)
+        return;
+      // Most steps the hull stays farther from the point than its farthest vertex from the body's
+      // origin, which moves on a straight line over the sub-step: nothing to search.
+      const BodyState& body = motion[p.body];
+      const double horizon = best ? best->time : h, speed2 = body.velocity.squaredNorm();
+      const Vec2 away = body.position - terminal.world;
+      const double closest =
+          speed2 > 0 ? std::clamp(-away.dot(body.velocity) / speed2, 0.0, horizon) : 0.0;
+      double reach = 0;
+      for (const Vec2& v : p.local) reach = std::max(reach, v.norm());
+      if ((away + closest * body.velocity).norm() > reach) return;
+      const MovingPoint point = MovingPoint::on(motion, -1, terminal.world);
+      const int n = static_cast<int>(p.local.size());
+      for (int k = 0; k < n; ++k) {
+        const MovingPoint from = startPoint(motion, frames, p.body, p.local[k]);
+        const MovingPoint to = startPoint(motion, frames, p.body, p.local[(k + 1) % n]);
+        for (const WrapSide side : {WrapSide::Left, WrapSide::Right})
+          if (auto c = pointCrossesSegment(from, to, point, side, best ? best->time : h))
+            keepEarliest(best, c->time, j, WrapEvent::Kind::Hull, k);
+      }
+    };
+    for (int j = lo + 1; j < hi; ++j)
+      if (!pulleys_[j].engaged && pulleys_[j].side != WrapSide::Threaded)
+        for (const WrapPoint* terminal : {&a, &b}) tryHull(j, *terminal);
+    if (a.kind == WrapPoint::Kind::Vertex && b.kind != WrapPoint::Kind::Vertex)
+      tryHull(a.pulley, b);
+    if (b.kind == WrapPoint::Kind::Vertex && a.kind != WrapPoint::Kind::Vertex)
+      tryHull(b.pulley, a);
     // A polygon's chain grows at its ends: the vertex before its first one (walking round it
     // with the polygon on the cable's right) against the segment entering it, the one after its
     // last against the segment leaving it. On a convex polygon no other vertex can reach those
     // segments first, and that vertex may be in the chain already (a wrap of a whole turn).
     int tied;  // a polygon the cable is tied to joins the segment into its end at its corner
     if (const int corner = tiedCornerWaiting(i, tied); corner >= 0)
-      tryPoint(tied, pulleys_[tied].local[corner], WrapEvent::Kind::Vertex);
+      tryPoint(tied, corner, WrapEvent::Kind::Vertex);
     if (a.kind == WrapPoint::Kind::Vertex && b.kind == WrapPoint::Kind::Vertex &&
         a.pulley == b.pulley)
       continue;  // an edge of the chain: the convex polygon stays on its inner side
@@ -102,8 +141,16 @@ std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, 
       const PulleyState& p = pulleys_[end->pulley];
       // The edge into a tied end: the next vertex is the end's or beyond it on the same line.
       if (p.tiedEnd != 0 && (end == &a ? i + 2 == path_.size() : i == 0)) continue;
+      // A held end takes no vertex while its terminal is in the hull or the rope doubles back
+      // round it (wrapChainHeld): an event there would cut the step for no change.
+      const bool into = end == &a;
+      const WrapPoint& terminal = into ? b : a;
+      if ((into ? p.hold.holdingInto : p.hold.holdingFrom) &&
+          ((into ? p.hold.turnInto : p.hold.turnFrom) >= M_PI ||
+           insideConvex(terminal.world, p.world)))
+        continue;
       const int v = chainEndNeighbour(*end, end == &b);
-      tryPoint(end->pulley, p.local[v], WrapEvent::Kind::Vertex);
+      tryPoint(end->pulley, v, WrapEvent::Kind::Vertex);
     }
   }
   // Leaves: the turn at a wrap point straightens.
@@ -120,7 +167,8 @@ std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, 
                                  pulleys_[w.pulley].side, horizon, reach))
       keepEarliest(
           best, *t, w.pulley,
-          w.kind == WrapPoint::Kind::Vertex ? WrapEvent::Kind::Vertex : WrapEvent::Kind::Leave);
+          w.kind == WrapPoint::Kind::Vertex ? WrapEvent::Kind::Vertex : WrapEvent::Kind::Leave,
+          w.vertex);
   }
   return best;
 }

@@ -276,7 +276,9 @@ void World::selectWraps(double h) {
   double ahead = kSelectAhead * h;
   if (cutCable_ >= 0) {
     const auto e = cables_[cutCable_].nextEvent(motion_, kCutReach * h);
-    if (e && e->pulley == cutEvent_.pulley && e->kind == cutEvent_.kind) ahead += e->time;
+    if (e && e->pulley == cutEvent_.pulley && e->kind == cutEvent_.kind &&
+        e->vertex == cutEvent_.vertex)
+      ahead += e->time;
     cutCable_ = -1;
   }
   for (BodyState& b : motion_) {

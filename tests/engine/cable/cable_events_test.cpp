@@ -109,6 +109,34 @@ TEST(CableEvents, SquareCornerAndItsNextVertexAreLocated) {
   EXPECT_NEAR(yc, 0.8 - r, 1e-9);
 }
 
+TEST(CableEvents, AnEndAnchorGoingIntoAPassingSquareIsLocated) {
+  // A square (0.2 m) beyond the end anchor (1, 0), centred 5 cm above the cable's line and moving
+  // at -10 m/s along it: no vertex crosses the segment, but the anchor goes in across the left
+  // edge (vertex 3 -> 0) once the centre is at x = 1.1, and out across the right one at 0.9.
+  // Unlocated, a hull that takes the anchor in and out within one step leaves the next update a
+  // polygon the segment cuts and that it never saw cross: it joined round it, off the old path.
+  const SceneDef scene = crossingScene(true);
+  Cable cable(scene, 0, "test");
+  std::vector<BodyState> bodies{at(Vec2(1.3, 0.05), Vec2(-10, 0))};
+  cable.update(bodies);
+  ASSERT_EQ(cable.wraps(), 0);
+  const auto in = cable.nextEvent(bodies, 0.05);
+  ASSERT_TRUE(in.has_value());
+  EXPECT_EQ(in->kind, WrapEvent::Kind::Hull);
+  EXPECT_EQ(in->pulley, 0);
+  EXPECT_EQ(in->vertex, 3);
+  EXPECT_NEAR(in->time, 0.2 / 10, 1e-9);
+  // Selected a moment after it, the anchor inside: the square does not join.
+  bodies[0].position.x() = 1.1 - 1e-6;
+  cable.update(bodies);
+  EXPECT_EQ(cable.wraps(), 0);
+  const auto out = cable.nextEvent(bodies, 0.05);
+  ASSERT_TRUE(out.has_value());
+  EXPECT_EQ(out->kind, WrapEvent::Kind::Hull);
+  EXPECT_EQ(out->vertex, 1);
+  EXPECT_NEAR(out->time, (0.2 - 1e-6) / 10, 1e-9);
+}
+
 TEST(CableEvents, NothingAheadMeansNoEvent) {
   const SceneDef scene = crossingScene(false);
   Cable cable(scene, 0, "test");

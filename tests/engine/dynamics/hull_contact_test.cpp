@@ -468,19 +468,17 @@ TEST(HullContact, NoStepBetweenWrapChangesAddsEnergyToAHookedPolygon) {
   });
 }
 
-// The variants at one sub-step of 1/30, 1/60, 1/120 s: the 10 of 18 whose wrap changes never jump
-// the length keep their energy to 2% (measured 8e-4; 51% lost before at 6 rad a step, where the
-// fast catch's shorter step left the midpoint Newton unsettled and the main solve took it). The
-// others are off by 0.3-10% (10% gained: x1.0, x1.5 at 60 Hz) at jumps of 2 mm to 0.56 m.
+// The variants at one sub-step of 1/30, 1/60, 1/120 s: no wrap change jumps the length (2 mm to
+// 0.56 m before in 8 of 18) and each keeps its energy to 2% (measured 5e-5; 0.3-10% off before,
+// 10% gained at x1.0, x1.5 at 60 Hz). The jumps were a corner swept past the end anchor, the
+// anchor through the hull within one step, a polygon rejoined round its far side as it left, and
+// a cut's re-found event taken for another (docs/cables.md, "Points inside a hull").
 TEST(HullContact, HookedPolygonsWithNoLengthJumpKeepTheirEnergyAtOneSubStep) {
-  int kept = 0;
-  forEachHookedVariantAtOneSubStep([&kept](World& world, double hz) {
+  forEachHookedVariantAtOneSubStep([](World& world, double hz) {
     const Figures f = measure(world, 10, 1.0 / hz, 1);
-    if (!f.warning.empty()) return;
+    EXPECT_EQ(f.warning, "");
     EXPECT_LT(f.drift, 0.02) << f.drift;
-    ++kept;
   });
-  EXPECT_GE(kept, 10);
 }
 
 // The same without the rope: the bob spun fast on its elastic tether tied off its centre, whose
