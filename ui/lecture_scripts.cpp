@@ -159,6 +159,12 @@ void LectureScript::mouse(Uint32 type, const Vec2& screen) {
   pushMouseEvent(windowId_, type, screen);
 }
 
+// The View menu's projector mode, at twice the text size.
+void LectureScript::projectorScale(Sandbox& sandbox) {
+  sandbox.projector = true;
+  sandbox.uiScale = 2;
+}
+
 void LectureScript::recordPendingView(Sandbox& sandbox) {
   if (pending_.empty()) return;
   items_.push_back(viewJson(sandbox, pending_, out_ + "-" + pending_ + ".png"));
@@ -203,8 +209,7 @@ bool LectureScript::present(Sandbox& sandbox, int frame) {
       snapshot("scale-1");
       break;
     case 22:
-      sandbox.projector = true;
-      sandbox.uiScale = 2;
+      projectorScale(sandbox);
       break;
     case 30:
       snapshot("scale-2");
@@ -345,8 +350,7 @@ bool LectureScript::walkthrough(Sandbox& sandbox, int frame) {
   auto snapshot = [&](const char* name) { this->snapshot(sandbox, name); };
   World& world = *sandbox.world();
   if (frame == 1) {
-    sandbox.projector = true;  // the View menu's projector mode
-    sandbox.uiScale = 2;
+    projectorScale(sandbox);
   } else if (frame == 3) {
     key(SDLK_p);
   } else if (frame == 10) {
@@ -444,8 +448,7 @@ bool LectureScript::tour(Sandbox& sandbox, int frame) {
   constexpr int kFramesPerScene = 100;
   recordPendingView(sandbox);
   if (frame == 1) {
-    sandbox.projector = true;  // the View menu's projector mode
-    sandbox.uiScale = 2;
+    projectorScale(sandbox);
     key(SDLK_p);
     return true;
   }
@@ -527,8 +530,7 @@ bool LectureScript::firstMechanism(Sandbox& sandbox, int frame) {
   recordPendingView(sandbox);
   SDL_SetModState(KMOD_NONE);
   if (frame == 1) {
-    sandbox.projector = true;  // the View menu's projector mode
-    sandbox.uiScale = 2;
+    projectorScale(sandbox);
     key(SDLK_p);
     return true;
   }

@@ -63,6 +63,7 @@ class LectureScript {
   bool firstMechanism(Sandbox& sandbox, int frame);
   void key(SDL_Keycode k);
   void mouse(Uint32 type, const Vec2& screen);
+  void projectorScale(Sandbox& sandbox);
   /// Records the view whose screenshot the last frame took, if any.
   void recordPendingView(Sandbox& sandbox);
   /// Takes a screenshot of the whole window this frame, named `name`; its view is recorded next
