@@ -123,10 +123,6 @@ std::vector<HullContact> hullContacts(const SceneDef& scene) {
         // pulls it there. One that swings into a free pulley would be knocked (Box2D's contacts
         // are inelastic) out of a scene that keeps its energy; there the guard drops the pulley.
         if (pointBody == body || (pointBody >= 0 && !spool)) continue;
-        // A point fixed in the world on an elastic cable: the hold keeps the length continuous,
-        // and the knock would take the energy the spring keeps (a polygon hooked beyond the end
-        // anchor lost up to 99% in 10 s; docs/cables.md, "Points inside a hull").
-        if (pointBody < 0 && cable.stiffness > 0) continue;
         HullContact pair = c;
         pair.otherBody = pointBody;
         pair.point = point;
