@@ -75,9 +75,9 @@ double driftAtSixtyHertz(World& world, double seconds) {
 // corner to the anchor, but beyond the anchor, and joined: the rope went round the triangle's
 // far side, +0.51 m in one step and 13% of the energy gained. A corner joins only between the
 // end corner and the terminal, and only where the rope from it would not cut the hull
-// (wrap_hold.cpp). Over its first 7 s it keeps its energy to 1e-4 with no jump. (At 7.15 s the
-// rope still jumps, 0.21 m: the anchor came out behind the held corner with the hull on the
-// rope's wrap side, and a corner that never crossed the rope joins later; docs/cables.md.)
+// (wrap_hold.cpp). Over its first 7 s it keeps its energy to 1e-4 with no jump. (At 9.7 s the
+// rope still jumps 0.21 m: a corner joins the held chain with no crossing located; docs/cables.md,
+// "Random scenes".)
 TEST(HookedPolygon, ATriangleWhirledThroughTheEndAnchorDoesNotJumpRoundItsFarSide) {
   const Bob triangle = {{{-0.015747111999794571, -0.15309771296815111},
                          {0.14046006469161443, 0.062911457456014716},
@@ -124,13 +124,13 @@ Bob randomBob(std::mt19937& random) {
 // Adversarial variants: 24 random hooked polygons (randomBob) for 10 s at one sub-step of 1/30,
 // 1/60 and 1/120 s. Each but one keeps its energy to 2% (the bound) with no wrap change
 // moving the length by 1 mm. (The sweep these are drawn like, 60 bobs at 60 Hz: one jump left,
-// the triangle above at 7.15 s; before, the same triangle at 0.33 s.)
+// the triangle above at 9.7 s; before, the same triangle at 0.33 s.)
 TEST(HookedPolygon, RandomHookedPolygonsKeepTheirEnergyWithoutAJump) {
   std::mt19937 random(36);
   for (int i = 0; i < 24; ++i) {
     const Bob bob = randomBob(random);
-    // Not held yet: a triangle that at 120 Hz jumps 0.19 m as the triangle at the top of this
-    // file does at 7.15 s (the anchor out behind the held corner; docs/cables.md).
+    // Not held yet: a triangle that at 120 Hz jumps 0.19 m (not traced; docs/cables.md,
+    // "Random scenes").
     if (i == 11) continue;
     const double hz = i % 3 == 0 ? 30.0 : i % 3 == 1 ? 60.0 : 120.0;
     SCOPED_TRACE("bob " + std::to_string(i) + ", " + std::to_string(bob.corners.size()) +
