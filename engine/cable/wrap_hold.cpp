@@ -51,17 +51,23 @@ int continuedEnd(const Vec2& b, std::span<const Vec2> polygon, WrapSide side, in
     t = (t - step + n) % n;
     turn = turnAt((t - step + n) % n, t, 0.0);
   }
-  // Join: the next vertex reaches the wrap side of the segment to an outside terminal, ahead of
-  // the end vertex (behind it, on the line's extension, it crossed no segment: joined, the rope
-  // would double back on the edge). Through the hull (the terminal went in one side and out of
-  // another) or doubled back round the end vertex, the segment holds its vertex.
+  // Join: the next vertex reaches the wrap side of the segment to an outside terminal, between
+  // the end vertex and the terminal (behind the end vertex or beyond the terminal, on the line's
+  // extension, it crossed no segment: joined, the rope would double back on the edge or round the
+  // far side). Through the hull (the terminal went in one side and out of another), doubled back
+  // round the end vertex, or where the rope from the next vertex would cut the hull (the terminal
+  // came out by the edge behind the end vertex, the hull on the segment's wrap side), the segment
+  // holds its vertex.
   if (turn >= M_PI || insideConvex(b, polygon)) return t;
   for (int k = 0; k < n; ++k) {
     const int next = (t + step + n) % n;
     const double across = into ? wrapSideDistance(polygon[t], b, polygon[next], side)
                                : -wrapSideDistance(polygon[t], b, polygon[next], side);
-    const bool ahead = (polygon[next] - polygon[t]).dot(b - polygon[t]) > 0;
-    if (segmentCutsPolygon(polygon[t], b, polygon) || across <= 0 || !ahead) break;
+    const double along = (polygon[next] - polygon[t]).dot(b - polygon[t]);
+    const bool ahead = along > 0 && along < (b - polygon[t]).squaredNorm();
+    if (segmentCutsPolygon(polygon[t], b, polygon) || across <= 0 || !ahead ||
+        segmentCutsPolygon(polygon[next], b, polygon))
+      break;
     t = next;
     ++count;
     turn = turnAt((t - step + n) % n, t, 0.0);
