@@ -70,7 +70,6 @@ FirstMechanismScript::FirstMechanismScript(Uint32 windowId, std::string out)
               ", \"dynamic_bodies\": " + jsonNumber(dynamicBodies(s.scene)) + ", \"cables\": " +
               jsonNumber(s.scene.cables.size()) + ", \"paused\": " + (s.paused ? "true" : "false") +
               ", \"menu_open\": " + (s.authoring->menu.open ? "true" : "false") + "}");
-          return true;
         });
     wait(3);
     shot("new");
@@ -84,7 +83,7 @@ FirstMechanismScript::FirstMechanismScript(Uint32 windowId, std::string out)
     shot("built");
     runAndDrag(size[0]);
   }
-  key(SDLK_p);  // the Panels button: the side panels again
+  key(SDLK_p);  // the side panels again
   wait(7);
   size_.clear();
   shot("panels");

@@ -17,8 +17,8 @@
 // after it), each size's built scene (bodies, cables, the pulleys' kinds in the rope's order,
 // wraps), every banner, how often the view moved while building, how many clicks fell outside
 // it, and each view with its screenshot (ui/lecture_scripts.h, lectureViewJson), the Build menu
-// open in two of them at each size. A step that finds nothing to click ends the run with
-// "failure".
+// open in three of them at each size (menu, menu-tools; menu-kg with its "next body" submenu).
+// A step that finds nothing to click ends the run with "failure".
 //
 // Needs: an SDL video subsystem (the sandbox's Window), a Sandbox with a loaded scene.
 #pragma once
