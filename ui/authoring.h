@@ -30,6 +30,24 @@
 
 namespace cablelab::ui {
 
+/// Where the menu bar's Build menu laid out its items in the last frame (px, window coordinates),
+/// so that a script clicks them where a student would (ui/lecture_scripts.h, first-mechanism).
+struct BuildMenuLayout {
+  PanelRect title;  ///< "Build" in the menu bar (as last drawn closed: an open menu keeps it)
+  bool open = false;
+  // The open menu; empty rectangles while it is closed.
+  PanelRect popup;               ///< the menu's window
+  PanelRect newScene;            ///< "New scene"
+  std::vector<PanelRect> tools;  ///< each tool's item, in Authoring::Tool's order
+  PanelRect nextBody;            ///< "next body" (kept while its submenu is open)
+  bool nextBodyOpen = false;
+  PanelRect nextBodyPopup;  ///< its submenu's window
+  PanelRect size, mass;     ///< the submenu's "size (m)" and "kg" fields
+  /// How far (px) a row of the menu or its submenu reaches past its window's right edge, and how
+  /// much of either's height is scrolled out of sight (0, 0: every row shown whole).
+  float rowOverflow = 0, hiddenHeight = 0;
+};
+
 struct Authoring {
   enum class Tool {
     None,
@@ -62,6 +80,7 @@ struct Authoring {
   std::string jointBodyA;
   int selectedJoint = 0;  ///< the joint the Inspector edits
   std::vector<SceneDef> undo, redo;
+  BuildMenuLayout menu;  ///< the Build menu as last drawn
 };
 
 /// The tool's name for buttons and the status line.
@@ -98,7 +117,8 @@ void chooseTool(Authoring& authoring, Authoring::Tool tool);
 /// The Build section of the Simulation panel (tools, sizes, undo, redo, save).
 void authoringPanel(Sandbox& sandbox);
 /// The menu bar's Build menu, there in presentation mode too: New scene (paused), the tools (Esc
-/// goes back to selecting), the next body's size, mass and type, undo and redo.
+/// goes back to selecting), the next body's size, mass and type (a submenu: the menu fits a
+/// 1280x720 window at projector scale), undo and redo.
 void buildMenu(Sandbox& sandbox);
 
 /// World points the tool has collected so far (polygon vertices, cable route), for the overlay.

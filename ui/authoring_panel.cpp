@@ -1,6 +1,8 @@
 // The Build section of the Simulation panel and the authoring overlay (ui/authoring.h).
 #include <imgui.h>
+#include <imgui_internal.h>  // the open menu's rows and scroll (ImGuiWindow)
 
+#include <algorithm>
 #include <array>
 #include <utility>
 
@@ -41,6 +43,12 @@ const std::array<std::pair<Tool, const char*>, Authoring::kToolCount>& toolTips(
   return tools;
 }
 
+/// The screen rectangle of the last widget drawn (px).
+PanelRect lastItem() {
+  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+  return {lo.x, lo.y, hi.x - lo.x, hi.y - lo.y};
+}
+
 void toolButtons(Authoring& a) {
   for (const auto& [tool, tip] : toolTips()) {
     if (tool != Tool::None) sameLineIfRoom(checkboxWidth(toolName(tool)));
@@ -49,14 +57,18 @@ void toolButtons(Authoring& a) {
   }
 }
 
-void bodySettings(Authoring& a) {
+/// The next body's size, mass and type; `menu`: the Build menu's layout, to record the fields'
+/// rectangles in (null in the panel).
+void bodySettings(Authoring& a, BuildMenuLayout* menu = nullptr) {
   float size = static_cast<float>(a.size), mass = static_cast<float>(a.mass);
   ImGui::SetNextItemWidth(fieldWidth("size (m)", ImGui::GetFontSize() * 5));
   if (ImGui::DragFloat("size (m)", &size, 0.01f, 0.02f, 10.0f, "%.2f")) a.size = size;
+  if (menu) menu->size = lastItem();
   tooltip("Box side, circle and pulley diameter.");
   sameLineIfRoom(ImGui::GetFontSize() * 4 + checkboxWidth("kg") - ImGui::GetFrameHeight());
   ImGui::SetNextItemWidth(ImGui::GetFontSize() * 4);
   if (ImGui::DragFloat("kg", &mass, 0.05f, 0.01f, 1000.0f, "%.2f")) a.mass = mass;
+  if (menu) menu->mass = lastItem();
   tooltip("Mass of the next body (and of a pulley put on a body).");
   static const std::array<std::pair<BodyType, const char*>, 3> types = {
       {{BodyType::Dynamic, "moves"}, {BodyType::Static, "fixed"}, {BodyType::Kinematic, "driven"}}};
@@ -65,7 +77,11 @@ void bodySettings(Authoring& a) {
       "The next body never moves (a wall, a ground).",
       "The next body moves at the speed you give it in the Inspector, whatever pushes on it."};
   for (size_t k = 0; k < types.size(); ++k) {
-    if (k) sameLineIfRoom(checkboxWidth(types[k].second));
+    // A menu grows to its widest row: there the three share one row (they wrapped before).
+    if (k && menu)
+      ImGui::SameLine();
+    else if (k)
+      sameLineIfRoom(checkboxWidth(types[k].second));
     if (ImGui::RadioButton(types[k].second, a.bodyType == types[k].first))
       a.bodyType = types[k].first;
     tooltip(tips[k]);
@@ -98,23 +114,71 @@ void authoringPanel(Sandbox& sandbox) {
   ImGui::PopStyleColor();
 }
 
+namespace {
+
+/// The current window's rectangle (px).
+PanelRect windowRect() {
+  const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+  return {pos.x, pos.y, size.x, size.y};
+}
+
+/// Records how much of the current menu's rows is cut: past its right edge, or scrolled out of
+/// sight below (a menu taller than the window gets a scroll bar).
+void recordCut(BuildMenuLayout& layout) {
+  const ImGuiWindow* w = ImGui::GetCurrentWindow();
+  layout.rowOverflow =
+      std::max(layout.rowOverflow, std::max(0.0f, w->DC.CursorMaxPos.x - w->WorkRect.Max.x));
+  layout.hiddenHeight = std::max(layout.hiddenHeight, w->ScrollMax.y);
+}
+
+/// The next body's settings as a submenu.
+void nextBodyMenu(Authoring& a, BuildMenuLayout& layout) {
+  // A short label: a longer one widens the whole menu (onto the PAUSED sign at 1280x720).
+  layout.nextBodyOpen = ImGui::BeginMenu("next body");
+  if (!layout.nextBodyOpen) {
+    layout.nextBody = lastItem();  // open, it keeps the rectangle it had closed
+    tooltip("The size, mass and kind of the next body or pulley you add.");
+    return;
+  }
+  layout.nextBodyPopup = windowRect();
+  bodySettings(a, &layout);
+  recordCut(layout);
+  ImGui::EndMenu();
+}
+
+}  // namespace
+
 void buildMenu(Sandbox& sandbox) {
-  if (!ImGui::BeginMenu("Build")) return;
   Authoring& a = *sandbox.authoring;
+  BuildMenuLayout& layout = a.menu;
+  layout.open = ImGui::BeginMenu("Build");
+  if (!layout.open) {
+    const PanelRect title = lastItem();
+    layout = BuildMenuLayout{};
+    layout.title = title;
+    return;
+  }
+  layout.popup = windowRect();
+  layout.tools.assign(Authoring::kToolCount, PanelRect{});
+  layout.nextBodyPopup = layout.size = layout.mass = PanelRect{};
+  layout.rowOverflow = layout.hiddenHeight = 0;
   if (ImGui::MenuItem("New scene")) newScene(sandbox);
+  layout.newScene = lastItem();
   tooltip("An empty scene with a ground, paused (undo brings the old one back).");
   ImGui::Separator();
   for (const auto& [tool, tip] : toolTips()) {
     if (ImGui::MenuItem(toolName(tool), tool == Tool::None ? "Esc" : nullptr, a.tool == tool))
       chooseTool(a, tool);
+    layout.tools[static_cast<size_t>(tool)] = lastItem();
     tooltip(tip);
   }
   if (a.tool == Tool::Polygon && ImGui::MenuItem("finish the polygon")) finishPolygon(sandbox);
   ImGui::Separator();
-  bodySettings(a);
+  nextBodyMenu(a, layout);
   ImGui::Separator();
   if (ImGui::MenuItem("Undo", "Ctrl+Z", false, !a.undo.empty())) undoEdit(sandbox);
   if (ImGui::MenuItem("Redo", "Ctrl+Y", false, !a.redo.empty())) redoEdit(sandbox);
+  recordCut(layout);
   ImGui::EndMenu();
 }
 

@@ -53,7 +53,10 @@ namespace {
 bool overPanel(const Sandbox& sandbox, const Vec2& mouse) {
   for (const PanelRect& p : sandbox.panels)
     if (p.contains(mouse)) return true;
-  return ImGui::IsAnyItemActive();  // a slider or text field owns the mouse
+  // An open menu (or dialog) takes the click, over the view too: a pick in the Build menu put a
+  // box under it. A click beside it shuts it, as in any program, and adds nothing.
+  return ImGui::IsAnyItemActive() ||  // a slider or text field owns the mouse
+         ImGui::IsPopupOpen(nullptr, ImGuiPopupFlags_AnyPopupId);
 }
 
 void leftDown(Sandbox& sandbox, World& world, const Vec2& mouse, const Vec2& point) {

@@ -7,8 +7,8 @@
 #include <optional>
 
 #include "ui/authoring.h"
-#include "ui/build_scenarios.h"
 #include "ui/controller_panel.h"
+#include "ui/first_mechanism_script.h"
 #include "ui/report_json.h"
 #include "ui/scene_bounds.h"
 #include "ui/scene_catalog.h"
@@ -30,8 +30,29 @@ std::string join(const std::vector<std::string>& items) {
   return out + "]";
 }
 
-/// What the last frame showed, as JSON (see lecture_scripts.h, `present`).
-std::string viewJson(const Sandbox& s, const std::string& name, const std::string& shot) {
+/// The Build menu as the last frame laid it out (ui/authoring.h, BuildMenuLayout), as JSON.
+std::string buildMenuJson(const BuildMenuLayout& m) {
+  const auto rect = [](const PanelRect& r) -> std::string {
+    if (r.width <= 0 && r.height <= 0) return "null";
+    return "[" + jsonNumber(r.x) + ", " + jsonNumber(r.y) + ", " + jsonNumber(r.x + r.width) +
+           ", " + jsonNumber(r.y + r.height) + "]";
+  };
+  std::string items = "{\"New scene\": " + rect(m.newScene);
+  for (size_t k = 0; k < m.tools.size(); ++k)
+    items += ", " + jsonQuoted(toolName(static_cast<Authoring::Tool>(k))) + ": " + rect(m.tools[k]);
+  items += ", \"next body\": " + rect(m.nextBody) + "}";
+  return "{\"open\": " + std::string(m.open ? "true" : "false") + ", \"title\": " + rect(m.title) +
+         ", \"popup\": " + rect(m.popup) + ", \"items\": " + items +
+         ", \"next_body_open\": " + (m.nextBodyOpen ? "true" : "false") +
+         ", \"next_body_popup\": " + rect(m.nextBodyPopup) +
+         ", \"next_body_items\": {\"size (m)\": " + rect(m.size) + ", \"kg\": " + rect(m.mass) +
+         "}" + ", \"row_overflow\": " + jsonNumber(m.rowOverflow) +
+         ", \"hidden_height\": " + jsonNumber(m.hiddenHeight) + "}";
+}
+
+}  // namespace
+
+std::string lectureViewJson(const Sandbox& s, const std::string& name, const std::string& shot) {
   const DrawnView& d = s.drawn;
   const FurnitureLayout& f = d.furniture;
   const PanelRect free = s.freeArea();
@@ -92,8 +113,11 @@ std::string viewJson(const Sandbox& s, const std::string& name, const std::strin
          ", \"title\": " + jsonQuoted(s.shownTitle) +
          ", \"controller_section\": " + jsonQuoted(s.controllerSection) +
          ", \"building\": " + (s.building() ? "true" : "false") +
+         ", \"build_menu\": " + buildMenuJson(s.authoring->menu) +
          ", \"screenshot\": " + jsonQuoted(shot) + "}";
 }
+
+namespace {
 
 /// The built-in scene after `name` in the menu's order (the first after the last).
 std::string nextScene(const std::string& name) {
@@ -151,6 +175,8 @@ const std::vector<std::string>& LectureScript::names() {
 LectureScript::LectureScript(std::string name, Uint32 windowId, std::string out)
     : name_(std::move(name)), out_(std::move(out)), windowId_(windowId) {}
 
+LectureScript::~LectureScript() = default;
+
 void LectureScript::key(SDL_Keycode k) {
   pushKeyPress(windowId_, k);
 }
@@ -167,7 +193,7 @@ void LectureScript::projectorScale(Sandbox& sandbox) {
 
 void LectureScript::recordPendingView(Sandbox& sandbox) {
   if (pending_.empty()) return;
-  items_.push_back(viewJson(sandbox, pending_, out_ + "-" + pending_ + ".png"));
+  items_.push_back(lectureViewJson(sandbox, pending_, out_ + "-" + pending_ + ".png"));
   pending_.clear();
 }
 
@@ -521,98 +547,11 @@ bool LectureScript::tour(Sandbox& sandbox, int frame) {
 
 namespace cablelab::ui {
 
-bool LectureScript::firstMechanism(Sandbox& sandbox, int frame) {
-  // Per window size: New, the build (a step every 3 frames), Esc, Space, a drag, Space.
-  constexpr int kSizes[2][2] = {{1280, 720}, {1920, 1080}};
-  constexpr int kFramesPerSize = 96, kBuildFrom = 9, kBuildEvery = 3;
-  const BuildScenario& build = *findBuildScenario("build-circle-pulley");
-  const int buildTo = kBuildFrom + kBuildEvery * static_cast<int>(build.steps.size());
-  recordPendingView(sandbox);
-  SDL_SetModState(KMOD_NONE);
-  if (frame == 1) {
-    projectorScale(sandbox);
-    key(SDLK_p);
-    return true;
-  }
-  const int k = (frame - 2) / kFramesPerSize, f = (frame - 2) % kFramesPerSize;
-  if (k == 2 && f == 0) {
-    key(SDLK_p);  // the Panels button: the side panels again
-  } else if (k == 2 && f == 8) {
-    snapshot(sandbox, "panels");
-  } else if (k == 2 && f == 10) {
-    const World& world = *sandbox.world();
-    int wraps = 0;
-    for (int i = 0; i < world.cableCount(); ++i) wraps += world.cable(i).wraps();
-    report_ = "{\"scenario\": \"first-mechanism\", \"bodies\": " +
-              jsonNumber(sandbox.scene.bodies.size()) +
-              ", \"cables\": " + jsonNumber(sandbox.scene.cables.size()) +
-              ", \"wraps\": " + jsonNumber(wraps) + ", \"error\": " + jsonQuoted(sandbox.error) +
-              ", \"banners\": " + join(banners_) +
-              ", \"build_view_moves\": " + jsonNumber(buildViewMoves_) +
-              ", \"build_clicks_outside\": " + jsonNumber(clicksOffView_) +
-              ", \"views\": " + join(items_) + "}";
-    return false;
-  }
-  if (k >= 2) return true;
-  if (!sandbox.banner.empty() &&
-      (banners_.empty() || banners_.back() != jsonQuoted(sandbox.banner)))
-    banners_.push_back(jsonQuoted(sandbox.banner));
-  const std::string size = std::to_string(kSizes[k][1]);
-  const auto shot = [&](const char* what) {
-    shotName_ = size + "-" + what;
-    snapshot(sandbox, shotName_.c_str());
-  };
-  if (f == 0) {
-    SDL_SetWindowSize(SDL_GetWindowFromID(windowId_), kSizes[k][0], kSizes[k][1]);
-  } else if (f == 4) {
-    newScene(sandbox);  // Build > New scene, its size and kg fields at the first box's
-    sandbox.authoring->size = Authoring{}.size;
-    sandbox.authoring->mass = Authoring{}.mass;
-  } else if (f == 7) {
-    shot("new");
-  } else if (f >= kBuildFrom && f < buildTo) {
-    // While building the view holds still (the clicks go on it), every click inside it.
-    const Camera& c = sandbox.camera;
-    if (f > kBuildFrom + 1 &&
-        (c.center != buildCamera_.center || c.metresPerPixel != buildCamera_.metresPerPixel))
-      ++buildViewMoves_;
-    buildCamera_ = c;
-    if ((f - kBuildFrom) % kBuildEvery == 0) {
-      const BuildStep& step = build.steps[(f - kBuildFrom) / kBuildEvery];
-      const PanelRect view = sandbox.freeArea();
-      if (step.kind != BuildStep::Kind::Tool && step.kind != BuildStep::Kind::Setting &&
-          !view.contains(sandbox.camera.toScreen(step.at)))
-        ++clicksOffView_;
-      playBuildStep(sandbox, windowId_, step);
-    }
-  } else if (f == buildTo + 1) {
-    key(SDLK_ESCAPE);  // stop building: the view fits the mechanism
-  } else if (f == buildTo + 5) {
-    shot("built");
-  } else if (f == buildTo + 7) {
-    key(SDLK_SPACE);
-  } else if (f == buildTo + 27) {
-    shot("run");
-  } else if (f == buildTo + 29) {  // drag the lighter box sideways as it rises
-    body_ = sandbox.world()->findBody("box1");
-    if (body_ >= 0) {
-      from_ = sandbox.camera.toScreen(sandbox.world()->body(body_).position);
-      to_ = from_ + Vec2(-0.1 * kSizes[k][0], 0);
-      mouse(SDL_MOUSEMOTION, from_);
-      mouse(SDL_MOUSEBUTTONDOWN, from_);
-    }
-  } else if (f > buildTo + 29 && f <= buildTo + 39 && body_ >= 0) {
-    mouse(SDL_MOUSEMOTION, from_ + (to_ - from_) * ((f - buildTo - 29) / 10.0));
-  } else if (f == buildTo + 41 && body_ >= 0) {
-    shot("drag");
-  } else if (f == buildTo + 43) {
-    mouse(SDL_MOUSEBUTTONUP, to_);
-  } else if (f == buildTo + 45) {
-    key(SDLK_SPACE);
-  } else if (f == buildTo + 50) {
-    shot("paused");
-  }
-  return true;
+bool LectureScript::firstMechanism(Sandbox& sandbox, int) {
+  if (!first_) first_ = std::make_unique<FirstMechanismScript>(windowId_, out_);
+  if (first_->beforeFrame(sandbox)) return true;
+  report_ = first_->report();
+  return false;
 }
 
 }  // namespace cablelab::ui

@@ -26,17 +26,15 @@
 //                 the colour bar, then onto the scale bar), the scene's "what to try" step, Space;
 //                 then 1920x1080 paused and running again. Reports each view and every banner shown
 //   first-mechanism  a student's first mechanism in presentation mode at projector scale, at
-//                 1280x720 then 1920x1080: Build > New scene, an Atwood machine built by clicks
-//                 (ui/build_scenarios.h, build-circle-pulley: two boxes, a round pulley, a cable),
-//                 Esc, Space, the lighter box dragged sideways, Space; then the side panels.
-//                 Reports each view, every banner, the built scene's counts, how often the view
-//                 moved while building and how many clicks fell outside it
+//                 1280x720 then 1920x1080, every step a click on the top bar's Build menu, its
+//                 items and fields or the view (ui/first_mechanism_script.h)
 //
 // Needs: an SDL video subsystem (the sandbox's Window), a Sandbox with a loaded scene.
 #pragma once
 
 #include <SDL.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -44,11 +42,19 @@
 
 namespace cablelab::ui {
 
+class FirstMechanismScript;  // ui/first_mechanism_script.h
+
+/// What the last frame showed, as JSON: the scene's box, every label, the bars, the key, the
+/// banner, the PAUSED sign (ui/renderer.h DrawnView), the free area, the panels' and the status
+/// line's overflow, the Build menu's layout, and `shot` (the screenshot's path).
+std::string lectureViewJson(const Sandbox& s, const std::string& name, const std::string& shot);
+
 class LectureScript {
  public:
   static const std::vector<std::string>& names();
   /// `out`: the prefix of the screenshots' paths.
   LectureScript(std::string name, Uint32 windowId, std::string out);
+  ~LectureScript();
   /// Called once per frame before events are polled; false when the script has finished.
   bool beforeFrame(Sandbox& sandbox, int frame);
   std::string report() const { return report_; }
@@ -82,9 +88,7 @@ class LectureScript {
   int width_ = 0, height_ = 0;        ///< present: the window's size before the resize
   std::vector<std::string> banners_;  ///< tour: every banner shown, "scene: text"
   std::string shotName_;              ///< tour: the screenshot's name, "scene-what"
-  Camera buildCamera_;                ///< first-mechanism: the view at the last frame's build
-  int buildViewMoves_ = 0;            ///< first-mechanism: frames the view moved while building
-  int clicksOffView_ = 0;             ///< first-mechanism: build clicks outside the view
+  std::unique_ptr<FirstMechanismScript> first_;
 };
 
 }  // namespace cablelab::ui

@@ -395,29 +395,143 @@ TEST(Lecture, TourOfTheOtherScenesAtBothSizes) {
   }
 }
 
+/// Pixels inside `box` (px) of `shot` as dark as text (no channel above 110).
+int darkPixels(const ui::Image& shot, const Box& box) {
+  int count = 0;
+  for (int y = std::max(0, static_cast<int>(box.y0));
+       y < std::min(shot.height, static_cast<int>(box.y1)); ++y)
+    for (int x = std::max(0, static_cast<int>(box.x0));
+         x < std::min(shot.width, static_cast<int>(box.x1)); ++x) {
+      const std::uint8_t* p = shot.pixel(x, y);
+      count += std::max({p[0], p[1], p[2]}) <= 110;
+    }
+  return count;
+}
+
+/// The Build menu as one view showed it open: under the top bar, inside the window, every item
+/// inside the menu, no row cut at its right edge, nothing scrolled out of sight. (At 1280x720 at
+/// projector scale it ran from the top bar to the window's bottom, covering "Build" itself,
+/// with 80 px of rows scrolled out of sight.)
+void expectWholeBuildMenu(const nlohmann::json& v) {
+  const std::string where = v["name"].get<std::string>() + " " + v["screenshot"].get<std::string>();
+  const auto& m = v["build_menu"];
+  ASSERT_TRUE(m["open"].get<bool>()) << "the Build menu is shut: " << where;
+  ASSERT_FALSE(m["popup"].is_null()) << where;
+  const Box title = boxes(nlohmann::json::array({m["title"]}))[0];
+  const Box menu = boxes(nlohmann::json::array({m["popup"]}))[0];
+  const double w = v["window"][0], h = v["window"][1];
+  EXPECT_GE(menu.y0, title.y1 - kEdge) << "the menu covers the top bar: " << where;
+  EXPECT_GE(menu.x0, -kEdge) << where;
+  EXPECT_LE(menu.x1, w + kEdge) << "the menu runs off the window's right: " << where;
+  EXPECT_LE(menu.y1, h + kEdge) << "the menu runs off the window's bottom: " << where;
+  EXPECT_EQ(m["hidden_height"].get<double>(), 0) << "rows scrolled out of sight: " << where;
+  EXPECT_EQ(m["row_overflow"].get<double>(), 0) << "rows cut at the right: " << where;
+  ASSERT_EQ(m["items"].size(), 1u + 12 + 1) << m["items"].dump();  // New, 12 tools, next body
+  for (const auto& [label, rect] : m["items"].items()) {
+    ASSERT_FALSE(rect.is_null()) << label << " not laid out: " << where;
+    const Box item = boxes(nlohmann::json::array({rect}))[0];
+    EXPECT_TRUE(item.x0 >= menu.x0 - kEdge && item.x1 <= menu.x1 + kEdge &&
+                item.y0 >= menu.y0 - kEdge && item.y1 <= menu.y1 + kEdge)
+        << label << " outside the menu: " << where;
+    EXPECT_GT(item.y1 - item.y0, 20) << label << ": a row for projector-scale text " << where;
+  }
+  // The "next body" submenu, when open: inside the window, its fields inside it.
+  if (m["next_body_open"].get<bool>()) {
+    ASSERT_FALSE(m["next_body_popup"].is_null()) << where;
+    const Box sub = boxes(nlohmann::json::array({m["next_body_popup"]}))[0];
+    EXPECT_TRUE(sub.x0 >= -kEdge && sub.x1 <= w + kEdge && sub.y0 >= title.y1 - kEdge &&
+                sub.y1 <= h + kEdge)
+        << "the next body's submenu cut off: " << where;
+    for (const auto& [label, rect] : m["next_body_items"].items()) {
+      ASSERT_FALSE(rect.is_null()) << label << " not laid out: " << where;
+      const Box item = boxes(nlohmann::json::array({rect}))[0];
+      EXPECT_TRUE(item.x0 >= sub.x0 - kEdge && item.x1 <= sub.x1 + kEdge &&
+                  item.y0 >= sub.y0 - kEdge && item.y1 <= sub.y1 + kEdge)
+          << label << " outside the submenu: " << where;
+    }
+  }
+  // The menu leaves the PAUSED sign and the bars in sight (the marker key's row along the top
+  // of the view it may cover while open, and its submenu, open while a field is typed in, any).
+  for (const char* k : {"paused", "scale_bar", "colour_bar"})
+    if (!v[k].is_null()) {
+      EXPECT_FALSE(menu.overlaps(boxes(nlohmann::json::array({v[k]}))[0]))
+          << "the menu over the " << k << ": " << where;
+    }
+}
+
 // A student's first mechanism in presentation mode at projector scale, at 1280x720 then
-// 1920x1080 (ui/lecture_scripts.h, `first-mechanism`): Build > New scene, two boxes, a round
-// pulley and a cable by clicks, Esc, Space, the lighter box dragged, Space; then the panels.
-// The ground sat under the bars' row (a fixed body was not in the fit), the strip named the
-// scene "edited-my_scene", building took the Panels button, and the Controller section said
-// "no controller in this scene".
+// 1920x1080 (ui/first_mechanism_script.h), every step through the window as the student does it:
+// the pointer onto the top bar's "Build", a click, "New scene" clicked in the menu, each tool
+// picked from the menu by a click on its item and put in the view by clicks there, the kg and
+// size typed into the menu's fields; Esc, Space, the lighter box dragged, Space; then the panels.
+// A menu item that does nothing, picks another tool, stays open or lets its click through to
+// the view (a box under the menu) fails here. Earlier: the ground sat under the bars' row (a
+// fixed body was not in the fit), the strip named the scene "edited-my_scene", building took
+// the Panels button, and the Controller section said "no controller in this scene".
 TEST(Lecture, FirstMechanismInPresentationModeAtBothSizes) {
   REQUIRE_XVFB();
   const auto j = lecture("hexagon", "first-mechanism", "1280x720", "first-mechanism");
   ASSERT_TRUE(j.contains("views")) << j.dump();
+  ASSERT_FALSE(j.contains("failure")) << j.dump();
   EXPECT_EQ(j["error"], "");
-  EXPECT_EQ(j["bodies"], 4) << "the ground, two boxes and the pulley";
-  EXPECT_EQ(j["cables"], 1);
-  EXPECT_GT(j["wraps"].get<int>(), 0) << "the cable runs over the pulley";
+  // Build > New scene at each size: the new, empty scene (its ground alone), paused.
+  ASSERT_EQ(j["new_scenes"].size(), 2u) << j.dump();
+  for (const auto& n : j["new_scenes"]) {
+    EXPECT_EQ(n["name"], "my mechanism") << n;
+    EXPECT_EQ(n["bodies"], 1) << "the ground alone: " << n;
+    EXPECT_EQ(n["dynamic_bodies"], 0) << n;
+    EXPECT_EQ(n["cables"], 0) << n;
+    EXPECT_TRUE(n["paused"].get<bool>()) << n;
+    EXPECT_FALSE(n["menu_open"].get<bool>()) << "the menu stayed open: " << n;
+  }
+  // Each tool clicked in the menu is the one chosen, the menu shuts, and the click on the menu
+  // adds nothing to the scene under it.
+  const std::vector<std::string> tools = {"box",          "box",  "circle pulley", "polygon pulley",
+                                          "point pulley", "cable"};
+  ASSERT_EQ(j["picks"].size(), 2 * tools.size()) << j["picks"].dump();
+  for (size_t k = 0; k < j["picks"].size(); ++k) {
+    const auto& p = j["picks"][k];
+    EXPECT_EQ(p["item"], tools[k % tools.size()]) << p;
+    EXPECT_EQ(p["chosen"], p["item"]) << p;
+    EXPECT_FALSE(p["menu_open"].get<bool>()) << "the menu stayed open after a pick: " << p;
+    EXPECT_EQ(p["bodies_after"], p["bodies_before"]) << "the menu's click reached the view: " << p;
+  }
+  // The next body's kg and size typed into the menu's fields; the menu stays open for the pick.
+  ASSERT_EQ(j["fields"].size(), 2u * 4) << j["fields"].dump();  // size, kg; kg, size
+  for (const auto& f : j["fields"]) {
+    EXPECT_NEAR(f["value"].get<double>(), std::stod(f["typed"].get<std::string>()), 1e-6) << f;
+    EXPECT_TRUE(f["menu_open"].get<bool>()) << f;
+  }
+  // The mechanism at each size: the ground, two boxes, a round pulley, a hexagon and an eyelet,
+  // one rope over them in that order, wrapping.
+  ASSERT_EQ(j["builds"].size(), 2u) << j.dump();
+  for (const auto& b : j["builds"]) {
+    EXPECT_EQ(b["error"], "") << b;
+    EXPECT_EQ(b["bodies"], 6) << b;
+    EXPECT_EQ(b["dynamic_bodies"], 2) << b;
+    EXPECT_EQ(b["cables"], 1) << b;
+    EXPECT_EQ(b["pulleys"], nlohmann::json({"circle", "polygon", "point"})) << b;
+    EXPECT_GT(b["wraps"].get<int>(), 0) << "the rope runs over the pulleys: " << b;
+  }
   EXPECT_EQ(j["banners"].size(), 0u) << j["banners"].dump();
   EXPECT_EQ(j["build_view_moves"], 0) << "the view moved under the student's clicks";
   EXPECT_EQ(j["build_clicks_outside"], 0);
-  ASSERT_EQ(j["views"].size(), 2u * 5 + 1) << j.dump();
+  const std::vector<std::string> perSize = {"menu",  "new", "menu-tools", "menu-kg",
+                                            "built", "run", "drag",       "paused"};
+  ASSERT_EQ(j["views"].size(), 2u * perSize.size() + 1) << j.dump();
+  std::map<std::string, nlohmann::json> views;
+  for (const auto& v : j["views"]) views[v["name"]] = v;
   for (const auto& v : j["views"]) {
     const std::string name = v["name"], where = name + " " + v["screenshot"].get<std::string>();
     std::cout << v.dump() << "\n";
-    expectReadable(v);
+    // Typing the kg of the second box: one box built yet, the view still the new scene's.
+    const bool midBuild = name.find("-menu-kg") != std::string::npos;
+    expectReadable(v, !midBuild);
     EXPECT_TRUE(v["banner"].is_null()) << where;
+    const bool menu = name.find("-menu") != std::string::npos;
+    EXPECT_EQ(v["build_menu"]["open"].get<bool>(), menu) << where;
+    if (menu) expectWholeBuildMenu(v);
+    if (name == "720-menu") continue;  // the hexagon, before New scene
     // The ground (whole) and the mechanism in the view, clear of the bars.
     ASSERT_FALSE(v["fixed"].is_null()) << where;
     if (v["scene"].is_null()) continue;  // said by expectReadable
@@ -441,16 +555,27 @@ TEST(Lecture, FirstMechanismInPresentationModeAtBothSizes) {
       continue;
     }
     EXPECT_TRUE(v["presentation"].get<bool>()) << where;
-    EXPECT_FALSE(v["building"].get<bool>()) << "Esc left a Build tool chosen: " << where;
+    EXPECT_EQ(v["building"].get<bool>(), midBuild) << "Esc left a Build tool chosen: " << where;
     EXPECT_EQ(v["window"][1].get<double>(), name.rfind("1080-", 0) == 0 ? 1080 : 720) << where;
     EXPECT_EQ(v["strip_name"], "my mechanism") << where;
     EXPECT_EQ(v["strip_overflow"].get<double>(), 0) << where;
     const bool paused = name.find("-run") == std::string::npos &&
-                        name.find("-drag") == std::string::npos;  // new, built, paused
+                        name.find("-drag") == std::string::npos;  // new, built, paused, menus
     ASSERT_EQ(v["paused"].is_null(), !paused) << where;
     if (paused) {  // large: 2.5 text lines at projector scale
       EXPECT_GE(v["paused"][3].get<double>() - v["paused"][1].get<double>(), 60) << where;
     }
+  }
+  // The menu is drawn where it was laid out: its rows' text darkens the rectangle, where the
+  // same view without it shows the light grid (and a strip of the ground's outline).
+  for (const std::string size : {"720", "1080"}) {
+    const auto& open = views.at(size + "-menu-tools");
+    const Box menu = boxes(nlohmann::json::array({open["build_menu"]["popup"]}))[0];
+    const int without = darkPixels(ui::readPng(views.at(size + "-new")["screenshot"]), menu);
+    const int with = darkPixels(ui::readPng(open["screenshot"]), menu);
+    std::cout << size << ": dark pixels in the menu's rectangle " << without << " -> " << with
+              << " of " << (menu.x1 - menu.x0) * (menu.y1 - menu.y0) << "\n";
+    EXPECT_GT(with - without, 0.02 * (menu.x1 - menu.x0) * (menu.y1 - menu.y0)) << size;
   }
 }
 
