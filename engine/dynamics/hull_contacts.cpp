@@ -119,10 +119,11 @@ std::vector<HullContact> hullContacts(const SceneDef& scene) {
       };
       const bool spool = (j == 0 && tiedOn(cable.start)) || (j == count - 1 && tiedOn(cable.end));
       for (const auto& [pointBody, point] : points) {
-        // A point on another moving body touches a spool only: wound right up to it, the rope
-        // pulls it there. One that swings into a free pulley would be knocked (Box2D's contacts
-        // are inelastic) out of a scene that keeps its energy; there the guard drops the pulley.
-        if (pointBody == body || (pointBody >= 0 && !spool)) continue;
+        // A point on another moving body touches a spool (wound right up to it, the rope pulls it
+        // there) and a free pulley of a rigid rope, whose catch is inelastic as Box2D's knock is.
+        // An elastic rope keeps its energy and a knock would not: there the guard drops the pulley
+        // (docs/cables.md, "Points inside a hull").
+        if (pointBody == body || (pointBody >= 0 && !spool && cable.stiffness > 0)) continue;
         HullContact pair = c;
         pair.otherBody = pointBody;
         pair.point = point;

