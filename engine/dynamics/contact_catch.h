@@ -1,0 +1,29 @@
+// A rigid cable stretched by a contact within the step (docs/cables.md, "Contacts and the rope"):
+// Box2D's contacts act after the cable solve, which moved the bodies without the knock (two
+// polygons riding in one rope's loops knocking each other, a polygon hitting an anchor it touches),
+// and the knock sends them off along the rope: it ran 1-5 cm long for a step. Such a cable is
+// caught after Box2D's step, as its solve would have had it seen the knock: the bodies are moved
+// back onto its length along M^-1 J^T, and what is left of their rate out along it is taken off
+// (an inelastic catch). Private to engine/dynamics.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "engine/cable/cable.h"
+
+namespace cablelab {
+
+/// m: a rigid cable a contact made longer than its rest length by more than this is caught.
+inline constexpr double kContactStretch = 1e-4;
+
+/// Catches every rigid cable of one span that ends the step more than kContactStretch longer
+/// than its rest length, some of whose moving bodies a contact pushed or held in the step
+/// (`knocked`, per body) and none of which is jointed (`jointed`, per body: the joints would have
+/// to move with it). Moves and slows those bodies in `bodies` (marking them in `moved`, sized to
+/// bodies) and refreshes the cables' lengths. Returns whether it moved any.
+bool catchCablesStretchedByContacts(std::span<Cable> cables, std::span<BodyState> bodies,
+                                    std::span<const char> knocked, std::span<const char> jointed,
+                                    std::vector<char>& moved);
+
+}  // namespace cablelab
