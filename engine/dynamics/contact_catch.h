@@ -1,7 +1,7 @@
 // A rigid cable stretched by a contact within the step (docs/cables.md, "Contacts and the rope"):
 // Box2D's contacts act after the cable solve, which moved the bodies without the knock (two
 // polygons riding in one rope's loops knocking each other, a polygon hitting an anchor it touches),
-// and the knock sends them off along the rope: it ran 1-5 cm long for a step. Such a cable is
+// and the knock sends them off along the rope: it ran up to 5.7 cm long. Such a cable is
 // caught after Box2D's step, as its solve would have had it seen the knock: the bodies are moved
 // back onto its length along M^-1 J^T, and what is left of their rate out along it is taken off
 // (an inelastic catch). Private to engine/dynamics.
