@@ -67,7 +67,7 @@ double shareOfBox2DLimits(std::span<const BodyState> bodies,
 void catchContactStretch(Box2DBridge& b2, std::vector<Cable>& cables,
                          std::vector<BodyState>& bodies,
                          const std::vector<std::array<int, 2>>& jointBodies,
-                         std::span<const char> touching, double dt) {
+                         std::span<const char> touching) {
   std::vector<char> knocked(touching.begin(), touching.end());
   knocked.resize(bodies.size(), 0);
   b2.markTouching(knocked);
@@ -79,7 +79,7 @@ void catchContactStretch(Box2DBridge& b2, std::vector<Cable>& cables,
   for (const auto& [a, b] : jointBodies)
     for (const int body : {a, b})
       if (body >= 0) jointed[body] = 1;
-  if (!catchCablesStretchedByContacts(cables, bodies, knocked, jointed, dt, moved)) return;
+  if (!catchCablesStretchedByContacts(cables, bodies, knocked, jointed, moved)) return;
   for (size_t b = 0; b < bodies.size(); ++b) {
     if (!moved[b]) continue;
     const BodyState& s = bodies[b];
@@ -541,7 +541,7 @@ double World::advance(double left, double h, bool locate) {
     if (placements_[b].place)
       b2_->placeBody(static_cast<int>(b), placements_[b].position, placements_[b].angle);
   b2_->readBodies(bodies_);
-  catchContactStretch(*b2_, cables_, bodies_, jointBodies_, touching_, dt);
+  catchContactStretch(*b2_, cables_, bodies_, jointBodies_, touching_);
   keepJointEnergy(dt);
   time_ += dt;
   // A servo with a speed drives its joint at that rate: the target moves.
