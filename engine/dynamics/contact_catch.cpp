@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "engine/dynamics/box2d_bridge.h"
 #include "engine/dynamics/length_targets.h"
 
 namespace cablelab {
@@ -87,6 +88,33 @@ bool catchCablesStretchedByContacts(std::span<Cable> cables, std::span<BodyState
     if (rate > 0 && compliance > 0) moveAlong(kin, bodies, rate / compliance, true, moved);
   }
   return any;
+}
+
+// Bodies in a touching contact at the start of the step (`touching`) or after it, or that a
+// contact pushed in it, count as knocked.
+void catchContactStretch(Box2DBridge& b2, std::vector<Cable>& cables,
+                         std::vector<BodyState>& bodies,
+                         const std::vector<std::array<int, 2>>& jointBodies,
+                         std::span<const char> touching) {
+  std::vector<char> knocked(touching.begin(), touching.end());
+  knocked.resize(bodies.size(), 0);
+  b2.markTouching(knocked);
+  const std::span<const Vec3> impulses = b2.contactImpulses();
+  for (size_t b = 0; b < impulses.size() && b < knocked.size(); ++b)
+    knocked[b] |= !impulses[b].isZero();
+  if (std::none_of(knocked.begin(), knocked.end(), [](char k) { return k != 0; })) return;
+  std::vector<char> jointed(bodies.size(), 0), moved(bodies.size(), 0);
+  for (const auto& [a, b] : jointBodies)
+    for (const int body : {a, b})
+      if (body >= 0) jointed[body] = 1;
+  if (!catchCablesStretchedByContacts(cables, bodies, knocked, jointed, moved)) return;
+  for (size_t b = 0; b < bodies.size(); ++b) {
+    if (!moved[b]) continue;
+    const BodyState& s = bodies[b];
+    b2.placeBody(static_cast<int>(b), s.position, s.angle);
+    b2.setVelocity(static_cast<int>(b), s.velocity, s.angularVelocity);
+  }
+  b2.readBodies(bodies);
 }
 
 }  // namespace cablelab

@@ -7,12 +7,15 @@
 // (an inelastic catch). Private to engine/dynamics.
 #pragma once
 
+#include <array>
 #include <span>
 #include <vector>
 
 #include "engine/cable/cable.h"
 
 namespace cablelab {
+
+class Box2DBridge;
 
 /// m: a rigid cable a contact made longer than its rest length by more than this is caught; less
 /// is left to the stabilisation share of the next steps. (Caught from 0.1 to 3 mm on, the squares
@@ -30,5 +33,13 @@ inline constexpr double kContactStretch = 5e-3;
 bool catchCablesStretchedByContacts(std::span<Cable> cables, std::span<BodyState> bodies,
                                     std::span<const char> knocked, std::span<const char> jointed,
                                     std::vector<char>& moved);
+
+/// After a Box2D step: catches (catchCablesStretchedByContacts) the rigid cables on bodies that
+/// were in a touching contact at the start of the step (`touching`, per body) or after it, or that
+/// a contact pushed in it, and hands the moved bodies' poses and velocities back to Box2D.
+void catchContactStretch(Box2DBridge& b2, std::vector<Cable>& cables,
+                         std::vector<BodyState>& bodies,
+                         const std::vector<std::array<int, 2>>& jointBodies,
+                         std::span<const char> touching);
 
 }  // namespace cablelab

@@ -61,34 +61,6 @@ double shareOfBox2DLimits(std::span<const BodyState> bodies,
   return share;
 }
 
-// A rigid cable that a contact stretched within the step is caught after it (contact_catch.h).
-// Bodies in a touching contact at the start of the step (`touching`) or after it, or that a
-// contact pushed in it, count as knocked.
-void catchContactStretch(Box2DBridge& b2, std::vector<Cable>& cables,
-                         std::vector<BodyState>& bodies,
-                         const std::vector<std::array<int, 2>>& jointBodies,
-                         std::span<const char> touching) {
-  std::vector<char> knocked(touching.begin(), touching.end());
-  knocked.resize(bodies.size(), 0);
-  b2.markTouching(knocked);
-  const std::span<const Vec3> impulses = b2.contactImpulses();
-  for (size_t b = 0; b < impulses.size() && b < knocked.size(); ++b)
-    knocked[b] |= !impulses[b].isZero();
-  if (std::none_of(knocked.begin(), knocked.end(), [](char k) { return k != 0; })) return;
-  std::vector<char> jointed(bodies.size(), 0), moved(bodies.size(), 0);
-  for (const auto& [a, b] : jointBodies)
-    for (const int body : {a, b})
-      if (body >= 0) jointed[body] = 1;
-  if (!catchCablesStretchedByContacts(cables, bodies, knocked, jointed, moved)) return;
-  for (size_t b = 0; b < bodies.size(); ++b) {
-    if (!moved[b]) continue;
-    const BodyState& s = bodies[b];
-    b2.placeBody(static_cast<int>(b), s.position, s.angle);
-    b2.setVelocity(static_cast<int>(b), s.velocity, s.angularVelocity);
-  }
-  b2.readBodies(bodies);
-}
-
 SceneDef validated(SceneDef scene, const std::string& source) {
   validateScene(scene, source);
   return scene;
