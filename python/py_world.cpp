@@ -353,7 +353,10 @@ py::dict stepStats(const PyWorld& self) {
   return py::dict("step_us"_a = s.stepMicros, "cable_us"_a = s.cableMicros,
                   "wrap_points"_a = s.wrapPoints, "solver_iterations"_a = s.solverIterations,
                   "residual"_a = s.residual, "linearisation_fallbacks"_a = s.linearisationFallbacks,
-                  "newton_divergences"_a = s.newtonDivergences);
+                  "newton_divergences"_a = s.newtonDivergences, "events"_a = s.events,
+                  "midpoint_solves"_a = s.midpointSolves,
+                  "midpoint_fallbacks"_a = s.midpointFallbacks, "refinements"_a = s.refinements,
+                  "unsettled_islands"_a = s.unsettledIslands, "held_islands"_a = s.heldIslands);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "engine/dynamics/box2d_limits.h"
 #include "engine/dynamics/cable_islands.h"
 #include "engine/dynamics/cable_solver.h"
+#include "engine/dynamics/contact_catch.h"
 #include "engine/dynamics/floors.h"
 #include "engine/dynamics/joint_energy.h"
 #include "engine/dynamics/length_targets.h"
@@ -512,6 +513,7 @@ double World::advance(double left, double h, bool locate) {
     if (placements_[b].place)
       b2_->placeBody(static_cast<int>(b), placements_[b].position, placements_[b].angle);
   b2_->readBodies(bodies_);
+  catchContactStretch(*b2_, cables_, bodies_, jointBodies_, touching_);
   keepJointEnergy(dt);
   time_ += dt;
   // A servo with a speed drives its joint at that rate: the target moves.
