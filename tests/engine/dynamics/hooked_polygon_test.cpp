@@ -16,9 +16,12 @@
 #include "engine/model/scene_json.h"
 #include "tests/support/energy_drift.h"
 #include "tests/support/engine_test_support.h"
+#include "tests/support/rope_guards.h"
 
 namespace cablelab {
 namespace hooked_polygon_test {
+
+using test::jumpWarning;
 
 /// One hooked bob: its polygon (body frame), pose and motion, and the rope's stiffness and side.
 struct Bob {
@@ -44,17 +47,6 @@ SceneDef hookedScene(const Bob& bob) {
   body.inertia = bob.mass * r2 / 3;
   pulley.vertices = bob.corners;
   return scene;
-}
-
-/// The first warning of a wrap change that moved a length by more than 1 mm or of a guard that
-/// dropped or released a polygon; "" if there is none.
-std::string jumpWarning(const World& world) {
-  for (const std::string& w : world.warnings())
-    if (w.find("left the path") != std::string::npos ||
-        w.find("released with a jump") != std::string::npos ||
-        w.find("moved the length by") != std::string::npos)
-      return w;
-  return "";
 }
 
 /// Runs `seconds` at 60 Hz, one sub-step; the largest |E - E0| over the largest kinetic energy.

@@ -15,23 +15,16 @@
 #include "engine/model/scene_json.h"
 #include "tests/support/energy_drift.h"
 #include "tests/support/engine_test_support.h"
+#include "tests/support/rope_guards.h"
 
 namespace cablelab {
 namespace hull_contact_test {
 
+using test::depthInside;
+using test::jumpWarning;
+
 SceneDef fixture(const std::string& name) {
   return loadSceneFile(test::dataPath("polygons/" + name + ".json"));
-}
-
-/// The first warning of a guard that dropped or released a polygon, or of a wrap change that
-/// moved a length by more than 1 mm; "" if there is none.
-std::string jumpWarning(const World& world) {
-  for (const std::string& w : world.warnings())
-    if (w.find("left the path") != std::string::npos ||
-        w.find("released with a jump") != std::string::npos ||
-        w.find("moved the length by") != std::string::npos)
-      return w;
-  return "";
 }
 
 struct Figures {
@@ -42,16 +35,6 @@ struct Figures {
   double rise = 0;      ///< largest E - E0 over the largest kinetic energy
   std::string warning;  ///< jumpWarning
 };
-
-/// How deep `p` lies inside the convex counter-clockwise `hull` (m; <= 0 outside).
-double depthInside(const Vec2& p, const std::vector<Vec2>& hull) {
-  double depth = 1e300;
-  for (size_t i = 0; i < hull.size(); ++i) {
-    const Vec2 edge = hull[(i + 1) % hull.size()] - hull[i];
-    depth = std::min(depth, cross(edge, p - hull[i]) / edge.norm());
-  }
-  return depth;
-}
 
 /// Body b's first shape (a polygon) where the body is now.
 std::vector<Vec2> hullNow(const World& world, const SceneDef& scene, int b) {
