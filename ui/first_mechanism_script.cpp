@@ -4,6 +4,7 @@
 #include <memory>
 #include <utility>
 
+#include "engine/model/scene_json.h"
 #include "ui/lecture_scripts.h"
 #include "ui/report_json.h"
 #include "ui/synthetic_events.h"
@@ -19,24 +20,6 @@ constexpr int kDragFrames = 10;  ///< the drag's length in frames
 
 Vec2 centre(const PanelRect& r) {
   return Vec2(r.x + 0.5 * r.width, r.y + 0.5 * r.height);
-}
-
-std::string join(const std::vector<std::string>& items) {
-  std::string out = "[";
-  for (size_t k = 0; k < items.size(); ++k) out += (k ? ", " : "") + items[k];
-  return out + "]";
-}
-
-const char* pulleyKind(PulleyDef::Kind kind) {
-  switch (kind) {
-    case PulleyDef::Kind::Point:
-      return "point";
-    case PulleyDef::Kind::Polygon:
-      return "polygon";
-    case PulleyDef::Kind::Circle:
-      return "circle";
-  }
-  return "?";
 }
 
 int dynamicBodies(const SceneDef& scene) {
@@ -309,13 +292,13 @@ void FirstMechanismScript::buildMechanism() {
   add("built", 1, [this, size = size_](Sandbox& s, int) {
     std::vector<std::string> kinds;
     for (const CableDef& c : s.scene.cables)
-      for (const PulleyDef& p : c.pulleys) kinds.push_back(jsonQuoted(pulleyKind(p.kind)));
+      for (const PulleyDef& p : c.pulleys) kinds.push_back(jsonQuoted(pulleyTypeName(p.kind)));
     int wraps = 0;
     for (int i = 0; i < s.world()->cableCount(); ++i) wraps += s.world()->cable(i).wraps();
     builds_.push_back(
         "{\"size\": " + jsonQuoted(size) + ", \"bodies\": " + jsonNumber(s.scene.bodies.size()) +
         ", \"dynamic_bodies\": " + jsonNumber(dynamicBodies(s.scene)) +
-        ", \"cables\": " + jsonNumber(s.scene.cables.size()) + ", \"pulleys\": " + join(kinds) +
+        ", \"cables\": " + jsonNumber(s.scene.cables.size()) + ", \"pulleys\": " + jsonList(kinds) +
         ", \"wraps\": " + jsonNumber(wraps) + ", \"error\": " + jsonQuoted(s.error) + "}");
     return true;
   });
@@ -374,7 +357,7 @@ bool FirstMechanismScript::beforeFrame(Sandbox& sandbox) {
     report_ = "{\"scenario\": \"first-mechanism\", \"failure\": " +
               jsonQuoted(step.what + " (step " + std::to_string(step_) + ", frame " +
                          std::to_string(stepFrame_) + ")") +
-              ", \"views\": " + join(views_) + "}";
+              ", \"views\": " + jsonList(views_) + "}";
     return false;
   }
   if (++stepFrame_ >= step.frames) {
@@ -388,12 +371,12 @@ std::string FirstMechanismScript::finalReport(const Sandbox& sandbox) const {
   return "{\"scenario\": \"first-mechanism\", \"bodies\": " +
          jsonNumber(sandbox.scene.bodies.size()) +
          ", \"cables\": " + jsonNumber(sandbox.scene.cables.size()) +
-         ", \"error\": " + jsonQuoted(sandbox.error) + ", \"new_scenes\": " + join(newScenes_) +
-         ", \"picks\": " + join(picks_) + ", \"fields\": " + join(fields_) +
-         ", \"builds\": " + join(builds_) + ", \"banners\": " + join(banners_) +
+         ", \"error\": " + jsonQuoted(sandbox.error) + ", \"new_scenes\": " + jsonList(newScenes_) +
+         ", \"picks\": " + jsonList(picks_) + ", \"fields\": " + jsonList(fields_) +
+         ", \"builds\": " + jsonList(builds_) + ", \"banners\": " + jsonList(banners_) +
          ", \"build_view_moves\": " + jsonNumber(buildViewMoves_) +
          ", \"build_clicks_outside\": " + jsonNumber(clicksOffView_) +
-         ", \"views\": " + join(views_) + "}";
+         ", \"views\": " + jsonList(views_) + "}";
 }
 
 }  // namespace cablelab::ui

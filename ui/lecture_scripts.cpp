@@ -24,12 +24,6 @@ std::string box(const LabelBox& b) {
          jsonNumber(b.y1) + "]";
 }
 
-std::string join(const std::vector<std::string>& items) {
-  std::string out = "[";
-  for (size_t k = 0; k < items.size(); ++k) out += (k ? ", " : "") + items[k];
-  return out + "]";
-}
-
 /// The Build menu as the last frame laid it out (ui/authoring.h, BuildMenuLayout), as JSON.
 std::string buildMenuJson(const BuildMenuLayout& m) {
   const auto rect = [](const PanelRect& r) -> std::string {
@@ -91,8 +85,8 @@ std::string lectureViewJson(const Sandbox& s, const std::string& name, const std
          "], \"free\": [" + jsonNumber(free.x) + ", " + jsonNumber(free.y) + ", " +
          jsonNumber(free.width) + ", " + jsonNumber(free.height) + "], \"scene\": " + box(d.scene) +
          ", \"stage\": " + box(stage) + ", \"labels\": " + labels +
-         ", \"overlay_lines\": " + lines + ", \"key_rows\": " + join(shownKeys) +
-         ", \"marker_keys\": " + join(markerKeys) +
+         ", \"overlay_lines\": " + lines + ", \"key_rows\": " + jsonList(shownKeys) +
+         ", \"marker_keys\": " + jsonList(markerKeys) +
          ", \"hidden_labels\": " + jsonNumber(d.hiddenLabels) +
          ", \"labels_on_cables\": " + jsonNumber(d.labelsOnCables) +
          ", \"scale_bar\": " + box(f.scaleBar) + ", \"colour_bar\": " + box(f.colourBar) +
@@ -269,7 +263,7 @@ bool LectureScript::present(Sandbox& sandbox, int frame) {
       snapshot("panels");
       break;
     case 80:
-      report_ = "{\"scenario\": \"present\", \"views\": " + join(items_) + "}";
+      report_ = "{\"scenario\": \"present\", \"views\": " + jsonList(items_) + "}";
       return false;
     default:
       break;
@@ -309,7 +303,7 @@ bool LectureScript::graspQuiet(Sandbox& sandbox, int frame) {
     mouse(SDL_MOUSEBUTTONUP, to_);
   } else if (frame > 90 && sandbox.world()->time() >= 1.5 + kControlSeconds) {
     report_ = "{\"scenario\": \"grasp-quiet\", \"banner_frames\": " + jsonNumber(bannerFrames_) +
-              ", \"banners\": " + join(items_) +
+              ", \"banners\": " + jsonList(items_) +
               ", \"log_entries\": " + jsonNumber(sandbox.log.entries().size()) +
               ", \"state\": " + jsonQuoted(handGraspState(sandbox)) + ", \"clicked\": [" +
               jsonNumber(target_.x()) + ", " + jsonNumber(target_.y()) + "]" + ", \"target\": [" +
@@ -418,7 +412,7 @@ bool LectureScript::walkthrough(Sandbox& sandbox, int frame) {
     snapshot("play-on");
   } else if (frame == 1102) {
     report_ = "{\"scenario\": \"walkthrough\", \"banner\": " + jsonQuoted(sandbox.banner) +
-              ", \"views\": " + join(items_) + "}";
+              ", \"views\": " + jsonList(items_) + "}";
     return false;
   }
   return true;
@@ -480,8 +474,8 @@ bool LectureScript::tour(Sandbox& sandbox, int frame) {
   }
   const int k = (frame - 2) / kFramesPerScene, f = (frame - 2) % kFramesPerScene;
   if (k >= static_cast<int>(kScenes.size())) {
-    report_ = "{\"scenario\": \"tour\", \"banners\": " + join(banners_) +
-              ", \"views\": " + join(items_) + "}";
+    report_ = "{\"scenario\": \"tour\", \"banners\": " + jsonList(banners_) +
+              ", \"views\": " + jsonList(items_) + "}";
     return false;
   }
   const std::string& scene = kScenes[k];

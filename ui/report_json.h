@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 namespace cablelab::ui {
 
@@ -20,6 +21,13 @@ inline std::string jsonNumber(double v) {
   char b[40];
   std::snprintf(b, sizeof b, "%.17g", std::isfinite(v) ? v : -1.0);
   return b;
+}
+
+/// `items`, each already JSON, as a JSON array.
+inline std::string jsonList(const std::vector<std::string>& items) {
+  std::string out = "[";
+  for (size_t k = 0; k < items.size(); ++k) out += (k ? ", " : "") + items[k];
+  return out + "]";
 }
 
 }  // namespace cablelab::ui

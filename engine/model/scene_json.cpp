@@ -284,6 +284,18 @@ SceneDef sceneFromJson(const json& j, const std::string& source) {
   return s;
 }
 
+const char* pulleyTypeName(PulleyDef::Kind kind) {
+  switch (kind) {
+    case PulleyDef::Kind::Point:
+      return "point";
+    case PulleyDef::Kind::Polygon:
+      return "polygon";
+    case PulleyDef::Kind::Circle:
+      return "circle";
+  }
+  return "point";
+}
+
 json sceneToJson(const SceneDef& s) {
   json j;
   j["name"] = s.name;
@@ -351,11 +363,7 @@ json sceneToJson(const SceneDef& s) {
                {"damping", c.damping}};
     if (c.restLength > 0) jc["rest_length"] = c.restLength;
     for (const PulleyDef& p : c.pulleys) {
-      json jp = {{"type", p.kind == PulleyDef::Kind::Point    ? "point"
-                          : p.kind == PulleyDef::Kind::Circle ? "circle"
-                                                              : "polygon"},
-                 {"body", p.body},
-                 {"side", sideName(p.side)}};
+      json jp = {{"type", pulleyTypeName(p.kind)}, {"body", p.body}, {"side", sideName(p.side)}};
       if (p.kind != PulleyDef::Kind::Polygon) jp["point"] = vec(p.point);
       if (p.kind == PulleyDef::Kind::Circle) {
         jp["radius"] = p.radius;

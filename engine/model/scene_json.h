@@ -44,6 +44,9 @@ namespace cablelab {
 SceneDef sceneFromJson(const nlohmann::json& j, const std::string& source);
 nlohmann::json sceneToJson(const SceneDef& scene);
 
+/// A pulley's `type` in the scene file: "point", "polygon" or "circle".
+const char* pulleyTypeName(PulleyDef::Kind kind);
+
 /// Reads and validates a scene file; throws InputError (missing file, bad JSON, bad field).
 SceneDef loadSceneFile(const std::string& path);
 void saveSceneFile(const SceneDef& scene, const std::string& path);
