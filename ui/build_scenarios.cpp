@@ -16,6 +16,10 @@ BuildStep tool(Tool t) {
 BuildStep click(double x, double y, Kind kind = Kind::Click) {
   return {kind, Tool::None, Vec2(x, y), {}};
 }
+/// Undo, Redo or the Delete key.
+BuildStep keyStep(Kind kind) {
+  return {kind, Tool::None, Vec2::Zero(), {}};
+}
 BuildStep setting(std::function<void(Sandbox&)> set) {
   return {Kind::Setting, Tool::None, Vec2::Zero(), std::move(set)};
 }
@@ -190,20 +194,10 @@ std::vector<BuildScenario> makeScenarios() {
       // Delete, undo and redo with Ctrl+Z and Ctrl+Y; then the second box selected with a click
       // and deleted with the Delete key.
       {"build-undo-redo",
-       {tool(Tool::Box),
-        click(-0.5, 1),
-        click(0.5, 1),
-        tool(Tool::Delete),
-        click(-0.5, 1),
-        {Kind::Undo},
-        {Kind::Redo},
-        {Kind::Undo},
-        tool(Tool::Circle),
-        click(0, 2),
-        {Kind::Undo},
-        tool(Tool::None),
-        click(0.5, 1),
-        {Kind::DeleteKey}}},
+       {tool(Tool::Box), click(-0.5, 1), click(0.5, 1), tool(Tool::Delete), click(-0.5, 1),
+        keyStep(Kind::Undo), keyStep(Kind::Redo), keyStep(Kind::Undo), tool(Tool::Circle),
+        click(0, 2), keyStep(Kind::Undo), tool(Tool::None), click(0.5, 1),
+        keyStep(Kind::DeleteKey)}},
   };
 }
 

@@ -152,7 +152,8 @@ struct ContactImpulses : b2ContactListener {
   }
 };
 
-namespace {
+// Named, not anonymous: Box2DBridge::Impl (external linkage) holds a HullContactFilter.
+namespace hull_fixtures {
 
 // The fixtures that keep a polygon pulley and its neighbours apart (hull_contacts.h) touch only
 // their own partners; every other pair keeps Box2D's filtering.
@@ -205,12 +206,12 @@ b2Fixture* addHullFixture(b2Body* body, const std::vector<Vec2>& polygon, const 
   return body->CreateFixture(&fd);
 }
 
-}  // namespace
+}  // namespace hull_fixtures
 
 struct Box2DBridge::Impl {
   b2World world{b2Vec2(0, 0)};
   ContactImpulses contacts;
-  HullContactFilter hullFilter;
+  hull_fixtures::HullContactFilter hullFilter;
   b2Body* ground = nullptr;
   double lastStep = 0;  ///< the last step()'s h (s)
   std::vector<b2Body*> bodies;
@@ -268,8 +269,9 @@ Box2DBridge::Box2DBridge(const SceneDef& scene) : impl_(std::make_unique<Impl>()
     // Box2D sweeps a moving body against the world's fixtures, but against another moving body
     // only if one is a bullet: fast corners would go through a step's worth into the hull.
     if (c.otherBody >= 0) impl_->bodies[c.body]->SetBullet(true);
-    const auto pair = std::make_pair(addHullFixture(impl_->bodies[c.body], c.polygon, {}),
-                                     addHullFixture(other, c.otherPolygon, c.point));
+    const auto pair =
+        std::make_pair(hull_fixtures::addHullFixture(impl_->bodies[c.body], c.polygon, {}),
+                       hull_fixtures::addHullFixture(other, c.otherPolygon, c.point));
     impl_->hullFilter.pairs.push_back(pair);
     if (c.apartFirst)
       impl_->hullFilter.untilApart.insert(impl_->hullFilter.untilApart.end(),
