@@ -414,6 +414,14 @@ void Box2DBridge::markTouching(std::vector<char>& touching) const {
   }
 }
 
+bool Box2DBridge::anyTouching() const {
+  for (b2Contact* c = impl_->world.GetContactList(); c; c = c->GetNext())
+    if (c->IsTouching() && c->IsEnabled() && !c->GetFixtureA()->IsSensor() &&
+        !c->GetFixtureB()->IsSensor())
+      return true;
+  return false;
+}
+
 namespace {
 
 // Box2D's GetAnchorA and GetAnchorB, GetJointAngle and GetJointTranslation written out with its

@@ -62,6 +62,8 @@ class Box2DBridge {
   std::vector<ContactForce> contactForces() const;
   /// Sets touching[b] = 1 for every body in a touching, non-sensor contact.
   void markTouching(std::vector<char>& touching) const;
+  /// Whether any two bodies (or a body and the ground) are in a touching, non-sensor contact.
+  bool anyTouching() const;
 
   JointCoordinate jointCoordinate(int joint) const;
   Vec2 anchorA(int joint) const;

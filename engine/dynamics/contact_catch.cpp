@@ -21,6 +21,21 @@ double lengthCompliance(const CableKinematics& kin, std::span<const BodyState> b
   return k;
 }
 
+// Whether a contact could get `cable` caught: rigid, of one span, on a moving body and on no
+// jointed one (caughtCable without the knocks).
+bool catchableCable(const Cable& cable, std::span<const BodyState> bodies,
+                    const std::vector<std::array<int, 2>>& jointBodies) {
+  if (cable.elastic() || cable.spanCount() != 1) return false;
+  bool any = false;
+  for (const BodyJacobian& e : cable.kinematics().jacobian) {
+    if (!moves(bodies[e.body])) continue;
+    for (const auto& [a, b] : jointBodies)
+      if (a == e.body || b == e.body) return false;
+    any = true;
+  }
+  return any;
+}
+
 bool caughtCable(const Cable& cable, std::span<const BodyState> bodies,
                  std::span<const char> knocked, std::span<const char> jointed) {
   if (cable.elastic() || cable.spanCount() != 1) return false;
@@ -96,13 +111,23 @@ void catchContactStretch(Box2DBridge& b2, std::vector<Cable>& cables,
                          std::vector<BodyState>& bodies,
                          const std::vector<std::array<int, 2>>& jointBodies,
                          std::span<const char> touching) {
+  // The common step does no work (and allocates nothing): no cable a contact could get caught,
+  // or no contact before, in or after the step.
+  const std::span<const Vec3> impulses = b2.contactImpulses();
+  auto set = [](char c) { return c != 0; };
+  auto pushed = [](const Vec3& impulse) { return !impulse.isZero(); };
+  if (std::none_of(cables.begin(), cables.end(),
+                   [&](const Cable& c) { return catchableCable(c, bodies, jointBodies); }))
+    return;
+  if (std::none_of(touching.begin(), touching.end(), set) &&
+      std::none_of(impulses.begin(), impulses.end(), pushed) && !b2.anyTouching())
+    return;
   std::vector<char> knocked(touching.begin(), touching.end());
   knocked.resize(bodies.size(), 0);
   b2.markTouching(knocked);
-  const std::span<const Vec3> impulses = b2.contactImpulses();
   for (size_t b = 0; b < impulses.size() && b < knocked.size(); ++b)
     knocked[b] |= !impulses[b].isZero();
-  if (std::none_of(knocked.begin(), knocked.end(), [](char k) { return k != 0; })) return;
+  if (std::none_of(knocked.begin(), knocked.end(), set)) return;
   std::vector<char> jointed(bodies.size(), 0), moved(bodies.size(), 0);
   for (const auto& [a, b] : jointBodies)
     for (const int body : {a, b})
