@@ -25,6 +25,9 @@ struct HullContact {
   /// The two overlap in the scene's pose (placed so on purpose): they touch only once they
   /// have come apart.
   bool apartFirst = false;
+  /// A point of an elastic rope on another moving body: the knock keeps the energy
+  /// (hull_bounce.h), Box2D's contact only holds a point that creeps in.
+  bool bounces = false;
 };
 
 /// The pairs of `scene`'s cables: each polygon pulley on a dynamic body with every other polygon
