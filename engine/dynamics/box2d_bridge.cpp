@@ -7,6 +7,7 @@
 #include <cmath>
 #include <utility>
 
+#include "engine/dynamics/hull_bounce.h"
 #include "engine/dynamics/hull_contacts.h"
 
 namespace cablelab {
@@ -212,6 +213,7 @@ struct Box2DBridge::Impl {
   b2World world{b2Vec2(0, 0)};
   ContactImpulses contacts;
   hull_fixtures::HullContactFilter hullFilter;
+  std::unique_ptr<HullBounce> bounce;
   b2Body* ground = nullptr;
   double lastStep = 0;  ///< the last step()'s h (s)
   std::vector<b2Body*> bodies;
@@ -264,7 +266,9 @@ Box2DBridge::Box2DBridge(const SceneDef& scene) : impl_(std::make_unique<Impl>()
     impl_->joints.push_back(createJoint(w, jd, bodyOf(jd.bodyA), bodyOf(jd.bodyB)));
     impl_->kinds.push_back(jd.kind);
   }
-  for (const HullContact& c : hullContacts(scene)) {
+  const std::vector<HullContact> pairs = hullContacts(scene);
+  impl_->bounce = std::make_unique<HullBounce>(scene, pairs);
+  for (const HullContact& c : pairs) {
     b2Body* other = c.otherBody < 0 ? impl_->ground : impl_->bodies[c.otherBody];
     // Box2D sweeps a moving body against the world's fixtures, but against another moving body
     // only if one is a bullet: fast corners would go through a step's worth into the hull.
@@ -340,6 +344,13 @@ void Box2DBridge::step(double h) {
   impl_->world.Step(static_cast<float>(h), kVelocityIterations, kPositionIterations);
   if (!impl_->hullFilter.untilApart.empty()) impl_->hullFilter.keepApartOnceApart();
   impl_->rewind();
+}
+
+void Box2DBridge::bounceHullPoints(std::vector<BodyState>& bodies, double horizon) {
+  // Box2D's contact touches within the polygon's skin and the point's circle (addHullFixture).
+  const double skin = b2_polygonRadius + b2_linearSlop;
+  for (const int b : impl_->bounce->bounce(bodies, horizon, skin))
+    setVelocity(b, bodies[b].velocity, bodies[b].angularVelocity);
 }
 
 void Box2DBridge::addVelocities(std::span<const Vec3> dv) {

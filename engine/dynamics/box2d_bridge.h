@@ -53,6 +53,10 @@ class Box2DBridge {
   void applyLoads(std::span<const Vec3> loads);
   /// One Box2D step of h seconds (fixed velocity and position iterations).
   void step(double h);
+  /// Reverses the approach of an elastic rope's point towards a polygon pulley on another body
+  /// that would reach Box2D's contact with it within `horizon` s (hull_bounce.h): in `bodies`
+  /// and in Box2D.
+  void bounceHullPoints(std::vector<BodyState>& bodies, double horizon);
   /// Adds (dvx, dvy, domega) per body to the velocities Box2D holds; zeros are skipped.
   void addVelocities(std::span<const Vec3> dv);
   /// Per body, the impulse (px, py, angular about its origin) Box2D's contacts gave it over the

@@ -121,12 +121,13 @@ std::vector<HullContact> hullContacts(const SceneDef& scene) {
       for (const auto& [pointBody, point] : points) {
         // A point on another moving body touches a spool (wound right up to it, the rope pulls it
         // there) and a free pulley of a rigid rope, whose catch is inelastic as Box2D's knock is.
-        // An elastic rope keeps its energy and a knock would not: there the guard drops the pulley
-        // (docs/cables.md, "Points inside a hull").
-        if (pointBody == body || (pointBody >= 0 && !spool && cable.stiffness > 0)) continue;
+        // An elastic rope keeps its energy: its point bounces off a free pulley (hull_bounce.h;
+        // docs/cables.md, "Points inside a hull").
+        if (pointBody == body) continue;
         HullContact pair = c;
         pair.otherBody = pointBody;
         pair.point = point;
+        pair.bounces = pointBody >= 0 && !spool && cable.stiffness > 0;
         add(std::move(pair));
       }
       for (int k = 0; k < count; ++k) {

@@ -1,9 +1,9 @@
 // Contacts between a polygon pulley and its neighbours on a cable (docs/cables.md, "Points inside
 // a hull"): another polygon pulley of the cable, or an anchor or point pulley of it fixed in the
-// world (or on another body, for a spool or a rigid rope), may not enter the polygon's hull,
-// whatever the bodies' own shapes (pulleys are often sensors). Box2D keeps them apart
-// (box2d_bridge.cpp): the rope then always has a taut path round each polygon and no guard has to
-// drop one.
+// world or on another body, may not enter the polygon's hull, whatever the bodies' own shapes
+// (pulleys are often sensors). Box2D keeps them apart (box2d_bridge.cpp), an elastic rope's points
+// on other bodies bouncing off first (hull_bounce.h): the rope then always has a taut path round
+// each polygon and no guard has to drop one.
 #pragma once
 
 #include <vector>
@@ -25,12 +25,15 @@ struct HullContact {
   /// The two overlap in the scene's pose (placed so on purpose): they touch only once they
   /// have come apart.
   bool apartFirst = false;
+  /// A point of an elastic rope on another moving body: the knock keeps the energy
+  /// (hull_bounce.h), Box2D's contact only holds a point that creeps in.
+  bool bounces = false;
 };
 
 /// The pairs of `scene`'s cables: each polygon pulley on a dynamic body with every other polygon
 /// pulley on the same cable (on another body) and every point of the cable (an anchor, a point
-/// pulley) fixed in the world, or for a spool (a cable end tied on its body) or a rigid cable not
-/// on its own body, any of which becomes its neighbour on the path once the pulleys between leave.
+/// pulley) fixed in the world or on another body, any of which becomes its neighbour on the path
+/// once the pulleys between leave.
 /// Pairs that overlap in the scene's pose (placed so on purpose) touch once apart. A point whose
 /// body's shapes meet the polygon there (the bodies pass through each other by design), polygons of
 /// more vertices than Box2D holds, shapeless bodies (point masses) and repeats are left out.

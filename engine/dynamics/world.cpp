@@ -392,6 +392,8 @@ double World::advance(double left, double h, bool locate) {
   using Clock = std::chrono::steady_clock;
   const auto c0 = Clock::now();
   b2_->readBodies(bodies_);
+  // An elastic rope's point about to knock a free polygon bounces off it first (hull_bounce.h).
+  b2_->bounceHullPoints(bodies_, left);
   selectWraps(h);
   solveForces(left, h);
   double dt = left;

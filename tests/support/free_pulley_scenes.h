@@ -16,8 +16,10 @@ namespace cablelab::test {
 /// pivot at the origin: a counterweight of `counterweight` kg hangs on the rope's left, 1 m
 /// below, and hauls the rope's end, a weight of `weight` kg 1 m below on the right, up against
 /// the polygon. The weight is a small disc (its anchor at its centre); the counterweight a
-/// shapeless point mass. Nothing is damped.
-inline SceneDef weightHauledIntoAFreePolygon(int sides, double weight, double counterweight) {
+/// shapeless point mass. Nothing is damped. `stiffness` > 0: an elastic rope (N/m), its rest
+/// length the length in this pose.
+inline SceneDef weightHauledIntoAFreePolygon(int sides, double weight, double counterweight,
+                                             double stiffness = 0) {
   SceneDef s;
   s.name = "weight_hauled_into_a_free_polygon";
   BodyDef polygon;
@@ -47,6 +49,7 @@ inline SceneDef weightHauledIntoAFreePolygon(int sides, double weight, double co
   over.turns = 0.5;            // over it from the start
   rope.pulleys = {over};
   rope.end = {"weight", Vec2::Zero()};
+  rope.stiffness = stiffness;
   s.cables = {rope};
   return s;
 }
@@ -55,7 +58,9 @@ inline SceneDef weightHauledIntoAFreePolygon(int sides, double weight, double co
 /// from (-1, 1) round polygon a (under it), over a point on a 1 kg bob hung on a rigid 1 m tether
 /// from (0, 2), round polygon b, to (1, 1). The polygons (`sides` corners 0.25 m from their
 /// centres, `mass` kg each) are thrown up towards the bob, which swings at `bobSpeed` m/s.
-inline SceneDef polygonsInLoopsUnderABob(int sides, double mass, double bobSpeed) {
+/// `stiffness` > 0: an elastic rope (N/m), its rest length the length in this pose.
+inline SceneDef polygonsInLoopsUnderABob(int sides, double mass, double bobSpeed,
+                                         double stiffness = 0) {
   SceneDef s;
   s.name = "polygons_in_loops_under_a_bob";
   auto polygon = [&](const std::string& name, double x, const Vec2& velocity, double spin) {
@@ -93,6 +98,7 @@ inline SceneDef polygonsInLoopsUnderABob(int sides, double mass, double bobSpeed
   middle.body = "bob";
   middle.side = WrapSide::Left;
   rope.pulleys = {a, middle, b};
+  rope.stiffness = stiffness;
   s.cables = {rope, tether};
   return s;
 }

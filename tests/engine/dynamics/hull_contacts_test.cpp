@@ -118,27 +118,33 @@ TEST(HullContacts, PointsOnOtherMovingBodiesTouchThePolygon) {
   EXPECT_EQ(pairs[1].otherBody, 2);
 }
 
-// A pulley the rope is not tied to touches the points on moving bodies of a rigid rope (whose
-// catch is inelastic, as Box2D's knock is), and of an elastic rope only the world's: a weight on
-// its slack rope flying into a free spinning hexagon would be knocked, inelastically, out of a
-// scene that keeps its energy (docs/cables.md, "Points inside a hull").
-TEST(HullContacts, AFreePulleyTouchesMovingPointsOfARigidRopeOnly) {
+// A pulley the rope is not tied to touches the points on moving bodies of its rope, rigid or
+// elastic. A rigid rope's catch is inelastic as Box2D's knock is; an elastic rope's points bounce
+// off it, keeping the energy (hull_bounce.h), and its world points touch as before (docs/cables.md,
+// "Points inside a hull").
+TEST(HullContacts, AFreePulleyTouchesMovingPointsOfItsRopeAndAnElasticRopesBounce) {
   SceneDef scene = spoolAndWeight(Vec2(0.2, -1));
   scene.cables[0].end.body = "world";
   scene.cables[0].end.point = Vec2(-1, 4);
-  const std::vector<HullContact> rigid = hullContacts(scene);
-  ASSERT_EQ(rigid.size(), 3u);
-  EXPECT_EQ(polygonPairs(rigid), 0);
-  EXPECT_EQ(rigid[0].otherBody, 1);  // the weight's anchor
-  EXPECT_EQ(rigid[0].point, Vec2::Zero());
-  EXPECT_EQ(rigid[1].otherBody, -1);  // the rope's end, fixed in the world
-  EXPECT_EQ(rigid[1].point, Vec2(-1, 4));
-  EXPECT_EQ(rigid[2].otherBody, 2);  // the block's point pulley
-  scene.cables[0].stiffness = 500;
-  const std::vector<HullContact> elastic = hullContacts(scene);
-  ASSERT_EQ(elastic.size(), 1u);
-  EXPECT_EQ(elastic[0].otherBody, -1);
-  EXPECT_EQ(elastic[0].point, Vec2(-1, 4));
+  for (const double stiffness : {0.0, 500.0}) {
+    scene.cables[0].stiffness = stiffness;
+    const std::vector<HullContact> pairs = hullContacts(scene);
+    ASSERT_EQ(pairs.size(), 3u);
+    EXPECT_EQ(polygonPairs(pairs), 0);
+    EXPECT_EQ(pairs[0].otherBody, 1);  // the weight's anchor
+    EXPECT_EQ(pairs[0].point, Vec2::Zero());
+    EXPECT_EQ(pairs[1].otherBody, -1);  // the rope's end, fixed in the world
+    EXPECT_EQ(pairs[1].point, Vec2(-1, 4));
+    EXPECT_EQ(pairs[2].otherBody, 2);  // the block's point pulley
+    const bool elastic = stiffness > 0;
+    EXPECT_EQ(pairs[0].bounces, elastic);
+    EXPECT_FALSE(pairs[1].bounces);
+    EXPECT_EQ(pairs[2].bounces, elastic);
+  }
+  // Tied to the spool, an elastic rope's weight touches it as a rigid rope's does: no bounce.
+  SceneDef spool = spoolAndWeight(Vec2(0.2, -1));
+  spool.cables[0].stiffness = 500;
+  for (const HullContact& c : hullContacts(spool)) EXPECT_FALSE(c.bounces);
 }
 
 // A weight placed with its shape meeting the spool's hull (its anchor 5 cm outside it) passes

@@ -1,0 +1,129 @@
+#include "engine/dynamics/hull_bounce.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace cablelab {
+
+namespace {
+
+Vec2 perpendicular(const Vec2& r) {
+  return Vec2(-r.y(), r.x());
+}
+
+// The point of convex counter-clockwise `hull` nearest to `p`, or nothing if `p` is inside.
+bool nearestOnHullFromOutside(const Vec2& p, const std::vector<Vec2>& hull, Vec2& nearest) {
+  bool outside = false;
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < hull.size(); ++i) {
+    const Vec2 a = hull[i], edge = hull[(i + 1) % hull.size()] - a;
+    outside |= cross(edge, p - a) < 0;
+    const double along = std::clamp((p - a).dot(edge) / edge.squaredNorm(), 0.0, 1.0);
+    const Vec2 q = a + along * edge;
+    if ((p - q).squaredNorm() < best) {
+      best = (p - q).squaredNorm();
+      nearest = q;
+    }
+  }
+  return outside && best > 0;
+}
+
+}  // namespace
+
+HullBounce::HullBounce(const SceneDef& scene, const std::vector<HullContact>& contacts)
+    : responses_(scene.bodies.size()), handled_(scene.bodies.size(), 1) {
+  std::vector<int> joints(scene.bodies.size(), 0);
+  for (const JointDef& jd : scene.joints) {
+    const int a = findBodyIndex(scene, jd.bodyA), b = findBodyIndex(scene, jd.bodyB);
+    for (const int body : {a, b})
+      if (body >= 0) ++joints[body];
+    // A pivot: the body turns about a world point (no limit: the joint never pushes back).
+    const int body = a < 0 ? b : (b < 0 ? a : -1);
+    if (body < 0 || jd.kind != JointDef::Kind::Revolute || jd.enableLimit) continue;
+    const BodyDef& bd = scene.bodies[body];
+    responses_[body].pivoted = true;
+    responses_[body].pivot = rotate(Vec2(jd.anchor - bd.position), -bd.angle);
+  }
+  for (size_t b = 0; b < joints.size(); ++b)
+    handled_[b] = joints[b] == 0 || (joints[b] == 1 && responses_[b].pivoted);
+  for (const HullContact& c : contacts) {
+    if (!c.bounces || c.otherBody < 0 || !c.otherPolygon.empty()) continue;
+    if (!handled_[c.body] || !handled_[c.otherBody]) continue;
+    pairs_.push_back({c.body, c.otherBody, c.polygon, c.point, false});
+  }
+}
+
+double HullBounce::inverseMass(const BodyState& b, int body, const Vec2& at,
+                               const Vec2& normal) const {
+  const Response& r = responses_[body];
+  if (!r.pivoted) {
+    const double arm = cross(Vec2(at - b.position), normal);
+    return b.invMass + b.invInertia * arm * arm;
+  }
+  if (!(b.invMass > 0) || !(b.invInertia > 0)) return 0;  // held still by its pivot
+  const Vec2 pivot = b.position + rotate(r.pivot, b.angle);
+  const double invPivotInertia = 1 / (1 / b.invInertia + r.pivot.squaredNorm() / b.invMass);
+  const double arm = cross(Vec2(at - pivot), normal);
+  return invPivotInertia * arm * arm;
+}
+
+Vec2 HullBounce::pointVelocity(const BodyState& b, const Vec2& at) {
+  return b.velocity + b.angularVelocity * perpendicular(at - b.position);
+}
+
+void HullBounce::applyImpulse(BodyState& b, int body, const Vec2& at, const Vec2& impulse) const {
+  const Response& r = responses_[body];
+  if (!r.pivoted) {
+    b.velocity += b.invMass * impulse;
+    b.angularVelocity += b.invInertia * cross(Vec2(at - b.position), impulse);
+    return;
+  }
+  if (!(b.invMass > 0) || !(b.invInertia > 0)) return;
+  const Vec2 pivot = b.position + rotate(r.pivot, b.angle);
+  const double invPivotInertia = 1 / (1 / b.invInertia + r.pivot.squaredNorm() / b.invMass);
+  const double turn = invPivotInertia * cross(Vec2(at - pivot), impulse);
+  b.angularVelocity += turn;
+  b.velocity += turn * perpendicular(b.position - pivot);
+}
+
+std::vector<int> HullBounce::bounce(std::vector<BodyState>& bodies, double horizon, double skin) {
+  std::vector<int> changed;
+  // A bounce turns its bodies, which may bring another pair on them in: a few passes.
+  constexpr int kPasses = 4;
+  for (int pass = 0; pass < kPasses; ++pass) {
+    bool any = false;
+    for (Pair& p : pairs_) {
+      BodyState& polygonState = bodies[p.polygonBody];
+      BodyState& pointState = bodies[p.pointBody];
+      std::vector<Vec2> hull;
+      for (const Vec2& v : p.polygon)
+        hull.push_back(polygonState.position + rotate(v, polygonState.angle));
+      const Vec2 point = pointState.position + rotate(p.point, pointState.angle);
+      Vec2 nearest;
+      if (!nearestOnHullFromOutside(point, hull, nearest)) continue;
+      const double gap = (point - nearest).norm();
+      p.armed |= gap > skin;
+      if (!p.armed) continue;
+      const Vec2 normal = (point - nearest) / gap;  // out of the hull, towards the point
+      const double approach =
+          normal.dot(pointVelocity(pointState, point) - pointVelocity(polygonState, nearest));
+      if (!(approach < 0) || gap + approach * horizon > skin) continue;
+      const double w = inverseMass(pointState, p.pointBody, point, normal) +
+                       inverseMass(polygonState, p.polygonBody, nearest, normal);
+      if (!(w > 0)) continue;
+      // -2 approach / w reverses the relative normal speed; its work is zero (docs/cables.md).
+      const Vec2 impulse = (-2 * approach / w) * normal;
+      applyImpulse(pointState, p.pointBody, point, impulse);
+      applyImpulse(polygonState, p.polygonBody, nearest, -impulse);
+      changed.push_back(p.pointBody);
+      changed.push_back(p.polygonBody);
+      any = true;
+    }
+    if (!any) break;
+  }
+  std::sort(changed.begin(), changed.end());
+  changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+  return changed;
+}
+
+}  // namespace cablelab
