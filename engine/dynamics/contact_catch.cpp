@@ -21,29 +21,17 @@ double lengthCompliance(const CableKinematics& kin, std::span<const BodyState> b
   return k;
 }
 
-// Whether a contact could get `cable` caught: rigid, of one span, on a moving body and on no
-// jointed one (caughtCable without the knocks).
-bool catchableCable(const Cable& cable, std::span<const BodyState> bodies,
-                    const std::vector<std::array<int, 2>>& jointBodies) {
+// Whether a contact can get `cable` caught: rigid, of one span, on no jointed body, and on a
+// moving body that `counts` (one knocked; any, to know whether to look at all).
+template <class IsJointed, class Counts>
+bool caughtCable(const Cable& cable, std::span<const BodyState> bodies, IsJointed isJointed,
+                 Counts counts) {
   if (cable.elastic() || cable.spanCount() != 1) return false;
   bool any = false;
   for (const BodyJacobian& e : cable.kinematics().jacobian) {
     if (!moves(bodies[e.body])) continue;
-    for (const auto& [a, b] : jointBodies)
-      if (a == e.body || b == e.body) return false;
-    any = true;
-  }
-  return any;
-}
-
-bool caughtCable(const Cable& cable, std::span<const BodyState> bodies,
-                 std::span<const char> knocked, std::span<const char> jointed) {
-  if (cable.elastic() || cable.spanCount() != 1) return false;
-  bool any = false;
-  for (const BodyJacobian& e : cable.kinematics().jacobian) {
-    if (!moves(bodies[e.body])) continue;
-    if (jointed[e.body]) return false;
-    any |= knocked[e.body] != 0;
+    if (isJointed(e.body)) return false;
+    any |= counts(e.body);
   }
   return any;
 }
@@ -75,8 +63,10 @@ bool catchCablesStretchedByContacts(std::span<Cable> cables, std::span<BodyState
   bool any = false;
   std::vector<WrapPoint> path;
   CableKinematics kin;
+  const auto isJointed = [&](int body) { return jointed[body] != 0; };
+  const auto isKnocked = [&](int body) { return knocked[body] != 0; };
   for (Cable& cable : cables) {
-    if (!caughtCable(cable, bodies, knocked, jointed)) continue;
+    if (!caughtCable(cable, bodies, isJointed, isKnocked)) continue;
     // On a copy of the path: the cable's own kinematics are the selection's business.
     path = cable.path();
     auto stretch = [&] {
@@ -116,8 +106,14 @@ void catchContactStretch(Box2DBridge& b2, std::vector<Cable>& cables,
   const std::span<const Vec3> impulses = b2.contactImpulses();
   auto set = [](char c) { return c != 0; };
   auto pushed = [](const Vec3& impulse) { return !impulse.isZero(); };
+  const auto isJointed = [&](int body) {
+    return std::any_of(jointBodies.begin(), jointBodies.end(), [body](const std::array<int, 2>& j) {
+      return j[0] == body || j[1] == body;
+    });
+  };
+  const auto anyBody = [](int) { return true; };
   if (std::none_of(cables.begin(), cables.end(),
-                   [&](const Cable& c) { return catchableCable(c, bodies, jointBodies); }))
+                   [&](const Cable& c) { return caughtCable(c, bodies, isJointed, anyBody); }))
     return;
   if (std::none_of(touching.begin(), touching.end(), set) &&
       std::none_of(impulses.begin(), impulses.end(), pushed) && !b2.anyTouching())

@@ -156,7 +156,9 @@ TEST(Authoring, PulleySideFollowsTheRoutesTurn) {
     double length = 0;
     for (size_t k = 0; k + 1 < c.path().size(); ++k) {
       length += (c.path()[k + 1].world - c.path()[k].world).norm();
-      if (k > 0) EXPECT_EQ(c.path()[k].world.y() < 1.5, under) << k;
+      if (k > 0) {
+        EXPECT_EQ(c.path()[k].world.y() < 1.5, under) << k;
+      }
     }
     EXPECT_NEAR(c.restLength(), length, 1e-12);  // the routed length
     EXPECT_GT(length, 2.0 + 0.5);                // well over the straight 2 m

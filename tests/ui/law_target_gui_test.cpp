@@ -38,7 +38,9 @@ TEST(GuiLawTarget, PlanAheadReachesAClickedTargetSoonerThanPid) {
   EXPECT_EQ(mpc["grasp"], "pinch pose");
   const double mpcTime = mpc["time_to_5mm"], pidTime = pid["time_to_5mm"];
   EXPECT_GT(mpcTime, 0);
-  if (pid["settled"].get<bool>()) EXPECT_LT(mpcTime, pidTime) << pid.dump();
+  if (pid["settled"].get<bool>()) {
+    EXPECT_LT(mpcTime, pidTime) << pid.dump();
+  }
 }
 
 }  // namespace law_target_gui_test

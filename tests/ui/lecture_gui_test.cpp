@@ -91,9 +91,10 @@ void expectReadable(const nlohmann::json& v, bool fresh = true) {
     }
     const double wide = (fitted.x1 - fitted.x0) / w;
     const double tall = (fitted.y1 - fitted.y0) / (free.y1 - free.y0);
-    if (fresh)
+    if (fresh) {
       EXPECT_TRUE(wide >= kSceneShare || tall >= kTallShare)
           << "scene " << wide << " of the width, " << tall << " of the height: " << where;
+    }
   }
   // Labels, bars, key, notes, banner and the PAUSED sign: none covers another.
   std::vector<Box> pieces;
@@ -363,9 +364,10 @@ TEST(Lecture, TourOfTheOtherScenesAtBothSizes) {
     // No arrow, target mark or leader line across the bars.
     for (const char* bar : {"scale_bar", "colour_bar"})
       if (!v[bar].is_null())
-        for (const auto& line : v["overlay_lines"])
+        for (const auto& line : v["overlay_lines"]) {
           EXPECT_FALSE(crosses(line, boxes(nlohmann::json::array({v[bar]}))[0]))
               << bar << " crossed by " << line << ": " << where;
+        }
   }
   // The hand's statics cross and the target have their keys.
   for (const auto& v : j["views"])

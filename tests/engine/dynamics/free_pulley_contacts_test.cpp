@@ -173,7 +173,9 @@ TEST(FreePulleyContacts, PolygonsInLoopsUnderASwingingBobAreNotDropped) {
               run(test::polygonsInLoopsUnderABob(sides, mass, bobSpeed), 10, substeps);
           const bool warnsOnce = mass == 3.0 && ((sides == 3 && bobSpeed == 0 && substeps == 1) ||
                                                  (sides == 4 && bobSpeed == 2 && substeps <= 2));
-          if (!warnsOnce) EXPECT_EQ(f.warning, "");
+          if (!warnsOnce) {
+            EXPECT_EQ(f.warning, "");
+          }
           EXPECT_LT(f.deepest, 0.01);
           EXPECT_LT(f.rise, 0.01);
           EXPECT_LT(f.unexplained, 0.05);

@@ -256,9 +256,10 @@ TEST(SpoolWinding, TheIssuesFixtureWindsItsRopeOnePerimeterPerTurnWithoutAJump) 
     // Straight up to its corner until the spool has turned 30 degrees (the corner rising by
     // R sin 30), then one perimeter per turn (a hexagon winds within 3 cm of that in a turn).
     const double angle = w.joint(0).value;
-    if (angle > M_PI / 6 && i % 10 == 0)
+    if (angle > M_PI / 6 && i % 10 == 0) {
       EXPECT_NEAR(w.body(weight).position.y() + 1,
                   kRadius / 2 + perimeter(6) * (angle - M_PI / 6) / (2 * M_PI), 0.03);
+    }
   }
   EXPECT_GT(w.joint(0).value, 2 * M_PI * 3);
   EXPECT_NEAR(w.body(weight).position.y(), 2.8, 0.05);  // 3.8 m up, at the spool
