@@ -7,10 +7,6 @@ namespace cablelab {
 
 namespace {
 
-Vec2 perpendicular(const Vec2& r) {
-  return Vec2(-r.y(), r.x());
-}
-
 // The point of convex counter-clockwise `hull` nearest to `p`, or nothing if `p` is inside.
 bool nearestOnHullFromOutside(const Vec2& p, const std::vector<Vec2>& hull, Vec2& nearest) {
   bool outside = false;
@@ -68,7 +64,7 @@ double HullBounce::inverseMass(const BodyState& b, int body, const Vec2& at,
 }
 
 Vec2 HullBounce::pointVelocity(const BodyState& b, const Vec2& at) {
-  return b.velocity + b.angularVelocity * perpendicular(at - b.position);
+  return b.velocity + b.angularVelocity * perp(at - b.position);
 }
 
 void HullBounce::applyImpulse(BodyState& b, int body, const Vec2& at, const Vec2& impulse) const {
@@ -83,7 +79,7 @@ void HullBounce::applyImpulse(BodyState& b, int body, const Vec2& at, const Vec2
   const double invPivotInertia = 1 / (1 / b.invInertia + r.pivot.squaredNorm() / b.invMass);
   const double turn = invPivotInertia * cross(Vec2(at - pivot), impulse);
   b.angularVelocity += turn;
-  b.velocity += turn * perpendicular(b.position - pivot);
+  b.velocity += turn * perp(b.position - pivot);
 }
 
 std::vector<int> HullBounce::bounce(std::vector<BodyState>& bodies, double horizon, double skin) {
