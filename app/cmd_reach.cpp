@@ -20,6 +20,7 @@
 namespace cablelab::app {
 namespace {
 
+#ifdef CABLELAB_HAVE_OFFSCREEN
 /// Grid points as x or y coordinates.
 std::vector<double> coordinates(const std::vector<Vec2>& points, int axis) {
   std::vector<double> v;
@@ -27,7 +28,6 @@ std::vector<double> coordinates(const std::vector<Vec2>& points, int axis) {
   return v;
 }
 
-#ifdef CABLELAB_HAVE_OFFSCREEN
 /// Figure 4-4: the quasi-static prediction (lightest, largest markers first), the simulated set
 /// on it, and the fingertips' range on top.
 void writeReachPng(const std::string& path, const ReachResult& r, int grid, double ratio) {
@@ -181,7 +181,6 @@ const bool reachRegistered = registerCommand(
             local ? runReach(options, hand, [&](long done, long) { progress.update(done); })
                   : runReachOnDask(o->scheduler, options, progress);
         progress.done();
-        const double ratio = r.fingertipArea > 0 ? r.objectArea / r.fingertipArea : 0.0;
         if (csv) {
           *csv << "x,y,object_reached,fingertip_reachable\n";
           char line[120];
@@ -193,7 +192,9 @@ const bool reachRegistered = registerCommand(
           finishOutputFile(*csv, o->csv, "--csv");
         }
 #ifdef CABLELAB_HAVE_OFFSCREEN
-        if (!o->png.empty()) writeReachPng(o->png, r, o->grid, ratio);
+        if (!o->png.empty())
+          writeReachPng(o->png, r, o->grid,
+                        r.fingertipArea > 0 ? r.objectArea / r.fingertipArea : 0.0);
 #endif
         printJson(reachSummary(r, options).dump());
         return 0;

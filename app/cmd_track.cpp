@@ -66,12 +66,12 @@ void writeTrackPng(const std::string& path, const TrackOptions& options, const T
     badOption("--png", std::string("cannot write the file: ") + e.what());
   }
 }
-#endif
 
 /// The law as the figure names it.
 const char* lawLabel(const TrackOptions& o) {
   return o.law == HandLaw::Mpc ? "MPC" : o.pid ? "PID" : "PD";
 }
+#endif
 
 /// `track --compare`: both laws on the same seeded targets; the figure shows the first target.
 int runCompare(const std::string& png, const std::string& csv, const CompareOptions& compare,

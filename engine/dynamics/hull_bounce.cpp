@@ -57,10 +57,17 @@ double HullBounce::inverseMass(const BodyState& b, int body, const Vec2& at,
     return b.invMass + b.invInertia * arm * arm;
   }
   if (!(b.invMass > 0) || !(b.invInertia > 0)) return 0;  // held still by its pivot
-  const Vec2 pivot = b.position + rotate(r.pivot, b.angle);
-  const double invPivotInertia = 1 / (1 / b.invInertia + r.pivot.squaredNorm() / b.invMass);
-  const double arm = cross(Vec2(at - pivot), normal);
-  return invPivotInertia * arm * arm;
+  const double arm = cross(Vec2(at - pivotOf(b, r)), normal);
+  return inversePivotInertia(b, r) * arm * arm;
+}
+
+Vec2 HullBounce::pivotOf(const BodyState& b, const Response& r) {
+  return b.position + rotate(r.pivot, b.angle);
+}
+
+// The parallel-axis theorem: the moment about the pivot is I + m d^2.
+double HullBounce::inversePivotInertia(const BodyState& b, const Response& r) {
+  return 1 / (1 / b.invInertia + r.pivot.squaredNorm() / b.invMass);
 }
 
 Vec2 HullBounce::pointVelocity(const BodyState& b, const Vec2& at) {
@@ -75,9 +82,8 @@ void HullBounce::applyImpulse(BodyState& b, int body, const Vec2& at, const Vec2
     return;
   }
   if (!(b.invMass > 0) || !(b.invInertia > 0)) return;
-  const Vec2 pivot = b.position + rotate(r.pivot, b.angle);
-  const double invPivotInertia = 1 / (1 / b.invInertia + r.pivot.squaredNorm() / b.invMass);
-  const double turn = invPivotInertia * cross(Vec2(at - pivot), impulse);
+  const Vec2 pivot = pivotOf(b, r);
+  const double turn = inversePivotInertia(b, r) * cross(Vec2(at - pivot), impulse);
   b.angularVelocity += turn;
   b.velocity += turn * perp(b.position - pivot);
 }
@@ -91,12 +97,12 @@ std::vector<int> HullBounce::bounce(std::vector<BodyState>& bodies, double horiz
     for (Pair& p : pairs_) {
       BodyState& polygonState = bodies[p.polygonBody];
       BodyState& pointState = bodies[p.pointBody];
-      std::vector<Vec2> hull;
+      hull_.clear();
       for (const Vec2& v : p.polygon)
-        hull.push_back(polygonState.position + rotate(v, polygonState.angle));
+        hull_.push_back(polygonState.position + rotate(v, polygonState.angle));
       const Vec2 point = pointState.position + rotate(p.point, pointState.angle);
       Vec2 nearest;
-      if (!nearestOnHullFromOutside(point, hull, nearest)) continue;
+      if (!nearestOnHullFromOutside(point, hull_, nearest)) continue;
       const double gap = (point - nearest).norm();
       p.armed |= gap > skin;
       if (!p.armed) continue;

@@ -35,11 +35,10 @@ class HullBounce {
 
  private:
   /// How a body answers an impulse: freely (pivoted false) or turning about `pivot` (the body's
-  /// frame), its inverse moment about it `invPivotInertia` (1/(kg m^2)).
+  /// frame).
   struct Response {
     bool pivoted = false;
     Vec2 pivot = Vec2::Zero();
-    double invPivotInertia = 0;
   };
   struct Pair {
     int polygonBody = -1, pointBody = -1;
@@ -50,11 +49,15 @@ class HullBounce {
   std::vector<Response> responses_;  ///< per body
   std::vector<char> handled_;        ///< per body: free or pivoted
   std::vector<Pair> pairs_;
+  std::vector<Vec2> hull_;  ///< scratch: the polygon of the pair in hand, in the world frame
 
   /// The inverse effective mass of `body` for an impulse along `normal` at world point `at`, and
   /// the velocity of that point.
   double inverseMass(const BodyState& b, int body, const Vec2& at, const Vec2& normal) const;
   static Vec2 pointVelocity(const BodyState& b, const Vec2& at);
+  /// A pivoted body's pivot in the world, and its inverse moment about it.
+  static Vec2 pivotOf(const BodyState& b, const Response& r);
+  static double inversePivotInertia(const BodyState& b, const Response& r);
   void applyImpulse(BodyState& b, int body, const Vec2& at, const Vec2& impulse) const;
 };
 
