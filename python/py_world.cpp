@@ -68,7 +68,7 @@ void checkStep(const SceneDef& scene, py::handle dt, py::handle substeps, double
 
 double checkedValue(double v, const std::string& source, const std::string& field) {
   if (!std::isfinite(v) || std::abs(v) > kMaxStateValue)
-    throw InputError(source, field, "must be finite and within +/-1e12");
+    throw InputError(source, field, "must be finite and within +/-1e12" + gotValue(v));
   return v;
 }
 

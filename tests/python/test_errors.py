@@ -85,6 +85,13 @@ def test_bad_world_calls_raise(call):
     w.step()  # still usable
 
 
+def test_a_servo_target_that_is_no_number_says_what_it_got():
+    w = cablelab.World.load("winch")
+    assert message(w.set_servo_target, 0, math.nan) == \
+        "set_servo_target: target: must be finite and within +/-1e12 (got nan)"
+    assert message(w.set_servo_targets, [math.inf]).endswith("targets[0]: must be finite (got inf)")
+
+
 def test_unknown_scene_lists_the_builtins():
     text = message(cablelab.World.load, "no_such_scene")
     # The one style (docs/cli.md): SOURCE: FIELD: what is wrong (got VALUE).
