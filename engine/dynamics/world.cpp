@@ -42,8 +42,9 @@ constexpr double kMaxOmegaDt = 0.3;   // longest midpoint step over the fastest 
 constexpr double kBox2DMaxTurn = 0.9 * kBox2DMaxStepTurn;  // rad
 constexpr double kBox2DMaxMove = 0.9 * kBox2DMaxStepMove;  // m
 constexpr int kMaxLimitShortenings = 4;
-constexpr double kStillTurn = 1e-5;    // rad a step: joints that turn less keep Box2D's solve
-constexpr double kStallRate = 1e-3;    // rad/s or m/s: a servo's joint moving slower is stalled
+constexpr double kStillTurn = 1e-5;  // rad a step: joints that turn less keep Box2D's solve
+constexpr double kStallRate = 1e-3;  // rad/s or m/s: a servo's joint moving slower is stalled
+constexpr double kStallAcceleration = 1e-3;  // rad/s^2 or m/s^2: ... and speeding up less
 constexpr double kStallRelease = 0.9;  // of max_force: a stalled servo pushing less is released
 constexpr double kOverstretch = 0.01;  // m: a rigid cable this far over its rest length is said
 
@@ -761,9 +762,11 @@ void World::reportPayOuts() {
   }
 }
 
-// A servo at its max_force whose joint does not move the way it pushes (kStallRate) for a whole
-// step is stalled: it cannot move what it drives. Said once a stall, naming the joint; the stall
-// ends when its force falls back below kStallRelease of max_force.
+// A servo at its max_force whose joint neither moves nor speeds up the way it pushes
+// (kStallRate, kStallAcceleration) over the step is stalled: it cannot move what it drives. A servo
+// at max_force braking its joint (the rate falling towards zero, or through it at a turn) is moving
+// it and is no stall. Said once a stall, naming the joint; the stall ends when its force falls back
+// below kStallRelease of max_force.
 void World::reportStalls(double dt) {
   for (size_t j = 0; j < scene_.joints.size(); ++j) {
     const ServoDef& servo = scene_.joints[j].servo;
@@ -771,8 +774,13 @@ void World::reportStalls(double dt) {
     const double f = jointForces_[j];
     if (std::abs(f) < kStallRelease * servo.maxForce) stalledSince_[j] = -1;
     const double rate = b2_->jointCoordinate(static_cast<int>(j)).speed;
+    // applyServos read the rate at the start of the last Box2D step.
+    const double gained = j < jointCoordinates_.size() ? rate - jointCoordinates_[j].speed : 0.0;
+    const double push = f > 0 ? 1 : -1;
     const bool atMax = std::abs(f) >= (1 - 1e-9) * servo.maxForce;
-    if (stalledSince_[j] >= 0 || !atMax || rate * (f > 0 ? 1 : -1) > kStallRate) continue;
+    if (stalledSince_[j] >= 0 || !atMax || rate * push > kStallRate ||
+        gained * push > kStallAcceleration * dt)
+      continue;
     stalledSince_[j] = time_ - dt;
     const bool turns = scene_.joints[j].kind == JointDef::Kind::Revolute;
     warnings_.push_back(

@@ -171,6 +171,26 @@ TEST(ServoDrive, AServoTooWeakToLiftTheRodStallsAtItsMaxForceAndSaysSo) {
   }
 }
 
+TEST(ServoDrive, AServoBrakingAtItsMaxForceIsNoStall) {
+  // A servo too weak for its gains (max_force 2 N m on the free 1 kg, 1 m rod, kp 500): it
+  // speeds the rod up at max_force, then brakes it at -max_force while the rod still turns
+  // forwards, overshoots and turns back. It moves its load all along: no stall, no warning (a
+  // stall once said so whenever the joint moved against the force, braking included).
+  for (const double hz : {30.0, 60.0, 240.0}) {
+    World w(rodScene(1, 1, gains(500, 44.72, 1.0, 2.0), false));
+    bool braked = false;
+    while (w.time() < 4) {
+      w.step(1 / hz);
+      const JointState pin = w.joint(0);
+      braked |= pin.force <= -2.0 * (1 - 1e-9) && pin.speed > 0.1;
+    }
+    SCOPED_TRACE(std::to_string(hz) + " Hz");
+    EXPECT_TRUE(braked);
+    EXPECT_NEAR(w.joint(0).value, 1.0, 1e-3);
+    EXPECT_TRUE(w.warnings().empty()) << w.warnings()[0];
+  }
+}
+
 TEST(ServoDrive, AMotorAtItsSpeedTurnsTheRodAtThatRate) {
   // A servo with a speed (a motor): the rod turns at it, the force only what the damping needs
   // (none: no load), at any step.
