@@ -215,7 +215,7 @@ struct Box2DBridge::Impl {
   hull_fixtures::HullContactFilter hullFilter;
   std::unique_ptr<HullBounce> bounce;
   b2Body* ground = nullptr;
-  double lastStep = 0;  ///< the last step()'s h (s)
+  double lastStep = 0;           ///< the last step()'s h (s)
   std::vector<Vec3> impulseSum;  ///< contacts.perBody summed since restartContactSum()
   double sumTime = 0;            ///< the steps' time in impulseSum (s)
   std::vector<b2Body*> bodies;

@@ -34,7 +34,7 @@ constexpr double kMinEventStep = 1e-4;  // events closer than this are taken at 
 // event cost two or three more cuts, each nearer: 1.5 cuts a step where 0.13 were due).
 constexpr double kCutReach = 0.05;
 constexpr int kMaxEventsPerSubstep = 16;
-constexpr double kSubstepRest = 1e-9;  // of the sub-step: a rest this short ends it
+constexpr double kSubstepRest = 1e-9;     // of the sub-step: a rest this short ends it
 constexpr int kMaxUnsettledHalvings = 4;  // of a step whose main-solve Newton found no answer
 constexpr int kFloorRelocations = 3;  // a floor arrival's cut is located again at most this often
 constexpr double kMaxOmegaDt = 0.3;   // longest midpoint step over the fastest transverse mode
