@@ -215,7 +215,9 @@ struct Box2DBridge::Impl {
   hull_fixtures::HullContactFilter hullFilter;
   std::unique_ptr<HullBounce> bounce;
   b2Body* ground = nullptr;
-  double lastStep = 0;  ///< the last step()'s h (s)
+  double lastStep = 0;           ///< the last step()'s h (s)
+  std::vector<Vec3> impulseSum;  ///< contacts.perBody summed since restartContactSum()
+  double sumTime = 0;            ///< the steps' time in impulseSum (s)
   std::vector<b2Body*> bodies;
   std::vector<b2Joint*> joints;
   std::vector<JointDef::Kind> kinds;
@@ -257,6 +259,7 @@ Box2DBridge::Box2DBridge(const SceneDef& scene) : impl_(std::make_unique<Impl>()
     impl_->bodies.back()->GetUserData().pointer = impl_->bodies.size();  // index + 1
   }
   impl_->contacts.perBody.assign(impl_->bodies.size(), Vec3::Zero());
+  impl_->impulseSum.assign(impl_->bodies.size(), Vec3::Zero());
   w.SetContactListener(&impl_->contacts);
   auto bodyOf = [&](const std::string& name) {
     const int i = findBodyIndex(scene, name);
@@ -342,6 +345,9 @@ void Box2DBridge::step(double h) {
   impl_->lastStep = h;
   std::fill(impl_->contacts.perBody.begin(), impl_->contacts.perBody.end(), Vec3::Zero());
   impl_->world.Step(static_cast<float>(h), kVelocityIterations, kPositionIterations);
+  for (size_t b = 0; b < impl_->impulseSum.size(); ++b)
+    impl_->impulseSum[b] += impl_->contacts.perBody[b];
+  impl_->sumTime += h;
   if (!impl_->hullFilter.untilApart.empty()) impl_->hullFilter.keepApartOnceApart();
   impl_->rewind();
 }
@@ -364,6 +370,19 @@ void Box2DBridge::addVelocities(std::span<const Vec3> dv) {
 
 std::span<const Vec3> Box2DBridge::contactImpulses() const {
   return impl_->contacts.perBody;
+}
+
+std::span<const Vec3> Box2DBridge::contactImpulseSum() const {
+  return impl_->impulseSum;
+}
+
+double Box2DBridge::contactSumTime() const {
+  return impl_->sumTime;
+}
+
+void Box2DBridge::restartContactSum() {
+  std::fill(impl_->impulseSum.begin(), impl_->impulseSum.end(), Vec3::Zero());
+  impl_->sumTime = 0;
 }
 
 std::vector<ContactForce> Box2DBridge::contactForces() const {

@@ -62,6 +62,11 @@ class Box2DBridge {
   /// Per body, the impulse (px, py, angular about its origin) Box2D's contacts gave it over the
   /// last step().
   std::span<const Vec3> contactImpulses() const;
+  /// Per body, those impulses summed over every step() since restartContactSum(), and the time
+  /// those steps covered (s).
+  std::span<const Vec3> contactImpulseSum() const;
+  double contactSumTime() const;
+  void restartContactSum();
   /// Per pair of bodies in touch, the force of their contact points over the last step().
   std::vector<ContactForce> contactForces() const;
   /// Sets touching[b] = 1 for every body in a touching, non-sensor contact.

@@ -410,6 +410,7 @@ PoseResult World::poseBody(int body, const Vec2& grabLocal, const Vec2& target, 
   // The contact forces of the steps before are not those of the new pose (expectContacts).
   std::fill(contactLast_.begin(), contactLast_.end(), Vec3::Zero());
   std::fill(contactExpected_.begin(), contactExpected_.end(), Vec3::Zero());
+  b2_->restartContactSum();
   return result;
 }
 
