@@ -1,4 +1,4 @@
-// Floors (docs/cables.md, "Floors"): a cable segment cannot go below zero length. A segment
+// Floors (docs/floors.md): a cable segment cannot go below zero length. A segment
 // between two different bodies, one of which the solve moves, that is short (kFloorWatch, or
 // what its ends can close within the step; its length between its contact points: a circle's
 // tangent point, floorGap) gets a unilateral row keeping it at least kFloorLength long, so a body

@@ -1,4 +1,4 @@
-// A body that reaches a pulley stops there (docs/cables.md, "Floors").
+// A body that reaches a pulley stops there (docs/floors.md).
 #include <gtest/gtest.h>
 
 #include <cmath>
