@@ -217,7 +217,7 @@ class World {
   std::vector<BodyState> motion_;             ///< look-ahead or predicted body states (wrap events)
   std::vector<char> excluded_;     ///< bodies the midpoint solve leaves alone (joints, contacts)
   std::vector<char> touching_;     ///< bodies in a touching contact this sub-step
-  std::vector<Vec3> contactLast_;  ///< per body, Box2D's contact force over the last step
+  std::vector<Vec3> contactLast_;  ///< per body, Box2D's mean contact force over the last sub-step
   std::vector<Vec3> contactExpected_;  ///< ... the one the cable solve expects (expectContacts)
   std::vector<Vec3> kicks_;            ///< velocity added after Box2D's step (midpoint rules)
   std::vector<std::pair<int, Vec3>> ends_;  ///< velocities set after it (the midpoint solve's)
