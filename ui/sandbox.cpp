@@ -487,8 +487,12 @@ void Sandbox::fitView() {
   }
   // The scene's view grown to hold the moving parts, above the bars' row; in presentation mode
   // too while a student builds (ui/presentation.h, showsCanvas).
+  // Below a collapsed side panel's title bar too (the tackle's pulleys were under the
+  // Inspector's).
+  const float titleBar = renderOptions().keyTop;
   PanelRect area = f;
-  area.height = std::max(40.0f, f.height - barRowHeight(*this));
+  area.y += titleBar;
+  area.height = std::max(40.0f, f.height - titleBar - barRowHeight(*this));
   const double aspect = area.width / area.height;
   const Vec2 half(0.5 * scene.view.height * aspect, 0.5 * scene.view.height);
   WorldBounds b = sceneBounds(*world_, 0.04 * scene.view.height);
@@ -503,6 +507,7 @@ void Sandbox::fitView() {
   const double dx = area.x + 0.5 * area.width - 0.5 * camera.width;
   const double dy = area.y + 0.5 * area.height - 0.5 * camera.height;
   camera.center = 0.5 * (b.lo + b.hi) - camera.metresPerPixel * Vec2(dx, -dy);
+  if (!fittedCanvas) camera = clearOfKey(*this, camera, f, barRowHeight(*this));
 }
 
 RenderOptions Sandbox::renderOptions() const {
