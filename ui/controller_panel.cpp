@@ -315,9 +315,9 @@ void gainFields(HandControlState& h, bool& changed) {
   tooltip("Integral gain (with PID on).");
   if (!h.pid) ImGui::EndDisabled();
   ImGui::PopItemWidth();
-  const bool thesis = ImGui::SmallButton("thesis gains");
-  tooltip("Back to the gains of thesis section 4.3: k_p 0.1, k_d 0.58 (k_i 1 with PID).");
-  if (thesis) {
+  const bool defaults = ImGui::SmallButton("default gains");
+  tooltip("Back to the gains the hand starts with: k_p 0.1, k_d 0.58 (k_i 1 with PID).");
+  if (defaults) {
     const HandControllerParams d;
     h.params.kp = d.kp, h.params.kd = d.kd, h.ki = kHandPidKi;
     changed = true;
@@ -428,7 +428,7 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
             {"x target", 5, IM_COL32(200, 90, 0, 255), true},
             {"y target", 6, IM_COL32(0, 130, 90, 255), true}},
            "m", 7 * lh, -h.xyRange, h.xyRange);
-  tooltip("Box x and y against time, the targets dashed (thesis figure 4-5).");
+  tooltip("Box x and y against time, the targets dashed.");
   if (ImGui::SmallButton("Export CSV")) {
     const std::string name = "cablelab-hand-plots.csv";
     try {
