@@ -104,6 +104,7 @@ std::string lectureViewJson(const Sandbox& s, const std::string& name, const std
          ", \"key\": " + box(f.key) + ", \"notes\": " + box(f.notes) +
          ", \"banner\": " + box(f.banner) + ", \"paused\": " + box(f.paused) +
          ", \"ui_scale\": " + jsonNumber(s.uiScale) +
+         ", \"tension_scale\": " + jsonNumber(s.tensionScale) +
          ", \"presentation\": " + (s.presentation ? "true" : "false") +
          ", \"view_fitted\": " + (s.viewFitted ? "true" : "false") +
          ", \"close_up\": " + (s.closeUp ? "true" : "false") +

@@ -115,8 +115,13 @@ std::string Sandbox::fileStem() const {
 bool Sandbox::rebuild(const std::vector<std::pair<std::string, double>>& values) {
   try {
     const Camera keep = camera;
+    const double scale = sceneTensionScale;
     adopt(loadScene(sceneName, values), sceneName, false);
     camera = keep;
+    // A lighter load keeps the scale, so that the runs before and after the slider compare by
+    // colour (the tackle's went from 0..100 N to 0..50 N); a heavier one grows it.
+    sceneTensionScale = std::max(scale, sceneTensionScale);
+    if (!tensionScaleLocked) tensionScale = sceneTensionScale;
     // A fitted view is fitted again to the new run (a demo's stage changes with its loads);
     // a view the user chose stays (ui/presentation.h).
     if (viewFitted) fitPending = true;

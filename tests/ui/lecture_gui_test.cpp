@@ -184,7 +184,10 @@ nlohmann::json walkthroughAt(const std::string& scene, const std::string& size) 
     expectReadable(v);
   }
   EXPECT_EQ(j["banner"], "");
+  double scale = 0;  // the colour bar's maximum: never smaller later in the lecture
   for (const auto& v : j["views"]) {
+    EXPECT_GE(v["tension_scale"].get<double>(), scale) << v["name"] << " " << size;
+    scale = v["tension_scale"].get<double>();
     EXPECT_EQ(v["paused"].is_null(), v["name"] != "paused" && v["name"] != "rewound")
         << v["name"] << " " << size;
     // The energy readout stays when a long note (a saved file's path) does not fit: the line
