@@ -14,6 +14,7 @@
 #include "engine/core/json_reader.h"
 #include "engine/hand/hand_tracking.h"
 #include "ui/colormap.h"
+#include "ui/hand_plots.h"
 #include "ui/panels.h"
 
 namespace cablelab::ui {
@@ -314,9 +315,9 @@ void gainFields(HandControlState& h, bool& changed) {
   tooltip("Integral gain (with PID on).");
   if (!h.pid) ImGui::EndDisabled();
   ImGui::PopItemWidth();
-  const bool thesis = ImGui::SmallButton("thesis gains");
-  tooltip("Back to the gains of thesis section 4.3: k_p 0.1, k_d 0.58 (k_i 1 with PID).");
-  if (thesis) {
+  const bool defaults = ImGui::SmallButton("default gains");
+  tooltip("Back to the gains the hand starts with: k_p 0.1, k_d 0.58 (k_i 1 with PID).");
+  if (defaults) {
     const HandControllerParams d;
     h.params.kp = d.kp, h.params.kd = d.kd, h.ki = kHandPidKi;
     changed = true;
@@ -410,7 +411,6 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
     ImGui::TextDisabled("statics: no face-on wrap");
 
   const float lh = ImGui::GetTextLineHeight();
-  const ImVec2 plotTop = ImGui::GetCursorScreenPos();
   const float tensionTop = static_cast<float>(sandbox.tensionScale);
   timePlot("##tensions", h.history,
            {{"top", 0, IM_COL32(200, 60, 30, 255)}, {"bottom", 1, IM_COL32(40, 90, 200, 255)}},
@@ -428,9 +428,7 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
             {"x target", 5, IM_COL32(200, 90, 0, 255), true},
             {"y target", 6, IM_COL32(0, 130, 90, 255), true}},
            "m", 7 * lh, -h.xyRange, h.xyRange);
-  tooltip("Box x and y against time, the targets dashed (thesis figure 4-5).");
-  const ImVec2 plotBottom = ImGui::GetCursorScreenPos();
-  h.plotRect = {plotTop.x, plotTop.y, ImGui::GetContentRegionAvail().x, plotBottom.y - plotTop.y};
+  tooltip("Box x and y against time, the targets dashed.");
   if (ImGui::SmallButton("Export CSV")) {
     const std::string name = "cablelab-hand-plots.csv";
     try {
@@ -443,10 +441,18 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
   tooltip("The plotted history (last 15 s) as CSV in the working directory.");
   sameLineIfRoom(buttonWidth("Export PNG"));
   if (ImGui::SmallButton("Export PNG")) {
-    sandbox.pngRequest = h.plotRect;
-    sandbox.pngRequestPath = "cablelab-hand-plots.png";
+    try {
+      const auto paths = exportHandPlots(h, sandbox.tensionScale, "cablelab-hand");
+      sandbox.message = "saved " + paths[0] + ", " + paths[1] + " and " + paths[2];
+    } catch (const std::exception& e) {
+      sandbox.error = e.what();
+    }
   }
-  tooltip("The three plots as a PNG in the working directory.");
+  h.exportPngButton = {ImGui::GetItemRectMin().x, ImGui::GetItemRectMin().y,
+                       ImGui::GetItemRectSize().x, ImGui::GetItemRectSize().y};
+  tooltip(
+      "The three plots for slides: 1920 x 1080 PNGs with axes and legends, in the working "
+      "directory.");
 }
 
 // ---------------------------------------------------------------------------------------------

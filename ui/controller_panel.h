@@ -79,7 +79,7 @@ struct HandControlState {
   double rampStart = -1, rampSeconds = 2;
   Vec2 rampFrom = Vec2::Zero(), rampTo = Vec2(0.1, 0.1);
   std::optional<Vec2> rampLast;  ///< the target the ramp set last (a different one: a click)
-  PanelRect plotRect;            ///< screen rectangle of the plots (for the PNG export)
+  PanelRect exportPngButton;     ///< screen rectangle of the plots' "Export PNG" (px)
   /// The box's target angle (rad) when it may turn (model.turn, the scene's turn=1): the field
   /// in the panel, or the handle on the target marker's arm in the view.
   double targetAngle = 0;

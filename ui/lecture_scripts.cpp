@@ -44,6 +44,17 @@ std::string buildMenuJson(const BuildMenuLayout& m) {
          ", \"hidden_height\": " + jsonNumber(m.hiddenHeight) + "}";
 }
 
+/// The side panels and their collapsed title bars, each [x0, y0, x1, y1] (px).
+std::string panelsJson(const std::vector<PanelRect>& panels) {
+  std::vector<std::string> out;
+  for (const PanelRect& p : panels) {
+    std::vector<std::string> corners = {jsonNumber(p.x), jsonNumber(p.y), jsonNumber(p.x + p.width),
+                                        jsonNumber(p.y + p.height)};
+    out.push_back(jsonList(corners));
+  }
+  return jsonList(out);
+}
+
 }  // namespace
 
 std::string lectureViewJson(const Sandbox& s, const std::string& name, const std::string& shot) {
@@ -93,6 +104,7 @@ std::string lectureViewJson(const Sandbox& s, const std::string& name, const std
          ", \"key\": " + box(f.key) + ", \"notes\": " + box(f.notes) +
          ", \"banner\": " + box(f.banner) + ", \"paused\": " + box(f.paused) +
          ", \"ui_scale\": " + jsonNumber(s.uiScale) +
+         ", \"tension_scale\": " + jsonNumber(s.tensionScale) +
          ", \"presentation\": " + (s.presentation ? "true" : "false") +
          ", \"view_fitted\": " + (s.viewFitted ? "true" : "false") +
          ", \"close_up\": " + (s.closeUp ? "true" : "false") +
@@ -104,7 +116,7 @@ std::string lectureViewJson(const Sandbox& s, const std::string& name, const std
          ", \"fixed\": " + box(screenBox(fixed, s.camera)) +
          ", \"strip_name\": " + jsonQuoted(s.shownStripName) +
          ", \"strip_overflow\": " + jsonNumber(s.stripOverflow) +
-         ", \"title\": " + jsonQuoted(s.shownTitle) +
+         ", \"title\": " + jsonQuoted(s.shownTitle) + ", \"panels\": " + panelsJson(s.panels) +
          ", \"controller_section\": " + jsonQuoted(s.controllerSection) +
          ", \"building\": " + (s.building() ? "true" : "false") +
          ", \"build_menu\": " + buildMenuJson(s.authoring->menu) +
@@ -160,9 +172,9 @@ void tryStep(Sandbox& sandbox) {
 }  // namespace
 
 const std::vector<std::string>& LectureScript::names() {
-  static const std::vector<std::string> n = {"present",        "grasp-quiet", "tension-run",
-                                             "walkthrough",    "select-rope", "tour",
-                                             "first-mechanism"};
+  static const std::vector<std::string> n = {"present",         "grasp-quiet", "tension-run",
+                                             "walkthrough",     "select-rope", "tour",
+                                             "first-mechanism", "laptop",      "hand-export"};
   return n;
 }
 
@@ -206,6 +218,8 @@ bool LectureScript::beforeFrame(Sandbox& sandbox, int frame) {
   if (name_ == "select-rope") return selectRope(sandbox, frame);
   if (name_ == "tour") return tour(sandbox, frame);
   if (name_ == "first-mechanism") return firstMechanism(sandbox, frame);
+  if (name_ == "laptop") return laptop(sandbox, frame);
+  if (name_ == "hand-export") return handExport(sandbox, frame);
   report_ = "{\"scenario\": " + jsonQuoted(name_) + ", \"failure\": \"unknown scenario\"}";
   return false;
 }
@@ -534,6 +548,63 @@ bool LectureScript::tour(Sandbox& sandbox, int frame) {
   } else if (f == 98) {
     shot("1080-run");
   }
+  return true;
+}
+
+bool LectureScript::laptop(Sandbox& sandbox, int frame) {
+  constexpr int kFramesPerScene = 12;  // the fit is due once the panels are laid out
+  recordPendingView(sandbox);
+  const auto all = builtinSceneList();
+  const int k = (frame - 2) / kFramesPerScene, f = (frame - 2) % kFramesPerScene;
+  if (frame < 2) return true;
+  if (k >= static_cast<int>(all.size())) {
+    report_ = "{\"scenario\": \"laptop\", \"views\": " + jsonList(items_) + "}";
+    return false;
+  }
+  if (f == 0) sandbox.open(all[k].name);  // the Scene menu's choice
+  if (f == kFramesPerScene - 2) {
+    shotName_ = all[k].name;
+    snapshot(sandbox, shotName_.c_str());
+  }
+  return true;
+}
+
+bool LectureScript::handExport(Sandbox& sandbox, int frame) {
+  constexpr int kRunFrames = 150;  // 2.5 s of history at 60 Hz
+  const HandControlState* h = sandbox.controller ? sandbox.controller->hand.get() : nullptr;
+  if (!h) {
+    report_ = "{\"scenario\": \"hand-export\", \"failure\": \"not the hand\"}";
+    return false;
+  }
+  if (frame < kRunFrames) return true;
+  const PanelRect& b = h->exportPngButton;
+  const Vec2 centre(b.x + 0.5 * b.width, b.y + 0.5 * b.height);
+  if (sandbox.message.rfind("saved", 0) == 0 || frame > kRunFrames + 120) {
+    report_ = "{\"scenario\": \"hand-export\", \"message\": " + jsonQuoted(sandbox.message) +
+              ", \"error\": " + jsonQuoted(sandbox.error) +
+              ", \"tension_scale\": " + jsonNumber(sandbox.tensionScale) + "}";
+    return false;
+  }
+  if (clickStage_ == 1) {  // pressed last frame: let go (Dear ImGui needs two frames for a click)
+    mouse(SDL_MOUSEBUTTONUP, centre);
+    clickStage_ = 2;
+    return true;
+  }
+  if (clickStage_ == 2) return true;  // clicked: wait for the files
+  // The button below the panel's fold (projector scale): the wheel over the panel scrolls down.
+  const PanelRect free = sandbox.freeArea();
+  if (b.height <= 0 || b.y + b.height > free.y + free.height - 4) {
+    movePointer(windowId_, Vec2(0.5 * free.x, free.y + 0.5 * free.height));
+    SDL_Event wheel{};
+    wheel.type = SDL_MOUSEWHEEL;
+    wheel.wheel.windowID = windowId_;
+    wheel.wheel.y = -2;
+    SDL_PushEvent(&wheel);
+    return true;
+  }
+  movePointer(windowId_, centre);
+  mouse(SDL_MOUSEBUTTONDOWN, centre);
+  clickStage_ = 1;
   return true;
 }
 

@@ -28,6 +28,12 @@
 //   first-mechanism  a student's first mechanism in presentation mode at projector scale, at
 //                 1280x720 then 1920x1080, every step a click on the top bar's Build menu, its
 //                 items and fields or the view (ui/first_mechanism_script.h)
+//   laptop        every built-in scene opened from the Scene menu out of presentation mode, at
+//                 the window's size and text size (--ui-scale); reports each view (with the panels'
+//                 rectangles: a collapsed Inspector is its title bar)
+//   hand-export   the hand: 2.5 s of control, then the wheel over the Simulation panel until the
+//                 Controller section's "Export PNG" is in view and a click on it; reports the
+//                 message shown (the files written in the working directory)
 //
 // Needs: an SDL video subsystem (the sandbox's Window), a Sandbox with a loaded scene.
 #pragma once
@@ -67,6 +73,8 @@ class LectureScript {
   bool selectRope(Sandbox& sandbox, int frame);
   bool tour(Sandbox& sandbox, int frame);
   bool firstMechanism(Sandbox& sandbox, int frame);
+  bool laptop(Sandbox& sandbox, int frame);
+  bool handExport(Sandbox& sandbox, int frame);
   void key(SDL_Keycode k);
   void mouse(Uint32 type, const Vec2& screen);
   void projectorScale(Sandbox& sandbox);
@@ -85,6 +93,7 @@ class LectureScript {
   Vec2 target_ = Vec2::Zero();  ///< grasp-quiet: the point clicked (m)
   double lowest_ = 1e300, highest_ = -1e300, largest_ = 0;
   int bannerFrames_ = 0;
+  int clickStage_ = 0;                ///< hand-export: 0 not yet, 1 pressed, 2 released
   int width_ = 0, height_ = 0;        ///< present: the window's size before the resize
   std::vector<std::string> banners_;  ///< tour: every banner shown, "scene: text"
   std::string shotName_;              ///< tour: the screenshot's name, "scene-what"

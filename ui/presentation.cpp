@@ -183,6 +183,33 @@ Camera presentationFit(const Sandbox& sandbox, const PanelRect& free) {
   return roomy.metresPerPixel * (1 - kKeyRoomCost) <= whole.metresPerPixel ? roomy : whole;
 }
 
+Camera clearOfKey(const Sandbox& sandbox, const Camera& fitted, const PanelRect& area,
+                  float bottomReserve) {
+  const World* world = sandbox.world();
+  if (!world || !ImGui::GetCurrentContext() || !ImGui::GetFont()) return fitted;
+  const WorldBounds parts = sceneBounds(*world);
+  if (parts.empty()) return fitted;
+  const LabelBox scene = screenBox(parts, fitted);
+  RenderOptions options = sandbox.renderOptions();
+  options.keyGivesWay = false;
+  const FurnitureLayout l =
+      layoutFurniture(*world, sandbox.overlay(), options, fitted, true, scene);
+  if (l.key.empty() || !l.key.overlaps(scene)) return fitted;
+  constexpr double kGap = 8;  // px between the key and the scene
+  Camera moved = fitted;
+  const double left = scene.x1 - (l.key.x0 - kGap);  // px
+  if (scene.x0 - left >= area.x + kGap) {
+    moved.center.x() += left * fitted.metresPerPixel;
+    return moved;
+  }
+  const double down = l.key.y1 + kGap - scene.y0;  // px
+  if (scene.y1 + down <= area.y + area.height - bottomReserve - kGap) {
+    moved.center.y() += down * fitted.metresPerPixel;
+    return moved;
+  }
+  return fitted;
+}
+
 Camera fitToContent(const World& world, const Camera& camera, const PanelRect& area,
                     float bottomReserve, const WorldBounds& stage) {
   Camera fitted = camera;

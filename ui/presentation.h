@@ -80,6 +80,14 @@ void followCloseUp(Sandbox& sandbox, double seconds);
 /// that would take a tenth of the scene's size (a small window: the key gives way).
 Camera presentationFit(const Sandbox& sandbox, const PanelRect& free);
 
+/// Out of presentation mode: `fitted` (the scene's own view, grown to hold its moving parts)
+/// moved so that the marker key's column, top right, keeps off the moving parts (the hand's box
+/// and paddles, the capstan's drum at 1280x720 were under it): the scene slides left, else down
+/// below the key, as far as `area` (px, above `bottomReserve`) holds it; unchanged when neither
+/// clears the key.
+Camera clearOfKey(const Sandbox& sandbox, const Camera& fitted, const PanelRect& area,
+                  float bottomReserve);
+
 Camera fitToContent(const World& world, const Camera& camera, const PanelRect& area,
                     float bottomReserve, const WorldBounds& stage = {});
 

@@ -115,8 +115,13 @@ std::string Sandbox::fileStem() const {
 bool Sandbox::rebuild(const std::vector<std::pair<std::string, double>>& values) {
   try {
     const Camera keep = camera;
+    const double scale = sceneTensionScale;
     adopt(loadScene(sceneName, values), sceneName, false);
     camera = keep;
+    // A lighter load keeps the scale, so that the runs before and after the slider compare by
+    // colour (the tackle's went from 0..100 N to 0..50 N); a heavier one grows it.
+    sceneTensionScale = std::max(scale, sceneTensionScale);
+    if (!tensionScaleLocked) tensionScale = sceneTensionScale;
     // A fitted view is fitted again to the new run (a demo's stage changes with its loads);
     // a view the user chose stays (ui/presentation.h).
     if (viewFitted) fitPending = true;
@@ -487,8 +492,12 @@ void Sandbox::fitView() {
   }
   // The scene's view grown to hold the moving parts, above the bars' row; in presentation mode
   // too while a student builds (ui/presentation.h, showsCanvas).
+  // Below a collapsed side panel's title bar too (the tackle's pulleys were under the
+  // Inspector's).
+  const float titleBar = renderOptions().keyTop;
   PanelRect area = f;
-  area.height = std::max(40.0f, f.height - barRowHeight(*this));
+  area.y += titleBar;
+  area.height = std::max(40.0f, f.height - titleBar - barRowHeight(*this));
   const double aspect = area.width / area.height;
   const Vec2 half(0.5 * scene.view.height * aspect, 0.5 * scene.view.height);
   WorldBounds b = sceneBounds(*world_, 0.04 * scene.view.height);
@@ -503,6 +512,7 @@ void Sandbox::fitView() {
   const double dx = area.x + 0.5 * area.width - 0.5 * camera.width;
   const double dy = area.y + 0.5 * area.height - 0.5 * camera.height;
   camera.center = 0.5 * (b.lo + b.hi) - camera.metresPerPixel * Vec2(dx, -dy);
+  if (!fittedCanvas) camera = clearOfKey(*this, camera, f, barRowHeight(*this));
 }
 
 RenderOptions Sandbox::renderOptions() const {

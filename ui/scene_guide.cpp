@@ -1,5 +1,6 @@
 #include "ui/scene_guide.h"
 
+#include <cstdio>
 #include <map>
 
 namespace cablelab::ui {
@@ -95,6 +96,19 @@ std::string whatToTry(const std::string& name) {
   if (it != guides().end()) return it->second.tryThis;
   return "Drag a body with the left mouse button; right-drag pans, the wheel zooms.\nSpace "
          "pauses, s steps, r resets.";
+}
+
+std::string parameterTip(const std::string& description, double value) {
+  char shown[32];
+  std::snprintf(shown, sizeof shown, "%g", value);
+  // The unit from the description's last "(...)": "left body mass (kg)" -> "kg".
+  const size_t open = description.rfind(" (");
+  const std::string unit = open != std::string::npos && description.back() == ')'
+                               ? " " + description.substr(open + 2, description.size() - open - 3)
+                               : "";
+  return description + "\nDefault " + shown + unit +
+         ". Let go of the slider to start the scene again with the new value (Ctrl+click to "
+         "type one).";
 }
 
 }  // namespace cablelab::ui

@@ -18,4 +18,9 @@ std::string whatToTry(const std::string& name);
 /// a scene file, which shows its own.
 std::string studentDescription(const std::string& name);
 
+/// The tooltip of a scene parameter's slider: its `description` (units last, "left body mass
+/// (kg)"), its default `value` as a student would type it ("Default 2 kg", not 2.000000) and
+/// what letting go of the slider does.
+std::string parameterTip(const std::string& description, double value);
+
 }  // namespace cablelab::ui

@@ -40,9 +40,7 @@ void parameterSliders(Sandbox& sandbox) {
                            "%.4g", flags))
       it->second = v;
     apply |= ImGui::IsItemDeactivatedAfterEdit();
-    const std::string tip = p.description + "\nDefault " + std::to_string(p.value) +
-                            ". Release the slider to rebuild the scene (Ctrl+click to type).";
-    tooltip(tip.c_str());
+    tooltip(parameterTip(p.description, p.value).c_str());
   }
   if (apply) sandbox.rebuild(values);
   if (ImGui::SmallButton("Defaults")) {

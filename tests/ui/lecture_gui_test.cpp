@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <map>
 
 #include <nlohmann/json.hpp>
@@ -183,7 +184,10 @@ nlohmann::json walkthroughAt(const std::string& scene, const std::string& size) 
     expectReadable(v);
   }
   EXPECT_EQ(j["banner"], "");
+  double scale = 0;  // the colour bar's maximum: never smaller later in the lecture
   for (const auto& v : j["views"]) {
+    EXPECT_GE(v["tension_scale"].get<double>(), scale) << v["name"] << " " << size;
+    scale = v["tension_scale"].get<double>();
     EXPECT_EQ(v["paused"].is_null(), v["name"] != "paused" && v["name"] != "rewound")
         << v["name"] << " " << size;
     // The energy readout stays when a long note (a saved file's path) does not fit: the line
@@ -264,6 +268,78 @@ TEST(Lecture, ClickingTheRopeOpensTheInspectorAt1280x720) {
     EXPECT_TRUE(j["open_after"].get<bool>()) << scene << ": " << j.dump();
     EXPECT_EQ(j["overflow"].get<double>(), 0) << scene << ": " << j.dump();
   }
+}
+
+// A laptop with the text twice its size, out of presentation mode (the side panels open): every
+// built-in scene opens with its moving parts clear of the marker key (it covered the hand's box and
+// paddles and the capstan's drum) and below the collapsed Inspector's title bar (the tackle's
+// pulleys were under it), inside the view.
+TEST(Lecture, LaptopViewKeepsEverySceneOffTheKeyAndTheInspector) {
+  REQUIRE_XVFB();
+  const auto j = lecture("hexagon", "laptop", "1280x720", "laptop-720");
+  ASSERT_TRUE(j.contains("views")) << j.dump();
+  EXPECT_EQ(j["views"].size(), 9u);
+  for (const auto& v : j["views"]) {
+    const std::string where =
+        v["scene_name"].get<std::string>() + " (" + v["screenshot"].get<std::string>() + ")";
+    EXPECT_FALSE(v["presentation"].get<bool>()) << where;
+    ASSERT_FALSE(v["scene"].is_null()) << where;
+    const Box scene = boxes(nlohmann::json::array({v["scene"]}))[0];
+    if (!v["key"].is_null()) {
+      EXPECT_FALSE(boxes(nlohmann::json::array({v["key"]}))[0].overlaps(scene))
+          << "the key covers the scene: " << where;
+    }
+    const double height = v["window"][1];
+    const double top = v["free"][1];
+    for (const Box& p : boxes(v["panels"]))  // a title bar at the view's top
+      if (std::abs(p.y0 - top) <= kEdge && p.y1 - p.y0 < 0.25 * height && p.x1 > scene.x0 &&
+          p.x0 < scene.x1) {
+        EXPECT_GE(scene.y0, p.y1 - kEdge) << "under a collapsed panel's title: " << where;
+      }
+    EXPECT_GE(scene.x0, v["free"][0].get<double>() - kEdge) << where;
+    EXPECT_LE(scene.x1, v["free"][0].get<double>() + v["free"][2].get<double>() + kEdge) << where;
+  }
+}
+
+/// Pixels of `image` within 40 levels of `rgb` on every channel.
+int pixelsNear(const ui::Image& image, int r, int g, int b) {
+  int n = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const std::uint8_t* p = image.pixel(x, y);
+      n += std::abs(p[0] - r) < 40 && std::abs(p[1] - g) < 40 && std::abs(p[2] - b) < 40;
+    }
+  return n;
+}
+
+// The hand's plots for a slide: the Controller section's "Export PNG" wrote a copy of the
+// panel's thumbnails (520 x 492 px at projector scale, no ticks, no title, the top membrane's
+// tension hidden under the bottom one's). Now three charts at 1920 x 1080, both membranes seen.
+TEST(Lecture, HandPlotsExportAtSlideSizeWithBothMembranes) {
+  REQUIRE_XVFB();
+  const auto dir = outputDir("lecture") / "hand-export";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const RunResult r = run("cd " + dir.string() + " && " + kXvfb1080 + std::string(CABLELAB_CLI) +
+                              " gui hand --size 1920x1080 --ui-scale 2 --script hand-export",
+                          "lecture_hand_export");
+  const auto j = jsonReport(r);
+  ASSERT_TRUE(j.contains("message")) << j.dump();
+  EXPECT_EQ(j["error"], "") << j.dump();
+  EXPECT_EQ(j["message"].get<std::string>().rfind("saved", 0), 0u) << j.dump();
+  for (const char* chart : {"tensions", "error", "position"}) {
+    const auto path = dir / (std::string("cablelab-hand-") + chart + ".png");
+    ASSERT_TRUE(std::filesystem::exists(path)) << path;
+    const ui::Image image = ui::readPng(path.string());
+    EXPECT_GE(image.width, 1600) << chart;
+    EXPECT_GE(image.height, 900) << chart;
+  }
+  // Equal tensions in a grasp: the bottom membrane's line is dashed over the top one's.
+  const ui::Image tensions = ui::readPng((dir / "cablelab-hand-tensions.png").string());
+  const int top = pixelsNear(tensions, 200, 60, 30), bottom = pixelsNear(tensions, 40, 90, 200);
+  std::cout << "top membrane " << top << " px, bottom " << bottom << " px\n";
+  EXPECT_GT(top, 2000);
+  EXPECT_GT(bottom, 2000);
 }
 
 TEST(Lecture, GraspSequenceRaisesNoBanner) {

@@ -44,6 +44,25 @@ double riseAfter(const std::string& scene, const std::string& name, double value
 
 constexpr double kStill = 0.01;  // m in a second: balanced
 
+// A slider's tooltip showed "Default 2.000000." (std::to_string): now the value as typed, with
+// its unit, for every parameter of every built-in scene.
+TEST(SceneGuide, ParameterTipsGiveTheDefaultAsTypedWithItsUnit) {
+  EXPECT_EQ(parameterTip("left body mass (kg)", 2),
+            "left body mass (kg)\nDefault 2 kg. Let go of the slider to start the scene again "
+            "with the new value (Ctrl+click to type one).");
+  EXPECT_NE(parameterTip("drum speed (rad/s)", -0.5).find("Default -0.5 rad/s."),
+            std::string::npos);
+  int tips = 0;
+  for (const SceneEntry& scene : builtinSceneList())
+    for (const SceneParameter& p : sceneParameters(scene.name)) {
+      const std::string tip = parameterTip(p.description, p.value);
+      EXPECT_EQ(tip.find("00000"), std::string::npos) << scene.name << " " << p.name << ": " << tip;
+      EXPECT_EQ(tip.rfind(p.description + "\nDefault ", 0), 0u) << tip;
+      ++tips;
+    }
+  EXPECT_GE(tips, 20);
+}
+
 TEST(SceneGuide, PulleyBalancesWithEqualMasses) {
   EXPECT_LT(riseAfter("pulley", "", 0, "left", 1), -0.1);  // the heavier left sinks
   EXPECT_LT(std::abs(riseAfter("pulley", "m_left", 1, "left", 1)), kStill);

@@ -68,5 +68,23 @@ TEST(TensionScale, TheSandboxNeverRescalesBehindTheUsersBack) {
   EXPECT_EQ(sandbox.tensionScale, 50);
 }
 
+// The tackle's "what to try" (m_effort 2 -> 1) rescaled the bar from 0..100 N to 0..50 N: the
+// lighter run's rope looked as taut as the heavier one's. A slider step keeps the scale unless
+// the new loads need more (the capstan's heavier load).
+TEST(TensionScale, ASliderStepNeverShrinksTheScale) {
+  Sandbox sandbox(800, 600);
+  ASSERT_TRUE(sandbox.open("tackle"));
+  const double before = sandbox.tensionScale;
+  EXPECT_EQ(before, 100);
+  ASSERT_TRUE(sandbox.rebuild({{"m_effort", 1}}));
+  EXPECT_EQ(sandbox.tensionScale, before);
+  ASSERT_TRUE(sandbox.open("capstan"));
+  const double light = sandbox.tensionScale;
+  ASSERT_TRUE(sandbox.rebuild({{"m_load", 6}}));
+  EXPECT_GT(sandbox.tensionScale, light);
+  ASSERT_TRUE(sandbox.open("tackle"));
+  EXPECT_EQ(sandbox.tensionScale, before) << "a new scene starts from its own loads";
+}
+
 }  // namespace tension_scale_test
 }  // namespace cablelab::ui
