@@ -534,10 +534,9 @@ double World::advance(double left, double h, bool locate) {
 // force of the steps before as a load it expects (not one applied: Box2D applies its own), the
 // lesser of the last two sub-steps' in each component and 0 where they disagree in sign, so that
 // persistent contacts (resting, sliding, held by friction) count and a one-step impact does not.
-// A sub-step's force is its pieces' impulses over the time they cover (`dt`): a resting contact's
-// impulse grows with a piece's length, a knock's does not. Read over its own piece, a knock on a
-// 0.2 kg pentagon in pieces that wrap events cut to 1 ms was 120 N, the next sub-step's rope
-// pulled 90 N against it, Box2D gave 47 N, and the pentagon gained 17 J (docs/cables.md,
+// A sub-step's force is its pieces' impulses over the time they cover (`dt`): a knock read over
+// its own 1 ms piece (wrap events cut the sub-step) was 120 N on a 0.2 kg pentagon, the next
+// rope pulled 90 N against it, Box2D gave 47 N, and the pentagon gained 17 J (docs/cables.md,
 // "Contacts and the rope").
 void World::expectContacts(double dt) {
   const std::span<const Vec3> impulses = b2_->contactImpulseSum();
@@ -770,10 +769,9 @@ void World::reportPayOuts() {
 }
 
 // A servo at its max_force whose joint neither moves nor speeds up the way it pushes
-// (kStallRate, kStallAcceleration) over the step is stalled: it cannot move what it drives. A servo
-// at max_force braking its joint (the rate falling towards zero, or through it at a turn) is moving
-// it and is no stall. Said once a stall, naming the joint; the stall ends when its force falls back
-// below kStallRelease of max_force.
+// (kStallRate, kStallAcceleration) over the step is stalled: it cannot move what it drives (one
+// braking its joint at max_force is moving it). Said once a stall, naming the joint; the stall
+// ends when its force falls back below kStallRelease of max_force.
 void World::reportStalls(double dt) {
   for (size_t j = 0; j < scene_.joints.size(); ++j) {
     const ServoDef& servo = scene_.joints[j].servo;
