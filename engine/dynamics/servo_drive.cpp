@@ -2,6 +2,7 @@
 #include "engine/dynamics/servo_drive.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 #include "engine/core/small_qp.h"
