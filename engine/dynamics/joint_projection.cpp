@@ -201,7 +201,8 @@ void JointProjection::findBlocks(std::span<const JointRow> rows, int dofs) {
 }
 
 void JointProjection::projectDiagonal(std::span<const JointRow> rows, const Eigen::VectorXd& invM,
-                                      Eigen::MatrixXd& W, Eigen::VectorXd& vStar) {
+                                      Eigen::MatrixXd& W, Eigen::VectorXd& vStar,
+                                      Eigen::MatrixXd* multipliers) {
   const int c = static_cast<int>(rows.size()), m = static_cast<int>(W.cols());
   const Eigen::Index n = W.rows();
   findBlocks(rows, static_cast<int>(n));
@@ -214,6 +215,7 @@ void JointProjection::projectDiagonal(std::span<const JointRow> rows, const Eige
                          : Vec3(Vec3::Zero());
   const int blocks = static_cast<int>(start.size()) - 1;
   const int cols = m + 1;  // C W, then C v* + bias
+  if (multipliers) multipliers->resize(c, cols);
   for (int b = 0; b < blocks; ++b) {
     const int first = start[b], size = start[b + 1] - first;
     const int* index = order.data() + first;
@@ -242,6 +244,9 @@ void JointProjection::projectDiagonal(std::span<const JointRow> rows, const Eige
     regularise(blockS.data(), size);
     ldlt.factor(blockS.data(), size);
     ldlt.solveInPlace(blockS.data(), size, blockSolution.data(), cols);
+    if (multipliers)
+      for (int i = 0; i < size; ++i)
+        for (int s = 0; s < cols; ++s) (*multipliers)(index[i], s) = blockSolution[i + s * size];
     // W -= M'^-1 C^T S^-1 C W (and v*): each row adds to its own few dofs.
     for (int i = 0; i < size; ++i) {
       const JointRow& row = rows[index[i]];

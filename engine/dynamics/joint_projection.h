@@ -96,9 +96,13 @@ void withFixedSize(int n, F&& f) {
 /// The projection's buffers, reused across sub-steps (no allocation once the sizes settle).
 class JointProjection {
  public:
-  /// M'^-1 = diag(invM) (0: the dof does not move): block by block, sparse products.
+  /// M'^-1 = diag(invM) (0: the dof does not move): block by block, sparse products. With
+  /// `multipliers`, its row r gets S^-1 C W and S^-1 (C v* + bias) of row r (m + 1 columns, W
+  /// and v* before the projection): row r's impulse for loads f on W's columns is -(last + f .
+  /// the first m), negative where the row pulls its bodies together along -C^T.
   void projectDiagonal(std::span<const JointRow> rows, const Eigen::VectorXd& invM,
-                       Eigen::MatrixXd& W, Eigen::VectorXd& vStar);
+                       Eigen::MatrixXd& W, Eigen::VectorXd& vStar,
+                       Eigen::MatrixXd* multipliers = nullptr);
   /// Any M'^-1, given as X <- M'^-1 X: one dense S.
   void projectDense(std::span<const JointRow> rows,
                     const std::function<void(Eigen::Ref<Eigen::MatrixXd>)>& applyInverseMass,

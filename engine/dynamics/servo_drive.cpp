@@ -2,12 +2,18 @@
 #include "engine/dynamics/servo_drive.h"
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 #include "engine/core/small_qp.h"
 #include "engine/dynamics/disjoint_sets.h"
 
 namespace cablelab {
+
+// A rigid span's row is dropped only once its push passes this share of the impulse it pulled
+// with over the last step: a rope on the edge of slack (a square spool's corner going by) keeps
+// its row, where dropping it for a push of nothing moved the rope's length a little more per step.
+constexpr double kSlackMargin = 0.01;
 
 ServoDrive::ServoDrive(const SceneDef& scene, std::span<const std::array<int, 2>> jointBodies)
     : scene_(scene), forces_(scene.joints.size(), 0.0) {
@@ -73,6 +79,7 @@ void ServoDrive::addCables(std::span<const Cable> cables, std::span<const BodySt
         }
       }
       cableRows_.push_back(row);
+      cablePull_.push_back(tension);
     }
 }
 
@@ -90,10 +97,11 @@ void ServoDrive::solve(std::span<const JointFrame> frames,
   dofList_ = dofBodies_;
   for (size_t i = 0; i < dofList_.size(); ++i) dofOfBody_[dofList_[i]] = 3 * static_cast<int>(i);
   cableRows_.clear();
+  cablePull_.clear();
   addCables(cables, bodies);
   const int dofs = 3 * static_cast<int>(dofList_.size());
   invM_.resize(dofs);
-  vStar_.resize(dofs);
+  vStarFree_.resize(dofs);
   for (size_t i = 0; i < dofList_.size(); ++i) {
     const int b = dofList_[i], d = 3 * static_cast<int>(i);
     const BodyState& s = bodies[b];
@@ -101,26 +109,77 @@ void ServoDrive::solve(std::span<const JointFrame> frames,
     invM_.segment<3>(d) = Vec3(s.invMass, s.invMass, s.invInertia);
     const Vec2 accel =
         s.invMass > 0 ? Vec2(gravity + s.invMass * load.head<2>()) : Vec2(Vec2::Zero());
-    vStar_.segment<3>(d) = Vec3(s.velocity.x() + dt * accel.x(), s.velocity.y() + dt * accel.y(),
-                                s.angularVelocity + dt * s.invInertia * load.z());
+    vStarFree_.segment<3>(d) =
+        Vec3(s.velocity.x() + dt * accel.x(), s.velocity.y() + dt * accel.y(),
+             s.angularVelocity + dt * s.invInertia * load.z());
   }
-  rows_.clear();
-  for (const int j : joints_) appendJointRows(frames[j], bodies, dofOfBody_, rows_);
-  rows_.insert(rows_.end(), cableRows_.begin(), cableRows_.end());
   const int count = static_cast<int>(servos_.size());
   coordinateRows_.clear();
-  W_.setZero(dofs, count);
+  WFree_.setZero(dofs, count);
   for (int s = 0; s < count; ++s) {
     const JointRow row = coordinateRow(frames[servos_[s]], bodies, dofOfBody_);
     for (int k = 0; k < 2; ++k)
       if (row.dof[k] >= 0)
-        W_.col(s).segment<3>(row.dof[k]) = row.coeff[k].cwiseProduct(invM_.segment<3>(row.dof[k]));
+        WFree_.col(s).segment<3>(row.dof[k]) =
+            row.coeff[k].cwiseProduct(invM_.segment<3>(row.dof[k]));
     coordinateRows_.push_back(row);
   }
-  if (!rows_.empty()) projection_.projectDiagonal(rows_, invM_, W_, vStar_);
+  rows_.clear();
+  for (const int j : joints_) appendJointRows(frames[j], bodies, dofOfBody_, rows_);
+  const size_t jointRows = rows_.size();
 
-  // f = b - c qdot1 with qdot1 = qdot* + dt K f: (C^-1 + dt K) f = C^-1 b - qdot*, a symmetric
-  // positive definite system (K = G W, the servos' inverse effective inertia), under |f| <= max.
+  // A rigid span is a row only while it pulls (a complementarity, solved by active set): a row
+  // whose impulse would push is dropped and the forces found again, a dropped span the motion
+  // would stretch comes back. Kept bilateral, a rope gone slack for a step (a weight jerked up
+  // faster than the drum winds) had the force sized for drum and weight spin a light drum to
+  // Box2D's turn limit, and the rope snapped taut and threw the weight (docs/servos.md).
+  cableActive_.assign(cableRows_.size(), 1);
+  const int passes = static_cast<int>(cableRows_.size()) + 1;
+  int pass = 0;
+  for (; pass < passes; ++pass) {
+    rows_.resize(jointRows);
+    for (size_t i = 0; i < cableRows_.size(); ++i)
+      if (cableActive_[i]) rows_.push_back(cableRows_[i]);
+    W_ = WFree_;
+    vStar_ = vStarFree_;
+    if (!rows_.empty())
+      projection_.projectDiagonal(rows_, invM_, W_, vStar_,
+                                  cableRows_.empty() ? nullptr : &multipliers_);
+    solveForces(coordinates, targets, dt);
+    if (cableRows_.empty()) break;
+    if (pass == 0) fAllRows_ = f_;
+    if (!updateActiveCables(jointRows, dt)) break;
+  }
+  // With a span dropped, each servo pushes no harder than that solve says, nor past it in sign:
+  // the force with every row, where it is the weaker one, makes the joint heavier than it is,
+  // which errs on the stable side (docs/servos.md), and leaves a spool whose weight rides over its
+  // top and falls ahead of the rope no faster than before, to be caught with no jerk.
+  if (pass > 0)
+    for (int s = 0; s < count; ++s)
+      if (fAllRows_(s) * f_(s) > 0 && std::abs(fAllRows_(s)) < std::abs(f_(s)))
+        f_(s) = fAllRows_(s);
+
+  // Each servo's load: the coordinate row's coefficients times its force (a torque on both
+  // bodies; a prismatic servo's force at the joint, along the axis).
+  for (int s = 0; s < count; ++s) {
+    const int j = servos_[s];
+    forces_[j] = f_(s);
+    const JointFrame& frame = frames[j];
+    auto unitLoad = [&](int body) {
+      if (frame.kind != JointDef::Kind::Prismatic) return Vec3(0, 0, 1);
+      const Vec2 r = frame.anchor - bodies[body].position;
+      return Vec3(frame.axis.x(), frame.axis.y(), cross(r, frame.axis));
+    };
+    if (frame.bodyB >= 0) loads[frame.bodyB] += f_(s) * unitLoad(frame.bodyB);
+    if (frame.bodyA >= 0) loads[frame.bodyA] -= f_(s) * unitLoad(frame.bodyA);
+  }
+}
+
+// f = b - c qdot1 with qdot1 = qdot* + dt K f: (C^-1 + dt K) f = C^-1 b - qdot*, a symmetric
+// positive definite system (K = G W, the servos' inverse effective inertia), under |f| <= max.
+void ServoDrive::solveForces(std::span<const JointCoordinate> coordinates,
+                             std::span<const double> targets, double dt) {
+  const int count = static_cast<int>(servos_.size());
   Eigen::MatrixXd& A = A_;
   Eigen::VectorXd &rhs = rhs_, &upper = upper_, &f = f_;
   A.resize(count, count);
@@ -152,21 +211,35 @@ void ServoDrive::solve(std::span<const JointFrame> frames,
     f = solveSmallQp(A, -rhs, C, lower, f.cwiseMax(-upper).cwiseMin(upper)).x;
     f = f.cwiseMax(-upper).cwiseMin(upper);
   }
+}
 
-  // Each servo's load: the coordinate row's coefficients times its force (a torque on both
-  // bodies; a prismatic servo's force at the joint, along the axis).
-  for (int s = 0; s < count; ++s) {
-    const int j = servos_[s];
-    forces_[j] = f(s);
-    const JointFrame& frame = frames[j];
-    auto unitLoad = [&](int body) {
-      if (frame.kind != JointDef::Kind::Prismatic) return Vec3(0, 0, 1);
-      const Vec2 r = frame.anchor - bodies[body].position;
-      return Vec3(frame.axis.x(), frame.axis.y(), cross(r, frame.axis));
-    };
-    if (frame.bodyB >= 0) loads[frame.bodyB] += f(s) * unitLoad(frame.bodyB);
-    if (frame.bodyA >= 0) loads[frame.bodyA] -= f(s) * unitLoad(frame.bodyA);
+// The rigid spans' rows after a solve: a kept row whose impulse pushes (its multiplier, from the
+// projection, with the servos' forces f_) is dropped; a dropped row whose span the motion would
+// stretch comes back. Whether the active set changed.
+bool ServoDrive::updateActiveCables(size_t jointRows, double dt) {
+  const int count = static_cast<int>(servos_.size());
+  bool changed = false;
+  size_t row = jointRows;
+  for (size_t i = 0; i < cableRows_.size(); ++i) {
+    if (cableActive_[i]) {
+      // Row r's impulse is -(S^-1 (C v* + bias) + dt S^-1 C W f): it pulls while that is > 0.
+      const double pull = multipliers_(static_cast<Eigen::Index>(row), count) +
+                          dt * multipliers_.row(static_cast<Eigen::Index>(row)).head(count).dot(f_);
+      ++row;
+      if (pull >= -kSlackMargin * cablePull_[i] * dt) continue;
+    } else {
+      const JointRow& r = cableRows_[i];
+      double stretch = r.bias;
+      for (int k = 0; k < 2; ++k)
+        if (r.dof[k] >= 0)
+          stretch +=
+              r.coeff[k].dot(vStar_.segment<3>(r.dof[k]) + dt * W_.middleRows<3>(r.dof[k]) * f_);
+      if (stretch <= 0) continue;
+    }
+    cableActive_[i] = !cableActive_[i];
+    changed = true;
   }
+  return changed;
 }
 
 }  // namespace cablelab

@@ -44,6 +44,9 @@ class ServoDrive {
 
  private:
   void addCables(std::span<const Cable> cables, std::span<const BodyState> bodies);
+  void solveForces(std::span<const JointCoordinate> coordinates, std::span<const double> targets,
+                   double dt);
+  bool updateActiveCables(size_t jointRows, double dt);
 
   const SceneDef& scene_;
   std::vector<int> servos_;     // joints with a servo
@@ -58,6 +61,11 @@ class ServoDrive {
   Eigen::VectorXd invM_, vStar_;
   Eigen::MatrixXd W_, A_;
   Eigen::VectorXd rhs_, upper_, f_;
+  Eigen::VectorXd vStarFree_;  // v* and W before the projection (each active-set pass starts there)
+  Eigen::MatrixXd WFree_, multipliers_;
+  Eigen::VectorXd fAllRows_;       // the forces with every rigid span's row
+  std::vector<double> cablePull_;  // per rigid span's row: its last tension (N)
+  std::vector<char> cableActive_;  // per rigid span's row: kept (it pulls)
   Eigen::LDLT<Eigen::MatrixXd> ldlt_;
 };
 

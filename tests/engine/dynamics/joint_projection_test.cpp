@@ -5,6 +5,8 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <cstdlib>
+#include <vector>
 
 #include "engine/dynamics/joint_limits.h"
 #include "engine/dynamics/joint_projection.h"
@@ -226,6 +228,45 @@ TEST(JointProjection, ARopeOverAWeldedBracketCarriesTheAtwoodTension) {
     EXPECT_LT(std::abs(world.cable(0).stretch()), 1e-6);
     EXPECT_LT(world.body(0).velocity.norm(), 1e-5);
   }
+}
+
+TEST(JointProjection, TheRowsMultipliersAreTheImpulsesThatMakeTheProjectedMotion) {
+  // Two blocks (bodies 0-1 and 2-3), their rows interleaved so block order is not row order,
+  // one with a bias. For loads f on W's columns, the rows' impulses -(S^-1 (C v* + bias) + S^-1
+  // C W f), read off the multipliers, must take the free motion v* + W f to the projected one.
+  std::srand(36);
+  const int dofs = 12, m = 2;
+  Eigen::VectorXd invM = Eigen::VectorXd::Random(dofs).cwiseAbs().array() + 0.2;
+  auto row = [](int a, int b, double bias) {
+    JointRow r;
+    r.dof = {a, b};
+    r.coeff[0] = Vec3::Random();
+    if (b >= 0) r.coeff[1] = Vec3::Random();
+    r.bias = bias;
+    return r;
+  };
+  const std::vector<JointRow> rows = {row(0, 3, 0), row(6, 9, 0), row(3, -1, 0.4), row(9, -1, -0.7),
+                                      row(6, -1, 0)};
+  const Eigen::MatrixXd freeW = Eigen::MatrixXd::Random(dofs, m);
+  const Eigen::VectorXd freeV = Eigen::VectorXd::Random(dofs);
+  Eigen::MatrixXd W = freeW, multipliers;
+  Eigen::VectorXd v = freeV;
+  JointProjection projection;
+  projection.projectDiagonal(rows, invM, W, v, &multipliers);
+  ASSERT_EQ(multipliers.rows(), 5);
+  ASSERT_EQ(multipliers.cols(), m + 1);
+  const Eigen::Vector2d f(0.7, -1.3);
+  Eigen::VectorXd moved = freeV + freeW * f;
+  for (size_t r = 0; r < rows.size(); ++r) {
+    const double impulse = -(multipliers(r, m) + multipliers.row(r).head(m).dot(f));
+    for (int k = 0; k < 2; ++k)
+      if (rows[r].dof[k] >= 0)
+        moved.segment<3>(rows[r].dof[k]) +=
+            impulse * rows[r].coeff[k].cwiseProduct(invM.segment<3>(rows[r].dof[k]));
+  }
+  const Eigen::VectorXd projected = v + W * f;
+  EXPECT_LT((moved - projected).norm(), 1e-9 * projected.norm());
+  for (const JointRow& r : rows) EXPECT_NEAR(r.dot(projected) + r.bias, 0, 1e-9);
 }
 
 // The hand squeezing and moving the box: both projections are the same map, so the fingers,
