@@ -178,7 +178,8 @@ void validateScene(const SceneDef& scene, const std::string& source) {
       check.fail(f + ".limits", "lower limit above upper limit (got [" + formatNumber(j.lower) +
                                     ", " + formatNumber(j.upper) + "])");
     if (j.servo.enabled && j.kind == JointDef::Kind::Weld)
-      check.fail(f + ".servo", "only a revolute or prismatic joint can be driven" + gotValue("weld"));
+      check.fail(f + ".servo",
+                 "only a revolute or prismatic joint can be driven" + gotValue("weld"));
     check.nonNegative(j.servo.kp, f + ".servo.kp");
     check.nonNegative(j.servo.kd, f + ".servo.kd");
     check.finite(j.servo.target, f + ".servo.target");
