@@ -85,8 +85,7 @@ void timePlot(const char* id, const TimeHistory& h, std::initializer_list<PlotLi
     draw->AddText(ImVec2(p0.x + 6, p0.y + 4), IM_COL32(120, 120, 120, 255), "no samples yet");
     return;
   }
-  const int first = (h.head - h.count + TimeHistory::kLength) % TimeHistory::kLength;
-  auto at = [&](int k) { return (first + k) % TimeHistory::kLength; };
+  auto at = [&](int k) { return h.slot(k); };
   const float t0 = h.t[at(0)], t1 = std::max(h.t[at(h.count - 1)], t0 + 1e-3f);
   hi = std::max(hi, lo + 1e-6f);
   const float left = p0.x + 4, right = p1.x - 4, top = p0.y + lh + 3, bottom = p1.y - lh - 1;
@@ -583,11 +582,9 @@ void writeHandHistoryCsv(const HandControlState& h, const std::string& path) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path + ": cannot write the CSV");
   out << "t,top_tension,bottom_tension,error,x,y,target_x,target_y\n";
-  const int first =
-      (h.history.head - h.history.count + TimeHistory::kLength) % TimeHistory::kLength;
   char line[256];
   for (int k = 0; k < h.history.count; ++k) {
-    const int i = (first + k) % TimeHistory::kLength;
+    const int i = h.history.slot(k);
     int n = std::snprintf(line, sizeof line, "%.9g", h.history.t[i]);
     for (const auto& series : h.history.values)
       n += std::snprintf(line + n, sizeof line - n, ",%.9g", series[i]);

@@ -47,6 +47,8 @@ struct TimeHistory {
   explicit TimeHistory(int series = 0);
   void push(float time, const std::vector<float>& sample);
   void clear();
+  /// The slot of the k-th oldest sample kept (0 <= k < count).
+  int slot(int k) const { return (head - count + k + 2 * kLength) % kLength; }
 };
 
 /// Live state of the hand controller (per world; gains survive a reset). The grasp sequence,

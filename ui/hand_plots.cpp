@@ -22,9 +22,8 @@ PlotSeries handSeries(const TimeHistory& h, int index, const std::string& label,
   s.label = label;
   s.colour = colour;
   s.style = dashed ? PlotSeries::Style::Dashed : PlotSeries::Style::Line;
-  const int first = (h.head - h.count + TimeHistory::kLength) % TimeHistory::kLength;
   for (int k = 0; k < h.count; ++k) {
-    const int i = (first + k) % TimeHistory::kLength;
+    const int i = h.slot(k);
     const float v = h.values[index][i];
     if (!std::isfinite(v)) continue;
     s.x.push_back(h.t[i]);

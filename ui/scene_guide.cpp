@@ -1,7 +1,8 @@
 #include "ui/scene_guide.h"
 
-#include <cstdio>
 #include <map>
+
+#include "engine/core/error.h"
 
 namespace cablelab::ui {
 namespace {
@@ -99,14 +100,12 @@ std::string whatToTry(const std::string& name) {
 }
 
 std::string parameterTip(const std::string& description, double value) {
-  char shown[32];
-  std::snprintf(shown, sizeof shown, "%g", value);
   // The unit from the description's last "(...)": "left body mass (kg)" -> "kg".
   const size_t open = description.rfind(" (");
   const std::string unit = open != std::string::npos && description.back() == ')'
                                ? " " + description.substr(open + 2, description.size() - open - 3)
                                : "";
-  return description + "\nDefault " + shown + unit +
+  return description + "\nDefault " + formatNumber(value) + unit +
          ". Let go of the slider to start the scene again with the new value (Ctrl+click to "
          "type one).";
 }
