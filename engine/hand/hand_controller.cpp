@@ -409,7 +409,7 @@ HandJoints HandController::update(const HandJoints& q, const BoxPose& boxPose,
   // Friction: where the box rests against the frictionless statics at the measured joints (zero
   // without friction, the thesis's model). The box's rest pose then depends on its way there;
   // unseen, the offset held the box behind the reference model by leadLimit, so the reference
-  // waited and the box crept (docs/model.md#membrane-friction).
+  // waited and the box crept (docs/control.md#membrane-friction).
   if (model_.friction > 0 && last_.smooth) {
     const Vec2 seen = box - last_.box;
     const double seenAngle = angle - last_.angle;

@@ -4,7 +4,7 @@
 //   dq_u    = A+ (dr - k_p e - k_d de - k_i T sum e_box, gap task)  per outer update (period T),
 //   A+      = W^-1 A^T (A W^-1 A^T + l^2 I)^-1,  A = [db/dq_u; d gap/dq_u]   (4 x 6)
 // Equation (4.4) of the thesis is a joint *rate* from a 2-vector, q_dot = -J+ (k_p' e + k_d b_dot)
-// (docs/model.md#controller); integrated over one period it is a law of this form, k_p the share
+// (docs/control.md#controller); integrated over one period it is a law of this form, k_p the share
 // of the error removed per update (dimensionless, k_p' = k_p / T), k_d dimensionless on the
 // error's change over one period, k_i per update per second (1/s).
 //
@@ -16,7 +16,7 @@
 //    and across the paddles). It speeds up and brakes over twice the box's velocity decay time,
 //    so a target jump becomes a smooth ramp. r waits while the box falls behind the reference
 //    model or the commanded equilibrium behind r.
-//  * r moves along what the joints can deliver (docs/model.md#controller): the box motion of a
+//  * r moves along what the joints can deliver (docs/control.md#controller): the box motion of a
 //    bounded least-squares joint step towards the target, within the joint limits and keeping
 //    every face-on condition `wrapMargin` from failing (braking in time). At the boundary of the
 //    reachable set it turns along the boundary while that still gets closer, so a target outside

@@ -51,7 +51,7 @@ struct HandModel {
   /// (x, y, theta) (docs/hand.md). Off, the box keeps its angle, the thesis's model.
   bool turn = false;
   /// Friction between membrane and box (scene parameter `mu`): each corner a membrane wraps holds
-  /// while T_high <= T_low e^(mu theta_i) (docs/model.md, "Membrane friction"). 0: none, the
+  /// while T_high <= T_low e^(mu theta_i) (docs/control.md, "Membrane friction"). 0: none, the
   /// thesis's model.
   double friction = 0.0;
   std::array<double, 6> lower = {-0.7, -0.6, -0.7, -0.7, -0.6, -0.7};  ///< joint limits (rad, m)

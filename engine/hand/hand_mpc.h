@@ -1,4 +1,4 @@
-// Model-predictive control of the hand (docs/model.md#model-predictive-control): a
+// Model-predictive control of the hand (docs/control.md#model-predictive-control): a
 // receding-horizon alternative to the Jacobian controller (hand_controller.h), on the same
 // quasi-static model.
 //

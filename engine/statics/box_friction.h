@@ -1,5 +1,5 @@
 // Statics of a box that may turn, held by membranes with friction at its corners
-// (docs/model.md#membrane-friction): pose q = (x, y, theta) with stick and slip.
+// (docs/control.md#membrane-friction): pose q = (x, y, theta) with stick and slip.
 //
 // A membrane runs fingertip a -> corner A -> (along the box) -> corner B -> fingertip b. With
 // friction its two free spans carry different tensions: each is a spring of its own unstretched

@@ -56,7 +56,7 @@ TEST(TrackCli, StartPlacesTheGrasp) {
 
 TEST(TrackCli, AngleTargetTurnsTheBox) {
   // A box that may turn (--set turn=1) turned to 0.2 rad while it moves 0.1 m, 0.05 m: measured
-  // 1.3 mm and 0.0002 rad at 15 s (docs/model.md#a-box-that-turns).
+  // 1.3 mm and 0.0002 rad at 15 s (docs/control.md#a-box-that-turns).
   const std::string csv = (std::filesystem::temp_directory_path() /
                            ("cablelab_turn_" + std::to_string(getpid()) + ".csv"))
                               .string();

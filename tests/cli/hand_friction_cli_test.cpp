@@ -45,7 +45,7 @@ TEST(HandFrictionCli, DefaultsLeaveTrackUnchangedToTheBit) {
 }
 
 TEST(HandFrictionCli, TrackTakesMuAndTurn) {
-  // Measured at 15 s: see docs/model.md "Membrane friction".
+  // Measured at 15 s: see docs/control.md "Membrane friction".
   const auto r = test::runCli("track --set mu=0.5 --set turn=1 --target 0.1,0.05,0.2 --pid");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);

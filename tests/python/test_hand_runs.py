@@ -249,7 +249,7 @@ def test_ctrl_c_stops_a_long_reach():
 
 def test_track_law_mpc_arrives_sooner_and_bad_laws_are_errors():
     # MPC against the Jacobian controller (PID) on one target: measured 0.83 s against no arrival
-    # within the 5 s run (docs/model.md#model-predictive-control).
+    # within the 5 s run (docs/control.md#model-predictive-control).
     mpc = cablelab.track(target=(0.2, 0.1), time=5, law="mpc")
     pid = cablelab.track(target=(0.2, 0.1), time=5, pid=True)
     assert mpc["controller"] == "mpc" and pid["controller"] == "jacobian"

@@ -1,5 +1,5 @@
 // The hand with friction between membranes and box (scene parameter `mu`,
-// docs/model.md#membrane-friction): the scene it builds, and simulated runs of a turning box to
+// docs/control.md#membrane-friction): the scene it builds, and simulated runs of a turning box to
 // held-out (x, y, theta) targets.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Model-predictive control of the hand (engine/hand/hand_mpc.h, docs/model.md): its
+// Model-predictive control of the hand (engine/hand/hand_mpc.h, docs/control.md): its
 // linearisation and prediction against finite differences and a step-by-step rollout, its
 // constraints, and the comparison with the Jacobian controller on held-out targets.
 #include <gtest/gtest.h>

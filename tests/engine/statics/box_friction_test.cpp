@@ -1,5 +1,5 @@
 // The turning box held by membranes with friction at its corners (box_friction.h,
-// docs/model.md#membrane-friction): derivatives and sensitivities against finite differences,
+// docs/control.md#membrane-friction): derivatives and sensitivities against finite differences,
 // the capstan bound, and the frictionless limit.
 #include "engine/statics/box_friction.h"
 
