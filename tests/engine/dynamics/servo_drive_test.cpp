@@ -125,6 +125,37 @@ TEST(ServoDrive, ARodConvergesAtAnyGainAndStepAsADampedSystemDoes) {
       }
 }
 
+TEST(ServoDrive, AServosEnergyNeverRisesAtAnyGainStepOrSubSteps) {
+  // A PD servo is a spring and a damper: with no other load, E = I w^2 / 2 + kp e^2 / 2 (I about
+  // the pin) never rises from one step to the next, at any damping ratio (0.2 swings), any gain
+  // and any number of sub-steps; an explicit or late PD gains energy at large kp h^2 / I.
+  for (const double mass : {0.05, 20.0})
+    for (const double kp : {500.0, 1e5, 1e8})
+      for (const double zeta : {0.2, 1.0})
+        for (const double hz : {30.0, 240.0})
+          for (const int substeps : {1, 2, 4}) {
+            const double inertia = mass / 3, kd = 2 * zeta * std::sqrt(kp * inertia);
+            SCOPED_TRACE("m " + std::to_string(mass) + " kp " + std::to_string(kp) + " zeta " +
+                         std::to_string(zeta) + " at " + std::to_string(hz) + " Hz x " +
+                         std::to_string(substeps));
+            World w(rodScene(mass, 1, gains(kp, kd, 1.0, 1e12), false));
+            const auto energy = [&] {
+              const JointState pin = w.joint(0);
+              return 0.5 * inertia * pin.speed * pin.speed +
+                     0.5 * kp * (1 - pin.value) * (1 - pin.value);
+            };
+            double before = energy();
+            int rises = 0;
+            for (int i = 0; i < 30; ++i) {
+              w.step(1 / hz, substeps);
+              const double now = energy();
+              if (now > before * (1 + 1e-6) + 1e-12 * kp) ++rises;
+              before = now;
+            }
+            EXPECT_EQ(rises, 0);
+          }
+}
+
 TEST(ServoDrive, AServoHoldingARodLevelAgainstGravityReportsItsWeightTimesHalfItsLength) {
   // The rod level (target 0) under gravity: the servo holds m g l/2 cos(angle) at rest.
   test::Random rng(36);
