@@ -705,6 +705,28 @@ void controllerAfterStep(Sandbox& sandbox, const World& world) {
     handAfterStep(sandbox, world, *sandbox.controller->hand);
 }
 
+/// The share (0..1) of the arrow from `from` to `to` (m) that stays inside the view (the free
+/// area, a margin for the arrowhead and its label in from its edges); 1 when `from` is outside.
+namespace {
+
+double arrowShareInView(const Sandbox& sandbox, const Vec2& from, const Vec2& to) {
+  const PanelRect f = sandbox.freeArea();
+  const double margin = 24 * std::max(1.0, static_cast<double>(sandbox.uiScale));
+  const Vec2 a = sandbox.camera.toScreen(from), b = sandbox.camera.toScreen(to);
+  const double lo[2] = {f.x + margin, f.y + margin},
+               hi[2] = {f.x + f.width - margin, f.y + f.height - margin};
+  double share = 1;
+  for (int axis = 0; axis < 2; ++axis) {
+    if (a[axis] < lo[axis] || a[axis] > hi[axis] || hi[axis] <= lo[axis]) return 1;
+    const double d = b[axis] - a[axis];
+    if (d > 0 && b[axis] > hi[axis]) share = std::min(share, (hi[axis] - a[axis]) / d);
+    if (d < 0 && b[axis] < lo[axis]) share = std::min(share, (lo[axis] - a[axis]) / d);
+  }
+  return share;
+}
+
+}  // namespace
+
 void controllerOverlay(const Sandbox& sandbox, Overlay& overlay) {
   const World* world = sandbox.world();
   if (!world || !sandbox.controller) return;
@@ -740,9 +762,14 @@ void controllerOverlay(const Sandbox& sandbox, Overlay& overlay) {
     const double weight = world->scene().bodies[m->finger].mass * world->gravity().norm();
     const double reference = weight > 1e-9 ? weight : std::max(n.force.norm(), 1e-9);
     const double metresPerNewton = width / 3 / reference;
+    // Pressed far (the "what to try" drag) the arrow ran out of the top of the view: it stops
+    // at the view's edge instead, its value written by the tip as always.
+    const Vec2 tip = n.p + metresPerNewton * n.force;
+    const double fit = arrowShareInView(sandbox, n.p, tip);
     char text[96];
-    std::snprintf(text, sizeof text, "model F %.3g N", n.force.norm());
-    overlay.arrows.push_back({n.p, n.p + metresPerNewton * n.force, text, kForceColour});
+    std::snprintf(text, sizeof text,
+                  fit < 1 ? "model F %.3g N (arrow cut to fit)" : "model F %.3g N", n.force.norm());
+    overlay.arrows.push_back({n.p, n.p + fit * (tip - n.p), text, kForceColour});
     overlay.keys.push_back({Overlay::Key::Marker::Arrow, "membrane model force", kForceColour});
   }
 }

@@ -462,6 +462,9 @@ TEST(Lecture, TourOfTheOtherScenesAtBothSizes) {
   for (const auto& v : j["views"]) {
     const std::string name = v["name"], where = name + " " + v["screenshot"].get<std::string>();
     shots[name] = v["screenshot"];
+    const Box free{v["free"][0], v["free"][1],
+                   v["free"][0].get<double>() + v["free"][2].get<double>(),
+                   v["free"][1].get<double>() + v["free"][3].get<double>()};
     // Fitted: when the scene opens (1280x720) and when the window grows (1920x1080).
     expectReadable(v, name.find("-start") != std::string::npos ||
                           name.find("-1080-paused") != std::string::npos);
@@ -485,6 +488,15 @@ TEST(Lecture, TourOfTheOtherScenesAtBothSizes) {
       const Box scene = boxes(nlohmann::json::array({v["scene"]}))[0];
       EXPECT_FALSE(key.overlaps(scene)) << "the key covers the scene: " << where;
     }
+    // Every arrow, target mark and leader line in the view (the membrane's model-force arrow
+    // after its "what to try" drag ran 900 px out of the top of a 1280x720 view).
+    for (const auto& line : v["overlay_lines"])
+      for (int e = 0; e < 2; ++e) {
+        const double x = line[2 * e], y = line[2 * e + 1];
+        EXPECT_TRUE(x >= free.x0 - kEdge && x <= free.x1 + kEdge && y >= free.y0 - kEdge &&
+                    y <= free.y1 + kEdge)
+            << line << " leaves the view: " << where;
+      }
     // No arrow, target mark or leader line across the bars.
     for (const char* bar : {"scale_bar", "colour_bar"})
       if (!v[bar].is_null())
