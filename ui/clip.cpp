@@ -32,7 +32,7 @@ bool mp4Available() {
 }
 
 double defaultClipFps(ClipFormat format) {
-  return format == ClipFormat::Gif ? 15 : 30;
+  return format == ClipFormat::Gif ? 10 : 30;
 }
 
 double maxClipFps(ClipFormat format) {

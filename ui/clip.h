@@ -37,9 +37,10 @@ bool mp4Available();
 /// The sentence shown when an MP4 is asked for and this build has no FFmpeg.
 extern const char* const kNoMp4;
 
-/// The frame rate a window clip gets unless the user picks one: MP4 30 fps; GIF 15 fps, the
-/// usual rate for GIF animations (a GIF stores every frame's moving edges again, so half the
-/// frames make about half the file; the time stamp is each frame's own simulated time).
+/// The frame rate a window clip gets unless the user picks one: MP4 30 fps; GIF 10 fps, the
+/// rate screen recorders give GIF animations (a GIF stores every frame's moving edges again:
+/// 4.7 s of the hexagon turning in a 1280x720 window are 346 kB at 15 fps, 245 kB at 10 fps;
+/// the time stamp is each frame's own simulated time). A GIF is the fallback: MP4 keeps 30.
 double defaultClipFps(ClipFormat format);
 
 /// The largest frame rate a format plays back faithfully (GIF: whole centiseconds of delay,

@@ -36,6 +36,9 @@ struct PlotLine {
   int series;
   ImU32 colour;
   bool dashed = false;  ///< targets are dashed
+  /// Where the dashes start (px along the line): a dashed line over another dashed line at an
+  /// offset of half a period fills its gaps, so both colours show where the two are equal.
+  float dashPhase = 0;
 };
 
 constexpr float kSmallestErrorRange = 0.05f, kSmallestXyRange = 0.2f;  // m
@@ -52,14 +55,15 @@ float fittedRange(const TimeHistory& h, std::initializer_list<PlotLine> lines, f
   return range;
 }
 
-void dashedPolyline(ImDrawList* draw, const std::vector<ImVec2>& run, ImU32 colour) {
-  float phase = 0;
+constexpr float kDashPeriod = 10, kDashLength = 6;  // px
+
+void dashedPolyline(ImDrawList* draw, const std::vector<ImVec2>& run, ImU32 colour, float phase) {
   for (size_t k = 1; k < run.size(); ++k) {
     const ImVec2 a = run[k - 1], b = run[k];
     const float len = std::hypot(b.x - a.x, b.y - a.y);
     if (len <= 0) continue;
-    for (float s = -std::fmod(phase, 10.0f); s < len; s += 10) {
-      const float s0 = std::max(s, 0.0f), s1 = std::min(s + 6, len);
+    for (float s = -std::fmod(phase, kDashPeriod); s < len; s += kDashPeriod) {
+      const float s0 = std::max(s, 0.0f), s1 = std::min(s + kDashLength, len);
       if (s1 > s0)
         draw->AddLine(ImVec2(a.x + (b.x - a.x) * s0 / len, a.y + (b.y - a.y) * s0 / len),
                       ImVec2(a.x + (b.x - a.x) * s1 / len, a.y + (b.y - a.y) * s1 / len), colour,
@@ -69,10 +73,31 @@ void dashedPolyline(ImDrawList* draw, const std::vector<ImVec2>& run, ImU32 colo
   }
 }
 
+/// The legend of a time plot: the range, then each line's label in its colour, left to right
+/// a text gap apart, on as many rows as the plot's width needs (at twice the text size the
+/// labels ran into each other). Returns the rows used; `labels` gets each text's rectangle.
+int timePlotLegend(ImDrawList* draw, const ImVec2& p0, float width, const char* range,
+                   std::initializer_list<PlotLine> lines, std::vector<PanelRect>* labels) {
+  const float lh = ImGui::GetTextLineHeight(), gap = 0.6f * lh, left = p0.x + 4;
+  float x = left, y = p0.y + 1;
+  int rows = 1;
+  auto place = [&](const char* text, ImU32 colour) {
+    const ImVec2 size = ImGui::CalcTextSize(text);
+    if (x > left && x + size.x > p0.x + width - 4) x = left, y += lh, ++rows;
+    draw->AddText(ImVec2(x, y), colour, text);
+    if (labels) labels->push_back({x, y, size.x, size.y});
+    x += size.x + gap;
+  };
+  place(range, IM_COL32(90, 90, 90, 255));
+  for (const PlotLine& l : lines) place(l.label, l.colour);
+  return rows;
+}
+
 /// Series of `h` against time over [lo, hi] (a fixed range from the caller: the plot does not
-/// jump as samples come and go), with a legend line above.
+/// jump as samples come and go), with a legend above (`labels`: its texts' rectangles).
 void timePlot(const char* id, const TimeHistory& h, std::initializer_list<PlotLine> lines,
-              const char* unit, float height, float lo, float hi) {
+              const char* unit, float height, float lo, float hi,
+              std::vector<PanelRect>* labels = nullptr) {
   const float width = ImGui::GetContentRegionAvail().x;
   const float lh = ImGui::GetTextLineHeight();
   const ImVec2 p0 = ImGui::GetCursorScreenPos();
@@ -88,7 +113,10 @@ void timePlot(const char* id, const TimeHistory& h, std::initializer_list<PlotLi
   auto at = [&](int k) { return h.slot(k); };
   const float t0 = h.t[at(0)], t1 = std::max(h.t[at(h.count - 1)], t0 + 1e-3f);
   hi = std::max(hi, lo + 1e-6f);
-  const float left = p0.x + 4, right = p1.x - 4, top = p0.y + lh + 3, bottom = p1.y - lh - 1;
+  char text[96];
+  std::snprintf(text, sizeof text, "%g .. %g %s", lo, hi, unit);
+  const int rows = timePlotLegend(draw, p0, width, text, lines, labels);
+  const float left = p0.x + 4, right = p1.x - 4, top = p0.y + rows * lh + 3, bottom = p1.y - lh - 1;
   auto map = [&](float t, float v) {
     return ImVec2(left + (t - t0) / (t1 - t0) * (right - left),
                   bottom - (v - lo) / (hi - lo) * (bottom - top));
@@ -99,7 +127,7 @@ void timePlot(const char* id, const TimeHistory& h, std::initializer_list<PlotLi
   auto flush = [&](const PlotLine& l) {
     if (run.size() >= 2) {
       if (l.dashed)
-        dashedPolyline(draw, run, l.colour);
+        dashedPolyline(draw, run, l.colour, l.dashPhase);
       else
         draw->AddPolyline(run.data(), static_cast<int>(run.size()), l.colour, 0, 1.5f);
     }
@@ -138,14 +166,6 @@ void timePlot(const char* id, const TimeHistory& h, std::initializer_list<PlotLi
     }
     emit();
     flush(l);
-  }
-  char text[96];
-  std::snprintf(text, sizeof text, "%g .. %g %s", lo, hi, unit);
-  draw->AddText(ImVec2(p0.x + 4, p0.y + 1), IM_COL32(90, 90, 90, 255), text);
-  float x = p0.x + 8 + ImGui::CalcTextSize(text).x;
-  for (const PlotLine& l : lines) {
-    draw->AddText(ImVec2(x, p0.y + 1), l.colour, l.label);
-    x += ImGui::CalcTextSize(l.label).x + 8;
   }
   std::snprintf(text, sizeof text, "t %.1f .. %.1f s", t0, t1);
   draw->AddText(ImVec2(p0.x + 4, bottom + 1), IM_COL32(90, 90, 90, 255), text);
@@ -411,22 +431,27 @@ void handPanel(Sandbox& sandbox, HandControlState& h) {
 
   const float lh = ImGui::GetTextLineHeight();
   const float tensionTop = static_cast<float>(sandbox.tensionScale);
-  timePlot("##tensions", h.history,
-           {{"top", 0, IM_COL32(200, 60, 30, 255)}, {"bottom", 1, IM_COL32(40, 90, 200, 255)}},
-           "N tension", 6 * lh, 0, tensionTop);
-  tooltip("Membrane tensions; the range is the colour bar's.");
+  // The bottom membrane's line dashed over the top one's: in a grasp the two are equal, and a
+  // solid line over another hid it (as the exported charts, ui/hand_plots.cpp).
+  h.plotLabels.clear();
+  timePlot(
+      "##tensions", h.history,
+      {{"top", 0, IM_COL32(200, 60, 30, 255)}, {"bottom", 1, IM_COL32(40, 90, 200, 255), true}},
+      "N tension", 6 * lh, 0, tensionTop, &h.plotLabels);
+  tooltip("Membrane tensions; the range is the colour bar's, the bottom membrane's dashed.");
   h.errorRange = fittedRange(h.history, {{"", 2, 0}}, kSmallestErrorRange);
   timePlot("##error", h.history, {{"|box - target|", 2, IM_COL32(170, 20, 120, 255)}}, "m", 5 * lh,
-           0, h.errorRange);
+           0, h.errorRange, &h.plotLabels);
   tooltip("Tracking error; the range fits the last 15 s.");
   h.xyRange =
       fittedRange(h.history, {{"", 3, 0}, {"", 4, 0}, {"", 5, 0}, {"", 6, 0}}, kSmallestXyRange);
+  // The two targets' dashes half a period apart: where both are 0, both colours show.
   timePlot("##xy", h.history,
            {{"x", 3, IM_COL32(200, 90, 0, 255)},
             {"y", 4, IM_COL32(0, 130, 90, 255)},
             {"x target", 5, IM_COL32(200, 90, 0, 255), true},
-            {"y target", 6, IM_COL32(0, 130, 90, 255), true}},
-           "m", 7 * lh, -h.xyRange, h.xyRange);
+            {"y target", 6, IM_COL32(0, 130, 90, 255), true, kDashPeriod / 2}},
+           "m", 7 * lh, -h.xyRange, h.xyRange, &h.plotLabels);
   tooltip("Box x and y against time, the targets dashed.");
   if (ImGui::SmallButton("Export CSV")) {
     const std::string name = "cablelab-hand-plots.csv";
@@ -680,6 +705,28 @@ void controllerAfterStep(Sandbox& sandbox, const World& world) {
     handAfterStep(sandbox, world, *sandbox.controller->hand);
 }
 
+/// The share (0..1) of the arrow from `from` to `to` (m) that stays inside the view (the free
+/// area, a margin for the arrowhead and its label in from its edges); 1 when `from` is outside.
+namespace {
+
+double arrowShareInView(const Sandbox& sandbox, const Vec2& from, const Vec2& to) {
+  const PanelRect f = sandbox.freeArea();
+  const double margin = 24 * std::max(1.0, static_cast<double>(sandbox.uiScale));
+  const Vec2 a = sandbox.camera.toScreen(from), b = sandbox.camera.toScreen(to);
+  const double lo[2] = {f.x + margin, f.y + margin},
+               hi[2] = {f.x + f.width - margin, f.y + f.height - margin};
+  double share = 1;
+  for (int axis = 0; axis < 2; ++axis) {
+    if (a[axis] < lo[axis] || a[axis] > hi[axis] || hi[axis] <= lo[axis]) return 1;
+    const double d = b[axis] - a[axis];
+    if (d > 0 && b[axis] > hi[axis]) share = std::min(share, (hi[axis] - a[axis]) / d);
+    if (d < 0 && b[axis] < lo[axis]) share = std::min(share, (lo[axis] - a[axis]) / d);
+  }
+  return share;
+}
+
+}  // namespace
+
 void controllerOverlay(const Sandbox& sandbox, Overlay& overlay) {
   const World* world = sandbox.world();
   if (!world || !sandbox.controller) return;
@@ -715,9 +762,14 @@ void controllerOverlay(const Sandbox& sandbox, Overlay& overlay) {
     const double weight = world->scene().bodies[m->finger].mass * world->gravity().norm();
     const double reference = weight > 1e-9 ? weight : std::max(n.force.norm(), 1e-9);
     const double metresPerNewton = width / 3 / reference;
+    // Pressed far (the "what to try" drag) the arrow ran out of the top of the view: it stops
+    // at the view's edge instead, its value written by the tip as always.
+    const Vec2 tip = n.p + metresPerNewton * n.force;
+    const double fit = arrowShareInView(sandbox, n.p, tip);
     char text[96];
-    std::snprintf(text, sizeof text, "model F %.3g N", n.force.norm());
-    overlay.arrows.push_back({n.p, n.p + metresPerNewton * n.force, text, kForceColour});
+    std::snprintf(text, sizeof text,
+                  fit < 1 ? "model F %.3g N (arrow cut to fit)" : "model F %.3g N", n.force.norm());
+    overlay.arrows.push_back({n.p, n.p + fit * (tip - n.p), text, kForceColour});
     overlay.keys.push_back({Overlay::Key::Marker::Arrow, "membrane model force", kForceColour});
   }
 }

@@ -82,6 +82,8 @@ struct HandControlState {
   Vec2 rampFrom = Vec2::Zero(), rampTo = Vec2(0.1, 0.1);
   std::optional<Vec2> rampLast;  ///< the target the ramp set last (a different one: a click)
   PanelRect exportPngButton;     ///< screen rectangle of the plots' "Export PNG" (px)
+  /// Screen rectangles of the plots' legend texts, as last drawn (px): no two may overlap.
+  std::vector<PanelRect> plotLabels;
   /// The box's target angle (rad) when it may turn (model.turn, the scene's turn=1): the field
   /// in the panel, or the handle on the target marker's arm in the view.
   double targetAngle = 0;

@@ -579,10 +579,15 @@ bool LectureScript::handExport(Sandbox& sandbox, int frame) {
   if (frame < kRunFrames) return true;
   const PanelRect& b = h->exportPngButton;
   const Vec2 centre(b.x + 0.5 * b.width, b.y + 0.5 * b.height);
-  if (sandbox.message.rfind("saved", 0) == 0 || frame > kRunFrames + 120) {
+  if ((clickStage_ == 2 && sandbox.message.rfind("saved", 0) == 0) || frame > kRunFrames + 120) {
+    const PanelRect free = sandbox.freeArea();
     report_ = "{\"scenario\": \"hand-export\", \"message\": " + jsonQuoted(sandbox.message) +
               ", \"error\": " + jsonQuoted(sandbox.error) +
-              ", \"tension_scale\": " + jsonNumber(sandbox.tensionScale) + "}";
+              ", \"tension_scale\": " + jsonNumber(sandbox.tensionScale) +
+              ", \"plot_labels\": " + plotLabels_ +
+              ", \"plots_screenshot\": " + jsonQuoted(out_ + "-thumbnails.png") + ", \"free\": [" +
+              jsonNumber(free.x) + ", " + jsonNumber(free.y) + ", " + jsonNumber(free.width) +
+              ", " + jsonNumber(free.height) + "]}";
     return false;
   }
   if (clickStage_ == 1) {  // pressed last frame: let go (Dear ImGui needs two frames for a click)
@@ -602,8 +607,23 @@ bool LectureScript::handExport(Sandbox& sandbox, int frame) {
     SDL_PushEvent(&wheel);
     return true;
   }
+  if (plotLabels_.empty() && pointerAway_ < 10) {  // the pointer off the plots (no tooltip)
+    movePointer(windowId_, Vec2(free.x + 0.5 * free.width, free.y + 0.5 * free.height));
+    ++pointerAway_;
+    return true;
+  }
+  if (plotLabels_.empty()) {  // the thumbnails in view above the button: their picture first
+    std::vector<std::string> rects;
+    for (const PanelRect& r : h->plotLabels)
+      rects.push_back("[" + jsonNumber(r.x) + ", " + jsonNumber(r.y) + ", " +
+                      jsonNumber(r.x + r.width) + ", " + jsonNumber(r.y + r.height) + "]");
+    plotLabels_ = jsonList(rects);
+    snapshot(sandbox, "thumbnails");
+    return true;
+  }
   movePointer(windowId_, centre);
   mouse(SDL_MOUSEBUTTONDOWN, centre);
+  sandbox.message.clear();  // the screenshot's "saved": the export's comes next
   clickStage_ = 1;
   return true;
 }

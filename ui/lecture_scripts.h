@@ -32,8 +32,9 @@
 //                 the window's size and text size (--ui-scale); reports each view (with the panels'
 //                 rectangles: a collapsed Inspector is its title bar)
 //   hand-export   the hand: 2.5 s of control, then the wheel over the Simulation panel until the
-//                 Controller section's "Export PNG" is in view and a click on it; reports the
-//                 message shown (the files written in the working directory)
+//                 Controller section's "Export PNG" is in view, a screenshot of the thumbnails
+//                 above it (OUT-thumbnails.png) and a click on it; reports the message shown (the
+//                 files written in the working directory) and the thumbnails' legend rectangles
 //
 // Needs: an SDL video subsystem (the sandbox's Window), a Sandbox with a loaded scene.
 #pragma once
@@ -94,6 +95,8 @@ class LectureScript {
   double lowest_ = 1e300, highest_ = -1e300, largest_ = 0;
   int bannerFrames_ = 0;
   int clickStage_ = 0;                ///< hand-export: 0 not yet, 1 pressed, 2 released
+  std::string plotLabels_;            ///< hand-export: the thumbnails' legend texts (JSON)
+  int pointerAway_ = 0;               ///< hand-export: frames the pointer was off the plots
   int width_ = 0, height_ = 0;        ///< present: the window's size before the resize
   std::vector<std::string> banners_;  ///< tour: every banner shown, "scene: text"
   std::string shotName_;              ///< tour: the screenshot's name, "scene-what"

@@ -75,15 +75,29 @@ void PlotBoard::addSample(double time, const std::vector<std::vector<double>>& v
   while (times_.size() > 1 && time - times_.front() > kKeptSeconds + 1e-9) popFront();
 }
 
-void PlotBoard::addCurve(size_t chart, const Quantity& q) {
+size_t PlotBoard::addCurve(size_t chart, const Quantity& q) {
+  // Newtons and metres on one axis ("value (N, m)") read as neither: one unit per chart.
+  const std::string unit = quantityUnit(q.kind);
+  auto sameUnit = [&](const Chart& c) {
+    return c.curves.empty() || quantityUnit(c.curves[0].kind) == unit;
+  };
+  if (chart < charts.size() && !sameUnit(charts[chart])) {
+    chart = charts.size();
+    for (size_t i = charts.size(); i-- > 0;)
+      if (sameUnit(charts[i])) {
+        chart = i;
+        break;
+      }
+  }
   if (chart >= charts.size()) {
     charts.emplace_back();
     chart = charts.size() - 1;
   }
   Chart& c = charts[chart];
-  if (std::find(c.curves.begin(), c.curves.end(), q) != c.curves.end()) return;
+  if (std::find(c.curves.begin(), c.curves.end(), q) != c.curves.end()) return chart;
   c.curves.push_back(q);
   c.values.emplace_back(times_.size(), std::numeric_limits<double>::quiet_NaN());
+  return chart;
 }
 
 void PlotBoard::removeCurve(size_t chart, size_t curve) {

@@ -36,8 +36,10 @@ class PlotBoard {
   /// Adds samples taken at `time` (s): values[chart][curve]. A time at or before the newest
   /// kept one starts a new run there (a rewound world played on): the later samples go.
   void addSample(double time, const std::vector<std::vector<double>>& values);
-  /// Adds `q` to chart `chart` (charts.size(): a new chart); earlier samples are NaN.
-  void addCurve(size_t chart, const Quantity& q);
+  /// Adds `q` to chart `chart` (charts.size(): a new chart); earlier samples are NaN. A chart
+  /// has one unit on its axis: a quantity in another unit goes to the last chart in its unit,
+  /// or a new one. Returns the chart it went to.
+  size_t addCurve(size_t chart, const Quantity& q);
   /// Removes a curve (and its chart when it was the last).
   void removeCurve(size_t chart, size_t curve);
   const std::deque<double>& times() const { return times_; }

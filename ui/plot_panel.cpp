@@ -48,9 +48,17 @@ void picker(Sandbox& sandbox, const World& world) {
   tooltip("Plot it in a chart of its own.");
   if (!board.charts.empty()) {
     ImGui::SameLine();
-    if (ImGui::SmallButton("Add to last chart"))
-      board.addCurve(board.charts.size() - 1, options[chosen]);
-    tooltip("Plot it with the last chart's curves (same time axis).");
+    if (ImGui::SmallButton("Add to last chart")) {
+      const size_t last = board.charts.size() - 1;
+      const std::string lastUnit = quantityUnit(board.charts[last].curves[0].kind);
+      if (board.addCurve(last, options[chosen]) != last)
+        sandbox.message = quantityName(world, options[chosen]) + " is in " +
+                          quantityUnit(options[chosen].kind) + ", the last chart in " + lastUnit +
+                          ": it has a chart of its own";
+    }
+    tooltip(
+        "Plot it with the last chart's curves (same time axis); a quantity in another unit "
+        "gets a chart of its own, so each chart's axis has one unit.");
   }
 }
 

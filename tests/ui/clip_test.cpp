@@ -169,7 +169,7 @@ std::pair<int, bool> gifFramesAndOnePalette(const std::string& path) {
 
 TEST(RecordCli, ClipsAreAFractionOfTheOldGifs) {
   const auto dir = outputDir("clip");
-  // GIFs at the window's GIF rate (ui/clip.h, defaultClipFps), MP4 at its own.
+  // GIFs at 15 fps (the window's GIF rate before it was 10), MP4 at the window's 30.
   auto record = [&](const std::string& scene, const std::string& name) {
     const std::string fps = ui::clipFormatFor(name) == ui::ClipFormat::Gif ? "15" : "30";
     const RunResult r = run(std::string(CABLELAB_CLI) + " record " + scene + " --time 4.7 " +

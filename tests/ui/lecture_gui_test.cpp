@@ -312,6 +312,8 @@ int pixelsNear(const ui::Image& image, int r, int g, int b) {
   return n;
 }
 
+void expectThumbnailsReadable(const nlohmann::json& j, const std::string& size);
+
 // The hand's plots for a slide: the Controller section's "Export PNG" wrote a copy of the
 // panel's thumbnails (520 x 492 px at projector scale, no ticks, no title, the top membrane's
 // tension hidden under the bottom one's). Now three charts at 1920 x 1080, both membranes seen.
@@ -321,7 +323,8 @@ TEST(Lecture, HandPlotsExportAtSlideSizeWithBothMembranes) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const RunResult r = run("cd " + dir.string() + " && " + kXvfb1080 + std::string(CABLELAB_CLI) +
-                              " gui hand --size 1920x1080 --ui-scale 2 --script hand-export",
+                              " gui hand --size 1920x1080 --ui-scale 2 --script hand-export" +
+                              " --script-out " + (dir / "panel").string(),
                           "lecture_hand_export");
   const auto j = jsonReport(r);
   ASSERT_TRUE(j.contains("message")) << j.dump();
@@ -340,6 +343,51 @@ TEST(Lecture, HandPlotsExportAtSlideSizeWithBothMembranes) {
   std::cout << "top membrane " << top << " px, bottom " << bottom << " px\n";
   EXPECT_GT(top, 2000);
   EXPECT_GT(bottom, 2000);
+  expectThumbnailsReadable(j, "1920x1080");
+}
+
+/// The hand's panel thumbnails at projector scale as the hand-export script saw them: every
+/// legend text inside the panel and apart from the others (at twice the text size they ran
+/// into each other and past the plot), and both membranes' lines seen in the tension plot
+/// (its legend's first three texts; the error plot's range text below it).
+void expectThumbnailsReadable(const nlohmann::json& j, const std::string& size) {
+  ASSERT_TRUE(j.contains("plot_labels")) << size << ": " << j.dump();
+  const std::vector<Box> labels = boxes(j["plot_labels"]);
+  ASSERT_EQ(labels.size(), 10u) << size;  // 3 + 2 + 5 texts
+  const double panelRight = j["free"][0];
+  for (size_t a = 0; a < labels.size(); ++a) {
+    EXPECT_LE(labels[a].x1, panelRight - kEdge) << size << ": legend text " << a;
+    for (size_t b = a + 1; b < labels.size(); ++b)
+      EXPECT_FALSE(labels[a].overlaps(labels[b])) << size << ": legend texts " << a << ", " << b;
+  }
+  const ui::Image shot = ui::readPng(j["plots_screenshot"].get<std::string>());
+  ui::Image plot;
+  plot.width = static_cast<int>(panelRight - labels[0].x0);
+  plot.height = static_cast<int>(labels[3].y0 - std::max(labels[1].y1, labels[2].y1));
+  ASSERT_GT(plot.height, 20) << size;
+  plot.rgba.resize(static_cast<size_t>(plot.width) * plot.height * 4);
+  for (int y = 0; y < plot.height; ++y)
+    for (int x = 0; x < plot.width; ++x)
+      std::copy_n(shot.pixel(static_cast<int>(labels[0].x0) + x,
+                             static_cast<int>(std::max(labels[1].y1, labels[2].y1)) + y),
+                  4, plot.pixel(x, y));
+  // Equal tensions: the bottom's line dashed over the top's, so both colours show (the top's in
+  // the dashes' gaps, 4 px in 10; a solid line over it left a few edge pixels).
+  const int top = pixelsNear(plot, 200, 60, 30), bottom = pixelsNear(plot, 40, 90, 200);
+  std::cout << size << " thumbnail: top membrane " << top << " px, bottom " << bottom << " px\n";
+  EXPECT_GT(top, plot.width / 5) << size;
+  EXPECT_GT(bottom, plot.width / 2) << size;
+}
+
+TEST(Lecture, HandThumbnailsAtProjectorScaleOnALaptopScreen) {
+  REQUIRE_XVFB();
+  const auto dir = outputDir("lecture") / "hand-thumbnails";
+  std::filesystem::create_directories(dir);
+  const RunResult r = run("cd " + dir.string() + " && " + kXvfb1080 + std::string(CABLELAB_CLI) +
+                              " gui hand --size 1280x720 --ui-scale 2 --script hand-export" +
+                              " --script-out " + (dir / "panel").string(),
+                          "lecture_hand_thumbnails");
+  expectThumbnailsReadable(jsonReport(r), "1280x720");
 }
 
 TEST(Lecture, GraspSequenceRaisesNoBanner) {
@@ -414,6 +462,9 @@ TEST(Lecture, TourOfTheOtherScenesAtBothSizes) {
   for (const auto& v : j["views"]) {
     const std::string name = v["name"], where = name + " " + v["screenshot"].get<std::string>();
     shots[name] = v["screenshot"];
+    const Box free{v["free"][0], v["free"][1],
+                   v["free"][0].get<double>() + v["free"][2].get<double>(),
+                   v["free"][1].get<double>() + v["free"][3].get<double>()};
     // Fitted: when the scene opens (1280x720) and when the window grows (1920x1080).
     expectReadable(v, name.find("-start") != std::string::npos ||
                           name.find("-1080-paused") != std::string::npos);
@@ -437,6 +488,15 @@ TEST(Lecture, TourOfTheOtherScenesAtBothSizes) {
       const Box scene = boxes(nlohmann::json::array({v["scene"]}))[0];
       EXPECT_FALSE(key.overlaps(scene)) << "the key covers the scene: " << where;
     }
+    // Every arrow, target mark and leader line in the view (the membrane's model-force arrow
+    // after its "what to try" drag ran 900 px out of the top of a 1280x720 view).
+    for (const auto& line : v["overlay_lines"])
+      for (int e = 0; e < 2; ++e) {
+        const double x = line[2 * e], y = line[2 * e + 1];
+        EXPECT_TRUE(x >= free.x0 - kEdge && x <= free.x1 + kEdge && y >= free.y0 - kEdge &&
+                    y <= free.y1 + kEdge)
+            << line << " leaves the view: " << where;
+      }
     // No arrow, target mark or leader line across the bars.
     for (const char* bar : {"scale_bar", "colour_bar"})
       if (!v[bar].is_null())

@@ -58,6 +58,29 @@ TEST(PlotBoard, TheRangeShrinksBackAfterAnOutlierLeavesTheView) {
   EXPECT_LE(board.times().back() - board.times().front(), PlotBoard::kKeptSeconds);
 }
 
+// Issue 38: a tension added to a chart of positions drew both on one axis, "value (N, m)". Each
+// unit has its own chart now: a quantity in another unit goes to the last chart in its unit.
+TEST(PlotBoard, EachChartsAxisHasOneUnit) {
+  Sandbox sandbox(800, 600);
+  ASSERT_TRUE(sandbox.open("pulley"));
+  PlotBoard& board = *sandbox.plots;
+  EXPECT_EQ(board.addCurve(0, {Quantity::Kind::Tension, 0, 0}), 0u);
+  EXPECT_EQ(board.addCurve(0, {Quantity::Kind::Y, 1, 0}), 1u);  // metres: a chart of its own
+  EXPECT_EQ(board.addCurve(1, {Quantity::Kind::Y, 2, 0}), 1u);  // metres with metres
+  EXPECT_EQ(board.addCurve(1, {Quantity::Kind::Length, 0, 0}), 1u);
+  EXPECT_EQ(board.addCurve(1, {Quantity::Kind::SpanTension, 0, 1}), 0u);  // back to the newtons
+  ASSERT_EQ(board.charts.size(), 2u);
+  EXPECT_EQ(board.charts[0].curves.size(), 2u);
+  EXPECT_EQ(board.charts[1].curves.size(), 3u);
+  for (int i = 0; i < 3; ++i) board.addSample(i * kDt, {{1, 2}, {3, 4, 5}});
+  const World& world = *sandbox.world();
+  const std::string newtons = board.plot(board.charts[0], world, 2 * kDt).yLabel,
+                    metres = board.plot(board.charts[1], world, 2 * kDt).yLabel;
+  EXPECT_EQ(newtons, "tension (N)");
+  EXPECT_NE(metres.find("(m)"), std::string::npos) << metres;
+  EXPECT_EQ(metres.find(','), std::string::npos) << metres;
+}
+
 TEST(PlotBoard, ARewoundRunPlayedOnReplacesTheLaterSamples) {
   PlotBoard board;
   board.addCurve(0, {Quantity::Kind::Energy, -1, 0});
