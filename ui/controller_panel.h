@@ -35,21 +35,9 @@
 #include "engine/membrane/membrane_model.h"
 #include "ui/overlay.h"
 #include "ui/sandbox.h"
+#include "ui/time_plot.h"
 
 namespace cablelab::ui {
-
-/// Fixed-length history of samples against time (oldest overwritten), for the live plots.
-struct TimeHistory {
-  static constexpr int kLength = 900;      ///< samples (15 s at the default 60 Hz)
-  std::vector<float> t;                    ///< s
-  std::vector<std::vector<float>> values;  ///< one ring per series, NaN = no value
-  int head = 0, count = 0;
-  explicit TimeHistory(int series = 0);
-  void push(float time, const std::vector<float>& sample);
-  void clear();
-  /// The slot of the k-th oldest sample kept (0 <= k < count).
-  int slot(int k) const { return (head - count + k + 2 * kLength) % kLength; }
-};
 
 /// Live state of the hand controller (per world; gains survive a reset). The grasp sequence,
 /// the outer loop and the grasp-loss detection are the engine's (engine/hand/hand_grasp.h, the
