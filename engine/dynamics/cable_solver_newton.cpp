@@ -18,6 +18,9 @@ constexpr int kNewtonIterations = 3;  // on the end-of-step lengths; geometry is
 // With redundant rows Newton runs on J0 W (a chord method): it converges linearly, not
 // quadratically, and a fast catch needs more steps (a puck at 50 m/s: 29 mm stretch after 3).
 constexpr int kChordIterations = 12;
+// m: a body this far inside an elastic cable's floor came in while the cable was slack (floors.h,
+// staysSlack); one less deep sank in by the step's linearisation (a hand's tendons, 0.5 mm).
+constexpr double kCameInsideFloor = 0.1 * kFloorLength;
 
 // Warm start: a cable's tension changes little from one sub-step to the next, so Newton starts
 // from the impulses of the last solve when it had the same h and nothing has set the tension
@@ -66,7 +69,11 @@ void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable>
     else
       for (int k = row.first; k <= row.last; ++k) phi += c.spanStretch(k);
     ws.phi0[r] = phi;
-    if (!c.elastic() || seg >= 0) {
+    if (seg >= 0 && c.elastic() && phi > kCameInsideFloor) {
+      // Held where it is, not pushed out: pushed out to the floor against the cable's pull once
+      // taut, it gained energy (docs/floors.md, "Inside a floor").
+      ws.target[r] = phi;
+    } else if (!c.elastic() || seg >= 0) {
       ws.target[r] = phi < -kLengthSlop  ? 0.0
                      : phi > kLengthSlop ? phi - beta * (phi - kLengthSlop)
                                          : phi;

@@ -11,6 +11,7 @@
 #include "engine/core/error.h"
 #include "engine/dynamics/box2d_bridge.h"
 #include "engine/dynamics/box2d_limits.h"
+#include "engine/dynamics/box2d_velocity_update.h"
 #include "engine/dynamics/cable_islands.h"
 #include "engine/dynamics/cable_solver.h"
 #include "engine/dynamics/contact_catch.h"
@@ -48,20 +49,6 @@ constexpr double kStallRate = 1e-3;  // rad/s or m/s: a servo's joint moving slo
 constexpr double kStallAcceleration = 1e-3;  // rad/s^2 or m/s^2: ... and speeding up less
 constexpr double kStallRelease = 0.9;  // of max_force: a stalled servo pushing less is released
 constexpr double kOverstretch = 0.01;  // m: a rigid cable this far over its rest length is said
-
-// How far past Box2D's step limits the midpoint solve's bodies move over dt at their midpoint
-// velocities (v0 + v1) / 2, the ones Box2D steps them with: the largest share of kBox2DMaxTurn or
-// kBox2DMaxMove used (above 1: Box2D would move them less than the solve assumed).
-double shareOfBox2DLimits(std::span<const BodyState> bodies,
-                          const std::vector<std::pair<int, Vec3>>& ends, double dt) {
-  double share = 0;
-  for (const auto& [b, v1] : ends) {
-    const Vec2 v = 0.5 * (bodies[b].velocity + v1.head<2>());
-    const double w = 0.5 * (bodies[b].angularVelocity + v1.z());
-    share = std::max({share, dt * std::abs(w) / kBox2DMaxTurn, dt * v.norm() / kBox2DMaxMove});
-  }
-  return share;
-}
 
 SceneDef validated(SceneDef scene, const std::string& source) {
   validateScene(scene, source);
@@ -439,7 +426,8 @@ double World::advance(double left, double h, bool locate) {
   // as above where the fast catch's shorter step left a midpoint Newton unsettled (the main
   // solve's start-of-step answer took half the energy of a square spun at 5 rad a step).
   for (int again = 0; again < kMaxLimitShortenings && dt > 2 * kMinEventStep * h; ++again) {
-    const double share = midpointUsed_ ? shareOfBox2DLimits(bodies_, ends_, dt) : 0.0;
+    const double share =
+        midpointUsed_ ? shareOfBox2DLimits(bodies_, ends_, dt, kBox2DMaxTurn, kBox2DMaxMove) : 0.0;
     if (locate && midpointUnsettled_)
       dt *= 0.5;
     else if (share > 1)
@@ -509,10 +497,15 @@ double World::advance(double left, double h, bool locate) {
   if (left - dt <= kSubstepRest * h) expectContacts(b2_->contactSumTime());  // the sub-step's end
   b2_->addVelocities(kicks_);
   // The midpoint solve's end velocities, set rather than added to Box2D's float update (which
-  // leaves a body at rest moving at 1e-8 m/s); a damped body keeps Box2D's damping and the kick.
-  for (const auto& [b, v] : ends_)
-    if (scene_.bodies[b].linearDamping == 0 && scene_.bodies[b].angularDamping == 0)
-      b2_->setVelocity(b, v.head<2>(), v.z());
+  // leaves a body at rest moving at 1e-8 m/s); a damped body's: that update in double, and the
+  // kick.
+  for (const auto& [b, v] : ends_) {
+    const BodyDef& d = scene_.bodies[b];
+    const bool damped = d.linearDamping != 0 || d.angularDamping != 0;
+    const Vec3 end =
+        damped ? box2dVelocity(bodies_[b], d, gravity_, forces_[b], dt) + kicks_[b] : v;
+    b2_->setVelocity(b, end.head<2>(), end.z());
+  }
   for (size_t b = 0; b < placements_.size(); ++b)
     if (placements_[b].place)
       b2_->placeBody(static_cast<int>(b), placements_[b].position, placements_[b].angle);
