@@ -327,7 +327,7 @@ void World::solveForces(double dt, double h) {
     mainLeft = false;
     for (int i = 0; i < islands_->count(); ++i) {
       const std::span<const int> island = islands_->cables(i);
-      if (midpoint_->applies(bodies_, cables_, island, excluded_, dt)) {
+      if (midpoint_->applies(bodies_, cables_, island, excluded_, dt, gravity_)) {
         const int iterations =
             midpoint_->solve(bodies_, cables_, island, gravity_, dt, share, forces_, kicks_);
         if (iterations >= 0) {
@@ -394,6 +394,7 @@ double World::advance(double left, double h, bool locate) {
   using Clock = std::chrono::steady_clock;
   const auto c0 = Clock::now();
   b2_->readBodies(bodies_);
+  if (keepsJointEnergy_ && !scene_.joints.empty()) jointEnergy_->remember(bodies_);
   // An elastic rope's point about to knock a free polygon bounces off it first (hull_bounce.h).
   b2_->bounceHullPoints(bodies_, left);
   selectWraps(h);
@@ -555,15 +556,33 @@ void World::expectContacts(double dt) {
 
 void World::keepJointEnergy(double dt) {
   if (!keepsJointEnergy_ || scene_.joints.empty()) return;
+  b2_->jointFrames(scene_.joints, jointBodies_, jointFrames_);
   // Joints that turn by less than kStillTurn a step lose less than kStillTurn^2 / 2 of their
   // energy to Box2D's solve (a hand holding still): not worth the projection.
   bool turning = false;
   for (const auto& [a, b] : jointBodies_)
     for (const int body : {a, b})
       turning |= body >= 0 && std::abs(bodies_[body].angularVelocity) * dt > kStillTurn;
-  if (!turning) return;
-  b2_->jointFrames(scene_.joints, jointBodies_, jointFrames_);
-  jointEnergy_->keep(jointFrames_, bodies_, reprojected_);
+  if (turning)
+    jointEnergy_->keep(jointFrames_, bodies_, reprojected_);
+  else
+    reprojected_.clear();
+  // Bodies only gravity and their joints moved over the step (no cable, contact, servo, load,
+  // damping): their groups keep their energy with gravity's (joint_energy.h), the step at the end
+  // of a swing too, where the joints hardly turn.
+  static thread_local std::vector<char> swinging;  // scratch: no allocation a step
+  swinging.assign(bodies_.size(), 0);
+  bool any = false;
+  for (size_t b = 0; b < bodies_.size(); ++b) {
+    swinging[b] = !onCable_[b] && !touching_[b] && pendingForces_[b].isZero() &&
+                  scene_.bodies[b].linearDamping == 0 && scene_.bodies[b].angularDamping == 0;
+    any |= swinging[b];
+  }
+  for (size_t j = 0; j < scene_.joints.size(); ++j)
+    if (scene_.joints[j].servo.enabled)
+      for (const int body : jointBodies_[j])
+        if (body >= 0) swinging[body] = 0;
+  if (any) jointEnergy_->keepSwingEnergy(jointFrames_, bodies_, reprojected_, swinging, gravity_);
   for (int b : reprojected_) b2_->setVelocity(b, bodies_[b].velocity, bodies_[b].angularVelocity);
 }
 
