@@ -14,11 +14,12 @@ namespace {
 // h m g . (v0 + v1) / 2, but a jointed body moves along the chord of its turn (stepPose), and
 // gravity's potential changes by m g . (x1 - x0). For a link hanging below its pivot the two
 // differ by m g L (h omega)^2 / 2 a step, always a gain: a square pendulum swinging into an
-// elastic band gained 3.9 J of its 4.4 J largest kinetic energy in ten minutes at 60 Hz. The
-// difference is taken out of (or given back to) the island's end-of-step kinetic energy: the
-// factor on v1 that does it (1 where it would take more than half of it: left as it is).
-double gravityBalanceScale(const Workspace& ws, const CableSolveInput& in) {
-  double gained = 0, kinetic = 0;
+// elastic band gained 3.9 J of its 4.4 J largest kinetic energy in ten minutes at 60 Hz. That
+// difference and what stage 6a left unbalanced (`cableGained`, midpointWorkLeft) are taken out
+// of (or given back to) the island's end-of-step kinetic energy: the factor on v1 that does it
+// (1 where it would take more than half of it: left as it is).
+double midpointEnergyScale(const Workspace& ws, const CableSolveInput& in, double cableGained) {
+  double gained = cableGained, kinetic = 0;
   BodyState end;
   for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
     const int body = ws.dofs.body[k];
@@ -58,7 +59,8 @@ void applyForces(Workspace& ws, const CableSolveInput& in, std::span<Cable> cabl
     ws.warm[row.cable] = {h, c.tension(), c.spanCount()};
   }
   timesImpulses(ws, ws.P);
-  const double endScale = ws.midpoint ? gravityBalanceScale(ws, in) : 1.0;
+  const double endScale =
+      ws.midpoint ? midpointEnergyScale(ws, in, midpointWorkLeft(ws, in, cables)) : 1.0;
   // Under the midpoint rule Box2D reaches (v0 + v1) / 2 and the rest comes after its step. A link
   // pivoted on a body that does not move ends where the lengths were solved for, its anchor on
   // the pivot (stepPose), not where Box2D's joint correction puts it, (h omega)^3 or so away (at

@@ -15,56 +15,47 @@
 namespace cablelab {
 namespace swing_energy_test {
 
-// Two weights on a rigid rope over one or two point pulleys, the first pushed sideways.
-SceneDef swingingAtwood(int pulleys, double m1, double m2, double speed) {
+// Two weights on a rigid rope over two point pulleys 1 m apart, the first pushed sideways.
+SceneDef swingingAtwood(double m1, double m2, double speed) {
   SceneDef s;
   s.name = "swinging_atwood";
   BodyDef a = test::hangingMass("a", Vec2(0, -1.2), m1);
   a.velocity = Vec2(speed, 0);
-  const double right = pulleys == 1 ? 0.2 : 1.0;
-  s.bodies = {a, test::hangingMass("b", Vec2(right, -3.0), m2)};
+  s.bodies = {a, test::hangingMass("b", Vec2(1, -3), m2)};
   CableDef rope;
   rope.name = "rope";
   rope.start = {"a", Vec2::Zero()};
   rope.end = {"b", Vec2::Zero()};
-  PulleyDef left;
-  left.point = Vec2::Zero();
-  rope.pulleys = {left};
-  if (pulleys == 1) {
-    rope.pulleys[0].point = Vec2(0.1, 0);
-  } else {
-    PulleyDef other = left;
-    other.point = Vec2(right, 0);
-    rope.pulleys.push_back(other);
-  }
+  PulleyDef left, right;
+  left.side = right.side = WrapSide::Threaded;  // as a scene file's point pulley
+  right.point = Vec2(1, 0);
+  rope.pulleys = {left, right};
   s.cables = {rope};
   return s;
 }
 
 // Box2D's integration swung the energy of the swinging side by 2.3% of the largest kinetic energy
-// at 60 Hz (4.4% at 30 Hz); the midpoint rule by 5e-5. Neither weight reaches its pulley (whose
-// stop is inelastic by design, docs/floors.md), which the shortest rope end checks.
+// at 60 Hz (4.4% at 30 Hz); the midpoint rule by 6e-5 (1.4e-4 at 120 Hz). Neither weight reaches
+// its pulley in the 10 s (whose stop is inelastic by design, docs/floors.md), which the highest
+// weight checks.
 TEST(SwingEnergy, ARigidAtwoodMachineWithASwingingSideKeepsItsEnergy) {
   struct Case {
-    int pulleys;
     double m1, m2, speed, hz;
   };
-  for (const Case c : {Case{2, 1, 1, 0.8, 60}, Case{2, 1, 1.1, 1.5, 30}, Case{1, 2, 1.8, 1.0, 60},
-                       Case{1, 0.5, 0.5, 0.6, 120}}) {
-    SCOPED_TRACE(std::to_string(c.pulleys) + " pulleys, m " + std::to_string(c.m1) + " " +
-                 std::to_string(c.m2) + ", " + std::to_string(c.speed) + " m/s, " +
-                 std::to_string(c.hz) + " Hz");
-    World world(swingingAtwood(c.pulleys, c.m1, c.m2, c.speed));
+  for (const Case c : {Case{1, 1, 0.8, 60}, Case{1, 1.05, 1.5, 30}, Case{0.5, 0.5, 0.6, 120}}) {
+    SCOPED_TRACE("m " + std::to_string(c.m1) + " " + std::to_string(c.m2) + ", " +
+                 std::to_string(c.speed) + " m/s, " + std::to_string(c.hz) + " Hz");
+    World world(swingingAtwood(c.m1, c.m2, c.speed));
     const double e0 = world.energy();
-    double worst = 0, scale = 0, shortest = 1e9;
-    for (int s = 0; s < static_cast<int>(20 * c.hz); ++s) {
+    double worst = 0, scale = 0, below = 1e9;
+    for (int s = 0; s < static_cast<int>(10 * c.hz); ++s) {
       world.step(1 / c.hz, 1);
       worst = std::max(worst, std::abs(world.energy() - e0));
       scale = std::max(scale, test::kineticEnergy(world));
-      for (int b = 0; b < 2; ++b) shortest = std::min(shortest, -world.body(b).position.y());
+      for (int b = 0; b < 2; ++b) below = std::min(below, -world.body(b).position.y());
     }
-    EXPECT_LT(worst, 0.002 * scale);
-    EXPECT_GT(shortest, 0.3);
+    EXPECT_LT(worst, 0.001 * scale);
+    EXPECT_GT(below, 0.5);
   }
 }
 
