@@ -119,18 +119,18 @@ double floorRow(const WrapPoint& p, const WrapPoint& q, const Vec2& n,
   return kFloorLength - along;
 }
 
-// Whether a cable over fixed point pulleys (an Atwood machine: every point between its ends a
-// point pulley fixed in the world, at least one) moves across itself: some segment with an end on
-// a moving body turns (the ends' velocities differ across it, a body spins) or hangs off the line
-// of gravity, so that its body swings. Tolerances far below any swing worth its energy: a swing
-// that small changing integrator loses nothing measurable. Other rigid cables keep the solve they
-// had: a rope from an anchor (a pendulum, a chain's links: the main solve's sparse path for big
-// islands), over circles or polygons.
+// Whether a cable over fixed point pulleys (an Atwood machine: both ends on bodies, every point
+// between them a point pulley fixed in the world, at least one) moves across itself: some segment
+// with an end on a moving body turns (the ends' velocities differ across it, a body spins) or hangs
+// off the line of gravity, so that its body swings. Tolerances far below any swing worth its
+// energy: a swing that small changing integrator loses nothing measurable. Other rigid cables keep
+// the solve they had: a rope from an anchor (a pendulum, over a pulley or not), a chain's links
+// (the main solve's sparse path for big islands), ropes over circles or polygons.
 bool rigidCableSwings(const Cable& c, std::span<const BodyState> bodies, const Vec2& gravity) {
   constexpr double kAcrossSpeed = 1e-7;  // m/s
   constexpr double kOffGravity = 1e-7;   // rad
   const auto& path = c.path();
-  if (path.size() < 3) return false;
+  if (path.size() < 3 || path.front().body < 0 || path.back().body < 0) return false;
   for (size_t i = 1; i + 1 < path.size(); ++i)
     if (path[i].kind != WrapPoint::Kind::Point || path[i].body >= 0) return false;
   auto pointVelocity = [&](const WrapPoint& w) {

@@ -570,11 +570,14 @@ void World::keepJointEnergy(double dt) {
   // Bodies only gravity and their joints moved over the step (no cable, contact, servo, load,
   // damping): their groups keep their energy with gravity's (joint_energy.h), the step at the end
   // of a swing too, where the joints hardly turn.
-  static thread_local std::vector<char> swinging;  // scratch: no allocation a step
+  // Touching at the start of the step or at its end (a hull contact begun within it).
+  static thread_local std::vector<char> swinging, touchingNow;  // scratch: no allocation a step
+  touchingNow.assign(bodies_.size(), 0);
+  b2_->markTouching(touchingNow);
   swinging.assign(bodies_.size(), 0);
   bool any = false;
   for (size_t b = 0; b < bodies_.size(); ++b) {
-    swinging[b] = !onCable_[b] && !touching_[b] && pendingForces_[b].isZero() &&
+    swinging[b] = !onCable_[b] && !touching_[b] && !touchingNow[b] && pendingForces_[b].isZero() &&
                   scene_.bodies[b].linearDamping == 0 && scene_.bodies[b].angularDamping == 0;
     any |= swinging[b];
   }
