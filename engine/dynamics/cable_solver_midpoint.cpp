@@ -139,6 +139,30 @@ void balanceMidpointWork(Workspace& ws, const CableSolveInput& in, std::span<con
   }
 }
 
+// What stage 6a left unbalanced: the energy the elastic rows' impulses give the island beyond
+// their cables' energy change, sum of V(phi1) - V(phi0) - P_r J_r (v0 + v1) / 2, at the impulses
+// now (J (v0 + v1) / 2 and phi1 taken again). Where a row's factor fell outside 0.5..2 (the band's
+// length rate small beside the turn's share of it: a square pendulum's corner in an elastic band
+// near the bottom of its swing, 0.3 mJ a step of its 3 J) it is all that row's mismatch.
+double midpointWorkLeft(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  linearise(ws, in, cables);
+  double left = 0;
+  for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
+    const Cable& c = cables[ws.rows[r].cable];
+    if (!(ws.P[r] > 0) || !c.elastic() || ws.rows[r].segment >= 0) continue;
+    double rate = 0;
+    forForceJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
+      for (const auto& e : jacobian)
+        if (const int d = ws.dofs.ofBody[e.body]; d >= 0)
+          rate += 0.5 * e.d.dot(ws.v0.segment<3>(d) + ws.v1.segment<3>(d));
+    });
+    const double k = c.stiffness();
+    auto energy = [&](double phi) { return phi > 0 ? 0.5 * k * phi * phi : 0.0; };
+    left += energy(ws.phi1[r]) - energy(ws.phi0[r]) - ws.P[r] * rate;
+  }
+  return left;
+}
+
 // 6e. Under the midpoint rule each pulling row pulls along the discrete gradient G of its length
 // between the start of the step and the end the solve found (lengthDiscreteGradient: G (q1 - q0)
 // = length(q1) - length(q0) exactly, a turning body's points moved along their chords), then the

@@ -196,6 +196,7 @@ void newtonOnLengths(Workspace& ws, const CableSolveInput& in, std::span<const C
 bool takesMidpointRule(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
 void midpointSpringRows(Workspace& ws, std::span<const Cable> cables, double h);
 void balanceMidpointWork(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
+double midpointWorkLeft(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
 bool pullAlongDiscreteGradient(Workspace& ws, const CableSolveInput& in,
                                std::span<const Cable> cables);
 

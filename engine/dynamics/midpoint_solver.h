@@ -55,11 +55,14 @@ class MidpointSolver {
 
   /// Whether this solve should take the step of the cables `which` (an island, cable_islands.h):
   /// some cable is elastic, has a pulley on a moving body (wrapped or not), is a loop on one body
-  /// that turns, or has a segment short enough to need a floor (a body nearing its pulley)
-  /// (straight cables between fixed pulleys and different bodies keep Box2D's own integration),
+  /// that turns, has a segment short enough to need a floor (a body nearing its pulley), or is
+  /// rigid and swings across itself or off the line of `gravity` (m/s^2) (straight cables
+  /// between fixed pulleys and different bodies, running only along themselves, keep Box2D's
+  /// own integration),
   /// and no moved body is `excluded` (jointed or in contact).
   bool applies(std::span<const BodyState> bodies, std::span<const Cable> cables,
-               std::span<const int> which, std::span<const char> excluded, double h);
+               std::span<const int> which, std::span<const char> excluded, double h,
+               const Vec2& gravity);
 
   /// Sets the tensions of the cables `which`, adds the force Box2D needs over h to `forces`
   /// ((fx, fy, torque) per body) and the velocity each body they move must get after Box2D's

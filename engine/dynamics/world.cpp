@@ -44,7 +44,6 @@ constexpr double kMaxOmegaDt = 0.3;   // longest midpoint step over the fastest 
 constexpr double kBox2DMaxTurn = 0.9 * kBox2DMaxStepTurn;  // rad
 constexpr double kBox2DMaxMove = 0.9 * kBox2DMaxStepMove;  // m
 constexpr int kMaxLimitShortenings = 4;
-constexpr double kStillTurn = 1e-5;  // rad a step: joints that turn less keep Box2D's solve
 constexpr double kStallRate = 1e-3;  // rad/s or m/s: a servo's joint moving slower is stalled
 constexpr double kStallAcceleration = 1e-3;  // rad/s^2 or m/s^2: ... and speeding up less
 constexpr double kStallRelease = 0.9;  // of max_force: a stalled servo pushing less is released
@@ -314,7 +313,7 @@ void World::solveForces(double dt, double h) {
     mainLeft = false;
     for (int i = 0; i < islands_->count(); ++i) {
       const std::span<const int> island = islands_->cables(i);
-      if (midpoint_->applies(bodies_, cables_, island, excluded_, dt)) {
+      if (midpoint_->applies(bodies_, cables_, island, excluded_, dt, gravity_)) {
         const int iterations =
             midpoint_->solve(bodies_, cables_, island, gravity_, dt, share, forces_, kicks_);
         if (iterations >= 0) {
@@ -381,6 +380,7 @@ double World::advance(double left, double h, bool locate) {
   using Clock = std::chrono::steady_clock;
   const auto c0 = Clock::now();
   b2_->readBodies(bodies_);
+  if (keepsJointEnergy_ && !scene_.joints.empty()) jointEnergy_->remember(bodies_);
   // An elastic rope's point about to knock a free polygon bounces off it first (hull_bounce.h).
   b2_->bounceHullPoints(bodies_, left);
   selectWraps(h);
@@ -544,20 +544,6 @@ void World::expectContacts(double dt) {
     contactLast_[b] = now;
   }
   b2_->restartContactSum();
-}
-
-void World::keepJointEnergy(double dt) {
-  if (!keepsJointEnergy_ || scene_.joints.empty()) return;
-  // Joints that turn by less than kStillTurn a step lose less than kStillTurn^2 / 2 of their
-  // energy to Box2D's solve (a hand holding still): not worth the projection.
-  bool turning = false;
-  for (const auto& [a, b] : jointBodies_)
-    for (const int body : {a, b})
-      turning |= body >= 0 && std::abs(bodies_[body].angularVelocity) * dt > kStillTurn;
-  if (!turning) return;
-  b2_->jointFrames(scene_.joints, jointBodies_, jointFrames_);
-  jointEnergy_->keep(jointFrames_, bodies_, reprojected_);
-  for (int b : reprojected_) b2_->setVelocity(b, bodies_[b].velocity, bodies_[b].angularVelocity);
 }
 
 // A sub-step cut at wrap events: each cable's tension over it is its impulses over its length. The
