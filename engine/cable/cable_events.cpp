@@ -140,7 +140,8 @@ std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, 
       if (end->kind != WrapPoint::Kind::Vertex) continue;
       const PulleyState& p = pulleys_[end->pulley];
       // The edge into a tied end: the next vertex is the end's or beyond it on the same line.
-      if (p.tiedEnd != 0 && (end == &a ? i + 2 == path_.size() : i == 0)) continue;
+      // Only that edge: the free part of the cable still winds on at the chain's other end.
+      if (end == &a ? p.tiedEnd > 0 && i + 2 == path_.size() : p.tiedEnd < 0 && i == 0) continue;
       // A held end takes no vertex while its terminal is in the hull or the rope doubles back
       // round it (wrapChainHeld): an event there would cut the step for no change.
       const bool into = end == &a;
