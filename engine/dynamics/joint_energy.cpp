@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "engine/dynamics/disjoint_sets.h"
+
 namespace cablelab {
 
 void JointEnergy::keep(std::span<const JointFrame> joints, std::vector<BodyState>& bodies,
@@ -76,16 +78,13 @@ void JointEnergy::keepSwingEnergy(std::span<const JointFrame> joints,
   if (start_.size() != bodies.size()) return;
   const int n = static_cast<int>(bodies.size());
   group_.assign(n, -1);
-  auto root = [&](int b) {
-    while (group_[b] != b) b = group_[b] = group_[group_[b]];
-    return b;
-  };
+  auto root = [&](int b) { return findRoot(group_, b); };
   for (const JointFrame& j : joints)
     for (const int b : {j.bodyA, j.bodyB})
       if (b >= 0 && moves(bodies[b]) && group_[b] < 0) group_[b] = b;
   for (const JointFrame& j : joints)
     if (j.bodyA >= 0 && j.bodyB >= 0 && group_[j.bodyA] >= 0 && group_[j.bodyB] >= 0)
-      group_[root(j.bodyA)] = root(j.bodyB);
+      unite(group_, j.bodyA, j.bodyB);
   groupSwings_.assign(n, 1);
   startEnergy_.assign(n, 0.0);
   endPotential_.assign(n, 0.0);
