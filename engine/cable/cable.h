@@ -83,6 +83,11 @@ inline bool driven(const BodyState& b) {
   return !moves(b) && (b.velocity.squaredNorm() > 0 || b.angularVelocity != 0);
 }
 
+/// Velocity of the body's material point now at `at` (world frame).
+inline Vec2 pointVelocity(const BodyState& b, const Vec2& at) {
+  return b.velocity + b.angularVelocity * perp(Vec2(at - b.position));
+}
+
 /// One point of a cable's current path.
 struct WrapPoint {
   enum class Kind { Anchor, Point, Vertex, Circle };

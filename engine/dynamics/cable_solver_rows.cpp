@@ -56,7 +56,7 @@ bool mayReachFloor(const CableSolveInput& in, const WrapPoint& p, const WrapPoin
   auto speed = [&](const WrapPoint& w) {
     if (w.body < 0) return 0.0;
     const BodyState& b = in.bodies[w.body];
-    const Vec2 v = b.velocity + b.angularVelocity * perp(Vec2(w.world - b.position));
+    const Vec2 v = pointVelocity(b, w.world);
     return v.norm() + (b.invMass > 0 ? in.h * in.gravity.norm() : 0.0);
   };
   const double gap = floorGap(p, q);

@@ -108,7 +108,7 @@ inline Vec2 floorDrift(const WrapPoint& p, const WrapPoint& q, std::span<const B
   auto velocity = [&](const WrapPoint& w, const Vec2& at) -> Vec2 {
     if (w.body < 0) return Vec2::Zero();
     const BodyState& b = bodies[w.body];
-    const Vec2 v = b.velocity + b.angularVelocity * perp(Vec2(at - b.position));
+    const Vec2 v = pointVelocity(b, at);
     return b.invMass > 0 ? Vec2(v + h * gravity) : v;
   };
   return h * (velocity(q, floorTo(q)) - velocity(p, floorFrom(p)));
@@ -183,8 +183,7 @@ inline std::optional<double> floorArrival(const WrapPoint& p, const WrapPoint& q
   if (p.body == q.body || (p.radius != 0 && q.radius != 0)) return std::nullopt;
   auto velocity = [&](const WrapPoint& w) -> Vec2 {
     if (w.body < 0) return Vec2::Zero();
-    const BodyState& b = motion[w.body];
-    return b.velocity + b.angularVelocity * perp(Vec2(w.world - b.position));
+    return pointVelocity(motion[w.body], w.world);
   };
   // |d + t v|^2 = reach^2, d from p to q (a circle's centre: its world point).
   const Vec2 d = q.world - p.world, v = velocity(q) - velocity(p);

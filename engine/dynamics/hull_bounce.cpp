@@ -70,10 +70,6 @@ double HullBounce::inversePivotInertia(const BodyState& b, const Response& r) {
   return 1 / (1 / b.invInertia + r.pivot.squaredNorm() / b.invMass);
 }
 
-Vec2 HullBounce::pointVelocity(const BodyState& b, const Vec2& at) {
-  return b.velocity + b.angularVelocity * perp(at - b.position);
-}
-
 void HullBounce::applyImpulse(BodyState& b, int body, const Vec2& at, const Vec2& impulse) const {
   const Response& r = responses_[body];
   if (!r.pivoted) {

@@ -54,7 +54,6 @@ class HullBounce {
   /// The inverse effective mass of `body` for an impulse along `normal` at world point `at`, and
   /// the velocity of that point.
   double inverseMass(const BodyState& b, int body, const Vec2& at, const Vec2& normal) const;
-  static Vec2 pointVelocity(const BodyState& b, const Vec2& at);
   /// A pivoted body's pivot in the world, and its inverse moment about it.
   static Vec2 pivotOf(const BodyState& b, const Response& r);
   static double inversePivotInertia(const BodyState& b, const Response& r);

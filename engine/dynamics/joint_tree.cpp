@@ -135,8 +135,7 @@ bool JointTree::measure(std::span<const JointFrame> joints, std::span<const Body
     link.mass = Vec3(1 / inverse[0], 1 / inverse[1], 1 / inverse[2]);
     if (link.rootBody >= 0) {  // (the world has none: project leaves it out)
       const BodyState& r = bodies[link.rootBody];
-      const Vec2 offset = bodies[link.body].position - r.position;
-      const Vec2 v = r.velocity + r.angularVelocity * perp(offset);
+      const Vec2 v = pointVelocity(r, bodies[link.body].position);
       link.root = Vec3(v.x(), v.y(), r.angularVelocity);
     }
   }

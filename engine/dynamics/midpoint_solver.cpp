@@ -133,10 +133,8 @@ bool rigidCableSwings(const Cable& c, std::span<const BodyState> bodies, const V
   if (path.size() < 3 || path.front().body < 0 || path.back().body < 0) return false;
   for (size_t i = 1; i + 1 < path.size(); ++i)
     if (path[i].kind != WrapPoint::Kind::Point || path[i].body >= 0) return false;
-  auto pointVelocity = [&](const WrapPoint& w) {
-    if (w.body < 0) return Vec2(Vec2::Zero());
-    const BodyState& b = bodies[w.body];
-    return Vec2(b.velocity + b.angularVelocity * perp(w.world - b.position));
+  auto velocityOf = [&](const WrapPoint& w) {
+    return w.body < 0 ? Vec2(Vec2::Zero()) : pointVelocity(bodies[w.body], w.world);
   };
   for (size_t i = 0; i + 1 < path.size(); ++i) {
     const WrapPoint &p = path[i], &q = path[i + 1];
@@ -147,7 +145,7 @@ bool rigidCableSwings(const Cable& c, std::span<const BodyState> bodies, const V
     const double length = d.norm();
     if (!(length > 0)) continue;
     const Vec2 u = d / length;
-    if (std::abs(cross(u, pointVelocity(q) - pointVelocity(p))) > kAcrossSpeed) return true;
+    if (std::abs(cross(u, velocityOf(q) - velocityOf(p))) > kAcrossSpeed) return true;
     if (std::abs(cross(u, gravity)) > kOffGravity * gravity.norm()) return true;
     for (const WrapPoint* w : {&p, &q})
       if (w->body >= 0 && bodies[w->body].angularVelocity != 0) return true;
