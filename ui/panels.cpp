@@ -17,6 +17,7 @@
 #include "ui/plot_panel.h"
 #include "ui/presentation.h"
 #include "ui/scene_catalog.h"
+#include "ui/scene_guide.h"
 #include "ui/timeline_panel.h"
 
 namespace cablelab::ui {
@@ -43,7 +44,7 @@ void sceneMenu(Sandbox& sandbox, PanelState& state) {
   for (const SceneEntry& entry : builtinSceneList()) {
     if (ImGui::MenuItem(entry.name.c_str(), nullptr, entry.name == sandbox.sceneName))
       sandbox.open(entry.name);
-    tooltip(entry.description.c_str());
+    tooltip(sceneMenuTip(entry.name, entry.description).c_str());
   }
   ImGui::Separator();
   if (ImGui::BeginMenu("Bundled scene files")) {
