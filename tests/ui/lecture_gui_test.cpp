@@ -708,6 +708,11 @@ TEST(Lecture, FirstMechanismInPresentationModeAtBothSizes) {
       continue;
     }
     EXPECT_TRUE(v["presentation"].get<bool>()) << where;
+    // The hall reads the time and the energy: no step timings (at 1080 it showed "step 0.0 us
+    // (cables 0.0 us)   55 fps   wraps 0").
+    for (const char* timing : {" us", "fps", "wraps"})
+      EXPECT_EQ(v["status"].get<std::string>().find(timing), std::string::npos)
+          << where << ": " << v["status"];
     EXPECT_EQ(v["building"].get<bool>(), midBuild) << "Esc left a Build tool chosen: " << where;
     EXPECT_EQ(v["window"][1].get<double>(), name.rfind("1080-", 0) == 0 ? 1080 : 720) << where;
     EXPECT_EQ(v["strip_name"], "my mechanism") << where;
