@@ -8,6 +8,7 @@
 
 #include "ui/authoring.h"
 #include "ui/panels.h"
+#include "ui/typed_field.h"
 
 namespace cablelab::ui {
 namespace {
@@ -58,16 +59,18 @@ void toolButtons(Authoring& a) {
 }
 
 /// The next body's size, mass and type; `menu`: the Build menu's layout, to record the fields'
-/// rectangles in (null in the panel).
-void bodySettings(Authoring& a, BuildMenuLayout* menu = nullptr) {
+/// rectangles in (null in the panel). A typed size or mass it cannot take leaves the field as it
+/// was and puts one line in `complaint` (ui/typed_field.h).
+void bodySettings(Authoring& a, std::string* complaint, BuildMenuLayout* menu = nullptr) {
   float size = static_cast<float>(a.size), mass = static_cast<float>(a.mass);
   ImGui::SetNextItemWidth(fieldWidth("size (m)", ImGui::GetFontSize() * 5));
-  if (ImGui::DragFloat("size (m)", &size, 0.01f, 0.02f, 10.0f, "%.2f")) a.size = size;
+  if (typedDrag("next body", "size (m)", &size, 0.01f, 0.02f, 10.0f, "%.2f", complaint))
+    a.size = size;
   if (menu) menu->size = lastItem();
   tooltip("Box side, circle and pulley diameter.");
   sameLineIfRoom(ImGui::GetFontSize() * 4 + checkboxWidth("kg") - ImGui::GetFrameHeight());
   ImGui::SetNextItemWidth(ImGui::GetFontSize() * 4);
-  if (ImGui::DragFloat("kg", &mass, 0.05f, 0.01f, 1000.0f, "%.2f")) a.mass = mass;
+  if (typedDrag("next body", "kg", &mass, 0.05f, 0.01f, 1000.0f, "%.2f", complaint)) a.mass = mass;
   if (menu) menu->mass = lastItem();
   tooltip("Mass of the next body (and of a pulley put on a body).");
   static const std::array<std::pair<BodyType, const char*>, 3> types = {
@@ -95,7 +98,7 @@ void bodySettings(Authoring& a, BuildMenuLayout* menu = nullptr) {
 void authoringPanel(Sandbox& sandbox) {
   Authoring& a = *sandbox.authoring;
   toolButtons(a);
-  bodySettings(a);
+  bodySettings(a, &sandbox.error);
   if (a.tool == Authoring::Tool::Polygon) {
     ImGui::SameLine();
     if (ImGui::SmallButton("Finish")) finishPolygon(sandbox);
@@ -132,7 +135,8 @@ void recordCut(BuildMenuLayout& layout) {
 }
 
 /// The next body's settings as a submenu.
-void nextBodyMenu(Authoring& a, BuildMenuLayout& layout) {
+void nextBodyMenu(Sandbox& sandbox, BuildMenuLayout& layout) {
+  Authoring& a = *sandbox.authoring;
   // A short label: a longer one widens the whole menu (onto the PAUSED sign at 1280x720).
   layout.nextBodyOpen = ImGui::BeginMenu("next body");
   if (!layout.nextBodyOpen) {
@@ -141,7 +145,7 @@ void nextBodyMenu(Authoring& a, BuildMenuLayout& layout) {
     return;
   }
   layout.nextBodyPopup = windowRect();
-  bodySettings(a, &layout);
+  bodySettings(a, &sandbox.error, &layout);
   recordCut(layout);
   ImGui::EndMenu();
 }
@@ -174,7 +178,7 @@ void buildMenu(Sandbox& sandbox) {
   }
   if (a.tool == Tool::Polygon && ImGui::MenuItem("finish the polygon")) finishPolygon(sandbox);
   ImGui::Separator();
-  nextBodyMenu(a, layout);
+  nextBodyMenu(sandbox, layout);
   ImGui::Separator();
   if (ImGui::MenuItem("Undo", "Ctrl+Z", false, !a.undo.empty())) undoEdit(sandbox);
   if (ImGui::MenuItem("Redo", "Ctrl+Y", false, !a.redo.empty())) redoEdit(sandbox);

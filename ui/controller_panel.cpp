@@ -158,7 +158,7 @@ void lawChoice(HandControlState& h) {
   h.lawRects[0] = lastItemRect();
   tooltip(
       "React to the error: each update moves the fingers to shrink the box's error as it is "
-      "now (the Jacobian controller of thesis section 4.3; PID with the integral term).");
+      "now (with PID on, also its sum over time).");
   sameLineIfRoom(checkboxWidth("plan ahead (MPC)"));
   changed |= ImGui::RadioButton("plan ahead (MPC)", &choice, 1);
   h.lawRects[1] = lastItemRect();

@@ -198,6 +198,8 @@ void FirstMechanismScript::typeInField(const std::string& field, Where where,
             const PanelRect r = where(s);
             if (r.width <= 0) return false;
             at_ = centre(r);
+            before_ = field == "kg" ? s.authoring->mass : s.authoring->size;
+            s.error.clear();  // the last field's complaint dismissed (its Dismiss button)
             SDL_SetModState(KMOD_LCTRL);
             pushKeyEvent(windowId_, SDL_KEYDOWN, SDLK_LCTRL);
             movePointer(windowId_, at_);
@@ -224,10 +226,12 @@ void FirstMechanismScript::typeInField(const std::string& field, Where where,
             break;
           case 8: {
             const Authoring& a = *s.authoring;
-            fields_.push_back("{\"size\": " + jsonQuoted(size) + ", \"field\": " +
-                              jsonQuoted(field) + ", \"typed\": " + jsonQuoted(text) +
-                              ", \"value\": " + jsonNumber(field == "kg" ? a.mass : a.size) +
-                              ", \"menu_open\": " + (a.menu.open ? "true" : "false") + "}");
+            fields_.push_back(
+                "{\"size\": " + jsonQuoted(size) + ", \"field\": " + jsonQuoted(field) +
+                ", \"typed\": " + jsonQuoted(text) +
+                ", \"value\": " + jsonNumber(field == "kg" ? a.mass : a.size) +
+                ", \"before\": " + jsonNumber(before_) + ", \"error\": " + jsonQuoted(s.error) +
+                ", \"menu_open\": " + (a.menu.open ? "true" : "false") + "}");
             break;
           }
           default:
@@ -265,6 +269,18 @@ void FirstMechanismScript::buildMechanism() {
   // keep their values across New scene: the first box's are typed too).
   openBuildMenu();
   shot("menu-tools");
+  // What the field cannot take first: a negative mass, a zero size, a number past a float's.
+  const auto massField = [](const Sandbox& s) { return s.authoring->menu.mass; };
+  const auto sizeField = [](const Sandbox& s) { return s.authoring->menu.size; };
+  typeInField("kg", massField, "-1");
+  add("screenshot", 1, [this, name = size_ + "refused"](Sandbox& s, int) {
+    s.pngRequest =
+        PanelRect{0, 0, static_cast<float>(s.camera.width), static_cast<float>(s.camera.height)};
+    s.pngRequestPath = out_ + "-" + name + ".png";
+    return true;
+  });
+  typeInField("size (m)", sizeField, "0");
+  typeInField("size (m)", sizeField, "1e999");
   typeInField(
       "size (m)", [](const Sandbox& s) { return s.authoring->menu.size; }, "0.4");
   typeInField(

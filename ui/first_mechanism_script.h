@@ -8,17 +8,19 @@
 // in the view by clicks there, the next body's kg and size typed into the fields of the menu's
 // "next body" submenu (Ctrl+click, the number, Enter). Where to click comes from the rectangles the
 // Build menu laid out in the last frame (ui/authoring.h, BuildMenuLayout), never from fixed pixels.
-// The mechanism: a light box and a heavy box, the rope from the light one up over a round pulley,
-// across over a hexagon, through an eyelet and down to the heavy one. Then Esc, Space, the light
-// box dragged sideways, Space; after both sizes, the side panels (p).
+// First, at each size, what the fields cannot take (-1 kg, a 0 m and a 1e999 m size), each
+// refused with one line (ui/typed_field.h) and dismissed; then the mechanism: a light box and a
+// heavy box, the rope from the light one up over a round pulley, across over a hexagon, through an
+// eyelet and down to the heavy one. Then Esc, Space, the light box dragged sideways, Space; after
+// both sizes, the side panels (p).
 //
 // Reports, as JSON: every menu pick (the item clicked, the tool chosen after it, whether the
 // menu closed), the new scene at each size (its name and bodies), every field typed (the value
-// after it), each size's built scene (bodies, cables, the pulleys' kinds in the rope's order,
-// wraps), every banner, how often the view moved while building, how many clicks fell outside
-// it, and each view with its screenshot (ui/lecture_scripts.h, lectureViewJson), the Build menu
-// open in three of them at each size (menu, menu-tools; menu-kg with its "next body" submenu).
-// A step that finds nothing to click ends the run with "failure".
+// before and after it, the error line shown), each size's built scene (bodies, cables, the pulleys'
+// kinds in the rope's order, wraps), every banner, how often the view moved while building, how
+// many clicks fell outside it, and each view with its screenshot (ui/lecture_scripts.h,
+// lectureViewJson), the Build menu open in three of them at each size (menu, menu-tools; menu-kg
+// with its "next body" submenu). A step that finds nothing to click ends the run with "failure".
 //
 // Needs: an SDL video subsystem (the sandbox's Window), a Sandbox with a loaded scene.
 #pragma once
@@ -79,6 +81,7 @@ class FirstMechanismScript {
   std::string pending_;     ///< a view whose screenshot the last frame took
   Vec2 at_ = Vec2::Zero();  ///< the point of the click in progress (px)
   std::vector<std::string> views_, picks_, newScenes_, fields_, builds_, banners_;
+  double before_ = 0;      ///< the field's value before the text was typed
   bool building_ = false;  ///< between New scene and Esc: the view should hold still
   Camera buildCamera_;
   int buildViewMoves_ = 0, clicksOffView_ = 0;

@@ -13,10 +13,12 @@
 #include "ui/controller_panel.h"
 #include "ui/input.h"
 #include "ui/panel_sections.h"
+#include "ui/plain_words.h"
 #include "ui/plot_board.h"
 #include "ui/plot_panel.h"
 #include "ui/presentation.h"
 #include "ui/scene_catalog.h"
+#include "ui/scene_guide.h"
 #include "ui/timeline_panel.h"
 
 namespace cablelab::ui {
@@ -43,7 +45,7 @@ void sceneMenu(Sandbox& sandbox, PanelState& state) {
   for (const SceneEntry& entry : builtinSceneList()) {
     if (ImGui::MenuItem(entry.name.c_str(), nullptr, entry.name == sandbox.sceneName))
       sandbox.open(entry.name);
-    tooltip(entry.description.c_str());
+    tooltip(sceneMenuTip(entry.name, entry.description).c_str());
   }
   ImGui::Separator();
   if (ImGui::BeginMenu("Bundled scene files")) {
@@ -224,20 +226,22 @@ void statusLine(Sandbox& sandbox) {
     const StepStats& s = world->lastStepStats();
     const char* state = sandbox.paused ? "PAUSED" : "running";
     const char* note = sandbox.message.empty() ? "h: help" : sandbox.message.c_str();
+    const std::string energy = energyReadout(world->energy());
     char line[512];
     std::snprintf(line, sizeof line,
-                  "%s %.2gx  t %.3f s   energy %.4g J   step %.1f us (cables %.1f us)   %.0f fps   "
+                  "%s %.2gx  t %.3f s   energy %s J   step %.1f us (cables %.1f us)   %.0f fps   "
                   "wraps %d   %s",
-                  state, sandbox.speed, world->time(), world->energy(), s.stepMicros, s.cableMicros,
+                  state, sandbox.speed, world->time(), energy.c_str(), s.stepMicros, s.cableMicros,
                   sandbox.fps, s.wrapPoints, note);
     const float room = ImGui::GetContentRegionAvail().x;
-    if (ImGui::CalcTextSize(line).x > room)
-      std::snprintf(line, sizeof line, "%s %.2gx  t %.3f s   energy %.4g J   %s", state,
-                    sandbox.speed, world->time(), world->energy(), note);
+    // In presentation mode without the timings: the hall reads the time and the energy.
+    if (sandbox.presentation || ImGui::CalcTextSize(line).x > room)
+      std::snprintf(line, sizeof line, "%s %.2gx  t %.3f s   energy %s J   %s", state,
+                    sandbox.speed, world->time(), energy.c_str(), note);
     // Without the note before without the energy: the energy readout is what a lecture reads.
     if (ImGui::CalcTextSize(line).x > room)
-      std::snprintf(line, sizeof line, "%s %.2gx  t %.3f s   energy %.4g J", state, sandbox.speed,
-                    world->time(), world->energy());
+      std::snprintf(line, sizeof line, "%s %.2gx  t %.3f s   energy %s J", state, sandbox.speed,
+                    world->time(), energy.c_str());
     if (ImGui::CalcTextSize(line).x > room)
       std::snprintf(line, sizeof line, "%s  t %.2f s", state, world->time());
     sandbox.statusOverflow = std::max(0.0f, ImGui::CalcTextSize(line).x - room);

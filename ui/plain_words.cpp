@@ -1,5 +1,8 @@
 #include "ui/plain_words.h"
 
+#include <cmath>
+#include <cstdio>
+
 namespace cablelab::ui {
 namespace {
 
@@ -28,6 +31,14 @@ std::string plainBanner(const std::string& warning, const UserAction& action) {
   return "After your change " + which +
          " is longer than it may be; it pulls back as the scene runs. Undo the change to keep "
          "the old length.";
+}
+
+std::string energyReadout(double joules) {
+  // Rounding left over from summing kinetic and potential energies of order 1..1e3 J.
+  constexpr double kNoise = 1e-9;  // J
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", std::abs(joules) < kNoise ? 0.0 : joules);
+  return text;
 }
 
 }  // namespace cablelab::ui

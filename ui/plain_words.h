@@ -22,4 +22,8 @@ struct UserAction {
 /// a scene that loads) or not one they can act on: then it belongs in the log only.
 std::string plainBanner(const std::string& engineWarning, const UserAction& action);
 
+/// The status line's energy, "%.4g" joules as a student reads them: what is left of a sum that
+/// cancels (a body come to rest, 1.4e-14 J) reads 0, as it is.
+std::string energyReadout(double joules);
+
 }  // namespace cablelab::ui

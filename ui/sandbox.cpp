@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 
@@ -26,6 +27,30 @@ constexpr double kOverLength = 1e-5;  // m: a rigid cable longer than its rest l
                                       // is settled before a paused world runs again
 
 const std::string kEdited = "edited-";  // sceneName's prefix for a scene changed in the window
+
+/// An edit's validation error in the student's words: the scene file's path to a body, cable
+/// or joint ("edited scene: bodies[1].mass: ...") by its name as the view labels it
+/// ("box1: mass: ...").
+std::string editErrorWithNames(std::string error, const SceneDef& def) {
+  const std::string prefix = "edited scene: ";
+  if (error.rfind(prefix, 0) == 0) error.erase(0, prefix.size());
+  const auto name = [&](const std::string& list, size_t k) -> std::string {
+    if (list == "bodies" && k < def.bodies.size()) return def.bodies[k].name;
+    if (list == "cables" && k < def.cables.size()) return def.cables[k].name;
+    if (list == "joints" && k < def.joints.size()) return def.joints[k].name;
+    return "";
+  };
+  for (const std::string list : {"bodies", "cables", "joints"}) {
+    const std::string open = list + "[";
+    if (error.rfind(open, 0) != 0) continue;
+    const size_t close = error.find("].", open.size());
+    if (close == std::string::npos) break;
+    const std::string shown = name(list, std::strtoul(error.c_str() + open.size(), nullptr, 10));
+    if (!shown.empty()) error = shown + ": " + error.substr(close + 2);
+    break;
+  }
+  return error;
+}
 
 }  // namespace
 
@@ -143,7 +168,7 @@ bool Sandbox::replaceScene(const SceneDef& def) {
     parameters.clear();
     return true;
   } catch (const std::exception& e) {
-    error = e.what();
+    error = editErrorWithNames(e.what(), def);
     return false;
   }
 }

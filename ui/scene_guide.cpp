@@ -92,6 +92,13 @@ std::string studentDescription(const std::string& name) {
   return it == guides().end() ? "" : it->second.description;
 }
 
+std::string sceneMenuTip(const std::string& name, const std::string& fallback) {
+  const std::string all = studentDescription(name);
+  if (all.empty()) return fallback;
+  const size_t end = all.find(". ");
+  return end == std::string::npos ? all : all.substr(0, end + 1);
+}
+
 std::string whatToTry(const std::string& name) {
   const auto it = guides().find(name);
   if (it != guides().end()) return it->second.tryThis;

@@ -18,6 +18,11 @@ std::string whatToTry(const std::string& name);
 /// a scene file, which shows its own.
 std::string studentDescription(const std::string& name);
 
+/// The Scene menu's tooltip for the built-in scene `name`: the first sentence of its student
+/// description (no thesis section or library name, which the one-line `cablelab scenes` list
+/// carries); `fallback` (a scene file's own description) where there is none.
+std::string sceneMenuTip(const std::string& name, const std::string& fallback);
+
 /// The tooltip of a scene parameter's slider: its `description` (units last, "left body mass
 /// (kg)"), its default `value` as a student would type it ("Default 2 kg", not 2.000000) and
 /// what letting go of the slider does.

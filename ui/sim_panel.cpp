@@ -11,6 +11,7 @@
 #include "ui/panel_sections.h"
 #include "ui/scene_catalog.h"
 #include "ui/scene_guide.h"
+#include "ui/typed_field.h"
 
 namespace cablelab::ui {
 
@@ -145,7 +146,7 @@ void runPanel(Sandbox& sandbox) {
                  ImGui::CalcTextSize("fps").x);
   ImGui::SetNextItemWidth(ImGui::GetFontSize() * 3.5f);
   if (recording) ImGui::BeginDisabled();
-  if (ImGui::DragFloat("fps", &fps, 0.5f, 5, 50, "%.0f"))
+  if (typedDrag("Record clip", "fps", &fps, 0.5f, 5, 50, "%.0f", &sandbox.error))
     sandbox.recordFps = std::clamp(static_cast<double>(fps), 5.0, 50.0);
   if (recording) ImGui::EndDisabled();
   tooltip("Clip frames per simulated second (5..50).");
@@ -154,16 +155,22 @@ void runPanel(Sandbox& sandbox) {
 void integrationPanel(Sandbox& sandbox) {
   double dtMs = sandbox.dt * 1000;
   ImGui::SetNextItemWidth(fieldWidth("dt (ms)", ImGui::GetFontSize() * 8));
-  if (ImGui::InputDouble("dt (ms)", &dtMs, 1, 5, "%.3f") && dtMs > 0.01 && dtMs <= 100)
-    sandbox.dt = dtMs / 1000;
-  tooltip("Time step of one World::step (takes effect at once; Reset keeps it).");
+  if (ImGui::InputDouble("dt (ms)", &dtMs, 1, 5, "%.3f")) {
+    if (std::isfinite(dtMs) && dtMs > 0.01 && dtMs <= 100)
+      sandbox.dt = dtMs / 1000;
+    else
+      sandbox.error = typedRangeComplaint("Simulation", "dt (ms)", 0.01f, 100, dtMs,
+                                          static_cast<float>(sandbox.dt * 1000));
+  }
+  tooltip("Time step (takes effect at once; Reset keeps it).");
   ImGui::SetNextItemWidth(fieldWidth("substeps", ImGui::GetFontSize() * 8));
   if (ImGui::SliderInt("substeps", &sandbox.substeps, 1, 64))
     sandbox.substeps = std::max(1, sandbox.substeps);
-  tooltip("Box2D sub-steps per time step: more is stiffer and slower.");
+  tooltip("Sub-steps per time step: more is stiffer and slower.");
   float g[2] = {static_cast<float>(sandbox.gravity.x()), static_cast<float>(sandbox.gravity.y())};
   ImGui::SetNextItemWidth(fieldWidth("gravity", ImGui::GetFontSize() * 8));
-  if (ImGui::DragFloat2("gravity", g, 0.05f, -50, 50, "%.2f")) sandbox.gravity = Vec2(g[0], g[1]);
+  if (typedDrag2("Simulation", "gravity", g, 0.05f, -50, 50, "%.2f", &sandbox.error))
+    sandbox.gravity = Vec2(g[0], g[1]);
   tooltip("Gravity (m/s^2), x and y.");
   if (ImGui::Button("g = 0")) sandbox.gravity = Vec2::Zero();
   tooltip("Switch gravity off.");
@@ -210,7 +217,7 @@ void drawToggles(Sandbox& sandbox) {
 void viewPanel(Sandbox& sandbox) {
   float zoom = static_cast<float>(1.0 / sandbox.camera.metresPerPixel);
   ImGui::SetNextItemWidth(fieldWidth("px per m", ImGui::GetFontSize() * 8));
-  if (ImGui::DragFloat("px per m", &zoom, 1.0f, 1.0f, 100000.0f, "%.0f") && zoom > 0)
+  if (typedDrag("View", "px per m", &zoom, 1.0f, 1.0f, 100000.0f, "%.0f", &sandbox.error))
     sandbox.camera.metresPerPixel = 1.0 / zoom;
   tooltip("Zoom: screen pixels per metre (the wheel zooms about the cursor).");
   if (ImGui::Button("Fit scene view")) sandbox.fitView();
@@ -231,7 +238,8 @@ void viewPanel(Sandbox& sandbox) {
       "maximum through resets and other scenes, to compare runs colour for colour.");
   float top = static_cast<float>(sandbox.tensionScale);
   ImGui::SetNextItemWidth(fieldWidth("scale max (N)", ImGui::GetFontSize() * 8));
-  if (ImGui::DragFloat("scale max (N)", &top, std::max(top * 0.01f, 0.01f), 0.01f, 1e7f, "%.4g")) {
+  if (typedDrag("View", "scale max (N)", &top, std::max(top * 0.01f, 0.01f), 0.01f, 1e7f, "%.4g",
+                &sandbox.error)) {
     sandbox.tensionScale = std::max(static_cast<double>(top), 1e-3);
     sandbox.tensionScaleLocked = true;  // the user's own maximum: kept until unlocked
   }

@@ -29,6 +29,28 @@ std::map<std::string, double> lastCsvRow(const std::string& path) {
   return row;
 }
 
+// A mass the Inspector cannot take (typed -1 kg) is refused in one line that names the body as
+// the view labels it, not by the scene file's path ("edited scene: bodies[1].mass: ..."), and the
+// scene is kept.
+TEST(EditErrors, ARefusedEditNamesTheBodyAsTheViewDoes) {
+  Sandbox sandbox(800, 600);
+  ASSERT_TRUE(sandbox.open("pulley"));
+  const SceneDef before = sandbox.scene;
+  const int b = sandbox.world()->findBody("left");
+  ASSERT_GE(b, 0);
+  SceneDef next = sandbox.scene;
+  next.bodies[b].mass = -1;
+  EXPECT_FALSE(applyEdit(sandbox, next));
+  EXPECT_EQ(sandbox.error, "left: mass: must be positive (got -1)");
+  EXPECT_EQ(sandbox.scene.bodies[b].mass, before.bodies[b].mass) << "the scene was lost";
+  ASSERT_FALSE(sandbox.scene.cables.empty());
+  next = sandbox.scene;
+  next.cables[0].restLength = std::nan("");
+  EXPECT_FALSE(applyEdit(sandbox, next));
+  EXPECT_EQ(sandbox.error.rfind(sandbox.scene.cables[0].name + ": ", 0), 0u) << sandbox.error;
+  EXPECT_EQ(sandbox.error.find('['), std::string::npos) << sandbox.error;
+}
+
 TEST(SaveScene, WritesLiveCableEditsAndJointsAndRunsAsTheSandboxDid) {
   Sandbox sandbox(800, 600);
   ASSERT_TRUE(sandbox.open("hexagon"));

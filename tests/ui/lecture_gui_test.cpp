@@ -635,9 +635,24 @@ TEST(Lecture, FirstMechanismInPresentationModeAtBothSizes) {
     EXPECT_EQ(p["bodies_after"], p["bodies_before"]) << "the menu's click reached the view: " << p;
   }
   // The next body's kg and size typed into the menu's fields; the menu stays open for the pick.
-  ASSERT_EQ(j["fields"].size(), 2u * 4) << j["fields"].dump();  // size, kg; kg, size
+  // First what they cannot take (-1 kg, a 0 m and a 1e999 m size): the field keeps its value and
+  // says why in one plain line. Earlier the field took it, and the next click failed with
+  // "edited scene: bodies[1].mass: must be positive (got -1)" (a 1e999 size: "shapes[0].radius").
+  ASSERT_EQ(j["fields"].size(), 2u * 7) << j["fields"].dump();  // 3 refused; size, kg; kg, size
   for (const auto& f : j["fields"]) {
-    EXPECT_NEAR(f["value"].get<double>(), std::stod(f["typed"].get<std::string>()), 1e-6) << f;
+    const std::string typed = f["typed"], error = f["error"], field = f["field"];
+    if (typed == "-1" || typed == "0" || typed == "1e999") {
+      EXPECT_EQ(f["value"], f["before"]) << "a field took what it cannot: " << f;
+      EXPECT_EQ(error.rfind("next body: " + field + ": ", 0), 0u) << f;
+      EXPECT_NE(error.find("(got " + std::string(typed == "1e999" ? "inf" : typed) + ")"),
+                std::string::npos)
+          << f;
+      EXPECT_EQ(error.find('\n'), std::string::npos) << f;
+      EXPECT_EQ(error.find('['), std::string::npos) << "a scene file's path: " << f;
+      continue;
+    }
+    EXPECT_NEAR(f["value"].get<double>(), std::stod(typed), 1e-6) << f;
+    EXPECT_EQ(error, "") << f;
     EXPECT_TRUE(f["menu_open"].get<bool>()) << f;
   }
   // The mechanism at each size: the ground, two boxes, a round pulley, a hexagon and an eyelet,
@@ -693,6 +708,11 @@ TEST(Lecture, FirstMechanismInPresentationModeAtBothSizes) {
       continue;
     }
     EXPECT_TRUE(v["presentation"].get<bool>()) << where;
+    // The hall reads the time and the energy: no step timings (at 1080 it showed "step 0.0 us
+    // (cables 0.0 us)   55 fps   wraps 0").
+    for (const char* timing : {" us", "fps", "wraps"})
+      EXPECT_EQ(v["status"].get<std::string>().find(timing), std::string::npos)
+          << where << ": " << v["status"];
     EXPECT_EQ(v["building"].get<bool>(), midBuild) << "Esc left a Build tool chosen: " << where;
     EXPECT_EQ(v["window"][1].get<double>(), name.rfind("1080-", 0) == 0 ? 1080 : 720) << where;
     EXPECT_EQ(v["strip_name"], "my mechanism") << where;

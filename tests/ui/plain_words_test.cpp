@@ -67,5 +67,14 @@ TEST(PlainWords, SandboxLogsEveryWarningAndBannersOnlyTheUsers) {
   }));
 }
 
+// The status line's energy: the ballast come to rest read "energy 1.421e-14 J".
+TEST(PlainWords, EnergyAtRestReadsZero) {
+  EXPECT_EQ(energyReadout(1.4210854715202004e-14), "0");
+  EXPECT_EQ(energyReadout(-3e-12), "0");
+  EXPECT_EQ(energyReadout(-0.005241), "-0.005241");
+  EXPECT_EQ(energyReadout(470.61), "470.6");
+  EXPECT_EQ(energyReadout(4.5), "4.5");
+}
+
 }  // namespace plain_words_test
 }  // namespace cablelab::ui

@@ -224,5 +224,21 @@ TEST(DemoLoop, ScenesThatKeepGoingOnTheirOwnAndScenesOfUsersNeverRestart) {
   EXPECT_NEAR(sandbox.world()->time(), 5, 1e-9);
 }
 
+// The Scene menu's tooltips are for students: each built-in scene's first plain sentence, where
+// the menu showed the `cablelab scenes` line ("thesis 2.4.2: ...", "(Box2D's pulley joint test)").
+TEST(SceneGuide, SceneMenuTipsAreTheStudentsFirstSentence) {
+  for (const SceneEntry& entry : builtinSceneList()) {
+    const std::string tip = sceneMenuTip(entry.name, entry.description);
+    const std::string whole = studentDescription(entry.name);
+    ASSERT_FALSE(whole.empty()) << entry.name;
+    EXPECT_EQ(whole.rfind(tip, 0), 0u) << entry.name << ": " << tip;
+    EXPECT_EQ(tip.back(), '.') << entry.name << ": " << tip;
+    EXPECT_LT(tip.size(), whole.size()) << entry.name << ": one sentence, not the whole text";
+    for (const char* word : {"thesis", "figure", "chapter", "Box2D", "section"})
+      EXPECT_EQ(tip.find(word), std::string::npos) << entry.name << ": " << tip;
+  }
+  EXPECT_EQ(sceneMenuTip("my.json", "a file's own words"), "a file's own words");
+}
+
 }  // namespace scene_guide_test
 }  // namespace cablelab::ui
