@@ -67,9 +67,8 @@ double driftAtSixtyHertz(World& world, double seconds) {
 // corner to the anchor, but beyond the anchor, and joined: the rope went round the triangle's
 // far side, +0.51 m in one step and 13% of the energy gained. A corner joins only between the
 // end corner and the terminal, and only where the rope from it would not cut the hull
-// (wrap_hold.cpp). Over 10 s it keeps its energy to 1e-4 with no jump. (At 9.7 s the rope
-// jumped 0.21 m: a corner joined the held chain off its segment, without crossing it; a held end
-// now takes a vertex only on its segment.)
+// (wrap_hold.cpp). Over 10 s it keeps its energy to 1e-4 with no jump (on an earlier engine the
+// rope jumped 0.21 m at 9.7 s: a corner joined the held chain without crossing it).
 TEST(HookedPolygon, ATriangleWhirledThroughTheEndAnchorDoesNotJumpRoundItsFarSide) {
   const Bob triangle = {{{-0.015747111999794571, -0.15309771296815111},
                          {0.14046006469161443, 0.062911457456014716},
@@ -115,8 +114,7 @@ Bob randomBob(std::mt19937& random) {
 
 // Adversarial variants: 24 random hooked polygons (randomBob) for 10 s at one sub-step of 1/30,
 // 1/60 and 1/120 s. Each keeps its energy to 2% (the bound) with no wrap change moving
-// the length by 1 mm. (Bob 11, a triangle at 120 Hz, jumped 0.19 m, not traced; it holds since a
-// held end takes a vertex only on its segment, wrap_hold.cpp.)
+// the length by 1 mm (bob 11, a triangle at 120 Hz, jumped 0.19 m on an earlier engine).
 TEST(HookedPolygon, RandomHookedPolygonsKeepTheirEnergyWithoutAJump) {
   std::mt19937 random(36);
   for (int i = 0; i < 24; ++i) {
