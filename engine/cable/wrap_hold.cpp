@@ -9,6 +9,12 @@ namespace cablelab {
 
 namespace {
 
+// m: how much longer the rope may get where the next vertex joins a held end. A vertex that
+// crosses the segment joins on it, at an event; one that lies off it crossed nothing: a hooked
+// triangle's end doubled back round its corner until its turn fell below half a turn within one
+// update, and its next corner, on the wrap side all along, joined 0.1-0.28 m off the old path.
+constexpr double kHeldJoinDetour = 0.01;
+
 // The turn at end vertex `at` of a chain between its chain neighbour `before` and the terminal
 // `b` (walking the path), on the branch nearest `previous`.
 double endTurn(const Vec2& b, std::span<const Vec2> polygon, WrapSide side, int before, int at,
@@ -57,7 +63,8 @@ int continuedEnd(const Vec2& b, std::span<const Vec2> polygon, WrapSide side, in
   // far side). Through the hull (the terminal went in one side and out of another), doubled back
   // round the end vertex, or where the rope from the next vertex would cut the hull (the terminal
   // came out by the edge behind the end vertex, the hull on the segment's wrap side), the segment
-  // holds its vertex.
+  // holds its vertex. So it does where the next vertex lies off the segment (kHeldJoinDetour): it
+  // did not cross it, the end's rope had doubled back (a triangle hooked past the end anchor).
   if (turn >= M_PI || insideConvex(b, polygon)) return t;
   for (int k = 0; k < n; ++k) {
     const int next = (t + step + n) % n;
@@ -65,8 +72,10 @@ int continuedEnd(const Vec2& b, std::span<const Vec2> polygon, WrapSide side, in
                                : -wrapSideDistance(polygon[t], b, polygon[next], side);
     const double along = (polygon[next] - polygon[t]).dot(b - polygon[t]);
     const bool ahead = along > 0 && along < (b - polygon[t]).squaredNorm();
+    const double detour =
+        (polygon[next] - polygon[t]).norm() + (b - polygon[next]).norm() - (b - polygon[t]).norm();
     if (segmentCutsPolygon(polygon[t], b, polygon) || across <= 0 || !ahead ||
-        segmentCutsPolygon(polygon[next], b, polygon))
+        segmentCutsPolygon(polygon[next], b, polygon) || detour > kHeldJoinDetour)
       break;
     t = next;
     ++count;

@@ -141,15 +141,41 @@ inline bool staysSlack(const Cable& cable, std::span<const BodyState> bodies, do
   return stretch < 0;
 }
 
+/// Whether segment i of elastic `cable` runs from an end pinned in the world (its anchor) and the
+/// cable is slack whenever that segment is at its floor: its stretch with the segment at
+/// kFloorLength and every other segment as long as it gets while its far end moves straight by
+/// twice its drift (floorDrift; along a straight motion a length is largest at one end). A body
+/// passes over the pin while nothing pulls, and the segment only turns over about it, as a
+/// tether about its anchor. (staysSlack reads the whole step: a bob heading through its slack
+/// tether's anchor at 10 m/s and 30 Hz would come taut on the far side, and the floor stopped it
+/// at the anchor, 81% of the energy in one step; docs/floors.md.)
+inline bool slackAtPinnedFloor(const Cable& cable, size_t i, std::span<const BodyState> bodies,
+                               double h, const Vec2& gravity) {
+  const auto& path = cable.path();
+  const bool pinned =
+      (i == 0 && path.front().body < 0) || (i + 2 == path.size() && path.back().body < 0);
+  if (!cable.elastic() || !pinned) return false;
+  double stretch = cable.stretch() - floorGap(path[i], path[i + 1]) + kFloorLength;
+  for (size_t j = 0; j + 1 < path.size() && stretch < 0; ++j) {
+    if (j == i) continue;
+    const Vec2 d0 = floorTo(path[j + 1]) - floorFrom(path[j]);
+    const Vec2 d1 = d0 + 2 * floorDrift(path[j], path[j + 1], bodies, h, gravity);
+    stretch += std::max(0.0, d1.norm() - d0.norm());
+  }
+  return stretch < 0;
+}
+
 /// Whether segment i of `cable`'s path needs a floor row this sub-step: the cable has floors, the
 /// segment is near its floor and does not run to a point that may enter a polygon's hull
-/// (Cable::mayEnterHull), and the cable does not stay slack.
+/// (Cable::mayEnterHull), and the cable does not stay slack, over the step or wherever the
+/// segment is at its floor next to a pin (slackAtPinnedFloor).
 template <class Moved>
 bool needsFloor(const Cable& cable, size_t i, std::span<const BodyState> bodies, double h,
                 const Vec2& gravity, Moved moved) {
   return hasFloors(cable) && !cable.mayEnterHull(i) &&
          nearFloor(cable.path(), i, bodies, h, gravity, moved) &&
-         !staysSlack(cable, bodies, h, gravity);
+         !staysSlack(cable, bodies, h, gravity) &&
+         !slackAtPinnedFloor(cable, i, bodies, h, gravity);
 }
 
 /// The direction n a floor row measures segment (p, q) along: its constraint is

@@ -460,7 +460,7 @@ double World::advance(double left, double h, bool locate) {
         if (!hasFloors(c) || staysSlack(c, bodies_, dt, gravity_)) continue;
         const auto& path = c.path();
         for (size_t i = 0; i + 1 < path.size(); ++i) {
-          if (c.mayEnterHull(i)) continue;
+          if (c.mayEnterHull(i) || slackAtPinnedFloor(c, i, bodies_, dt, gravity_)) continue;
           if (auto t = floorArrival(path[i], path[i + 1], motion_, soonest ? *soonest : dt)) {
             soonest = t;
             any = true;
