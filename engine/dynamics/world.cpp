@@ -38,8 +38,8 @@ constexpr double kMinEventStep = 1e-4;  // events closer than this are taken at 
 constexpr double kCutReach = 0.05;
 // Pieces of a sub-step that locate wrap events (and shorten for fast catches); the rest of it is
 // one step. 16 ran out where a light polygon's fast catch cut a sub-step into pieces of 0.6 ms, and
-// a wrap change in the rest moved the length 1.4 cm (docs/knocks.md).
-constexpr int kMaxEventsPerSubstep = 32;
+// a wrap change in the rest moved the length 1.4 cm; 32 at 30 Hz, 1.6 cm (docs/knocks.md).
+constexpr int kMaxEventsPerSubstep = 64;
 constexpr double kSubstepRest = 1e-9;     // of the sub-step: a rest this short ends it
 constexpr int kMaxUnsettledHalvings = 4;  // of a step whose main-solve Newton found no answer
 // A wrap event's cut is located again this often: once. Not more: on a stiff elastic band (omega h
