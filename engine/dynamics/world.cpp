@@ -55,6 +55,44 @@ SceneDef validated(SceneDef scene, const std::string& source) {
   return scene;
 }
 
+// What setEndStates reads of a step: the bodies at its start and their loads.
+struct StepEnd {
+  std::span<const BodyState> bodies;
+  std::span<const BodyDef> defs;
+  std::span<const char> excluded;  // jointed or touching at the start
+  int dragBody;
+  const std::vector<std::pair<int, Vec3>>& ends;  // the midpoint solve's end velocities
+  std::span<const Vec3> forces, kicks;
+};
+
+// Box2D's float update leaves a body at rest moving at 1e-8 m/s: m g and the cables' pull cancel
+// only to a float's last bit, h / m of it a step (2.5e-8 m/s on 5 kg at 30 Hz), and it moves the
+// body with that velocity (a platform sank 2.5 um in 100 s on a rigid cable that kept no length).
+// So every body its solver leaves alone after that update (no joint, contact or drag:
+// b2Island::Solve applies their impulses after it) takes the update in double instead, and the
+// kick, and is moved with it; the midpoint solve's undamped bodies take its end velocities. A body
+// Box2D slowed to its step limits keeps Box2D's step.
+void setEndStates(Box2DBridge& b2, const StepEnd& s, const Vec2& gravity, double dt) {
+  static thread_local std::vector<char> free;  // scratch: no allocation a step
+  free.assign(s.bodies.size(), 0);
+  b2.markTouching(free);  // at the step's end: a contact begun within it acted on the body
+  for (size_t b = 0; b < s.bodies.size(); ++b)
+    free[b] =
+        !free[b] && !s.excluded[b] && s.bodies[b].invMass > 0 && static_cast<int>(b) != s.dragBody;
+  for (int b = 0; b < static_cast<int>(s.bodies.size()); ++b) {
+    if (!free[b]) continue;
+    const BodyState& start = s.bodies[b];
+    const Vec3 v = box2dVelocity(start, s.defs[b], gravity, s.forces[b], dt);
+    if (dt * v.head<2>().norm() > kBox2DMaxMove || dt * std::abs(v.z()) > kBox2DMaxTurn) continue;
+    b2.placeBody(b, start.position + dt * v.head<2>(), start.angle + dt * v.z(), true);
+    const Vec3 end = v + s.kicks[b];
+    b2.setVelocity(b, end.head<2>(), end.z());
+  }
+  for (const auto& [b, v] : s.ends)
+    if (s.defs[b].linearDamping == 0 && s.defs[b].angularDamping == 0)
+      b2.setVelocity(b, v.head<2>(), v.z());
+}
+
 }  // namespace
 
 World::World(SceneDef scene, const std::string& source)
@@ -521,16 +559,8 @@ double World::advance(double left, double h, bool locate) {
   b2_->step(dt);
   if (left - dt <= kSubstepRest * h) expectContacts(b2_->contactSumTime());  // the sub-step's end
   b2_->addVelocities(kicks_);
-  // The midpoint solve's end velocities, set rather than added to Box2D's float update (which
-  // leaves a body at rest moving at 1e-8 m/s); a damped body's: that update in double, and the
-  // kick.
-  for (const auto& [b, v] : ends_) {
-    const BodyDef& d = scene_.bodies[b];
-    const bool damped = d.linearDamping != 0 || d.angularDamping != 0;
-    const Vec3 end =
-        damped ? box2dVelocity(bodies_[b], d, gravity_, forces_[b], dt) + kicks_[b] : v;
-    b2_->setVelocity(b, end.head<2>(), end.z());
-  }
+  setEndStates(*b2_, {bodies_, scene_.bodies, excluded_, dragBody_, ends_, forces_, kicks_},
+               gravity_, dt);
   for (size_t b = 0; b < placements_.size(); ++b)
     if (placements_[b].place)
       b2_->placeBody(static_cast<int>(b), placements_[b].position, placements_[b].angle);
