@@ -321,8 +321,7 @@ void Box2DBridge::readBodies(std::vector<BodyState>& bodies) const {
 
 void Box2DBridge::setTransform(int body, const Vec2& position, double angle) {
   impl_->turns[body] = 0;
-  impl_->dropped[body].setZero();
-  impl_->bodies[body]->SetTransform(toB2(position), static_cast<float>(angle));
+  placeBody(body, position, angle, true);  // a pose read (readBodies) is set back to the last bit
 }
 
 void Box2DBridge::placeBody(int body, const Vec2& position, double angle, bool keepDropped) {

@@ -49,6 +49,9 @@ constexpr double kMaxOmegaDt = 0.3;   // longest midpoint step over the fastest 
 constexpr double kBox2DMaxTurn = 0.9 * kBox2DMaxStepTurn;  // rad
 constexpr double kBox2DMaxMove = 0.9 * kBox2DMaxStepMove;  // m
 constexpr int kMaxLimitShortenings = 4;
+// m/s and rad/s: a body this slow at both ends of a step takes Box2D's update in double (about
+// 5e4 times its float noise, h g 2^-24: setEndStates).
+constexpr double kSlowSpeed = 1e-3;
 
 SceneDef validated(SceneDef scene, const std::string& source) {
   validateScene(scene, source);
@@ -67,11 +70,14 @@ struct StepEnd {
 
 // Box2D's float update leaves a body at rest moving at 1e-8 m/s: m g and the cables' pull cancel
 // only to a float's last bit, h / m of it a step (2.5e-8 m/s on 5 kg at 30 Hz), and it moves the
-// body with that velocity (a platform sank 2.5 um in 100 s on a rigid cable that kept no length).
-// So every body its solver leaves alone after that update (no joint, contact or drag:
-// b2Island::Solve applies their impulses after it) takes the update in double instead, and the
-// kick, and is moved with it; the midpoint solve's undamped bodies take its end velocities. A body
-// Box2D slowed to its step limits keeps Box2D's step.
+// body with that velocity (a platform sank 2.5 um in 100 s on a rigid cable that kept no length);
+// a body creeping by less than half a float's spacing a step does not move at all (a damped
+// platform kept 8e-7 m/s with its pose frozen). So a body that is slower than kSlowSpeed at both
+// ends of the step, and that Box2D's solver leaves alone after that update (no joint, contact or
+// drag: b2Island::Solve applies their impulses after it), takes the update in double and the kick,
+// and is placed at q0 + h v keeping what the float drops (docs/model.md, "Coupling to Box2D").
+// Faster bodies keep Box2D's float step, whose noise is 1e-5 of their motion or less. The midpoint
+// solve's undamped bodies take its end velocities, its damped ones that update in double.
 void setEndStates(Box2DBridge& b2, const StepEnd& s, const Vec2& gravity, double dt) {
   static thread_local std::vector<char> free;  // scratch: no allocation a step
   free.assign(s.bodies.size(), 0);
@@ -79,18 +85,25 @@ void setEndStates(Box2DBridge& b2, const StepEnd& s, const Vec2& gravity, double
   for (size_t b = 0; b < s.bodies.size(); ++b)
     free[b] =
         !free[b] && !s.excluded[b] && s.bodies[b].invMass > 0 && static_cast<int>(b) != s.dragBody;
+  auto slow = [](const Vec2& v, double w) {
+    return v.norm() <= kSlowSpeed && std::abs(w) <= kSlowSpeed;
+  };
   for (int b = 0; b < static_cast<int>(s.bodies.size()); ++b) {
     if (!free[b]) continue;
     const BodyState& start = s.bodies[b];
     const Vec3 v = box2dVelocity(start, s.defs[b], gravity, s.forces[b], dt);
-    if (dt * v.head<2>().norm() > kBox2DMaxMove || dt * std::abs(v.z()) > kBox2DMaxTurn) continue;
-    b2.placeBody(b, start.position + dt * v.head<2>(), start.angle + dt * v.z(), true);
     const Vec3 end = v + s.kicks[b];
+    if (!slow(start.velocity, start.angularVelocity) || !slow(end.head<2>(), end.z())) continue;
+    b2.placeBody(b, start.position + dt * v.head<2>(), start.angle + dt * v.z(), true);
     b2.setVelocity(b, end.head<2>(), end.z());
   }
-  for (const auto& [b, v] : s.ends)
-    if (s.defs[b].linearDamping == 0 && s.defs[b].angularDamping == 0)
-      b2.setVelocity(b, v.head<2>(), v.z());
+  for (const auto& [b, v] : s.ends) {
+    const BodyDef& d = s.defs[b];
+    const bool damped = d.linearDamping != 0 || d.angularDamping != 0;
+    const Vec3 end =
+        damped ? box2dVelocity(s.bodies[b], d, gravity, s.forces[b], dt) + s.kicks[b] : v;
+    b2.setVelocity(b, end.head<2>(), end.z());
+  }
 }
 
 }  // namespace
