@@ -51,7 +51,7 @@ constexpr double kBox2DMaxMove = 0.9 * kBox2DMaxStepMove;  // m
 constexpr int kMaxLimitShortenings = 4;
 // m/s and rad/s: a body this slow at both ends of a step takes Box2D's update in double (about
 // 5e4 times its float noise, h g 2^-24: setEndStates).
-constexpr double kSlowSpeed = 1e-3;
+constexpr double kSlowSpeed = 1e-6;
 
 SceneDef validated(SceneDef scene, const std::string& source) {
   validateScene(scene, source);
