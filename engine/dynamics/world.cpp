@@ -49,8 +49,11 @@ constexpr double kMaxOmegaDt = 0.3;   // longest midpoint step over the fastest 
 constexpr double kBox2DMaxTurn = 0.9 * kBox2DMaxStepTurn;  // rad
 constexpr double kBox2DMaxMove = 0.9 * kBox2DMaxStepMove;  // m
 constexpr int kMaxLimitShortenings = 4;
-// m/s and rad/s: a body this slow at both ends of a step takes Box2D's update in double (about
-// 5e4 times its float noise, h g 2^-24: setEndStates).
+// m/s and rad/s: a body this slow at both ends of a step takes Box2D's update in double
+// (setEndStates), 50 times that update's float noise at 30 Hz (h g 2^-24 = 2e-8 m/s). A faster
+// body the float freezes (h v below half its spacing: up to 3.6e-6 m/s at 1 m and 60 Hz) stays
+// frozen: the tackle's block, at 1.4e-6 m/s on its floors, would reach them with a bump of 9e-6
+// of the effort's weight in the rope (docs/model.md, "Coupling to Box2D").
 constexpr double kSlowSpeed = 1e-6;
 
 SceneDef validated(SceneDef scene, const std::string& source) {
@@ -76,8 +79,9 @@ struct StepEnd {
 // ends of the step, and that Box2D's solver leaves alone after that update (no joint, contact or
 // drag: b2Island::Solve applies their impulses after it), takes the update in double and the kick,
 // and is placed at q0 + h v keeping what the float drops (docs/model.md, "Coupling to Box2D").
-// Faster bodies keep Box2D's float step, whose noise is 1e-5 of their motion or less. The midpoint
-// solve's undamped bodies take its end velocities, its damped ones that update in double.
+// Faster bodies keep Box2D's float step (chaotic catches moved by its noise flip knife-edge
+// variants). The midpoint solve's undamped bodies take its end velocities, its damped ones that
+// update in double.
 void setEndStates(Box2DBridge& b2, const StepEnd& s, const Vec2& gravity, double dt) {
   static thread_local std::vector<char> free;  // scratch: no allocation a step
   free.assign(s.bodies.size(), 0);
