@@ -321,7 +321,8 @@ void Box2DBridge::readBodies(std::vector<BodyState>& bodies) const {
 
 void Box2DBridge::setTransform(int body, const Vec2& position, double angle) {
   impl_->turns[body] = 0;
-  placeBody(body, position, angle, true);  // a pose read (readBodies) is set back to the last bit
+  impl_->dropped[body].setZero();  // a pose set from outside is Box2D's float one
+  impl_->bodies[body]->SetTransform(toB2(position), static_cast<float>(angle));
 }
 
 void Box2DBridge::placeBody(int body, const Vec2& position, double angle, bool keepDropped) {
