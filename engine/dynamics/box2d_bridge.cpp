@@ -229,6 +229,9 @@ struct Box2DBridge::Impl {
   /// rewound: revolute joints without a limit (the offsets go back into their coordinate).
   std::vector<double> turns;
   std::vector<char> rewinds;
+  /// Per body, the part of the pose placeBody was given that Box2D's float dropped (x, y, angle),
+  /// until Box2D next steps (it moves the body from its float pose).
+  std::vector<Vec3> dropped;
   std::vector<std::array<int, 2>> jointBodies;  ///< body indices of each joint, -1: the world
   void rewind();
   /// A joint's coordinate (rad or m, the turns taken out put back; 0 for welds).
@@ -287,6 +290,7 @@ Box2DBridge::Box2DBridge(const SceneDef& scene) : impl_(std::make_unique<Impl>()
   w.SetContactFilter(&impl_->hullFilter);
   impl_->contacts.untilApart = &impl_->hullFilter.untilApart;
   impl_->turns.assign(scene.bodies.size(), 0.0);
+  impl_->dropped.assign(scene.bodies.size(), Vec3::Zero());
   impl_->rewinds.assign(scene.bodies.size(), 1);
   for (const JointDef& jd : scene.joints) {
     impl_->jointBodies.push_back({findBodyIndex(scene, jd.bodyA), findBodyIndex(scene, jd.bodyB)});
@@ -303,8 +307,9 @@ void Box2DBridge::readBodies(std::vector<BodyState>& bodies) const {
   for (size_t i = 0; i < bodies.size(); ++i) {
     const b2Body* b = impl_->bodies[i];
     BodyState& s = bodies[i];
-    s.position = fromB2(b->GetPosition());
-    s.angle = b->GetAngle() + impl_->turns[i];
+    const Vec3& dropped = impl_->dropped[i];
+    s.position = fromB2(b->GetPosition()) + dropped.head<2>();
+    s.angle = b->GetAngle() + impl_->turns[i] + dropped.z();
     s.velocity = fromB2(b->GetLinearVelocity());
     s.angularVelocity = b->GetAngularVelocity();
     const bool dynamic = b->GetType() == b2_dynamicBody;
@@ -316,11 +321,17 @@ void Box2DBridge::readBodies(std::vector<BodyState>& bodies) const {
 
 void Box2DBridge::setTransform(int body, const Vec2& position, double angle) {
   impl_->turns[body] = 0;
+  impl_->dropped[body].setZero();  // a pose set from outside is Box2D's float one
   impl_->bodies[body]->SetTransform(toB2(position), static_cast<float>(angle));
 }
 
-void Box2DBridge::placeBody(int body, const Vec2& position, double angle) {
-  impl_->bodies[body]->SetTransform(toB2(position), static_cast<float>(angle - impl_->turns[body]));
+void Box2DBridge::placeBody(int body, const Vec2& position, double angle, bool keepDropped) {
+  const double turned = angle - impl_->turns[body];
+  const b2Vec2 p = toB2(position);
+  const float a = static_cast<float>(turned);
+  impl_->bodies[body]->SetTransform(p, a);
+  impl_->dropped[body] =
+      keepDropped ? Vec3(position.x() - p.x, position.y() - p.y, turned - a) : Vec3::Zero();
 }
 
 void Box2DBridge::setVelocity(int body, const Vec2& velocity, double angularVelocity) {
@@ -343,6 +354,7 @@ void Box2DBridge::applyLoads(std::span<const Vec3> loads) {
 
 void Box2DBridge::step(double h) {
   impl_->lastStep = h;
+  std::fill(impl_->dropped.begin(), impl_->dropped.end(), Vec3::Zero());
   std::fill(impl_->contacts.perBody.begin(), impl_->contacts.perBody.end(), Vec3::Zero());
   impl_->world.Step(static_cast<float>(h), kVelocityIterations, kPositionIterations);
   for (size_t b = 0; b < impl_->impulseSum.size(); ++b)

@@ -44,8 +44,10 @@ class Box2DBridge {
   /// Pose, velocity and inverse mass of every body, in double precision.
   void readBodies(std::vector<BodyState>& bodies) const;
   void setTransform(int body, const Vec2& position, double angle);
-  /// Moves a body to a pose within a run (setTransform restarts its turn count).
-  void placeBody(int body, const Vec2& position, double angle);
+  /// Moves a body to a pose within a run (setTransform restarts its turn count). With
+  /// `keepDropped`, the part of the pose Box2D's float drops is kept and read back (readBodies)
+  /// until Box2D next steps: a body creeping by less than a float's spacing a step still moves.
+  void placeBody(int body, const Vec2& position, double angle, bool keepDropped = false);
   void setVelocity(int body, const Vec2& velocity, double angularVelocity);
   void setGravity(const Vec2& g);
 

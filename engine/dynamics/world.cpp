@@ -12,10 +12,10 @@
 #include "engine/core/error.h"
 #include "engine/dynamics/box2d_bridge.h"
 #include "engine/dynamics/box2d_limits.h"
-#include "engine/dynamics/box2d_velocity_update.h"
 #include "engine/dynamics/cable_islands.h"
 #include "engine/dynamics/cable_solver.h"
 #include "engine/dynamics/contact_catch.h"
+#include "engine/dynamics/end_states.h"
 #include "engine/dynamics/floors.h"
 #include "engine/dynamics/joint_energy.h"
 #include "engine/dynamics/knock_motion.h"
@@ -534,16 +534,8 @@ double World::advance(double left, double h, bool locate) {
   b2_->applyLoads(forces_);
   b2_->step(dt);
   b2_->addVelocities(kicks_);
-  // The midpoint solve's end velocities, set rather than added to Box2D's float update (which
-  // leaves a body at rest moving at 1e-8 m/s); a damped body's: that update in double, and the
-  // kick.
-  for (const auto& [b, v] : ends_) {
-    const BodyDef& d = scene_.bodies[b];
-    const bool damped = d.linearDamping != 0 || d.angularDamping != 0;
-    const Vec3 end =
-        damped ? box2dVelocity(bodies_[b], d, gravity_, forces_[b], dt) + kicks_[b] : v;
-    b2_->setVelocity(b, end.head<2>(), end.z());
-  }
+  setEndStates(*b2_, {bodies_, scene_.bodies, excluded_, dragBody_, ends_, forces_, kicks_},
+               gravity_, dt);
   for (size_t b = 0; b < placements_.size(); ++b)
     if (placements_[b].place)
       b2_->placeBody(static_cast<int>(b), placements_[b].position, placements_[b].angle);
