@@ -116,9 +116,8 @@ CloseUpFrame closeUpFrame(const World& world) {
   CloseUpFrame f;
   const double reach = nearest > -1e299 ? (top - nearest) * (1 + kCloseUpRoom) : 0.0;
   // A body farther down than the widest close-up leaves the view for a while: the mechanism
-  // stays readable (it comes back, or the run starts again, ui/demo_loop.h). The view holds at
-  // its widest meanwhile: zoomed in again at once, it jumped back and forth as the weight left.
-  f.span = std::clamp(reach, least, kCloseUpWidest * least);
+  // stays readable (it comes back, or the run starts again, ui/demo_loop.h).
+  f.span = reach <= kCloseUpWidest * least ? std::max(least, reach) : least;
   f.focus = Vec2(0.5 * (scene.lo.x() + scene.hi.x()), top - 0.5 * f.span);
   f.width = scene.hi.x() - scene.lo.x();
   return f;

@@ -17,8 +17,7 @@
 // wheel, drum or pulleys the rope hangs from) and the nearest body hanging below it, at least
 // kCloseUpSpan times the scene's width tall; the view follows the run (zooms out at once when
 // that body moves away, in and along smoothly when it comes nearer). A body farther away than
-// three times that leaves the view, which holds at that widest until the body comes back or the
-// run starts again: the wheel stays readable.
+// three times that leaves the view until it comes back: the wheel stays readable.
 //
 // Needs: ui/sandbox.h (no SDL, no GL); the marker key's room in the fit is measured with the
 // text font when an ImGui context has one.
