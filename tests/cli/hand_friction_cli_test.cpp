@@ -33,8 +33,8 @@ std::string readFile(const std::string& path) {
 // (tests/data/hand/track_defaults.csv: `cablelab track --target 0.1,0.05 --time 3 --pid --csv F`
 // on main at the merge base), with and without the explicit --set. Written again once a wrap
 // event was located again on its cut's motion (docs/cables.md, "Events"): one cut of the run
-// moved, and the fingertip by at most 7.5e-9 m. And once bodies slower than 1e-6 m/s took Box2D's
-// update in double (world.cpp, setEndStates): the box, still before the grasp, by 6e-16 m.
+// moved, and the fingertip by at most 7.5e-9 m. And once bodies slower than 1e-3 m/s took Box2D's
+// update in double (end_states.h): the box, slow before the grasp, by at most 1.5e-11 m.
 TEST(HandFrictionCli, DefaultsLeaveTrackUnchangedToTheBit) {
   const std::string expected = readFile(test::dataPath("hand/track_defaults.csv"));
   ASSERT_GT(expected.size(), 1000u);

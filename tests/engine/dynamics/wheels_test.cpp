@@ -205,7 +205,9 @@ TEST(Tackle, FourFallsGiveAMechanicalAdvantageOfFour) {
 // rows the impulses pull on, and dependent ones. The energy-consistent solve hands each such step
 // to the main solve at once (its Newton on their split of the impulses never settles), which
 // holds the effort with its weight; while the block rises the floors are slack and the
-// energy-consistent solve keeps the step.
+// energy-consistent solve keeps the step. At rest it reports no velocity: a body slower than
+// 1e-3 m/s takes Box2D's update in double (docs/model.md, "Coupling to Box2D"); in float it
+// stayed frozen short of its floors, reporting 1.4e-6 m/s.
 TEST(Tackle, ABlockHauledAgainstItsSheavesRestsOnRedundantFloorsAtTheEffortsWeight) {
   const double mEffort = 1.2, mLoad = 4;
   World w = load("tackle", {{"m_load", mLoad}, {"m_effort", mEffort}});
@@ -216,15 +218,16 @@ TEST(Tackle, ABlockHauledAgainstItsSheavesRestsOnRedundantFloorsAtTheEffortsWeig
     if (w.body(w.findBody("block")).velocity.norm() > 1e-3) {
       rising += s.midpointSolves;
       EXPECT_EQ(s.midpointRedundant, 0) << "step " << i;
-    } else if (i > 300) {
+    } else if (i >= 350) {  // arrived (it creeps onto its floors at 1e-6 m/s until step 339)
       ++restingSteps;
+      EXPECT_LT(w.body(w.findBody("block")).velocity.norm(), 1e-9) << "step " << i;
       handedOver += s.midpointRedundant;
       EXPECT_EQ(s.midpointRedundant, s.midpointFallbacks) << "step " << i;
       EXPECT_NEAR(w.cable(0).tension(), mEffort * kG, 1e-6 * mEffort * kG) << "step " << i;
     }
   }
   EXPECT_GT(rising, 100);
-  EXPECT_EQ(restingSteps, 99);
+  EXPECT_EQ(restingSteps, 50);
   EXPECT_EQ(handedOver, restingSteps);
 }
 
