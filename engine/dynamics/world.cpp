@@ -57,6 +57,22 @@ constexpr int kMaxLimitShortenings = 4;
 // moves by (v dt)^2 / l: 1e-8 m at 5 m/s).
 constexpr double kKnockReach = 1e-3;
 
+// The first wrap event of any cable over `motion` within `limit` (s); `cable` -1 if none.
+struct FirstWrapEvent {
+  std::optional<double> time;
+  int cable = -1;
+  WrapEvent event;
+};
+FirstWrapEvent firstWrapEvent(std::span<const Cable> cables, std::span<const BodyState> motion,
+                              double limit) {
+  FirstWrapEvent first;
+  for (size_t i = 0; i < cables.size(); ++i)
+    if (auto e = cables[i].nextEvent(motion, first.time ? *first.time : limit)) {
+      first = {e->time, static_cast<int>(i), *e};
+    }
+  return first;
+}
+
 SceneDef validated(SceneDef scene, const std::string& source) {
   validateScene(scene, source);
   return scene;
@@ -447,19 +463,7 @@ double World::advance(double left, double h, bool locate) {
   }
   if (locate) {
     predictMotion(dt);
-    std::optional<double> first;
-    int cable = -1;
-    WrapEvent event;
-    // The first wrap event of any cable over the motion in motion_, before `soonest` if set.
-    auto firstEvent = [&](std::optional<double>& soonest, int& where, WrapEvent& what) {
-      for (size_t i = 0; i < cables_.size(); ++i)
-        if (auto e = cables_[i].nextEvent(motion_, soonest ? *soonest : dt)) {
-          soonest = e->time;
-          where = static_cast<int>(i);
-          what = *e;
-        }
-    };
-    firstEvent(first, cable, event);
+    auto [first, cable, event] = firstWrapEvent(cables_, motion_, dt);
     // A body arriving at its pulley (floors.h, floorArrival): no wrap change, cableless cut.
     auto floorArrivals = [&](std::optional<double>& soonest) {
       bool any = false;
@@ -494,18 +498,15 @@ double World::advance(double left, double h, bool locate) {
     // (kEventRelocations).
     for (int again = 0; again < kEventRelocations && cable >= 0 && cutCable_ >= 0; ++again) {
       predictMotion(dt);
-      std::optional<double> sooner;
-      int where = -1;
-      WrapEvent what;
-      firstEvent(sooner, where, what);
-      if (!sooner) break;
+      const FirstWrapEvent sooner = firstWrapEvent(cables_, motion_, dt);
+      if (!sooner.time) break;
       // Found again within the time it was located to: the same instant, nothing to do.
-      const double cut = std::max(*sooner, kMinEventStep * h);
+      const double cut = std::max(*sooner.time, kMinEventStep * h);
       if (!(cut < dt - crossingTolerance(h))) break;
       dt = cut;
       solveForces(dt, h);
-      cutCable_ = where;
-      cutEvent_ = what;
+      cutCable_ = sooner.cable;
+      cutEvent_ = sooner.event;
     }
     // The arrival was located at the velocities of the whole step, but Box2D moves the bodies
     // over the cut one at v0 + dt a: a weight swung at a winch drum at 15 m/s^2 landed 0.65 mm
@@ -522,7 +523,7 @@ double World::advance(double left, double h, bool locate) {
     }
   }
   // What the wrap events were located on, to tell a knock inside Box2D's step (knock_motion.h).
-  std::vector<BodyState> start, predicted;
+  static thread_local std::vector<BodyState> start, predicted;  // scratch: no allocation a step
   if (locate) {
     predictMotion(dt);
     start = bodies_;
@@ -551,23 +552,16 @@ double World::advance(double left, double h, bool locate) {
   // the event, so that the change happens on the old path, and the rest of the sub-step is
   // stepped again (knock_motion.h).
   double taken = dt;
-  std::vector<char> jointed(bodies_.size(), 0);
+  static thread_local std::vector<char> jointed;
+  jointed.assign(bodies_.size(), 0);
   for (const auto& [a, b] : jointBodies_)
     for (const int body : {a, b})
       if (body >= 0) jointed[body] = 1;
   if (locate && deviationFromPrediction(start, predicted, bodies_, jointed, dt) > kKnockDeviation) {
     const double knock = knockTime(start, predicted, bodies_, dt);
     motionAfterKnock(start, predicted, bodies_, dt, knock, motion_);
-    std::optional<double> first;
-    int where = -1;
-    WrapEvent what;
-    for (size_t i = 0; i < cables_.size(); ++i)
-      if (auto e = cables_[i].nextEvent(motion_, first ? *first : dt - knock)) {
-        first = e->time;
-        where = static_cast<int>(i);
-        what = *e;
-      }
-    const double at = first ? std::max(knock + *first, kMinEventStep * h) : dt;
+    const FirstWrapEvent after = firstWrapEvent(cables_, motion_, dt - knock);
+    const double at = after.time ? std::max(knock + *after.time, kMinEventStep * h) : dt;
     if (at < dt - kKnockReach * h) {
       taken = at;
       backAfterKnock(motion_, bodies_, forces_, gravity_, jointed, dt - at, at - knock);
@@ -577,8 +571,8 @@ double World::advance(double left, double h, bool locate) {
         b2_->setVelocity(static_cast<int>(b), bodies_[b].velocity, bodies_[b].angularVelocity);
       }
       b2_->readBodies(bodies_);
-      cutCable_ = where;
-      cutEvent_ = what;
+      cutCable_ = after.cable;
+      cutEvent_ = after.event;
       ++stats_.events;
     }
   }
