@@ -85,6 +85,21 @@ TEST(SensorsTest, WrappedPendulumReportsTheStepsTensionWithoutAlternation) {
     }
 }
 
+// What gravity and the cables leave on the platform (fx, fy, torque about its centre): each cable
+// pulls its end towards the world along its last segment.
+Vec3 leftOverLoad(const World& world, const BodyState& platform, double mass, const Vec2& gravity) {
+  Vec2 force = mass * gravity;
+  double torque = 0;
+  for (int c = 0; c < world.cableCount(); ++c) {
+    const auto& path = world.cable(c).path();
+    const Vec2 end = path.back().world, towards = path[path.size() - 2].world;
+    const Vec2 pull = world.cable(c).tension() * (towards - end).normalized();
+    force += pull;
+    torque += cross(Vec2(end - platform.position), pull);
+  }
+  return {force.x(), force.y(), torque};
+}
+
 // The platform: two rigid cables at its ends, two damped elastic ones inside them.
 TEST(SensorsTest, PlatformAtRestReportsNoVelocityAndTensionsThatBalanceTheLoad) {
   SceneDef scene = loadSceneFile(test::sourcePath("tests/data/sensors/platform_rest.json"));
@@ -106,18 +121,9 @@ TEST(SensorsTest, PlatformAtRestReportsNoVelocityAndTensionsThatBalanceTheLoad) 
         fastest = std::max(fastest, b.velocity.norm());
         spin = std::max(spin, std::abs(b.angularVelocity));
         moved = std::max(moved, (b.position - settled.position).norm());
-        // Each cable pulls its platform end towards the world along its last segment.
-        Vec2 force = mass * scene.gravity;
-        double torque = 0;
-        for (int c = 0; c < world.cableCount(); ++c) {
-          const auto& path = world.cable(c).path();
-          const Vec2 end = path.back().world, towards = path[path.size() - 2].world;
-          const Vec2 pull = world.cable(c).tension() * (towards - end).normalized();
-          force += pull;
-          torque += cross(Vec2(end - b.position), pull);
-        }
-        unbalanced = std::max(unbalanced, force.norm());
-        untwisted = std::max(untwisted, std::abs(torque));
+        const Vec3 left = leftOverLoad(world, b, mass, scene.gravity);
+        unbalanced = std::max(unbalanced, left.head<2>().norm());
+        untwisted = std::max(untwisted, std::abs(left.z()));
       }
       // Measured: below 4e-12 m/s and 1e-11 of the load in all 21 variants. Before: 2.4-4.9e-9
       // m/s at 20 kg (30, 60, 480 Hz, 60 Hz x 8) and 4 kg at 30 Hz, a sway the solve's restarts
@@ -173,21 +179,6 @@ TEST(SensorsTest, DampedPlatformAtRestReportsNoVelocityAndTensionsThatBalanceThe
         EXPECT_LT(spin, 1e-9);
         EXPECT_LT(unbalanced, 1e-6 * load);
       }
-}
-
-// What gravity and the cables leave on the platform (fx, fy, torque about its centre): each cable
-// pulls its end towards the world along its last segment.
-Vec3 leftOverLoad(const World& world, const BodyState& platform, double mass, const Vec2& gravity) {
-  Vec2 force = mass * gravity;
-  double torque = 0;
-  for (int c = 0; c < world.cableCount(); ++c) {
-    const auto& path = world.cable(c).path();
-    const Vec2 end = path.back().world, towards = path[path.size() - 2].world;
-    const Vec2 pull = world.cable(c).tension() * (towards - end).normalized();
-    force += pull;
-    torque += cross(Vec2(end - platform.position), pull);
-  }
-  return {force.x(), force.y(), torque};
 }
 
 // The most a platform moves, reports and is left unbalanced by over `seconds` (after `settle`).
