@@ -17,20 +17,13 @@
 #include "engine/dynamics/contact_catch.h"
 #include "engine/dynamics/world.h"
 #include "engine/model/scene_json.h"
+#include "tests/support/rope_loop_pairs.h"
 
 namespace cablelab {
 namespace contact_catch_test {
 
-struct Thrown {
-  int sides;
-  double radius, phase, mass;
-  double vx, vy, spin;
-};
-
-struct LoopPair {
-  int seed;  ///< of the sweep that found it
-  Thrown a, b;
-};
+using test::LoopPair;
+using test::ropeLoops;
 
 // Pairs whose knocks stretched the rope (seeds 5, 13, 18, 20, 36, 27) and whose polygon pressed
 // onto an anchor (31, 23).
@@ -76,42 +69,6 @@ const LoopPair kKnockedInCutSteps[] = {
      {7, 0.2273, 2.0050, 0.2, 2.3999, -0.0907, 2.8495},
      {4, 0.2027, 5.0346, 1.0, 0.1924, 0.3892, -2.6331}},
 };
-
-nlohmann::json polygonBody(const std::string& name, double x, const Thrown& t, double mass,
-                           double speedUp) {
-  nlohmann::json vertices = nlohmann::json::array();
-  for (int k = 0; k < t.sides; ++k) {
-    const double angle = t.phase + 2 * M_PI * k / t.sides;
-    vertices.push_back({t.radius * std::cos(angle), t.radius * std::sin(angle)});
-  }
-  return {{"name", name},
-          {"position", {x, 0.0}},
-          {"mass", mass},
-          {"shapes", {{{"type", "polygon"}, {"vertices", vertices}, {"sensor", true}}}},
-          {"velocity", {speedUp * t.vx, speedUp * t.vy}},
-          {"angular_velocity", speedUp * t.spin}};
-}
-
-/// The pair in the rope's loops at 60 Hz, its throws `speedUp` times as fast, its masses
-/// swapped if `swap`.
-SceneDef ropeLoops(const LoopPair& p, double speedUp = 1, bool swap = false) {
-  const nlohmann::json loop = {{"type", "polygon"}, {"side", "right"}, {"turns", 0.5}};
-  nlohmann::json a = loop, b = loop;
-  a["body"] = "a";
-  b["body"] = "b";
-  const nlohmann::json scene = {
-      {"name", "loops"},
-      {"dt", 1.0 / 60},
-      {"bodies",
-       {polygonBody("a", -0.5, p.a, swap ? p.b.mass : p.a.mass, speedUp),
-        polygonBody("b", 0.5, p.b, swap ? p.a.mass : p.b.mass, speedUp)}},
-      {"cables",
-       {{{"name", "rope"},
-         {"start", {{"body", "world"}, {"point", {-1.0, 1.0}}}},
-         {"end", {{"body", "world"}, {"point", {1.0, 1.0}}}},
-         {"pulleys", {a, {{"type", "point"}, {"point", {0.0, 1.0}}, {"side", "left"}}, b}}}}}};
-  return sceneFromJson(scene, "contact_catch_test");
-}
 
 struct Figures {
   std::string warning;   ///< the first warning, "" if none
@@ -170,8 +127,8 @@ using contact_catch_test::expectCaught;
 using contact_catch_test::kKnockedInCutSteps;
 using contact_catch_test::kKnocking;
 using contact_catch_test::kOnAnchors;
-using contact_catch_test::ropeLoops;
 using contact_catch_test::run;
+using test::ropeLoops;
 
 // The knocks stretched the rope by up to 5.7 cm at 1 sub-step (up to 3.1 and 2.1 cm at 2 and 4).
 // Caught after Box2D's step (contact_catch.h) the rope runs at most 5 mm long (the catch's

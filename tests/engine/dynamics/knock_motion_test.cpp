@@ -13,58 +13,19 @@
 
 #include "engine/dynamics/world.h"
 #include "engine/model/scene_json.h"
+#include "tests/support/rope_loop_pairs.h"
 
 namespace cablelab {
 namespace knock_motion_test {
 
-struct ThrownPolygon {
-  int sides;
-  double radius, phase, mass;
-  double vx, vy, spin;
-};
-
-struct KnockingPair {
-  int seed;  ///< of the sweep that found it
-  ThrownPolygon a, b;
-};
-
-nlohmann::json thrownPolygonBody(const std::string& name, double x, const ThrownPolygon& t) {
-  nlohmann::json vertices = nlohmann::json::array();
-  for (int k = 0; k < t.sides; ++k) {
-    const double angle = t.phase + 2 * M_PI * k / t.sides;
-    vertices.push_back({t.radius * std::cos(angle), t.radius * std::sin(angle)});
-  }
-  return {{"name", name},
-          {"position", {x, 0.0}},
-          {"mass", t.mass},
-          {"shapes", {{{"type", "polygon"}, {"vertices", vertices}, {"sensor", true}}}},
-          {"velocity", {t.vx, t.vy}},
-          {"angular_velocity", t.spin}};
-}
-
-SceneDef pairInRopeLoops(const KnockingPair& p) {
-  const nlohmann::json loop = {{"type", "polygon"}, {"side", "right"}, {"turns", 0.5}};
-  nlohmann::json a = loop, b = loop;
-  a["body"] = "a";
-  b["body"] = "b";
-  const nlohmann::json scene = {
-      {"name", "loops"},
-      {"dt", 1.0 / 60},
-      {"bodies", {thrownPolygonBody("a", -0.5, p.a), thrownPolygonBody("b", 0.5, p.b)}},
-      {"cables",
-       {{{"name", "rope"},
-         {"start", {{"body", "world"}, {"point", {-1.0, 1.0}}}},
-         {"end", {{"body", "world"}, {"point", {1.0, 1.0}}}},
-         {"pulleys", {a, {{"type", "point"}, {"point", {0.0, 1.0}}, {"side", "left"}}, b}}}}}};
-  return sceneFromJson(scene, "knock_motion_test");
-}
+using KnockingPair = test::LoopPair;
 
 /// No warning (no wrap change moved the length by 1 mm, no polygon dropped or released) over
 /// `steps` steps of `dt`, and the energy never 1% of its scale above its start.
 void expectNoWrapChangeOffTheOldPath(const KnockingPair& pair, double dt, int substeps, int steps) {
   SCOPED_TRACE("seed " + std::to_string(pair.seed) + " at " + std::to_string(1 / dt) + " Hz x " +
                std::to_string(substeps));
-  SceneDef scene = pairInRopeLoops(pair);
+  SceneDef scene = test::ropeLoops(pair);
   World world(scene);
   const double e0 = world.energy(), scale = std::max(std::abs(e0), 1.0);
   double rise = 0;
