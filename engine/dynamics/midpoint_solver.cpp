@@ -128,7 +128,8 @@ double floorRow(const WrapPoint& p, const WrapPoint& q, const Vec2& n,
 // off the line of gravity, so that its body swings. Tolerances far below any swing worth its
 // energy: a swing that small changing integrator loses nothing measurable. Other rigid cables keep
 // the solve they had: a rope from an anchor (a pendulum, over a pulley or not), a chain's links
-// (the main solve's sparse path for big islands), ropes over circles or polygons.
+// (the main solve's sparse path for big islands), ropes over circles or polygons; unless taut and
+// swinging faster than the main solve resolves (applies, tautSwingRate).
 bool rigidCableSwings(const Cable& c, std::span<const BodyState> bodies, const Vec2& gravity) {
   constexpr double kAcrossSpeed = 1e-7;  // m/s
   constexpr double kOffGravity = 1e-7;   // rad
@@ -235,7 +236,8 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
     // A taut rigid cable whose bodies swing round faster than the main solve's step resolves (a
     // bob whirled on a tether): there its geometric stiffness (geometric_stiffness.h), taken
     // about the start pose, damps the swing by 1 / (1 + (omega h)^2) a step, 10% at omega h =
-    // 1/3, and a whirl slows to omega h = 0.22, where the stiffness stops acting (docs/knocks.md).
+    // 1/3, and a whirl slows to omega h = 0.22, where the stiffness stops acting (docs/knocks.md,
+    // "Rigid tethers").
     if (!c.elastic() && which.size() <= kMaxCablesWithUnresolvedSpring) {
       const std::span<const int> alone(&index, 1);
       const double swing =
