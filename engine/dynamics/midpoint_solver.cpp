@@ -159,7 +159,8 @@ bool rigidCableSwings(const Cable& c, std::span<const BodyState> bodies, const V
 
 // How fast a taut rigid cable's segments turn (rad/s): the ends' velocities across each segment
 // with an end on a moving body, over its length. Its tension says the same once solved
-// (transverseMode), but a cable caught at the start of a run has none yet.
+// (transverseMode, which the main solve's stiffness acts on: after a catch the tension is the
+// catch's), but a cable caught at the start of a run has none yet.
 double tautSwingRate(const Cable& c, std::span<const BodyState> bodies) {
   if (c.stretch() < -kLengthSlop) return 0;
   const auto& path = c.path();
