@@ -14,6 +14,9 @@ namespace {
 constexpr int kIterations = 40;
 constexpr double kPositionTolerance = 1e-12;  // m: end-of-step pose settled
 constexpr int kFloorIterations = 2;  // a floor pushing on as many first iterations: given up
+// Largest omega h of a taut rigid cable's swing the main solve keeps: its geometric stiffness,
+// which acts from omega h = 0.22 on (geometric_stiffness.cpp), damps faster ones.
+constexpr double kMaxMainSolveSwingOmegaH = 0.2;
 
 // Discrete gradient of V = k/2 max(0, phi)^2 between phi0 and phi1, and its phi1-derivative.
 // With both ends taut (or both slack) they are k (phi0 + phi1) / 2 and k / 2 in closed form: the
@@ -125,7 +128,8 @@ double floorRow(const WrapPoint& p, const WrapPoint& q, const Vec2& n,
 // off the line of gravity, so that its body swings. Tolerances far below any swing worth its
 // energy: a swing that small changing integrator loses nothing measurable. Other rigid cables keep
 // the solve they had: a rope from an anchor (a pendulum, over a pulley or not), a chain's links
-// (the main solve's sparse path for big islands), ropes over circles or polygons.
+// (the main solve's sparse path for big islands), ropes over circles or polygons; unless taut and
+// swinging faster than the main solve resolves (applies, tautSwingRate).
 bool rigidCableSwings(const Cable& c, std::span<const BodyState> bodies, const Vec2& gravity) {
   constexpr double kAcrossSpeed = 1e-7;  // m/s
   constexpr double kOffGravity = 1e-7;   // rad
@@ -151,6 +155,31 @@ bool rigidCableSwings(const Cable& c, std::span<const BodyState> bodies, const V
       if (w->body >= 0 && bodies[w->body].angularVelocity != 0) return true;
   }
   return false;
+}
+
+// How fast a taut rigid cable's segments turn (rad/s): the ends' velocities across each segment
+// with an end on a moving body, over its length. Its tension says the same once solved
+// (transverseMode, which the main solve's stiffness acts on: after a catch the tension is the
+// catch's), but a cable caught at the start of a run has none yet.
+double tautSwingRate(const Cable& c, std::span<const BodyState> bodies) {
+  if (c.stretch() < -kLengthSlop) return 0;
+  const auto& path = c.path();
+  auto velocityOf = [&](const WrapPoint& w) {
+    return w.body < 0 ? Vec2(Vec2::Zero()) : pointVelocity(bodies[w.body], w.world);
+  };
+  double fastest = 0;
+  for (size_t i = 0; i + 1 < path.size(); ++i) {
+    const WrapPoint &p = path[i], &q = path[i + 1];
+    if (p.body == q.body ||
+        !((p.body >= 0 && moves(bodies[p.body])) || (q.body >= 0 && moves(bodies[q.body]))))
+      continue;
+    const Vec2 d = q.world - p.world;
+    const double length = d.norm();
+    if (length > 1e-9)
+      fastest =
+          std::max(fastest, std::abs(cross(d, velocityOf(q) - velocityOf(p))) / (length * length));
+  }
+  return fastest;
 }
 
 }  // namespace
@@ -205,6 +234,17 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
     // energy of an Atwood pair at 60 Hz), the midpoint rule by 5e-5. One that only runs along
     // itself (bodies hung straight under their pulleys) keeps Box2D's integration, exact there.
     wanted |= !c.elastic() && rigidCableSwings(c, bodies, gravity);
+    // A taut rigid cable whose bodies swing round faster than the main solve's step resolves (a
+    // bob whirled on a tether): there its geometric stiffness (geometric_stiffness.h), taken
+    // about the start pose, damps the swing by 1 / (1 + (omega h)^2) a step, 10% at omega h =
+    // 1/3, and a whirl slows to omega h = 0.22, where the stiffness stops acting (docs/knocks.md,
+    // "Rigid tethers").
+    if (!c.elastic() && which.size() <= kMaxCablesWithUnresolvedSpring) {
+      const std::span<const int> alone(&index, 1);
+      const double swing =
+          std::max(transverseMode(bodies, cables, alone), tautSwingRate(c, bodies));
+      wanted |= swing * h > kMaxMainSolveSwingOmegaH;
+    }
     wanted |= c.elastic();  // resolved or not: an unresolved spring is damped (springAtEnd)
   }
   if (unresolved && static_cast<int>(which.size()) > kMaxCablesWithUnresolvedSpring) return false;

@@ -71,7 +71,12 @@ TEST(Stabilisation, ACutStepCorrectsOnlyItsShareOfTheLengthError) {
       SCOPED_TRACE("L " + std::to_string(L) + " cut " + std::to_string(cut));
       EXPECT_TRUE(o.joined);
       EXPECT_GE(o.events, 1);  // the step was cut at the join
-      EXPECT_EQ(o.midpointSolves > 0, L < 0.5);
+      // The short cable is the midpoint solve's from the start; the long one the main solve's up
+      // to the join (after it, its tension is the cut's impulse over the cut, which reads as a
+      // fast swing, and the midpoint solve may take the rest: midpoint_solver.cpp).
+      if (L < 0.5) {
+        EXPECT_GT(o.midpointSolves, 0);
+      }
       // The midpoint rule moves with (v0 + v1) / 2, so its end velocity changes by twice this.
       const double expected = kBaumgarte * error / kDt;
       EXPECT_LT(o.speedChange, 3.0 * expected);
