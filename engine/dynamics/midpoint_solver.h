@@ -38,6 +38,7 @@
 #include <Eigen/Core>
 
 #include "engine/cable/cable.h"
+#include "engine/dynamics/block_diagonal_ldlt.h"
 #include "engine/dynamics/tension_solver.h"
 
 namespace cablelab {
@@ -118,12 +119,16 @@ class MidpointSolver {
   Eigen::VectorXd residual_, AinvR_, GAinvR_, dP_, dv_;
   Eigen::MatrixXd A_, Gt_, AinvGt_, K_;
   Eigen::LDLT<Eigen::MatrixXd> ldlt_;
+  // A without a segment between two moving bodies is block-diagonal: factored per body.
+  bool blockDiagonal_ = false;
+  BlockDiagonalLdlt blockLdlt_;
   // Redundant rows among those the first iteration's impulses pull on (redundantActiveRows).
   std::vector<int> active_;
   Eigen::MatrixXd activeK_;
   Eigen::LDLT<Eigen::MatrixXd> redundancy_;
   bool redundant_ = false, floorHit_ = false;
   int iterationsRun_ = 0;
+  double lastMoved_ = 0, lastChanged_ = 0;  // the last iteration's h |dv| and |dP| (newtonStep)
   // The end rates of the pulling rigid rows (settleRates): their rows, J1 and M^-1 J1^T, the
   // LCP's K and b, the impulses mu, M^-1 J1^T mu and the end velocities v1.
   std::vector<int> settled_;

@@ -1,4 +1,5 @@
-// The tension LCP (engine/dynamics/tension_solver.h) against brute force over every active set.
+// The tension LCP (engine/dynamics/tension_solver.h) against brute force over every active set,
+// and the midpoint solver's per-body factorisation against Eigen's of the whole matrix.
 //
 // w = K x - b >= 0, x >= 0, x . w = 0 with K = J W J^T + diag(compliance) symmetric positive
 // semidefinite. Brute force tries every subset S as the taut set: x_S = K_SS^-1 b_S, x = 0
@@ -12,8 +13,10 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <cmath>
 #include <optional>
 
+#include "engine/dynamics/block_diagonal_ldlt.h"
 #include "tests/support/engine_test_support.h"
 
 namespace cablelab {
@@ -190,6 +193,36 @@ TEST(TensionSolver, WorkspaceGivesTheSameAnswerAsTheAllocatingSolve) {
     const LcpSolution fresh = solveLcp(p.K, p.b);
     EXPECT_EQ(reused.x, fresh.x) << trial;  // bitwise: the workspace holds no state
     EXPECT_EQ(reused.iterations, fresh.iterations) << trial;
+  }
+}
+
+// The midpoint solver's per-body factorisation (block_diagonal_ldlt.h) solves what Eigen's LDLT
+// of the whole matrix does, on random symmetric positive definite 3x3 blocks of 1..4 bodies with
+// masses and inertias far apart, for a matrix and a vector right-hand side.
+TEST(BlockDiagonalLdlt, SolvesAsTheWholeMatrixLdltOnRandomPositiveDefiniteBlocks) {
+  test::Random rng(36);
+  BlockDiagonalLdlt blocks;
+  MatrixXd x;
+  VectorXd y;
+  for (int trial = 0; trial < 40; ++trial) {
+    const int n = 3 * (1 + trial % 4);
+    MatrixXd a = MatrixXd::Zero(n, n);
+    for (int k = 0; k < n; k += 3) {
+      Eigen::Matrix3d g;
+      for (int i = 0; i < 9; ++i) g(i / 3, i % 3) = rng.uniform(-1, 1);
+      const double scale = std::pow(10.0, rng.uniform(-3, 2));
+      a.block<3, 3>(k, k) = scale * (g * g.transpose() + 0.05 * Eigen::Matrix3d::Identity());
+    }
+    MatrixXd b(n, 2);
+    for (int i = 0; i < 2 * n; ++i) b(i % n, i / n) = rng.uniform(-1, 1);
+    blocks.compute(a);
+    blocks.solve(b, x);
+    blocks.solve(b.col(1), y);
+    const MatrixXd whole = Eigen::LDLT<MatrixXd>(a).solve(b);
+    const double size = whole.lpNorm<Eigen::Infinity>();
+    EXPECT_LE((x - whole).lpNorm<Eigen::Infinity>(), 1e-12 * size) << trial;
+    EXPECT_LE((y - whole.col(1)).lpNorm<Eigen::Infinity>(), 1e-12 * size) << trial;
+    EXPECT_LE((a * x - b).lpNorm<Eigen::Infinity>(), 1e-12 * (1 + a.norm() * size)) << trial;
   }
 }
 
