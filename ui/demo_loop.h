@@ -30,6 +30,10 @@ struct DemoRun {
   bool moved = false;   ///< something moved in this run
   double endedFor = 0;  ///< s the run has looked ended (at rest after moving, or off the stage)
   int restarts = 0;     ///< runs started again since the scene opened
+  /// The body hanging below the mechanism that presentation mode's close-up last zoomed out
+  /// after in this run (-1: none): past the widest close-up it holds the widest for it
+  /// (ui/presentation.h).
+  int closeUpBody = -1;
 };
 
 /// Whether the built-in scene `name` is a run that ends, and so loops.

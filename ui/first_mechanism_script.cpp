@@ -22,6 +22,13 @@ Vec2 centre(const PanelRect& r) {
   return Vec2(r.x + 0.5 * r.width, r.y + 0.5 * r.height);
 }
 
+/// `r` as [x0, y0, x1, y1] (px), null when empty.
+std::string rectJson(const PanelRect& r) {
+  if (r.width <= 0 || r.height <= 0) return "null";
+  return "[" + jsonNumber(r.x) + ", " + jsonNumber(r.y) + ", " + jsonNumber(r.x + r.width) + ", " +
+         jsonNumber(r.y + r.height) + "]";
+}
+
 int dynamicBodies(const SceneDef& scene) {
   return static_cast<int>(
       std::count_if(scene.bodies.begin(), scene.bodies.end(),
@@ -231,7 +238,10 @@ void FirstMechanismScript::typeInField(const std::string& field, Where where,
                 ", \"typed\": " + jsonQuoted(text) +
                 ", \"value\": " + jsonNumber(field == "kg" ? a.mass : a.size) +
                 ", \"before\": " + jsonNumber(before_) + ", \"error\": " + jsonQuoted(s.error) +
-                ", \"menu_open\": " + (a.menu.open ? "true" : "false") + "}");
+                ", \"menu_open\": " + (a.menu.open ? "true" : "false") +
+                ", \"error_box\": " + rectJson(s.error.empty() ? PanelRect{} : s.errorBox) +
+                ", \"menus\": [" + rectJson(a.menu.popup) + ", " +
+                rectJson(a.menu.nextBodyOpen ? a.menu.nextBodyPopup : PanelRect{}) + "]}");
             break;
           }
           default:

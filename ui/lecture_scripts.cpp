@@ -55,6 +55,12 @@ std::string panelsJson(const std::vector<PanelRect>& panels) {
   return jsonList(out);
 }
 
+/// `r` alone, or nothing when it is empty (not drawn in the last frame).
+std::vector<PanelRect> drawnAlone(const PanelRect& r) {
+  if (r.width <= 0 || r.height <= 0) return {};
+  return {r};
+}
+
 }  // namespace
 
 std::string lectureViewJson(const Sandbox& s, const std::string& name, const std::string& shot) {
@@ -117,6 +123,8 @@ std::string lectureViewJson(const Sandbox& s, const std::string& name, const std
          ", \"strip_name\": " + jsonQuoted(s.shownStripName) +
          ", \"strip_overflow\": " + jsonNumber(s.stripOverflow) +
          ", \"title\": " + jsonQuoted(s.shownTitle) + ", \"panels\": " + panelsJson(s.panels) +
+         ", \"speed_slider\": " + panelsJson(drawnAlone(s.speedSlider)) +
+         ", \"speed_value\": " + panelsJson(drawnAlone(s.speedValue)) +
          ", \"controller_section\": " + jsonQuoted(s.controllerSection) +
          ", \"building\": " + (s.building() ? "true" : "false") +
          ", \"build_menu\": " + buildMenuJson(s.authoring->menu) +
@@ -172,9 +180,9 @@ void tryStep(Sandbox& sandbox) {
 }  // namespace
 
 const std::vector<std::string>& LectureScript::names() {
-  static const std::vector<std::string> n = {"present",         "grasp-quiet", "tension-run",
-                                             "walkthrough",     "select-rope", "tour",
-                                             "first-mechanism", "laptop",      "hand-export"};
+  static const std::vector<std::string> n = {
+      "present", "grasp-quiet",     "tension-run", "walkthrough", "select-rope",
+      "tour",    "first-mechanism", "laptop",      "hand-export", "follow"};
   return n;
 }
 
@@ -220,6 +228,7 @@ bool LectureScript::beforeFrame(Sandbox& sandbox, int frame) {
   if (name_ == "first-mechanism") return firstMechanism(sandbox, frame);
   if (name_ == "laptop") return laptop(sandbox, frame);
   if (name_ == "hand-export") return handExport(sandbox, frame);
+  if (name_ == "follow") return follow(sandbox, frame);
   report_ = "{\"scenario\": " + jsonQuoted(name_) + ", \"failure\": \"unknown scenario\"}";
   return false;
 }
@@ -383,6 +392,7 @@ bool LectureScript::walkthrough(Sandbox& sandbox, int frame) {
   recordPendingView(sandbox);
   auto snapshot = [&](const char* name) { this->snapshot(sandbox, name); };
   World& world = *sandbox.world();
+  if (frame >= 10 && frame <= 600) watchFollow(sandbox);  // the run untouched
   if (frame == 1) {
     projectorScale(sandbox);
   } else if (frame == 3) {
@@ -426,7 +436,7 @@ bool LectureScript::walkthrough(Sandbox& sandbox, int frame) {
     snapshot("play-on");
   } else if (frame == 1102) {
     report_ = "{\"scenario\": \"walkthrough\", \"banner\": " + jsonQuoted(sandbox.banner) +
-              ", \"views\": " + jsonList(items_) + "}";
+              ", \"views\": " + jsonList(items_) + ", " + followJson() + "}";
     return false;
   }
   return true;
@@ -636,6 +646,59 @@ bool LectureScript::firstMechanism(Sandbox& sandbox, int) {
   if (!first_) first_ = std::make_unique<FirstMechanismScript>(windowId_, out_);
   if (first_->beforeFrame(sandbox)) return true;
   report_ = first_->report();
+  return false;
+}
+
+}  // namespace cablelab::ui
+
+namespace cablelab::ui {
+
+void LectureScript::watchFollow(const Sandbox& sandbox) {
+  // m/s: a body this fast moves; a turn counts as its speed at 0.2 m (ui/demo_loop.cpp)
+  constexpr double kMoving = 0.05;
+  const World& world = *sandbox.world();
+  const PanelRect free = sandbox.freeArea();
+  bool moving = false, seen = false;
+  for (int i = 0; i < world.bodyCount(); ++i) {
+    if (world.scene().bodies[i].type != BodyType::Dynamic) continue;
+    const BodyState& b = world.body(i);
+    if (std::max(b.velocity.norm(), 0.2 * std::abs(b.angularVelocity)) < kMoving) continue;
+    moving = true;
+    seen |= free.contains(sandbox.camera.toScreen(world.body(i).position));
+  }
+  movingFrames_ += moving;
+  movingOutOfViewFrames_ += moving && !seen;
+  const double scale = sandbox.camera.metresPerPixel;
+  const bool sameRun = lastScale_ > 0 && sandbox.demo.restarts == lastRestarts_;
+  if (sameRun)
+    largestZoomStep_ = std::max(largestZoomStep_, std::max(scale / lastScale_, lastScale_ / scale));
+  // Zooming back in is the view's return in the first second of a run (a restart), else a jump.
+  const bool returning = !sameRun || world.time() < 1.0;
+  widestInRun_ = returning ? scale : std::max(widestInRun_, scale);
+  largestZoomIn_ = std::max(largestZoomIn_, widestInRun_ / scale);
+  lastScale_ = scale;
+  lastRestarts_ = sandbox.demo.restarts;
+}
+
+std::string LectureScript::followJson() const {
+  return "\"largest_zoom_step\": " + jsonNumber(largestZoomStep_) +
+         ", \"largest_zoom_in\": " + jsonNumber(largestZoomIn_) +
+         ", \"moving_frames\": " + jsonNumber(movingFrames_) +
+         ", \"moving_out_of_view_frames\": " + jsonNumber(movingOutOfViewFrames_) +
+         ", \"restarts\": " + jsonNumber(lastRestarts_);
+}
+
+bool LectureScript::follow(Sandbox& sandbox, int frame) {
+  constexpr int kStart = 10, kFrames = 25 * 60;  // 25 s at the scenes' 60 steps a second
+  recordPendingView(sandbox);
+  if (frame == 1) projectorScale(sandbox);
+  if (frame == 3) key(SDLK_p);
+  if (frame < kStart) return true;
+  watchFollow(sandbox);
+  for (const int s : {1, 4, 6, 10, 20})
+    if (frame == kStart + 60 * s) snapshot(sandbox, ("run-" + std::to_string(s) + "s").c_str());
+  if (frame < kStart + kFrames) return true;
+  report_ = "{\"scenario\": \"follow\", \"views\": " + jsonList(items_) + ", " + followJson() + "}";
   return false;
 }
 

@@ -35,6 +35,11 @@
 //                 Controller section's "Export PNG" is in view, a screenshot of the thumbnails
 //                 above it (OUT-thumbnails.png) and a click on it; reports the message shown (the
 //                 files written in the working directory) and the thumbnails' legend rectangles
+//   follow        projector mode and p, then 25 s of the scene's run untouched: the largest change
+//                 of the view's scale between two frames of one run and the most it zoomed back
+//                 in within a run (a ratio of scales), the frames in which a body
+//                 moves and those in which none of the moving ones is in view, and screenshots
+//                 after 1, 4, 6, 10 and 20 s (the walkthrough reports the same of its first 10 s)
 //
 // Needs: an SDL video subsystem (the sandbox's Window), a Sandbox with a loaded scene.
 #pragma once
@@ -76,6 +81,10 @@ class LectureScript {
   bool firstMechanism(Sandbox& sandbox, int frame);
   bool laptop(Sandbox& sandbox, int frame);
   bool handExport(Sandbox& sandbox, int frame);
+  bool follow(Sandbox& sandbox, int frame);
+  /// Adds this frame of an untouched run to the follow figures (followJson()).
+  void watchFollow(const Sandbox& sandbox);
+  std::string followJson() const;
   void key(SDL_Keycode k);
   void mouse(Uint32 type, const Vec2& screen);
   void projectorScale(Sandbox& sandbox);
@@ -101,6 +110,13 @@ class LectureScript {
   std::vector<std::string> banners_;  ///< tour: every banner shown, "scene: text"
   std::string shotName_;              ///< tour: the screenshot's name, "scene-what"
   std::unique_ptr<FirstMechanismScript> first_;
+  // follow and walkthrough: how the view followed the run (watchFollow()).
+  double lastScale_ = 0;        ///< m per px in the last frame watched (0: none yet)
+  int lastRestarts_ = 0;        ///< the demo's restarts then
+  double largestZoomStep_ = 1;  ///< the largest ratio of two frames' scales in one run
+  double widestInRun_ = 0;      ///< the largest scale (m per px) in this run so far
+  double largestZoomIn_ = 1;    ///< the largest ratio of that to a later scale in the run
+  int movingFrames_ = 0, movingOutOfViewFrames_ = 0;
 };
 
 }  // namespace cablelab::ui

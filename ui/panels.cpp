@@ -331,13 +331,32 @@ void saveDialog(Sandbox& sandbox, PanelState& state) {
 
 void errorBanner(Sandbox& sandbox) {
   if (sandbox.error.empty()) return;
-  ImGui::SetNextWindowPos(ImVec2(0.5f * sandbox.camera.width, 40 * sandbox.uiScale),
-                          ImGuiCond_Always, ImVec2(0.5f, 0));
-  ImGui::SetNextWindowSize(
-      ImVec2(std::min(600.0f * sandbox.uiScale, sandbox.camera.width - 40.0f), 0));
+  const float w = static_cast<float>(sandbox.camera.width), gap = 8 * sandbox.uiScale;
+  float left = 0.5f * w, width = std::min(600.0f * sandbox.uiScale, w - 40.0f), pivot = 0.5f;
+  // A value the Build menu's field refused: the box goes right of the open menu, which stays
+  // open for the student to type again (a box over it hid the field).
+  const BuildMenuLayout& menu = sandbox.authoring->menu;
+  if (menu.open) {
+    const float menuRight =
+        std::max(menu.popup.x + menu.popup.width,
+                 menu.nextBodyOpen ? menu.nextBodyPopup.x + menu.nextBodyPopup.width : 0.0f) +
+        gap;
+    if (w - gap - menuRight >= 12 * ImGui::GetFontSize()) {
+      left = menuRight;
+      width = std::min(width, w - gap - menuRight);
+      pivot = 0;
+    }
+  }
+  ImGui::SetNextWindowPos(ImVec2(left, 40 * sandbox.uiScale), ImGuiCond_Always, ImVec2(pivot, 0));
+  ImGui::SetNextWindowSize(ImVec2(width, 0));
   ImGui::PushStyleColor(ImGuiCol_WindowBg, IM_COL32(255, 228, 228, 245));
-  ImGui::Begin("Error", nullptr, ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoResize);
+  // Not focused when it appears: focusing a window closes the open menus.
+  ImGui::Begin("Error", nullptr,
+               ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoResize |
+                   ImGuiWindowFlags_NoFocusOnAppearing);
   record(sandbox);
+  const ImVec2 pos = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+  sandbox.errorBox = {pos.x, pos.y, size.x, size.y};
   ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(160, 0, 0, 255));
   ImGui::TextWrapped("%s", sandbox.error.c_str());
   ImGui::PopStyleColor();
@@ -350,6 +369,7 @@ void errorBanner(Sandbox& sandbox) {
 
 void drawPanels(Sandbox& sandbox, PanelState& state) {
   sandbox.panels.clear();
+  sandbox.errorBox = sandbox.speedSlider = sandbox.speedValue = PanelRect{};  // drawn this frame
   layoutFor(sandbox, state);
   const float top = menuBar(sandbox, state);
   if (!sandbox.presentation) {

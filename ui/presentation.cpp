@@ -18,6 +18,7 @@ constexpr double kCloseUpBelow = 0.15;   // of the area's width: a thinner whole
 constexpr double kCloseUpWidest = 3;     // of kCloseUpSpan: the farthest a close-up zooms out
 constexpr double kCloseUpRoom = 0.12;    // of the close-up's height, kept above and below
 constexpr double kFollowSeconds = 0.25;  // how fast the close-up catches up with its focus
+constexpr double kZoomOutRate = 6;       // 1/s: the close-up zooms out at most e^6 times a second
 constexpr double kKeyRoomCost = 0.1;     // of the scene's size, the most the key's room may take
 constexpr double kRefitBelow = 0.55;  // of the view both ways: a scene that shrank so is refitted
 
@@ -100,7 +101,7 @@ bool wantsCloseUp(const Sandbox& sandbox) {
   return (stage.hi.x() - stage.lo.x()) / whole.metresPerPixel < kCloseUpBelow * area.width;
 }
 
-CloseUpFrame closeUpFrame(const World& world) {
+CloseUpFrame closeUpFrame(const World& world, int followed) {
   const WorldBounds scene = sceneBounds(world);
   if (scene.empty()) return {};
   const double least = kCloseUpSpan * std::max(scene.hi.x() - scene.lo.x(), 1e-3);
@@ -108,25 +109,30 @@ CloseUpFrame closeUpFrame(const World& world) {
   // The nearest body hanging below the top of the mechanism (the wheel, drum or pulleys the
   // rope hangs from) stays in view with it.
   double nearest = -1e300;
+  CloseUpFrame f;
   for (int i = 0; i < world.bodyCount(); ++i) {
     const double y = world.body(i).position.y();
-    if (world.scene().bodies[i].type == BodyType::Dynamic && y < top - 0.5 * least)
-      nearest = std::max(nearest, y);
+    if (world.scene().bodies[i].type == BodyType::Dynamic && y < top - 0.5 * least && y > nearest) {
+      nearest = y;
+      f.body = i;
+    }
   }
-  CloseUpFrame f;
-  const double reach = nearest > -1e299 ? (top - nearest) * (1 + kCloseUpRoom) : 0.0;
-  // A body farther down than the widest close-up leaves the view for a while: the mechanism
-  // stays readable (it comes back, or the run starts again, ui/demo_loop.h).
-  f.span = reach <= kCloseUpWidest * least ? std::max(least, reach) : least;
+  f.reach = nearest > -1e299 ? (top - nearest) * (1 + kCloseUpRoom) : 0.0;
+  f.least = least;
+  f.widest = kCloseUpWidest * least;
+  // A body farther down than the widest close-up: the view the run zoomed out to after it
+  // stays (no jump back in mid-run), else the mechanism alone (the winch's load starts there).
+  const bool hold = f.body >= 0 && f.body == followed;
+  f.span = f.reach <= f.widest ? std::max(least, f.reach) : hold ? f.widest : least;
   f.focus = Vec2(0.5 * (scene.lo.x() + scene.hi.x()), top - 0.5 * f.span);
   f.width = scene.hi.x() - scene.lo.x();
   return f;
 }
 
 Camera closeUpCamera(const World& world, const Camera& camera, const PanelRect& area,
-                     float bottomReserve) {
+                     float bottomReserve, int followed) {
   Camera fitted = camera;
-  const CloseUpFrame f = closeUpFrame(world);
+  const CloseUpFrame f = closeUpFrame(world, followed);
   const float height = area.height - bottomReserve;
   if (f.span <= 0 || area.width < 40 || height < 40) return fitted;
   fitted.metresPerPixel = std::max(f.span / height, f.width * (1 + 2 * kMargin) / area.width);
@@ -137,23 +143,35 @@ Camera closeUpCamera(const World& world, const Camera& camera, const PanelRect& 
 void followCloseUp(Sandbox& sandbox, double seconds) {
   const World* world = sandbox.world();
   if (!world || !sandbox.closeUp || !sandbox.viewFitted || !sandbox.presentation) return;
+  // The view zoomed out after a hanging body: the run remembers it (ui/demo_loop.h DemoRun).
+  const CloseUpFrame f = closeUpFrame(*world, sandbox.demo.closeUpBody);
+  if (f.reach > f.least && f.reach <= f.widest) sandbox.demo.closeUpBody = f.body;
   const Camera goal = presentationFit(sandbox, sandbox.freeArea());
-  // Out quickly (nothing leaves the view), in and along smoothly.
-  const double share = 1 - std::exp(-std::max(seconds, 0.0) / kFollowSeconds);
+  // Out as fast as a falling body needs, at most kZoomOutRate (a new nearest body far down
+  // would be a jump), in and along smoothly.
+  const double t = std::max(seconds, 0.0);
+  const double share = 1 - std::exp(-t / kFollowSeconds);
   Camera& c = sandbox.camera;
+  const double out = c.metresPerPixel * std::exp(kZoomOutRate * t);
   c.metresPerPixel = goal.metresPerPixel > c.metresPerPixel
-                         ? goal.metresPerPixel
+                         ? std::min(goal.metresPerPixel, out)
                          : c.metresPerPixel + share * (goal.metresPerPixel - c.metresPerPixel);
   c.center += share * (goal.center - c.center);
-  if (goal.metresPerPixel >= c.metresPerPixel) c.center = goal.center;
+  if (goal.metresPerPixel >= c.metresPerPixel) {
+    // Zooming out: the top of the view (the mechanism) where the goal has it.
+    const PanelRect a = sandbox.freeArea();
+    const Vec2 top = goal.toWorld(Vec2(a.x + 0.5 * a.width, a.y));
+    c.center = top + (goal.center - top) * (c.metresPerPixel / goal.metresPerPixel);
+  }
 }
 
 Camera presentationFit(const Sandbox& sandbox, const PanelRect& free) {
   const World& world = *sandbox.world();
   const float bars = barRowHeight(sandbox);
   const auto fitIn = [&](const PanelRect& area) {
-    return sandbox.closeUp ? closeUpCamera(world, sandbox.camera, area, bars)
-                           : fitToContent(world, sandbox.camera, area, bars, sandbox.demo.stage);
+    return sandbox.closeUp
+               ? closeUpCamera(world, sandbox.camera, area, bars, sandbox.demo.closeUpBody)
+               : fitToContent(world, sandbox.camera, area, bars, sandbox.demo.stage);
   };
   const Camera whole = fitIn(free);
   // The marker key's size needs the text font: none before the first frame (nor in the tests

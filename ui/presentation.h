@@ -15,9 +15,11 @@
 // long rope under a small wheel) would be a sliver at a whole-run fit, a few percent of the
 // window's width. Presentation mode shows it in close-up instead: the top of the mechanism (the
 // wheel, drum or pulleys the rope hangs from) and the nearest body hanging below it, at least
-// kCloseUpSpan times the scene's width tall; the view follows the run (zooms out at once when
-// that body moves away, in and along smoothly when it comes nearer). A body farther away than
-// three times that leaves the view until it comes back: the wheel stays readable.
+// kCloseUpSpan times the scene's width tall; the view follows the run (zooms out as that body
+// moves away, in and along smoothly when it comes nearer; never a jump). The close-up zooms out
+// at most three times that: a body farther down from the start leaves the mechanism alone in
+// view (the winch's load, until the drum winds it up); one the view followed there (the
+// tackle's effort weight) holds the widest view until the run starts again.
 //
 // Needs: ui/sandbox.h (no SDL, no GL); the marker key's room in the fit is measured with the
 // text font when an ImGui context has one.
@@ -60,18 +62,23 @@ bool wantsCloseUp(const Sandbox& sandbox);
 struct CloseUpFrame {
   Vec2 focus = Vec2::Zero();
   double span = 0, width = 0;
+  double least = 0, widest = 0;  ///< m: the nearest and the farthest a close-up zooms out
+  double reach = 0;              ///< m: the view that holds the nearest hanging body (0: none)
+  int body = -1;                 ///< that body (-1: none)
 };
 
 /// The close-up of the run as it is now: the top of the mechanism (the wheel, drum or pulleys
 /// the rope hangs from) and the nearest body hanging below it, at least kCloseUpSpan times the
-/// scene's width tall.
-CloseUpFrame closeUpFrame(const World& world);
+/// scene's width tall. A body farther down than the widest: the widest when it is `followed`
+/// (the view zoomed out after it in this run), else the mechanism alone.
+CloseUpFrame closeUpFrame(const World& world, int followed = -1);
 
 /// The close-up camera: closeUpFrame() fills the area above `bottomReserve`.
 Camera closeUpCamera(const World& world, const Camera& camera, const PanelRect& area,
-                     float bottomReserve);
+                     float bottomReserve, int followed = -1);
 
-/// Moves a close-up view towards its focus (called once a frame, `seconds` since the last).
+/// Moves a close-up view towards its focus (called once a frame, `seconds` since the last),
+/// and remembers when it zoomed out after a hanging body (DemoRun::closeUpBody).
 void followCloseUp(Sandbox& sandbox, double seconds);
 
 /// The presentation fit of `sandbox`'s scene in the `free` area (px): fitToContent(), or its

@@ -383,6 +383,11 @@ void drawJoints(const World& world, const Painter& paint) {
   }
 }
 
+/// Half the width (px) of the strip labels keep off along a cable's line `width` wide (2 px clear).
+double cableStripHalfWidth(float width, const Painter& paint) {
+  return 0.5 * width * paint.scale() + 2;
+}
+
 /// The cable lying on a circle: from the tangent point round by the wrap angle (an interior
 /// circle), or the turns wound on a drum (a path's end), drawn as one turn a little outside the
 /// rim per extra turn, up to three.
@@ -404,6 +409,7 @@ void drawCableArc(const WrapPoint& p, bool atStart, bool atEnd, const Colour& co
       const double a = from + sense * span * i / n;
       const Vec2 next = p.world + radius * Vec2(std::cos(a), std::sin(a));
       paint.line(previous, next, colour, width);
+      paint.strip(previous, next, cableStripHalfWidth(width, paint));  // labels keep off it too
       previous = next;
     }
   }
@@ -433,7 +439,7 @@ void drawCables(const World& world, const RenderOptions& options, double scale,
       const Vec2 from = path[k - 1].radius == 0 ? path[k - 1].world : path[k - 1].tangentOut;
       const Vec2 to = path[k].radius == 0 ? path[k].world : path[k].tangentIn;
       const double tension = cable.segmentTension(k - 1);
-      paint.strip(from, to, 0.5 * width * paint.scale() + 2);
+      paint.strip(from, to, cableStripHalfWidth(width, paint));
       if (tension <= 0)
         paint.dashed(from, to, kSlack, width - 1, phase);
       else

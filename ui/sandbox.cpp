@@ -183,6 +183,7 @@ void Sandbox::reset() {
     world_ = std::make_unique<World>(def, sceneName);
     demo.moved = false;
     demo.endedFor = 0;
+    demo.closeUpBody = -1;
     gesture = {};
     drag = {};
     for (auto& h : tensionHistory) std::fill(h.begin(), h.end(), 0.0f);

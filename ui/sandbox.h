@@ -236,6 +236,10 @@ class Sandbox {
   float statusOverflow = 0;
   /// Buttons of the Run row drawn narrower than their text in the last frame (0: none).
   int truncatedButtons = 0;
+  /// The Error box's window in the last frame it was shown (px).
+  PanelRect errorBox;
+  /// The speed slider of the Run section and its value's text in the last frame (px).
+  PanelRect speedSlider, speedValue;
   /// A cable was clicked in the view: the next frame opens the Inspector if it is collapsed.
   bool showInspector = false;
   /// How far (px) the widest table header of the Inspector reached past its column (counted

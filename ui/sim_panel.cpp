@@ -17,6 +17,12 @@ namespace cablelab::ui {
 
 namespace {
 
+/// The screen rectangle of the last widget drawn (px).
+PanelRect lastWidgetRect() {
+  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+  return {lo.x, lo.y, hi.x - lo.x, hi.y - lo.y};
+}
+
 void parameterSliders(Sandbox& sandbox) {
   const auto params = sceneParameters(sandbox.sceneName);
   if (params.empty()) {
@@ -104,15 +110,25 @@ void runPanel(Sandbox& sandbox) {
   if (ImGui::Button("Reset", ImVec2(w, 0))) sandbox.reset();
   counted("Reset");
   tooltip("Rebuild the scene from its start (r); the tension scale stays as it is.");
-  // Speed: a slider over the steps, plus the step buttons.
+  // Speed: a slider over the steps, its value beside it (in the slider the handle hid "00" of
+  // "1.00x" at projector scale), plus the step buttons.
   float speed = static_cast<float>(sandbox.speed);
+  char value[32];
+  std::snprintf(value, sizeof value, "speed %.2fx", sandbox.speed);
   const float spacing = ImGui::GetStyle().ItemSpacing.x;
   const float buttons = buttonWidth("-") + buttonWidth("+") + buttonWidth("1x") + 3 * spacing;
-  ImGui::SetNextItemWidth(
-      std::max(fieldWidth("speed", ImGui::GetFontSize() * 8) - buttons, 3 * ImGui::GetFontSize()));
-  if (ImGui::SliderFloat("speed", &speed, 0.1f, 4.0f, "%.2fx", ImGuiSliderFlags_Logarithmic))
+  ImGui::SetNextItemWidth(std::max(fieldWidth("speed 4.00x", ImGui::GetFontSize() * 8) - buttons,
+                                   3 * ImGui::GetFontSize()));
+  if (ImGui::SliderFloat("##speed", &speed, 0.1f, 4.0f, "", ImGuiSliderFlags_Logarithmic))
     sandbox.speed = std::clamp(static_cast<double>(speed), 0.1, 4.0);
-  tooltip("Simulated seconds per wall second: 0.1x is slow motion, 4x fast forward ([ and ]).");
+  const char* speedTip =
+      "Simulated seconds per wall second: 0.1x is slow motion, 4x fast forward ([ and ]).";
+  tooltip(speedTip);
+  sandbox.speedSlider = lastWidgetRect();
+  ImGui::SameLine(0, ImGui::GetStyle().ItemInnerSpacing.x);
+  ImGui::TextUnformatted(value);
+  tooltip(speedTip);
+  sandbox.speedValue = lastWidgetRect();
   sameLineIfRoom(buttonWidth("-"));
   if (ImGui::SmallButton("-")) sandbox.speed = stepSpeed(sandbox.speed, -1);
   tooltip("Slower ([).");

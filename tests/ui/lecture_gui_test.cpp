@@ -227,6 +227,14 @@ TEST(Lecture, ThinDemosInCloseUpKeepTheWheelAndAWeightInView) {
       }
       EXPECT_GE(widest, 0.14) << scene << " " << size;
       EXPECT_GE(withAWeight, 3) << scene << " " << size << ": of 9 views";
+      // The first 10 s untouched: the view follows without a jump (the tackle's jumped 2.1x
+      // out when its block reached the sheaves, the winch's 3x when the drum wound its load
+      // into reach) and never zooms back in while the tackle's effort weight falls on.
+      EXPECT_LE(j["largest_zoom_step"].get<double>(), 1.2) << scene << " " << size;
+      EXPECT_EQ(j["moving_out_of_view_frames"].get<int>(), 0) << scene << " " << size;
+      if (scene == "tackle") {
+        EXPECT_LE(j["largest_zoom_in"].get<double>(), 1.2) << scene << " " << size;
+      }
     }
 }
 
@@ -298,6 +306,12 @@ TEST(Lecture, LaptopViewKeepsEverySceneOffTheKeyAndTheInspector) {
       }
     EXPECT_GE(scene.x0, v["free"][0].get<double>() - kEdge) << where;
     EXPECT_LE(scene.x1, v["free"][0].get<double>() + v["free"][2].get<double>() + kEdge) << where;
+    // The speed readable: its value beside the slider, inside the Simulation panel (in the
+    // slider, its handle covered "00" of "1.00x").
+    ASSERT_EQ(v["speed_value"].size(), 1u) << where;
+    const Box slider = boxes(v["speed_slider"])[0], value = boxes(v["speed_value"])[0];
+    EXPECT_FALSE(value.overlaps(slider)) << where;
+    EXPECT_LE(value.x1, v["free"][0].get<double>()) << where;
   }
 }
 
@@ -649,6 +663,14 @@ TEST(Lecture, FirstMechanismInPresentationModeAtBothSizes) {
           << f;
       EXPECT_EQ(error.find('\n'), std::string::npos) << f;
       EXPECT_EQ(error.find('['), std::string::npos) << "a scene file's path: " << f;
+      // The menu stays open to type again, the Error box beside it (it shut the menu).
+      EXPECT_TRUE(f["menu_open"].get<bool>()) << "the Build menu shut on a refused value: " << f;
+      ASSERT_FALSE(f["error_box"].is_null()) << f;
+      const Box shown = boxes(nlohmann::json::array({f["error_box"]}))[0];
+      for (const auto& menu : f["menus"])
+        if (!menu.is_null()) {
+          EXPECT_FALSE(shown.overlaps(boxes(nlohmann::json::array({menu}))[0])) << f;
+        }
       continue;
     }
     EXPECT_NEAR(f["value"].get<double>(), std::stod(typed), 1e-6) << f;
