@@ -133,8 +133,6 @@ TEST(KnockMotion, PolygonsCaughtInManyPiecesAt30HzMakeNoWrapChangeOffTheOldPath)
     knock_motion_test::expectNoWrapChangeOffTheOldPath(pair, 1.0 / 30, 1, 90);
 }
 
-}  // namespace cablelab
-
 // Flung out of its loop past its neighbour (seed 34: the light heptagon at 2.1 s), a polygon
 // came down on the neighbour's segment of the rope, which its place in the cable's pulley order
 // never let it join: the rope ran through it for 6 steps and it fell to -352 m. A free polygon
@@ -146,3 +144,5 @@ TEST(KnockMotion, PolygonsFlungOutOfTheirLoopsLandOnTheRope) {
                                                  {3, 0.2136, 2.1423, 1.0, 0.6724, 3.1127, -3.2281}};
   knock_motion_test::expectCaughtByTheRope(flung, 1, 300);
 }
+
+}  // namespace cablelab
