@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 
 #include "engine/cable/circle_wrap.h"
 #include "engine/cable/wrap.h"
@@ -82,6 +83,9 @@ Cable::Cable(const SceneDef& scene, int index, const std::string& source)
     ps.arc = ps.initialArc();
     pulleys_.push_back(std::move(ps));
   }
+  order_.resize(pulleys_.size());
+  std::iota(order_.begin(), order_.end(), 0);
+  rank_ = order_;
   findTiedEnds();
 }
 
@@ -217,7 +221,7 @@ bool Cable::buildPath(std::vector<std::string>* warnings) {
   const int count = static_cast<int>(pulleys_.size());
   std::vector<int>& nodes = nodes_;
   nodes.assign(1, 0);
-  for (int j = 0; j < count; ++j)
+  for (const int j : order_)
     if (pulleys_[j].engaged) nodes.push_back(j + 1);
   nodes.push_back(count + 1);
 
@@ -349,7 +353,7 @@ bool Cable::leaveRound() {
       // it joins only after clearing the segment, or the fresh walk round its far side would
       // jump the length (docs/cables.md, "Points inside a hull").
       size_t host = 0;
-      while (host + 2 < path_.size() && path_[host + 1].pulley < static_cast<int>(j)) ++host;
+      while (host + 2 < path_.size() && rank_[path_[host + 1].pulley] < rank_[j]) ++host;
       const bool across =
           segmentCutsPolygon(leaving(path_[host]), arriving(path_[host + 1]), p.world);
       p.previousDepth = across ? 1.0 : 0.0;
@@ -364,12 +368,14 @@ bool Cable::leaveRound() {
 // pulley: from either side, and it wraps on the side it came from). Returns true if one joined.
 bool Cable::joinRound(std::vector<std::string>* warnings) {
   size_t host = 0;  // path index of the last point before pulley j
-  for (size_t j = 0; j < pulleys_.size(); ++j) {
+  for (const int j : order_) {
     PulleyState& p = pulleys_[j];
     if (p.engaged) {
       while (host + 1 < path_.size() - 1 && path_[host + 1].pulley == static_cast<int>(j)) ++host;
       continue;
     }
+    // A free polygon crossing another segment joins it (pulley_order.cpp).
+    if (joinsAnySegment(j) && joinOtherSegment(j, host)) return true;
     const Vec2 a = leaving(path_[host]);
     const Vec2 b = arriving(path_[host + 1]);
     const Vec2 ab = b - a;
@@ -430,6 +436,7 @@ bool Cable::joinRound(std::vector<std::string>* warnings) {
       p.engaged = true;
       p.dropped = false;
       p.hold = ChainHold{};
+      p.segmentDepths.clear();
       // A circle joins at zero wrap; at the start its wrap is the one it was wound with. A
       // point or a polygon joins at zero turn.
       p.arc = firstUpdate_ && p.circle ? p.initialArc() : 0.0;

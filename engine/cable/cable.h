@@ -14,6 +14,9 @@
 //    neighbours) cuts it, and at the previous update it lay entirely on the non-wrap side of that
 //    segment's line: it must cross the segment from outside. A pulley coming from the wrap side,
 //    or sitting on the wrap side beyond the segment's ends, is left out (the cable passes it).
+//    A free polygon (one-sided, on a moving body, not gripping, not tied) joins any other
+//    segment it crosses so too, and takes its place there in the path's order of pulleys: flung
+//    past its neighbour, it lands on the rope there (pulley_order.cpp, docs/knocks.md).
 //  * An "auto" pulley (a polygon or a circle) JOINS from either side: when the segment cuts it
 //    (a circle: comes within its radius) or its centre crossed the segment between its ends, and
 //    it wraps on the side it came from.
@@ -340,6 +343,13 @@ class Cable {
     int tiedCorner = -1;
     bool tiedInside = false;
     ChainHold hold;  ///< polygon: its chain's ends, held through a point in its hull
+    /// A free polygon off the path: how deep it reached past each path segment (named by its
+    /// ends' pulleys) at the last update (pulley_order.cpp).
+    struct SegmentDepth {
+      int from, to;
+      double depth;  ///< the deepest vertex's wrapSideDistance (m)
+    };
+    std::vector<SegmentDepth> segmentDepths;
     double signedRadius() const { return side == WrapSide::Right ? -radius : radius; }
     /// The wrap branch at the start: the turns it was wound with, else within (0, 2 pi).
     double initialArc() const { return turns > 0 ? 2 * M_PI * turns : M_PI; }
@@ -401,6 +411,18 @@ class Cable {
   };
   Drum startDrum_, endDrum_;
   std::vector<PulleyState> pulleys_;
+  /// The pulleys in the order the path meets them: the scene's, except that a free polygon
+  /// joins whichever segment it crosses and takes its place there (pulley_order.cpp); rank_ is
+  /// each pulley's place in order_.
+  std::vector<int> order_, rank_;
+  /// Whether pulley j may join any segment of the path, not only its own (pulley_order.cpp).
+  bool joinsAnySegment(int j) const;
+  /// Free polygon j off the path: joins a segment other than `host` (a path index) that cuts it
+  /// now and that it lay wholly on the non-wrap side of at the last update, taking its place
+  /// there; records its depths for the next update. True if it joined.
+  bool joinOtherSegment(int j, size_t host);
+  /// Whether path segment i is an edge of one polygon's chain (nothing joins it from outside).
+  bool chainEdge(size_t i) const;
   std::vector<WrapPoint> path_;
   std::vector<int> nodes_;                ///< buildPath scratch: engaged chain nodes
   std::vector<std::vector<int>> chains_;  ///< buildPath scratch: polygon vertex chains

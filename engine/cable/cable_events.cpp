@@ -81,15 +81,25 @@ std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, 
           keepEarliest(best, c->time, j, kind, p.polygon ? vertex : -1);
       }
     };
-    // Disengaged pulleys ordered between the segment's ends.
-    const int lo = a.pulley;  // -1 at the start anchor
-    const int hi = b.pulley < 0 ? count : b.pulley;
-    for (int j = lo + 1; j < hi; ++j) {
+    // Disengaged pulleys ordered between the segment's ends (places in the path's order).
+    const int lo = a.pulley < 0 ? -1 : rank_[a.pulley];  // -1 at the start anchor
+    const int hi = b.pulley < 0 ? count : rank_[b.pulley];
+    for (int r = lo + 1; r < hi; ++r) {
+      const int j = order_[r];
       const PulleyState& p = pulleys_[j];
       if (p.engaged || p.side == WrapSide::Threaded) continue;
       for (int v = 0; v < static_cast<int>(p.local.size()); ++v)
         tryPoint(j, v, WrapEvent::Kind::Join);
     }
+    // Free polygons placed elsewhere join any segment they cross (pulley_order.cpp).
+    if (!chainEdge(i))
+      for (int r = 0; r < count; ++r) {
+        const int j = order_[r];
+        if ((r > lo && r < hi) || pulleys_[j].engaged || pulleys_[j].dropped || !joinsAnySegment(j))
+          continue;
+        for (int v = 0; v < static_cast<int>(pulleys_[j].local.size()); ++v)
+          tryPoint(j, v, WrapEvent::Kind::Join);
+      }
     // A point fixed in the world at an end of the segment going into or out of a moving polygon's
     // hull (across edge k): a polygon off the path must not join round it then, and one on it
     // holds its chain end there (docs/cables.md, "Points inside a hull"). A fast hull can take
@@ -119,8 +129,8 @@ std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, 
             keepEarliest(best, c->time, j, WrapEvent::Kind::Hull, k);
       }
     };
-    for (int j = lo + 1; j < hi; ++j)
-      if (!pulleys_[j].engaged && pulleys_[j].side != WrapSide::Threaded)
+    for (int r = lo + 1; r < hi; ++r)
+      if (const int j = order_[r]; !pulleys_[j].engaged && pulleys_[j].side != WrapSide::Threaded)
         for (const WrapPoint* terminal : {&a, &b}) tryHull(j, *terminal);
     if (a.kind == WrapPoint::Kind::Vertex && b.kind != WrapPoint::Kind::Vertex)
       tryHull(a.pulley, b);

@@ -80,7 +80,9 @@ bool Cable::skipEligible() const {
         p.hold.holdingInto || (p.polygon && p.side == WrapSide::Threaded))
       return false;
     // Neighbouring polygons settle their common tangent over several passes (buildPath).
-    if (p.polygon && j + 1 < pulleys_.size() && pulleys_[j + 1].polygon) return false;
+    if (const size_t next = rank_[j] + 1;
+        p.polygon && next < pulleys_.size() && pulleys_[order_[next]].polygon)
+      return false;
   }
   return path_.size() >= 2;
 }

@@ -10,7 +10,9 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
+#include "engine/cable/wrap.h"
 #include "engine/dynamics/world.h"
 #include "engine/model/scene_json.h"
 #include "tests/support/rope_loop_pairs.h"
@@ -35,6 +37,37 @@ void expectNoWrapChangeOffTheOldPath(const KnockingPair& pair, double dt, int su
   }
   EXPECT_TRUE(world.warnings().empty()) << world.warnings().front();
   EXPECT_LE(rise, 0.01);
+}
+
+/// Over `steps` steps at 60 Hz x `substeps`: neither body gets below the lowest point the rope
+/// can reach (anchors 2 m apart, 1 m up: 1 - sqrt((L / 2)^2 - 1)) less its circumradius, the
+/// rope never runs through the hull of a body it does not wrap, and no warning (no wrap change
+/// moved the length by 1 mm).
+void expectCaughtByTheRope(const KnockingPair& pair, int substeps, int steps) {
+  SCOPED_TRACE("seed " + std::to_string(pair.seed) + " x " + std::to_string(substeps));
+  World world(test::ropeLoops(pair));
+  const double half = world.cable(0).restLength() / 2;
+  const double lowest = 1 - std::sqrt(half * half - 1);
+  const test::Thrown* thrown[] = {&pair.a, &pair.b};
+  for (int s = 0; s < steps; ++s) {
+    world.step(1.0 / 60, substeps);
+    const std::vector<WrapPoint>& path = world.cable(0).path();
+    for (int b = 0; b < 2; ++b) {
+      const BodyState& body = world.body(b);
+      ASSERT_GT(body.position.y(), lowest - thrown[b]->radius) << "body " << b << " at step " << s;
+      const bool wrapped =
+          std::any_of(path.begin(), path.end(), [&](const WrapPoint& w) { return w.body == b; });
+      std::vector<Vec2> hull;
+      for (int k = 0; k < thrown[b]->sides; ++k) {
+        const double angle = body.angle + thrown[b]->phase + 2 * M_PI * k / thrown[b]->sides;
+        hull.push_back(body.position + thrown[b]->radius * Vec2(std::cos(angle), std::sin(angle)));
+      }
+      for (size_t i = 0; i + 1 < path.size() && !wrapped; ++i)
+        ASSERT_FALSE(segmentCutsPolygon(path[i].world, path[i + 1].world, hull))
+            << "the rope runs through body " << b << " at step " << s;
+    }
+  }
+  EXPECT_TRUE(world.warnings().empty()) << world.warnings().front();
 }
 
 }  // namespace knock_motion_test
@@ -98,6 +131,18 @@ TEST(KnockMotion, PolygonsCaughtInManyPiecesAt30HzMakeNoWrapChangeOffTheOldPath)
   };
   for (const KnockingPair& pair : pairs)
     knock_motion_test::expectNoWrapChangeOffTheOldPath(pair, 1.0 / 30, 1, 90);
+}
+
+// Flung out of its loop past its neighbour (seed 34: the light heptagon at 2.1 s), a polygon
+// came down on the neighbour's segment of the rope, which its place in the cable's pulley order
+// never let it join: the rope ran through it for 6 steps and it fell to -352 m. A free polygon
+// joins any segment it crosses from its non-wrap side (pulley_order.cpp): it lands on the rope,
+// and neither body leaves the rope's reach.
+TEST(KnockMotion, PolygonsFlungOutOfTheirLoopsLandOnTheRope) {
+  const knock_motion_test::KnockingPair flung = {34,
+                                                 {7, 0.2036, 5.2961, 0.2, 3.1892, 3.4109, -1.0824},
+                                                 {3, 0.2136, 2.1423, 1.0, 0.6724, 3.1127, -3.2281}};
+  knock_motion_test::expectCaughtByTheRope(flung, 1, 300);
 }
 
 }  // namespace cablelab
