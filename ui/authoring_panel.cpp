@@ -44,12 +44,6 @@ const std::array<std::pair<Tool, const char*>, Authoring::kToolCount>& toolTips(
   return tools;
 }
 
-/// The screen rectangle of the last widget drawn (px).
-PanelRect lastItem() {
-  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
-  return {lo.x, lo.y, hi.x - lo.x, hi.y - lo.y};
-}
-
 void toolButtons(Authoring& a) {
   for (const auto& [tool, tip] : toolTips()) {
     if (tool != Tool::None) sameLineIfRoom(checkboxWidth(toolName(tool)));
@@ -66,12 +60,12 @@ void bodySettings(Authoring& a, std::string* complaint, BuildMenuLayout* menu = 
   ImGui::SetNextItemWidth(fieldWidth("size (m)", ImGui::GetFontSize() * 5));
   if (typedDrag("next body", "size (m)", &size, 0.01f, 0.02f, 10.0f, "%.2f", complaint))
     a.size = size;
-  if (menu) menu->size = lastItem();
+  if (menu) menu->size = lastItemRect();
   tooltip("Box side, circle and pulley diameter.");
   sameLineIfRoom(ImGui::GetFontSize() * 4 + checkboxWidth("kg") - ImGui::GetFrameHeight());
   ImGui::SetNextItemWidth(ImGui::GetFontSize() * 4);
   if (typedDrag("next body", "kg", &mass, 0.05f, 0.01f, 1000.0f, "%.2f", complaint)) a.mass = mass;
-  if (menu) menu->mass = lastItem();
+  if (menu) menu->mass = lastItemRect();
   tooltip("Mass of the next body (and of a pulley put on a body).");
   static const std::array<std::pair<BodyType, const char*>, 3> types = {
       {{BodyType::Dynamic, "moves"}, {BodyType::Static, "fixed"}, {BodyType::Kinematic, "driven"}}};
@@ -140,7 +134,7 @@ void nextBodyMenu(Sandbox& sandbox, BuildMenuLayout& layout) {
   // A short label: a longer one widens the whole menu (onto the PAUSED sign at 1280x720).
   layout.nextBodyOpen = ImGui::BeginMenu("next body");
   if (!layout.nextBodyOpen) {
-    layout.nextBody = lastItem();  // open, it keeps the rectangle it had closed
+    layout.nextBody = lastItemRect();  // open, it keeps the rectangle it had closed
     tooltip("The size, mass and kind of the next body or pulley you add.");
     return;
   }
@@ -157,7 +151,7 @@ void buildMenu(Sandbox& sandbox) {
   BuildMenuLayout& layout = a.menu;
   layout.open = ImGui::BeginMenu("Build");
   if (!layout.open) {
-    const PanelRect title = lastItem();
+    const PanelRect title = lastItemRect();
     layout = BuildMenuLayout{};
     layout.title = title;
     return;
@@ -167,13 +161,13 @@ void buildMenu(Sandbox& sandbox) {
   layout.nextBodyPopup = layout.size = layout.mass = PanelRect{};
   layout.rowOverflow = layout.hiddenHeight = 0;
   if (ImGui::MenuItem("New scene")) newScene(sandbox);
-  layout.newScene = lastItem();
+  layout.newScene = lastItemRect();
   tooltip("An empty scene with a ground, paused (undo brings the old one back).");
   ImGui::Separator();
   for (const auto& [tool, tip] : toolTips()) {
     if (ImGui::MenuItem(toolName(tool), tool == Tool::None ? "Esc" : nullptr, a.tool == tool))
       chooseTool(a, tool);
-    layout.tools[static_cast<size_t>(tool)] = lastItem();
+    layout.tools[static_cast<size_t>(tool)] = lastItemRect();
     tooltip(tip);
   }
   if (a.tool == Tool::Polygon && ImGui::MenuItem("finish the polygon")) finishPolygon(sandbox);

@@ -142,12 +142,6 @@ void graspStatus(const Sandbox& sandbox, const HandControlState& h, double t) {
   }
 }
 
-/// The screen rectangle of the last widget drawn (px).
-PanelRect lastItemRect() {
-  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
-  return {lo.x, lo.y, hi.x - lo.x, hi.y - lo.y};
-}
-
 /// The choice of law on one line, in plain words: react to the error (the Jacobian controller)
 /// or plan ahead (MPC), with how far ahead.
 void lawChoice(HandControlState& h) {

@@ -52,5 +52,7 @@ float buttonWidth(const char* label);
 float checkboxWidth(const char* label);
 /// ImGui::SameLine() when an item `width` px wide still fits on the current row.
 void sameLineIfRoom(float width);
+/// The screen rectangle of the last widget drawn (px): where the scripted checks find it.
+PanelRect lastItemRect();
 
 }  // namespace cablelab::ui

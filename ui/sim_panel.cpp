@@ -17,12 +17,6 @@ namespace cablelab::ui {
 
 namespace {
 
-/// The screen rectangle of the last widget drawn (px).
-PanelRect lastWidgetRect() {
-  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
-  return {lo.x, lo.y, hi.x - lo.x, hi.y - lo.y};
-}
-
 void parameterSliders(Sandbox& sandbox) {
   const auto params = sceneParameters(sandbox.sceneName);
   if (params.empty()) {
@@ -124,11 +118,11 @@ void runPanel(Sandbox& sandbox) {
   const char* speedTip =
       "Simulated seconds per wall second: 0.1x is slow motion, 4x fast forward ([ and ]).";
   tooltip(speedTip);
-  sandbox.speedSlider = lastWidgetRect();
+  sandbox.speedSlider = lastItemRect();
   ImGui::SameLine(0, ImGui::GetStyle().ItemInnerSpacing.x);
   ImGui::TextUnformatted(value);
   tooltip(speedTip);
-  sandbox.speedValue = lastWidgetRect();
+  sandbox.speedValue = lastItemRect();
   sameLineIfRoom(buttonWidth("-"));
   if (ImGui::SmallButton("-")) sandbox.speed = stepSpeed(sandbox.speed, -1);
   tooltip("Slower ([).");

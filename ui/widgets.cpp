@@ -46,4 +46,9 @@ void sameLineIfRoom(float width) {
     ImGui::SameLine();
 }
 
+PanelRect lastItemRect() {
+  const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+  return {lo.x, lo.y, hi.x - lo.x, hi.y - lo.y};
+}
+
 }  // namespace cablelab::ui

@@ -122,6 +122,11 @@ double floorRow(const WrapPoint& p, const WrapPoint& q, const Vec2& n,
   return kFloorLength - along;
 }
 
+// The velocity of a path point (zero on a point fixed in the world).
+Vec2 wrapPointVelocity(const WrapPoint& w, std::span<const BodyState> bodies) {
+  return w.body < 0 ? Vec2(Vec2::Zero()) : pointVelocity(bodies[w.body], w.world);
+}
+
 // Whether a cable over fixed point pulleys (an Atwood machine: both ends on bodies, every point
 // between them a point pulley fixed in the world, at least one) moves across itself: some segment
 // with an end on a moving body turns (the ends' velocities differ across it, a body spins) or hangs
@@ -137,9 +142,6 @@ bool rigidCableSwings(const Cable& c, std::span<const BodyState> bodies, const V
   if (path.size() < 3 || path.front().body < 0 || path.back().body < 0) return false;
   for (size_t i = 1; i + 1 < path.size(); ++i)
     if (path[i].kind != WrapPoint::Kind::Point || path[i].body >= 0) return false;
-  auto velocityOf = [&](const WrapPoint& w) {
-    return w.body < 0 ? Vec2(Vec2::Zero()) : pointVelocity(bodies[w.body], w.world);
-  };
   for (size_t i = 0; i + 1 < path.size(); ++i) {
     const WrapPoint &p = path[i], &q = path[i + 1];
     const bool movesP = p.body >= 0 && moves(bodies[p.body]);
@@ -149,7 +151,9 @@ bool rigidCableSwings(const Cable& c, std::span<const BodyState> bodies, const V
     const double length = d.norm();
     if (!(length > 0)) continue;
     const Vec2 u = d / length;
-    if (std::abs(cross(u, velocityOf(q) - velocityOf(p))) > kAcrossSpeed) return true;
+    if (std::abs(cross(u, wrapPointVelocity(q, bodies) - wrapPointVelocity(p, bodies))) >
+        kAcrossSpeed)
+      return true;
     if (std::abs(cross(u, gravity)) > kOffGravity * gravity.norm()) return true;
     for (const WrapPoint* w : {&p, &q})
       if (w->body >= 0 && bodies[w->body].angularVelocity != 0) return true;
@@ -164,9 +168,6 @@ bool rigidCableSwings(const Cable& c, std::span<const BodyState> bodies, const V
 double tautSwingRate(const Cable& c, std::span<const BodyState> bodies) {
   if (c.stretch() < -kLengthSlop) return 0;
   const auto& path = c.path();
-  auto velocityOf = [&](const WrapPoint& w) {
-    return w.body < 0 ? Vec2(Vec2::Zero()) : pointVelocity(bodies[w.body], w.world);
-  };
   double fastest = 0;
   for (size_t i = 0; i + 1 < path.size(); ++i) {
     const WrapPoint &p = path[i], &q = path[i + 1];
@@ -176,8 +177,9 @@ double tautSwingRate(const Cable& c, std::span<const BodyState> bodies) {
     const Vec2 d = q.world - p.world;
     const double length = d.norm();
     if (length > 1e-9)
-      fastest =
-          std::max(fastest, std::abs(cross(d, velocityOf(q) - velocityOf(p))) / (length * length));
+      fastest = std::max(
+          fastest, std::abs(cross(d, wrapPointVelocity(q, bodies) - wrapPointVelocity(p, bodies))) /
+                       (length * length));
   }
   return fastest;
 }
