@@ -450,7 +450,14 @@ bool LectureScript::walkthrough(Sandbox& sandbox, int frame) {
     key(SDLK_SPACE);
   } else if (frame == 1100) {
     snapshot("play-on");
-  } else if (frame == 1102) {
+  } else if (frame == 1102 && sandbox.sceneName == "capstan") {  // its second slider step
+    auto values = sandbox.parameters;
+    for (auto& [k, v] : values)
+      if (k == "turns") v = 2;
+    sandbox.rebuild(values);
+  } else if (frame == 1220 && sandbox.sceneName == "capstan") {
+    snapshot("turns");
+  } else if (frame == (sandbox.sceneName == "capstan" ? 1222 : 1102)) {
     report_ = "{\"scenario\": \"walkthrough\", \"banner\": " + jsonQuoted(sandbox.banner) +
               ", \"views\": " + jsonList(items_) + ", " + followJson() + "}";
     return false;

@@ -16,7 +16,8 @@
 //   walkthrough   a lecture with one scene: projector mode and p, screenshots at the start, after
 //                 3 s and 10 s, while dragging the body at a cable's end and after the drop,
 //                 after the scene's "what to try" slider step (the hand: the grasp sequence),
-//                 paused, after 60 presses of b (rewind) and after playing on; reports each view
+//                 paused, after 60 presses of b (rewind) and after playing on (the capstan: then
+//                 its turns slider to 2, "more turns hold a heavier load"); reports each view
 //   select-rope   clicks a point of a cable (none of a body) in the view; reports whether the
 //                 Inspector was open before and after, the cable selected and the Inspector's
 //                 row overflow
