@@ -455,9 +455,9 @@ bool LectureScript::walkthrough(Sandbox& sandbox, int frame) {
     for (auto& [k, v] : values)
       if (k == "turns") v = 2;
     sandbox.rebuild(values);
-  } else if (frame == 1220 && sandbox.sceneName == "capstan") {
+  } else if (frame == 1130 && sandbox.sceneName == "capstan") {  // half a second on
     snapshot("turns");
-  } else if (frame == (sandbox.sceneName == "capstan" ? 1222 : 1102)) {
+  } else if (frame == (sandbox.sceneName == "capstan" ? 1132 : 1102)) {
     report_ = "{\"scenario\": \"walkthrough\", \"banner\": " + jsonQuoted(sandbox.banner) +
               ", \"views\": " + jsonList(items_) + ", " + followJson() + "}";
     return false;
