@@ -204,9 +204,8 @@ nlohmann::json walkthroughAt(const std::string& scene, const std::string& size) 
 // The capstan's "what to try": m_load to 6, the rope slips and the load falls. The view was
 // not fitted again to the new run and the load fell out of it (and its label's leader line
 // crossed the status line).
-// Its second step, the turns slider to 2 with the load still at 6 kg: the rope holds, but the
-// held-out walkthrough found the view in close-up (a thin demo, ui/presentation.h) with the
-// load hanging below it; now the whole run is in view, the load and the holding weight.
+// Its second step, turns to 2 (the load still 6 kg): the held-out walkthrough found the view in
+// close-up (ui/presentation.h) with the load below it; now both weights are in view.
 TEST(Lecture, WalkthroughCapstanSliderStepStaysInView) {
   REQUIRE_XVFB();
   for (const char* size : {"1280x720", "1920x1080"}) {
@@ -248,8 +247,7 @@ TEST(Lecture, ThinDemosInCloseUpKeepTheWheelAndAWeightInView) {
       if (scene == "tackle") {
         EXPECT_LE(j["largest_zoom_in"].get<double>(), 1.2) << scene << " " << size;
       }
-      // The body the close-up zoomed out after is in view when it comes to rest at the end of a
-      // run (the tackle's effort weight was reported 0.6 m below the widest close-up).
+      // The body the close-up followed is in view at rest (a tackle's effort was reported not).
       EXPECT_EQ(j["followed_out_of_view_frames"].get<int>(), 0) << scene << " " << size;
     }
 }
@@ -538,10 +536,8 @@ TEST(Lecture, TourOfTheOtherScenesAtBothSizes) {
               << bar << " crossed by " << line << ": " << where;
         }
   }
-  // The held-out lecture walkthrough (issue 38): the pulley's clip (F9, F9) was saved with no
-  // word of it at 1280x720 (the status line dropped "recorded 81 frames (2.70 s) to ..."; the
-  // demo's "starts again" replaced "recording ..."). And the membrane's band, clicked to watch
-  // its tension, showed nothing in presentation mode (no Inspector): now the view's note does.
+  // Issue 38's held-out walkthrough: the pulley's clip (F9, F9) was saved without a word at
+  // 1280x720; the membrane's band, clicked in presentation mode (no Inspector), showed nothing.
   for (const auto& v : j["views"]) {
     const std::string status = v["status"];
     if (v["name"] == "pulley-720-try") {
