@@ -101,8 +101,14 @@ void toggleRecording(cablelab::ui::Sandbox& sandbox, cablelab::ui::Recorder& rec
                      const std::string& path) {
   using namespace cablelab::ui;
   if (recorder.recording()) {
-    sandbox.message = recorder.stop();
-    std::cerr << "cablelab-gui: " << sandbox.message << "\n";
+    const double seconds = recorder.seconds();
+    const std::string summary = recorder.stop();
+    std::cerr << "cablelab-gui: " << summary << "\n";
+    // Short enough for the status line beside the energy at 1280x720 in projector mode (the
+    // summary's frame count pushed the file's name off it).
+    char text[64];
+    std::snprintf(text, sizeof text, " (%.2f s)", seconds);
+    sandbox.message = recorder.failed() ? summary : "clip saved: " + recorder.path() + text;
     return;
   }
   const PanelRect free = sandbox.freeArea();

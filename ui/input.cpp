@@ -84,11 +84,13 @@ void leftDown(Sandbox& sandbox, World& world, const Vec2& mouse, const Vec2& poi
   const int cable = sandbox.cableAt(point, 6 * sandbox.camera.metresPerPixel);
   if (cable >= 0) {
     sandbox.selectedCable = cable;
+    sandbox.watchedCable = cable;
     sandbox.showInspector = true;
     const Cable& c = world.cable(cable);
     sandbox.cableEdit = {c.restLength(), c.stiffness(), c.preload(), c.damping()};
     return;
   }
+  sandbox.watchedCable = -1;
   if (sandbox.hasController())
     sandbox.target = point;
   else

@@ -80,7 +80,10 @@ std::string lectureViewJson(const Sandbox& s, const std::string& name, const std
   std::vector<std::string> shownKeys, markerKeys;  // the key's rows; the overlay's markers' keys
   if (!f.key.empty())
     for (const MarkerKeyRow& r : f.keyRows) shownKeys.push_back(jsonQuoted(r.label));
-  for (const Overlay::Key& k : s.overlay().keys) markerKeys.push_back(jsonQuoted(k.label));
+  std::vector<std::string> notes;  // the overlay's notes (the clip's time stamp is the window's)
+  const Overlay overlay = s.overlay();
+  for (const Overlay::Key& k : overlay.keys) markerKeys.push_back(jsonQuoted(k.label));
+  for (const std::string& n : overlay.notes) notes.push_back(jsonQuoted(n));
   // a looping demo's whole run on screen (ui/demo_loop.h), px
   const LabelBox stage = screenBox(s.demo.stage, s.camera);
   WorldBounds fixed;     // the fixed bodies (a ground), whole
@@ -108,8 +111,8 @@ std::string lectureViewJson(const Sandbox& s, const std::string& name, const std
          ", \"labels_on_cables\": " + jsonNumber(d.labelsOnCables) +
          ", \"scale_bar\": " + box(f.scaleBar) + ", \"colour_bar\": " + box(f.colourBar) +
          ", \"key\": " + box(f.key) + ", \"notes\": " + box(f.notes) +
-         ", \"banner\": " + box(f.banner) + ", \"paused\": " + box(f.paused) +
-         ", \"ui_scale\": " + jsonNumber(s.uiScale) +
+         ", \"notes_text\": " + jsonList(notes) + ", \"banner\": " + box(f.banner) +
+         ", \"paused\": " + box(f.paused) + ", \"ui_scale\": " + jsonNumber(s.uiScale) +
          ", \"tension_scale\": " + jsonNumber(s.tensionScale) +
          ", \"presentation\": " + (s.presentation ? "true" : "false") +
          ", \"view_fitted\": " + (s.viewFitted ? "true" : "false") +
@@ -148,6 +151,19 @@ int bodyAtACableEnd(const World& world) {
     if (b >= 0 && world.scene().bodies[b].type == BodyType::Dynamic) return b;
   }
   return -1;
+}
+
+/// A point of a cable (none of a body) in the view, as the user clicks it (px); the view's
+/// centre when there is none.
+Vec2 cablePixel(const Sandbox& sandbox) {
+  const PanelRect f = sandbox.freeArea();
+  for (float y = f.y + 4; y < f.y + f.height; y += 3)
+    for (float x = f.x + 4; x < f.x + f.width; x += 3) {
+      const Vec2 p = sandbox.camera.toWorld(Vec2(x, y));
+      if (sandbox.bodyAt(p, true) < 0 && sandbox.cableAt(p, 2 * sandbox.camera.metresPerPixel) >= 0)
+        return Vec2(x, y);
+    }
+  return Vec2(f.x + 0.5 * f.width, f.y + 0.5 * f.height);
 }
 
 Vec2 middle(const LabelBox& b) {
@@ -434,7 +450,14 @@ bool LectureScript::walkthrough(Sandbox& sandbox, int frame) {
     key(SDLK_SPACE);
   } else if (frame == 1100) {
     snapshot("play-on");
-  } else if (frame == 1102) {
+  } else if (frame == 1102 && sandbox.sceneName == "capstan") {  // its second slider step
+    auto values = sandbox.parameters;
+    for (auto& [k, v] : values)
+      if (k == "turns") v = 2;
+    sandbox.rebuild(values);
+  } else if (frame == 1130 && sandbox.sceneName == "capstan") {  // half a second on
+    snapshot("turns");
+  } else if (frame == (sandbox.sceneName == "capstan" ? 1132 : 1102)) {
     report_ = "{\"scenario\": \"walkthrough\", \"banner\": " + jsonQuoted(sandbox.banner) +
               ", \"views\": " + jsonList(items_) + ", " + followJson() + "}";
     return false;
@@ -541,8 +564,15 @@ bool LectureScript::tour(Sandbox& sandbox, int frame) {
     shot("720-drag-scale-bar");
   } else if (f == 36 && body_ >= 0) {
     mouse(SDL_MOUSEBUTTONUP, to_);
+  } else if (f == 38 && scene == "membrane") {  // "select the band (click it)"
+    from_ = cablePixel(sandbox);
+    mouse(SDL_MOUSEMOTION, from_);
+    mouse(SDL_MOUSEBUTTONDOWN, from_);
+    mouse(SDL_MOUSEBUTTONUP, from_);
   } else if (f == 38) {
     tryStep(sandbox);
+  } else if ((f == 2 || f == 64) && scene == "pulley") {  // a clip of the run (F9), then stop
+    key(SDLK_F9);
   } else if (f == 66) {
     shot("720-try");
   } else if (f == 68) {
@@ -668,6 +698,13 @@ void LectureScript::watchFollow(const Sandbox& sandbox) {
   }
   movingFrames_ += moving;
   movingOutOfViewFrames_ += moving && !seen;
+  // The body the close-up followed down (the tackle's effort weight), at rest out of view (the
+  // view lags a falling body by a few frames).
+  const int followed = sandbox.demo.closeUpBody;
+  if (sandbox.closeUp && followed >= 0 && followed < world.bodyCount() &&
+      world.body(followed).velocity.norm() < kMoving)
+    followedOutOfViewFrames_ +=
+        !free.contains(sandbox.camera.toScreen(world.body(followed).position));
   const double scale = sandbox.camera.metresPerPixel;
   const bool sameRun = lastScale_ > 0 && sandbox.demo.restarts == lastRestarts_;
   if (sameRun)
@@ -685,6 +722,7 @@ std::string LectureScript::followJson() const {
          ", \"largest_zoom_in\": " + jsonNumber(largestZoomIn_) +
          ", \"moving_frames\": " + jsonNumber(movingFrames_) +
          ", \"moving_out_of_view_frames\": " + jsonNumber(movingOutOfViewFrames_) +
+         ", \"followed_out_of_view_frames\": " + jsonNumber(followedOutOfViewFrames_) +
          ", \"restarts\": " + jsonNumber(lastRestarts_);
 }
 

@@ -16,15 +16,19 @@
 //   walkthrough   a lecture with one scene: projector mode and p, screenshots at the start, after
 //                 3 s and 10 s, while dragging the body at a cable's end and after the drop,
 //                 after the scene's "what to try" slider step (the hand: the grasp sequence),
-//                 paused, after 60 presses of b (rewind) and after playing on; reports each view
+//                 paused, after 60 presses of b (rewind) and after playing on (the capstan: then
+//                 its turns slider to 2, "more turns hold a heavier load"); reports each view
 //   select-rope   clicks a point of a cable (none of a body) in the view; reports whether the
 //                 Inspector was open before and after, the cable selected and the Inspector's
 //                 row overflow
 //   tour          the built-in scenes the walkthrough tests do not walk (ballast, pulley, hexagon,
 //                 membrane, hand), each opened from the Scene menu in presentation mode at
 //                 projector scale, 1280x720: the body at a cable's end dragged (the hexagon's onto
-//                 the colour bar, then onto the scale bar), the scene's "what to try" step, Space;
-//                 then 1920x1080 paused and running again. Reports each view and every banner shown
+//                 the colour bar, then onto the scale bar), the scene's "what to try" step (the
+//                 membrane's: a click on the band), Space; then 1920x1080 paused and running
+//                 again; the pulley's run recorded as a clip (F9 twice, into the working
+//                 directory) before its "what to try" view. Reports each view (with the notes'
+//                 texts) and every banner shown
 //   first-mechanism  a student's first mechanism in presentation mode at projector scale, at
 //                 1280x720 then 1920x1080, every step a click on the top bar's Build menu, its
 //                 items and fields or the view (ui/first_mechanism_script.h)
@@ -38,8 +42,10 @@
 //   follow        projector mode and p, then 25 s of the scene's run untouched: the largest change
 //                 of the view's scale between two frames of one run and the most it zoomed back
 //                 in within a run (a ratio of scales), the frames in which a body
-//                 moves and those in which none of the moving ones is in view, and screenshots
-//                 after 1, 4, 6, 10 and 20 s (the walkthrough reports the same of its first 10 s)
+//                 moves and those in which none of the moving ones is in view, those in which the
+//                 body the close-up followed down (ui/presentation.h) is at rest out of it, and
+//                 screenshots after 1, 4, 6, 10 and 20 s (the walkthrough reports the same of its
+//                 first 10 s)
 //
 // Needs: an SDL video subsystem (the sandbox's Window), a Sandbox with a loaded scene.
 #pragma once
@@ -117,6 +123,7 @@ class LectureScript {
   double widestInRun_ = 0;      ///< the largest scale (m per px) in this run so far
   double largestZoomIn_ = 1;    ///< the largest ratio of that to a later scale in the run
   int movingFrames_ = 0, movingOutOfViewFrames_ = 0;
+  int followedOutOfViewFrames_ = 0;  ///< frames the close-up's followed body was out of view
 };
 
 }  // namespace cablelab::ui

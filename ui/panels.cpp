@@ -238,6 +238,10 @@ void statusLine(Sandbox& sandbox) {
     if (sandbox.presentation || ImGui::CalcTextSize(line).x > room)
       std::snprintf(line, sizeof line, "%s %.2gx  t %.3f s   energy %s J   %s", state,
                     sandbox.speed, world->time(), energy.c_str(), note);
+    // Closer together, without the speed, before without the note (a saved clip's name).
+    if (ImGui::CalcTextSize(line).x > room)
+      std::snprintf(line, sizeof line, "%s  t %.2f s  energy %s J  %s", state, world->time(),
+                    energy.c_str(), note);
     // Without the note before without the energy: the energy readout is what a lecture reads.
     if (ImGui::CalcTextSize(line).x > room)
       std::snprintf(line, sizeof line, "%s %.2gx  t %.3f s   energy %s J", state, sandbox.speed,

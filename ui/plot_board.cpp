@@ -11,6 +11,11 @@
 namespace cablelab::ui {
 namespace {
 
+/// Data in view that varies by less than this share of its size is shown as flat: what is left
+/// is the solver's rounding, not motion a slide should show (a body 10 m out wobbling 5 cm, 0.5%,
+/// still shows).
+constexpr double kNearlyFlat = 1e-3;
+
 /// The word the vertical axis uses for a quantity.
 const char* axisWord(Quantity::Kind kind) {
   switch (kind) {
@@ -124,9 +129,13 @@ std::array<double, 2> PlotBoard::valueRange(const Chart& chart, double now) cons
       if (std::isfinite(v[i])) lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
   }
   if (!(hi >= lo)) return {0, 1};
-  if (hi - lo < 1e-9 * std::max(1.0, std::abs(lo))) {  // flat: a band about the value
-    const double half = std::max(0.05 * std::abs(lo), 1e-6);
-    lo -= half, hi += half;
+  // Flat, or nearly (a rope's steady tension wobbling in its sixth digit): a band of 5% about
+  // the value, so that the curve is a level line between distinct ticks rather than a cliff
+  // between eight ticks that all read "13.08".
+  const double size = std::max(std::abs(lo), std::abs(hi));
+  if (hi - lo < std::max(kNearlyFlat * size, 1e-9)) {
+    const double middle = 0.5 * (lo + hi), half = std::max(0.05 * size, 1e-6);
+    lo = middle - half, hi = middle + half;
   }
   // Padded 5% (the curve clear of the frame), rounded outwards to the plot's tick step (an
   // eighth of the span, 1, 2 or 5 times a power of 10).

@@ -56,6 +56,8 @@ class Recorder {
 
   bool recording() const { return writer_ != nullptr; }
   int frames() const { return queued_; }
+  /// The clip's length so far (s of simulated time, as it plays).
+  double seconds() const { return queued_ * frameSeconds_; }
   int width() const { return width_; }
   int height() const { return height_; }
   const std::string& path() const { return path_; }

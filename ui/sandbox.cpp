@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -52,6 +53,19 @@ std::string editErrorWithNames(std::string error, const SceneDef& def) {
   return error;
 }
 
+/// A clicked cable's tension as the view's note says it in presentation mode (no Inspector):
+/// "band: tension 4.01 N"; one value per span, start to end, where pulleys part it ("rope:
+/// tensions 58.9, 19.6 N from its start", the capstan's two sides of the drum).
+std::string tensionNote(const Cable& c) {
+  char value[32];
+  std::string text = c.name() + (c.spanCount() > 1 ? ": tensions " : ": tension ");
+  for (int k = 0; k < c.spanCount(); ++k) {
+    std::snprintf(value, sizeof value, "%s%.3g", k ? ", " : "", c.spanTension(k));
+    text += value;
+  }
+  return text + (c.spanCount() > 1 ? " N from its start" : " N");
+}
+
 }  // namespace
 
 Sandbox::Sandbox(int width, int height) {
@@ -67,6 +81,7 @@ Sandbox::~Sandbox() = default;
 
 bool Sandbox::adopt(SceneDef def, const std::string& name, bool fitCamera) {
   auto fresh = std::make_unique<World>(def, name);
+  if (name != sceneName || watchedCable >= fresh->cableCount()) watchedCable = -1;
   scene = std::move(def);
   sceneName = name;
   dt = scene.dt;
@@ -253,7 +268,9 @@ void Sandbox::restartDemo() {
   const int restarts = demo.restarts + 1;
   reset();
   demo.restarts = restarts;
-  message = "The run has ended, so it starts again (run " + std::to_string(restarts + 1) + ").";
+  // While a clip records, its notice stays: the clip goes on through the new run (ui/recorder.h).
+  if (!recording)
+    message = "The run has ended, so it starts again (run " + std::to_string(restarts + 1) + ").";
 }
 
 void Sandbox::checkWarnings() {
@@ -473,6 +490,8 @@ Overlay Sandbox::overlay() const {
   // through a paddle that looks solid reads as a bug.
   if (hasController())
     o.notes.push_back("The bodies pass through each other: only the bands hold the box.");
+  if (presentation && world_ && watchedCable >= 0 && watchedCable < world_->cableCount())
+    o.notes.push_back(tensionNote(world_->cable(watchedCable)));
   o.banner = banner;
   return o;
 }

@@ -172,6 +172,10 @@ class Sandbox {
 
   // Inspector.
   int selectedCable = 0;
+  /// A cable clicked in the view (-1: none, or empty space clicked since): in presentation mode,
+  /// with no Inspector, the view's notes say its tension (the capstan's and the membrane's "what
+  /// to try" ask to watch it).
+  int watchedCable = -1;
   int selectedBody = -1;
   struct CableEdit {
     double restLength = 0, stiffness = 0, preload = 0, damping = 0;

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/ui/test_support.h"
+#include "ui/clip.h"
 #include "ui/image.h"
 
 namespace cablelab::test {
@@ -28,11 +29,13 @@ constexpr double kCloseUpShare = 0.04;  // of the window's width, for a thin, ta
 
 const std::string kXvfb1080 = "xvfb-run -a -s \"-screen 0 1920x1080x24\" ";
 
+/// `cwd`: where the run writes its files (a clip), if not the tests' working directory.
 nlohmann::json lecture(const std::string& scene, const std::string& script, const std::string& size,
-                       const std::string& tag) {
+                       const std::string& tag, const std::string& cwd = "") {
   const std::string prefix = (outputDir("lecture") / tag).string();
-  const RunResult r = run(kXvfb1080 + std::string(CABLELAB_CLI) + " gui " + scene + " --size " +
-                              size + " --ui-scale 2 --script " + script + " --script-out " + prefix,
+  const RunResult r = run((cwd.empty() ? "" : "cd " + cwd + " && ") + kXvfb1080 +
+                              std::string(CABLELAB_CLI) + " gui " + scene + " --size " + size +
+                              " --ui-scale 2 --script " + script + " --script-out " + prefix,
                           "lecture_" + tag);
   return jsonReport(r);
 }
@@ -178,7 +181,7 @@ nlohmann::json walkthroughAt(const std::string& scene, const std::string& size) 
   const auto j = lecture(scene, "walkthrough", size, "walk-" + scene + "-" + size);
   EXPECT_TRUE(j.contains("views")) << j.dump();
   if (!j.contains("views")) return j;
-  EXPECT_EQ(j["views"].size(), 9u) << j.dump();
+  EXPECT_EQ(j["views"].size(), scene == "capstan" ? 10u : 9u) << j.dump();
   for (const auto& v : j["views"]) {
     std::cout << v.dump() << "\n";
     expectReadable(v);
@@ -201,9 +204,18 @@ nlohmann::json walkthroughAt(const std::string& scene, const std::string& size) 
 // The capstan's "what to try": m_load to 6, the rope slips and the load falls. The view was
 // not fitted again to the new run and the load fell out of it (and its label's leader line
 // crossed the status line).
+// Its second step, turns to 2 (the load still 6 kg): the held-out walkthrough found the view in
+// close-up (ui/presentation.h) with the load below it; now both weights are in view.
 TEST(Lecture, WalkthroughCapstanSliderStepStaysInView) {
   REQUIRE_XVFB();
-  for (const char* size : {"1280x720", "1920x1080"}) walkthroughAt("capstan", size);
+  for (const char* size : {"1280x720", "1920x1080"}) {
+    const auto j = walkthroughAt("capstan", size);
+    ASSERT_TRUE(j.contains("views"));
+    const auto& turns = j["views"].back();
+    EXPECT_EQ(turns["name"], "turns") << size;
+    EXPECT_FALSE(turns["close_up"].get<bool>()) << size;
+    EXPECT_EQ(turns["bodies_in_view"].get<int>(), 2) << size << " " << turns["screenshot"];
+  }
 }
 
 // The wheel, the winch and the tackle are a long rope under a small wheel: fitted to their
@@ -235,6 +247,8 @@ TEST(Lecture, ThinDemosInCloseUpKeepTheWheelAndAWeightInView) {
       if (scene == "tackle") {
         EXPECT_LE(j["largest_zoom_in"].get<double>(), 1.2) << scene << " " << size;
       }
+      // The body the close-up followed is in view at rest (a tackle's effort was reported not).
+      EXPECT_EQ(j["followed_out_of_view_frames"].get<int>(), 0) << scene << " " << size;
     }
 }
 
@@ -468,7 +482,10 @@ int newRedPixels(const ui::Image& before, const ui::Image& shot, const Box& box)
 // the hexagon's colour bar and scale bar stops at their edges (it crossed the colour bar).
 TEST(Lecture, TourOfTheOtherScenesAtBothSizes) {
   REQUIRE_XVFB();
-  const auto j = lecture("ballast", "tour", "1280x720", "tour");
+  const auto clips = outputDir("lecture") / "tour-clips";
+  std::filesystem::remove_all(clips);
+  std::filesystem::create_directories(clips);
+  const auto j = lecture("ballast", "tour", "1280x720", "tour", clips.string());
   ASSERT_TRUE(j.contains("views")) << j.dump();
   EXPECT_EQ(j["banners"].size(), 0u) << "banners raised: " << j["banners"].dump();
   ASSERT_EQ(j["views"].size(), 5u * 6 + 1) << j.dump();
@@ -518,6 +535,25 @@ TEST(Lecture, TourOfTheOtherScenesAtBothSizes) {
           EXPECT_FALSE(crosses(line, boxes(nlohmann::json::array({v[bar]}))[0]))
               << bar << " crossed by " << line << ": " << where;
         }
+  }
+  // Issue 38's held-out walkthrough: the pulley's clip (F9, F9) was saved without a word at
+  // 1280x720; the membrane's band, clicked in presentation mode (no Inspector), showed nothing.
+  for (const auto& v : j["views"]) {
+    const std::string status = v["status"];
+    if (v["name"] == "pulley-720-try") {
+      const std::string clip =
+          ui::mp4Available() ? "cablelab-pulley-1.mp4" : "cablelab-pulley-1.gif";
+      EXPECT_NE(status.find("clip saved: " + clip), std::string::npos) << status;
+      EXPECT_NE(status.find("energy"), std::string::npos) << status;
+      EXPECT_TRUE(std::filesystem::exists(clips / clip)) << clip;
+    }
+    if (v["name"] == "membrane-720-try") {
+      ASSERT_EQ(v["notes_text"].size(), 1u) << v.dump();
+      const std::string note = v["notes_text"][0];
+      EXPECT_EQ(note.rfind("band: tension ", 0), 0u) << note;
+      EXPECT_EQ(note.substr(note.size() - 2), " N") << note;
+      EXPECT_FALSE(v["notes"].is_null()) << "the note not drawn";
+    }
   }
   // The hand's statics cross and the target have their keys.
   for (const auto& v : j["views"])

@@ -58,6 +58,26 @@ TEST(PlotBoard, TheRangeShrinksBackAfterAnOutlierLeavesTheView) {
   EXPECT_LE(board.times().back() - board.times().front(), PlotBoard::kKeptSeconds);
 }
 
+// The lecture walkthrough's pulley: its rope's steady 13.08 N, 2e-5 N higher in the first
+// sample, was drawn as a cliff between eight ticks that all read "13.08". Now a level line in a
+// band of 5% about it; a body 10 m out wobbling 5 cm still fills its chart.
+TEST(PlotBoard, ASteadyTensionIsALevelLineAndAWobbleStillShows) {
+  PlotBoard steady, wobble;
+  steady.addCurve(0, {Quantity::Kind::Tension, 0, 0});
+  wobble.addCurve(0, {Quantity::Kind::X, 0, 0});
+  for (int i = 0; i <= 120; ++i) {
+    steady.addSample(i * kDt, {{i == 0 ? 13.08002 : 13.08}});
+    wobble.addSample(i * kDt, {{10 + 0.05 * std::sin(i * kDt * 3)}});
+  }
+  const auto flat = steady.valueRange(steady.charts[0], 2);
+  EXPECT_LE(flat[0], 13.08 - 0.6);
+  EXPECT_GE(flat[1], 13.08 + 0.6);
+  EXPECT_LE(flat[1] - flat[0], 2);
+  const auto moving = wobble.valueRange(wobble.charts[0], 2);
+  EXPECT_LE(moving[1] - moving[0], 0.2);
+  EXPECT_GE(moving[1] - moving[0], 0.1);
+}
+
 // Issue 38: a tension added to a chart of positions drew both on one axis, "value (N, m)". Each
 // unit has its own chart now: a quantity in another unit goes to the last chart in its unit.
 TEST(PlotBoard, EachChartsAxisHasOneUnit) {
