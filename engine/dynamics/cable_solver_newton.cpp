@@ -21,6 +21,10 @@ constexpr int kChordIterations = 12;
 // m: a body this far inside an elastic cable's floor came in while the cable was slack (floors.h,
 // staysSlack); one less deep sank in by the step's linearisation (a hand's tendons, 0.5 mm).
 constexpr double kCameInsideFloor = 0.1 * kFloorLength;
+// m/s: a body arriving at its floor slower than this stops there whatever its restitution, as at
+// a Box2D contact (b2_velocityThreshold): a body resting at its pulley, which each step's gravity
+// brings in at g h, is not bounced off it step after step.
+constexpr double kBounceSpeed = 1.0;
 
 // Warm start: a cable's tension changes little from one sub-step to the next, so Newton starts
 // from the impulses of the last solve when it had the same h and nothing has set the tension
@@ -82,6 +86,37 @@ void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable>
       ws.compliance[r] = 1.0 / (h * (stiffK * h + damp));
       ws.damped[r] = damp * phi / (stiffK * h + damp);
     }
+  }
+}
+
+// 5b. Bouncing off a pulley (docs/floors.md): a floor row whose segment closes faster than
+// kBounceSpeed and would reach its floor within the step opens by e v h over the step instead:
+// the pair leaves at e times the speed it came in with, e the larger restitution of the two
+// bodies' shapes (Box2D's b2MixRestitution; the world has none). The row keeps the velocity, not
+// the place, of the knock: it turns the body back where the step starts, up to v h short of its
+// floor. Reflected at the floor instead (end gap 1 cm + e (v h - gap0 + 1 cm)), its end-of-step
+// velocity, (gap1 - gap0) / h as Box2D moves it, falls short by (1 + e) (gap0 - 1 cm) / h. e = 0
+// keeps lengthTargets' plastic stop.
+void floorBounces(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  if (ws.restitution.empty()) return;
+  auto restitution = [&](int body) {
+    return body >= 0 && body < static_cast<int>(ws.restitution.size()) ? ws.restitution[body] : 0.0;
+  };
+  for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
+    const Workspace::Row& row = ws.rows[r];
+    if (row.segment < 0) continue;
+    const Cable& c = cables[row.cable];
+    const double e = std::max(restitution(c.path()[row.segment].body),
+                              restitution(c.path()[row.segment + 1].body));
+    if (!(e > 0)) continue;
+    const double phi = floorRow(ws, in.bodies, c, row);  // kFloorLength - gap, at the start
+    double closing = 0;                                  // d phi / dt at the start of the step
+    for (const BodyJacobian& j : ws.floorJacobian) {
+      const BodyState& b = in.bodies[j.body];
+      closing += j.d.dot(Vec3(b.velocity.x(), b.velocity.y(), b.angularVelocity));
+    }
+    if (closing < kBounceSpeed || -phi > closing * in.h) continue;  // slow, or arriving later
+    ws.target[r] = std::min(ws.target[r], phi - e * closing * in.h);
   }
 }
 
