@@ -43,7 +43,8 @@ constexpr double kSweepMargin = 0.05;
 // answers yes. A segment whose ends passed each other (a bob on a slack rope flying over its
 // anchor) turns its direction over, and a pulley on its line far from it changes side without the
 // segment ever reaching it: joined, the wrap round it jumped the length by a metre
-// (docs/cables.md, "Guards").
+// (docs/cables.md, "Guards"). Asked of pulleys fixed in the world: one on a body moves through
+// the segment itself.
 bool sweptOverPulley(std::span<const WrapPoint> previous, std::span<const WrapPoint> path,
                      size_t host, const Vec2& c, double reach) {
   auto before = [&](size_t i) -> const WrapPoint* {
@@ -431,9 +432,10 @@ bool Cable::joinRound(std::vector<std::string>* warnings) {
       const bool within = t > 0 && t < 1;
       const bool touches =
           p.polygon ? segmentCutsPolygon(a, b, p.world) : within && std::abs(left) < p.radius;
-      const bool crossed = within && !firstUpdate_ && (left > 0) != (was > 0) &&
-                           (p.polygon || sweptOverPulley(previousPath_, path_, host, centre,
-                                                         p.radius + kSweepMargin));
+      const bool crossed =
+          within && !firstUpdate_ && (left > 0) != (was > 0) &&
+          (p.polygon || p.body >= 0 ||
+           sweptOverPulley(previousPath_, path_, host, centre, p.radius + kSweepMargin));
       if (touches || crossed) {
         p.engaged = true;
         p.arc = 0;
@@ -459,10 +461,10 @@ bool Cable::joinRound(std::vector<std::string>* warnings) {
       const double t = len > 0 ? (p.world[0] - a).dot(ab) / (len * len) : -1;
       cuts = t > 0 && t < 1 && (firstUpdate_ ? depth >= 0 : depth > 0);
     }
-    bool crossed =
-        firstUpdate_ || (p.previousDepth <= 0 &&
-                         (p.polygon || sweptOverPulley(previousPath_, path_, host, p.world[0],
-                                                       std::abs(p.radius) + kSweepMargin)));
+    bool crossed = firstUpdate_ ||
+                   (p.previousDepth <= 0 && (p.polygon || p.body >= 0 ||
+                                             sweptOverPulley(previousPath_, path_, host, p.world[0],
+                                                             std::abs(p.radius) + kSweepMargin)));
     p.previousDepth = depth;
     // A polygon a guard dropped rejoins once a taut path round it exists again.
     if (p.dropped && cuts && !crossed) {

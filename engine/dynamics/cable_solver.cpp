@@ -65,13 +65,19 @@ void solve(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables, st
         prepareRows(ws, in, cables, loads);
       ws.midpoint = takesMidpointRule(ws, in, cables);  // 5a
       lengthTargets(ws, in.h, in.share, cables);        // 5
-      floorBounces(ws, in, cables);                     // 5b
-      newtonOnLengths(ws, in, cables, stats);           // 6, 6d
+      if (floorBounces(ws, in, cables)) {               // 5b
+        newtonOnLengths(ws, in, cables, stats);
+        bounceTargets(ws, in, cables);
+      }
+      newtonOnLengths(ws, in, cables, stats);  // 6, 6d
       for (int pass = 0; pass < 2 && ws.midpoint && pullAlongDiscreteGradient(ws, in, cables);
            ++pass) {  // 6e
         prepareRows(ws, in, cables, loads);
         lengthTargets(ws, in.h, in.share, cables);
-        floorBounces(ws, in, cables);
+        if (floorBounces(ws, in, cables)) {
+          newtonOnLengths(ws, in, cables, stats);
+          bounceTargets(ws, in, cables);
+        }
         newtonOnLengths(ws, in, cables, stats);
       }
       if (ws.midpoint) balanceMidpointWork(ws, in, cables);  // 6a

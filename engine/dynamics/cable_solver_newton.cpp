@@ -22,9 +22,12 @@ constexpr int kChordIterations = 12;
 // staysSlack); one less deep sank in by the step's linearisation (a hand's tendons, 0.5 mm).
 constexpr double kCameInsideFloor = 0.1 * kFloorLength;
 // m/s: a body arriving at its floor slower than this stops there whatever its restitution, as at
-// a Box2D contact (b2_velocityThreshold): a body resting at its pulley, which each step's gravity
-// brings in at g h, is not bounced off it step after step.
-constexpr double kBounceSpeed = 1.0;
+// a Box2D contact (b2_velocityThreshold), so that with e < 1 its bounces die out and it rests. The
+// speed is the one the step starts with, which the floor held at 0 for a body resting there: not
+// Box2D's 1 m/s (for the g h its velocity solve sees), which stopped an Atwood's light side
+// reaching its wheel at 0.9 m/s dead in a conservative scene.
+constexpr double kBounceSpeed = 0.25;
+constexpr double kFreeFloor = 1.0;  // m: a floor row's target this far past its start never binds
 
 // Warm start: a cable's tension changes little from one sub-step to the next, so Newton starts
 // from the impulses of the last solve when it had the same h and nothing has set the tension
@@ -89,16 +92,20 @@ void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable>
   }
 }
 
-// 5b. Bouncing off a pulley (docs/floors.md): a floor row whose segment closes faster than
-// kBounceSpeed and would reach its floor within the step opens by e v h over the step instead:
-// the pair leaves at e times the speed it came in with, e the larger restitution of the two
-// bodies' shapes (Box2D's b2MixRestitution; the world has none). The row keeps the velocity, not
-// the place, of the knock: it turns the body back where the step starts, up to v h short of its
-// floor. Reflected at the floor instead (end gap 1 cm + e (v h - gap0 + 1 cm)), its end-of-step
-// velocity, (gap1 - gap0) / h as Box2D moves it, falls short by (1 + e) (gap0 - 1 cm) / h. e = 0
-// keeps lengthTargets' plastic stop.
-void floorBounces(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
-  if (ws.restitution.empty()) return;
+// 5b. Bouncing off a pulley (docs/floors.md): a floor row whose segment closes at v, faster than
+// kBounceSpeed, and would reach its floor within the step bounces with e, the larger restitution
+// of the two bodies' shapes (Box2D's b2MixRestitution; the world has none). Its row is first left
+// free (this returns true), and the step solved without it; then bounceTargets asks for the
+// row's end value of that free step opened by (1 + e) v h: the knock adds (1 + e) v to the rate
+// the step's own pulls (the rigid cable, a bungee's spring, gravity) give the segment. The body
+// turns back where the step starts, up to v h short of its floor: at that place it comes back
+// from a knock at the speed it had there. Asked for e v at the end of the step instead, the
+// knock ignored the pulls over the step: a bungee's bob, turned back against its spring's pull T,
+// gained T v h. Reflected at the floor, its velocity, (gap1 - gap0) / h as Box2D moves it, fell
+// short by (1 + e) (gap0 - 1 cm) / h. e = 0 keeps lengthTargets' plastic stop.
+bool floorBounces(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  ws.bounces.clear();
+  if (ws.restitution.empty()) return false;
   auto restitution = [&](int body) {
     return body >= 0 && body < static_cast<int>(ws.restitution.size()) ? ws.restitution[body] : 0.0;
   };
@@ -116,8 +123,15 @@ void floorBounces(Workspace& ws, const CableSolveInput& in, std::span<const Cabl
       closing += j.d.dot(Vec3(b.velocity.x(), b.velocity.y(), b.angularVelocity));
     }
     if (closing < kBounceSpeed || -phi > closing * in.h) continue;  // slow, or arriving later
-    ws.target[r] = std::min(ws.target[r], phi - e * closing * in.h);
+    ws.bounces.push_back({r, (1 + e) * closing * in.h});
+    ws.target[r] = phi + kFreeFloor;  // free for the first solve
   }
+  return !ws.bounces.empty();
+}
+
+void bounceTargets(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  linearise(ws, in, cables);  // phi1 at the free step's impulses
+  for (const auto& [r, opening] : ws.bounces) ws.target[r] = ws.phi1[r] - opening;
 }
 
 // ws.WP = W P, column by column: W has a few columns (one per row), and Eigen's general product

@@ -120,8 +120,9 @@ struct CableSolverWorkspace {
   std::vector<BodyState> predicted;
   std::vector<WrapPoint> path;
   CableKinematics kin;
-  std::vector<BodyJacobian> floorJacobian;  // scratch: a floor row's J
-  std::vector<double> restitution;          // per body: its shapes' largest (floorBounces)
+  std::vector<BodyJacobian> floorJacobian;      // scratch: a floor row's J
+  std::vector<double> restitution;              // per body: its shapes' largest (floorBounces)
+  std::vector<std::pair<int, double>> bounces;  // floor rows that bounce: row, (1 + e) v h
   LcpWorkspace lcp;
   LcpSolution lcpSolution;
   // Per cable, the h and tension of the solve that last set its tension (Newton's warm start).
@@ -166,7 +167,9 @@ void pathAhead(Workspace& ws, const Cable& cable, int span, std::span<const Body
 
 // 5, 6. Length targets and Newton on the end-of-step lengths (cable_solver_newton.cpp).
 void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable> cables);
-void floorBounces(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
+bool floorBounces(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
+// After a solve with the bouncing rows free.
+void bounceTargets(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
 void timesImpulses(Workspace& ws, const Eigen::VectorXd& P);
 void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
 // Newton iterations from ws.P, each linearisation an LCP over all rows. True once the impulses
