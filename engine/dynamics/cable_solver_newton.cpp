@@ -93,13 +93,13 @@ void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable>
 }
 
 // 5b. Bouncing off a pulley (docs/floors.md): a floor row whose segment closes at v, faster than
-// kBounceSpeed, and would reach its floor within the step bounces with e, the larger restitution
-// of the two bodies' shapes (Box2D's b2MixRestitution; the world has none). Its row is first left
-// free (this returns true), and the step solved without it; then bounceTargets asks for the
-// row's end value of that free step opened by (1 + e) v h: the knock adds (1 + e) v to the rate
-// the step's own pulls (the rigid cable, a bungee's spring, gravity) give the segment. The body
-// turns back where the step starts, up to v h short of its floor: at that place it comes back
-// from a knock at the speed it had there. Asked for e v at the end of the step instead, the
+// kBounceSpeed, and that the step, solved without it, takes past its floor bounces with e, the
+// larger restitution of the two bodies' shapes (Box2D's b2MixRestitution; the world has none).
+// floorBounces leaves such rows free (true if any) for a first solve; bounceTargets then asks for
+// the row's end value of that free step opened by (1 + e) v h: the knock adds (1 + e) v to the
+// rate the step's own pulls (the rigid cable, a bungee's spring, gravity) give the segment. The
+// body turns back where the step starts, up to v h short of its floor: at that place it comes
+// back from a knock at the speed it had there. Asked for e v at the end of the step instead, the
 // knock ignored the pulls over the step: a bungee's bob, turned back against its spring's pull T,
 // gained T v h. Reflected at the floor, its velocity, (gap1 - gap0) / h as Box2D moves it, fell
 // short by (1 + e) (gap0 - 1 cm) / h. e = 0 keeps lengthTargets' plastic stop.
@@ -122,16 +122,18 @@ bool floorBounces(Workspace& ws, const CableSolveInput& in, std::span<const Cabl
       const BodyState& b = in.bodies[j.body];
       closing += j.d.dot(Vec3(b.velocity.x(), b.velocity.y(), b.angularVelocity));
     }
-    if (closing < kBounceSpeed || -phi > closing * in.h) continue;  // slow, or arriving later
-    ws.bounces.push_back({r, (1 + e) * closing * in.h});
+    // Slow, or too far off to arrive within the step (pulls may speed it up to twice as fast).
+    if (closing < kBounceSpeed || -phi > 2 * closing * in.h) continue;
+    ws.bounces.push_back({r, (1 + e) * closing * in.h, ws.target[r]});
     ws.target[r] = phi + kFreeFloor;  // free for the first solve
   }
   return !ws.bounces.empty();
 }
 
 void bounceTargets(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
-  linearise(ws, in, cables);  // phi1 at the free step's impulses
-  for (const auto& [r, opening] : ws.bounces) ws.target[r] = ws.phi1[r] - opening;
+  linearise(ws, in, cables);                     // phi1 at the free step's impulses
+  for (const Workspace::Bounce& b : ws.bounces)  // only rows the free step takes past the floor
+    ws.target[b.row] = ws.phi1[b.row] > 0 ? ws.phi1[b.row] - b.opening : b.held;
 }
 
 // ws.WP = W P, column by column: W has a few columns (one per row), and Eigen's general product

@@ -120,9 +120,14 @@ struct CableSolverWorkspace {
   std::vector<BodyState> predicted;
   std::vector<WrapPoint> path;
   CableKinematics kin;
-  std::vector<BodyJacobian> floorJacobian;      // scratch: a floor row's J
-  std::vector<double> restitution;              // per body: its shapes' largest (floorBounces)
-  std::vector<std::pair<int, double>> bounces;  // floor rows that bounce: row, (1 + e) v h
+  std::vector<BodyJacobian> floorJacobian;  // scratch: a floor row's J
+  std::vector<double> restitution;          // per body: its shapes' largest (floorBounces)
+  struct Bounce {                           // a floor row that may bounce (floorBounces)
+    int row = 0;
+    double opening = 0;  // (1 + e) v h
+    double held = 0;     // its target if it does not reach the floor
+  };
+  std::vector<Bounce> bounces;
   LcpWorkspace lcp;
   LcpSolution lcpSolution;
   // Per cable, the h and tension of the solve that last set its tension (Newton's warm start).
