@@ -34,6 +34,45 @@ Vec2 arriving(const WrapPoint& p) {
   return p.radius == 0 ? p.world : p.tangentIn;
 }
 
+// m: how far a segment's ends may stray from straight lines between two updates (sweptOverPulley).
+constexpr double kSweepMargin = 0.05;
+
+// Whether the segment from path point `host` to the next, moving from where `previous` (the path
+// at the last update) had its ends, swept over the circle (c, reach): c lies within reach of the
+// convex hull of the four ends, which holds every segment between them. An end not in `previous`
+// answers yes. A segment whose ends passed each other (a bob on a slack rope flying over its
+// anchor) turns its direction over, and a pulley on its line far from it changes side without the
+// segment ever reaching it: joined, the wrap round it jumped the length by a metre
+// (docs/cables.md, "Guards"). Asked of pulleys fixed in the world: one on a body moves through
+// the segment itself.
+bool sweptOverPulley(std::span<const WrapPoint> previous, std::span<const WrapPoint> path,
+                     size_t host, const Vec2& c, double reach) {
+  auto before = [&](size_t i) -> const WrapPoint* {
+    if (i == 0) return &previous.front();
+    if (i + 1 == path.size()) return &previous.back();
+    for (size_t k = 1; k + 1 < previous.size(); ++k)
+      if (previous[k].pulley == path[i].pulley && previous[k].vertex == path[i].vertex)
+        return &previous[k];
+    return nullptr;
+  };
+  const WrapPoint *a0 = before(host), *b0 = before(host + 1);
+  if (previous.size() < 2 || !a0 || !b0) return true;
+  const Vec2 q[4] = {leaving(*a0), arriving(*b0), leaving(path[host]), arriving(path[host + 1])};
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) {
+      const Vec2 d = q[j] - q[i];
+      const double t =
+          d.squaredNorm() > 0 ? std::clamp((c - q[i]).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+      if ((q[i] + t * d - c).norm() <= reach) return true;
+      for (int k = j + 1; k < 4; ++k) {
+        const double s1 = cross(q[j] - q[i], c - q[i]), s2 = cross(q[k] - q[j], c - q[j]),
+                     s3 = cross(q[i] - q[k], c - q[k]);
+        if ((s1 > 0 && s2 > 0 && s3 > 0) || (s1 < 0 && s2 < 0 && s3 < 0)) return true;
+      }
+    }
+  return false;
+}
+
 }  // namespace
 
 Cable::Cable(const SceneDef& scene, int index, const std::string& source)
@@ -393,7 +432,10 @@ bool Cable::joinRound(std::vector<std::string>* warnings) {
       const bool within = t > 0 && t < 1;
       const bool touches =
           p.polygon ? segmentCutsPolygon(a, b, p.world) : within && std::abs(left) < p.radius;
-      const bool crossed = within && !firstUpdate_ && (left > 0) != (was > 0);
+      const bool crossed =
+          within && !firstUpdate_ && (left > 0) != (was > 0) &&
+          (p.polygon || p.body >= 0 ||
+           sweptOverPulley(previousPath_, path_, host, centre, p.radius + kSweepMargin));
       if (touches || crossed) {
         p.engaged = true;
         p.arc = 0;
@@ -419,7 +461,10 @@ bool Cable::joinRound(std::vector<std::string>* warnings) {
       const double t = len > 0 ? (p.world[0] - a).dot(ab) / (len * len) : -1;
       cuts = t > 0 && t < 1 && (firstUpdate_ ? depth >= 0 : depth > 0);
     }
-    bool crossed = firstUpdate_ || p.previousDepth <= 0;
+    bool crossed = firstUpdate_ ||
+                   (p.previousDepth <= 0 && (p.polygon || p.body >= 0 ||
+                                             sweptOverPulley(previousPath_, path_, host, p.world[0],
+                                                             std::abs(p.radius) + kSweepMargin)));
     p.previousDepth = depth;
     // A polygon a guard dropped rejoins once a taut path round it exists again.
     if (p.dropped && cuts && !crossed) {

@@ -12,6 +12,7 @@
 //                           (2-4 together: prepareRows)                      cable_solver_prepare
 //   4b. redirectBlockedRows rows that lost their say pull along J ahead     cable_solver_redirect
 //   5. lengthTargets        rigid: the end-of-step length; elastic: the implicit spring-damper
+//   5b. floorBounces        a body arriving at its floor with restitution leaves it again
 //   6. newtonOnLengths      Newton on the end-of-step lengths, one LCP per iteration
 //                                                                             cable_solver_newton
 //                           one LCP on the start-of-step linearisation where its remainder bound
@@ -64,11 +65,19 @@ void solve(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables, st
         prepareRows(ws, in, cables, loads);
       ws.midpoint = takesMidpointRule(ws, in, cables);  // 5a
       lengthTargets(ws, in.h, in.share, cables);        // 5
-      newtonOnLengths(ws, in, cables, stats);           // 6, 6d
+      if (floorBounces(ws, in, cables)) {               // 5b
+        newtonOnLengths(ws, in, cables, stats);
+        bounceTargets(ws, in, cables);
+      }
+      newtonOnLengths(ws, in, cables, stats);  // 6, 6d
       for (int pass = 0; pass < 2 && ws.midpoint && pullAlongDiscreteGradient(ws, in, cables);
            ++pass) {  // 6e
         prepareRows(ws, in, cables, loads);
         lengthTargets(ws, in.h, in.share, cables);
+        if (floorBounces(ws, in, cables)) {
+          newtonOnLengths(ws, in, cables, stats);
+          bounceTargets(ws, in, cables);
+        }
         newtonOnLengths(ws, in, cables, stats);
       }
       if (ws.midpoint) balanceMidpointWork(ws, in, cables);  // 6a
@@ -87,7 +96,10 @@ void solve(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables, st
 }  // namespace
 }  // namespace cable_stages
 
-CableSolver::CableSolver() : ws_(std::make_unique<CableSolverWorkspace>()) {}
+CableSolver::CableSolver(std::vector<double> restitution)
+    : ws_(std::make_unique<CableSolverWorkspace>()) {
+  ws_->restitution = std::move(restitution);
+}
 CableSolver::~CableSolver() = default;
 
 void CableSolver::solve(const CableSolveInput& in, std::span<Cable> cables, std::span<Vec3> loads,

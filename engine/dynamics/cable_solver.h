@@ -62,7 +62,8 @@ void setLinearShortcut(bool on);
 
 class CableSolver {
  public:
-  CableSolver();
+  /// `restitution`: per body, the largest of its shapes' (a floor bounces, docs/floors.md).
+  explicit CableSolver(std::vector<double> restitution = {});
   ~CableSolver();
   CableSolver(const CableSolver&) = delete;
   CableSolver& operator=(const CableSolver&) = delete;

@@ -121,6 +121,13 @@ struct CableSolverWorkspace {
   std::vector<WrapPoint> path;
   CableKinematics kin;
   std::vector<BodyJacobian> floorJacobian;  // scratch: a floor row's J
+  std::vector<double> restitution;          // per body: its shapes' largest (floorBounces)
+  struct Bounce {                           // a floor row that may bounce (floorBounces)
+    int row = 0;
+    double opening = 0;  // (1 + e) v h
+    double held = 0;     // its target if it does not reach the floor
+  };
+  std::vector<Bounce> bounces;
   LcpWorkspace lcp;
   LcpSolution lcpSolution;
   // Per cable, the h and tension of the solve that last set its tension (Newton's warm start).
@@ -165,6 +172,9 @@ void pathAhead(Workspace& ws, const Cable& cable, int span, std::span<const Body
 
 // 5, 6. Length targets and Newton on the end-of-step lengths (cable_solver_newton.cpp).
 void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable> cables);
+bool floorBounces(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
+// After a solve with the bouncing rows free.
+void bounceTargets(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
 void timesImpulses(Workspace& ws, const Eigen::VectorXd& P);
 void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
 // Newton iterations from ws.P, each linearisation an LCP over all rows. True once the impulses

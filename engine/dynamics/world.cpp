@@ -78,12 +78,22 @@ SceneDef validated(SceneDef scene, const std::string& source) {
   return scene;
 }
 
+// Per body, the largest restitution of its shapes: what a body bounces off its pulley with
+// (docs/floors.md, "Bouncing off a pulley").
+std::vector<double> floorRestitution(const SceneDef& scene) {
+  std::vector<double> restitution(scene.bodies.size(), 0.0);
+  for (size_t b = 0; b < scene.bodies.size(); ++b)
+    for (const ShapeDef& shape : scene.bodies[b].shapes)
+      restitution[b] = std::max(restitution[b], shape.restitution);
+  return restitution;
+}
+
 }  // namespace
 
 World::World(SceneDef scene, const std::string& source)
     : scene_(validated(scene.history ? scene.history->origin : scene, source)),
       b2_(std::make_unique<Box2DBridge>(scene_)),
-      solver_(std::make_unique<CableSolver>()),
+      solver_(std::make_unique<CableSolver>(floorRestitution(scene_))),
       midpoint_(std::make_unique<MidpointSolver>()),
       islands_(std::make_unique<CableIslands>()),
       jointEnergy_(std::make_unique<JointEnergy>()),
