@@ -39,6 +39,7 @@
 
 #include "engine/cable/cable.h"
 #include "engine/dynamics/block_diagonal_ldlt.h"
+#include "engine/dynamics/step_chords.h"
 #include "engine/dynamics/tension_solver.h"
 
 namespace cablelab {
@@ -136,6 +137,11 @@ class MidpointSolver {
   Eigen::VectorXd rateB_, mu_, endShift_, v1_;
   std::vector<BodyState> predicted_, midpoint_;  // q1 and the midpoint pose (q0 off the dofs)
   std::vector<WrapPoint> path_;
+  // The rows' paths without circles, held over the iterations (step_chords.h): row r's index
+  // there, -1 for a floor row or a path with circles (lengthDiscreteGradient on the path).
+  StepChords chords_;
+  std::vector<int> chordPath_;
+  std::vector<StepChords::Point> midPoints_;  // a path with circles at the midpoint pose
   std::vector<BodyJacobian> gradient_;
   std::vector<std::vector<BodyJacobian>> gradients_;
   CableKinematics kin_;
