@@ -480,7 +480,7 @@ void MidpointSolver::buildIterationMatrix(std::span<const Cable> cables, double 
       A_(d, d) = 1;
     }
   if (blockDiagonal_)
-    blockLdlt_.compute(A_);
+    blockInverse_.compute(A_);
   else
     ldlt_.compute(A_);
 }
@@ -508,8 +508,8 @@ bool MidpointSolver::newtonStep(std::span<const BodyState> bodies, std::span<con
   else
     residual_.noalias() += 0.5 * Gt_ * P_;
   if (blockDiagonal_) {
-    blockLdlt_.solve(Gt_, AinvGt_);
-    blockLdlt_.solve(residual_, AinvR_);
+    blockInverse_.solve(Gt_, AinvGt_);
+    blockInverse_.solve(residual_, AinvR_);
   } else {
     AinvGt_ = ldlt_.solve(Gt_);
     AinvR_ = ldlt_.solve(residual_);

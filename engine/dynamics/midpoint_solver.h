@@ -38,7 +38,7 @@
 #include <Eigen/Core>
 
 #include "engine/cable/cable.h"
-#include "engine/dynamics/block_diagonal_ldlt.h"
+#include "engine/dynamics/block_diagonal_inverse.h"
 #include "engine/dynamics/step_chords.h"
 #include "engine/dynamics/tension_solver.h"
 
@@ -120,9 +120,9 @@ class MidpointSolver {
   Eigen::VectorXd residual_, AinvR_, GAinvR_, dP_, dv_;
   Eigen::MatrixXd A_, Gt_, AinvGt_, K_;
   Eigen::LDLT<Eigen::MatrixXd> ldlt_;
-  // A without a segment between two moving bodies is block-diagonal: factored per body.
+  // A without a segment between two moving bodies is block-diagonal: inverted per body.
   bool blockDiagonal_ = false;
-  BlockDiagonalLdlt blockLdlt_;
+  BlockDiagonalInverse blockInverse_;
   // Redundant rows among those the first iteration's impulses pull on (redundantActiveRows).
   std::vector<int> active_;
   Eigen::MatrixXd activeK_;
