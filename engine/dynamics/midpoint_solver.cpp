@@ -191,6 +191,8 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
                              std::span<const int> which, std::span<const char> excluded, double h,
                              const Vec2& gravity) {
   bool wanted = false, any = false, unresolved = false;
+  // A check that can only set `wanted` is skipped once it is set (a third of this per Atwood
+  // machine); one that can rule the island out is not.
   for (const int index : which) {
     const Cable& c = cables[index];
     bool pulls = false;
@@ -214,8 +216,6 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
     // hung square gained 19% in 60 s).
     for (int j = 0; j < c.pulleyCount(); ++j)
       wanted |= c.pulleyBody(j) >= 0 && moves(bodies[c.pulleyBody(j)]);
-    for (size_t i = 0; i + 1 < path.size(); ++i)
-      wanted |= nearFloor(path, i, bodies, h, Vec2::Zero(), [](int) { return true; });
     // A loop, both ends on one body that turns (a frame hung on a nail): it swings on the loop, a
     // mode whose energy Box2D's integration swings by about omega h / 2 (the frame: 15% of its
     // largest kinetic energy over 60 s at 1 sub-step).
@@ -236,19 +236,22 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
     // integration swings that mode's energy by about omega h / 2 (2.3% of the largest kinetic
     // energy of an Atwood pair at 60 Hz), the midpoint rule by 5e-5. One that only runs along
     // itself (bodies hung straight under their pulleys) keeps Box2D's integration, exact there.
-    wanted |= !c.elastic() && rigidCableSwings(c, bodies, gravity);
+    wanted |= !wanted && !c.elastic() && rigidCableSwings(c, bodies, gravity);
     // A taut rigid cable whose bodies swing round faster than the main solve's step resolves (a
     // bob whirled on a tether): there its geometric stiffness (geometric_stiffness.h), taken
     // about the start pose, damps the swing by 1 / (1 + (omega h)^2) a step, 10% at omega h =
     // 1/3, and a whirl slows to omega h = 0.22, where the stiffness stops acting (docs/knocks.md,
     // "Rigid tethers").
-    if (!c.elastic() && which.size() <= kMaxCablesWithUnresolvedSpring) {
+    if (!wanted && !c.elastic() && which.size() <= kMaxCablesWithUnresolvedSpring) {
       const std::span<const int> alone(&index, 1);
       const double swing =
           std::max(transverseMode(bodies, cables, alone), tautSwingRate(c, bodies));
       wanted |= swing * h > kMaxMainSolveSwingOmegaH;
     }
     wanted |= c.elastic();  // resolved or not: an unresolved spring is damped (springAtEnd)
+    // A segment near its floor (a body nearing its pulley).
+    for (size_t i = 0; !wanted && i + 1 < path.size(); ++i)
+      wanted |= nearFloor(path, i, bodies, h, Vec2::Zero(), [](int) { return true; });
   }
   if (unresolved && static_cast<int>(which.size()) > kMaxCablesWithUnresolvedSpring) return false;
   return any && wanted;
