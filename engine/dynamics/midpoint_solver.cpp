@@ -13,7 +13,8 @@ namespace {
 
 constexpr int kIterations = 40;
 constexpr double kPositionTolerance = 1e-12;  // m: end-of-step pose settled
-constexpr int kFloorIterations = 2;  // a floor pushing on as many first iterations: given up
+constexpr int kLazyProductSize = 64;  // rows times dofs up to which products go coefficient-wise
+constexpr int kFloorIterations = 2;   // a floor pushing on as many first iterations: given up
 // Largest omega h of a taut rigid cable's swing the main solve keeps: its geometric stiffness,
 // which acts from omega h = 0.22 on (geometric_stiffness.cpp), damps faster ones.
 constexpr double kMaxMainSolveSwingOmegaH = 0.2;
@@ -190,6 +191,8 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
                              std::span<const int> which, std::span<const char> excluded, double h,
                              const Vec2& gravity) {
   bool wanted = false, any = false, unresolved = false;
+  // A check that can only set `wanted` is skipped once it is set (a third of this per Atwood
+  // machine); one that can rule the island out is not.
   for (const int index : which) {
     const Cable& c = cables[index];
     bool pulls = false;
@@ -213,8 +216,6 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
     // hung square gained 19% in 60 s).
     for (int j = 0; j < c.pulleyCount(); ++j)
       wanted |= c.pulleyBody(j) >= 0 && moves(bodies[c.pulleyBody(j)]);
-    for (size_t i = 0; i + 1 < path.size(); ++i)
-      wanted |= nearFloor(path, i, bodies, h, Vec2::Zero(), [](int) { return true; });
     // A loop, both ends on one body that turns (a frame hung on a nail): it swings on the loop, a
     // mode whose energy Box2D's integration swings by about omega h / 2 (the frame: 15% of its
     // largest kinetic energy over 60 s at 1 sub-step).
@@ -235,19 +236,22 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
     // integration swings that mode's energy by about omega h / 2 (2.3% of the largest kinetic
     // energy of an Atwood pair at 60 Hz), the midpoint rule by 5e-5. One that only runs along
     // itself (bodies hung straight under their pulleys) keeps Box2D's integration, exact there.
-    wanted |= !c.elastic() && rigidCableSwings(c, bodies, gravity);
+    wanted |= !wanted && !c.elastic() && rigidCableSwings(c, bodies, gravity);
     // A taut rigid cable whose bodies swing round faster than the main solve's step resolves (a
     // bob whirled on a tether): there its geometric stiffness (geometric_stiffness.h), taken
     // about the start pose, damps the swing by 1 / (1 + (omega h)^2) a step, 10% at omega h =
     // 1/3, and a whirl slows to omega h = 0.22, where the stiffness stops acting (docs/knocks.md,
     // "Rigid tethers").
-    if (!c.elastic() && which.size() <= kMaxCablesWithUnresolvedSpring) {
+    if (!wanted && !c.elastic() && which.size() <= kMaxCablesWithUnresolvedSpring) {
       const std::span<const int> alone(&index, 1);
       const double swing =
           std::max(transverseMode(bodies, cables, alone), tautSwingRate(c, bodies));
       wanted |= swing * h > kMaxMainSolveSwingOmegaH;
     }
     wanted |= c.elastic();  // resolved or not: an unresolved spring is damped (springAtEnd)
+    // A segment near its floor (a body nearing its pulley).
+    for (size_t i = 0; !wanted && i + 1 < path.size(); ++i)
+      wanted |= nearFloor(path, i, bodies, h, Vec2::Zero(), [](int) { return true; });
   }
   if (unresolved && static_cast<int>(which.size()) > kMaxCablesWithUnresolvedSpring) return false;
   return any && wanted;
@@ -264,11 +268,16 @@ void MidpointSolver::evaluate(std::span<const BodyState> bodies, std::span<const
     midpoint_[bodyOfDof_[k]].position = 0.5 * (s.position + p.position);
     midpoint_[bodyOfDof_[k]].angle = 0.5 * (s.angle + p.angle);
   }
+  chords_.move(bodies, predicted_, midpoint_, bodyOfDof_);
   for (size_t r = 0; r < rows_.size(); ++r) {
     const Cable& c = cables[rows_[r]];
     if (const int seg = segment_[r]; seg >= 0) {
       phi1_[r] = floorRow(c.path()[seg], c.path()[seg + 1], normals_[r], bodies, predicted_,
                           gradients_[r]);
+      continue;
+    }
+    if (chordPath_[r] >= 0) {
+      phi1_[r] = phi0_[r] + chords_.discreteGradient(chordPath_[r], gradients_[r]) - c.length();
       continue;
     }
     path_.assign(c.path().begin(), c.path().end());
@@ -404,6 +413,16 @@ bool MidpointSolver::buildRows(std::span<const BodyState> bodies, std::span<Cabl
     phi0_[r] =
         seg < 0 ? cables[rows_[r]].stretch() : kFloorLength - floorGap(path[seg], path[seg + 1]);
   }
+  chords_.start(bodies, bodyOfDof_);
+  chordPath_.assign(m, -1);
+  for (int r = 0; r < m; ++r) {
+    const auto& path = cables[rows_[r]].path();
+    if (segment_[r] < 0 && std::none_of(path.begin(), path.end(), [](const WrapPoint& w) {
+          return w.kind == WrapPoint::Kind::Circle;
+        }))
+      chordPath_[r] = chords_.addPath(
+          path, bodies, [&](int b) { return dofOfBody_[b] >= 0 ? dofOfBody_[b] / 3 : -1; });
+  }
   P_.setZero(m);
   vb_ = vStar_;
   K_.resize(m, m);
@@ -422,12 +441,20 @@ void MidpointSolver::buildIterationMatrix(std::span<const Cable> cables, double 
   for (size_t r = 0; r < rows_.size(); ++r) {
     if (P_[r] <= 0 || segment_[r] >= 0) continue;  // floors: their (negative) Hessian left out
     const double scale = 0.25 * h * P_[r];
-    path_.assign(cables[rows_[r]].path().begin(), cables[rows_[r]].path().end());
-    for (WrapPoint& w : path_) w.world = worldPoint(midpoint_, w.body, w.local);
-    for (size_t i = 0; i + 1 < path_.size(); ++i) {
-      const WrapPoint* ends[2] = {&path_[i], &path_[i + 1]};
+    std::span<const StepChords::Point> path;
+    if (chordPath_[r] >= 0) {
+      path = chords_.points(chordPath_[r]);
+    } else {
+      midPoints_.clear();
+      for (const WrapPoint& w : cables[rows_[r]].path())
+        midPoints_.push_back({w.body, -1, w.local, w.world, Vec2::Zero(), w.world,
+                              worldPoint(midpoint_, w.body, w.local), Vec2::Zero()});
+      path = midPoints_;
+    }
+    for (size_t i = 0; i + 1 < path.size(); ++i) {
+      const StepChords::Point* ends[2] = {&path[i], &path[i + 1]};
       if (ends[0]->body == ends[1]->body) continue;
-      const Vec2 d = ends[1]->world - ends[0]->world;
+      const Vec2 d = ends[1]->mid - ends[0]->mid;
       const double len = d.norm();
       if (len < 1e-12) continue;
       const Vec2 u = d / len;
@@ -437,7 +464,7 @@ void MidpointSolver::buildIterationMatrix(std::span<const Cable> cables, double 
       for (int e = 0; e < 2; ++e) {
         const int body = ends[e]->body;
         dof[e] = body >= 0 ? dofOfBody_[body] : -1;
-        const Vec2 arm = body >= 0 ? Vec2(ends[e]->world - midpoint_[body].position) : Vec2::Zero();
+        const Vec2 arm = body >= 0 ? Vec2(ends[e]->mid - midpoint_[body].position) : Vec2::Zero();
         B[e] << 1, 0, perp(arm).x(), 0, 1, perp(arm).y();
         if (e == 0) B[e] = -B[e];
         if (dof[e] >= 0) A_(dof[e] + 2, dof[e] + 2) += scale * (e == 0 ? 1 : -1) * u.dot(arm);
@@ -456,7 +483,7 @@ void MidpointSolver::buildIterationMatrix(std::span<const Cable> cables, double 
       A_(d, d) = 1;
     }
   if (blockDiagonal_)
-    blockLdlt_.compute(A_);
+    blockInverse_.compute(A_);
   else
     ldlt_.compute(A_);
 }
@@ -476,16 +503,27 @@ bool MidpointSolver::newtonStep(std::span<const BodyState> bodies, std::span<con
     if (invM_[d] == 0) Gt_.row(d).setZero();
   residual_.resize(n);
   for (int d = 0; d < n; ++d) residual_[d] = invM_[d] > 0 ? (vb_[d] - vStar_[d]) / invM_[d] : 0;
-  residual_.noalias() += 0.5 * Gt_ * P_;
+  // Small islands (an Atwood machine: one row, six dofs) take coefficient-based products: Eigen's
+  // blocked kernels cost more to dispatch than these few products (docs/performance.md).
+  const bool small = m * n <= kLazyProductSize;
+  if (small)
+    residual_.noalias() += 0.5 * Gt_.lazyProduct(P_);
+  else
+    residual_.noalias() += 0.5 * Gt_ * P_;
   if (blockDiagonal_) {
-    blockLdlt_.solve(Gt_, AinvGt_);
-    blockLdlt_.solve(residual_, AinvR_);
+    blockInverse_.solve(Gt_, AinvGt_);
+    blockInverse_.solve(residual_, AinvR_);
   } else {
     AinvGt_ = ldlt_.solve(Gt_);
     AinvR_ = ldlt_.solve(residual_);
   }
-  K_.noalias() = 0.5 * Gt_.transpose() * AinvGt_;
-  GAinvR_.noalias() = Gt_.transpose() * AinvR_;
+  if (small) {
+    K_.noalias() = 0.5 * Gt_.transpose().lazyProduct(AinvGt_);
+    GAinvR_.noalias() = Gt_.transpose().lazyProduct(AinvR_);
+  } else {
+    K_.noalias() = 0.5 * Gt_.transpose() * AinvGt_;
+    GAinvR_.noalias() = Gt_.transpose() * AinvR_;
+  }
   for (int r = 0; r < m; ++r) {
     const Cable& c = cables[rows_[r]];
     const double kp = K_.row(r).dot(P_) - GAinvR_[r];
@@ -510,7 +548,10 @@ bool MidpointSolver::newtonStep(std::span<const BodyState> bodies, std::span<con
   redundant_ = first && redundantActiveRows(cables);
   if (redundant_) return false;
   dP_ = solution_.x - P_;
-  dv_.noalias() = 0.5 * AinvGt_ * dP_;  // into dv_ first: no temporary
+  if (small)
+    dv_.noalias() = 0.5 * AinvGt_.lazyProduct(dP_);  // into dv_ first: no temporary
+  else
+    dv_.noalias() = 0.5 * AinvGt_ * dP_;
   dv_ = -(AinvR_ + dv_);
   P_ = solution_.x;
   vb_ += dv_;
@@ -585,8 +626,12 @@ void MidpointSolver::settleRates(std::span<const BodyState> bodies, std::span<co
       const BodyState& b = bodies[e.body];
       start += e.d.dot(Vec3(b.velocity.x(), b.velocity.y(), b.angularVelocity));
     }
-    path_.assign(c.path().begin(), c.path().end());
-    cableLengthJacobian(path_, predicted_, kin_);
+    if (const int held = chordPath_[settled_[i]]; held >= 0) {
+      chords_.endJacobian(held, predicted_, kin_.jacobian);
+    } else {
+      path_.assign(c.path().begin(), c.path().end());
+      cableLengthJacobian(path_, predicted_, kin_);
+    }
     for (const auto& e : kin_.jacobian)
       if (const int d = dofOfBody_[e.body]; d >= 0) {
         endW_.block<3, 1>(d, i) = invM_.segment<3>(d).cwiseProduct(e.d);

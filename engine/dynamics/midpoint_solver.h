@@ -38,7 +38,8 @@
 #include <Eigen/Core>
 
 #include "engine/cable/cable.h"
-#include "engine/dynamics/block_diagonal_ldlt.h"
+#include "engine/dynamics/block_diagonal_inverse.h"
+#include "engine/dynamics/step_chords.h"
 #include "engine/dynamics/tension_solver.h"
 
 namespace cablelab {
@@ -119,9 +120,9 @@ class MidpointSolver {
   Eigen::VectorXd residual_, AinvR_, GAinvR_, dP_, dv_;
   Eigen::MatrixXd A_, Gt_, AinvGt_, K_;
   Eigen::LDLT<Eigen::MatrixXd> ldlt_;
-  // A without a segment between two moving bodies is block-diagonal: factored per body.
+  // A without a segment between two moving bodies is block-diagonal: inverted per body.
   bool blockDiagonal_ = false;
-  BlockDiagonalLdlt blockLdlt_;
+  BlockDiagonalInverse blockInverse_;
   // Redundant rows among those the first iteration's impulses pull on (redundantActiveRows).
   std::vector<int> active_;
   Eigen::MatrixXd activeK_;
@@ -136,6 +137,11 @@ class MidpointSolver {
   Eigen::VectorXd rateB_, mu_, endShift_, v1_;
   std::vector<BodyState> predicted_, midpoint_;  // q1 and the midpoint pose (q0 off the dofs)
   std::vector<WrapPoint> path_;
+  // The rows' paths without circles, held over the iterations (step_chords.h): row r's index
+  // there, -1 for a floor row or a path with circles (lengthDiscreteGradient on the path).
+  StepChords chords_;
+  std::vector<int> chordPath_;
+  std::vector<StepChords::Point> midPoints_;  // a path with circles at the midpoint pose
   std::vector<BodyJacobian> gradient_;
   std::vector<std::vector<BodyJacobian>> gradients_;
   CableKinematics kin_;

@@ -1,5 +1,7 @@
 // The tension LCP (engine/dynamics/tension_solver.h) against brute force over every active set,
-// and the midpoint solver's per-body factorisation against Eigen's of the whole matrix.
+// and the midpoint solver's helpers against the general code: its per-body inverse against
+// Eigen's LDLT of the whole matrix, its held-start path points (step_chords.h) against
+// lengthDiscreteGradient and cableLengthJacobian.
 //
 // w = K x - b >= 0, x >= 0, x . w = 0 with K = J W J^T + diag(compliance) symmetric positive
 // semidefinite. Brute force tries every subset S as the taut set: x_S = K_SS^-1 b_S, x = 0
@@ -13,10 +15,12 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
-#include "engine/dynamics/block_diagonal_ldlt.h"
+#include "engine/dynamics/block_diagonal_inverse.h"
+#include "engine/dynamics/step_chords.h"
 #include "tests/support/engine_test_support.h"
 
 namespace cablelab {
@@ -196,12 +200,12 @@ TEST(TensionSolver, WorkspaceGivesTheSameAnswerAsTheAllocatingSolve) {
   }
 }
 
-// The midpoint solver's per-body factorisation (block_diagonal_ldlt.h) solves what Eigen's LDLT
+// The midpoint solver's per-body inverse (block_diagonal_inverse.h) solves what Eigen's LDLT
 // of the whole matrix does, on random symmetric positive definite 3x3 blocks of 1..4 bodies with
 // masses and inertias far apart, for a matrix and a vector right-hand side.
-TEST(BlockDiagonalLdlt, SolvesAsTheWholeMatrixLdltOnRandomPositiveDefiniteBlocks) {
+TEST(BlockDiagonalInverse, SolvesAsTheWholeMatrixLdltOnRandomPositiveDefiniteBlocks) {
   test::Random rng(36);
-  BlockDiagonalLdlt blocks;
+  BlockDiagonalInverse blocks;
   MatrixXd x;
   VectorXd y;
   for (int trial = 0; trial < 40; ++trial) {
@@ -223,6 +227,59 @@ TEST(BlockDiagonalLdlt, SolvesAsTheWholeMatrixLdltOnRandomPositiveDefiniteBlocks
     EXPECT_LE((x - whole).lpNorm<Eigen::Infinity>(), 1e-12 * size) << trial;
     EXPECT_LE((y - whole.col(1)).lpNorm<Eigen::Infinity>(), 1e-12 * size) << trial;
     EXPECT_LE((a * x - b).lpNorm<Eigen::Infinity>(), 1e-12 * (1 + a.norm() * size)) << trial;
+  }
+}
+
+// StepChords (the midpoint solver's paths without circles, the start pose held over the Newton
+// iterations) gives what the general functions give from the path at every iterate, to rounding:
+// the discrete gradient and the end length, J at the end pose, the midpoint positions. Two moved
+// bodies turned by up to 3 rad a step, one body on the path not moved, world points.
+TEST(StepChords, MatchesTheGeneralDiscreteGradientAndJacobianAtEachIterate) {
+  test::Random rng(37);
+  StepChords chords;
+  for (int trial = 0; trial < 100; ++trial) {
+    std::vector<BodyState> q0(3);
+    for (BodyState& b : q0) b.position = rng.point(-2, 2), b.angle = rng.uniform(-30, 30);
+    std::vector<WrapPoint> path = {{WrapPoint::Kind::Anchor, 0, rng.point(-0.3, 0.3)},
+                                   {WrapPoint::Kind::Point, -1, rng.point(-3, 3)},
+                                   {WrapPoint::Kind::Vertex, 1, rng.point(-0.5, 0.5)},
+                                   {WrapPoint::Kind::Point, 2, rng.point(-0.3, 0.3)},
+                                   {WrapPoint::Kind::Anchor, 1, rng.point(-0.3, 0.3)}};
+    const std::vector<int> moved = {1, 0};  // body 2 is not moved
+    chords.start(q0, moved);
+    const int held = chords.addPath(path, q0, [](int b) { return b == 2 ? -1 : 1 - b; });
+    for (int iterate = 0; iterate < 3; ++iterate) {
+      std::vector<BodyState> q1 = q0, mid = q0;
+      for (const int b : moved) {
+        q1[b].position += rng.point(-0.2, 0.2);
+        q1[b].angle += iterate == 0 ? 1e-9 * rng.uniform(-1, 1) : rng.uniform(-3, 3);
+        mid[b].position = 0.5 * (q0[b].position + q1[b].position);
+        mid[b].angle = 0.5 * (q0[b].angle + q1[b].angle);
+      }
+      chords.move(q0, q1, mid, moved);
+      std::vector<BodyJacobian> g, expected;
+      std::vector<WrapPoint> scratch = path;
+      const double length = chords.discreteGradient(held, g);
+      EXPECT_NEAR(length, lengthDiscreteGradient(scratch, q0, q1, expected), 1e-12);
+      auto same = [&](std::vector<BodyJacobian> a, std::vector<BodyJacobian> b) {
+        auto byBody = [](const BodyJacobian& x, const BodyJacobian& y) { return x.body < y.body; };
+        std::sort(a.begin(), a.end(), byBody), std::sort(b.begin(), b.end(), byBody);
+        ASSERT_EQ(a.size(), b.size()) << trial;
+        for (size_t i = 0; i < a.size(); ++i) {
+          EXPECT_EQ(a[i].body, b[i].body) << trial;
+          EXPECT_LT((a[i].d - b[i].d).norm(), 1e-12) << trial << " iterate " << iterate;
+        }
+      };
+      same(g, expected);
+      CableKinematics k;
+      scratch = path;
+      cableLengthJacobian(scratch, q1, k);
+      chords.endJacobian(held, q1, g);
+      same(g, k.jacobian);
+      const std::span<const StepChords::Point> points = chords.points(held);
+      for (size_t i = 0; i < path.size(); ++i)
+        EXPECT_LT((points[i].mid - worldPoint(mid, path[i].body, path[i].local)).norm(), 1e-12);
+    }
   }
 }
 
