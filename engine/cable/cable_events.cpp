@@ -68,14 +68,16 @@ std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, 
     const WrapPoint& a = path_[i];
     const WrapPoint& b = path_[i + 1];
     const MovingPoint ma = contact(a, a.tangentOut), mb = contact(b, b.tangentIn);
-    // A circle joins when it comes within its radius of the segment; an auto pulley from
-    // either side.
+    // A circle joins when it comes within its radius of the segment; an auto pulley, or a free
+    // polygon joining (pulley_order.cpp), from either side.
     auto tryPoint = [&](int j, int vertex, WrapEvent::Kind kind) {
       const PulleyState& p = pulleys_[j];
       const MovingPoint mp = startPoint(motion, frames, p.body, p.local[vertex]);
       const double reach = p.circle ? p.radius : 0.0;
+      const bool eitherSide =
+          p.autoSide || (kind == WrapEvent::Kind::Join && joinsAnySegment(j) && !chainEdge(i));
       for (const WrapSide side : {WrapSide::Left, WrapSide::Right}) {
-        if (!p.autoSide && side != p.side) continue;
+        if (!eitherSide && side != p.side) continue;
         const double horizon = best ? best->time : h;
         if (auto c = pointCrossesSegment(ma, mb, mp, side, horizon, reach))
           keepEarliest(best, c->time, j, kind, p.polygon ? vertex : -1);
