@@ -421,9 +421,9 @@ class Cable {
   std::vector<int> order_, rank_;
   /// Whether pulley j may join any segment of the path, not only its own (pulley_order.cpp).
   bool joinsAnySegment(int j) const;
-  /// Free polygon j off the path: joins a segment (its own too) that cuts it now and did not at
-  /// the last update, taking its place there and wrapping on the side it came from (the one it
-  /// reached less far past); records its depths for the next update. True if it joined.
+  /// Free polygon j off the path: joins a segment other than its own that cuts it now and that it
+  /// lay wholly on one side of at the last update, taking its place there and wrapping on the
+  /// side it came from; records its depths for the next update. True if it joined.
   bool joinCrossedSegment(int j);
   /// Whether path segment i is an edge of one polygon's chain (nothing joins it from outside).
   bool chainEdge(size_t i) const;

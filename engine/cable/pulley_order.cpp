@@ -4,11 +4,11 @@
 // free polygons riding in one rope's loops knock and sling each other about: a polygon that left
 // the rope came down on another segment of it (past its neighbour, on its neighbour's corner),
 // which its place in the order never let it join, and the rope went through it. A free polygon
-// (one-sided, on a moving body, not gripping, not tied) joins any segment it crosses, on the old
-// path as at its own (the World locates the crossing), and takes its place in the order there.
-// It wraps on the side it came from, as an auto pulley does: coming down on the rope from the
-// side it was not wrapped on, it went through. Off the path its place changes neither the length
-// nor J.
+// (one-sided, on a moving body, not gripping, not tied) joins any other segment it crosses, on
+// the old path as at its own (the World locates the crossing), and takes its place in the order
+// there. It wraps on the side it came from, as an auto pulley does: coming down on the rope from
+// the side it was not wrapped on, it went through. Off the path its place changes neither the
+// length nor J.
 #include <algorithm>
 #include <utility>
 
@@ -36,6 +36,9 @@ bool Cable::joinCrossedSegment(int j) {
   p.segmentDepths.clear();
   int join = -1;
   WrapSide joinSide = p.side;
+  // Its own segment (from the path point before it in the order) is joinRound's.
+  size_t host = 0;
+  while (host + 2 < path_.size() && rank_[path_[host + 1].pulley] < rank_[j]) ++host;
   for (size_t i = 0; i + 1 < path_.size(); ++i) {
     if (chainEdge(i)) continue;
     const WrapPoint &wa = path_[i], &wb = path_[i + 1];
@@ -50,20 +53,19 @@ bool Cable::joinCrossedSegment(int j) {
     // moving on to the next corner keeps it.
     const bool cut = segmentCutsPolygon(a, b, p.world);
     p.segmentDepths.push_back({wa.pulley, wb.pulley, left, right, cut});
-    if (join >= 0 || p.dropped || firstUpdate_ || !cut) continue;
+    if (i == host || join >= 0 || p.dropped || firstUpdate_ || !cut) continue;
     const auto was = std::find_if(before.begin(), before.end(), [&](const auto& d) {
       return d.from == wa.pulley && d.to == wb.pulley;
     });
-    if (was == before.end() || was->cut) continue;
+    // It wraps on the side it came from, whichever it was first wrapped on: a body never passes
+    // through the rope (docs/knocks.md, "Flung past a neighbour"). It lay wholly on one side of
+    // the segment's line at the last update (lying across it, it may have come round an end).
+    if (was == before.end() || was->cut || (was->left > 0 && was->right > 0)) continue;
     // A point fixed in the world inside the hull: no taut path round it (joinRound).
     if ((wa.body < 0 && insideConvex(a, p.world)) || (wb.body < 0 && insideConvex(b, p.world)))
       continue;
-    // It wraps on the side it came from, whichever it was first wrapped on: a body never passes
-    // through the rope (docs/knocks.md, "Flung past a neighbour"). That is the side it lay
-    // wholly on, or, lying across the segment's line beyond an end, mostly on: the other flank
-    // is the short way round.
     join = static_cast<int>(i);
-    joinSide = was->left <= was->right ? WrapSide::Left : WrapSide::Right;
+    joinSide = was->right <= 0 ? WrapSide::Right : WrapSide::Left;
   }
   if (join < 0) return false;
   // Its place: right after the pulley the segment starts at (first, after the start anchor).

@@ -143,26 +143,29 @@ TEST(KnockMotion, PolygonsCaughtInManyPiecesAt30HzMakeNoWrapChangeOffTheOldPath)
 // joins any segment it crosses from its non-wrap side (pulley_order.cpp): it lands on the rope,
 // and neither body leaves the rope's reach.
 //
-// Seeds 7 and 37: the light polygon, flung high over the rope, comes down at 8 and 15 m/s on the
-// segment between the heavy one's chain and a point of the rope (the heavy one had swung out past
-// that point), from the side it was not wrapped on: the rope ran through it (126 and 439 steps
-// in). It wraps on the side it came from, as an auto pulley does: it lands on the rope. (A few
-// steps later the rope flings it out past the heavy one or the anchor, clear of the loops, as it
-// does the slings of docs/knocks.md; the runs end before that.)
+// Seeds 7 and 37 (37 to full precision: the 4-digit pair takes another path): the light polygon,
+// flung high over the rope, comes down at 8 and 15 m/s on the segment between the heavy one's
+// chain and a point of the rope (the heavy one had swung out past that point), from the side it
+// was not wrapped on: the rope ran through it (126 and 448 steps in). It wraps on the side it
+// came from: it lands on the rope. (Later the rope flings it out past the heavy one or the
+// anchor, clear of the loops, as it does the slings of docs/knocks.md; the runs end before that.)
 TEST(KnockMotion, PolygonsFlungOutOfTheirLoopsLandOnTheRope) {
   using knock_motion_test::KnockingPair;
   const KnockingPair flung = {34,
                               {7, 0.2036, 5.2961, 0.2, 3.1892, 3.4109, -1.0824},
                               {3, 0.2136, 2.1423, 1.0, 0.6724, 3.1127, -3.2281}};
   knock_motion_test::expectCaughtByTheRope(flung, 1, 300);
-  const KnockingPair fromTheOtherSide[] = {{7,
-                                            {5, 0.2922, 4.0879, 1.0, -3.4205, 1.6794, -1.0745},
-                                            {3, 0.2865, 0.2355, 0.2, -0.5308, -0.6507, -3.2743}},
-                                           {37,
-                                            {8, 0.2412, 4.1789, 5.0, 1.9744, 2.1721, -3.7165},
-                                            {5, 0.2157, 6.1702, 0.2, -0.3452, 2.9777, 3.4022}}};
+  const KnockingPair fromTheOtherSide[] = {
+      {7,
+       {5, 0.2922, 4.0879, 1.0, -3.4205, 1.6794, -1.0745},
+       {3, 0.2865, 0.2355, 0.2, -0.5308, -0.6507, -3.2743}},
+      {37,
+       {8, 0.24116351130411318, 4.178918091112799, 5.0, 1.9744496842950747, 2.172135707550411,
+        -3.7164645414925843},
+       {5, 0.21566129087807828, 6.170151605374556, 0.2, -0.34515687223265434, 2.9776878536464464,
+        3.402166091118624}}};
   knock_motion_test::expectCaughtByTheRope(fromTheOtherSide[0], 1, 140, 1, 120);
-  knock_motion_test::expectCaughtByTheRope(fromTheOtherSide[1], 1, 448, 1, 430);
+  knock_motion_test::expectCaughtByTheRope(fromTheOtherSide[1], 1, 470, 1, 440);
 }
 
 }  // namespace cablelab
