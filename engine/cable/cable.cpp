@@ -414,7 +414,7 @@ bool Cable::joinRound(std::vector<std::string>* warnings) {
       continue;
     }
     // A free polygon crossing another segment joins it (pulley_order.cpp).
-    if (joinsAnySegment(j) && joinOtherSegment(j, host)) return true;
+    if (joinsAnySegment(j) && joinCrossedSegment(j)) return true;
     const Vec2 a = leaving(path_[host]);
     const Vec2 b = arriving(path_[host + 1]);
     const Vec2 ab = b - a;

@@ -16,7 +16,8 @@
 //    or sitting on the wrap side beyond the segment's ends, is left out (the cable passes it).
 //    A free polygon (one-sided, on a moving body, not gripping, not tied) joins any other
 //    segment it crosses so too, and takes its place there in the path's order of pulleys: flung
-//    past its neighbour, it lands on the rope there (pulley_order.cpp, docs/knocks.md).
+//    past its neighbour, it lands on the rope there (pulley_order.cpp, docs/knocks.md). It
+//    crosses a segment from either side and wraps on the side it came from, as an auto pulley.
 //  * An "auto" pulley (a polygon or a circle) JOINS from either side: when the segment cuts it
 //    (a circle: comes within its radius) or its centre crossed the segment between its ends, and
 //    it wraps on the side it came from.
@@ -347,7 +348,10 @@ class Cable {
     /// ends' pulleys) at the last update (pulley_order.cpp).
     struct SegmentDepth {
       int from, to;
-      double depth;  ///< the deepest vertex's wrapSideDistance (m)
+      /// The deepest vertex's wrapSideDistance for each side (m): at most 0 for one side, the
+      /// polygon lay wholly on that side's non-wrap side.
+      double left, right;
+      bool cut;  ///< the segment cut the polygon
     };
     std::vector<SegmentDepth> segmentDepths;
     double signedRadius() const { return side == WrapSide::Right ? -radius : radius; }
@@ -417,10 +421,10 @@ class Cable {
   std::vector<int> order_, rank_;
   /// Whether pulley j may join any segment of the path, not only its own (pulley_order.cpp).
   bool joinsAnySegment(int j) const;
-  /// Free polygon j off the path: joins a segment other than `host` (a path index) that cuts it
-  /// now and that it lay wholly on the non-wrap side of at the last update, taking its place
-  /// there; records its depths for the next update. True if it joined.
-  bool joinOtherSegment(int j, size_t host);
+  /// Free polygon j off the path: joins a segment other than its own that cuts it now and that it
+  /// lay wholly on one side of at the last update, taking its place there and wrapping on the
+  /// side it came from; records its depths for the next update. True if it joined.
+  bool joinCrossedSegment(int j);
   /// Whether path segment i is an edge of one polygon's chain (nothing joins it from outside).
   bool chainEdge(size_t i) const;
   std::vector<WrapPoint> path_;

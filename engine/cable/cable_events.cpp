@@ -68,14 +68,14 @@ std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, 
     const WrapPoint& a = path_[i];
     const WrapPoint& b = path_[i + 1];
     const MovingPoint ma = contact(a, a.tangentOut), mb = contact(b, b.tangentIn);
-    // A circle joins when it comes within its radius of the segment; an auto pulley from
-    // either side.
-    auto tryPoint = [&](int j, int vertex, WrapEvent::Kind kind) {
+    // A circle joins when it comes within its radius of the segment; an auto pulley, or a free
+    // polygon joining a segment not its own (pulley_order.cpp), from either side.
+    auto tryPoint = [&](int j, int vertex, WrapEvent::Kind kind, bool elsewhere = false) {
       const PulleyState& p = pulleys_[j];
       const MovingPoint mp = startPoint(motion, frames, p.body, p.local[vertex]);
       const double reach = p.circle ? p.radius : 0.0;
       for (const WrapSide side : {WrapSide::Left, WrapSide::Right}) {
-        if (!p.autoSide && side != p.side) continue;
+        if (!p.autoSide && !elsewhere && side != p.side) continue;
         const double horizon = best ? best->time : h;
         if (auto c = pointCrossesSegment(ma, mb, mp, side, horizon, reach))
           keepEarliest(best, c->time, j, kind, p.polygon ? vertex : -1);
@@ -98,7 +98,7 @@ std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, 
         if ((r > lo && r < hi) || pulleys_[j].engaged || pulleys_[j].dropped || !joinsAnySegment(j))
           continue;
         for (int v = 0; v < static_cast<int>(pulleys_[j].local.size()); ++v)
-          tryPoint(j, v, WrapEvent::Kind::Join);
+          tryPoint(j, v, WrapEvent::Kind::Join, true);
       }
     // A point fixed in the world at an end of the segment going into or out of a moving polygon's
     // hull (across edge k): a polygon off the path must not join round it then, and one on it
