@@ -14,9 +14,7 @@ namespace {
 constexpr double kMargin = 0.06;     // of the content's size, on every side
 constexpr float kBarRowLines = 4.0;  // the colour bar's row, in text lines (view_furniture.h)
 
-// Of the area's width: a thinner whole-run fit (the wheel 3%, the winch and the tackle 3-5%).
-// The capstan wound twice, 9%, is shown whole: its load hung out of the close-up's view.
-constexpr double kCloseUpBelow = 0.08;
+constexpr double kCloseUpBelow = 0.15;   // of the area's width: a thinner whole-run fit
 constexpr double kCloseUpWidest = 3;     // of kCloseUpSpan: the farthest a close-up zooms out
 constexpr double kCloseUpRoom = 0.12;    // of the close-up's height, kept above and below
 constexpr double kFollowSeconds = 0.25;  // how fast the close-up catches up with its focus
