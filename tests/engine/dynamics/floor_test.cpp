@@ -199,6 +199,16 @@ CableDef rope(const std::string& from, const std::string& to, std::vector<Pulley
   return c;
 }
 
+/// The rope of an Atwood machine from body `from` (under x = -x) to body `to` (under x = x),
+/// threaded through point pulleys at (-x, 0) and (x, 0).
+CableDef atwoodRope(const std::string& from, const std::string& to, double x = 1) {
+  PulleyDef left, right;
+  left.point = Vec2(-x, 0);
+  right.point = Vec2(x, 0);
+  left.side = right.side = WrapSide::Threaded;
+  return rope(from, to, {left, right});
+}
+
 // Two pucks moving together at v, a rigid rope from A over a world pulley at the origin back to B
 // (A 1.37 m short of it): A runs into its pulley, the pair stops there, inelastically. Through
 // 50 m/s (0.83 m a step: more than the floor's watch, kFloorWatch) nothing passes the pulley,
@@ -239,11 +249,7 @@ TEST(Floors, ABodyThatReachesItsPulleyStaysThere) {
   SceneDef scene;
   scene.bodies = {puck("heavy", Vec2(-1, -2), Vec2::Zero(), 1.2),
                   puck("light", Vec2(1, -0.5), Vec2::Zero(), 1.0)};
-  PulleyDef left, right;
-  left.point = Vec2(-1, 0);
-  right.point = Vec2(1, 0);
-  left.side = right.side = WrapSide::Threaded;
-  scene.cables = {rope("heavy", "light", {left, right})};
+  scene.cables = {atwoodRope("heavy", "light")};
   World world(scene);
   const double e0 = world.energy();
   double highest = e0;
@@ -278,11 +284,7 @@ Knock atwoodKnock(double v, double e, bool rail) {
     j.axis = Vec2(0, 1);
     scene.joints = {j};
   }
-  PulleyDef left, right;
-  left.point = Vec2(-1, 0);
-  right.point = Vec2(1, 0);
-  left.side = right.side = WrapSide::Threaded;
-  scene.cables = {rope("heavy", "light", {left, right})};
+  scene.cables = {atwoodRope("heavy", "light")};
   World world(scene);
   Knock knock;
   for (int s = 0; s < 60 && knock.after == 0; ++s) {
@@ -513,11 +515,7 @@ double elasticAtwoodRise(double mass, double ratio, double stiffness, double va,
   SceneDef scene;
   scene.bodies = {puck("a", Vec2(-0.5, -1), Vec2(0, va), mass),
                   puck("b", Vec2(0.5, -1), Vec2(0, 1), ratio * mass)};
-  PulleyDef left, right;
-  left.point = Vec2(-0.5, 0);
-  right.point = Vec2(0.5, 0);
-  left.side = right.side = WrapSide::Threaded;
-  scene.cables = {rope("a", "b", {left, right})};
+  scene.cables = {atwoodRope("a", "b", 0.5)};
   scene.cables[0].stiffness = stiffness;
   scene.cables[0].restLength = 2.95;
   World world(scene);
