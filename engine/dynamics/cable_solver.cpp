@@ -44,6 +44,18 @@ namespace cablelab {
 namespace cable_stages {
 namespace {
 
+// 5, 5b, 6: the length targets, a first solve with bouncing floors left free where any may
+// bounce, then Newton on the end-of-step lengths.
+void targetAndSolveLengths(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables,
+                           StepStats& stats) {
+  lengthTargets(ws, in.h, in.share, cables);
+  if (floorBounces(ws, in, cables)) {
+    newtonOnLengths(ws, in, cables, stats);
+    bounceTargets(ws, in, cables);
+  }
+  newtonOnLengths(ws, in, cables, stats);
+}
+
 void solve(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables, std::span<Vec3> loads,
            StepStats& stats) {
   const int islands = findIslands(ws, in, cables);  // 1
@@ -64,21 +76,11 @@ void solve(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables, st
       if (ws.ahead.empty() && redirectBlockedRows(ws, in, cables))  // 4b
         prepareRows(ws, in, cables, loads);
       ws.midpoint = takesMidpointRule(ws, in, cables);  // 5a
-      lengthTargets(ws, in.h, in.share, cables);        // 5
-      if (floorBounces(ws, in, cables)) {               // 5b
-        newtonOnLengths(ws, in, cables, stats);
-        bounceTargets(ws, in, cables);
-      }
-      newtonOnLengths(ws, in, cables, stats);  // 6, 6d
+      targetAndSolveLengths(ws, in, cables, stats);     // 5, 5b, 6, 6d
       for (int pass = 0; pass < 2 && ws.midpoint && pullAlongDiscreteGradient(ws, in, cables);
            ++pass) {  // 6e
         prepareRows(ws, in, cables, loads);
-        lengthTargets(ws, in.h, in.share, cables);
-        if (floorBounces(ws, in, cables)) {
-          newtonOnLengths(ws, in, cables, stats);
-          bounceTargets(ws, in, cables);
-        }
-        newtonOnLengths(ws, in, cables, stats);
+        targetAndSolveLengths(ws, in, cables, stats);
       }
       if (ws.midpoint) balanceMidpointWork(ws, in, cables);  // 6a
       again = mergeSlidingSpans(ws, cables);                 // 6b
