@@ -79,12 +79,14 @@ SceneDef validated(SceneDef scene, const std::string& source) {
 }
 
 // Per body, the largest restitution of its shapes: what a body bounces off its pulley with
-// (docs/floors.md, "Bouncing off a pulley").
+// (docs/floors.md, "Bouncing off a pulley"). Empty where none bounces: the solve skips the check.
 std::vector<double> floorRestitution(const SceneDef& scene) {
   std::vector<double> restitution(scene.bodies.size(), 0.0);
   for (size_t b = 0; b < scene.bodies.size(); ++b)
     for (const ShapeDef& shape : scene.bodies[b].shapes)
       restitution[b] = std::max(restitution[b], shape.restitution);
+  if (std::all_of(restitution.begin(), restitution.end(), [](double e) { return e == 0; }))
+    restitution.clear();
   return restitution;
 }
 
