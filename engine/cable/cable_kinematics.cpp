@@ -18,6 +18,7 @@
 #include "engine/cable/body_frames.h"
 #include "engine/cable/cable.h"
 #include "engine/cable/circle_wrap.h"
+#include "engine/cable/jacobian_entries.h"
 
 namespace cablelab {
 
@@ -42,20 +43,6 @@ PointMotion motionOf(std::span<const BodyState> bodies, const WrapPoint& p) {
     m.accel = -b.angularVelocity * b.angularVelocity * m.offset;
   }
   return m;
-}
-
-// Adds d to the body's entry. The entries stay sorted by body: a new one moves down to its place
-// (a path touches few bodies, so this costs less than sorting them at the end).
-void addJacobian(std::vector<BodyJacobian>& jac, int body, const Vec3& d) {
-  if (body < 0) return;
-  for (auto& e : jac)
-    if (e.body == body) {
-      e.d += d;
-      return;
-    }
-  jac.push_back({body, d});
-  for (size_t i = jac.size() - 1; i > 0 && jac[i - 1].body > body; --i)
-    std::swap(jac[i - 1], jac[i]);
 }
 
 double bodyAngle(std::span<const BodyState> bodies, int body) {

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "engine/cable/cable.h"
+#include "engine/cable/jacobian_entries.h"
 
 namespace cablelab {
 
@@ -113,8 +114,8 @@ class StepChords {
       length1 += d1.norm();
       if (sum >= 2 * kZeroLength && a.body != b.body) {
         const Vec2 u = (d0 + d1) / sum;
-        add(g, b.body, Vec3(u.x(), u.y(), u.dot(b.turn)));
-        add(g, a.body, -Vec3(u.x(), u.y(), u.dot(a.turn)));
+        addJacobian(g, b.body, Vec3(u.x(), u.y(), u.dot(b.turn)));
+        addJacobian(g, a.body, -Vec3(u.x(), u.y(), u.dot(a.turn)));
       }
     }
     return length1;
@@ -132,23 +133,13 @@ class StepChords {
       if (a.body == b.body || len < kZeroLength) continue;
       const Vec2 u = d / len;
       if (b.body >= 0)
-        add(g, b.body, Vec3(u.x(), u.y(), u.dot(perp(Vec2(b.end - q1[b.body].position)))));
+        addJacobian(g, b.body, Vec3(u.x(), u.y(), u.dot(perp(Vec2(b.end - q1[b.body].position)))));
       if (a.body >= 0)
-        add(g, a.body, -Vec3(u.x(), u.y(), u.dot(perp(Vec2(a.end - q1[a.body].position)))));
+        addJacobian(g, a.body, -Vec3(u.x(), u.y(), u.dot(perp(Vec2(a.end - q1[a.body].position)))));
     }
   }
 
  private:
-  static void add(std::vector<BodyJacobian>& g, int body, const Vec3& d) {
-    if (body < 0) return;
-    for (BodyJacobian& e : g)
-      if (e.body == body) {
-        e.d += d;
-        return;
-      }
-    g.push_back({body, d});
-  }
-
   static constexpr double kZeroLength = 1e-12;  // m, as cable_kinematics.cpp: no direction
   struct Turn {
     double c0 = 1, s0 = 0;  // the start rotation
