@@ -24,7 +24,9 @@
 //                           the discrete gradient of their lengths over the step and 2-6 run
 //                           again, twice (pullAlongDiscreteGradient), each row's work equal to its
 //                           cable's energy change (balanceMidpointWork)  cable_solver_midpoint
-//   6b. mergeSlidingSpans   capstans past e^(mu theta): merge their spans, run 2-6 again
+//   6b. mergeSlidingSpans   capstans past e^(mu theta): merge their spans, run 2-6 again;
+//                           those the rope slid over in the last sub-step are merged from the
+//                           start (mergeLastSliding) while it still slides (slidesAsMerged)
 //   6c. lockCrossingLimits  a limited joint the step takes past its bound: lock it at the
 //                           rate that reaches the bound (joint_limits.h), run 2-6 again
 //                                                                              cable_solver_rerun
@@ -56,6 +58,30 @@ void targetAndSolveLengths(Workspace& ws, const CableSolveInput& in, std::span<C
   newtonOnLengths(ws, in, cables, stats);
 }
 
+// 2-6 on the island's rows, again where rows merge or joints lock.
+void solveRows(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables,
+               std::span<Vec3> loads, StepStats& stats) {
+  for (bool again = true; again;) {
+    prepareRows(ws, in, cables, loads);                           // 2-4
+    if (ws.ahead.empty() && redirectBlockedRows(ws, in, cables))  // 4b
+      prepareRows(ws, in, cables, loads);
+    ws.midpoint = takesMidpointRule(ws, in, cables);  // 5a
+    targetAndSolveLengths(ws, in, cables, stats);     // 5, 5b, 6, 6d
+    for (int pass = 0; pass < 2 && ws.midpoint && pullAlongDiscreteGradient(ws, in, cables);
+         ++pass) {  // 6e
+      prepareRows(ws, in, cables, loads);
+      targetAndSolveLengths(ws, in, cables, stats);
+    }
+    if (ws.midpoint) balanceMidpointWork(ws, in, cables);  // 6a
+    again = mergeSlidingSpans(ws, cables);                 // 6b
+    if (again) {
+      ws.ahead.clear();  // the rows changed: measure them again
+    } else {
+      again = lockCrossingLimits(ws, in);  // 6c
+    }
+  }
+}
+
 void solve(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables, std::span<Vec3> loads,
            StepStats& stats) {
   const int islands = findIslands(ws, in, cables);  // 1
@@ -68,27 +94,14 @@ void solve(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables, st
     if (ws.sparse.solve(in, cables, ws.islandRows[island], ws.islandJoints[island], ws.predicted,
                         loads, stats))
       continue;
-    buildRows(ws, in, cables, island);  // 1
-    ws.ahead.clear();
-    ws.limits.free(ws.jointIndex, static_cast<int>(in.joints.size()));
-    for (bool again = true; again;) {
-      prepareRows(ws, in, cables, loads);                           // 2-4
-      if (ws.ahead.empty() && redirectBlockedRows(ws, in, cables))  // 4b
-        prepareRows(ws, in, cables, loads);
-      ws.midpoint = takesMidpointRule(ws, in, cables);  // 5a
-      targetAndSolveLengths(ws, in, cables, stats);     // 5, 5b, 6, 6d
-      for (int pass = 0; pass < 2 && ws.midpoint && pullAlongDiscreteGradient(ws, in, cables);
-           ++pass) {  // 6e
-        prepareRows(ws, in, cables, loads);
-        targetAndSolveLengths(ws, in, cables, stats);
-      }
-      if (ws.midpoint) balanceMidpointWork(ws, in, cables);  // 6a
-      again = mergeSlidingSpans(ws, cables);                 // 6b
-      if (again) {
-        ws.ahead.clear();  // the rows changed: measure them again
-      } else {
-        again = lockCrossingLimits(ws, in);  // 6c
-      }
+    for (bool premerged = true;;) {
+      buildRows(ws, in, cables, island);  // 1
+      ws.ahead.clear();
+      ws.limits.free(ws.jointIndex, static_cast<int>(in.joints.size()));
+      premerged = premerged && mergeLastSliding(ws, cables);  // 6b, as last sub-step
+      solveRows(ws, in, cables, loads, stats);
+      if (!premerged || slidesAsMerged(ws, cables)) break;
+      premerged = false;
     }
     applyForces(ws, in, cables, loads);  // 7
   }

@@ -212,6 +212,8 @@ bool pullAlongDiscreteGradient(Workspace& ws, const CableSolveInput& in,
 
 // 6b, 6c. Sliding capstans, crossed joint limits (cable_solver_rerun.cpp).
 bool mergeSlidingSpans(Workspace& ws, std::span<const Cable> cables);
+bool mergeLastSliding(Workspace& ws, std::span<const Cable> cables);
+bool slidesAsMerged(Workspace& ws, std::span<const Cable> cables);
 bool lockCrossingLimits(Workspace& ws, const CableSolveInput& in);
 
 // 7. Tensions and forces (cable_solver_forces.cpp).
