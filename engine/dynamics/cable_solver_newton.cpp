@@ -181,9 +181,23 @@ void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
   }
 }
 
+// How far row impulses P moved for the motion: for redundant rows, whose impulses are not unique,
+// the rows' rates J0 W dP (each over its diagonal, in N s), not dP itself. Two iterates that
+// share the same pushes out differently between a tackle's redundant floors (its block at the top
+// sheave) move the bodies the same: that is no step, let alone a growing one.
+double impulseChange(Workspace& ws, const Eigen::VectorXd& next, bool redundant) {
+  ws.dP = next - ws.P;
+  if (!redundant) return ws.dP.lpNorm<Eigen::Infinity>();
+  double change = 0;
+  for (int r = 0; r < ws.dP.size(); ++r)
+    if (ws.JW0(r, r) > 0)
+      change = std::max(change, std::abs(ws.JW0.row(r).dot(ws.dP)) / ws.JW0(r, r));
+  return change;
+}
+
 // Newton's iterations from ws.P. Stopped: the iterations ran out while the steps still shrank
-// (ws.P is the last iterate, as good as it got). Diverged: a step grew instead (ws.P is not an
-// answer).
+// (ws.P is the last iterate, as good as it got); Close if the last step was already small.
+// Diverged: a step grew instead (ws.P is not an answer).
 Newton iterateNewton(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
                      bool redundant, StepStats& stats) {
   const int m = static_cast<int>(ws.rows.size());
@@ -215,7 +229,7 @@ Newton iterateNewton(Workspace& ws, const CableSolveInput& in, std::span<const C
                  h;
     LcpSolution& sol = ws.lcpSolution;
     solveLcp(ws.K, ws.b, ws.lcp, sol, redundant);
-    const double change = (sol.x - ws.P).lpNorm<Eigen::Infinity>();
+    const double change = impulseChange(ws, sol.x, redundant);
     ws.P = sol.x;
     stats.solverIterations += sol.iterations;
     stats.residual = std::max(stats.residual, sol.residual);
@@ -225,7 +239,7 @@ Newton iterateNewton(Workspace& ws, const CableSolveInput& in, std::span<const C
       return Newton::Diverged;
     lastChange = change;
   }
-  return Newton::Stopped;
+  return newtonClose(lastChange, ws.P.lpNorm<Eigen::Infinity>()) ? Newton::Close : Newton::Stopped;
 }
 
 // 6. Newton on the end-of-step lengths phi1(P), each linearisation an LCP over all cables:
@@ -249,8 +263,9 @@ void solveLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cabl
   if (solveLinearised(ws, in, cables, redundant, stats)) return;
   if (warmStart(ws, in.h, cables)) {
     StepStats warm;
-    if (iterateNewton(ws, in, cables, redundant, warm) == Newton::Converged &&
-        realisable(ws, in.h) && !addsEnergy(ws, in, cables)) {
+    const Newton warmed = iterateNewton(ws, in, cables, redundant, warm);
+    if ((warmed == Newton::Converged || warmed == Newton::Close) && realisable(ws, in.h) &&
+        !addsEnergy(ws, in, cables)) {
       stats.solverIterations += warm.solverIterations;
       stats.residual = std::max(stats.residual, warm.residual);
       stats.linearisationFallbacks += warm.linearisationFallbacks;

@@ -108,7 +108,7 @@ struct CableSolverWorkspace {
   Eigen::VectorXd vEnd;  // stage 6c's end-of-step velocities
 
   // Newton on the end-of-step lengths. pull: the midpoint rule's rows' right-hand side (stage 5).
-  Eigen::VectorXd target, compliance, damped, pull, phi0, P, phi1, b, WP, v1, v0;
+  Eigen::VectorXd target, compliance, damped, pull, phi0, P, phi1, b, WP, v1, v0, dP;
   Eigen::VectorXd wpImpulses;  // the P that WP = W P was last taken for (timesImpulses)
   bool wpFresh = false;        // ... with the W of now (stages 2-4 clear it)
   Eigen::VectorXd haul, unhauledP, unhauledTarget;  // stage 6d: the kinematic bodies' haul (m)
@@ -179,7 +179,8 @@ void timesImpulses(Workspace& ws, const Eigen::VectorXd& P);
 void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
 // Newton iterations from ws.P, each linearisation an LCP over all rows. True once the impulses
 // have settled (the linearisation at a point the LCP keeps is exact there: it is the solution).
-enum class Newton { Converged, Stopped, Diverged };
+// Close: stopped, its last step small (newtonClose, newton_stop.h).
+enum class Newton { Converged, Close, Stopped, Diverged };
 Newton iterateNewton(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
                      bool redundant, StepStats& stats);
 void solveLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,

@@ -407,7 +407,7 @@ bool SparseIsland::iterateNewton(const CableSolveInput& in, std::span<const Cabl
     if (newtonSettled(change, lastChange, P_.lpNorm<Eigen::Infinity>())) return true;
     lastChange = change;
   }
-  return false;
+  return newtonClose(lastChange, P_.lpNorm<Eigen::Infinity>());  // as the dense path's warm start
 }
 
 // Dense stage 7: the tensions, and the force that gives the solved end-of-step velocity.
