@@ -410,6 +410,8 @@ bool Cable::joinRound(std::vector<std::string>* warnings) {
   for (const int j : order_) {
     PulleyState& p = pulleys_[j];
     if (p.engaged) {
+      // One riding its neighbour's hull may move its place (pulley_order.cpp).
+      if (joinsAnySegment(j) && joinCrossedSegment(j)) return true;
       while (host + 1 < path_.size() - 1 && path_[host + 1].pulley == static_cast<int>(j)) ++host;
       continue;
     }

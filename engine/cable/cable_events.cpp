@@ -91,11 +91,17 @@ std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, 
       for (int v = 0; v < static_cast<int>(p.local.size()); ++v)
         tryPoint(j, v, WrapEvent::Kind::Join);
     }
-    // Free polygons placed elsewhere join any segment they cross (pulley_order.cpp).
+    // Free polygons placed elsewhere join any segment they cross, and one on the path may move
+    // its place to a segment not its own (pulley_order.cpp).
     if (!chainEdge(i))
       for (int r = 0; r < count; ++r) {
         const int j = order_[r];
-        if ((r > lo && r < hi) || pulleys_[j].engaged || pulleys_[j].dropped || !joinsAnySegment(j))
+        const PulleyState& p = pulleys_[j];
+        const bool own = p.engaged ? a.pulley == j || b.pulley == j : r > lo && r < hi;
+        if (own || p.dropped || !joinsAnySegment(j)) continue;
+        // One on the path that the segment already cuts cannot move there (pulley_order.cpp).
+        if (p.engaged && segmentCutsPolygon(a.radius == 0 ? a.world : a.tangentOut,
+                                            b.radius == 0 ? b.world : b.tangentIn, p.world))
           continue;
         for (int v = 0; v < static_cast<int>(pulleys_[j].local.size()); ++v)
           tryPoint(j, v, WrapEvent::Kind::Join, true);

@@ -8,7 +8,8 @@
 // the old path as at its own (the World locates the crossing), and takes its place in the order
 // there. It wraps on the side it came from, as an auto pulley does: coming down on the rope from
 // the side it was not wrapped on, it went through. Off the path its place changes neither the
-// length nor J.
+// length nor J. On the path, barely bending the rope where it rides its neighbour's hull, it
+// moves its place to a segment it crosses where that moves the length by a fraction of a mm.
 #include <algorithm>
 #include <utility>
 
@@ -29,6 +30,61 @@ bool Cable::chainEdge(size_t i) const {
          a.pulley == b.pulley;
 }
 
+namespace {
+
+// A join the World did not locate, or a polygon moving its place, is made only where it moves
+// the length by less than this (m): half the 1 mm a wrap change off the old path is reported at
+// (Cable::kLengthJump).
+constexpr double kCrossedJoinDetour = 5e-4;
+
+// How much longer the path a -> polygon -> b is than a -> b, wrapped on `side` (infinite where
+// no taut path exists: a terminal inside the hull).
+double crossedJoinDetour(const Vec2& a, const Vec2& b, std::span<const Vec2> polygon,
+                         WrapSide side) {
+  std::vector<int> chain;
+  if (!wrapChain(a, b, polygon, side, chain)) return 1e300;
+  return chainLength(a, b, polygon, chain) - (b - a).norm();
+}
+
+// The path indices of pulley j's first and last points (0, 0: not on the path).
+std::pair<size_t, size_t> placeOnPath(std::span<const WrapPoint> path, int j) {
+  size_t first = 0, last = 0;
+  for (size_t i = 1; i + 1 < path.size(); ++i)
+    if (path[i].pulley == j) {
+      if (!first) first = i;
+      last = i;
+    }
+  return {first, last};
+}
+
+// How much longer the path is for pulley j's chain than straight between its neighbours.
+double ownWrapDetour(std::span<const WrapPoint> path, int j) {
+  const auto [first, last] = placeOnPath(path, j);
+  if (!first) return 1e300;
+  const WrapPoint &from = path[first - 1], &to = path[last + 1];
+  const Vec2 start = from.radius == 0 ? from.world : from.tangentOut;
+  const Vec2 end = to.radius == 0 ? to.world : to.tangentIn;
+  Vec2 at = start;
+  double along = 0;
+  for (size_t i = first; i <= last; ++i) {
+    along += (path[i].world - at).norm();
+    at = path[i].world;
+  }
+  return along + (end - at).norm() - (end - start).norm();
+}
+
+// Polygon q's chain (its vertices on the path) is the one between `from` and `to`.
+bool chainKeptBetween(std::span<const WrapPoint> path, int q, std::span<const Vec2> polygon,
+                      WrapSide side, const Vec2& from, const Vec2& to) {
+  std::vector<int> now, then;
+  for (const WrapPoint& w : path)
+    if (w.pulley == q && w.kind == WrapPoint::Kind::Vertex) now.push_back(w.vertex);
+  return wrapChain(from, to, polygon, side, then) && then == now;
+}
+
+}  // namespace
+
+// Free polygon j: off the path, or on it where it barely bends the rope (above).
 bool Cable::joinCrossedSegment(int j) {
   PulleyState& p = pulleys_[j];
   std::vector<PulleyState::SegmentDepth> before;
@@ -36,12 +92,54 @@ bool Cable::joinCrossedSegment(int j) {
   p.segmentDepths.clear();
   int join = -1;
   WrapSide joinSide = p.side;
-  // Its own segment (from the path point before it in the order) is joinRound's.
+  // Its own segment (from the path point before it in the order) is joinRound's; on the path,
+  // the segments into, along and out of its chain are its own.
   size_t host = 0;
   while (host + 2 < path_.size() && rank_[path_[host + 1].pulley] < rank_[j]) ++host;
+  // On the path, it moves its place only where that moves the length by less than
+  // kCrossedJoinDetour (it barely bends the rope at either place): where the two chains of a pair
+  // in one rope's loops meet, a polygon riding the other's hull comes off its corner as it crosses
+  // the rope going into the other (docs/knocks.md, "Riding its neighbour's hull").
+  const bool onPath = p.engaged;
+  // Joining segment i (wrapped on `side`), the neighbouring polygons there, and at its old place
+  // if it moves, keep their chains: its detours are all the length moves by.
+  auto neighboursKept = [&](size_t i, WrapSide side) {
+    const auto [first, last] = placeOnPath(path_, j);
+    std::vector<int> chain;
+    const WrapPoint &wa = path_[i], &wb = path_[i + 1];
+    const Vec2 a = wa.radius == 0 ? wa.world : wa.tangentOut;
+    const Vec2 b = wb.radius == 0 ? wb.world : wb.tangentIn;
+    if (!wrapChain(a, b, p.world, side, chain) || chain.empty()) return false;
+    auto kept = [&](const WrapPoint& end, const Vec2& from, const Vec2& to) {
+      if (end.kind != WrapPoint::Kind::Vertex) return true;
+      const PulleyState& q = pulleys_[end.pulley];
+      return chainKeptBetween(path_, end.pulley, q.world, q.side, from, to);
+    };
+    // Where the path leaves the point before path_[k]'s polygon, and reaches the one after it.
+    auto before = [&](size_t k) {
+      while (k > 1 && path_[k - 1].pulley == path_[k].pulley) --k;
+      const WrapPoint& w = path_[k - 1];
+      return w.radius == 0 ? w.world : w.tangentOut;
+    };
+    auto after = [&](size_t k) {
+      while (k + 2 < path_.size() && path_[k + 1].pulley == path_[k].pulley) ++k;
+      const WrapPoint& w = path_[k + 1];
+      return w.radius == 0 ? w.world : w.tangentIn;
+    };
+    if (!kept(wa, before(i), p.world[chain.front()]) ||
+        !kept(wb, p.world[chain.back()], after(i + 1)))
+      return false;
+    if (!first) return true;  // off the path
+    const WrapPoint &prev = path_[first - 1], &next = path_[last + 1];
+    const Vec2 oldFrom = prev.radius == 0 ? prev.world : prev.tangentOut;
+    const Vec2 oldTo = next.radius == 0 ? next.world : next.tangentIn;
+    return kept(prev, before(first - 1), oldTo) && kept(next, oldFrom, after(last + 1));
+  };
+  double own = -1;
   for (size_t i = 0; i + 1 < path_.size(); ++i) {
     if (chainEdge(i)) continue;
     const WrapPoint &wa = path_[i], &wb = path_[i + 1];
+    if (onPath && (wa.pulley == j || wb.pulley == j)) continue;
     const Vec2 a = wa.radius == 0 ? wa.world : wa.tangentOut;
     const Vec2 b = wb.radius == 0 ? wb.world : wb.tangentIn;
     double left = -1e300, right = -1e300;
@@ -53,19 +151,42 @@ bool Cable::joinCrossedSegment(int j) {
     // moving on to the next corner keeps it.
     const bool cut = segmentCutsPolygon(a, b, p.world);
     p.segmentDepths.push_back({wa.pulley, wb.pulley, left, right, cut});
-    if (i == host || join >= 0 || p.dropped || firstUpdate_ || !cut) continue;
+    if ((!onPath && i == host) || join >= 0 || p.dropped || firstUpdate_ || !cut) continue;
     const auto was = std::find_if(before.begin(), before.end(), [&](const auto& d) {
       return d.from == wa.pulley && d.to == wb.pulley;
     });
-    // It wraps on the side it came from, whichever it was first wrapped on: a body never passes
-    // through the rope (docs/knocks.md, "Flung past a neighbour"). It lay wholly on one side of
-    // the segment's line at the last update (lying across it, it may have come round an end).
-    if (was == before.end() || was->cut || (was->left > 0 && was->right > 0)) continue;
+    if (was == before.end() || was->cut) continue;
     // A point fixed in the world inside the hull: no taut path round it (joinRound).
     if ((wa.body < 0 && insideConvex(a, p.world)) || (wb.body < 0 && insideConvex(b, p.world)))
       continue;
+    // It wraps on the side it came from, whichever it was first wrapped on: a body never passes
+    // through the rope (docs/knocks.md, "Flung past a neighbour"). It lay wholly on one side of
+    // the segment's line at the last update; lying across it (beyond an end: a spinning polygon
+    // coming down on a bend of the rope), it joins on the side the segment barely bends round.
+    const bool oneSide = was->left <= 0 || was->right <= 0;
+    WrapSide side = was->right <= 0 ? WrapSide::Right : WrapSide::Left;
+    if (!oneSide) {
+      if (onPath) continue;
+      const double viaLeft = crossedJoinDetour(a, b, p.world, WrapSide::Left);
+      const double viaRight = crossedJoinDetour(a, b, p.world, WrapSide::Right);
+      side = viaLeft <= viaRight ? WrapSide::Left : WrapSide::Right;
+      if (std::min(viaLeft, viaRight) > kCrossedJoinDetour) continue;
+    }
+    // Off the path, it joins where the World located the crossing (on the old path); one it
+    // crossed while on the path elsewhere may lie deep across the segment by now.
+    if (oneSide && !onPath && crossedJoinDetour(a, b, p.world, side) > kLengthJump) continue;
+    if (onPath) {
+      if (own < 0) own = ownWrapDetour(path_, j);
+      const double detour = crossedJoinDetour(a, b, p.world, side);
+      if (std::abs(detour - own) > kCrossedJoinDetour || !neighboursKept(i, side)) {
+        // Still bending the rope at its place: while it lies barely across the segment, it
+        // keeps the side it came from, and moves once its own wrap lets go.
+        if (detour <= kCrossedJoinDetour) p.segmentDepths.back() = *was;
+        continue;
+      }
+    }
     join = static_cast<int>(i);
-    joinSide = was->right <= 0 ? WrapSide::Right : WrapSide::Left;
+    joinSide = side;
   }
   if (join < 0) return false;
   // Its place: right after the pulley the segment starts at (first, after the start anchor).

@@ -166,6 +166,30 @@ TEST(KnockMotion, PolygonsFlungOutOfTheirLoopsLandOnTheRope) {
         3.402166091118624}}};
   knock_motion_test::expectCaughtByTheRope(fromTheOtherSide[0], 1, 140, 1, 120);
   knock_motion_test::expectCaughtByTheRope(fromTheOtherSide[1], 1, 470, 1, 440);
+  // Riding the other's hull where the two chains meet, barely bending the rope, a polygon
+  // crossed the rope going into the other and came off its corner lying across it (124: 189
+  // steps in; 133: 363): it moves its place to that segment. 5 at 2 sub-steps: a triangle
+  // spinning at 32 rad/s comes down on the bend at the middle point lying across the line of
+  // the segment into it, beyond its end (104 steps in): it joins that segment.
+  const KnockingPair ridingTheHull[] = {
+      {124,
+       {5, 0.2322382964257934, 5.949574418241366, 0.2, -3.5256952991372934, 0.39730206830559434,
+        -1.0866956691986598},
+       {5, 0.1748212666035992, 5.12151224378338, 1.0, -3.8259600077238485, 1.3691398135106203,
+        -0.5954072464809741}},
+      {133,
+       {6, 0.203172898831614, 4.82902278204191, 1.0, 2.4663027984959918, 0.6934032321640191,
+        0.360009532786429},
+       {7, 0.2613209654123488, 4.6727255000775365, 0.2, 2.9915757346904055, 2.31658918111714,
+        -1.8893698471731755}},
+      {5,
+       {7, 0.18831675247302687, 4.9938155917525755, 1.0, 3.5396022702164025, 2.6994928736996533,
+        3.378599973323336},
+       {3, 0.2760522180784002, 4.075560193699884, 0.2, 3.2072039340049816, -0.4339701767342782,
+        -0.24744761774269008}}};
+  knock_motion_test::expectCaughtByTheRope(ridingTheHull[0], 1, 280, 0, 188);
+  knock_motion_test::expectCaughtByTheRope(ridingTheHull[1], 1, 560, 1, 540);
+  knock_motion_test::expectCaughtByTheRope(ridingTheHull[2], 2, 140);
 }
 
 }  // namespace cablelab
