@@ -114,6 +114,10 @@ void expectReadable(const nlohmann::json& v, bool fresh = true) {
                 labels[i].y1 <= free.y1)
         << "label " << i << " " << where;
   }
+  // No label across a target's or the statics' marker (the hand's "box" and "statics" were).
+  for (const Box& m : boxes(v["markers"]))
+    for (size_t i = 0; i < labels.size(); ++i)
+      EXPECT_FALSE(labels[i].overlaps(m)) << "label " << i << " on a marker " << where;
   // No label across a cable's line or its end dot ("cable", "band", "block" were).
   EXPECT_EQ(v["labels_on_cables"].get<int>(), 0) << where;
   for (size_t i = 0; i < pieces.size(); ++i)
@@ -280,7 +284,7 @@ TEST(Lecture, FirstMechanismAtProjectorScaleOpensTheBuildSection) {
 // the click left it so; a click on a cable now opens it.
 TEST(Lecture, ClickingTheRopeOpensTheInspectorAt1280x720) {
   REQUIRE_XVFB();
-  for (const std::string scene : {"capstan", "membrane"}) {
+  for (const std::string scene : {"capstan", "membrane", "pulley"}) {
     const auto j = lecture(scene, "select-rope", "1280x720", "select-rope-" + scene);
     ASSERT_TRUE(j.contains("open_after")) << j.dump();
     EXPECT_FALSE(j["open_before"].get<bool>()) << scene << ": the Inspector starts collapsed";
@@ -288,6 +292,11 @@ TEST(Lecture, ClickingTheRopeOpensTheInspectorAt1280x720) {
     EXPECT_EQ(j["selected_cable"], j["clicked_cable"]) << j.dump();
     EXPECT_TRUE(j["open_after"].get<bool>()) << scene << ": " << j.dump();
     EXPECT_EQ(j["overflow"].get<double>(), 0) << scene << ": " << j.dump();
+    // With two charts in the Plots section no row of the Simulation panel is cut either (the
+    // chart buttons ran 37 px past it, the pulley's "length 44.00000 m (rest 44.00000)" 11 px
+    // past the Inspector).
+    EXPECT_TRUE(j["plots_open"].get<bool>()) << scene;
+    EXPECT_EQ(j["simulation_overflow"].get<double>(), 0) << scene << ": " << j.dump();
   }
 }
 
@@ -487,7 +496,7 @@ TEST(Lecture, TourOfTheOtherScenesAtBothSizes) {
   const auto j = lecture("ballast", "tour", "1280x720", "tour", clips.string());
   ASSERT_TRUE(j.contains("views")) << j.dump();
   EXPECT_EQ(j["banners"].size(), 0u) << "banners raised: " << j["banners"].dump();
-  ASSERT_EQ(j["views"].size(), 5u * 6 + 1) << j.dump();
+  ASSERT_EQ(j["views"].size(), 5u * 6 + 2) << j.dump();
   std::map<std::string, std::string> shots;  // view name -> screenshot
   for (const auto& v : j["views"]) {
     const std::string name = v["name"], where = name + " " + v["screenshot"].get<std::string>();
@@ -499,6 +508,12 @@ TEST(Lecture, TourOfTheOtherScenesAtBothSizes) {
     expectReadable(v, name.find("-start") != std::string::npos ||
                           name.find("-1080-paused") != std::string::npos);
     EXPECT_TRUE(v["presentation"].get<bool>()) << where;
+    // The strip's Record button in the window, its word whole (F9 was the only way).
+    ASSERT_EQ(v["record_button"].size(), 1u) << "no Record button: " << where;
+    const Box record = boxes(v["record_button"])[0];
+    EXPECT_GE(record.x1 - record.x0, 60) << where;  // "Stop" at projector scale: 72 px
+    EXPECT_LE(record.x1, v["window"][0].get<double>()) << where;
+    EXPECT_EQ(v["strip_overflow"].get<double>(), 0) << where;
     const bool big = name.find("-1080-") != std::string::npos;
     EXPECT_EQ(v["window"][0].get<double>(), big ? 1920 : 1280) << where;
     EXPECT_EQ(v["window"][1].get<double>(), big ? 1080 : 720) << where;
@@ -537,8 +552,12 @@ TEST(Lecture, TourOfTheOtherScenesAtBothSizes) {
   }
   // Issue 38's held-out walkthrough: the pulley's clip (F9, F9) was saved without a word at
   // 1280x720; the membrane's band, clicked in presentation mode (no Inspector), showed nothing.
+  // The clip is now started and stopped by the strip's Record button.
   for (const auto& v : j["views"]) {
     const std::string status = v["status"];
+    if (v["name"] == "pulley-720-recording") {
+      EXPECT_NE(status.find("recording cablelab-pulley-1."), std::string::npos) << status;
+    }
     if (v["name"] == "pulley-720-try") {
       const std::string clip =
           ui::mp4Available() ? "cablelab-pulley-1.mp4" : "cablelab-pulley-1.gif";
