@@ -584,10 +584,8 @@ void controllerOverlay(const Sandbox& sandbox, Overlay& overlay) {
           {Overlay::Key::Marker::Arrow, "where the plan takes the box", kPlanColour});
     }
     if (h->prediction.valid) {
-      // Unlabelled cross, its label below it: the target's label sits above the same spot.
-      overlay.targets.push_back({h->prediction.box, "", kPredictionColour});
-      overlay.texts.push_back(
-          {h->prediction.box + Vec2(0.03, -0.09), "statics", kPredictionColour});
+      // Its label below it: the target's label sits above the same spot.
+      overlay.targets.push_back({h->prediction.box, "statics", kPredictionColour, Vec2(12, 6)});
       overlay.keys.push_back(
           {Overlay::Key::Marker::Cross, "statics model's box", kPredictionColour});
     }

@@ -143,7 +143,14 @@ void cableInspector(Sandbox& sandbox, const World& world) {
   const Cable& cable = world.cable(i);
   ImGui::Text("%s: %s", cable.name().c_str(), cable.elastic() ? "elastic" : "rigid");
   ImGui::Text("tension %.4g N %s", cable.tension(), cable.slack() ? "(slack)" : "");
-  ImGui::Text("length %.5f m (rest %.5f)", cable.length(), cable.restLength());
+  // The rest length on a row of its own where the panel is too narrow for both (a 44 m rope
+  // at 1280x720 at projector scale).
+  char length[64], rest[48];
+  std::snprintf(length, sizeof length, "length %.5f m", cable.length());
+  std::snprintf(rest, sizeof rest, "(rest %.5f)", cable.restLength());
+  ImGui::TextUnformatted(length);
+  sameLineIfRoom(ImGui::CalcTextSize(rest).x);
+  ImGui::TextUnformatted(rest);
   if (overstretched(cable))
     ImGui::TextColored(ImVec4(0.8f, 0.0f, 0.1f, 1), "overstretched by %.4f m",
                        cable.length() - cable.restLength());

@@ -9,6 +9,8 @@
 #include "ui/authoring.h"
 #include "ui/controller_panel.h"
 #include "ui/first_mechanism_script.h"
+#include "ui/plot_board.h"
+#include "ui/plot_quantity.h"
 #include "ui/report_json.h"
 #include "ui/scene_bounds.h"
 #include "ui/scene_catalog.h"
@@ -70,6 +72,9 @@ std::string lectureViewJson(const Sandbox& s, const std::string& name, const std
   std::string labels = "[";
   for (size_t k = 0; k < d.labels.size(); ++k) labels += (k ? ", " : "") + box(d.labels[k]);
   labels += "]";
+  std::string markers = "[";
+  for (size_t k = 0; k < d.markers.size(); ++k) markers += (k ? ", " : "") + box(d.markers[k]);
+  markers += "]";
   std::string lines = "[";  // the overlay's lines as drawn, each [x0, y0, x1, y1] (px)
   for (size_t k = 0; k < d.overlayLines.size(); ++k) {
     const ScreenSegment& l = d.overlayLines[k];
@@ -104,7 +109,7 @@ std::string lectureViewJson(const Sandbox& s, const std::string& name, const std
          ", \"window\": [" + jsonNumber(s.camera.width) + ", " + jsonNumber(s.camera.height) +
          "], \"free\": [" + jsonNumber(free.x) + ", " + jsonNumber(free.y) + ", " +
          jsonNumber(free.width) + ", " + jsonNumber(free.height) + "], \"scene\": " + box(d.scene) +
-         ", \"stage\": " + box(stage) + ", \"labels\": " + labels +
+         ", \"stage\": " + box(stage) + ", \"labels\": " + labels + ", \"markers\": " + markers +
          ", \"overlay_lines\": " + lines + ", \"key_rows\": " + jsonList(shownKeys) +
          ", \"marker_keys\": " + jsonList(markerKeys) +
          ", \"hidden_labels\": " + jsonNumber(d.hiddenLabels) +
@@ -128,6 +133,7 @@ std::string lectureViewJson(const Sandbox& s, const std::string& name, const std
          ", \"title\": " + jsonQuoted(s.shownTitle) + ", \"panels\": " + panelsJson(s.panels) +
          ", \"speed_slider\": " + panelsJson(drawnAlone(s.speedSlider)) +
          ", \"speed_value\": " + panelsJson(drawnAlone(s.speedValue)) +
+         ", \"record_button\": " + panelsJson(drawnAlone(s.recordButton)) +
          ", \"controller_section\": " + jsonQuoted(s.controllerSection) +
          ", \"building\": " + (s.building() ? "true" : "false") +
          ", \"build_menu\": " + buildMenuJson(s.authoring->menu) +
@@ -168,6 +174,10 @@ Vec2 cablePixel(const Sandbox& sandbox) {
 
 Vec2 middle(const LabelBox& b) {
   return Vec2(0.5 * (b.x0 + b.x1), 0.5 * (b.y0 + b.y1));
+}
+
+Vec2 middle(const PanelRect& r) {
+  return Vec2(r.x + 0.5 * r.width, r.y + 0.5 * r.height);
 }
 
 /// The slider step of a built-in scene's "what to try" (ui/scene_guide.h), if it has one.
@@ -493,12 +503,25 @@ bool LectureScript::selectRope(Sandbox& sandbox, int frame) {
     mouse(SDL_MOUSEMOTION, from_);
     mouse(SDL_MOUSEBUTTONDOWN, from_);
     mouse(SDL_MOUSEBUTTONUP, from_);
+    // A lecture's plots beside it: a body's height and the rope's tension, each a chart (the
+    // Plots section opens with its first chart).
+    const auto quantities = availableQuantities(*sandbox.world(), -1);
+    for (const Quantity::Kind kind : {Quantity::Kind::Y, Quantity::Kind::Tension})
+      for (const Quantity& q : quantities)
+        if (q.kind == kind) {
+          sandbox.plots->addCurve(sandbox.plots->charts.size(), q);
+          break;
+        }
+  } else if (frame == 13) {
+    snapshot(sandbox, "clicked");
   } else if (frame == 15) {
     report_ = "{\"scenario\": \"select-rope\", " + items_[0] +
               ", \"clicked_cable\": " + jsonNumber(body_) +
               ", \"selected_cable\": " + jsonNumber(sandbox.selectedCable) +
               ", \"open_after\": " + (sandbox.inspectorOpen ? "true" : "false") +
-              ", \"overflow\": " + jsonNumber(sandbox.panelOverflow[1]) + "}";
+              ", \"plots_open\": " + (sandbox.plotsSectionOpen ? "true" : "false") +
+              ", \"overflow\": " + jsonNumber(sandbox.panelOverflow[1]) +
+              ", \"simulation_overflow\": " + jsonNumber(sandbox.panelOverflow[0]) + "}";
     return false;
   }
   return true;
@@ -571,8 +594,18 @@ bool LectureScript::tour(Sandbox& sandbox, int frame) {
     mouse(SDL_MOUSEBUTTONUP, from_);
   } else if (f == 38) {
     tryStep(sandbox);
-  } else if ((f == 2 || f == 64) && scene == "pulley") {  // a clip of the run (F9), then stop
-    key(SDLK_F9);
+  } else if ((f == 1 || f == 61) && scene == "pulley") {  // a clip of the run, then stop by
+    from_ = middle(sandbox.recordButton);  // the strip's Record button: pointer, press, release
+    movePointer(windowId_, from_);  // Dear ImGui reads a held button's pointer from the screen
+  } else if ((f == 2 || f == 62) && scene == "pulley") {
+    mouse(SDL_MOUSEBUTTONDOWN, from_);
+  } else if ((f == 3 || f == 63) && scene == "pulley") {
+    mouse(SDL_MOUSEBUTTONUP, from_);
+  } else if ((f == 4 || f == 64) && scene == "pulley") {  // off the button: the next press in
+    const PanelRect v = sandbox.freeArea();               // the view would be its click
+    movePointer(windowId_, Vec2(v.x + 4, v.y + 0.5 * v.height));
+  } else if (f == 6 && scene == "pulley") {
+    shot("720-recording");
   } else if (f == 66) {
     shot("720-try");
   } else if (f == 68) {

@@ -20,6 +20,7 @@ struct Overlay {
     Vec2 position = Vec2::Zero();  ///< m
     std::string label;
     Colour colour{0.85f, 0.1f, 0.55f, 1.0f};
+    Vec2 labelOffset{12, -18};  ///< px: the label's preferred top-left corner from the cross
   };
   /// An arrow between two world points (a drag spring, a force, a commanded velocity).
   struct Arrow {

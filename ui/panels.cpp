@@ -102,6 +102,16 @@ void presentationControls(Sandbox& sandbox) {
   tooltip("Pause and advance one time step (s).");
   if (ImGui::Button("Reset")) sandbox.reset();
   tooltip("Start the scene again (r).");
+  // F9's clip, for a presenter at the projector without the keyboard's help list. Red while
+  // it records; the status line says where the clip went.
+  const bool recording = sandbox.recording;
+  if (recording) ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.85f, 0.25f, 0.2f, 1));
+  if (ImGui::Button(recording ? "Stop###record" : "Record###record"))
+    sandbox.recordToggleRequested = true;
+  if (recording) ImGui::PopStyleColor();
+  sandbox.recordButton = lastItemRect();
+  tooltip(recording ? "Stop recording and save the clip (F9)."
+                    : "Record a clip of the view into the working folder (F9).");
   if (ImGui::Button("Panels")) togglePresentation(sandbox);
   tooltip("Leave presentation mode: show the side panels again (p).");
 }
@@ -373,7 +383,8 @@ void errorBanner(Sandbox& sandbox) {
 
 void drawPanels(Sandbox& sandbox, PanelState& state) {
   sandbox.panels.clear();
-  sandbox.errorBox = sandbox.speedSlider = sandbox.speedValue = PanelRect{};  // drawn this frame
+  sandbox.errorBox = sandbox.speedSlider = sandbox.speedValue = sandbox.recordButton =
+      PanelRect{};  // drawn this frame
   layoutFor(sandbox, state);
   const float top = menuBar(sandbox, state);
   if (!sandbox.presentation) {

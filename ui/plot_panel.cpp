@@ -47,7 +47,7 @@ void picker(Sandbox& sandbox, const World& world) {
   if (ImGui::SmallButton("New chart")) board.addCurve(board.charts.size(), options[chosen]);
   tooltip("Plot it in a chart of its own.");
   if (!board.charts.empty()) {
-    ImGui::SameLine();
+    sameLineIfRoom(buttonWidth("Add to last chart"));  // a row of its own in a narrow panel
     if (ImGui::SmallButton("Add to last chart")) {
       const size_t last = board.charts.size() - 1;
       const std::string lastUnit = quantityUnit(board.charts[last].curves[0].kind);
@@ -101,9 +101,11 @@ void chartView(Sandbox& sandbox, const World& world, size_t index) {
     tooltip("Remove this curve.");
     ImGui::SameLine();
     const Colour c = plotColour(static_cast<int>(k));
+    ImGui::PushTextWrapPos(0);  // a long body name wraps rather than running past the panel
     ImGui::TextColored(ImVec4(c[0], c[1], c[2], c[3]), "%s (%s)",
                        quantityName(world, chart.curves[k]).c_str(),
                        quantityUnit(chart.curves[k].kind));
+    ImGui::PopTextWrapPos();
     ImGui::PopID();
     if (remove) {
       board.removeCurve(index, k);

@@ -106,22 +106,29 @@ CloseUpFrame closeUpFrame(const World& world, int followed) {
   if (scene.empty()) return {};
   const double least = kCloseUpSpan * std::max(scene.hi.x() - scene.lo.x(), 1e-3);
   const double top = scene.hi.y() + kCloseUpRoom * least;
-  // The nearest body hanging below the top of the mechanism (the wheel, drum or pulleys the
-  // rope hangs from) stays in view with it.
-  double nearest = -1e300;
-  CloseUpFrame f;
+  // The bodies hanging below the top of the mechanism (the wheel, drum or pulleys the rope
+  // hangs from) stay in view with it: all those within the widest close-up (the capstan's hold
+  // and its load), else the nearest.
+  const double widest = kCloseUpWidest * least;
+  const auto reachOf = [&](double y) { return (top - y) * (1 + kCloseUpRoom); };
+  int nearest = -1, farthestInReach = -1;
   for (int i = 0; i < world.bodyCount(); ++i) {
     const double y = world.body(i).position.y();
-    if (world.scene().bodies[i].type == BodyType::Dynamic && y < top - 0.5 * least && y > nearest) {
-      nearest = y;
-      f.body = i;
-    }
+    if (world.scene().bodies[i].type != BodyType::Dynamic || y >= top - 0.5 * least) continue;
+    if (nearest < 0 || y > world.body(nearest).position.y()) nearest = i;
+    if (reachOf(y) <= widest &&
+        (farthestInReach < 0 || y < world.body(farthestInReach).position.y()))
+      farthestInReach = i;
   }
-  f.reach = nearest > -1e299 ? (top - nearest) * (1 + kCloseUpRoom) : 0.0;
+  CloseUpFrame f;
+  f.nearest = nearest;
+  f.body = farthestInReach >= 0 ? farthestInReach : nearest;
+  f.reach = f.body >= 0 ? reachOf(world.body(f.body).position.y()) : 0.0;
   f.least = least;
-  f.widest = kCloseUpWidest * least;
-  // A body farther down than the widest close-up: the view the run zoomed out to after it
-  // stays (no jump back in mid-run), else the mechanism alone (the winch's load starts there).
+  f.widest = widest;
+  // The nearest body farther down than the widest close-up: the view the run zoomed out to
+  // after it stays (no jump back in mid-run), else the mechanism alone (the winch's load
+  // starts there).
   const bool hold = f.body >= 0 && f.body == followed;
   f.span = f.reach <= f.widest ? std::max(least, f.reach) : hold ? f.widest : least;
   f.focus = Vec2(0.5 * (scene.lo.x() + scene.hi.x()), top - 0.5 * f.span);
@@ -145,7 +152,9 @@ void followCloseUp(Sandbox& sandbox, double seconds) {
   if (!world || !sandbox.closeUp || !sandbox.viewFitted || !sandbox.presentation) return;
   // The view zoomed out after a hanging body: the run remembers it (ui/demo_loop.h DemoRun).
   const CloseUpFrame f = closeUpFrame(*world, sandbox.demo.closeUpBody);
-  if (f.reach > f.least && f.reach <= f.widest) sandbox.demo.closeUpBody = f.body;
+  // (Only the nearest: a lower one in view with it, the capstan's load, is not followed.)
+  if (f.reach > f.least && f.reach <= f.widest && f.body == f.nearest)
+    sandbox.demo.closeUpBody = f.body;
   const Camera goal = presentationFit(sandbox, sandbox.freeArea());
   // Out as fast as a falling body needs, at most kZoomOutRate (a new nearest body far down
   // would be a jump), in and along smoothly.

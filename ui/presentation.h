@@ -14,7 +14,8 @@
 // A looping demo that is thin and tall (the wheel's Atwood machine, the winch, the tackle: a
 // long rope under a small wheel) would be a sliver at a whole-run fit, a few percent of the
 // window's width. Presentation mode shows it in close-up instead: the top of the mechanism (the
-// wheel, drum or pulleys the rope hangs from) and the nearest body hanging below it, at least
+// wheel, drum or pulleys the rope hangs from) and the bodies hanging below it within the widest
+// close-up (the capstan wound twice: its hold and its load), else the nearest, at least
 // kCloseUpSpan times the scene's width tall; the view follows the run (zooms out as that body
 // moves away, in and along smoothly when it comes nearer; never a jump). The close-up zooms out
 // at most three times that: a body farther down from the start leaves the mechanism alone in
@@ -63,14 +64,16 @@ struct CloseUpFrame {
   Vec2 focus = Vec2::Zero();
   double span = 0, width = 0;
   double least = 0, widest = 0;  ///< m: the nearest and the farthest a close-up zooms out
-  double reach = 0;              ///< m: the view that holds the nearest hanging body (0: none)
+  double reach = 0;              ///< m: the view that holds `body` (0: none)
   int body = -1;                 ///< that body (-1: none)
+  int nearest = -1;              ///< the nearest body hanging below the top (-1: none)
 };
 
 /// The close-up of the run as it is now: the top of the mechanism (the wheel, drum or pulleys
-/// the rope hangs from) and the nearest body hanging below it, at least kCloseUpSpan times the
-/// scene's width tall. A body farther down than the widest: the widest when it is `followed`
-/// (the view zoomed out after it in this run), else the mechanism alone.
+/// the rope hangs from) and the bodies hanging below it as far down as the widest close-up
+/// reaches (`body`: the lowest of them), at least kCloseUpSpan times the scene's width tall.
+/// With no body that near: the widest when the nearest is `followed` (the view zoomed out
+/// after it in this run), else the mechanism alone.
 CloseUpFrame closeUpFrame(const World& world, int followed = -1);
 
 /// The close-up camera: closeUpFrame() fills the area above `bottomReserve`.

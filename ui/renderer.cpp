@@ -186,12 +186,23 @@ class Painter {
     ++strips_;
   }
 
-  /// Draws the queued labels where label_layout.h puts them inside `view` (px): off the bodies,
-  /// each other and `reserved`, a leader line to those placed away from their anchor; a label
-  /// with no such place is left out. Adds what it drew to `drawn`.
-  void placeLabels(const LabelBox& view, const std::vector<LabelBox>& reserved,
-                   DrawnView& drawn) const {
+  /// A marker (a target's or the statics' cross in its circle, `radiusPx` round `world`) that
+  /// labels and their leader lines keep off as they keep off the bars: a label across the
+  /// marker hides what it marks.
+  void marker(const Vec2& world, double radiusPx) const {
     if (!text_) return;
+    const Vec2 c = cam_.toScreen(world);
+    const double r = radiusPx * scale_ + 2;  // the circle's line and a little room
+    markers_.push_back({c.x() - r, c.y() - r, c.x() + r, c.y() + r});
+  }
+
+  /// Draws the queued labels where label_layout.h puts them inside `view` (px): off the bodies,
+  /// each other, the markers and `reserved`, a leader line to those placed away from their
+  /// anchor; a label with no such place is left out. Adds what it drew to `drawn`.
+  void placeLabels(const LabelBox& view, std::vector<LabelBox> reserved, DrawnView& drawn) const {
+    if (!text_) return;
+    drawn.markers = markers_;
+    reserved.insert(reserved.end(), markers_.begin(), markers_.end());
     // A thing out of view (a close-up's far weight, ui/presentation.h) has no label: a leader
     // line across the view to the edge would point at nothing.
     const auto outOfView = [&](const Label& l) {
@@ -237,6 +248,7 @@ class Painter {
     }
     labels_.clear();
     obstacles_.clear();
+    markers_.clear();
     strips_ = 0;
   }
 
@@ -256,6 +268,7 @@ class Painter {
   mutable std::vector<Label> labels_;
   mutable size_t strips_ = 0;  ///< the last obstacles_ are cables' strips
   mutable std::vector<LabelObstacle> obstacles_;
+  mutable std::vector<LabelBox> markers_;  ///< px: kept clear like `reserved`
   mutable std::vector<LabelBox> keepOff_;  ///< the screen pieces overlay lines keep off
   mutable std::vector<ScreenSegment>* drawnLines_ = nullptr;
 };
@@ -389,8 +402,9 @@ double cableStripHalfWidth(float width, const Painter& paint) {
 }
 
 /// The cable lying on a circle: from the tangent point round by the wrap angle (an interior
-/// circle), or the turns wound on a drum (a path's end), drawn as one turn a little outside the
-/// rim per extra turn, up to three.
+/// circle), or the turns wound on a drum (a path's end). Each whole turn after the first is a
+/// ring of its own, a line's width and a gap outside the one before (up to three), and the
+/// count is labelled ("2 turns"): drawn over each other, two turns read as one.
 void drawCableArc(const WrapPoint& p, bool atStart, bool atEnd, const Colour& colour, float width,
                   const Painter& paint) {
   const double r = std::abs(p.radius), s = p.radius > 0 ? -1.0 : 1.0;  // s: angle's sense
@@ -399,11 +413,16 @@ void drawCableArc(const WrapPoint& p, bool atStart, bool atEnd, const Colour& co
   // A path's start on a drum: the wound part runs backwards from where the cable leaves.
   const double sense = atStart ? -s : s;
   const double arc = std::max(0.0, p.arc);
-  const int loops = std::min(3, static_cast<int>(arc / (2 * M_PI)));
-  for (int loop = 0; loop <= loops; ++loop) {
-    const double span = loop < loops ? 2 * M_PI : arc - 2 * M_PI * loops;
-    const double radius = r + (atStart || atEnd ? paint.px(2.5) * loop : 0.0);
-    const int n = std::max(2, static_cast<int>(48 * span / (2 * M_PI)) + 1);
+  const int loops = std::min(3, static_cast<int>(arc / (2 * M_PI) + 1e-6));
+  const double gap = paint.px(width + 3);  // ring to ring: the line's width and 3 px clear
+  // On the rim, joining the straight pieces: the part of a turn and the first whole turn; the
+  // other whole turns outside it.
+  const double perRing = std::max(48.0, 2 * M_PI * r / paint.px(4));  // a piece every 4 px
+  for (int ring = 0; ring < std::max(loops, 1); ++ring) {
+    const double span = ring == 0 ? arc - 2 * M_PI * std::max(loops - 1, 0) : 2 * M_PI;
+    if (span <= 1e-9) continue;
+    const double radius = r + gap * ring;
+    const int n = std::max(2, static_cast<int>(perRing * span / (2 * M_PI)) + 1);
     Vec2 previous = p.world + radius * Vec2(std::cos(from), std::sin(from));
     for (int i = 1; i <= n; ++i) {
       const double a = from + sense * span * i / n;
@@ -413,6 +432,11 @@ void drawCableArc(const WrapPoint& p, bool atStart, bool atEnd, const Colour& co
       previous = next;
     }
   }
+  if (loops == 0) return;
+  const double turns = std::round(arc / M_PI) / 2;  // to a half turn
+  char text[32];
+  std::snprintf(text, sizeof text, turns == 1 ? "%.3g turn" : "%.3g turns", turns);
+  paint.label(p.world + Vec2(r + gap * (loops - 1), 0), text, {0.3f, 0.3f, 0.3f, 1}, {6, -8});
 }
 
 /// The arrow length per newton of the force arrows: the colour bar's top tension is a tenth
@@ -490,7 +514,8 @@ void drawOverlay(const Overlay& overlay, const Painter& paint) {
     paint.line(t.position + Vec2(-s, -s), t.position + Vec2(s, s), t.colour, 2.5f);
     paint.line(t.position + Vec2(-s, s), t.position + Vec2(s, -s), t.colour, 2.5f);
     paint.polygon(paint.circlePoints(t.position, paint.px(11)), nullptr, t.colour, 1.5f);
-    paint.label(t.position, t.label, t.colour, {12, -18});
+    paint.marker(t.position, 11);
+    paint.label(t.position, t.label, t.colour, t.labelOffset);
   }
   for (const Overlay::Text& t : overlay.texts) paint.label(t.position, t.text, t.colour, {0, 0});
 }

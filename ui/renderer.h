@@ -43,6 +43,7 @@ struct DrawnView {
   FurnitureLayout furniture;     ///< scale bar, colour bar, key, notes, banner, PAUSED sign
   LabelBox scene;                ///< the moving bodies, pulleys and cables (ui/scene_bounds.h)
   std::vector<ScreenSegment> overlayLines;  ///< drawn arrows, target marks and leader lines (px)
+  std::vector<LabelBox> markers;  ///< the overlay's target marks (px), kept clear of labels
 };
 
 /// Clears the viewport (the free rectangle with `clipToFree`) and draws `world` seen by

@@ -244,6 +244,8 @@ class Sandbox {
   PanelRect errorBox;
   /// The speed slider of the Run section and its value's text in the last frame (px).
   PanelRect speedSlider, speedValue;
+  /// Presentation mode's Record (Stop while recording) button in the last frame (px).
+  PanelRect recordButton;
   /// A cable was clicked in the view: the next frame opens the Inspector if it is collapsed.
   bool showInspector = false;
   /// How far (px) the widest table header of the Inspector reached past its column (counted

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/ui/lecture_view_checks.h"
 #include "tests/ui/test_support.h"
 #include "ui/clip.h"
 #include "ui/image.h"
@@ -38,19 +39,6 @@ nlohmann::json lecture(const std::string& scene, const std::string& script, cons
                               " --ui-scale 2 --script " + script + " --script-out " + prefix,
                           "lecture_" + tag);
   return jsonReport(r);
-}
-
-struct Box {
-  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-  bool overlaps(const Box& o) const {
-    return std::min(x1, o.x1) > std::max(x0, o.x0) && std::min(y1, o.y1) > std::max(y0, o.y0);
-  }
-};
-
-std::vector<Box> boxes(const nlohmann::json& list) {
-  std::vector<Box> out;
-  for (const auto& b : list) out.push_back({b[0], b[1], b[2], b[3]});
-  return out;
 }
 
 /// What one reported view must show (see the file's comment); `fresh`: the view was just
@@ -114,6 +102,10 @@ void expectReadable(const nlohmann::json& v, bool fresh = true) {
                 labels[i].y1 <= free.y1)
         << "label " << i << " " << where;
   }
+  // No label across a target's or the statics' marker (the hand's "box" and "statics" were).
+  for (const Box& m : boxes(v["markers"]))
+    for (size_t i = 0; i < labels.size(); ++i)
+      EXPECT_FALSE(labels[i].overlaps(m)) << "label " << i << " on a marker " << where;
   // No label across a cable's line or its end dot ("cable", "band", "block" were).
   EXPECT_EQ(v["labels_on_cables"].get<int>(), 0) << where;
   for (size_t i = 0; i < pieces.size(); ++i)
@@ -213,7 +205,8 @@ TEST(Lecture, WalkthroughCapstanSliderStepStaysInView) {
     ASSERT_TRUE(j.contains("views"));
     const auto& turns = j["views"].back();
     EXPECT_EQ(turns["name"], "turns") << size;
-    EXPECT_GE(turns["bodies_in_view"].get<int>(), 1) << size << " " << turns["screenshot"];
+    // Wound twice, both weights in the close-up (the load hung below it).
+    EXPECT_EQ(turns["bodies_in_view"].get<int>(), 2) << size << " " << turns["screenshot"];
   }
 }
 
@@ -280,7 +273,7 @@ TEST(Lecture, FirstMechanismAtProjectorScaleOpensTheBuildSection) {
 // the click left it so; a click on a cable now opens it.
 TEST(Lecture, ClickingTheRopeOpensTheInspectorAt1280x720) {
   REQUIRE_XVFB();
-  for (const std::string scene : {"capstan", "membrane"}) {
+  for (const std::string scene : {"capstan", "membrane", "pulley"}) {
     const auto j = lecture(scene, "select-rope", "1280x720", "select-rope-" + scene);
     ASSERT_TRUE(j.contains("open_after")) << j.dump();
     EXPECT_FALSE(j["open_before"].get<bool>()) << scene << ": the Inspector starts collapsed";
@@ -288,6 +281,11 @@ TEST(Lecture, ClickingTheRopeOpensTheInspectorAt1280x720) {
     EXPECT_EQ(j["selected_cable"], j["clicked_cable"]) << j.dump();
     EXPECT_TRUE(j["open_after"].get<bool>()) << scene << ": " << j.dump();
     EXPECT_EQ(j["overflow"].get<double>(), 0) << scene << ": " << j.dump();
+    // With two charts in the Plots section no row of the Simulation panel is cut either (the
+    // chart buttons ran 37 px past it, the pulley's "length 44.00000 m (rest 44.00000)" 11 px
+    // past the Inspector).
+    EXPECT_TRUE(j["plots_open"].get<bool>()) << scene;
+    EXPECT_EQ(j["simulation_overflow"].get<double>(), 0) << scene << ": " << j.dump();
   }
 }
 
@@ -446,30 +444,6 @@ TEST(Lecture, TensionScaleKeepsItsMeaningAcrossARun) {
   EXPECT_NE(j["next_scene_scale"].get<double>(), j["locked_at"].get<double>());
 }
 
-/// True when the segment [x0, y0, x1, y1] (px) passes through the inside of `b` (1 px in from
-/// its edges), sampled every half pixel.
-bool crosses(const nlohmann::json& line, const Box& b) {
-  const double x0 = line[0], y0 = line[1], x1 = line[2], y1 = line[3];
-  const int n = 2 * static_cast<int>(std::hypot(x1 - x0, y1 - y0)) + 2;
-  for (int k = 0; k <= n; ++k) {
-    const double x = x0 + (x1 - x0) * k / n, y = y0 + (y1 - y0) * k / n;
-    if (x > b.x0 + 1 && x < b.x1 - 1 && y > b.y0 + 1 && y < b.y1 - 1) return true;
-  }
-  return false;
-}
-
-/// Pixels inside `box` (px) that are red in `shot` (red above green and blue by 20 levels, as
-/// the drag arrow at its force limit, even seen through the colour bar's backing) and not in
-/// `before` (the colour bar's own red end).
-int newRedPixels(const ui::Image& before, const ui::Image& shot, const Box& box) {
-  const auto red = [](const std::uint8_t* p) { return p[0] - std::max(p[1], p[2]) > 20; };
-  int count = 0;
-  for (int y = static_cast<int>(box.y0) + 1; y < static_cast<int>(box.y1) - 1; ++y)
-    for (int x = static_cast<int>(box.x0) + 1; x < static_cast<int>(box.x1) - 1; ++x)
-      count += red(shot.pixel(x, y)) && !red(before.pixel(x, y));
-  return count;
-}
-
 // The other five built-in scenes (the walkthroughs above cover the capstan, wheel, winch and
 // tackle), one run for all, as a lecturer shows them: each opened from the Scene menu in
 // presentation mode at projector scale, at 1280x720 its body at a cable's end dragged and its
@@ -487,7 +461,7 @@ TEST(Lecture, TourOfTheOtherScenesAtBothSizes) {
   const auto j = lecture("ballast", "tour", "1280x720", "tour", clips.string());
   ASSERT_TRUE(j.contains("views")) << j.dump();
   EXPECT_EQ(j["banners"].size(), 0u) << "banners raised: " << j["banners"].dump();
-  ASSERT_EQ(j["views"].size(), 5u * 6 + 1) << j.dump();
+  ASSERT_EQ(j["views"].size(), 5u * 6 + 2) << j.dump();
   std::map<std::string, std::string> shots;  // view name -> screenshot
   for (const auto& v : j["views"]) {
     const std::string name = v["name"], where = name + " " + v["screenshot"].get<std::string>();
@@ -499,6 +473,12 @@ TEST(Lecture, TourOfTheOtherScenesAtBothSizes) {
     expectReadable(v, name.find("-start") != std::string::npos ||
                           name.find("-1080-paused") != std::string::npos);
     EXPECT_TRUE(v["presentation"].get<bool>()) << where;
+    // The strip's Record button in the window, its word whole (F9 was the only way).
+    ASSERT_EQ(v["record_button"].size(), 1u) << "no Record button: " << where;
+    const Box record = boxes(v["record_button"])[0];
+    EXPECT_GE(record.x1 - record.x0, 60) << where;  // "Stop" at projector scale: 72 px
+    EXPECT_LE(record.x1, v["window"][0].get<double>()) << where;
+    EXPECT_EQ(v["strip_overflow"].get<double>(), 0) << where;
     const bool big = name.find("-1080-") != std::string::npos;
     EXPECT_EQ(v["window"][0].get<double>(), big ? 1920 : 1280) << where;
     EXPECT_EQ(v["window"][1].get<double>(), big ? 1080 : 720) << where;
@@ -537,8 +517,12 @@ TEST(Lecture, TourOfTheOtherScenesAtBothSizes) {
   }
   // Issue 38's held-out walkthrough: the pulley's clip (F9, F9) was saved without a word at
   // 1280x720; the membrane's band, clicked in presentation mode (no Inspector), showed nothing.
+  // The clip is now started and stopped by the strip's Record button.
   for (const auto& v : j["views"]) {
     const std::string status = v["status"];
+    if (v["name"] == "pulley-720-recording") {
+      EXPECT_NE(status.find("recording cablelab-pulley-1."), std::string::npos) << status;
+    }
     if (v["name"] == "pulley-720-try") {
       const std::string clip =
           ui::mp4Available() ? "cablelab-pulley-1.mp4" : "cablelab-pulley-1.gif";
@@ -580,19 +564,6 @@ TEST(Lecture, TourOfTheOtherScenesAtBothSizes) {
     EXPECT_EQ(newRedPixels(before, ui::readPng(v["screenshot"]), b), 0)
         << name << ": the arrow drawn on the " << bar;
   }
-}
-
-/// Pixels inside `box` (px) of `shot` as dark as text (no channel above 110).
-int darkPixels(const ui::Image& shot, const Box& box) {
-  int count = 0;
-  for (int y = std::max(0, static_cast<int>(box.y0));
-       y < std::min(shot.height, static_cast<int>(box.y1)); ++y)
-    for (int x = std::max(0, static_cast<int>(box.x0));
-         x < std::min(shot.width, static_cast<int>(box.x1)); ++x) {
-      const std::uint8_t* p = shot.pixel(x, y);
-      count += std::max({p[0], p[1], p[2]}) <= 110;
-    }
-  return count;
 }
 
 /// The Build menu as one view showed it open: under the top bar, inside the window, every item
