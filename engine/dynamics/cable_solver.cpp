@@ -118,7 +118,15 @@ void targetAndSolveLengths(Workspace& ws, const CableSolveInput& in, std::span<C
     const double plastic = energyWithShare(0);
     if (plastic >= allowed) return;
     double kept = 0, gains = std::sqrt(std::clamp((aim - plastic) / (full - plastic), 0.0, 1.0));
-    if (energyWithShare(gains) <= allowed) return;
+    if (const double first = energyWithShare(gains); first <= allowed) {
+      // Once more along the line through it and the full bounce (in s^2): the model's first guess
+      // fell short by up to 5% of a busy scene's scale.
+      if (first >= aim - allowance || !(full > first)) return;
+      const double s2 = gains * gains + (aim - first) * (1 - gains * gains) / (full - first);
+      if (energyWithShare(std::sqrt(std::min(s2, 1.0))) <= allowed) return;
+      kept = gains;
+      gains = 1;
+    }
     bool lastKept = false;
     for (int i = 0; i < kBounceHalvings; ++i) {
       const double share = 0.5 * (kept + gains);
