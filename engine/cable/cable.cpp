@@ -421,6 +421,14 @@ bool Cable::joinRound(std::vector<std::string>* warnings) {
     const Vec2 b = arriving(path_[host + 1]);
     const Vec2 ab = b - a;
     const double len = ab.norm();
+    // A circle whose disc holds an end of the segment (a bob on a slack rope flew into it) has no
+    // taut path round it: joined, the path had a point inside the circle, and its length grew
+    // with the point's turn about the centre while J left the point out (docs/floors.md, "The
+    // disc of a round pulley").
+    auto endInDisc = [&](const Vec2& centre) {
+      const double r = std::abs(p.radius);
+      return !firstUpdate_ && !p.polygon && ((a - centre).norm() < r || (b - centre).norm() < r);
+    };
     // Auto: the centre's side of the segment decides, and a change of side is a crossing.
     if (p.autoSide) {
       Vec2 centre = Vec2::Zero();
@@ -438,7 +446,7 @@ bool Cable::joinRound(std::vector<std::string>* warnings) {
           within && !firstUpdate_ && (left > 0) != (was > 0) &&
           (p.polygon || p.body >= 0 ||
            sweptOverPulley(previousPath_, path_, host, centre, p.radius + kSweepMargin));
-      if (touches || crossed) {
+      if ((touches || crossed) && !endInDisc(centre)) {
         p.engaged = true;
         p.arc = 0;
         p.hold = ChainHold{};
@@ -461,7 +469,7 @@ bool Cable::joinRound(std::vector<std::string>* warnings) {
              !fixedInside(path_[host + 1], b);
     } else {
       const double t = len > 0 ? (p.world[0] - a).dot(ab) / (len * len) : -1;
-      cuts = t > 0 && t < 1 && (firstUpdate_ ? depth >= 0 : depth > 0);
+      cuts = t > 0 && t < 1 && (firstUpdate_ ? depth >= 0 : depth > 0) && !endInDisc(p.world[0]);
     }
     bool crossed = firstUpdate_ ||
                    (p.previousDepth <= 0 && (p.polygon || p.body >= 0 ||

@@ -117,7 +117,9 @@ bool floorBounces(Workspace& ws, const CableSolveInput& in, std::span<const Cabl
                               restitution(c.path()[row.segment + 1].body));
     if (!(e > 0)) continue;
     const double phi = floorRow(ws, in.bodies, c, row);  // kFloorLength - gap, at the start
-    double closing = 0;                                  // d phi / dt at the start of the step
+    // Inside an elastic cable's floor already: held where it is (lengthTargets), not thrown out.
+    if (c.elastic() && phi > kCameInsideFloor) continue;
+    double closing = 0;  // d phi / dt at the start of the step
     for (const BodyJacobian& j : ws.floorJacobian) {
       const BodyState& b = in.bodies[j.body];
       closing += j.d.dot(Vec3(b.velocity.x(), b.velocity.y(), b.angularVelocity));

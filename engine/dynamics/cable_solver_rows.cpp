@@ -156,17 +156,21 @@ void buildRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> 
   // Floors (floors.h): a short segment on a moving body gets a row of its own after the cables.
   for (int cable : ws.islandRows[island]) {
     const auto& path = cables[cable].path();
-    for (size_t i = 0; i + 1 < path.size(); ++i)
-      if (needsFloor(cables[cable], i, in.bodies, in.h, in.gravity,
-                     [&](int b) { return ws.dofs.ofBody[b] >= 0; }) &&
-          mayReachFloor(in, path[i], path[i + 1])) {
-        const Vec2 n = floorNormal(path[i], path[i + 1], in.bodies, in.h, in.gravity);
+    auto moved = [&](int b) { return ws.dofs.ofBody[b] >= 0; };
+    for (size_t i = 0; i + 1 < path.size(); ++i) {
+      const bool floor = needsFloor(cables[cable], i, in.bodies, in.h, in.gravity, moved) &&
+                         mayReachFloor(in, path[i], path[i + 1]);
+      // A slack cable's point at a circle: the rim row alone (needsDiscFloor).
+      if (!floor && !needsDiscFloor(cables[cable], i, in.bodies, in.h, in.gravity, moved)) continue;
+      const Vec2 n = floorNormal(path[i], path[i + 1], in.bodies, in.h, in.gravity);
+      if (floor) {
         ws.rows.push_back({cable, 0, 0, ws.rowWeights.size(), static_cast<int>(i), n});
         ws.rowWeights.push_back(1.0);
-        if (rimEnd(path[i], path[i + 1]) < 0) continue;
-        ws.rows.push_back({cable, 0, 0, ws.rowWeights.size(), static_cast<int>(i), n, true});
-        ws.rowWeights.push_back(1.0);
       }
+      if (rimEnd(path[i], path[i + 1]) < 0) continue;
+      ws.rows.push_back({cable, 0, 0, ws.rowWeights.size(), static_cast<int>(i), n, true});
+      ws.rowWeights.push_back(1.0);
+    }
   }
 }
 

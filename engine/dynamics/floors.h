@@ -178,6 +178,28 @@ bool needsFloor(const Cable& cable, size_t i, std::span<const BodyState> bodies,
          !slackAtPinnedFloor(cable, i, bodies, h, gravity);
 }
 
+/// Whether segment i of elastic `cable`, between a point on a moving body and a circle, gets the
+/// circle's rim row (rimGap) alone where needsFloor gives it none because the cable is slack: the
+/// disc stops the body as it would were the rope taut. A bob on a slack bungee flew into a world
+/// drum's disc, where its path has no tangent (the segment out of J); the rope, taut again with the
+/// bob inside, gained up to 28% of a busy scene's energy in a step (docs/floors.md, "The disc of a
+/// round pulley"). A point already inside the disc gets none: held at its depth, it slid round
+/// the inside of the rim.
+template <class Moved>
+bool needsDiscFloor(const Cable& cable, size_t i, std::span<const BodyState> bodies, double h,
+                    const Vec2& gravity, Moved moved) {
+  const auto& path = cable.path();
+  const int rim = rimEnd(path[i], path[i + 1]);
+  if (rim < 0 || !cable.elastic() || !hasFloors(cable) || cable.mayEnterHull(i)) return false;
+  const WrapPoint& point = rim == 0 ? path[i + 1] : path[i];
+  if (point.body < 0 || !moved(point.body)) return false;
+  const double gap = floorGap(path[i], path[i + 1], true);
+  if (gap < kFloorLength - 0.1 * kFloorLength) return false;
+  const bool near =
+      gap < kFloorWatch || gap < 2 * floorDrift(path[i], path[i + 1], bodies, h, gravity).norm();
+  return near && !needsFloor(cable, i, bodies, h, gravity, moved);
+}
+
 /// The direction n a floor row measures segment (p, q) along: its constraint is
 /// n . (q - p) >= kFloorLength at the end of the sub-step (contacts carried with their bodies).
 /// If the contacts' straight relative motion over the sub-step (floorDrift) comes within

@@ -185,6 +185,38 @@ double tautSwingRate(const Cable& c, std::span<const BodyState> bodies) {
   return fastest;
 }
 
+// Whether the step takes a point of one of `rows` (cable rows) into its floor at a circle of the
+// path, out of it at the start: the tangent length to the rim below kFloorLength (floors.h,
+// rimGap). The midpoint solve's floor rows run along the segment only, and a point that comes at
+// the rim from the side slides past the tangent point into the disc; the main solve's rim row
+// stops it. Taut or slack (needsDiscFloor): a bungee's bob swung onto a world drum went 1.6 cm
+// into it, and the rope, holding it there, later threw it out with 10 times its energy
+// (docs/floors.md, "The disc of a round pulley").
+bool entersRimFloor(std::span<const BodyState> bodies, std::span<const BodyState> predicted,
+                    std::span<const Cable> cables, std::span<const int> rows,
+                    std::span<const int> dofOfBody) {
+  constexpr double kInside = kFloorLength - 0.1 * kFloorLength;
+  for (const int index : rows) {
+    const Cable& c = cables[index];
+    if (!hasFloors(c)) continue;
+    const auto& path = c.path();
+    for (size_t i = 0; i + 1 < path.size(); ++i) {
+      const int rim = rimEnd(path[i], path[i + 1]);
+      if (rim < 0) continue;
+      const WrapPoint &circle = path[i + rim], &point = path[i + 1 - rim];
+      if (point.body < 0 || dofOfBody[point.body] < 0) continue;
+      Vec2 g;
+      const double gap0 = rimGap(point.body, worldPoint(bodies, point.body, point.local),
+                                 worldPoint(bodies, circle.body, circle.local), circle.radius, g);
+      const double gap1 =
+          rimGap(point.body, worldPoint(predicted, point.body, point.local),
+                 worldPoint(predicted, circle.body, circle.local), circle.radius, g);
+      if (gap0 >= kInside && gap1 < kInside) return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const Cable> cables,
@@ -325,7 +357,10 @@ int MidpointSolver::solve(std::span<const BodyState> bodies, std::span<Cable> ca
     // at its sheave did those on every step, to hand the step over anyway). A push on the first
     // iteration alone can be the linearisation's (a box tied off its centre swinging in).
     const bool fromTheStart = pushing == iteration + 1 && pushing >= kFloorIterations;
-    if ((settled && pushing > 0) || fromTheStart) {
+    // A point the step takes into a circle's disc (entersRimFloor) is handed over too.
+    if ((settled &&
+         (pushing > 0 || entersRimFloor(bodies, predicted_, cables, rows_, dofOfBody_))) ||
+        fromTheStart) {
       floorHit_ = true;
       return -1;
     }

@@ -60,7 +60,9 @@ bool SparseIsland::qualifies(const CableSolveInput& in, std::span<const Cable> c
     if (c.spanCount() != 1) return false;  // capstans and gripping wheels: dense only
     const auto path = c.path();
     for (size_t i = 0; i + 1 < path.size(); ++i)
-      if (needsFloor(c, i, in.bodies, in.h, in.gravity, moved)) return false;  // dense only
+      if (needsFloor(c, i, in.bodies, in.h, in.gravity, moved) ||
+          needsDiscFloor(c, i, in.bodies, in.h, in.gravity, moved))
+        return false;  // dense only
   }
   return true;
 }
