@@ -12,7 +12,8 @@
 //                           (2-4 together: prepareRows)                      cable_solver_prepare
 //   4b. redirectBlockedRows rows that lost their say pull along J ahead     cable_solver_redirect
 //   5. lengthTargets        rigid: the end-of-step length; elastic: the implicit spring-damper
-//   5b. floorBounces        a body arriving at its floor with restitution leaves it again
+//   5b. floorBounces        a body arriving at its floor with restitution leaves it again,
+//                           ending its step with no more energy than it began  cable_solver_bounce
 //   6. newtonOnLengths      Newton on the end-of-step lengths, one LCP per iteration
 //                                                                             cable_solver_newton
 //                           one LCP on the start-of-step linearisation where its remainder bound
@@ -50,96 +51,15 @@ namespace cablelab {
 namespace cable_stages {
 namespace {
 
-// The island's energy (kinetic, gravity's and the elastic rows'; a floor row holds none) at the
-// start of the step (`atEnd` false) or at its end for the impulses ws.P. `kinetic` gets its
-// kinetic part.
-double islandEnergy(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables,
-                    bool atEnd, double& kinetic) {
-  if (atEnd) linearise(ws, in, cables);  // v1, the end poses and phi1 at ws.P
-  const Eigen::VectorXd& v = atEnd ? ws.v1 : ws.v0;
-  kinetic = 0;
-  for (Eigen::Index d = 0; d < v.size(); ++d)
-    if (ws.invM[d] > 0) kinetic += 0.5 * v[d] * v[d] / ws.invM[d];
-  double energy = kinetic;
-  for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
-    const int b = ws.dofs.body[k];
-    const Vec2& x = atEnd ? ws.predicted[b].position : in.bodies[b].position;
-    if (in.bodies[b].invMass > 0) energy -= in.gravity.dot(x) / in.bodies[b].invMass;
-  }
-  for (size_t r = 0; r < ws.rows.size(); ++r) {
-    const Workspace::Row& row = ws.rows[r];
-    const Cable& c = cables[row.cable];
-    const double phi = atEnd ? ws.phi1[r] : ws.phi0[r];
-    if (row.segment < 0 && c.elastic() && phi > 0)
-      energy += 0.5 * c.spanStiffness(row.first) * phi * phi;
-  }
-  return energy;
-}
-
-// Of the larger kinetic energy, at the start or at the end of the free step: what a bounce may
-// end above the larger of their energies by.
-constexpr double kBounceEnergyAllowance = 0.01;
-
-constexpr int kBounceHalvings = 6;  // of the share of a bounce that gains (to 1/64 of it)
-
-// 5, 5b, 6: the length targets, a first solve with bouncing floors left free where any may
-// bounce, then Newton on the end-of-step lengths. A bounce may end the step with no more energy
-// than it starts with or the free step (which passes through the floor) ends with: a bungee's bob
-// that struck a round pulley from the side, its rope pulling along the rim, was sent back along the
-// rim's normal and the rope stretched, and the segment's two floor rows (along it and at the rim,
-// floors.h) each asked for a knock of their own: up to twice the energy in a step (docs/floors.md,
-// "The disc of a round pulley"). Such a step takes a share s of the bounce's targets, between the
-// plastic stop's (s = 0) and the bounce's, the one whose energy, taken as growing with s^2 from the
-// plastic stop's, is half the allowance short of the most allowed; if that gains too, the largest
-// that does not, halving. Stopped plastically instead, a bob knocking a drum lost 38% of a busy
-// scene's energy scale; bisected alone, 3% of it.
+// 5, 5b, 6: the length targets, then Newton on the end-of-step lengths; where a floor may bounce,
+// a first solve with it left free, then the bounce (cable_solver_bounce.cpp).
 void targetAndSolveLengths(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables,
                            StepStats& stats) {
   lengthTargets(ws, in.h, in.share, cables);
-  if (floorBounces(ws, in, cables)) {
+  if (floorBounces(ws, in, cables))
+    solveBouncing(ws, in, cables, stats);
+  else
     newtonOnLengths(ws, in, cables, stats);
-    double kinetic0, kinetic1, ignored;
-    const double start = islandEnergy(ws, in, cables, false, kinetic0);
-    const double free = islandEnergy(ws, in, cables, true, kinetic1);
-    const double allowance = kBounceEnergyAllowance * std::max(kinetic0, kinetic1);
-    const double allowed = std::max(start, free) + allowance, aim = allowed - 0.5 * allowance;
-    bounceTargets(ws, in, cables);
-    newtonOnLengths(ws, in, cables, stats);
-    const double full = islandEnergy(ws, in, cables, true, ignored);
-    if (full <= allowed) return;
-    std::vector<double> bounced;  // (rare: a bounce that gains)
-    for (const Workspace::Bounce& b : ws.bounces) bounced.push_back(ws.target[b.row]);
-    auto energyWithShare = [&](double share) {
-      for (size_t i = 0; i < ws.bounces.size(); ++i) {
-        const Workspace::Bounce& b = ws.bounces[i];
-        ws.target[b.row] = b.held + share * (bounced[i] - b.held);
-      }
-      newtonOnLengths(ws, in, cables, stats);
-      return islandEnergy(ws, in, cables, true, ignored);
-    };
-    const double plastic = energyWithShare(0);
-    if (plastic >= allowed) return;
-    double kept = 0, gains = std::sqrt(std::clamp((aim - plastic) / (full - plastic), 0.0, 1.0));
-    if (const double first = energyWithShare(gains); first <= allowed) {
-      // Once more along the line through it and the full bounce (in s^2): the model's first guess
-      // fell short by up to 5% of a busy scene's scale.
-      if (first >= aim - allowance || !(full > first)) return;
-      const double s2 = gains * gains + (aim - first) * (1 - gains * gains) / (full - first);
-      if (energyWithShare(std::sqrt(std::min(s2, 1.0))) <= allowed) return;
-      kept = gains;
-      gains = 1;
-    }
-    bool lastKept = false;
-    for (int i = 0; i < kBounceHalvings; ++i) {
-      const double share = 0.5 * (kept + gains);
-      lastKept = energyWithShare(share) <= allowed;
-      (lastKept ? kept : gains) = share;
-    }
-    if (lastKept) return;
-    for (size_t i = 0; i < ws.bounces.size(); ++i)
-      ws.target[ws.bounces[i].row] = ws.bounces[i].held + kept * (bounced[i] - ws.bounces[i].held);
-  }
-  newtonOnLengths(ws, in, cables, stats);
 }
 
 // 2-6 on the island's rows, again where rows merge or joints lock.

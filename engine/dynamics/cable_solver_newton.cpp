@@ -18,16 +18,6 @@ constexpr int kNewtonIterations = 3;  // on the end-of-step lengths; geometry is
 // With redundant rows Newton runs on J0 W (a chord method): it converges linearly, not
 // quadratically, and a fast catch needs more steps (a puck at 50 m/s: 29 mm stretch after 3).
 constexpr int kChordIterations = 12;
-// m: a body this far inside an elastic cable's floor came in while the cable was slack (floors.h,
-// staysSlack); one less deep sank in by the step's linearisation (a hand's tendons, 0.5 mm).
-constexpr double kCameInsideFloor = 0.1 * kFloorLength;
-// m/s: a body arriving at its floor slower than this stops there whatever its restitution, as at
-// a Box2D contact (b2_velocityThreshold), so that with e < 1 its bounces die out and it rests. The
-// speed is the one the step starts with, which the floor held at 0 for a body resting there: not
-// Box2D's 1 m/s (for the g h its velocity solve sees), which stopped an Atwood's light side
-// reaching its wheel at 0.9 m/s dead in a conservative scene.
-constexpr double kBounceSpeed = 0.25;
-constexpr double kFreeFloor = 1.0;  // m: a floor row's target this far past its start never binds
 
 // Warm start: a cable's tension changes little from one sub-step to the next, so Newton starts
 // from the impulses of the last solve when it had the same h and nothing has set the tension
@@ -90,52 +80,6 @@ void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable>
       ws.damped[r] = damp * phi / (stiffK * h + damp);
     }
   }
-}
-
-// 5b. Bouncing off a pulley (docs/floors.md): a floor row whose segment closes at v, faster than
-// kBounceSpeed, and that the step, solved without it, takes past its floor bounces with e, the
-// larger restitution of the two bodies' shapes (Box2D's b2MixRestitution; the world has none).
-// floorBounces leaves such rows free (true if any) for a first solve; bounceTargets then asks for
-// the row's end value of that free step opened by (1 + e) v h: the knock adds (1 + e) v to the
-// rate the step's own pulls (the rigid cable, a bungee's spring, gravity) give the segment. The
-// body turns back where the step starts, up to v h short of its floor: at that place it comes
-// back from a knock at the speed it had there. Asked for e v at the end of the step instead, the
-// knock ignored the pulls over the step: a bungee's bob, turned back against its spring's pull T,
-// gained T v h. Reflected at the floor, its velocity, (gap1 - gap0) / h as Box2D moves it, fell
-// short by (1 + e) (gap0 - 1 cm) / h. e = 0 keeps lengthTargets' plastic stop.
-bool floorBounces(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
-  ws.bounces.clear();
-  if (ws.restitution.empty()) return false;
-  auto restitution = [&](int body) {
-    return body >= 0 && body < static_cast<int>(ws.restitution.size()) ? ws.restitution[body] : 0.0;
-  };
-  for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
-    const Workspace::Row& row = ws.rows[r];
-    if (row.segment < 0) continue;
-    const Cable& c = cables[row.cable];
-    const double e = std::max(restitution(c.path()[row.segment].body),
-                              restitution(c.path()[row.segment + 1].body));
-    if (!(e > 0)) continue;
-    const double phi = floorRow(ws, in.bodies, c, row);  // kFloorLength - gap, at the start
-    // Inside an elastic cable's floor already: held where it is (lengthTargets), not thrown out.
-    if (c.elastic() && phi > kCameInsideFloor) continue;
-    double closing = 0;  // d phi / dt at the start of the step
-    for (const BodyJacobian& j : ws.floorJacobian) {
-      const BodyState& b = in.bodies[j.body];
-      closing += j.d.dot(Vec3(b.velocity.x(), b.velocity.y(), b.angularVelocity));
-    }
-    // Slow, or too far off to arrive within the step (pulls may speed it up to twice as fast).
-    if (closing < kBounceSpeed || -phi > 2 * closing * in.h) continue;
-    ws.bounces.push_back({r, (1 + e) * closing * in.h, ws.target[r]});
-    ws.target[r] = phi + kFreeFloor;  // free for the first solve
-  }
-  return !ws.bounces.empty();
-}
-
-void bounceTargets(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
-  linearise(ws, in, cables);                     // phi1 at the free step's impulses
-  for (const Workspace::Bounce& b : ws.bounces)  // only rows the free step takes past the floor
-    ws.target[b.row] = ws.phi1[b.row] > 0 ? ws.phi1[b.row] - b.opening : b.held;
 }
 
 // ws.WP = W P, column by column: W has a few columns (one per row), and Eigen's general product

@@ -172,9 +172,10 @@ void pathAhead(Workspace& ws, const Cable& cable, int span, std::span<const Body
 
 // 5, 6. Length targets and Newton on the end-of-step lengths (cable_solver_newton.cpp).
 void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable> cables);
+// 5b. Floors that may bounce, then the solve that bounces them (cable_solver_bounce.cpp).
 bool floorBounces(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
-// After a solve with the bouncing rows free.
-void bounceTargets(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
+void solveBouncing(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables,
+                   StepStats& stats);
 void timesImpulses(Workspace& ws, const Eigen::VectorXd& P);
 void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
 // Newton iterations from ws.P, each linearisation an LCP over all rows. True once the impulses

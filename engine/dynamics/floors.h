@@ -19,6 +19,9 @@ namespace cablelab {
 
 inline constexpr double kFloorWatch = 0.5;    ///< m: segments shorter than this get a floor row
 inline constexpr double kFloorLength = 0.01;  ///< m: the closest two points of a segment come
+/// m: a body this far inside an elastic cable's floor came in while the cable was slack
+/// (staysSlack); one less deep sank in by the step's linearisation (a hand's tendons, 0.5 mm).
+inline constexpr double kCameInsideFloor = 0.1 * kFloorLength;
 /// m: a cable no longer than this has no floors. One of kFloorLength fought a rope that short for
 /// its own length: a 5 mm pendulum was held at 7.5 mm, a 1 cm one lost all its swing in 15 s.
 inline constexpr double kShortestFlooredCable = 4 * kFloorLength;

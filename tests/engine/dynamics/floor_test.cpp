@@ -351,7 +351,9 @@ TEST(Floors, ABobThrownOverItsSlackRopesAnchorWrapsNoFarPulley) {
         EXPECT_LT(highest, e0 + 0.01 * std::abs(e0));
         for (const std::string& w : world.warnings()) {  // no jump over 5 cm
           const size_t by = w.find("moved the length by ");
-          if (by != std::string::npos) EXPECT_LT(std::abs(std::stod(w.substr(by + 20))), 0.05) << w;
+          if (by != std::string::npos) {
+            EXPECT_LT(std::abs(std::stod(w.substr(by + 20))), 0.05) << w;
+          }
         }
       }
 }
