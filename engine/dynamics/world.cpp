@@ -608,6 +608,7 @@ double World::advance(double left, double h, bool locate) {
     keepWheelRopeEnergy({ropeStart, cables_, &scene_, jointBodies_, worked, gravity_, dt}, bodies_,
                         changed);
     for (int b : changed) b2_->placeBody(b, bodies_[b].position, bodies_[b].angle);
+    if (!changed.empty()) b2_->readBodies(bodies_);  // the pose Box2D holds (floats)
   }
   if (left - taken <= kSubstepRest * h) expectContacts(b2_->contactSumTime());  // sub-step's end
   time_ += taken;
