@@ -22,6 +22,7 @@
 #include "engine/dynamics/length_targets.h"
 #include "engine/dynamics/midpoint_solver.h"
 #include "engine/dynamics/servo_drive.h"
+#include "engine/dynamics/wheel_rope_energy.h"
 #include "engine/dynamics/world_state.h"
 
 namespace cablelab {
@@ -417,6 +418,12 @@ double World::advance(double left, double h, bool locate) {
   const auto c0 = Clock::now();
   b2_->readBodies(bodies_);
   if (keepsJointEnergy_ && !scene_.joints.empty()) jointEnergy_->remember(bodies_);
+  // Ropes over wheels end the step on the trapezoid rule (wheel_rope_energy.h): from this state.
+  static thread_local std::vector<BodyState> ropeStart;  // scratch: no allocation a step
+  bool wheelRopes = false;
+  for (const Cable& c : cables_)
+    for (const WrapPoint& w : c.path()) wheelRopes |= w.radius != 0;
+  if (wheelRopes) ropeStart = bodies_;
   // An elastic rope's point about to knock a free polygon bounces off it first (hull_bounce.h).
   b2_->bounceHullPoints(bodies_, left);
   selectWraps(h);
@@ -587,6 +594,21 @@ double World::advance(double left, double h, bool locate) {
       cutEvent_ = after.event;
       ++stats_.events;
     }
+  }
+  // Ropes over wheels: the step's bodies end on the trapezoid rule (wheel_rope_energy.h), unless
+  // a knock took part of the step back.
+  if (wheelRopes && taken == dt) {
+    static thread_local std::vector<char> worked;
+    static thread_local std::vector<int> changed;
+    worked.assign(bodies_.size(), 0);
+    b2_->markTouching(worked);
+    for (size_t b = 0; b < bodies_.size(); ++b)
+      worked[b] |= touching_[b] || !pendingForces_[b].isZero() || static_cast<int>(b) == dragBody_;
+    changed.clear();
+    keepWheelRopeEnergy({ropeStart, cables_, &scene_, jointBodies_, worked, gravity_, dt}, bodies_,
+                        changed);
+    for (int b : changed) b2_->placeBody(b, bodies_[b].position, bodies_[b].angle);
+    if (!changed.empty()) b2_->readBodies(bodies_);  // the pose Box2D holds (floats)
   }
   if (left - taken <= kSubstepRest * h) expectContacts(b2_->contactSumTime());  // sub-step's end
   time_ += taken;
