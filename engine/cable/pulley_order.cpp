@@ -115,13 +115,16 @@ bool Cable::joinCrossedSegment(int j) {
       const PulleyState& q = pulleys_[end.pulley];
       return chainKeptBetween(path_, end.pulley, q.world, q.side, from, to);
     };
-    // Where the path leaves the point before path_[k]'s polygon, and reaches the one after it.
+    // Where the path leaves the point before path_[k]'s polygon, and reaches the one after it
+    // (an end of the path, an anchor, has none: its own point, which kept() does not read).
     auto before = [&](size_t k) {
+      if (k == 0) return path_[0].world;
       while (k > 1 && path_[k - 1].pulley == path_[k].pulley) --k;
       const WrapPoint& w = path_[k - 1];
       return w.radius == 0 ? w.world : w.tangentOut;
     };
     auto after = [&](size_t k) {
+      if (k + 1 >= path_.size()) return path_.back().world;
       while (k + 2 < path_.size() && path_[k + 1].pulley == path_[k].pulley) ++k;
       const WrapPoint& w = path_[k + 1];
       return w.radius == 0 ? w.world : w.tangentIn;
