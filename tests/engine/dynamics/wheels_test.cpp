@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "engine/dynamics/world.h"
+#include "engine/scenes/scene_parts.h"
 #include "engine/scenes/scene_registry.h"
 #include "tests/support/engine_test_support.h"
 
@@ -297,16 +298,10 @@ TEST(Wheel, FrictionlessPostAndWindingDrumKeepTheirEnergy) {
 SceneDef wheelAtwood(double restitution, double speed, double light, double heavy) {
   const double r = 0.2;
   auto body = [&](const std::string& name, const Vec2& at, double mass, double radius) {
-    BodyDef b;
-    b.name = name;
-    b.position = at;
+    BodyDef b = wheelBody(name, at, radius);  // a sensor disc
     b.mass = mass;
     b.inertia = 0.5 * mass * radius * radius;
-    ShapeDef shape;
-    shape.radius = radius;
-    shape.sensor = true;
-    shape.restitution = restitution;
-    b.shapes = {shape};
+    b.shapes[0].restitution = restitution;
     return b;
   };
   SceneDef s;
