@@ -9,7 +9,9 @@
 // there. It wraps on the side it came from, as an auto pulley does: coming down on the rope from
 // the side it was not wrapped on, it went through. Off the path its place changes neither the
 // length nor J. On the path, barely bending the rope where it rides its neighbour's hull, it
-// moves its place to a segment it crosses where that moves the length by a fraction of a mm.
+// moves its place to a segment it crosses where that moves the length by a fraction of a mm;
+// wedged between two strands (moving would leave the old strand across it), its second place
+// joins the strand it crosses, and the rope bends round it at both.
 #include <algorithm>
 #include <utility>
 
