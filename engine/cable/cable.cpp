@@ -125,7 +125,9 @@ Cable::Cable(const SceneDef& scene, int index, const std::string& source)
   order_.resize(pulleys_.size());
   std::iota(order_.begin(), order_.end(), 0);
   rank_ = order_;
+  namedPulleys_ = static_cast<int>(pulleys_.size());
   findTiedEnds();
+  addSecondPlaces();
 }
 
 void Cable::setParameters(const CableParameters& parameters) {
@@ -409,6 +411,7 @@ bool Cable::joinRound(std::vector<std::string>* warnings) {
   size_t host = 0;  // path index of the last point before pulley j
   for (const int j : order_) {
     PulleyState& p = pulleys_[j];
+    if (idleSecondPlace(j)) continue;
     if (p.engaged) {
       // One riding its neighbour's hull may move its place (pulley_order.cpp).
       if (joinsAnySegment(j) && joinCrossedSegment(j)) return true;

@@ -354,6 +354,10 @@ class Cable {
       bool cut;  ///< the segment cut the polygon
     };
     std::vector<SegmentDepth> segmentDepths;
+    /// A free polygon's other place in the order (its twin's index; -1: none): wedged between
+    /// two strands of the rope, the path bends round it at both (pulley_order.cpp).
+    int twin = -1;
+    bool secondPlace = false;  ///< the twin itself: on the path only through its sibling
     double signedRadius() const { return side == WrapSide::Right ? -radius : radius; }
     /// The wrap branch at the start: the turns it was wound with, else within (0, 2 pi).
     double initialArc() const { return turns > 0 ? 2 * M_PI * turns : M_PI; }
@@ -419,6 +423,14 @@ class Cable {
   /// joins whichever segment it crosses and takes its place there (pulley_order.cpp); rank_ is
   /// each pulley's place in order_.
   std::vector<int> order_, rank_;
+  /// The scene's pulleys (the first of pulleys_); the free polygons' second places follow.
+  int namedPulleys_ = 0;
+  /// Free polygons' second places (pulley_order.cpp).
+  void addSecondPlaces();
+  /// A second place off the path: it takes part in nothing until its sibling puts it on.
+  bool idleSecondPlace(int j) const { return pulleys_[j].secondPlace && !pulleys_[j].engaged; }
+  /// Moves pulley j's place in the order to right after the pulley segment `i` starts at.
+  void placeAfterSegment(int j, size_t i);
   /// Whether pulley j may join any segment of the path, not only its own (pulley_order.cpp).
   bool joinsAnySegment(int j) const;
   /// Free polygon j off the path: joins a segment other than its own that cuts it now and that it

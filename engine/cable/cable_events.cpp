@@ -87,7 +87,7 @@ std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, 
     for (int r = lo + 1; r < hi; ++r) {
       const int j = order_[r];
       const PulleyState& p = pulleys_[j];
-      if (p.engaged || p.side == WrapSide::Threaded) continue;
+      if (p.engaged || p.side == WrapSide::Threaded || p.secondPlace) continue;
       for (int v = 0; v < static_cast<int>(p.local.size()); ++v)
         tryPoint(j, v, WrapEvent::Kind::Join);
     }
@@ -97,8 +97,10 @@ std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, 
       for (int r = 0; r < count; ++r) {
         const int j = order_[r];
         const PulleyState& p = pulleys_[j];
-        const bool own = p.engaged ? a.pulley == j || b.pulley == j : r > lo && r < hi;
-        if (own || p.dropped || !joinsAnySegment(j)) continue;
+        const bool mine = a.pulley == j || b.pulley == j ||
+                          (p.twin >= 0 && (a.pulley == p.twin || b.pulley == p.twin));
+        const bool own = p.engaged ? mine : r > lo && r < hi;
+        if (own || p.dropped || idleSecondPlace(j) || !joinsAnySegment(j)) continue;
         // One on the path that the segment already cuts cannot move there (pulley_order.cpp).
         if (p.engaged && segmentCutsPolygon(a.radius == 0 ? a.world : a.tangentOut,
                                             b.radius == 0 ? b.world : b.tangentIn, p.world))
@@ -136,7 +138,8 @@ std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, 
       }
     };
     for (int r = lo + 1; r < hi; ++r)
-      if (const int j = order_[r]; !pulleys_[j].engaged && pulleys_[j].side != WrapSide::Threaded)
+      if (const int j = order_[r]; !pulleys_[j].engaged && pulleys_[j].side != WrapSide::Threaded &&
+                                   !pulleys_[j].secondPlace)
         for (const WrapPoint* terminal : {&a, &b}) tryHull(j, *terminal);
     if (a.kind == WrapPoint::Kind::Vertex && b.kind != WrapPoint::Kind::Vertex)
       tryHull(a.pulley, b);

@@ -9,7 +9,9 @@
 // there. It wraps on the side it came from, as an auto pulley does: coming down on the rope from
 // the side it was not wrapped on, it went through. Off the path its place changes neither the
 // length nor J. On the path, barely bending the rope where it rides its neighbour's hull, it
-// moves its place to a segment it crosses where that moves the length by a fraction of a mm.
+// moves its place to a segment it crosses where that moves the length by a fraction of a mm;
+// wedged between two strands (moving would leave the old strand across it), its second place
+// joins the strand it crosses, and the rope bends round it at both.
 #include <algorithm>
 #include <utility>
 
@@ -36,6 +38,11 @@ namespace {
 // the length by less than this (m): half the 1 mm a wrap change off the old path is reported at
 // (Cable::kLengthJump).
 constexpr double kCrossedJoinDetour = 5e-4;
+
+// A polygon riding its neighbour's hull barely bends the rope at its place (its wrap adds 0.01
+// to 12 mm in the sweep's wedged pairs); one wrapped deep in its own loop (29 cm) that a strand
+// crosses near a bend of the rope keeps one place, as before.
+constexpr double kWedgedOwnDetour = 0.02;
 
 // How much longer the path a -> polygon -> b is than a -> b, wrapped on `side` (infinite where
 // no taut path exists: a terminal inside the hull).
@@ -84,13 +91,35 @@ bool chainKeptBetween(std::span<const WrapPoint> path, int q, std::span<const Ve
 
 }  // namespace
 
+void Cable::addSecondPlaces() {
+  for (int j = 0; j < namedPulleys_; ++j) {
+    if (!joinsAnySegment(j)) continue;
+    PulleyState second = pulleys_[j];
+    second.engaged = false;
+    second.arc = 0;
+    second.secondPlace = true;
+    second.twin = j;
+    pulleys_[j].twin = static_cast<int>(pulleys_.size());
+    pulleys_.push_back(std::move(second));
+    order_.push_back(pulleys_[j].twin);
+    rank_.push_back(static_cast<int>(order_.size()) - 1);
+  }
+}
+
+void Cable::placeAfterSegment(int j, size_t i) {
+  order_.erase(order_.begin() + rank_[j]);
+  const int after = path_[i].pulley;
+  order_.insert(after < 0 ? order_.begin() : std::find(order_.begin(), order_.end(), after) + 1, j);
+  for (size_t r = 0; r < order_.size(); ++r) rank_[order_[r]] = static_cast<int>(r);
+}
+
 // Free polygon j: off the path, or on it where it barely bends the rope (above).
 bool Cable::joinCrossedSegment(int j) {
   PulleyState& p = pulleys_[j];
   std::vector<PulleyState::SegmentDepth> before;
   std::swap(before, p.segmentDepths);
   p.segmentDepths.clear();
-  int join = -1;
+  int join = -1, joining = j;
   WrapSide joinSide = p.side;
   // Its own segment (from the path point before it in the order) is joinRound's; on the path,
   // the segments into, along and out of its chain are its own.
@@ -103,7 +132,7 @@ bool Cable::joinCrossedSegment(int j) {
   const bool onPath = p.engaged;
   // Joining segment i (wrapped on `side`), the neighbouring polygons there, and at its old place
   // if it moves, keep their chains: its detours are all the length moves by.
-  auto neighboursKept = [&](size_t i, WrapSide side) {
+  auto neighboursKept = [&](size_t i, WrapSide side, bool moving) {
     const auto [first, last] = placeOnPath(path_, j);
     std::vector<int> chain;
     const WrapPoint &wa = path_[i], &wb = path_[i + 1];
@@ -132,7 +161,7 @@ bool Cable::joinCrossedSegment(int j) {
     if (!kept(wa, before(i), p.world[chain.front()]) ||
         !kept(wb, p.world[chain.back()], after(i + 1)))
       return false;
-    if (!first) return true;  // off the path
+    if (!first || !moving) return true;  // off the path, or its old place kept
     const WrapPoint &prev = path_[first - 1], &next = path_[last + 1];
     const Vec2 oldFrom = prev.radius == 0 ? prev.world : prev.tangentOut;
     const Vec2 oldTo = next.radius == 0 ? next.world : next.tangentIn;
@@ -142,7 +171,9 @@ bool Cable::joinCrossedSegment(int j) {
   for (size_t i = 0; i + 1 < path_.size(); ++i) {
     if (chainEdge(i)) continue;
     const WrapPoint &wa = path_[i], &wb = path_[i + 1];
-    if (onPath && (wa.pulley == j || wb.pulley == j)) continue;
+    if (onPath && (wa.pulley == j || wb.pulley == j ||
+                   (p.twin >= 0 && (wa.pulley == p.twin || wb.pulley == p.twin))))
+      continue;
     const Vec2 a = wa.radius == 0 ? wa.world : wa.tangentOut;
     const Vec2 b = wb.radius == 0 ? wb.world : wb.tangentIn;
     double left = -1e300, right = -1e300;
@@ -181,7 +212,22 @@ bool Cable::joinCrossedSegment(int j) {
     if (onPath) {
       if (own < 0) own = ownWrapDetour(path_, j);
       const double detour = crossedJoinDetour(a, b, p.world, side);
-      if (std::abs(detour - own) > kCrossedJoinDetour || !neighboursKept(i, side)) {
+      // Wedged between two strands (in its neighbour's loop), moving would leave its old place's
+      // straightened rope across it: its second place joins there instead, and the rope bends
+      // round it at both (docs/knocks.md, "Wedged in its neighbour's loop").
+      const auto [first, last] = placeOnPath(path_, j);
+      const WrapPoint &prev = path_[first > 0 ? first - 1 : 0], &next = path_[last + 1];
+      const Vec2 oldFrom = prev.radius == 0 ? prev.world : prev.tangentOut;
+      const Vec2 oldTo = next.radius == 0 ? next.world : next.tangentIn;
+      if (first > 0 && p.twin >= 0 && !pulleys_[p.twin].engaged && own <= kWedgedOwnDetour &&
+          detour <= kCrossedJoinDetour && segmentCutsPolygon(oldFrom, oldTo, p.world) &&
+          neighboursKept(i, side, false)) {
+        join = static_cast<int>(i);
+        joinSide = side;
+        joining = p.twin;
+        continue;
+      }
+      if (std::abs(detour - own) > kCrossedJoinDetour || !neighboursKept(i, side, true)) {
         // Still bending the rope at its place: while it lies barely across the segment, it
         // keeps the side it came from, and moves once its own wrap lets go.
         if (detour <= kCrossedJoinDetour) p.segmentDepths.back() = *was;
@@ -192,16 +238,16 @@ bool Cable::joinCrossedSegment(int j) {
     joinSide = side;
   }
   if (join < 0) return false;
-  // Its place: right after the pulley the segment starts at (first, after the start anchor).
-  order_.erase(order_.begin() + rank_[j]);
-  const int after = path_[join].pulley;
-  order_.insert(after < 0 ? order_.begin() : std::find(order_.begin(), order_.end(), after) + 1, j);
-  for (size_t r = 0; r < order_.size(); ++r) rank_[order_[r]] = static_cast<int>(r);
-  p.side = joinSide;
-  p.engaged = true;
-  p.hold = ChainHold{};
-  p.arc = 0;
-  p.segmentDepths.clear();
+  // Its place (or its second place): right after the pulley the segment starts at (first, after
+  // the start anchor).
+  placeAfterSegment(joining, static_cast<size_t>(join));
+  PulleyState& q = pulleys_[joining];
+  q.side = joinSide;
+  q.engaged = true;
+  q.dropped = false;
+  q.hold = ChainHold{};
+  q.arc = 0;
+  q.segmentDepths.clear();
   return true;
 }
 

@@ -112,12 +112,12 @@ std::optional<double> Cable::tiedChain(const PulleyState& p, const Vec2& a, cons
 }
 
 int Cable::tiedCornerWaiting(size_t segment, int& pulley) const {
-  const int count = static_cast<int>(pulleys_.size());
+  const int count = namedPulleys_;  // a polygon's second place is never tied
   if (count == 0) return -1;
-  if (segment + 2 == path_.size() && pulleys_.back().tiedEnd > 0 &&
+  if (segment + 2 == path_.size() && pulleys_[count - 1].tiedEnd > 0 &&
       path_[segment].pulley != count - 1) {
     pulley = count - 1;
-    return pulleys_.back().tiedCorner;
+    return pulleys_[count - 1].tiedCorner;
   }
   if (segment == 0 && pulleys_.front().tiedEnd < 0 && path_[1].pulley != 0) {
     pulley = 0;

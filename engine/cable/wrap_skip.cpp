@@ -76,12 +76,14 @@ bool Cable::skipEligible() const {
     return false;
   for (size_t j = 0; j < pulleys_.size(); ++j) {
     const PulleyState& p = pulleys_[j];
+    if (idleSecondPlace(static_cast<int>(j))) continue;
     if (!p.engaged || p.circle || p.autoSide || p.dropped || p.tiedEnd != 0 || p.hold.holdingFrom ||
         p.hold.holdingInto || (p.polygon && p.side == WrapSide::Threaded))
       return false;
     // Neighbouring polygons settle their common tangent over several passes (buildPath).
-    if (const size_t next = rank_[j] + 1;
-        p.polygon && next < pulleys_.size() && pulleys_[order_[next]].polygon)
+    if (const size_t next = rank_[j] + 1; p.polygon && next < pulleys_.size() &&
+                                          pulleys_[order_[next]].polygon &&
+                                          !idleSecondPlace(order_[next]))
       return false;
   }
   return path_.size() >= 2;
