@@ -29,7 +29,7 @@ WheelRow wheelRow(const Cable& cable, int k) {
   const SpanLink& link = cable.link(k);
   WheelRow w;
   w.span = k;
-  w.pulley = link.pulley;
+  w.pulley = link.pulley >= 0 ? cable.scenePulley(link.pulley) : link.pulley;
   w.grip = link.grip;
   w.mu = link.mu;
   w.wrapAngle = link.wrapAngle;
@@ -45,12 +45,12 @@ WheelRow wheelRow(const Cable& cable, int k) {
     w.capstanRatio = std::exp(link.mu * link.wrapAngle);
     w.state = link.slipped ? "slipping" : "holding";
     std::snprintf(text, sizeof text, "%s %d: %s, wrapped %.3f rad, pull ratio %.4g (slips at %.4g)",
-                  what, link.pulley, w.state.c_str(), link.wrapAngle, w.ratio, w.capstanRatio);
+                  what, w.pulley, w.state.c_str(), link.wrapAngle, w.ratio, w.capstanRatio);
     for (const CornerTension& c : corners) w.corners.push_back(cornerRow(c, link.mu));
   } else {
     w.state = "no slip";
     std::snprintf(text, sizeof text, "wheel %d: no slip, wrapped %.3f rad, pull ratio %.4g",
-                  link.pulley, link.wrapAngle, w.ratio);
+                  w.pulley, link.wrapAngle, w.ratio);
   }
   w.text = text;
   return w;

@@ -74,11 +74,11 @@ void wrapTable(const Cable& cable) {
     if (p.kind == WrapPoint::Kind::Anchor)
       ImGui::TextUnformatted("anchor");
     else if (p.kind == WrapPoint::Kind::Point)
-      ImGui::Text("pulley %d", p.pulley);
+      ImGui::Text("pulley %d", cable.scenePulley(p.pulley));
     else if (p.kind == WrapPoint::Kind::Circle)
-      ImGui::Text("circle %d", p.pulley);
+      ImGui::Text("circle %d", cable.scenePulley(p.pulley));
     else
-      ImGui::Text("pulley %d v%d", p.pulley, p.vertex);
+      ImGui::Text("pulley %d v%d", cable.scenePulley(p.pulley), p.vertex);
     ImGui::TableNextColumn();
     ImGui::Text("%.4f", p.world.x());
     ImGui::TableNextColumn();

@@ -352,7 +352,7 @@ void drawPulleys(const World& world, const Painter& paint) {
     for (size_t k = 0; k < cables[c].pulleys.size(); ++k) {
       const PulleyDef& pulley = cables[c].pulleys[k];
       const bool engaged = static_cast<int>(c) < world.cableCount() &&
-                           world.cable(static_cast<int>(c)).engaged(static_cast<int>(k));
+                           world.cable(static_cast<int>(c)).sceneEngaged(static_cast<int>(k));
       const Colour colour = engaged ? kPulley : kPulleyIdle;
       if (pulley.kind == PulleyDef::Kind::Polygon) {
         const std::vector<Vec2> points = pulleyPolygon(world, pulley);

@@ -256,6 +256,15 @@ class Cable {
   /// The body a pulley is fixed on (-1: the world), engaged or not.
   int pulleyBody(int pulley) const { return pulleys_[pulley].body; }
   bool engaged(int pulley) const { return pulleys_[pulley].engaged; }
+  /// The scene's pulley (def().pulleys) a place in the path belongs to: a free polygon's second
+  /// place (docs/knocks.md, "Wedged in its neighbour's loop") is its sibling's pulley.
+  int scenePulley(int pulley) const {
+    return pulleys_[pulley].secondPlace ? pulleys_[pulley].twin : pulley;
+  }
+  /// Whether the scene's pulley k is on the path at either of its places.
+  bool sceneEngaged(int k) const {
+    return engaged(k) || (pulleys_[k].twin >= 0 && engaged(pulleys_[k].twin));
+  }
   /// The side an engaged pulley is wrapped on (an "auto" pulley's resolved side).
   WrapSide wrapSide(int pulley) const { return pulleys_[pulley].side; }
 
