@@ -417,6 +417,11 @@ double World::advance(double left, double h, bool locate) {
   using Clock = std::chrono::steady_clock;
   const auto c0 = Clock::now();
   b2_->readBodies(bodies_);
+  // An elastic rope's point about to knock a free polygon bounces off it first (hull_bounce.h).
+  // Before the step's start is remembered: a pivoted polygon the knock slowed, swinging free of
+  // its rope, was given back the energy it had before (keepJointEnergy) while the point kept what
+  // it took (docs/cables.md, "Points inside a hull").
+  b2_->bounceHullPoints(bodies_, left);
   if (keepsJointEnergy_ && !scene_.joints.empty()) jointEnergy_->remember(bodies_);
   // Ropes over wheels end the step on the trapezoid rule (wheel_rope_energy.h): from this state.
   static thread_local std::vector<BodyState> ropeStart;  // scratch: no allocation a step
@@ -424,8 +429,6 @@ double World::advance(double left, double h, bool locate) {
   for (const Cable& c : cables_)
     for (const WrapPoint& w : c.path()) wheelRopes |= w.radius != 0;
   if (wheelRopes) ropeStart = bodies_;
-  // An elastic rope's point about to knock a free polygon bounces off it first (hull_bounce.h).
-  b2_->bounceHullPoints(bodies_, left);
   selectWraps(h);
   solveForces(left, h);
   double dt = left;
