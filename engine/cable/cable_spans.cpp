@@ -165,6 +165,7 @@ void Cable::updateSpans(std::span<const BodyState> bodies) {
   }
   if (!elastic()) cornerRest_ = cornerLength(splits);
   // After a slide, the two spans share their stretch again: the slide is kept.
+  if (elastic()) shareSlidMaterial();
   for (size_t k = 0; k < links_.size(); ++k) {
     if (!links_[k].slipped) continue;
     const double excess = spanStretch(static_cast<int>(k)) + spanStretch(static_cast<int>(k) + 1);
@@ -204,6 +205,26 @@ void Cable::slideElasticSpans() {
     tight.rest =
         slideMaterial(material, tight.kin.length, tight.rest, loose.kin.length, sum, ratio);
     loose.rest = sum - tight.rest;
+  }
+}
+
+// The solver slid the spans of each run of slipped links as one row, each span stretched by its
+// own spring law (slidStretch); the material they hold together is shared out so that their
+// stretches at the lengths now keep those proportions (a rigid cable's share equally, above).
+void Cable::shareSlidMaterial() {
+  for (size_t k = 0; k < links_.size(); ++k) {
+    if (!links_[k].slipped) continue;
+    size_t last = k;  // the run's spans: k .. last
+    while (last < links_.size() && links_[last].slipped) links_[last++].slipped = false;
+    double stretch = 0, solved = 0;
+    for (size_t j = k; j <= last; ++j) {
+      stretch += spans_[j].kin.length - spans_[j].rest;
+      solved += spans_[j].slidStretch;
+    }
+    if (solved > 0 && stretch > 0)
+      for (size_t j = k; j <= last; ++j)
+        spans_[j].rest = spans_[j].kin.length - stretch * spans_[j].slidStretch / solved;
+    k = last;
   }
 }
 

@@ -104,7 +104,7 @@ void solve(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables, st
       ws.limits.free(ws.jointIndex, static_cast<int>(in.joints.size()));
       premerged = premerged && mergeLastSliding(ws, cables);  // 6b, as last sub-step
       solveRows(ws, in, cables, loads, stats);
-      if (!premerged || slidesAsMerged(ws, cables)) break;
+      if (!premerged || slidesAsMerged(ws, cables, in.h)) break;
       premerged = false;
     }
     applyForces(ws, in, cables, loads);  // 7
