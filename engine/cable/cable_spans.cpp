@@ -208,22 +208,37 @@ void Cable::slideElasticSpans() {
   }
 }
 
-// The solver slid the spans of each run of slipped links as one row, each span stretched by its
-// own spring law (slidStretch); the material they hold together is shared out so that their
-// stretches at the lengths now keep those proportions (a rigid cable's share equally, above).
+// The solver slid the spans of each run of slipped links as one row, each span to its own strain
+// e_k (slidStrain). Their material, which the slide keeps in sum, is shared out so that at the
+// lengths now the strains are s e_k, one factor s for the run (s = 1 to a rounding of the end
+// pose): the tensions keep the solved ratio (docs/polygon_friction.md, "Elastic cables").
 void Cable::shareSlidMaterial() {
   for (size_t k = 0; k < links_.size(); ++k) {
     if (!links_[k].slipped) continue;
     size_t last = k;  // the run's spans: k .. last
     while (last < links_.size() && links_[last].slipped) links_[last++].slipped = false;
-    double stretch = 0, solved = 0;
+    double material = 0, largest = 0;
     for (size_t j = k; j <= last; ++j) {
-      stretch += spans_[j].kin.length - spans_[j].rest;
-      solved += spans_[j].slidStretch;
+      material += spans_[j].rest;
+      largest = std::max(largest, spans_[j].slidStrain);
     }
-    if (solved > 0 && stretch > 0)
-      for (size_t j = k; j <= last; ++j)
-        spans_[j].rest = spans_[j].kin.length - stretch * spans_[j].slidStretch / solved;
+    if (!(largest > 0)) continue;  // slack: nothing to share
+    // Newton on sum l_k / (1 + s e_k) = material, decreasing and convex in s.
+    double s = 1;
+    for (int iteration = 0; iteration < 8; ++iteration) {
+      double f = -material, slope = 0;
+      for (size_t j = k; j <= last; ++j) {
+        const double e = std::max(spans_[j].slidStrain, 0.0), q = 1 + s * e;
+        f += spans_[j].kin.length / q;
+        slope -= spans_[j].kin.length * e / (q * q);
+      }
+      if (!(slope < 0)) break;
+      const double next = std::max(s - f / slope, 0.5 * s - 0.5 / largest);  // keeps 1 + s e > 0
+      if (std::abs(next - s) <= 1e-14 * std::abs(s)) break;
+      s = next;
+    }
+    for (size_t j = k; j <= last; ++j)
+      spans_[j].rest = spans_[j].kin.length / (1 + s * std::max(spans_[j].slidStrain, 0.0));
     k = last;
   }
 }
