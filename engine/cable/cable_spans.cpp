@@ -187,9 +187,10 @@ double Cable::spanScale(int k) const {
   return materialLength() / std::max(spans_[k].rest, 1e-12);
 }
 
-// The solver lets an elastic cable's spans stick (each holds its material); where their tensions
-// then break T_high <= e^(mu theta) T_low, material slides over the corners from the slacker span
-// to the tighter one until the ratio is e^(mu theta) exactly: a return mapping, as in plasticity.
+// Spans the solver left stuck (each holding its material) that end the step past the ratio (a
+// corner joined or left): where their tensions break T_high <= e^(mu theta) T_low, material slides
+// over the corners from the slacker span to the tighter one until the ratio is e^(mu theta)
+// exactly: a return mapping, as in plasticity. (Slides the solve found: shareSlidMaterial.)
 void Cable::slideElasticSpans() {
   const double material = materialLength();
   for (size_t k = 0; k < links_.size(); ++k) {

@@ -60,7 +60,8 @@ double slipRate(Workspace& ws, std::span<const Cable> cables, size_t r, int link
 
 // 6b. Capstans: where the sticking tensions break T_high <= T_low e^(mu theta), the cable slides
 // at that ratio instead (Euler-Eytelwein): the two rows beside the wheel become one, whose
-// constraint is their summed length. True if any merged (then stages 2-6 run again).
+// constraint is their summed length (an elastic cable's: their summed stretch, elasticRow). True
+// if any merged (then stages 2-6 run again).
 bool mergeSlidingSpans(Workspace& ws, std::span<const Cable> cables) {
   bool merged = false;
   for (size_t r = 0; r + 1 < ws.rows.size(); ++r) {
