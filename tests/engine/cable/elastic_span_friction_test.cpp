@@ -227,5 +227,36 @@ TEST(ElasticSpanFriction, HoldsJustBelowAndSlidesJustAboveTheRatio) {
     }
 }
 
+// The other way, on a preloaded band: the right mass heavier, the band slides towards it with
+// T_right = E T_left and the weighted acceleration g (m2 - E m1) / (m2 + E m1), every step.
+TEST(ElasticSpanFriction, SlidesTheOtherWayOnAPreloadedBand) {
+  for (const double mu : {0.15, 0.3}) {
+    Band b;
+    b.mu = mu, b.stiffness = 1e4, b.damping = 5;
+    const double ratio = std::exp(mu * M_PI);
+    b.m1 = 0.7;
+    b.m2 = 1.5 * ratio * b.m1;
+    b.preload = 0.3;
+    b.restLength =
+        3.6 + b.preload - 1.2 * b.m1 * kG / b.stiffness;  // material 3.6 m - 1.2 m1 g / k
+    World w(bandOverSquare(b), "test");
+    const int left = w.findBody("left"), right = w.findBody("right");
+    const double expected = kG * (b.m2 - ratio * b.m1) / (b.m2 + ratio * b.m1);
+    for (int i = 0; i < 36; ++i) {  // 0.6 s
+      const double before =
+          -b.m2 * w.body(right).velocity.y() + ratio * b.m1 * w.body(left).velocity.y();
+      w.step(kDt);
+      const double after =
+          -b.m2 * w.body(right).velocity.y() + ratio * b.m1 * w.body(left).velocity.y();
+      const Cable& band = w.cable(0);
+      if (i < 3) continue;  // the first steps: sticking, then merged
+      EXPECT_NEAR(band.spanTension(1) / band.spanTension(0), ratio, 0.01 * ratio) << mu << " " << i;
+      EXPECT_NEAR((after - before) / ((b.m2 + ratio * b.m1) * kDt), expected, 0.03 * expected)
+          << mu << " " << i;
+    }
+    EXPECT_LT(w.body(right).position.y(), 1.5 - 0.5 * 0.5 * expected * 0.36);  // fell
+  }
+}
+
 }  // namespace elastic_span_friction_test
 }  // namespace cablelab
