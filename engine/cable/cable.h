@@ -394,7 +394,7 @@ class Cable {
   void rebaseMarks();
   /// Elastic spans beside a polygon with friction that break its capstan ratio slide to it.
   void slideElasticSpans();
-  /// After the solver let elastic spans slide: their material shared to its stretches.
+  /// After the solver let elastic spans slide: their material shared by the solved strains.
   void shareSlidMaterial();
   /// Unstretched length of an elastic cable's material (m): rest length - preload.
   double materialLength() const;

@@ -164,7 +164,8 @@ void Cable::updateSpans(std::span<const BodyState> bodies) {
     }
   }
   if (!elastic()) cornerRest_ = cornerLength(splits);
-  // After a slide, the two spans share their stretch again: the slide is kept.
+  // After a slide, the two spans share their stretch again: the slide is kept (an elastic
+  // cable's by the strains the solve found, where refresh has not yet).
   if (elastic()) shareSlidMaterial();
   for (size_t k = 0; k < links_.size(); ++k) {
     if (!links_[k].slipped) continue;

@@ -52,8 +52,8 @@ void applyForces(Workspace& ws, const CableSolveInput& in, std::span<Cable> cabl
     Cable& c = cables[row.cable];
     for (int k = row.first; k <= row.last; ++k) {
       const double impulse = row.weight(ws.rowWeights, k) * ws.P[r];
-      // An elastic cable that slid: each span's stretch under its own spring law, which the
-      // next update shares the slid material by (Cable::setSlidStretch).
+      // An elastic cable that slid: each span's stretch under its own spring law, by which the
+      // end-of-step refresh shares the slid material (Cable::setSlidStretch).
       if (c.elastic() && row.first < row.last)
         c.setSlidStretch(k, springStretchAtEnd(c, k, impulse, h));
       c.setSpanTension(k, impulse / h);
