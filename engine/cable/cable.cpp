@@ -563,6 +563,8 @@ void Cable::refresh(std::span<const BodyState> bodies) {
   if (skipValid_ && kinematicsCurrent(bodies)) return;
   cableLengthJacobian(path_, bodies, kin_);
   for (Span& s : spans_) cableLengthJacobian(s.path, bodies, s.kin);
+  // The stretches reported belong to the end of the step: an elastic slide's included.
+  if (elastic()) shareSlidMaterial();
   if (skipValid_) noteKinematicsPoses(bodies);
 }
 

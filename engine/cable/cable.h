@@ -298,6 +298,13 @@ class Cable {
   /// The solver let the cable slide on link k's wheel this sub-step: the next update moves rest
   /// length between the two spans so that the slide is not undone.
   void setSlipped(int k, bool slipped) { links_[k].slipped = slipped; }
+  /// On an elastic cable that slid over link k - 1 or k: span k's stretch at the end of the
+  /// solved step (m, on its material before the slide). The next refresh or update shares the
+  /// slid spans' material so that their strains keep these proportions, and so their tensions
+  /// the solved ratio (docs/polygon_friction.md, "Elastic cables").
+  void setSlidStretch(int k, double stretch) {
+    spans_[k].slidStrain = stretch / std::max(spans_[k].rest, 1e-12);
+  }
   /// Whether path segment i runs from a polygon's corner to a point fixed in the world, which
   /// may be pressed into its hull and hold its chain there (wrap_hold.h): the point goes into the
   /// hull rather than stopping it, so the segment has no floor (floors.h; docs/cables.md, "Points
@@ -375,8 +382,9 @@ class Cable {
     size_t first = 0, last = 0;  ///< path_ indices of its end points (shared with neighbours)
     std::vector<WrapPoint> path;
     CableKinematics kin;
-    double rest = 0;     ///< m
-    double tension = 0;  ///< N
+    double rest = 0;        ///< m
+    double tension = 0;     ///< N
+    double slidStrain = 0;  ///< the solver's end-of-step strain when it slid (elastic)
   };
   void placePulleys(std::span<const BodyState> bodies);
   bool buildPath(std::vector<std::string>* warnings);
@@ -399,6 +407,8 @@ class Cable {
   void rebaseMarks();
   /// Elastic spans beside a polygon with friction that break its capstan ratio slide to it.
   void slideElasticSpans();
+  /// After the solver let elastic spans slide: their material shared by the solved strains.
+  void shareSlidMaterial();
   /// Unstretched length of an elastic cable's material (m): rest length - preload.
   double materialLength() const;
   double spanScale(int k) const;

@@ -164,7 +164,9 @@ void Cable::updateSpans(std::span<const BodyState> bodies) {
     }
   }
   if (!elastic()) cornerRest_ = cornerLength(splits);
-  // After a slide, the two spans share their stretch again: the slide is kept.
+  // After a slide, the two spans share their stretch again: the slide is kept (an elastic
+  // cable's by the strains the solve found, where refresh has not yet).
+  if (elastic()) shareSlidMaterial();
   for (size_t k = 0; k < links_.size(); ++k) {
     if (!links_[k].slipped) continue;
     const double excess = spanStretch(static_cast<int>(k)) + spanStretch(static_cast<int>(k) + 1);
@@ -186,9 +188,10 @@ double Cable::spanScale(int k) const {
   return materialLength() / std::max(spans_[k].rest, 1e-12);
 }
 
-// The solver lets an elastic cable's spans stick (each holds its material); where their tensions
-// then break T_high <= e^(mu theta) T_low, material slides over the corners from the slacker span
-// to the tighter one until the ratio is e^(mu theta) exactly: a return mapping, as in plasticity.
+// Spans the solver left stuck (each holding its material) that end the step past the ratio (a
+// corner joined or left): where their tensions break T_high <= e^(mu theta) T_low, material slides
+// over the corners from the slacker span to the tighter one until the ratio is e^(mu theta)
+// exactly: a return mapping, as in plasticity. (Slides the solve found: shareSlidMaterial.)
 void Cable::slideElasticSpans() {
   const double material = materialLength();
   for (size_t k = 0; k < links_.size(); ++k) {
@@ -204,6 +207,41 @@ void Cable::slideElasticSpans() {
     tight.rest =
         slideMaterial(material, tight.kin.length, tight.rest, loose.kin.length, sum, ratio);
     loose.rest = sum - tight.rest;
+  }
+}
+
+// The solver slid the spans of each run of slipped links as one row, each span to its own strain
+// e_k (slidStrain). Their material, which the slide keeps in sum, is shared out so that at the
+// lengths now the strains are s e_k, one factor s for the run (s = 1 to a rounding of the end
+// pose): the tensions keep the solved ratio (docs/polygon_friction.md, "Elastic cables").
+void Cable::shareSlidMaterial() {
+  for (size_t k = 0; k < links_.size(); ++k) {
+    if (!links_[k].slipped) continue;
+    size_t last = k;  // the run's spans: k .. last
+    while (last < links_.size() && links_[last].slipped) links_[last++].slipped = false;
+    double material = 0, largest = 0;
+    for (size_t j = k; j <= last; ++j) {
+      material += spans_[j].rest;
+      largest = std::max(largest, spans_[j].slidStrain);
+    }
+    if (!(largest > 0)) continue;  // slack: nothing to share
+    // Newton on sum l_k / (1 + s e_k) = material, decreasing and convex in s.
+    double s = 1;
+    for (int iteration = 0; iteration < 8; ++iteration) {
+      double f = -material, slope = 0;
+      for (size_t j = k; j <= last; ++j) {
+        const double e = std::max(spans_[j].slidStrain, 0.0), q = 1 + s * e;
+        f += spans_[j].kin.length / q;
+        slope -= spans_[j].kin.length * e / (q * q);
+      }
+      if (!(slope < 0)) break;
+      const double next = std::max(s - f / slope, 0.5 * s - 0.5 / largest);  // keeps 1 + s e > 0
+      if (std::abs(next - s) <= 1e-14 * std::abs(s)) break;
+      s = next;
+    }
+    for (size_t j = k; j <= last; ++j)
+      spans_[j].rest = spans_[j].kin.length / (1 + s * std::max(spans_[j].slidStrain, 0.0));
+    k = last;
   }
 }
 

@@ -25,7 +25,8 @@
 //                           the discrete gradient of their lengths over the step and 2-6 run
 //                           again, twice (pullAlongDiscreteGradient), each row's work equal to its
 //                           cable's energy change (balanceMidpointWork)  cable_solver_midpoint
-//   6b. mergeSlidingSpans   capstans past e^(mu theta): merge their spans, run 2-6 again;
+//   6b. mergeSlidingSpans   capstans past e^(mu theta): merge their spans (elastic ones each
+//                           a spring of its own, elasticRow), run 2-6 again;
 //                           those the rope slid over in the last sub-step are merged from the
 //                           start (mergeLastSliding) while it still slides (slidesAsMerged)
 //   6c. lockCrossingLimits  a limited joint the step takes past its bound: lock it at the
@@ -104,7 +105,7 @@ void solve(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables, st
       ws.limits.free(ws.jointIndex, static_cast<int>(in.joints.size()));
       premerged = premerged && mergeLastSliding(ws, cables);  // 6b, as last sub-step
       solveRows(ws, in, cables, loads, stats);
-      if (!premerged || slidesAsMerged(ws, cables)) break;
+      if (!premerged || slidesAsMerged(ws, cables, in.h)) break;
       premerged = false;
     }
     applyForces(ws, in, cables, loads);  // 7

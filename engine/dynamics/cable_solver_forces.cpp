@@ -49,10 +49,17 @@ void applyForces(Workspace& ws, const CableSolveInput& in, std::span<Cable> cabl
   for (size_t r = 0; r < ws.rows.size(); ++r) {
     const Workspace::Row& row = ws.rows[r];
     if (row.segment >= 0) continue;  // a floor pushes; it is no cable's tension
-    for (int k = row.first; k <= row.last; ++k)
-      cables[row.cable].setSpanTension(k, row.weight(ws.rowWeights, k) * ws.P[r] / h);
-    for (int k = row.first; k < row.last; ++k) cables[row.cable].setSlipped(k, true);
-    if (ws.haul[r] > 0) cables[row.cable].payOut(row.first, ws.haul[r]);
+    Cable& c = cables[row.cable];
+    for (int k = row.first; k <= row.last; ++k) {
+      const double impulse = row.weight(ws.rowWeights, k) * ws.P[r];
+      // An elastic cable that slid: each span's stretch under its own spring law, by which the
+      // end-of-step refresh shares the slid material (Cable::setSlidStretch).
+      if (c.elastic() && row.first < row.last)
+        c.setSlidStretch(k, springStretchAtEnd(c, k, impulse, h));
+      c.setSpanTension(k, impulse / h);
+    }
+    for (int k = row.first; k < row.last; ++k) c.setSlipped(k, true);
+    if (ws.haul[r] > 0) c.payOut(row.first, ws.haul[r]);
   }
   for (const Workspace::Row& row : ws.rows) {
     const Cable& c = cables[row.cable];

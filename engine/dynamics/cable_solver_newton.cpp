@@ -75,11 +75,28 @@ void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable>
                      : phi > kLengthSlop ? phi - beta * (phi - kLengthSlop)
                                          : phi;
     } else if (!ws.midpoint) {  // (midpointSpringRows pulls with the energy's discrete gradient)
-      const double stiffK = c.spanStiffness(row.first), damp = c.spanDamping(row.first);
-      ws.compliance[r] = 1.0 / (h * (stiffK * h + damp));
-      ws.damped[r] = damp * phi / (stiffK * h + damp);
+      const ElasticRow spring = elasticRow(ws, c, row, h);
+      ws.compliance[r] = spring.compliance;
+      ws.damped[r] = spring.damped;
     }
   }
+}
+
+// Each span stretches by its own share: phi1_k = (w_k P + d_k phi0_k) / (k_k h + d_k). A row
+// sliding over a capstan keeps its spans' material in sum, so the sum is its constraint.
+ElasticRow elasticRow(const Workspace& ws, const Cable& c, const Workspace::Row& row, double h) {
+  ElasticRow spring;
+  for (int k = row.first; k <= row.last; ++k) {
+    const double stiffK = c.spanStiffness(k), damp = c.spanDamping(k);
+    spring.compliance += row.weight(ws.rowWeights, k) / (h * (stiffK * h + damp));
+    spring.damped += damp * c.spanStretch(k) / (stiffK * h + damp);
+  }
+  return spring;
+}
+
+double springStretchAtEnd(const Cable& c, int k, double impulse, double h) {
+  const double stiffK = c.spanStiffness(k), damp = c.spanDamping(k);
+  return (impulse + damp * c.spanStretch(k)) / (stiffK * h + damp);
 }
 
 // ws.WP = W P, column by column: W has a few columns (one per row), and Eigen's general product

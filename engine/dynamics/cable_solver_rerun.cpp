@@ -8,14 +8,14 @@
 namespace cablelab::cable_stages {
 namespace {
 
-// A rigid cable's capstan between rows r and r + 1 (consecutive spans of one cable), or null.
+// A capstan between rows r and r + 1 (consecutive spans of one cable), or null. An elastic
+// cable's merged row keeps its spans' material in sum, each span its own spring (elasticRow).
 const SpanLink* slidingCapstan(const Workspace& ws, std::span<const Cable> cables, size_t r) {
   const Workspace::Row &a = ws.rows[r], &b = ws.rows[r + 1];
   if (a.cable != b.cable || a.last + 1 != b.first || a.segment >= 0 || b.segment >= 0)
     return nullptr;
   const SpanLink& link = cables[a.cable].link(a.last);
-  // An elastic cable's spans slide after the step instead (Cable::slideElasticSpans).
-  if (link.grip != Grip::Capstan || cables[a.cable].elastic()) return nullptr;
+  if (link.grip != Grip::Capstan) return nullptr;
   return &link;
 }
 
@@ -37,14 +37,22 @@ void mergeRows(Workspace& ws, const SpanLink& link, size_t r, bool firstHigh) {
 }
 
 // The rate at which rope crosses the capstan after span `link` of row r into the spans before
-// it, at the end-of-step velocities ws.vEnd (start-of-step Jacobians).
-double slipRate(Workspace& ws, std::span<const Cable> cables, const Workspace::Row& row, int link) {
+// it, at the end-of-step velocities ws.vEnd (start-of-step Jacobians). On an elastic cable what
+// crosses is material: the spans' length rate less their stretch rate (springStretchAtEnd).
+double slipRate(Workspace& ws, std::span<const Cable> cables, size_t r, int link, double h) {
+  const Workspace::Row& row = ws.rows[r];
+  const Cable& c = cables[row.cable];
   double rate = 0;
-  for (int k = row.first; k <= link; ++k)
-    for (const BodyJacobian& e : cables[row.cable].spanKinematics(k).jacobian) {
+  for (int k = row.first; k <= link; ++k) {
+    for (const BodyJacobian& e : c.spanKinematics(k).jacobian) {
       const int dof = ws.dofs.ofBody[e.body];
       if (dof >= 0) rate += e.d.dot(ws.vEnd.segment<3>(dof));
     }
+    if (c.elastic()) {
+      const double impulse = row.weight(ws.rowWeights, k) * ws.P[r];
+      rate -= (springStretchAtEnd(c, k, impulse, h) - c.spanStretch(k)) / h;
+    }
+  }
   return rate;
 }
 
@@ -52,7 +60,8 @@ double slipRate(Workspace& ws, std::span<const Cable> cables, const Workspace::R
 
 // 6b. Capstans: where the sticking tensions break T_high <= T_low e^(mu theta), the cable slides
 // at that ratio instead (Euler-Eytelwein): the two rows beside the wheel become one, whose
-// constraint is their summed length. True if any merged (then stages 2-6 run again).
+// constraint is their summed length (an elastic cable's: their summed stretch, elasticRow). True
+// if any merged (then stages 2-6 run again).
 bool mergeSlidingSpans(Workspace& ws, std::span<const Cable> cables) {
   bool merged = false;
   for (size_t r = 0; r + 1 < ws.rows.size(); ++r) {
@@ -93,14 +102,15 @@ bool mergeLastSliding(Workspace& ws, std::span<const Cable> cables) {
 
 // Whether the rope slides over each merged capstan the way its weights assume, or rests on it.
 // Otherwise friction stopped it within the step, and the rows are solved apart (stage 6b).
-bool slidesAsMerged(Workspace& ws, std::span<const Cable> cables) {
+bool slidesAsMerged(Workspace& ws, std::span<const Cable> cables, double h) {
   timesImpulses(ws, ws.P);
   ws.vEnd = ws.vStar - ws.WP;
   constexpr double kSlipTolerance = 1e-8;  // m/s: rope at rest on the capstan
-  for (const Workspace::Row& row : ws.rows)
-    for (int k = row.first; k < row.last; ++k) {
+  for (size_t r = 0; r < ws.rows.size(); ++r)
+    for (int k = ws.rows[r].first; k < ws.rows[r].last; ++k) {
+      const Workspace::Row& row = ws.rows[r];
       const bool firstHigh = row.weight(ws.rowWeights, k) > row.weight(ws.rowWeights, k + 1);
-      const double slip = slipRate(ws, cables, row, k);
+      const double slip = slipRate(ws, cables, r, k, h);
       if ((firstHigh ? slip : -slip) < -kSlipTolerance) return false;
     }
   return true;

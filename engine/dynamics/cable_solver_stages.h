@@ -172,6 +172,17 @@ void pathAhead(Workspace& ws, const Cable& cable, int span, std::span<const Body
 
 // 5, 6. Length targets and Newton on the end-of-step lengths (cable_solver_newton.cpp).
 void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable> cables);
+// An elastic row's implicit spring-damper (stage 5): its spans' summed end-of-step stretch is
+// h compliance P + damped, each span k pulling with its weight w_k times P (one span: w = 1; a
+// row merged over a capstan: the spans at the ratio e^(mu theta), docs/polygon_friction.md).
+struct ElasticRow {
+  double compliance = 0;  // m / (N s^2): sum w_k / (h (k_k h + d_k))
+  double damped = 0;      // m: sum d_k phi0_k / (k_k h + d_k)
+};
+ElasticRow elasticRow(const Workspace& ws, const Cable& c, const Workspace::Row& row, double h);
+// Span k's end-of-step stretch (m) when it pulls with impulse `impulse` (N s, its weight times
+// the row's): its spring-damper law k phi1 + d (phi1 - phi0) / h = impulse / h.
+double springStretchAtEnd(const Cable& c, int k, double impulse, double h);
 // 5b. Floors that may bounce, then the solve that bounces them (cable_solver_bounce.cpp).
 bool floorBounces(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
 void solveBouncing(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables,
@@ -215,7 +226,7 @@ bool pullAlongDiscreteGradient(Workspace& ws, const CableSolveInput& in,
 // 6b, 6c. Sliding capstans, crossed joint limits (cable_solver_rerun.cpp).
 bool mergeSlidingSpans(Workspace& ws, std::span<const Cable> cables);
 bool mergeLastSliding(Workspace& ws, std::span<const Cable> cables);
-bool slidesAsMerged(Workspace& ws, std::span<const Cable> cables);
+bool slidesAsMerged(Workspace& ws, std::span<const Cable> cables, double h);
 bool lockCrossingLimits(Workspace& ws, const CableSolveInput& in);
 
 // 7. Tensions and forces (cable_solver_forces.cpp).

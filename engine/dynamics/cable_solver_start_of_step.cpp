@@ -31,16 +31,17 @@ bool pointRowsOnly(const Workspace& ws, std::span<const Cable> cables) {
 }
 
 // J v* for one row at the start of the step along the Jacobians it pulls along (W's): v* on the
-// dofs, the prescribed motion elsewhere.
+// dofs, the prescribed motion elsewhere. A row merged over a capstan constrains its spans'
+// plain summed length (the weights are how hard each pulls), as J0 W's rows do.
 double startRate(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables, int r) {
   double rate = 0;
-  forForceJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double weight) {
+  forForceJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
     for (const auto& e : jacobian) {
       if (const int d = ws.dofs.ofBody[e.body]; d >= 0) {
-        rate += weight * e.d.dot(ws.vStar.segment<3>(d));
+        rate += e.d.dot(ws.vStar.segment<3>(d));
       } else {
         const BodyState& b = in.bodies[e.body];
-        rate += weight * e.d.dot(Vec3(b.velocity.x(), b.velocity.y(), b.angularVelocity));
+        rate += e.d.dot(Vec3(b.velocity.x(), b.velocity.y(), b.angularVelocity));
       }
     }
   });
@@ -63,9 +64,9 @@ void solveStartOfStep(Workspace& ws, const CableSolveInput& in, std::span<const 
     const Cable& c = cables[row.cable];
     double goal = ws.target[r];
     if (c.elastic() && row.segment < 0) {  // the implicit spring-damper (lengthTargets)
-      const double k = c.spanStiffness(row.first), damp = c.spanDamping(row.first);
-      ws.K(r, r) += 1.0 / (h * (k * h + damp));
-      goal = damp * ws.phi0[r] / (k * h + damp);
+      const ElasticRow spring = elasticRow(ws, c, row, h);
+      ws.K(r, r) += spring.compliance;
+      goal = spring.damped;
     }
     ws.b[r] = (ws.phi0[r] - goal) / h + startRate(ws, in, cables, r);
   }
