@@ -158,6 +158,7 @@ void World::setBodyTransform(int i, const Vec2& position, double angle) {
   history_.add({WorldInput::Kind::BodyTransform, i, 1, {position.x(), position.y(), angle}});
   b2_->setTransform(i, position, angle);
   b2_->readBodies(bodies_);
+  rateSteps_.clear();  // the rates a user sets are the motion's
 }
 
 void World::refreshCables() {
@@ -174,6 +175,7 @@ void World::setBodyVelocity(int i, const Vec2& velocity, double angularVelocity)
       {WorldInput::Kind::BodyVelocity, i, 1, {velocity.x(), velocity.y(), angularVelocity}});
   b2_->setVelocity(i, velocity, angularVelocity);
   b2_->readBodies(bodies_);
+  rateSteps_.clear();
 }
 
 void World::applyForce(int i, const Vec2& force, const Vec2& worldPoint) {
@@ -512,6 +514,9 @@ double World::advance(double left, double h, bool locate) {
         cutEvent_ = event;
       }
     }
+    // Where the step's rule or length changes, each taut rigid cable starts on the rate the step
+    // ends on (start_rates.h): solved again from there.
+    if (matchRates(dt, h)) solveForces(dt, h);
     // The event was located on the motion of the whole step, but the cut's own solve moves the
     // bodies differently (a rope taut over the step is slack over the cut: a spool turned at
     // 8.8 rad/s where 6.4 were predicted, its corner straightened early and left late, moving the
@@ -612,6 +617,7 @@ double World::advance(double left, double h, bool locate) {
     for (int b : changed) b2_->placeBody(b, bodies_[b].position, bodies_[b].angle);
     if (!changed.empty()) b2_->readBodies(bodies_);  // the pose Box2D holds (floats)
   }
+  recordRates(dt, taken == dt);
   if (left - taken <= kSubstepRest * h) expectContacts(b2_->contactSumTime());  // sub-step's end
   time_ += taken;
   // A servo with a speed drives its joint at that rate: the target moves.

@@ -156,6 +156,11 @@ class World {
   int findJoint(std::string_view name) const;  ///< -1 if unknown
   void setServoTarget(int i, double target);
 
+  /// Taut rigid cables start a step whose rule or length changes on the rate it ends on, their
+  /// start rate turned across them, the kinetic energy kept (start_rates.h, on by default); off
+  /// brings back the impulse that took it out (for comparison).
+  void setStartRatesMatched(bool on) { matchesStartRates_ = on; }
+
   void setGravity(const Vec2& g);
   /// Wrap-set skipping on every cable (on by default; the same trajectory either way).
   void setWrapSkipping(bool on);
@@ -204,6 +209,8 @@ class World {
   void addImpulses(double dt, bool first);
   void averageTensions(double h);
   void reportStepTensions(bool end);
+  bool matchRates(double dt, double h);
+  void recordRates(double dt, bool whole);
 
   const SceneDef scene_;                      ///< the model: never edited after construction
   std::unique_ptr<Box2DBridge> b2_;           ///< bodies, joints, contacts
@@ -230,6 +237,10 @@ class World {
   bool midpointPerIsland_ = true;    ///< setMidpointPerIsland()
   std::vector<char> midpointCable_;  ///< per cable: the midpoint solve took it (main solve skips)
   std::vector<int> midpointCables_;  ///< those cables
+  bool matchesStartRates_ = true;    ///< setStartRatesMatched()
+  std::vector<double> rateSteps_;    ///< per cable: the step its length rate was left by...
+  std::vector<double> nextSteps_;    ///< ... and the one about to be taken (start_rates.h)
+  std::vector<char> tookMidpoint_;   ///< scratch: per cable, the midpoint solve took it
   int cutCable_ = -1;                ///< the last Box2D step ended at this cable's event...
   WrapEvent cutEvent_;               ///< ...this one (-1: it ran to its end)
   std::vector<BodyState> bodies_;    ///< read back from Box2D

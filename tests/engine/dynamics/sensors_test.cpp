@@ -31,58 +31,210 @@ std::string label(double mass, const Stepping& s) {
          " s x " + std::to_string(s.substeps);
 }
 
-// The peg pendulum: the bob on a 1 m rope, a peg 0.6 m below the anchor; after the wrap the bob
-// circles the peg on the last 0.4 m.
-const Vec2 kPeg(0, -0.6);
-constexpr double kWrappedLength = 0.4;  // m
+// The peg pendulum (tests/data/sensors/peg_pendulum.json): a bob on a 1 m rigid rope from an
+// anchor at the origin, a peg below it that the rope wraps as it swings past.
+const Vec2 kAnchor(0, 0);
 
-// The rope's tension that keeps the bob on its circle round the peg: m v^2 / r - m g . u, u the
-// direction from the bob to the peg.
-double circleTension(const BodyState& bob, double mass, const Vec2& gravity) {
-  const Vec2 u = (kPeg - bob.position).normalized();
-  return mass * (bob.velocity.squaredNorm() / kWrappedLength - gravity.dot(u));
+// Where the rope acts on the bob from: its last wrap point (a circle's tangent point).
+Vec2 pivotOf(const Cable& rope) {
+  const WrapPoint& w = rope.path()[rope.path().size() - 2];
+  return w.kind == WrapPoint::Kind::Circle ? w.tangentOut : w.world;
 }
 
-TEST(SensorsTest, WrappedPendulumReportsTheStepsTensionWithoutAlternation) {
+// The tension that keeps the bob on its path round `pivot`: m v^2 / l - m g . u, u the
+// direction from the bob to the pivot, l their distance (for a rope winding onto a circle, the
+// free length: the radius of curvature of the bob's involute).
+double pathTension(const BodyState& bob, const Vec2& pivot, double mass, const Vec2& gravity) {
+  const Vec2 d = pivot - bob.position;
+  return mass * (bob.velocity.squaredNorm() / d.norm() - gravity.dot(d.normalized()));
+}
+
+// The share of a step from `before` to `after` spent before the rope met the peg: where the
+// line from the old pivot to the bob reaches the new one (a circle's rim), the distance to it
+// taken linear in time over the step.
+double shareBeforeWrap(const Vec2& oldPivot, const Vec2& peg, double radius, const Vec2& before,
+                       const Vec2& after) {
+  auto side = [&](const Vec2& bob) { return cross((bob - oldPivot).normalized(), peg - oldPivot); };
+  const double d0 = side(before), d1 = side(after);
+  const double s0 = d0 - std::copysign(radius, d0), s1 = d1 - std::copysign(radius, d0);
+  return std::clamp(s0 / (s0 - s1), 0.0, 1.0);
+}
+
+// A peg: where, on which side of the rope, what (a point, a square of half-side `size`, a circle
+// of radius `size`), and where the bob is let go from (degrees from straight down, on the side
+// the rope swings past the peg from).
+struct PegVariant {
+  Vec2 at;
+  PulleyDef::Kind kind = PulleyDef::Kind::Point;
+  double size = 0;
+  double release = 90;    // degrees
+  bool mirrored = false;  // let go on the left (the rope passes the peg on its right)
+};
+
+std::string describe(const PegVariant& p) {
+  const char* kinds[] = {"point", "square", "circle"};
+  return std::string(kinds[static_cast<int>(p.kind)]) + " peg at (" + std::to_string(p.at.x()) +
+         ", " + std::to_string(p.at.y()) + "), released at " + std::to_string(p.release) + " deg" +
+         (p.mirrored ? " from the left" : "");
+}
+
+SceneDef pegScene(const PegVariant& p, double mass) {
   SceneDef scene = loadSceneFile(test::sourcePath("tests/data/sensors/peg_pendulum.json"));
+  const double sign = p.mirrored ? -1 : 1, angle = p.release * std::acos(-1.0) / 180;
+  scene.bodies[0].mass = mass;
+  scene.bodies[0].position = kAnchor + Vec2(sign * std::sin(angle), -std::cos(angle));
+  PulleyDef& peg = scene.cables[0].pulleys[0];
+  peg.kind = p.kind;
+  peg.point = Vec2(sign * p.at.x(), p.at.y());
+  peg.side = p.mirrored ? WrapSide::Right : WrapSide::Left;
+  if (p.kind == PulleyDef::Kind::Circle) peg.radius = p.size;
+  if (p.kind == PulleyDef::Kind::Polygon)
+    for (const Vec2& corner : {Vec2(-1, -1), Vec2(1, -1), Vec2(1, 1), Vec2(-1, 1)})
+      peg.vertices.push_back(peg.point + p.size * corner);
+  return scene;
+}
+
+// From the step the rope wraps the peg in, while the bob is below its pivot (the rope taut) and
+// the rope wraps no less: each step's tension against the path tension's mean over it, and the
+// bob's energy over the wrap step and the step after.
+struct PegReading {
+  double worst = 0;        // of the tension over the expected one, less 1
+  double worstWrap = 0;    // ... over the steps whose wrap set changed
+  double alternation = 0;  // a step's tension off its neighbours' mean, beyond the expected's
+  double energy = 0;       // the bob's energy change over the wrap, over its kinetic energy
+  double swing = 0;        // ... over the step before the wrap step: the integrator's own
+  double wrapEnergy = 0;   // ... over the wrap step alone
+  int steps = 0, wrapSteps = 0;
+};
+
+PegReading readPeg(const PegVariant& p, double mass, const Stepping& s, bool matched = true) {
+  const SceneDef scene = pegScene(p, mass);
+  World world(scene);
+  world.setStartRatesMatched(matched);
+  const int bob = world.findBody("bob");
+  const Cable& rope = world.cable(0);
+  auto energy = [&](const BodyState& b) {
+    return 0.5 * mass * b.velocity.squaredNorm() - mass * scene.gravity.dot(b.position);
+  };
+  BodyState before = world.body(bob), earlier = before;
+  Vec2 pivot = pivotOf(rope);
+  int wraps = rope.wraps();
+  for (int i = 0; i < 4000 && wraps == 0; ++i) {  // up to the wrap step
+    earlier = before;
+    before = world.body(bob);
+    pivot = pivotOf(rope);
+    world.step(s.dt, s.substeps);
+    wraps = rope.wraps();
+  }
+  PegReading r;
+  if (wraps == 0) return r;
+  const double startEnergy = energy(before), scale = 0.5 * mass * before.velocity.squaredNorm();
+  r.swing = std::abs(startEnergy - energy(earlier)) / scale;
+  std::vector<double> reported, expected;
+  bool wrapped = true;  // the step just taken changed the wrap set
+  for (int i = 0; i < std::lround(0.4 / s.dt); ++i) {
+    const BodyState& after = world.body(bob);
+    const Vec2 now = pivotOf(rope);
+    if (after.position.y() > now.y() - 0.25 * (after.position - now).norm()) break;
+    double mean = 0.5 * (pathTension(before, now, mass, scene.gravity) +
+                         pathTension(after, now, mass, scene.gravity));
+    if (wrapped) {
+      const Vec2 peg =
+          p.kind == PulleyDef::Kind::Circle ? Vec2(scene.cables[0].pulleys[0].point) : now;
+      const double radius = p.kind == PulleyDef::Kind::Circle ? p.size : 0;
+      const double f = shareBeforeWrap(pivot, peg, radius, before.position, after.position);
+      mean = f * pathTension(before, pivot, mass, scene.gravity) +
+             (1 - f) * pathTension(after, now, mass, scene.gravity);
+    }
+    reported.push_back(rope.tension());
+    expected.push_back(mean);
+    const double off = std::abs(reported.back() / mean - 1);
+    r.worst = std::max(r.worst, off);
+    if (wrapped) r.worstWrap = std::max(r.worstWrap, off), ++r.wrapSteps;
+    if (reported.size() == 1) r.wrapEnergy = std::abs(energy(after) - startEnergy) / scale;
+    if (reported.size() == 2) r.energy = std::abs(energy(after) - startEnergy) / scale;
+    before = after;
+    pivot = now;
+    world.step(s.dt, s.substeps);
+    if (rope.wraps() < wraps) break;  // swung back: unwrapping
+    wrapped = rope.wraps() != wraps;
+    wraps = rope.wraps();
+  }
+  r.steps = static_cast<int>(reported.size());
+  for (size_t k = 1; k + 1 < reported.size(); ++k) {
+    const double off = reported[k] - 0.5 * (reported[k - 1] + reported[k + 1]);
+    const double curve = expected[k] - 0.5 * (expected[k - 1] + expected[k + 1]);
+    r.alternation = std::max(r.alternation, std::abs(off - curve) / expected[k]);
+  }
+  return r;
+}
+
+// The wrap step reports the rope's impulse over it: the tension before the wrap for the time
+// before it, after for the rest (docs/model.md, "Coupling to Box2D"). Before, the
+// main solve's chord rate along the rope, (h / 2) v^2 / l, was taken out by an impulse as the
+// midpoint rule took over at the wrap: 17% high at 60 Hz, and 1.4e-3 of the energy lost.
+TEST(SensorsTest, WrappedPendulumReportsTheStepsTensionWithoutAlternation) {
   for (const double mass : kMasses)
     for (const Stepping& s : kSteppings) {
       SCOPED_TRACE(label(mass, s));
-      scene.bodies[0].mass = mass;
-      World world(scene);
-      const int bob = world.findBody("bob");
-      // Until the rope wraps the peg, then one step more: the wrap step's tension is part before
-      // and part after the wrap.
-      for (int i = 0; i < 2000 && world.cable(0).wraps() == 0; ++i) world.step(s.dt, s.substeps);
-      ASSERT_EQ(world.cable(0).wraps(), 1);
-      world.step(s.dt, s.substeps);
-      // Then while the bob is in the lower half of its circle (the rope stays taut): each step's
-      // tension against the mean of the circle's tension at its start and end states.
-      std::vector<double> reported, expected;
-      BodyState before = world.body(bob);
-      while (world.body(bob).position.y() < kPeg.y() - 0.25 * kWrappedLength) {
-        world.step(s.dt, s.substeps);
-        const BodyState& after = world.body(bob);
-        reported.push_back(world.cable(0).tension());
-        expected.push_back(0.5 * (circleTension(before, mass, scene.gravity) +
-                                  circleTension(after, mass, scene.gravity)));
-        before = after;
-      }
-      ASSERT_GE(reported.size(), 3u);
-      double worst = 0, alternation = 0;
-      for (size_t k = 0; k < reported.size(); ++k) {
-        worst = std::max(worst, std::abs(reported[k] / expected[k] - 1));
-        // Alternation: a step's tension against the mean of its neighbours', beyond what the
-        // expected tensions' own curvature gives.
-        if (k > 0 && k + 1 < reported.size()) {
-          const double off = reported[k] - 0.5 * (reported[k - 1] + reported[k + 1]);
-          const double curve = expected[k] - 0.5 * (expected[k - 1] + expected[k + 1]);
-          alternation = std::max(alternation, std::abs(off - curve) / expected[k]);
-        }
-      }
-      EXPECT_LT(worst, 0.03);
-      EXPECT_LT(alternation, 0.005);
+      const PegReading r = readPeg({Vec2(0, -0.6)}, mass, s),
+                       before = readPeg({Vec2(0, -0.6)}, mass, s, false);
+      std::printf(
+          "peg %s: worst %.4f (before %.4f), wrap step %.4f (before %.4f), energy %.1e "
+          "(before %.1e)\n",
+          label(mass, s).c_str(), r.worst, before.worst, r.worstWrap, before.worstWrap, r.energy,
+          before.energy);
+      ASSERT_GE(r.steps, 3);
+      ASSERT_GE(r.wrapSteps, 1);
+      EXPECT_LT(r.worst, 0.03);
+      EXPECT_LT(r.alternation, 0.005);
+      EXPECT_LT(r.energy, 1e-3);
     }
+}
+
+// Pegs at other depths and sides, a square peg and a round one (5 cm), let go from 60 to 120
+// degrees (above the anchor the rope is slack until it catches the bob), 0.1 to 10 kg.
+TEST(SensorsTest, PegsOfEveryKindReportTheStepsTensionFromTheWrapOn) {
+  const std::vector<Stepping> steppings = {{1.0 / 60, 1}, {1.0 / 60, 4}, {1.0 / 240, 1}};
+  const std::vector<PegVariant> pegs = {{Vec2(0, -0.6), PulleyDef::Kind::Point, 0, 60},
+                                        {Vec2(0, -0.3), PulleyDef::Kind::Point, 0, 120},
+                                        {Vec2(0, -0.8), PulleyDef::Kind::Point, 0, 90, true},
+                                        {Vec2(0.15, -0.5), PulleyDef::Kind::Point, 0, 100},
+                                        {Vec2(-0.2, -0.6), PulleyDef::Kind::Point, 0, 75, true},
+                                        {Vec2(0, -0.6), PulleyDef::Kind::Circle, 0.05, 90},
+                                        {Vec2(0.1, -0.4), PulleyDef::Kind::Circle, 0.05, 120, true},
+                                        {Vec2(0, -0.6), PulleyDef::Kind::Polygon, 0.03, 90},
+                                        {Vec2(0, -0.5), PulleyDef::Kind::Polygon, 0.03, 110, true}};
+  double worst = 0, worstWrap = 0, alternation = 0, energy = 0;
+  for (const PegVariant& p : pegs)
+    for (const double mass : {0.1, 1.0, 10.0})
+      for (const Stepping& s : steppings) {
+        SCOPED_TRACE(describe(p) + ", " + label(mass, s));
+        const PegReading r = readPeg(p, mass, s), before = readPeg(p, mass, s, false);
+        std::printf(
+            "%s, %s: worst %.4f (before %.4f), wrap step %.4f (%d), alternation %.4f, "
+            "(before %.4f), energy %.1e (before %.1e, a step's swing %.1e), wrap step %.1e "
+            "(before %.1e)\n",
+            describe(p).c_str(), label(mass, s).c_str(), r.worst, before.worst, r.worstWrap,
+            r.wrapSteps, r.alternation, before.alternation, r.energy, before.energy, r.swing,
+            r.wrapEnergy, before.wrapEnergy);
+        ASSERT_GE(r.steps, 3);
+        ASSERT_GE(r.wrapSteps, 1);
+        EXPECT_LT(r.worst, 0.03);
+        // Measured: up to 0.011 at 60 Hz (the round peg let go from 120 degrees), 0.0024 at 60 Hz
+        // x 4; before, 0.05 to 0.89.
+        EXPECT_LT(r.alternation, 0.015);
+        // Over the wrap step, the bob's energy moves no more than the main solve's own swing over
+        // the step before (its symplectic Euler, up to 2.7e-3 of the kinetic energy at 60 Hz),
+        // and by under 1e-3 at 60 Hz x 4 and 240 Hz.
+        EXPECT_LT(r.wrapEnergy, std::max(1e-3, r.swing));
+        worst = std::max(worst, r.worst);
+        worstWrap = std::max(worstWrap, r.worstWrap);
+        alternation = std::max(alternation, r.alternation);
+        energy = std::max(energy, r.energy);
+      }
+  std::printf("all pegs: worst %.4f, wrap steps %.4f, alternation %.4f, energy %.1e\n", worst,
+              worstWrap, alternation, energy);
 }
 
 // What gravity and the cables leave on the platform (fx, fy, torque about its centre): each cable
@@ -265,4 +417,5 @@ TEST(SensorsTest, DampedPlatformCreepingToRestGetsThereAndReportsNoVelocity) {
 }
 
 }  // namespace sensors_test
+
 }  // namespace cablelab

@@ -1,0 +1,180 @@
+// Start rates matched to the step's rule (rationale in start_rates.h).
+#include "engine/dynamics/start_rates.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "engine/dynamics/floors.h"
+
+namespace cablelab {
+
+namespace {
+
+// A rate further than this share of a whole sub-step's chord rate, (h / 2) L'', from the one the
+// last step left is no artefact of it (a cable coming slack, a knock): left to the solve. Not
+// less than one: across a wrap change L'' jumps (a rope wrapping a peg 0.6 m down its 1 m: x 2.5)
+// and the rate left is the old path's.
+constexpr double kArtefactShare = 1.0;
+
+// A segment shorter than this many sub-steps of its ends' closing motion, plus kFloorMargin of
+// its floor's length: its end may reach its pulley (floors.h) within them.
+constexpr double kFloorReach = 4;
+constexpr double kFloorMargin = 5;
+
+bool nearingFloor(const WrapPoint& p, const WrapPoint& q, std::span<const BodyState> bodies,
+                  double h) {
+  const Vec2 d = floorTo(q) - floorFrom(p);
+  const double gap = d.norm();
+  const double closing = gap > 0 ? -d.dot(floorDrift(p, q, bodies, h, Vec2::Zero())) / gap : 0;
+  return gap < kFloorReach * std::max(closing, 0.0) + kFloorMargin * kFloorLength;
+}
+
+struct MovingPoint {
+  Vec2 position, velocity, acceleration;
+};
+
+// A path point where segment i meets it (`out`: the segment leaves it), moving with its body at
+// constant velocity. Nothing if it is a circle on a moving body (its tangent point slides).
+bool movingPoint(const WrapPoint& w, bool out, std::span<const BodyState> bodies, MovingPoint& p) {
+  if (w.kind == WrapPoint::Kind::Circle) {
+    if (w.body >= 0) return false;
+    p = {out ? w.tangentOut : w.tangentIn, Vec2::Zero(), Vec2::Zero()};
+    return true;
+  }
+  if (w.body < 0) {
+    p = {w.world, Vec2::Zero(), Vec2::Zero()};
+    return true;
+  }
+  const BodyState& b = bodies[w.body];
+  const Vec2 arm = w.world - b.position;
+  p = {w.world, pointVelocity(b, w.world), Vec2(-b.angularVelocity * b.angularVelocity * arm)};
+  return true;
+}
+
+// The second derivative of the cable's length along the bodies' motion at their velocities now
+// (its wrap set fixed): per segment the square of its ends' velocity across it over its length,
+// plus their turning accelerations along it. False where a point cannot say (movingPoint).
+bool lengthCurvature(const Cable& c, std::span<const BodyState> bodies, double& second) {
+  const auto& path = c.path();
+  second = 0;
+  for (size_t i = 0; i + 1 < path.size(); ++i) {
+    if (path[i].body == path[i + 1].body && path[i].radius == path[i + 1].radius) continue;
+    MovingPoint p, q;
+    if (!movingPoint(path[i], true, bodies, p) || !movingPoint(path[i + 1], false, bodies, q))
+      return false;
+    const Vec2 d = q.position - p.position;
+    const double length = d.norm();
+    if (!(length > 1e-9)) continue;
+    const Vec2 u = d / length, rate = q.velocity - p.velocity;
+    const double along = u.dot(rate);
+    second += (rate.squaredNorm() - along * along) / length +
+              u.dot(Vec2(q.acceleration - p.acceleration));
+  }
+  return true;
+}
+
+Vec3 velocityOf(const BodyState& b) {
+  return {b.velocity.x(), b.velocity.y(), b.angularVelocity};
+}
+
+double kineticEnergy(std::span<const int> which, std::span<const BodyState> bodies) {
+  double e = 0;
+  for (const int b : which) {
+    const BodyState& s = bodies[b];
+    if (s.invMass > 0) e += 0.5 * s.velocity.squaredNorm() / s.invMass;
+    if (s.invInertia > 0) e += 0.5 * s.angularVelocity * s.angularVelocity / s.invInertia;
+  }
+  return e;
+}
+
+}  // namespace
+
+std::vector<int> matchStartRates(const StartRateInput& in, std::vector<BodyState>& bodies) {
+  std::vector<int> rows, changed;
+  std::vector<double> miss;  // per row: its rate less the one its next step ends on
+  for (size_t c = 0; c < in.cables.size(); ++c) {
+    const Cable& cable = in.cables[c];
+    const double last = in.lastSteps[c], next = in.nextSteps[c];
+    if (cable.elastic() || cable.spanCount() != 1 || !(cable.tension() > 0) || last < 0 ||
+        next < 0 || std::abs(last - next) <= 1e-9 * in.h)
+      continue;
+    bool alone = true;
+    double rate = 0;
+    for (const auto& e : cable.kinematics().jacobian) {
+      const BodyState& b = bodies[e.body];
+      if (moves(b))
+        alone &= !in.excluded[e.body] && e.body != in.dragBody && b.invMass > 0;
+      else
+        alone &= !driven(b);
+      rate += e.d.dot(velocityOf(b));
+    }
+    // Points between the ends on moving bodies (free polygons in rope loops, pulleys on arms)
+    // and ends nearing their pulleys (floors.h) are left to the solve: there the rate is the
+    // knock's or the floor's as much as the step's.
+    const auto& path = cable.path();
+    for (size_t i = 0; alone && i + 1 < path.size(); ++i)
+      alone = (i == 0 || path[i].body < 0) && (path[i].body == path[i + 1].body ||
+                                               !nearingFloor(path[i], path[i + 1], bodies, in.h));
+    double second = 0;
+    if (!alone || !lengthCurvature(cable, bodies, second)) continue;
+    if (!(std::abs(rate - 0.5 * last * second) <= kArtefactShare * 0.5 * in.h * std::abs(second)))
+      continue;
+    rows.push_back(static_cast<int>(c));
+    miss.push_back(rate - 0.5 * next * second);
+  }
+  const int m = static_cast<int>(rows.size());
+  if (m == 0) return changed;
+  // lambda: K lambda = miss, K = J M^-1 J^T; the velocities move by -M^-1 J^T lambda.
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(m, m);
+  auto invMass = [&](int b) {
+    const BodyState& s = bodies[b];
+    return Vec3(s.invMass, s.invMass, s.invInertia);
+  };
+  for (int i = 0; i < m; ++i)
+    for (const auto& a : in.cables[rows[i]].kinematics().jacobian)
+      for (int j = 0; j < m; ++j)
+        for (const auto& e : in.cables[rows[j]].kinematics().jacobian)
+          if (a.body == e.body) K(i, j) += a.d.dot(invMass(a.body).cwiseProduct(e.d));
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(K);
+  const Eigen::VectorXd pivots = ldlt.vectorD();
+  if (ldlt.info() != Eigen::Success || !(pivots.minCoeff() > 1e-9 * pivots.maxCoeff()))
+    return changed;  // dependent rows: no unique way to turn them
+  const Eigen::VectorXd lambda = ldlt.solve(Eigen::Map<const Eigen::VectorXd>(miss.data(), m));
+  for (int i = 0; i < m; ++i)
+    for (const auto& e : in.cables[rows[i]].kinematics().jacobian)
+      if (moves(bodies[e.body]) &&
+          std::find(changed.begin(), changed.end(), e.body) == changed.end())
+        changed.push_back(e.body);
+  const double before = kineticEnergy(changed, bodies);
+  for (int i = 0; i < m; ++i)
+    for (const auto& e : in.cables[rows[i]].kinematics().jacobian) {
+      BodyState& b = bodies[e.body];
+      if (!moves(b)) continue;
+      const Vec3 dv = -lambda[i] * invMass(e.body).cwiseProduct(e.d);
+      b.velocity += dv.head<2>();
+      b.angularVelocity += dv.z();
+    }
+  // The rate's energy goes into the motion across the cables: the kinetic energy is kept.
+  const double after = kineticEnergy(changed, bodies);
+  if (after > 0 && before > 0) {
+    const double scale = std::sqrt(before / after);
+    for (const int b : changed) {
+      bodies[b].velocity *= scale;
+      bodies[b].angularVelocity *= scale;
+    }
+  }
+  return changed;
+}
+
+void recordStartRateSteps(std::span<const Cable> cables, std::span<const char> midpoint, double dt,
+                          std::vector<double>& steps) {
+  steps.assign(cables.size(), kNoStartRate);
+  for (size_t c = 0; c < cables.size(); ++c) {
+    const Cable& cable = cables[c];
+    if (cable.elastic() || cable.spanCount() != 1 || !(cable.tension() > 0)) continue;
+    steps[c] = !midpoint.empty() && midpoint[c] ? 0.0 : dt;
+  }
+}
+
+}  // namespace cablelab

@@ -1,0 +1,34 @@
+// World: the length rates taut rigid cables start a step with, matched to the step's rule and
+// length where it changes (start_rates.h, docs/model.md, "Coupling to Box2D").
+#include <algorithm>
+
+#include "engine/dynamics/box2d_bridge.h"
+#include "engine/dynamics/start_rates.h"
+#include "engine/dynamics/world.h"
+
+namespace cablelab {
+
+// After solveForces(dt, h): true if some velocity changed (solve again).
+bool World::matchRates(double dt, double h) {
+  if (!matchesStartRates_) return false;
+  if (rateSteps_.size() != cables_.size()) rateSteps_.assign(cables_.size(), kNoStartRate);
+  tookMidpoint_.assign(cables_.size(), 0);
+  for (const int c : midpointCables_) tookMidpoint_[c] = 1;
+  nextSteps_.resize(cables_.size());
+  for (size_t c = 0; c < cables_.size(); ++c) nextSteps_[c] = tookMidpoint_[c] ? 0.0 : dt;
+  const std::vector<int> changed =
+      matchStartRates({cables_, rateSteps_, nextSteps_, excluded_, dragBody_, h}, bodies_);
+  for (const int b : changed) b2_->setVelocity(b, bodies_[b].velocity, bodies_[b].angularVelocity);
+  if (!changed.empty()) b2_->readBodies(bodies_);
+  return !changed.empty();
+}
+
+// After Box2D's step of dt; `whole`: no knock took part of it back (the rates then say nothing).
+void World::recordRates(double dt, bool whole) {
+  tookMidpoint_.assign(cables_.size(), 0);
+  for (const int c : midpointCables_) tookMidpoint_[c] = 1;
+  recordStartRateSteps(cables_, tookMidpoint_, dt, rateSteps_);
+  if (!whole) std::fill(rateSteps_.begin(), rateSteps_.end(), kNoStartRate);
+}
+
+}  // namespace cablelab
