@@ -73,9 +73,9 @@ std::string routeProblem(const World& world, int index) {
   const Cable& cable = world.cable(index);
   const CableDef& def = cable.def();
   for (size_t j = 0; j < def.pulleys.size(); ++j) {
-    const bool inPath = std::any_of(
-        cable.path().begin(), cable.path().end(),
-        [&](const WrapPoint& w) { return w.pulley >= 0 && cable.scenePulley(w.pulley) == int(j); });
+    const bool inPath =
+        std::any_of(cable.path().begin(), cable.path().end(),
+                    [&](const WrapPoint& w) { return cable.scenePulley(w.pulley) == int(j); });
     if (inPath) continue;
     const PulleyDef& p = def.pulleys[j];
     if (p.side == WrapSide::Auto)

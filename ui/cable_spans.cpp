@@ -29,7 +29,7 @@ WheelRow wheelRow(const Cable& cable, int k) {
   const SpanLink& link = cable.link(k);
   WheelRow w;
   w.span = k;
-  w.pulley = link.pulley >= 0 ? cable.scenePulley(link.pulley) : link.pulley;
+  w.pulley = cable.scenePulley(link.pulley);
   w.grip = link.grip;
   w.mu = link.mu;
   w.wrapAngle = link.wrapAngle;

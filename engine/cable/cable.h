@@ -258,8 +258,10 @@ class Cable {
   bool engaged(int pulley) const { return pulleys_[pulley].engaged; }
   /// The scene's pulley (def().pulleys) a place in the path belongs to: a free polygon's second
   /// place (docs/knocks.md, "Wedged in its neighbour's loop") is its sibling's pulley.
+  /// Any other index (a drum end's, -1) is returned as it is.
   int scenePulley(int pulley) const {
-    return pulleys_[pulley].secondPlace ? pulleys_[pulley].twin : pulley;
+    const bool second = pulley >= 0 && pulley < pulleyCount() && pulleys_[pulley].secondPlace;
+    return second ? pulleys_[pulley].twin : pulley;
   }
   /// Whether the scene's pulley k is on the path at either of its places.
   bool sceneEngaged(int k) const {
