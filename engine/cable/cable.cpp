@@ -163,14 +163,6 @@ double Cable::spanStretch(int k) const {
   return spans_.empty() ? stretch() : spans_[k].kin.length - spans_[k].rest;
 }
 
-double Cable::elasticEnergy() const {
-  if (!elastic()) return 0;
-  double e = 0;
-  for (int k = 0; k < spanCount(); ++k)
-    e += 0.5 * spanStiffness(k) * std::pow(std::max(0.0, spanStretch(k)), 2);
-  return e;
-}
-
 void Cable::setSpanTension(int k, double t) {
   if (spans_.empty()) {
     tension_ = t;

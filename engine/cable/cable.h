@@ -288,9 +288,6 @@ class Cable {
   /// Span length - span rest length (m); the whole stretch() for a one-span cable. On an elastic
   /// cable split by a polygon with friction the rest is the span's unstretched material.
   double spanStretch(int k) const;
-  /// The energy stored in the cable's springs (J): each span its own, so a band held apart by
-  /// friction stores what its spans' tensions say (0 for a rigid cable).
-  double elasticEnergy() const;
   /// Span k's stiffness (N/m) and damping (N s/m): the cable's, or on an elastic cable split by a
   /// polygon with friction the cable's times (rest length - preload) / span material, so that
   /// equal strains give the unsplit cable's tension (docs/polygon_friction.md).

@@ -266,7 +266,8 @@ double World::energy() const {
     e += 0.5 * m * b.velocity.squaredNorm() - m * gravity_.dot(b.position);
     if (b.invInertia > 0) e += 0.5 * b.angularVelocity * b.angularVelocity / b.invInertia;
   }
-  for (const Cable& c : cables_) e += c.elasticEnergy();
+  for (const Cable& c : cables_)
+    if (c.elastic()) e += 0.5 * c.stiffness() * std::pow(std::max(0.0, c.stretch()), 2);
   return e;
 }
 
