@@ -252,7 +252,8 @@ class Cable {
   bool elastic() const { return params_.stiffness > 0; }
   /// Pulley wrap points in use (path points that are not anchors).
   int wraps() const { return static_cast<int>(path_.size()) - 2; }
-  int pulleyCount() const { return static_cast<int>(pulleys_.size()); }
+  /// The scene's pulleys (def().pulleys): a free polygon's second place is not one of them.
+  int pulleyCount() const { return namedPulleys_; }
   /// The body a pulley is fixed on (-1: the world), engaged or not.
   int pulleyBody(int pulley) const { return pulleys_[pulley].body; }
   bool engaged(int pulley) const { return pulleys_[pulley].engaged; }
@@ -260,7 +261,8 @@ class Cable {
   /// place (docs/knocks.md, "Wedged in its neighbour's loop") is its sibling's pulley.
   /// Any other index (a drum end's, -1) is returned as it is.
   int scenePulley(int pulley) const {
-    const bool second = pulley >= 0 && pulley < pulleyCount() && pulleys_[pulley].secondPlace;
+    const bool second =
+        pulley >= 0 && pulley < static_cast<int>(pulleys_.size()) && pulleys_[pulley].secondPlace;
     return second ? pulleys_[pulley].twin : pulley;
   }
   /// Whether the scene's pulley k is on the path at either of its places.
