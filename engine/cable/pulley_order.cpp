@@ -130,10 +130,19 @@ bool Cable::joinCrossedSegment(int j) {
   // in one rope's loops meet, a polygon riding the other's hull comes off its corner as it crosses
   // the rope going into the other (docs/knocks.md, "Riding its neighbour's hull").
   const bool onPath = p.engaged;
+  // Its place on the path (first = 0: off it), and the ends of the straight rope that moving
+  // would leave there.
+  const std::pair<size_t, size_t> place = placeOnPath(path_, j);
+  const size_t first = place.first, last = place.second;
+  Vec2 oldFrom = Vec2::Zero(), oldTo = Vec2::Zero();
+  if (first) {
+    const WrapPoint &prev = path_[first - 1], &next = path_[last + 1];
+    oldFrom = prev.radius == 0 ? prev.world : prev.tangentOut;
+    oldTo = next.radius == 0 ? next.world : next.tangentIn;
+  }
   // Joining segment i (wrapped on `side`), the neighbouring polygons there, and at its old place
   // if it moves, keep their chains: its detours are all the length moves by.
   auto neighboursKept = [&](size_t i, WrapSide side, bool moving) {
-    const auto [first, last] = placeOnPath(path_, j);
     std::vector<int> chain;
     const WrapPoint &wa = path_[i], &wb = path_[i + 1];
     const Vec2 a = wa.radius == 0 ? wa.world : wa.tangentOut;
@@ -162,10 +171,8 @@ bool Cable::joinCrossedSegment(int j) {
         !kept(wb, p.world[chain.back()], after(i + 1)))
       return false;
     if (!first || !moving) return true;  // off the path, or its old place kept
-    const WrapPoint &prev = path_[first - 1], &next = path_[last + 1];
-    const Vec2 oldFrom = prev.radius == 0 ? prev.world : prev.tangentOut;
-    const Vec2 oldTo = next.radius == 0 ? next.world : next.tangentIn;
-    return kept(prev, before(first - 1), oldTo) && kept(next, oldFrom, after(last + 1));
+    return kept(path_[first - 1], before(first - 1), oldTo) &&
+           kept(path_[last + 1], oldFrom, after(last + 1));
   };
   double own = -1;
   for (size_t i = 0; i + 1 < path_.size(); ++i) {
@@ -215,10 +222,6 @@ bool Cable::joinCrossedSegment(int j) {
       // Wedged between two strands (in its neighbour's loop), moving would leave its old place's
       // straightened rope across it: its second place joins there instead, and the rope bends
       // round it at both (docs/knocks.md, "Wedged in its neighbour's loop").
-      const auto [first, last] = placeOnPath(path_, j);
-      const WrapPoint &prev = path_[first > 0 ? first - 1 : 0], &next = path_[last + 1];
-      const Vec2 oldFrom = prev.radius == 0 ? prev.world : prev.tangentOut;
-      const Vec2 oldTo = next.radius == 0 ? next.world : next.tangentIn;
       if (first > 0 && p.twin >= 0 && !pulleys_[p.twin].engaged && own <= kWedgedOwnDetour &&
           detour <= kCrossedJoinDetour && segmentCutsPolygon(oldFrom, oldTo, p.world) &&
           neighboursKept(i, side, false)) {

@@ -1,6 +1,8 @@
 // World: the length rates taut rigid cables start a step with, matched to the step's rule and
 // length where it changes (start_rates.h, docs/model.md, "Coupling to Box2D").
 #include <algorithm>
+#include <span>
+#include <vector>
 
 #include "engine/dynamics/box2d_bridge.h"
 #include "engine/dynamics/start_rates.h"
@@ -8,12 +10,21 @@
 
 namespace cablelab {
 
+namespace {
+
+// Per cable: 1 where the midpoint solve took it this step.
+void markMidpointCables(size_t cables, std::span<const int> midpoint, std::vector<char>& took) {
+  took.assign(cables, 0);
+  for (const int c : midpoint) took[c] = 1;
+}
+
+}  // namespace
+
 // After solveForces(dt, h): true if some velocity changed (solve again).
 bool World::matchRates(double dt, double h) {
   if (!matchesStartRates_) return false;
   if (rateSteps_.size() != cables_.size()) rateSteps_.assign(cables_.size(), kNoStartRate);
-  tookMidpoint_.assign(cables_.size(), 0);
-  for (const int c : midpointCables_) tookMidpoint_[c] = 1;
+  markMidpointCables(cables_.size(), midpointCables_, tookMidpoint_);
   nextSteps_.resize(cables_.size());
   for (size_t c = 0; c < cables_.size(); ++c) nextSteps_[c] = tookMidpoint_[c] ? 0.0 : dt;
   const std::vector<int> changed =
@@ -25,8 +36,7 @@ bool World::matchRates(double dt, double h) {
 
 // After Box2D's step of dt; `whole`: no knock took part of it back (the rates then say nothing).
 void World::recordRates(double dt, bool whole) {
-  tookMidpoint_.assign(cables_.size(), 0);
-  for (const int c : midpointCables_) tookMidpoint_[c] = 1;
+  markMidpointCables(cables_.size(), midpointCables_, tookMidpoint_);
   recordStartRateSteps(cables_, tookMidpoint_, dt, rateSteps_);
   if (!whole) std::fill(rateSteps_.begin(), rateSteps_.end(), kNoStartRate);
 }
