@@ -536,12 +536,8 @@ double World::advance(double left, double h, bool locate) {
       cutCable_ = sooner.cable;
       cutEvent_ = sooner.event;
     }
-    // The other way round, the cut's own motion may not reach the change yet: taken early at the
-    // next selection (kCutReach), a polygon's new corner joined off the old path, each join
-    // lengthening the rope by up to 9 um, and an elastic loop gained 0.16% of its energy a minute
-    // at 60 Hz (docs/cables.md, "Events"). An elastic cable's cut ends where that motion reaches
-    // it, once. Not a rigid one's: its length stores no energy, and so lengthened, polygons
-    // spinning side by side on a rigid rope were released with jumps of 1.4 mm and 21 cm.
+    // Nor may it reach it yet: an elastic cable's cut then ends where it does, once (taken ahead,
+    // corners joined off the old path: docs/cables.md, "Events"; a rigid rope stores no energy).
     if (cable >= 0 && cutCable_ >= 0 && cables_[cutCable_].elastic()) {
       predictMotion(dt);
       const FirstWrapEvent later =
