@@ -505,6 +505,7 @@ double World::advance(double left, double h, bool locate) {
       return any;
     };
     if (floorArrivals(first)) cable = -1;
+    const double whole = dt;  // the step before any cut at a wrap event
     if (first && *first < dt) {
       const double cut = std::max(*first, kMinEventStep * h);
       if (cut < dt) {
@@ -534,6 +535,19 @@ double World::advance(double left, double h, bool locate) {
       solveForces(dt, h);
       cutCable_ = sooner.cable;
       cutEvent_ = sooner.event;
+    }
+    // Nor may it reach it yet: an elastic cable's cut then ends where it does, once (taken ahead,
+    // corners joined off the old path: docs/cables.md, "Events"; a rigid rope stores no energy).
+    if (cable >= 0 && cutCable_ >= 0 && cables_[cutCable_].elastic()) {
+      predictMotion(dt);
+      const FirstWrapEvent later =
+          firstWrapEvent(cables_, motion_, std::min(whole, dt + kCutReach * h));
+      if (later.time && *later.time > dt + crossingTolerance(h) && later.cable == cutCable_ &&
+          later.event.pulley == cutEvent_.pulley && later.event.kind == cutEvent_.kind &&
+          later.event.vertex == cutEvent_.vertex) {
+        dt = *later.time;
+        solveForces(dt, h);
+      }
     }
     // The arrival was located at the velocities of the whole step, but Box2D moves the bodies
     // over the cut one at v0 + dt a: a weight swung at a winch drum at 15 m/s^2 landed 0.65 mm
