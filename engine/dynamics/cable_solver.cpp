@@ -92,7 +92,10 @@ void solve(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables, st
   const int islands = findIslands(ws, in, cables);  // 1
   if (islands == 0) return;
   if (ws.dofs.ofBody.size() != in.bodies.size()) ws.dofs.reset(in.bodies.size());
-  if (ws.warm.size() != cables.size()) ws.warm.assign(cables.size(), {});
+  if (ws.warm.size() != cables.size()) {
+    ws.warm.assign(cables.size(), {});
+    ws.floorWarm.assign(cables.size(), {});
+  }
   predictPrescribed(ws, in);
   for (int island = 0; island < islands; ++island) {
     // Big islands take the sparse path where it applies (sparse_island.h says which).

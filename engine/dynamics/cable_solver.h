@@ -59,6 +59,9 @@ struct CableSolverWorkspace;  // the stages' buffers (cable_solver_stages.h)
 
 /// Off: Newton always runs, never the start-of-step linearisation alone (tests compare the two).
 void setLinearShortcut(bool on);
+/// Off: floor rows start Newton at 0 and Newton always runs, never keeping the last sub-step's
+/// impulses for a body resting at its pulley (docs/floors.md; tests compare the two).
+void setKeptImpulses(bool on);
 
 class CableSolver {
  public:

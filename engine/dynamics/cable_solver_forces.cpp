@@ -64,7 +64,11 @@ void applyForces(Workspace& ws, const CableSolveInput& in, std::span<Cable> cabl
   for (const Workspace::Row& row : ws.rows) {
     const Cable& c = cables[row.cable];
     ws.warm[row.cable] = {h, c.tension(), c.spanCount()};
+    ws.floorWarm[row.cable].clear();
   }
+  for (size_t r = 0; r < ws.rows.size(); ++r)
+    if (const Workspace::Row& row = ws.rows[r]; row.segment >= 0 && ws.P[r] > 0)
+      ws.floorWarm[row.cable].push_back(floorImpulse(cables[row.cable], row, ws.P[r]));
   timesImpulses(ws, ws.P);
   const double endScale =
       ws.midpoint ? midpointEnergyScale(ws, in, midpointWorkLeft(ws, in, cables)) : 1.0;

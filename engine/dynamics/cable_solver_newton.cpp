@@ -19,10 +19,13 @@ constexpr int kNewtonIterations = 3;  // on the end-of-step lengths; geometry is
 // quadratically, and a fast catch needs more steps (a puck at 50 m/s: 29 mm stretch after 3).
 constexpr int kChordIterations = 12;
 
+bool keepImpulses = true;  // setKeptImpulses
+
 // Warm start: a cable's tension changes little from one sub-step to the next, so Newton starts
 // from the impulses of the last solve when it had the same h and nothing has set the tension
 // since (after a step cut at an event the impulse is not force times h: a length correction is
-// m dv whatever h). Floors start at 0. True if any row starts away from 0.
+// m dv whatever h). A floor row starts from its impulse of that solve, on the segment between
+// the same two points, else at 0. True if any row starts away from 0.
 bool warmStart(Workspace& ws, double h, std::span<const Cable> cables) {
   const int m = static_cast<int>(ws.rows.size());
   ws.P.setZero(m);
@@ -31,16 +34,53 @@ bool warmStart(Workspace& ws, double h, std::span<const Cable> cables) {
     const Workspace::Row& row = ws.rows[r];
     const Cable& c = cables[row.cable];
     const Workspace::WarmStart& last = ws.warm[row.cable];
-    if (row.segment >= 0 || last.h != h || last.tension != c.tension() ||
-        last.spans != c.spanCount())
-      continue;
-    ws.P[r] = std::max(0.0, c.spanTension(row.first) / row.weight(ws.rowWeights, row.first)) * h;
+    if (last.h != h || last.tension != c.tension() || last.spans != c.spanCount()) continue;
+    if (row.segment >= 0 && keepImpulses) {
+      const Workspace::FloorImpulse here = floorImpulse(c, row, 0);
+      for (const Workspace::FloorImpulse& f : ws.floorWarm[row.cable])
+        if (f.fromPulley == here.fromPulley && f.fromVertex == here.fromVertex &&
+            f.toPulley == here.toPulley && f.toVertex == here.toVertex && f.rim == here.rim)
+          ws.P[r] = f.impulse;
+    } else if (row.segment < 0) {
+      ws.P[r] = std::max(0.0, c.spanTension(row.first) / row.weight(ws.rowWeights, row.first)) * h;
+    }
     warm |= ws.P[r] > 0;
   }
   return warm;
 }
 
+// Whether the warm start ws.P already answers the step: at its end-of-step pose every row that
+// pulls meets its target and every other row asks for no pull, each to Newton's own tolerance
+// (newtonSettled's on a first step), so that the next iteration's LCP would give P back. A body
+// resting at its pulley is held by the same impulses step after step (a tackle's block at its
+// top sheave: three chord iterations, each an LCP over the redundant floors, found them again;
+// docs/floors.md, "Resting at a pulley"). Only for redundant rows, whose step Newton measures by
+// the rows' rates over their diagonals (impulseChange), which the unmet rates give without a
+// solve; elsewhere it measures the impulses themselves, which take the solve (a massless
+// wheel's huge diagonal hid a 6% change of its rope's tension). Leaves phi1 at ws.P.
+bool lastImpulsesHold(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  // (The midpoint rule's right-hand side moves with phi1; elastic rows make the LCP definite.)
+  if (!keepImpulses || !ws.redundant || ws.midpoint || !(ws.compliance.array() == 0).all())
+    return false;
+  linearise(ws, in, cables);
+  const double tolerance = 1e-9 * (1e-9 + ws.P.lpNorm<Eigen::Infinity>());
+  // The minimum-norm LCP's answer is its own fixed point with each pulling row short by its
+  // compliance times its impulse (tension_solver.h).
+  const double bias = minimumNormCompliance(ws.JW0.diagonal());
+  for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
+    const double w = -(ws.phi1[r] - ws.target[r]) / in.h;  // K P - b of iterateNewton's LCP (m/s)
+    const double allowed = tolerance * ws.JW0(r, r);
+    if (ws.P[r] > 0 ? !(std::abs(w + bias * ws.P[r]) <= allowed) : !(w >= -allowed)) return false;
+  }
+  return true;
+}
+
 }  // namespace
+
+Workspace::FloorImpulse floorImpulse(const Cable& c, const Workspace::Row& row, double impulse) {
+  const WrapPoint &from = c.path()[row.segment], &to = c.path()[row.segment + 1];
+  return {from.pulley, from.vertex, to.pulley, to.vertex, row.rim, impulse};
+}
 
 // 5. Position-level targets. Rigid: length at the end of the step = now (the error below the
 // slop is float rounding: fixing it would amplify it by 1/h^2), a slack cable may come taut, an
@@ -225,6 +265,10 @@ void solveLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cabl
   }
   if (solveLinearised(ws, in, cables, redundant, stats)) return;
   if (warmStart(ws, in.h, cables)) {
+    if (lastImpulsesHold(ws, in, cables) && realisable(ws, in.h) && !addsEnergy(ws, in, cables)) {
+      ++stats.keptImpulses;
+      return;
+    }
     StepStats warm;
     const Newton warmed = iterateNewton(ws, in, cables, redundant, warm);
     if ((warmed == Newton::Converged || warmed == Newton::Close) && realisable(ws, in.h) &&
@@ -260,3 +304,11 @@ void solveLengths(Workspace& ws, const CableSolveInput& in, std::span<const Cabl
 }
 
 }  // namespace cablelab::cable_stages
+
+namespace cablelab {
+
+void setKeptImpulses(bool on) {
+  cable_stages::keepImpulses = on;
+}
+
+}  // namespace cablelab

@@ -136,6 +136,15 @@ struct CableSolverWorkspace {
     int spans = 0;
   };
   std::vector<WarmStart> warm;
+  // Per cable, the impulses (N s) of its floor rows in that solve, each by its segment's ends
+  // (a wrap change renumbers segments): a body resting at its pulley is held by the same floors
+  // step after step (docs/floors.md, "Resting at a pulley").
+  struct FloorImpulse {
+    int fromPulley = -1, fromVertex = -1, toPulley = -1, toVertex = -1;
+    bool rim = false;
+    double impulse = 0;
+  };
+  std::vector<std::vector<FloorImpulse>> floorWarm;
   // Rows the start-of-step J cannot pull on (blocked): they pull along J at the predicted pose
   // (stage 4b), one Jacobian each here.
   std::vector<char> ahead;
@@ -156,6 +165,9 @@ int findIslands(Workspace& ws, const CableSolveInput& in, std::span<Cable> cable
 void buildRows(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables, int island);
 double floorRow(Workspace& ws, std::span<const BodyState> bodies, const Cable& cable,
                 const Workspace::Row& row);
+
+// A floor row's impulse (N s) for the warm start of the next solve (cable_solver_newton.cpp).
+Workspace::FloorImpulse floorImpulse(const Cable& c, const Workspace::Row& row, double impulse);
 
 // 2-4. Predicted velocities, W, the joint projection (cable_solver_prepare.cpp).
 void predictPrescribed(Workspace& ws, const CableSolveInput& in);

@@ -234,6 +234,13 @@ bool isSymmetric(const Eigen::MatrixXd& K) {
 
 }  // namespace
 
+double minimumNormCompliance(const Eigen::VectorXd& diagonal) {
+  // As solveLcp regularises K's diagonal, then makeMinimumNorm.
+  double largest = 0;
+  for (const double k : diagonal) largest = std::max(largest, k + 1e-12 * (1 + k));
+  return kMinimumNormRegularisation * largest;
+}
+
 bool rankDeficient(const Eigen::LDLT<Eigen::MatrixXd>& ldlt) {
   const auto d = ldlt.vectorD();
   const double largest = d.cwiseAbs().maxCoeff();

@@ -41,6 +41,11 @@ struct LcpSolution {
 /// Lawson and Hanson's active-set method, which cannot cycle on nearly dependent rows.
 LcpSolution solveLcp(const Eigen::MatrixXd& K, const Eigen::VectorXd& b);
 
+/// The equal compliance (m/s per N s) that solveLcp's minimum-norm path adds to every row of a
+/// redundant K with this diagonal: its answer x leaves each pulling row i at w_i = -c x_i, where
+/// an exact solve leaves 0 (a tackle's block at its sheave: its rope 3.5e-7 m long each step).
+double minimumNormCompliance(const Eigen::VectorXd& diagonal);
+
 /// Whether the (pivoted) LDLT of a positive semidefinite matrix has a pivot below kRankTolerance
 /// of the largest: the matrix is singular up to rounding (redundant rows).
 bool rankDeficient(const Eigen::LDLT<Eigen::MatrixXd>& ldlt);

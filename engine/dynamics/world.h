@@ -76,6 +76,7 @@ struct StepStats {
       0;  ///< LCP active-set iterations (with those of solves given up), summed over sub-steps
   double residual = 0;             ///< largest complementarity residual of the tension solve
   int linearisationFallbacks = 0;  ///< cable rows solved on the start-of-step Jacobian (guard)
+  int keptImpulses = 0;  ///< main-solve islands the last sub-step's impulses still held (no LCP)
   int linearSolves = 0;  ///< main-solve islands whose start-of-step linearisation was exact enough
   int newtonDivergences = 0;  ///< islands whose Newton diverged (solved on the start-of-step J)
   int unsettledIslands = 0;   ///< of those, answers that miss their lengths (World halves the step)
