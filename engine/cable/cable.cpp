@@ -26,14 +26,6 @@ WrapPoint terminal(int body, const AnchorDef& a) {
   return p;
 }
 
-// Where the cable leaves (or reaches) a path point: the tangent point of a circle.
-Vec2 leaving(const WrapPoint& p) {
-  return p.radius == 0 ? p.world : p.tangentOut;
-}
-Vec2 arriving(const WrapPoint& p) {
-  return p.radius == 0 ? p.world : p.tangentIn;
-}
-
 // m: how far a segment's ends may stray from straight lines between two updates (sweptOverPulley).
 constexpr double kSweepMargin = 0.05;
 
@@ -57,7 +49,8 @@ bool sweptOverPulley(std::span<const WrapPoint> previous, std::span<const WrapPo
   };
   const WrapPoint *a0 = before(host), *b0 = before(host + 1);
   if (previous.size() < 2 || !a0 || !b0) return true;
-  const Vec2 q[4] = {leaving(*a0), arriving(*b0), leaving(path[host]), arriving(path[host + 1])};
+  const Vec2 q[4] = {a0->leaving(), b0->arriving(), path[host].leaving(),
+                     path[host + 1].arriving()};
   for (int i = 0; i < 4; ++i)
     for (int j = i + 1; j < 4; ++j) {
       const Vec2 d = q[j] - q[i];
@@ -202,8 +195,8 @@ void Cable::placePulleys(std::span<const BodyState> bodies) {
 // Node n of the chain: 0 = start anchor, 1..P = pulley n-1, P+1 = end anchor. A circle's
 // contact points are those of the last update (the polygon chain only needs them roughly).
 Vec2 Cable::entryPoint(int node, const std::vector<std::vector<int>>& chains) const {
-  if (node == 0) return leaving(path_.front());
-  if (node == static_cast<int>(pulleys_.size()) + 1) return arriving(path_.back());
+  if (node == 0) return path_.front().leaving();
+  if (node == static_cast<int>(pulleys_.size()) + 1) return path_.back().arriving();
   const PulleyState& p = pulleys_[node - 1];
   const auto& c = chains[node - 1];
   if (!p.polygon) return p.world[0];
@@ -368,7 +361,8 @@ bool Cable::leaveRound() {
     } else {
       // The turn at a point, continuous over time: past half a turn (the cable doubled back round
       // it, e.g. swung round past an end anchor) it stays; it leaves when the turn goes below 0.
-      const Vec2 in = p.world[0] - leaving(path_[i - 1]), out = arriving(path_[i + 1]) - p.world[0];
+      const Vec2 in = p.world[0] - path_[i - 1].leaving(),
+                 out = path_[i + 1].arriving() - p.world[0];
       p.arc = continuedPointTurn(in, out, p.side, p.arc);
       gone = p.arc < 0;
     }
@@ -396,7 +390,7 @@ bool Cable::leaveRound() {
       size_t host = 0;
       while (host + 2 < path_.size() && rank_[path_[host + 1].pulley] < rank_[j]) ++host;
       const bool across =
-          segmentCutsPolygon(leaving(path_[host]), arriving(path_[host + 1]), p.world);
+          segmentCutsPolygon(path_[host].leaving(), path_[host + 1].arriving(), p.world);
       p.previousDepth = across ? 1.0 : 0.0;
       p.arc = 0;
       return true;
@@ -420,8 +414,8 @@ bool Cable::joinRound(std::vector<std::string>* warnings) {
     }
     // A free polygon crossing another segment joins it (pulley_order.cpp).
     if (joinsAnySegment(j) && joinCrossedSegment(j)) return true;
-    const Vec2 a = leaving(path_[host]);
-    const Vec2 b = arriving(path_[host + 1]);
+    const Vec2 a = path_[host].leaving();
+    const Vec2 b = path_[host + 1].arriving();
     const Vec2 ab = b - a;
     const double len = ab.norm();
     // A circle whose disc holds an end of the segment (a bob on a slack rope flew into it) has no
@@ -545,7 +539,7 @@ bool Cable::updateDrumEnd(WrapPoint& end, bool atStart, std::span<const BodyStat
   }
   const Vec2 mark = worldPoint(bodies, end.body, end.local);
   const Vec2 centre = worldPoint(bodies, end.body, drum.centre);
-  const Vec2 other = atStart ? arriving(next) : leaving(next);
+  const Vec2 other = atStart ? next.arriving() : next.leaving();
   const Vec2 u = atStart ? Vec2(other - mark) : Vec2(mark - other);  // walking the cable
   const Vec2 outward = mark - centre;
   // The cable runs into the disc just before (end) or after (start) the mark.

@@ -87,6 +87,17 @@ inline bool driven(const BodyState& b) {
   return !moves(b) && (b.velocity.squaredNorm() > 0 || b.angularVelocity != 0);
 }
 
+/// Kinetic energy of the body's motion (J); a body the solve cannot move carries none.
+inline double kineticEnergy(const BodyState& b) {
+  return 0.5 * ((b.invMass > 0 ? b.velocity.squaredNorm() / b.invMass : 0.0) +
+                (b.invInertia > 0 ? b.angularVelocity * b.angularVelocity / b.invInertia : 0.0));
+}
+
+/// Gravity's energy of the body (J) in field `gravity` (m/s^2), zero at the origin.
+inline double gravityEnergy(const BodyState& b, const Vec2& gravity) {
+  return b.invMass > 0 ? -gravity.dot(b.position) / b.invMass : 0.0;
+}
+
 /// Velocity of the body's material point now at `at` (world frame).
 inline Vec2 pointVelocity(const BodyState& b, const Vec2& at) {
   return b.velocity + b.angularVelocity * perp(Vec2(at - b.position));
@@ -111,6 +122,11 @@ struct WrapPoint {
   double mark = 0;  ///< Circle at a path's end: body-frame angle of the cable's fixed point (rad)
   Vec2 tangentIn = Vec2::Zero();   ///< Circle: where the cable arrives (world), set by kinematics
   Vec2 tangentOut = Vec2::Zero();  ///< Circle: where it leaves (world)
+
+  /// Where the cable leaves this point for the next one: a circle's tangent point, else the point.
+  Vec2 leaving() const { return radius == 0 ? world : tangentOut; }
+  /// Where the cable reaches this point from the one before.
+  Vec2 arriving() const { return radius == 0 ? world : tangentIn; }
 };
 
 /// d(length)/d(x, y, theta) of one body.

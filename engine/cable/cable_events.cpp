@@ -102,9 +102,7 @@ std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, 
         const bool own = p.engaged ? mine : r > lo && r < hi;
         if (own || p.dropped || idleSecondPlace(j) || !joinsAnySegment(j)) continue;
         // One on the path that the segment already cuts cannot move there (pulley_order.cpp).
-        if (p.engaged && segmentCutsPolygon(a.radius == 0 ? a.world : a.tangentOut,
-                                            b.radius == 0 ? b.world : b.tangentIn, p.world))
-          continue;
+        if (p.engaged && segmentCutsPolygon(a.leaving(), b.arriving(), p.world)) continue;
         for (int v = 0; v < static_cast<int>(pulleys_[j].local.size()); ++v)
           tryPoint(j, v, WrapEvent::Kind::Join, true);
       }

@@ -163,8 +163,8 @@ void appendLengthHessianTranslation(std::span<const WrapPoint> path,
   // not change the turn rate of u), so the blocks use the tangent points.
   for (size_t i = 0; i + 1 < path.size(); ++i) {
     const int a = path[i].body, b = path[i + 1].body;
-    const Vec2 from = path[i].radius == 0 ? path[i].world : path[i].tangentOut;
-    const Vec2 to = path[i + 1].radius == 0 ? path[i + 1].world : path[i + 1].tangentIn;
+    const Vec2 from = path[i].leaving();
+    const Vec2 to = path[i + 1].arriving();
     const Vec2 d = to - from;
     const double len = d.norm();
     if (a == b || len < kZeroLength) continue;

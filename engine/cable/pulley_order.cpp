@@ -71,8 +71,8 @@ double ownWrapDetour(std::span<const WrapPoint> path, int j) {
   const auto [first, last] = placeOnPath(path, j);
   if (!first) return 1e300;
   const WrapPoint &from = path[first - 1], &to = path[last + 1];
-  const Vec2 start = from.radius == 0 ? from.world : from.tangentOut;
-  const Vec2 end = to.radius == 0 ? to.world : to.tangentIn;
+  const Vec2 start = from.leaving();
+  const Vec2 end = to.arriving();
   Vec2 at = start;
   double along = 0;
   for (size_t i = first; i <= last; ++i) {
@@ -139,16 +139,16 @@ bool Cable::joinCrossedSegment(int j) {
   Vec2 oldFrom = Vec2::Zero(), oldTo = Vec2::Zero();
   if (first) {
     const WrapPoint &prev = path_[first - 1], &next = path_[last + 1];
-    oldFrom = prev.radius == 0 ? prev.world : prev.tangentOut;
-    oldTo = next.radius == 0 ? next.world : next.tangentIn;
+    oldFrom = prev.leaving();
+    oldTo = next.arriving();
   }
   // Joining segment i (wrapped on `side`), the neighbouring polygons there, and at its old place
   // if it moves, keep their chains: its detours are all the length moves by.
   auto neighboursKept = [&](size_t i, WrapSide side, bool moving) {
     std::vector<int> chain;
     const WrapPoint &wa = path_[i], &wb = path_[i + 1];
-    const Vec2 a = wa.radius == 0 ? wa.world : wa.tangentOut;
-    const Vec2 b = wb.radius == 0 ? wb.world : wb.tangentIn;
+    const Vec2 a = wa.leaving();
+    const Vec2 b = wb.arriving();
     if (!wrapChain(a, b, p.world, side, chain) || chain.empty()) return false;
     auto kept = [&](const WrapPoint& end, const Vec2& from, const Vec2& to) {
       if (end.kind != WrapPoint::Kind::Vertex) return true;
@@ -161,13 +161,13 @@ bool Cable::joinCrossedSegment(int j) {
       if (k == 0) return path_[0].world;
       while (k > 1 && path_[k - 1].pulley == path_[k].pulley) --k;
       const WrapPoint& w = path_[k - 1];
-      return w.radius == 0 ? w.world : w.tangentOut;
+      return w.leaving();
     };
     auto after = [&](size_t k) {
       if (k + 1 >= path_.size()) return path_.back().world;
       while (k + 2 < path_.size() && path_[k + 1].pulley == path_[k].pulley) ++k;
       const WrapPoint& w = path_[k + 1];
-      return w.radius == 0 ? w.world : w.tangentIn;
+      return w.arriving();
     };
     if (!kept(wa, before(i), p.world[chain.front()]) ||
         !kept(wb, p.world[chain.back()], after(i + 1)))
@@ -183,8 +183,8 @@ bool Cable::joinCrossedSegment(int j) {
     if (onPath && (wa.pulley == j || wb.pulley == j ||
                    (p.twin >= 0 && (wa.pulley == p.twin || wb.pulley == p.twin))))
       continue;
-    const Vec2 a = wa.radius == 0 ? wa.world : wa.tangentOut;
-    const Vec2 b = wb.radius == 0 ? wb.world : wb.tangentIn;
+    const Vec2 a = wa.leaving();
+    const Vec2 b = wb.arriving();
     double left = -1e300, right = -1e300;
     for (const Vec2& v : p.world) {
       left = std::max(left, wrapSideDistance(a, b, v, WrapSide::Left));

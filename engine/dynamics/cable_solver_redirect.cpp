@@ -65,7 +65,7 @@ void pathAhead(Workspace& ws, const Cable& cable, int span, std::span<const Body
     // round past half a turn stays (with the sign alone, a point that hooked a ballast's cable
     // beyond its end pulley left the prediction, the solve saw a slack cable and let it go: the
     // rigid cable grew to 60 m).
-    const Vec2 in = w.world - floorFrom(ws.path[i - 1]), out = floorTo(ws.path[i + 1]) - w.world;
+    const Vec2 in = w.world - ws.path[i - 1].leaving(), out = ws.path[i + 1].arriving() - w.world;
     if (continuedPointTurn(in, out, cable.wrapSide(w.pulley), cable.pointTurn(w.pulley)) >= 0)
       continue;
     ws.path.erase(ws.path.begin() + static_cast<std::ptrdiff_t>(i));

@@ -204,7 +204,7 @@ double floorRow(Workspace& ws, std::span<const BodyState> bodies, const Cable& c
     const WrapPoint& w = *ends[e];
     const Vec2 centre = worldPoint(bodies, w.body, w.local);
     // A circle's contact is its tangent point at the start of the step, carried with its centre.
-    const Vec2 offset = (e == 0 ? floorFrom(w) : floorTo(w)) - w.world;
+    const Vec2 offset = (e == 0 ? w.leaving() : w.arriving()) - w.world;
     along -= sign * n.dot(centre + offset);
     if (w.body < 0) continue;
     const Vec2 arm = centre - bodies[w.body].position;

@@ -31,14 +31,6 @@ inline bool hasFloors(const Cable& cable) {
   return cable.restLength() > kShortestFlooredCable;
 }
 
-/// Where segment (p, q) of a path touches p and q: a circle's tangent point, else the point.
-inline Vec2 floorFrom(const WrapPoint& p) {
-  return p.radius == 0 ? p.world : p.tangentOut;
-}
-inline Vec2 floorTo(const WrapPoint& q) {
-  return q.radius == 0 ? q.world : q.tangentIn;
-}
-
 /// Which end of segment (p, q) is a circle when the other is a point (0: p, 1: q), else -1.
 inline int rimEnd(const WrapPoint& p, const WrapPoint& q) {
   if ((p.radius == 0) == (q.radius == 0)) return -1;
@@ -100,7 +92,7 @@ inline double floorGap(const WrapPoint& p, const WrapPoint& q, bool rim = false)
     Vec2 gradient;
     return rimGap(point.body, point.world, circle.world, circle.radius, gradient);
   }
-  return (floorTo(q) - floorFrom(p)).norm();
+  return (q.arriving() - p.leaving()).norm();
 }
 
 /// Where segment (p, q)'s far contact point moves relative to its near one over a sub-step h, at
@@ -114,7 +106,7 @@ inline Vec2 floorDrift(const WrapPoint& p, const WrapPoint& q, std::span<const B
     const Vec2 v = pointVelocity(b, at);
     return b.invMass > 0 ? Vec2(v + h * gravity) : v;
   };
-  return h * (velocity(q, floorTo(q)) - velocity(p, floorFrom(p)));
+  return h * (velocity(q, q.arriving()) - velocity(p, p.leaving()));
 }
 
 /// Whether segment i (points i and i + 1) of `path` is near its floor this sub-step: its ends are
@@ -161,7 +153,7 @@ inline bool slackAtPinnedFloor(const Cable& cable, size_t i, std::span<const Bod
   double stretch = cable.stretch() - floorGap(path[i], path[i + 1]) + kFloorLength;
   for (size_t j = 0; j + 1 < path.size() && stretch < 0; ++j) {
     if (j == i) continue;
-    const Vec2 d0 = floorTo(path[j + 1]) - floorFrom(path[j]);
+    const Vec2 d0 = path[j + 1].arriving() - path[j].leaving();
     const Vec2 d1 = d0 + 2 * floorDrift(path[j], path[j + 1], bodies, h, gravity);
     stretch += std::max(0.0, d1.norm() - d0.norm());
   }
@@ -214,7 +206,7 @@ bool needsDiscFloor(const Cable& cable, size_t i, std::span<const BodyState> bod
 /// anchor would read as passing through it and be thrown back).
 inline Vec2 floorNormal(const WrapPoint& p, const WrapPoint& q, std::span<const BodyState> bodies,
                         double h, const Vec2& gravity) {
-  const Vec2 d0 = floorTo(q) - floorFrom(p), drift = floorDrift(p, q, bodies, h, gravity);
+  const Vec2 d0 = q.arriving() - p.leaving(), drift = floorDrift(p, q, bodies, h, gravity);
   const double moved2 = drift.squaredNorm();
   const double t = moved2 > 0 ? std::clamp(-d0.dot(drift) / moved2, 0.0, 1.0) : 0.0;
   const Vec2 d1 = d0 + drift;

@@ -14,8 +14,8 @@ bool mayBeStiff(double h2Tension, std::span<const WrapPoint> path, std::span<con
   for (size_t i = 0; i + 1 < path.size(); ++i) {
     const int a = path[i].body, b = path[i + 1].body;
     if (a == b) continue;
-    const Vec2 from = path[i].radius == 0 ? path[i].world : path[i].tangentOut;
-    const Vec2 to = path[i + 1].radius == 0 ? path[i + 1].world : path[i + 1].tangentIn;
+    const Vec2 from = path[i].leaving();
+    const Vec2 to = path[i + 1].arriving();
     double invMass = 0;
     for (int e : {a, b})
       if (e >= 0 && dofOfBody[e] >= 0) invMass = std::max(invMass, invM[dofOfBody[e]]);

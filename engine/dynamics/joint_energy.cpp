@@ -98,13 +98,6 @@ void JointEnergy::keepSwingEnergy(std::span<const JointFrame> joints,
     if (j.limited || (other >= 0 && group_[other] < 0 && driven(bodies[other])))
       groupSwings_[root(b)] = 0;
   }
-  auto kinetic = [](const BodyState& s) {
-    return 0.5 * ((s.invMass > 0 ? s.velocity.squaredNorm() / s.invMass : 0.0) +
-                  (s.invInertia > 0 ? s.angularVelocity * s.angularVelocity / s.invInertia : 0.0));
-  };
-  auto potential = [&](const BodyState& s) {
-    return s.invMass > 0 ? -gravity.dot(s.position) / s.invMass : 0.0;
-  };
   const bool owes =
       owed_.size() == static_cast<size_t>(n) && left_.size() == static_cast<size_t>(n);
   groupOwed_.assign(n, 1);  // the group starts where the last step left it, owed something
@@ -113,9 +106,9 @@ void JointEnergy::keepSwingEnergy(std::span<const JointFrame> joints,
     const int r = root(b);
     groupSwings_[r] &= swinging[b];
     groupOwed_[r] &= owes && swingStateKept(start_[b], left_[b]);
-    startEnergy_[r] += kinetic(start_[b]) + potential(start_[b]);
-    endPotential_[r] += potential(bodies[b]);
-    endKinetic_[r] += kinetic(bodies[b]);
+    startEnergy_[r] += kineticEnergy(start_[b]) + gravityEnergy(start_[b], gravity);
+    endPotential_[r] += gravityEnergy(bodies[b], gravity);
+    endKinetic_[r] += kineticEnergy(bodies[b]);
   }
   for (int b = 0; b < n; ++b)
     if (group_[b] >= 0 && groupOwed_[root(b)] && b == root(b)) startEnergy_[b] += owed_[b];

@@ -101,7 +101,7 @@ double rigidTarget(double phi, double share) {
 double floorRow(const WrapPoint& p, const WrapPoint& q, const Vec2& n,
                 std::span<const BodyState> q0, std::span<const BodyState> q1,
                 std::vector<BodyJacobian>& g) {
-  const Vec2 from = floorFrom(p), to = floorTo(q);
+  const Vec2 from = p.leaving(), to = q.arriving();
   g.clear();
   double along = 0;
   for (int e = 0; e < 2; ++e) {

@@ -181,8 +181,8 @@ void PoseSolver::addFloorRows() {
       const double gap = floorGap(p, q);
       if (p.body == q.body || !dofs || !(gap < kFloorWatch) || c.mayEnterHull(i)) continue;
       if (gap > 0) {
-        const Vec2 n = (floorTo(q) - floorFrom(p)) / gap;
-        addRow(pointRow(q.body, floorTo(q), n) - pointRow(p.body, floorFrom(p), n),
+        const Vec2 n = (q.arriving() - p.leaving()) / gap;
+        addRow(pointRow(q.body, q.arriving(), n) - pointRow(p.body, p.leaving(), n),
                kFloorLength - gap);
       }
       if (const int rim = rimEnd(p, q); rim >= 0) {

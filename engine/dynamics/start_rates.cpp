@@ -24,7 +24,7 @@ constexpr double kFloorMargin = 5;
 
 bool nearingFloor(const WrapPoint& p, const WrapPoint& q, std::span<const BodyState> bodies,
                   double h) {
-  const Vec2 d = floorTo(q) - floorFrom(p);
+  const Vec2 d = q.arriving() - p.leaving();
   const double gap = d.norm();
   const double closing = gap > 0 ? -d.dot(floorDrift(p, q, bodies, h, Vec2::Zero())) / gap : 0;
   return gap < kFloorReach * std::max(closing, 0.0) + kFloorMargin * kFloorLength;
@@ -80,11 +80,7 @@ Vec3 velocityOf(const BodyState& b) {
 
 double kineticEnergy(std::span<const int> which, std::span<const BodyState> bodies) {
   double e = 0;
-  for (const int b : which) {
-    const BodyState& s = bodies[b];
-    if (s.invMass > 0) e += 0.5 * s.velocity.squaredNorm() / s.invMass;
-    if (s.invInertia > 0) e += 0.5 * s.angularVelocity * s.angularVelocity / s.invInertia;
-  }
+  for (const int b : which) e += kineticEnergy(bodies[b]);
   return e;
 }
 

@@ -259,13 +259,8 @@ std::vector<ContactForce> World::contactForces() const {
 
 double World::energy() const {
   double e = 0;
-  for (size_t i = 0; i < bodies_.size(); ++i) {
-    const BodyState& b = bodies_[i];
-    if (b.invMass == 0) continue;
-    const double m = 1.0 / b.invMass;
-    e += 0.5 * m * b.velocity.squaredNorm() - m * gravity_.dot(b.position);
-    if (b.invInertia > 0) e += 0.5 * b.angularVelocity * b.angularVelocity / b.invInertia;
-  }
+  for (const BodyState& b : bodies_)
+    if (b.invMass > 0) e += kineticEnergy(b) + gravityEnergy(b, gravity_);
   for (const Cable& c : cables_)
     if (c.elastic()) e += 0.5 * c.stiffness() * std::pow(std::max(0.0, c.stretch()), 2);
   return e;

@@ -11,11 +11,7 @@ namespace cablelab::test {
 /// The kinetic energy (translation and turn) of all of `world`'s moving bodies.
 inline double kineticEnergy(const World& world) {
   double kinetic = 0;
-  for (int b = 0; b < world.bodyCount(); ++b) {
-    const BodyState& x = world.body(b);
-    if (x.invMass > 0) kinetic += 0.5 * x.velocity.squaredNorm() / x.invMass;
-    if (x.invInertia > 0) kinetic += 0.5 * x.angularVelocity * x.angularVelocity / x.invInertia;
-  }
+  for (int b = 0; b < world.bodyCount(); ++b) kinetic += kineticEnergy(world.body(b));
   return kinetic;
 }
 

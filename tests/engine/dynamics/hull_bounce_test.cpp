@@ -59,9 +59,7 @@ std::vector<BodyState> states(const Vec2& ballAt, const Vec2& ballVelocity) {
 
 double kinetic(const std::vector<BodyState>& bodies) {
   double e = 0;
-  for (const BodyState& b : bodies)
-    e += 0.5 * b.velocity.squaredNorm() / b.invMass +
-         (b.invInertia > 0 ? 0.5 * b.angularVelocity * b.angularVelocity / b.invInertia : 0.0);
+  for (const BodyState& b : bodies) e += kineticEnergy(b);
   return e;
 }
 

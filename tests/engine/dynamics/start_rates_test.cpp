@@ -18,11 +18,6 @@ namespace start_rates_test {  // named: unity batches join test files
 
 constexpr double kH = 1.0 / 60;
 
-double kinetic(const BodyState& b) {
-  return 0.5 * b.velocity.squaredNorm() / b.invMass +
-         0.5 * b.angularVelocity * b.angularVelocity / b.invInertia;
-}
-
 double rateOf(const Cable& rope, const std::vector<BodyState>& bodies) {
   double rate = 0;
   for (const auto& e : rope.kinematics().jacobian) {
@@ -71,7 +66,7 @@ TEST(StartRates, TurnsTheRateAcrossTheRopeKeepingTheKineticEnergy) {
     ASSERT_EQ(changed.size(), 1u);
     EXPECT_EQ(bodies[0].position, start.position);
     EXPECT_EQ(bodies[0].angle, start.angle);
-    const double energy = std::abs(kinetic(bodies[0]) / kinetic(start) - 1);
+    const double energy = std::abs(kineticEnergy(bodies[0]) / kineticEnergy(start) - 1);
     // The rate the next step ends on, at the speed across the rope now.
     const double across1 = bodies[0].velocity.dot(across);
     const double rate = rateOf(rope, bodies) - 0.5 * next * across1 * across1 / length;

@@ -77,11 +77,6 @@ struct EnergyRecord {
   double rise = 0, drift = 0, stepLoss = 0, peak = 0;
 };
 
-double kineticEnergy(const BodyState& b) {
-  return 0.5 * b.velocity.squaredNorm() / b.invMass +
-         0.5 * b.angularVelocity * b.angularVelocity / b.invInertia;
-}
-
 EnergyRecord run(const SceneDef& scene, double dt, int substeps, double seconds) {
   World world(scene);
   const double e0 = world.energy(), thrown = kineticEnergy(world.body(0));
