@@ -99,8 +99,9 @@ Cable::Cable(const SceneDef& scene, int index, const std::string& source)
         throw InputError(source, cableField(index, field + ".vertices"),
                          "polygon pulley needs a convex counter-clockwise polygon");
       if (ps.side == WrapSide::Threaded)
-        throw InputError(source, cableField(index, field + ".side"),
-                         "a polygon pulley cannot be threaded (use left, right or auto)");
+        throw InputError(
+            source, cableField(index, field + ".side"),
+            "a polygon pulley cannot be threaded (use left, right or auto)" + gotValue("threaded"));
     } else {
       ps.local = {pd.point};
     }

@@ -34,6 +34,12 @@ nlohmann::json parseJsonText(const std::string& text, const std::string& source)
         what.rfind("[json.exception.", 0) == 0 && id != what.npos)
       what.erase(0, id + 2);
     if (what.rfind("parse error ", 0) == 0) what.erase(0, 12);
+    // "number overflow parsing '1e999'": a number beyond double range, named with its text.
+    const std::string overflow = "number overflow parsing '";
+    if (what.rfind(overflow, 0) == 0 && what.size() > overflow.size() && what.back() == '\'')
+      throw InputError(source, "(json)",
+                       "a number beyond double range (got " +
+                           what.substr(overflow.size(), what.size() - overflow.size() - 1) + ")");
     throw InputError(source, "(json)", "not valid JSON " + what);
   }
 }

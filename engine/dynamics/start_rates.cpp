@@ -34,11 +34,18 @@ struct MovingPoint {
   Vec2 position, velocity, acceleration;
 };
 
+// Whether path point w stays where it is over the step: on the world, or on a body that neither
+// the solve nor a drive moves (a static body, a kinematic one at rest: a peg a scene places as a
+// body of its own is as fixed as one on the world).
+bool fixedInWorld(const WrapPoint& w, std::span<const BodyState> bodies) {
+  return w.body < 0 || (!moves(bodies[w.body]) && !driven(bodies[w.body]));
+}
+
 // A path point where segment i meets it (`out`: the segment leaves it), moving with its body at
 // constant velocity. Nothing if it is a circle on a moving body (its tangent point slides).
 bool movingPoint(const WrapPoint& w, bool out, std::span<const BodyState> bodies, MovingPoint& p) {
   if (w.kind == WrapPoint::Kind::Circle) {
-    if (w.body >= 0) return false;
+    if (!fixedInWorld(w, bodies)) return false;
     p = {out ? w.tangentOut : w.tangentIn, Vec2::Zero(), Vec2::Zero()};
     return true;
   }
@@ -110,8 +117,9 @@ std::vector<int> matchStartRates(const StartRateInput& in, std::vector<BodyState
     // knock's or the floor's as much as the step's.
     const auto& path = cable.path();
     for (size_t i = 0; alone && i + 1 < path.size(); ++i)
-      alone = (i == 0 || path[i].body < 0) && (path[i].body == path[i + 1].body ||
-                                               !nearingFloor(path[i], path[i + 1], bodies, in.h));
+      alone =
+          (i == 0 || fixedInWorld(path[i], bodies)) &&
+          (path[i].body == path[i + 1].body || !nearingFloor(path[i], path[i + 1], bodies, in.h));
     double second = 0;
     if (!alone || !lengthCurvature(cable, bodies, second)) continue;
     if (!(std::abs(rate - 0.5 * last * second) <= kArtefactShare * 0.5 * in.h * std::abs(second)))

@@ -65,6 +65,15 @@ std::string at(const std::string& list, size_t i) {
   return list + "[" + std::to_string(i) + "]";
 }
 
+// " (got [[x, y], ...])": a polygon's vertices as the scene gave them.
+std::string gotPoints(const std::vector<Vec2>& points) {
+  std::string text = " (got [";
+  for (size_t i = 0; i < points.size(); ++i)
+    text +=
+        (i ? ", [" : "[") + formatNumber(points[i].x()) + ", " + formatNumber(points[i].y()) + "]";
+  return text + "])";
+}
+
 // Box2D 2.4 merges a polygon's vertices closer than half its linear slop (each against those it
 // kept before it) and asserts, aborting the program, when fewer than three are left or their
 // area is under float's epsilon: a collision polygon must keep clear of both.
@@ -102,7 +111,8 @@ void checkGrip(const Checker& check, const PulleyDef& pd, const CableDef& c,
   if (c.stiffness > 0 && !elasticAllowed)
     check.fail(field + (pd.grip == Grip::Capstan ? ".mu" : ".no_slip"),
                what + " needs a rigid cable (stiffness 0)");
-  if (pd.side == WrapSide::Auto) check.fail(field + ".side", what + " needs side left or right");
+  if (pd.side == WrapSide::Auto)
+    check.fail(field + ".side", what + " needs side left or right" + gotValue("auto"));
 }
 
 }  // namespace
@@ -149,7 +159,8 @@ void validateScene(const SceneDef& scene, const std::string& source) {
         for (size_t v = 0; v < sh.vertices.size(); ++v)
           check.finite(sh.vertices[v], fs + at(".vertices", v));
         if (!isConvexCCW(sh.vertices))
-          check.fail(fs + ".vertices", "polygon must be convex and counter-clockwise");
+          check.fail(fs + ".vertices",
+                     "polygon must be convex and counter-clockwise" + gotPoints(sh.vertices));
         checkCollisionPolygon(check, sh.vertices, fs + ".vertices");
       }
     }
@@ -166,12 +177,15 @@ void validateScene(const SceneDef& scene, const std::string& source) {
       check.fail(f + ".name", "duplicate joint name" + gotValue(j.name));
     bodyRef(j.bodyA, f + ".body_a");
     bodyRef(j.bodyB, f + ".body_b");
-    if (j.bodyB == "world") check.fail(f + ".body_b", "must be a body, not the world");
-    if (j.bodyA == j.bodyB) check.fail(f + ".body_b", "a joint needs two different bodies");
+    if (j.bodyB == "world")
+      check.fail(f + ".body_b", "must be a body, not the world" + gotValue(j.bodyB));
+    if (j.bodyA == j.bodyB)
+      check.fail(f + ".body_b", "a joint needs two different bodies" + gotValue(j.bodyB));
     check.finite(j.anchor, f + ".anchor");
     check.finite(j.axis, f + ".axis");
     if (j.kind == JointDef::Kind::Prismatic && j.axis.norm() < 1e-9)
-      check.fail(f + ".axis", "must not be zero");
+      check.fail(f + ".axis", "must not be zero (got [" + formatNumber(j.axis.x()) + ", " +
+                                  formatNumber(j.axis.y()) + "])");
     check.finite(j.lower, f + ".limits");
     check.finite(j.upper, f + ".limits");
     if (j.enableLimit && j.lower > j.upper)
@@ -205,7 +219,9 @@ void validateScene(const SceneDef& scene, const std::string& source) {
       if (end->radius == 0) continue;
       check.positive(end->turns, f + name + ".turns");
       if (end->side != WrapSide::Left && end->side != WrapSide::Right)
-        check.fail(f + name + ".side", "a drum is wound on the left or the right");
+        check.fail(f + name + ".side",
+                   "a drum is wound on the left or the right" +
+                       gotValue(end->side == WrapSide::Auto ? "auto" : "threaded"));
     }
     check.finite(c.restLength, f + ".rest_length");
     if (c.restLength == 0) check.fail(f + ".rest_length", "zero-length cable" + gotValue(0.0));
@@ -220,22 +236,26 @@ void validateScene(const SceneDef& scene, const std::string& source) {
       for (size_t v = 0; v < pd.vertices.size(); ++v)
         check.finite(pd.vertices[v], fp + at(".vertices", v));
       if (pd.kind == PulleyDef::Kind::Polygon && !pd.vertices.empty() && !isConvexCCW(pd.vertices))
-        check.fail(fp + ".vertices", "polygon must be convex and counter-clockwise");
+        check.fail(fp + ".vertices",
+                   "polygon must be convex and counter-clockwise" + gotPoints(pd.vertices));
       if (pd.kind == PulleyDef::Kind::Point && pd.side == WrapSide::Auto)
-        check.fail(fp + ".side", "a point pulley cannot be auto (use left, right or threaded)");
+        check.fail(fp + ".side", "a point pulley cannot be auto (use left, right or threaded)" +
+                                     gotValue("auto"));
       if (pd.kind == PulleyDef::Kind::Point) continue;
       check.nonNegative(pd.turns, fp + ".turns");
       if (pd.side == WrapSide::Auto && pd.turns > 0)
-        check.fail(fp + ".side", "a pulley wound at the start needs side left or right");
+        check.fail(fp + ".side",
+                   "a pulley wound at the start needs side left or right" + gotValue("auto"));
       if (pd.kind == PulleyDef::Kind::Polygon) {
         if (pd.grip == Grip::NoSlip)
-          check.fail(fp + ".no_slip", "a polygon pulley cannot be no_slip (give it mu)");
+          check.fail(fp + ".no_slip", "a polygon pulley cannot be no_slip (give it mu) (got true)");
         checkGrip(check, pd, c, fp, "a polygon pulley with friction", true);
         continue;
       }
       check.positive(pd.radius, fp + ".radius");
       if (pd.side == WrapSide::Threaded)
-        check.fail(fp + ".side", "a circle pulley cannot be threaded (use left, right or auto)");
+        check.fail(fp + ".side", "a circle pulley cannot be threaded (use left, right or auto)" +
+                                     gotValue("threaded"));
       checkGrip(check, pd, c, fp, "a wheel that grips the cable");
     }
   }

@@ -149,8 +149,10 @@ AnchorDef readAnchor(Reader&& r) {
 void readGrip(Reader& p, PulleyDef& pd) {
   const bool noSlip = p.boolean("no_slip", false);
   if (p.has("mu")) {
-    if (noSlip) p.fail("mu", "give either mu or no_slip, not both");
     pd.mu = p.number("mu", 0);
+    if (noSlip)
+      p.fail("mu", "give either mu or no_slip, not both (got mu " + formatNumber(pd.mu) +
+                       " with no_slip true)");
     if (pd.mu < 0) p.fail("mu", "must be >= 0" + gotValue(pd.mu));
     pd.grip = pd.mu > 0 ? Grip::Capstan : Grip::Frictionless;
   } else if (noSlip) {

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <utility>
 
 #include "engine/core/error.h"
 #include "engine/dynamics/world.h"
@@ -103,6 +105,39 @@ TEST(SceneJson, BadFilesExitTwoNamingTheField) {
     EXPECT_NE(r.err.find(path + ": " + bad.field), std::string::npos)
         << bad.file << " said: " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad.file << " said: " << r.err;
+  }
+}
+
+// A value a user can fix is quoted back, `SOURCE: FIELD: what is wrong (got VALUE)` (docs/cli.md):
+// a polygon that is not convex gave no vertices, mu with no_slip neither value, a number beyond
+// double range no number, a threaded polygon or a wound auto pulley no side.
+TEST(SceneJson, BadValuesAreQuotedBack) {
+  const std::pair<const char*, const char*> kQuoted[] = {
+      {"scene_polygon_not_convex.json", "(got [[0, 0], [2, 0], [1, 0.2], [2, 2], [0, 2]])"},
+      {"scene_mu_and_no_slip.json", "(got mu 0.2 with no_slip true)"},
+      {"scene_polygon_mu_and_no_slip.json", "(got mu 0.2 with no_slip true)"},
+      {"scene_polygon_no_slip.json", "(got true)"},
+      {"scene_circle_threaded.json", "(got \"threaded\")"},
+      {"scene_threaded_polygon.json", "(got \"threaded\")"},
+      {"scene_infinite_mass.json", "(json): a number beyond double range (got 1e999)"},
+  };
+  for (const auto& [file, got] : kQuoted) {
+    const std::string path = test::sourcePath(std::string("tests/data/bad/") + file);
+    const auto r = test::runCli("run '" + path + "' --time 0.1");
+    EXPECT_EQ(r.exitCode, 2) << file << ": " << r.err;
+    EXPECT_EQ(r.err.size() - r.err.find(got), std::string(got).size() + 1) << file << ": " << r.err;
+  }
+  SceneDef wound = makeScene("hexagon");
+  for (CableDef& c : wound.cables)
+    for (PulleyDef& p : c.pulleys)
+      if (p.kind != PulleyDef::Kind::Point) p.side = WrapSide::Auto, p.turns = 2;
+  try {
+    validateScene(wound, "scene");
+    ADD_FAILURE() << "a wound auto pulley was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("needs side left or right (got \"auto\")"),
+              std::string::npos)
+        << e.what();
   }
 }
 
