@@ -267,7 +267,7 @@ double World::energy() const {
     if (b.invInertia > 0) e += 0.5 * b.angularVelocity * b.angularVelocity / b.invInertia;
   }
   for (const Cable& c : cables_)
-    if (c.elastic()) e += 0.5 * c.stiffness() * std::pow(std::max(0.0, c.stretch()), 2);
+    e += c.elasticEnergy();  // span by span where friction holds it apart
   return e;
 }
 
