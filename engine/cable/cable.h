@@ -425,6 +425,10 @@ class Cable {
   /// spanBefore_ still the old ones): pieces that left go back to their span whole, pieces that
   /// joined take the rope their span gave up at its strain (a slack span's at its length).
   void moveCornerRope(const std::vector<Split>& splits);
+  /// Elastic: rope slides over each corner of a polygon with friction that its two sides' tensions
+  /// break the capstan ratio at, piece or span, until every corner holds.
+  void slideCornerRope();
+  static constexpr int kCornerSweeps = 32;  ///< slideCornerRope's passes over a chain at most
   /// Elastic: the corner rope of a fresh split, each piece at `stretchRatio` (length / material).
   void shareCornerRope(const std::vector<Split>& splits, double stretchRatio);
   /// The distance between two corners of polygon `pulley` (m; fixed, the polygon is rigid).

@@ -180,7 +180,7 @@ void Cable::updateSpans(std::span<const BodyState> bodies) {
     links_[k].slipped = false;
   }
   rebaseMarks();
-  if (elastic()) slideElasticSpans();
+  if (elastic()) slideElasticSpans(), slideCornerRope();
 }
 
 double Cable::materialLength() const {

@@ -9,11 +9,13 @@
 // A piece that leaves gives its span back exactly what it holds, so a corner that joins and
 // leaves again moves no material (giving back at the span's or the rope's strain pumped it).
 // Neither creates stretch energy: the join keeps each piece's strain, and the leave mixes two
-// strains into one, which only lowers sum r f(l / r - 1) (f convex, increasing).
+// strains into one, which only lowers sum r f(l / r - 1) (f convex, increasing). Each corner
+// also holds its two sides to its own capstan ratio (slideCornerRope), pieces included.
 #include <algorithm>
 #include <cmath>
 
 #include "engine/cable/cable.h"
+#include "engine/core/capstan.h"
 
 namespace cablelab {
 
@@ -124,6 +126,56 @@ void Cable::moveCornerRope(const std::vector<Split>& splits) {
         if (j.span == s) cornerRopes_[j.link].rests[j.piece] = take * j.length / joinedLength;
     }
     span.rest += spanGained_[s] - take;
+  }
+  cornerRest_ = 0;
+  for (const CornerRope& rope : cornerRopes_)
+    for (const double r : rope.rests) cornerRest_ += r;
+}
+
+// Each corner holds while T_high <= e^(mu theta_i) T_low between the rope on its two sides (a
+// span or a piece): where one does not, rope slides over it from the slacker side to the tighter
+// until the ratio is exact (slideMaterial, as slideElasticSpans does between the spans), corner
+// after corner until all hold. Each slide lowers the stretch energy; a piece split at a tension
+// its spans no longer hold gives its stretch up instead of keeping it.
+void Cable::slideCornerRope() {
+  const double material = materialLength();
+  for (size_t k = 0; k < cornerRopes_.size(); ++k) {
+    CornerRope& rope = cornerRopes_[k];
+    const size_t pieces = rope.rests.size();
+    if (pieces == 0 || links_[k].grip != Grip::Capstan) continue;
+    // The rope on each side of corner j (j = 0 .. pieces): element j before it, j + 1 after;
+    // element 0 is span k, element pieces + 1 span k + 1, the pieces between.
+    auto length = [&](size_t e) {
+      if (e == 0) return spans_[k].kin.length;
+      if (e == pieces + 1) return spans_[k + 1].kin.length;
+      return cornerGap(rope.pulley, rope.vertices[e - 1], rope.vertices[e]);
+    };
+    auto rest = [&](size_t e) -> double& {
+      if (e == 0) return spans_[k].rest;
+      if (e == pieces + 1) return spans_[k + 1].rest;
+      return rope.rests[e - 1];
+    };
+    for (int sweep = 0; sweep < kCornerSweeps; ++sweep) {
+      bool slid = false;
+      for (size_t j = 0; j <= pieces; ++j) {
+        const double ratio = std::exp(links_[k].mu * cornerTurn(spans_[k].last + j));
+        const double la = length(j), lb = length(j + 1);
+        double &ra = rest(j), &rb = rest(j + 1);
+        const double ta = materialTension(material, la, ra);
+        const double tb = materialTension(material, lb, rb);
+        if (std::max(ta, tb) <= ratio * std::min(ta, tb) * (1 + 1e-9)) continue;
+        const double sum = ra + rb;
+        if (ta > tb) {
+          ra = slideMaterial(material, la, ra, lb, sum, ratio);
+          rb = sum - ra;
+        } else {
+          rb = slideMaterial(material, lb, rb, la, sum, ratio);
+          ra = sum - rb;
+        }
+        slid = true;
+      }
+      if (!slid) break;
+    }
   }
   cornerRest_ = 0;
   for (const CornerRope& rope : cornerRopes_)
