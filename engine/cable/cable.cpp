@@ -558,8 +558,10 @@ void Cable::refresh(std::span<const BodyState> bodies) {
   if (skipValid_ && kinematicsCurrent(bodies)) return;
   cableLengthJacobian(path_, bodies, kin_);
   for (Span& s : spans_) cableLengthJacobian(s.path, bodies, s.kin);
-  // The stretches reported belong to the end of the step: an elastic slide's included.
-  if (elastic()) shareSlidMaterial();
+  // The stretches reported belong to the end of the step: an elastic slide's included, and so is
+  // the slide of stuck spans that end past the capstan ratio (a span caught taut beside a slack
+  // one is not left holding a stretch no friction can hold).
+  if (elastic()) shareSlidMaterial(), slideElasticSpans(), slideCornerRope();
   if (skipValid_) noteKinematicsPoses(bodies);
 }
 

@@ -306,6 +306,14 @@ class Cable {
   /// Span length - span rest length (m); the whole stretch() for a one-span cable. On an elastic
   /// cable split by a polygon with friction the rest is the span's unstretched material.
   double spanStretch(int k) const;
+  /// The energy stored in the cable's spring (J; 0 for a rigid cable). Split by a polygon with
+  /// friction, each span and each piece of rope stuck between the polygon's corners is a spring of
+  /// its own material r: T^2 r / (2 k L) each (docs/polygon_friction.md, "Elastic cables").
+  double elasticEnergy() const;
+  /// The rope between the engaged corners of polygons with friction (m): on an elastic cable its
+  /// material, so that the spans' rests and it sum to rest length - preload; on a rigid one its
+  /// length.
+  double cornerRest() const { return cornerRest_; }
   /// Span k's stiffness (N/m) and damping (N s/m): the cable's, or on an elastic cable split by a
   /// polygon with friction the cable's times (rest length - preload) / span material, so that
   /// equal strains give the unsplit cable's tension (docs/polygon_friction.md).
@@ -429,6 +437,18 @@ class Cable {
   void slideElasticSpans();
   /// After the solver let elastic spans slide: their material shared by the solved strains.
   void shareSlidMaterial();
+  /// Elastic: the corner rope after the chains changed (spans' paths updated, their rests and
+  /// spanBefore_ still the old ones): pieces that left go back to their span whole, pieces that
+  /// joined take the rope their span gave up at its strain (a slack span's at its length).
+  void moveCornerRope(const std::vector<Split>& splits);
+  /// Elastic: rope slides over each corner of a polygon with friction that its two sides' tensions
+  /// break the capstan ratio at, piece or span, until every corner holds.
+  void slideCornerRope();
+  static constexpr int kCornerSweeps = 32;  ///< slideCornerRope's passes over a chain at most
+  /// Elastic: the corner rope of a fresh split, each piece at `stretchRatio` (length / material).
+  void shareCornerRope(const std::vector<Split>& splits, double stretchRatio);
+  /// The distance between two corners of polygon `pulley` (m; fixed, the polygon is rigid).
+  double cornerGap(int pulley, int a, int b) const;
   /// Unstretched length of an elastic cable's material (m): rest length - preload.
   double materialLength() const;
   double spanScale(int k) const;
@@ -496,8 +516,21 @@ class Cable {
   std::vector<int> splitPulleys_;  ///< pulleys at the links, in path order (scratch + memory)
   std::vector<Split> splits_;      ///< updateSpans scratch
   double cornerRest_ = 0;          ///< cornerLength() at the last update: rigid, outside the spans
-                                   ///< (elastic: the material between the corners)
-  CableKinematics spanScratch_;    ///< a span's previous path, measured again
+                                   ///< (elastic: the material between the corners, in sum)
+  /// Elastic: the rope stuck between a polygon's engaged corners, piece by piece (one per link;
+  /// none at a wheel). rests[i] is the material between vertices[i] and vertices[i + 1]: each
+  /// piece keeps what it took when its corner joined and gives it back when it leaves
+  /// (corner_rope.cpp; docs/polygon_friction.md, "Elastic cables").
+  struct CornerRope {
+    int pulley = -1;
+    std::vector<int> vertices;  ///< the engaged corners in path order
+    std::vector<double> rests;  ///< m, vertices.size() - 1 pieces
+  };
+  std::vector<CornerRope> cornerRopes_;
+  /// A span whose end corner changed: its length on its old path (m); -1: unchanged.
+  std::vector<double> spanBefore_;
+  std::vector<double> spanGained_, spanLeft_;  ///< moveCornerRope scratch, per span
+  CableKinematics spanScratch_;                ///< a span's previous path, measured again
   // Skipping: a certificate built at a full update's selection pose. Each test is one signed
   // distance the event search watches (a point p from the line a-b), with its value then; the
   // wrap set cannot change while every point's displacement since is too small to zero one.

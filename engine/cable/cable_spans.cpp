@@ -66,7 +66,7 @@ void Cable::splitIntoSpans(std::span<const BodyState> bodies, const std::vector<
     // proportion to its length, so every span starts with the unsplit cable's tension.
     const double whole = lengths + corner;
     for (Span& span : spans_) span.rest = whole > 0 ? total * span.kin.length / whole : 0.0;
-    cornerRest_ = whole > 0 ? total * corner / whole : 0.0;
+    shareCornerRope(splits, whole > 0 && total > 0 ? whole / total : 1.0);
     return;
   }
   // The stretch is shared in proportion to the spans' lengths.
@@ -124,22 +124,27 @@ void Cable::updateSpans(std::span<const BodyState> bodies) {
     spans_.clear();
     links_.clear();
     splitPulleys_.clear();
+    cornerRopes_.clear();
     cornerRest_ = 0;
     return;
   }
-  if (ids != splitPulleys_ || spans_.empty()) {
+  // (A cable made elastic by a parameter edit has no corner rope yet: it splits afresh.)
+  if (ids != splitPulleys_ || spans_.empty() ||
+      (elastic() && cornerRopes_.size() != splits.size())) {
     splitIntoSpans(bodies, splits);
     splitPulleys_ = ids;
     if (!elastic()) cornerRest_ = cornerLength(splits);
     return;
   }
+  spanBefore_.assign(spans_.size(), -1.0);
   for (size_t k = 0; k < spans_.size(); ++k) {
     Span& span = spans_[k];
     const WrapPoint front = span.path.front(), back = span.path.back();
     const size_t first = k == 0 ? 0 : splits[k - 1].out;
     const size_t last = k + 1 == spans_.size() ? path_.size() - 1 : splits[k].in;
     // A polygon's chain grew or shrank at this span's end: the rope at its corners is stuck
-    // (docs/polygon_friction.md), so the span keeps its stretch, measured on its old path.
+    // (docs/polygon_friction.md), so a rigid span keeps its stretch, measured on its old path;
+    // an elastic one trades material with the corner rope (moveCornerRope).
     const bool moved = (k > 0 && path_[first].vertex != front.vertex) ||
                        (k + 1 < spans_.size() && path_[last].vertex != back.vertex);
     double before = 0;
@@ -154,16 +159,16 @@ void Cable::updateSpans(std::span<const BodyState> bodies) {
     if (k > 0) span.path.front().mark = front.mark, span.path.front().arc = front.arc;
     if (k + 1 < spans_.size()) span.path.back().mark = back.mark, span.path.back().arc = back.arc;
     cableLengthJacobian(span.path, bodies, span.kin);
-    if (moved && elastic() && before > 0) {
-      // Elastic: the span keeps its strain; the material it gains or loses is the corners'.
-      const double rest = span.rest * span.kin.length / before;
-      cornerRest_ += span.rest - rest;
-      span.rest = rest;
-    } else if (moved) {
+    if (moved && elastic())
+      spanBefore_[k] = before;
+    else if (moved)
       span.rest += span.kin.length - before;
-    }
   }
-  if (!elastic()) cornerRest_ = cornerLength(splits);
+  // Elastic: the material the moved pieces carry between the spans and the corners.
+  if (elastic())
+    moveCornerRope(splits);
+  else
+    cornerRest_ = cornerLength(splits);
   // After a slide, the two spans share their stretch again: the slide is kept (an elastic
   // cable's by the strains the solve found, where refresh has not yet).
   if (elastic()) shareSlidMaterial();
@@ -175,7 +180,7 @@ void Cable::updateSpans(std::span<const BodyState> bodies) {
     links_[k].slipped = false;
   }
   rebaseMarks();
-  if (elastic()) slideElasticSpans();
+  if (elastic()) slideElasticSpans(), slideCornerRope();
 }
 
 double Cable::materialLength() const {
@@ -219,12 +224,21 @@ void Cable::shareSlidMaterial() {
     if (!links_[k].slipped) continue;
     size_t last = k;  // the run's spans: k .. last
     while (last < links_.size() && links_[last].slipped) links_[last++].slipped = false;
-    double material = 0, largest = 0;
+    double material = 0, largest = 0, lengths = 0;
     for (size_t j = k; j <= last; ++j) {
       material += spans_[j].rest;
+      lengths += spans_[j].kin.length;
       largest = std::max(largest, spans_[j].slidStrain);
     }
-    if (!(largest > 0)) continue;  // slack: nothing to share
+    if (!(largest > 0)) {
+      // Slid slack (no tension held the rope on the corners): no span keeps a stretch the solve
+      // did not give it, all share one slack strain.
+      if (lengths < material && lengths > 0)
+        for (size_t j = k; j <= last; ++j)
+          spans_[j].rest = spans_[j].kin.length * material / lengths;
+      k = last;
+      continue;
+    }
     // Newton on sum l_k / (1 + s e_k) = material, decreasing and convex in s.
     double s = 1;
     for (int iteration = 0; iteration < 8; ++iteration) {

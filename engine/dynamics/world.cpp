@@ -262,7 +262,7 @@ double World::energy() const {
   for (const BodyState& b : bodies_)
     if (b.invMass > 0) e += kineticEnergy(b) + gravityEnergy(b, gravity_);
   for (const Cable& c : cables_)
-    if (c.elastic()) e += 0.5 * c.stiffness() * std::pow(std::max(0.0, c.stretch()), 2);
+    e += c.elasticEnergy();  // span by span where friction holds it apart
   return e;
 }
 

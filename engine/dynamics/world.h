@@ -182,7 +182,8 @@ class World {
   /// Per pair of bodies in touch, Box2D's contact force over its last step (contact_force.h).
   std::vector<ContactForce> contactForces() const;
 
-  /// Kinetic + gravitational + elastic (membrane) energy (J).
+  /// Kinetic + gravitational + elastic (membrane) energy (J); an elastic cable split by a polygon
+  /// with friction stores each span's and each corner piece's own (Cable::elasticEnergy).
   double energy() const;
 
   /// Human-readable notes from the guards (zero-length segments merged, ...), newest last.
