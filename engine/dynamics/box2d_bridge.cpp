@@ -276,12 +276,12 @@ Box2DBridge::Box2DBridge(const SceneDef& scene) : impl_(std::make_unique<Impl>()
   impl_->bounce = std::make_unique<HullBounce>(scene, pairs);
   for (const HullContact& c : pairs) {
     b2Body* other = c.otherBody < 0 ? impl_->ground : impl_->bodies[c.otherBody];
+    b2Body* polygonBody = c.body < 0 ? impl_->ground : impl_->bodies[c.body];
     // Box2D sweeps a moving body against the world's fixtures, but against another moving body
     // only if one is a bullet: fast corners would go through a step's worth into the hull.
-    if (c.otherBody >= 0) impl_->bodies[c.body]->SetBullet(true);
-    const auto pair =
-        std::make_pair(hull_fixtures::addHullFixture(impl_->bodies[c.body], c.polygon, {}),
-                       hull_fixtures::addHullFixture(other, c.otherPolygon, c.point));
+    if (c.otherBody >= 0 && polygonBody->GetType() == b2_dynamicBody) polygonBody->SetBullet(true);
+    const auto pair = std::make_pair(hull_fixtures::addHullFixture(polygonBody, c.polygon, {}),
+                                     hull_fixtures::addHullFixture(other, c.otherPolygon, c.point));
     impl_->hullFilter.pairs.push_back(pair);
     if (c.apartFirst)
       impl_->hullFilter.untilApart.insert(impl_->hullFilter.untilApart.end(),
