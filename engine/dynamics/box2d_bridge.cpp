@@ -128,11 +128,41 @@ struct ContactImpulses : b2ContactListener {
   /// Fixture pairs that do not touch yet (hull_contacts.h's apartFirst), each as (A, B) and
   /// (B, A): their contacts are switched off for the step.
   const std::vector<std::pair<b2Fixture*, b2Fixture*>>* untilApart = nullptr;
+  /// A polygon pulley held still and a point on a moving body (hull_contacts.h), each as
+  /// (polygon, point).
+  std::vector<std::pair<b2Fixture*, b2Fixture*>> heldStill;
+  float h = 0;  ///< the step's length (s)
   void PreSolve(b2Contact* contact, const b2Manifold*) override {
-    if (untilApart->empty()) return;
     const auto pair = std::make_pair(contact->GetFixtureA(), contact->GetFixtureB());
-    if (std::find(untilApart->begin(), untilApart->end(), pair) != untilApart->end())
+    if (!untilApart->empty() &&
+        std::find(untilApart->begin(), untilApart->end(), pair) != untilApart->end())
       contact->SetEnabled(false);
+    for (const auto& [polygon, point] : heldStill)
+      if ((pair.first == polygon && pair.second == point) ||
+          (pair.first == point && pair.second == polygon)) {
+        if (ridesAFace(polygon, point)) contact->SetEnabled(false);
+        return;
+      }
+  }
+  /// Whether `point`'s centre lies on the line of one of `polygon`'s faces (within 0.1 mm) and the
+  /// step keeps it there: a weight hauled up the face its rope hugs passes the corners it meets, up
+  /// to the one its rope leaves from, where the rope's floor stops it (docs/knocks.md, "Wound up
+  /// onto a peg").
+  bool ridesAFace(const b2Fixture* polygon, const b2Fixture* point) const {
+    const b2Body* still = polygon->GetBody();
+    const b2Body* moving = point->GetBody();
+    const auto* circle = static_cast<const b2CircleShape*>(point->GetShape());
+    const b2Vec2 at = moving->GetWorldPoint(circle->m_p);
+    const b2Vec2 velocity =
+        moving->GetLinearVelocityFromWorldPoint(at) - still->GetLinearVelocityFromWorldPoint(at);
+    const b2Vec2 now = still->GetLocalPoint(at), next = still->GetLocalPoint(at + h * velocity);
+    const auto* hull = static_cast<const b2PolygonShape*>(polygon->GetShape());
+    constexpr float kOnTheLine = 1e-4f;  // m
+    for (int32 i = 0; i < hull->m_count; ++i)
+      if (std::abs(b2Dot(hull->m_normals[i], now - hull->m_vertices[i])) <= kOnTheLine &&
+          std::abs(b2Dot(hull->m_normals[i], next - hull->m_vertices[i])) <= kOnTheLine)
+        return true;
+    return false;
   }
   void PostSolve(b2Contact* contact, const b2ContactImpulse* impulse) override {
     b2WorldManifold m;
@@ -276,13 +306,14 @@ Box2DBridge::Box2DBridge(const SceneDef& scene) : impl_(std::make_unique<Impl>()
   impl_->bounce = std::make_unique<HullBounce>(scene, pairs);
   for (const HullContact& c : pairs) {
     b2Body* other = c.otherBody < 0 ? impl_->ground : impl_->bodies[c.otherBody];
+    b2Body* polygonBody = c.body < 0 ? impl_->ground : impl_->bodies[c.body];
     // Box2D sweeps a moving body against the world's fixtures, but against another moving body
     // only if one is a bullet: fast corners would go through a step's worth into the hull.
-    if (c.otherBody >= 0) impl_->bodies[c.body]->SetBullet(true);
-    const auto pair =
-        std::make_pair(hull_fixtures::addHullFixture(impl_->bodies[c.body], c.polygon, {}),
-                       hull_fixtures::addHullFixture(other, c.otherPolygon, c.point));
+    if (c.otherBody >= 0 && polygonBody->GetType() == b2_dynamicBody) polygonBody->SetBullet(true);
+    const auto pair = std::make_pair(hull_fixtures::addHullFixture(polygonBody, c.polygon, {}),
+                                     hull_fixtures::addHullFixture(other, c.otherPolygon, c.point));
     impl_->hullFilter.pairs.push_back(pair);
+    if (polygonBody->GetType() != b2_dynamicBody) impl_->contacts.heldStill.push_back(pair);
     if (c.apartFirst)
       impl_->hullFilter.untilApart.insert(impl_->hullFilter.untilApart.end(),
                                           {pair, {pair.second, pair.first}});
@@ -354,6 +385,7 @@ void Box2DBridge::applyLoads(std::span<const Vec3> loads) {
 
 void Box2DBridge::step(double h) {
   impl_->lastStep = h;
+  impl_->contacts.h = static_cast<float>(h);
   std::fill(impl_->dropped.begin(), impl_->dropped.end(), Vec3::Zero());
   std::fill(impl_->contacts.perBody.begin(), impl_->contacts.perBody.end(), Vec3::Zero());
   impl_->world.Step(static_cast<float>(h), kVelocityIterations, kPositionIterations);

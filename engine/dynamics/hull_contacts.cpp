@@ -68,6 +68,25 @@ bool bodyMeetsHull(const SceneDef& scene, int body, const std::vector<Vec2>& hul
   return false;
 }
 
+// A polygon pulley held still (on the world, a static or a kinematic body) touches every point of
+// its cable on a moving body: a bob the rope winds up onto it stops at its corner and rides round
+// instead of passing into the hull, sensor or not (docs/cables.md, "Points inside a hull"). The
+// knock is Box2D's, inelastic.
+template <typename Moving, typename Add>
+void addHeldStill(int body, const std::vector<Vec2>& polygon,
+                  const std::vector<std::pair<int, Vec2>>& points, const Moving& moving,
+                  const Add& add) {
+  for (const auto& [pointBody, point] : points) {
+    if (!moving(pointBody)) continue;
+    HullContact pair;
+    pair.body = body;
+    pair.polygon = polygon;
+    pair.otherBody = pointBody;
+    pair.point = point;
+    add(std::move(pair));
+  }
+}
+
 }  // namespace
 
 std::vector<HullContact> hullContacts(const SceneDef& scene) {
@@ -106,7 +125,11 @@ std::vector<HullContact> hullContacts(const SceneDef& scene) {
     for (int j = 0; j < count; ++j) {
       const PulleyDef& pd = cable.pulleys[j];
       const int body = findBodyIndex(scene, pd.body);
-      if (pd.kind != PulleyDef::Kind::Polygon || !moving(body)) continue;
+      if (pd.kind != PulleyDef::Kind::Polygon) continue;
+      if (!moving(body)) {
+        addHeldStill(body, pulleyPolygon(scene, pd), points, moving, add);
+        continue;
+      }
       HullContact c;
       c.body = body;
       c.polygon = pulleyPolygon(scene, pd);

@@ -13,7 +13,7 @@
 
 namespace cablelab {
 
-/// One pair kept apart: the polygon pulley on moving body `body` and its neighbour on body
+/// One pair kept apart: the polygon pulley on body `body` (-1: the world) and its neighbour on body
 /// `otherBody` (-1: the world), a polygon pulley (`otherPolygon`, in that body's frame) or, where
 /// `otherPolygon` is empty, the point `point` (in that body's frame).
 struct HullContact {
@@ -33,10 +33,12 @@ struct HullContact {
 /// The pairs of `scene`'s cables: each polygon pulley on a dynamic body with every other polygon
 /// pulley on the same cable (on another body) and every point of the cable (an anchor, a point
 /// pulley) fixed in the world or on another body, any of which becomes its neighbour on the path
-/// once the pulleys between leave.
-/// Pairs that overlap in the scene's pose (placed so on purpose) touch once apart. A point whose
-/// body's shapes meet the polygon there (the bodies pass through each other by design), polygons of
-/// more vertices than Box2D holds, shapeless bodies (point masses) and repeats are left out.
+/// once the pulleys between leave; and each polygon pulley held still (on the world, a static or a
+/// kinematic body) with every point of the cable on a moving body (a bob the rope winds up onto
+/// it). Pairs that overlap in the scene's pose (placed so on purpose) touch once apart. A point
+/// whose body's shapes meet the polygon there (the bodies pass through each other by design),
+/// polygons of more vertices than Box2D holds, shapeless bodies (point masses) and repeats are left
+/// out.
 std::vector<HullContact> hullContacts(const SceneDef& scene);
 
 }  // namespace cablelab
