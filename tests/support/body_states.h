@@ -1,6 +1,8 @@
 // Every body's pose and velocity in one list: what bit-for-bit replay tests compare.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "engine/dynamics/world.h"
@@ -16,6 +18,20 @@ inline std::vector<double> bodyStates(const World& w) {
                            s.angularVelocity});
   }
   return out;
+}
+
+/// The largest |a[i] - b[i]| (lists of one length): how far two runs' records part.
+inline double largestDifference(const std::vector<double>& a, const std::vector<double>& b) {
+  double d = 0;
+  for (size_t i = 0; i < a.size() && i < b.size(); ++i) d = std::max(d, std::abs(a[i] - b[i]));
+  return d;
+}
+
+/// The largest |v[i]|, at least `floor`: the scale a record's differences are measured on.
+inline double largestMagnitude(const std::vector<double>& v, double floor) {
+  double m = floor;
+  for (const double x : v) m = std::max(m, std::abs(x));
+  return m;
 }
 
 }  // namespace cablelab::test

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "engine/model/scene.h"
 
@@ -48,6 +49,31 @@ inline BodyDef hangingMass(const std::string& name, const Vec2& at, double mass)
   b.fixedRotation = true;
   b.shapes = {sensorBox(0.1, 0.1)};
   return b;
+}
+
+/// Masses m1 and m2 (kg) hanging at (-0.2, 1.5) and (0.2, 1.5) on the ends of a band, 0.1 m above
+/// them, that runs over the top of the fixed polygon `vertices` from the start (half a turn in
+/// all) with capstan friction `mu` (frictionless at 0). The band, "band", is left to the caller:
+/// its stiffness, damping and material.
+inline SceneDef bandOverPolygon(const std::vector<Vec2>& vertices, double mu, double m1,
+                                double m2) {
+  SceneDef s;
+  s.name = "band-over-polygon";
+  s.bodies = {hangingMass("left", Vec2(-0.2, 1.5), m1), hangingMass("right", Vec2(0.2, 1.5), m2)};
+  PulleyDef over;
+  over.kind = PulleyDef::Kind::Polygon;
+  over.side = WrapSide::Left;
+  over.turns = 0.5;
+  over.vertices = vertices;
+  over.grip = mu > 0 ? Grip::Capstan : Grip::Frictionless;
+  over.mu = mu;
+  CableDef band;
+  band.name = "band";
+  band.start = {"left", Vec2(0, 0.1)};
+  band.end = {"right", Vec2(0, 0.1)};
+  band.pulleys = {over};
+  s.cables = {band};
+  return s;
 }
 
 /// A revolute joint "pivot" from the world to `body` at the world point `anchor`.

@@ -14,7 +14,6 @@
 namespace cablelab {
 namespace corner_rope_test {  // named: unity batches join test files
 
-using test::hangingMass;
 using test::kDt;
 
 constexpr double kG = 9.81;
@@ -51,33 +50,19 @@ double overTheTop(const Band& b) {
 // The masses hang 1.5 m up (their ropes' ends 0.1 m above them) below the polygon's sides; the
 // band runs up to the corners and over the top, turning half a turn in all.
 SceneDef bandOverPolygon(const Band& b, double restLength) {
-  SceneDef s;
-  s.name = "band-over-polygon";
-  s.bodies = {hangingMass("left", Vec2(-0.2, 1.5), b.m1),
-              hangingMass("right", Vec2(0.2, 1.5), b.m2)};
-  PulleyDef over;
-  over.kind = PulleyDef::Kind::Polygon;
-  over.side = WrapSide::Left;
-  over.turns = 0.5;  // over the top from the start
+  std::vector<Vec2> corners;
   if (b.sides == 4) {
-    over.vertices = {Vec2(-0.2 + b.inset, 2.8), Vec2(0.2 - b.inset, 2.8), Vec2(0.2, 3.2),
-                     Vec2(-0.2, 3.2)};
+    corners = {Vec2(-0.2 + b.inset, 2.8), Vec2(0.2 - b.inset, 2.8), Vec2(0.2, 3.2),
+               Vec2(-0.2, 3.2)};
   } else {
     for (int k = 0; k < 6; ++k)
-      over.vertices.push_back(Vec2(0, 3) +
-                              0.2 * Vec2(std::cos(M_PI * k / 3), std::sin(M_PI * k / 3)));
+      corners.push_back(Vec2(0, 3) + 0.2 * Vec2(std::cos(M_PI * k / 3), std::sin(M_PI * k / 3)));
   }
-  over.grip = Grip::Capstan;
-  over.mu = b.mu;
-  CableDef band;
-  band.name = "band";
-  band.start = {"left", Vec2(0, 0.1)};
-  band.end = {"right", Vec2(0, 0.1)};
-  band.pulleys = {over};
+  SceneDef s = test::bandOverPolygon(corners, b.mu, b.m1, b.m2);
+  CableDef& band = s.cables[0];
   band.stiffness = b.stiffness;
   band.damping = b.damping;
   band.restLength = restLength;
-  s.cables = {band};
   return s;
 }
 

@@ -14,8 +14,6 @@
 namespace cablelab {
 namespace elastic_span_friction_test {  // named: unity batches join test files
 
-using test::hangingMass;
-
 constexpr double kG = 9.81;
 using test::kDt;
 
@@ -31,27 +29,13 @@ struct Band {
 // A fixed 0.4 m square with a flat top at y = 3.2; the band hangs straight down its sides to the
 // masses, turning 90 degrees at each top corner (180 in all).
 SceneDef bandOverSquare(const Band& b) {
-  SceneDef s;
-  s.name = "band-over-square";
-  s.bodies = {hangingMass("left", Vec2(-0.2, 1.5), b.m1),
-              hangingMass("right", Vec2(0.2, 1.5), b.m2)};
-  PulleyDef over;
-  over.kind = PulleyDef::Kind::Polygon;
-  over.side = WrapSide::Left;
-  over.turns = 0.5;  // over the top from the start
-  over.vertices = {Vec2(-0.2, 2.8), Vec2(0.2, 2.8), Vec2(0.2, 3.2), Vec2(-0.2, 3.2)};
-  over.grip = b.mu > 0 ? Grip::Capstan : Grip::Frictionless;
-  over.mu = b.mu;
-  CableDef band;
-  band.name = "band";
-  band.start = {"left", Vec2(0, 0.1)};
-  band.end = {"right", Vec2(0, 0.1)};
-  band.pulleys = {over};
+  SceneDef s = test::bandOverPolygon(
+      {Vec2(-0.2, 2.8), Vec2(0.2, 2.8), Vec2(0.2, 3.2), Vec2(-0.2, 3.2)}, b.mu, b.m1, b.m2);
+  CableDef& band = s.cables[0];
   band.stiffness = b.stiffness;
   band.damping = b.damping;
   band.restLength = b.restLength;
   band.preload = b.preload;
-  s.cables = {band};
   return s;
 }
 

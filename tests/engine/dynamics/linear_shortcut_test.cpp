@@ -8,6 +8,7 @@
 #include "engine/dynamics/cable_solver.h"
 #include "engine/dynamics/world.h"
 #include "engine/scenes/scene_registry.h"
+#include "tests/support/body_states.h"
 #include "tests/support/engine_test_support.h"
 
 namespace cablelab {
@@ -46,15 +47,9 @@ TEST(LinearShortcut, EveryBuiltinSceneFollowsNewtonsTrajectory) {
     const Trajectory fast = runScene(info.name, true, 180),
                      newton = runScene(info.name, false, 180);
     ASSERT_EQ(fast.poses.size(), newton.poses.size());
-    double pose = 0, tension = 0, scale = 1;
-    for (size_t i = 0; i < fast.poses.size(); ++i)
-      pose = std::max(pose, std::abs(fast.poses[i] - newton.poses[i]));
-    for (size_t i = 0; i < fast.tensions.size(); ++i) {
-      tension = std::max(tension, std::abs(fast.tensions[i] - newton.tensions[i]));
-      scale = std::max(scale, std::abs(newton.tensions[i]));
-    }
-    EXPECT_LT(pose, 1e-8);
-    EXPECT_LT(tension, 1e-7 * scale);
+    EXPECT_LT(test::largestDifference(fast.poses, newton.poses), 1e-8);
+    EXPECT_LT(test::largestDifference(fast.tensions, newton.tensions),
+              1e-7 * test::largestMagnitude(newton.tensions, 1));
     EXPECT_EQ(newton.linearSolves, 0);
   }
 }

@@ -10,6 +10,7 @@
 #include "engine/dynamics/cable_solver.h"
 #include "engine/dynamics/world.h"
 #include "engine/scenes/scene_registry.h"
+#include "tests/support/body_states.h"
 
 namespace cablelab {
 namespace resting_floors_test {  // named: unity batches join test files
@@ -74,15 +75,9 @@ TEST(RestingAtAPulley, RandomTacklesFollowNewtonsMotion) {
                  std::to_string(t.substeps) + (t.pullAt > 0 ? " pulled" : ""));
     const Motion kept = runTackle(t, 6.0, true), newton = runTackle(t, 6.0, false);
     ASSERT_EQ(kept.poses.size(), newton.poses.size());
-    double pose = 0, tension = 0, scale = 1e-9;
-    for (size_t i = 0; i < kept.poses.size(); ++i)
-      pose = std::max(pose, std::abs(kept.poses[i] - newton.poses[i]));
-    for (size_t i = 0; i < kept.tensions.size(); ++i) {
-      tension = std::max(tension, std::abs(kept.tensions[i] - newton.tensions[i]));
-      scale = std::max(scale, std::abs(newton.tensions[i]));
-    }
-    EXPECT_LT(pose, 2e-7);
-    EXPECT_LT(tension, 2e-8 * scale);
+    EXPECT_LT(test::largestDifference(kept.poses, newton.poses), 2e-7);
+    EXPECT_LT(test::largestDifference(kept.tensions, newton.tensions),
+              2e-8 * test::largestMagnitude(newton.tensions, 1e-9));
     EXPECT_EQ(newton.kept, 0);
     keptCases += kept.kept > 0;
   }
