@@ -13,11 +13,24 @@
 // also holds its two sides to its own capstan ratio (slideCornerRope), pieces included.
 #include <algorithm>
 #include <cmath>
+#include <span>
+#include <vector>
 
 #include "engine/cable/cable.h"
 #include "engine/core/capstan.h"
 
 namespace cablelab {
+
+namespace {
+
+// The corners path[in..out] holds, in order: one chain of a polygon with friction.
+std::vector<int> chainCorners(std::span<const WrapPoint> path, size_t in, size_t out) {
+  std::vector<int> corners;
+  for (size_t i = in; i <= out; ++i) corners.push_back(path[i].vertex);
+  return corners;
+}
+
+}  // namespace
 
 double Cable::cornerGap(int pulley, int a, int b) const {
   const std::vector<Vec2>& v = pulleys_[pulley].local;
@@ -31,7 +44,7 @@ void Cable::shareCornerRope(const std::vector<Split>& splits, double stretchRati
     if (path_[splits[k].in].kind != WrapPoint::Kind::Vertex) continue;  // a wheel
     CornerRope& rope = cornerRopes_[k];
     rope.pulley = path_[splits[k].in].pulley;
-    for (size_t i = splits[k].in; i <= splits[k].out; ++i) rope.vertices.push_back(path_[i].vertex);
+    rope.vertices = chainCorners(path_, splits[k].in, splits[k].out);
     for (size_t i = 0; i + 1 < rope.vertices.size(); ++i) {
       rope.rests.push_back(cornerGap(rope.pulley, rope.vertices[i], rope.vertices[i + 1]) /
                            stretchRatio);
@@ -50,12 +63,10 @@ void Cable::moveCornerRope(const std::vector<Split>& splits) {
     double length;
   };
   std::vector<Joined> joined;
-  std::vector<int> vertices;
   for (size_t k = 0; k < splits.size(); ++k) {
     CornerRope& rope = cornerRopes_[k];
     if (path_[splits[k].in].kind != WrapPoint::Kind::Vertex) continue;  // a wheel
-    vertices.clear();
-    for (size_t i = splits[k].in; i <= splits[k].out; ++i) vertices.push_back(path_[i].vertex);
+    const std::vector<int> vertices = chainCorners(path_, splits[k].in, splits[k].out);
     if (vertices == rope.vertices || rope.vertices.empty()) continue;
     const size_t oldPieces = rope.vertices.size() - 1, newPieces = vertices.size() - 1;
     // The corners both chains hold: a run, each chain being a run of the polygon's corners.
