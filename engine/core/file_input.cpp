@@ -14,13 +14,17 @@ namespace fs = std::filesystem;
 
 std::string readInputFile(const std::string& path) {
   std::error_code error;
-  if (fs::is_directory(path, error)) throw InputError(path, "(file)", "is a directory, not a file");
+  if (fs::is_directory(path, error))
+    throw InputError(path, "(file)", "is a directory, not a file" + gotValue(path));
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "(file)", std::string("cannot open: ") + std::strerror(errno));
+  if (!in)
+    throw InputError(path, "(file)",
+                     std::string("cannot open: ") + std::strerror(errno) + gotValue(path));
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad())
-    throw InputError(path, "(file)", std::string("cannot read: ") + std::strerror(errno));
+    throw InputError(path, "(file)",
+                     std::string("cannot read: ") + std::strerror(errno) + gotValue(path));
   return text.str();
 }
 

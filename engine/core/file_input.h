@@ -1,7 +1,7 @@
 // The one way files are opened: input files read whole, JSON parsed, output files checked and
 // opened, each failure an InputError in the style of engine/core/error.h:
-//   scene.json: (file): cannot open: No such file or directory
-//   scene.json: (file): is a directory, not a file
+//   scene.json: (file): cannot open: No such file or directory (got "scene.json")
+//   scene.json: (file): is a directory, not a file (got "scene.json")
 //   scene.json: (json): not valid JSON at line 3, column 7: syntax error ...
 //   command line: --csv: cannot write the file: Permission denied (got "/out/t.csv")
 #pragma once

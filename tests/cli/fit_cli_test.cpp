@@ -190,7 +190,8 @@ TEST(FitCli, BadDataFilesExitTwoNamingRowAndField) {
                    "pulleys");
   expectInputError(
       "tests/data/bad/does_not_exist.csv " + kPulleys,
-      "tests/data/bad/does_not_exist.csv: (file): cannot open: No such file or directory");
+      "tests/data/bad/does_not_exist.csv: (file): cannot open: No such file or directory (got "
+      "\"tests/data/bad/does_not_exist.csv\")");
 }
 
 TEST(FitCli, BadPulleysExitTwo) {

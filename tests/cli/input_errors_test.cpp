@@ -55,7 +55,8 @@ void expectError(const Expect& e) {
 
 TEST(InputErrors, AMissingFileReadsTheSameEverywhere) {
   const std::string missing = "/no/such/input.json";
-  const std::string said = missing + ": (file): cannot open: No such file or directory";
+  const std::string said =
+      missing + ": (file): cannot open: No such file or directory" + cablelab::gotValue(missing);
   for (const std::string& args : {"run " + missing, "wrap " + missing, "statics " + missing,
                                   "fit " + missing + " --pulleys -0.2,0,0.2,0"})
     expectError({args, said});
@@ -63,7 +64,7 @@ TEST(InputErrors, AMissingFileReadsTheSameEverywhere) {
 
 TEST(InputErrors, ADirectoryAsAnInputFileExitsTwo) {
   const std::string dir = file("a_folder.json");
-  const std::string said = dir + ": (file): is a directory, not a file";
+  const std::string said = dir + ": (file): is a directory, not a file" + cablelab::gotValue(dir);
   for (const std::string& args :
        {"run " + dir, "wrap " + dir, "statics " + dir, "fit " + dir + " --pulleys -0.2,0,0.2,0"})
     expectError({args, said});

@@ -6,6 +6,7 @@
 #include <regex>
 #include <set>
 
+#include "engine/core/error.h"
 #include "tests/ui/test_support.h"
 #include "ui/image.h"
 #include "ui/offscreen.h"
@@ -114,8 +115,10 @@ std::vector<BadInput> badScenes() {
        data("scene_unknown_cable_body.json") +
            ": cables[0].end.body: unknown body (got \"ghost\")"},
       {"missing file", "/no/such/scene.json",
-       "/no/such/scene.json: (file): cannot open: No such file or directory"},
-      {"a directory", folder, folder + ": (file): is a directory, not a file"},
+       "/no/such/scene.json: (file): cannot open: No such file or directory (got "
+       "\"/no/such/scene.json\")"},
+      {"a directory", folder,
+       folder + ": (file): is a directory, not a file" + cablelab::gotValue(folder)},
       {"unknown scene name", "no_such_scene",
        "command line: SCENE: no such built-in scene or file; built-in: ",
        "(got \"no_such_scene\")"},

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "engine/core/error.h"
 #include "tests/ui/test_support.h"
 #include "ui/image.h"
 
@@ -155,8 +156,10 @@ TEST(SnapshotCompare, ABadReferenceOrToleranceExitsTwoWithOneLineAndWritesNothin
   };
   const Case cases[] = {
       {"--compare /no/such/ref.png",
-       "/no/such/ref.png: (file): cannot open: No such file or directory"},
-      {"--compare " + folder, folder + ": (file): is a directory, not a file"},
+       "/no/such/ref.png: (file): cannot open: No such file or directory (got "
+       "\"/no/such/ref.png\")"},
+      {"--compare " + folder,
+       folder + ": (file): is a directory, not a file" + cablelab::gotValue(folder)},
       {"--compare " + ref + " --size 640x480",
        "command line: --size: must be the reference image's size 320x200 (" + ref +
            ") (got \"640x480\")"},

@@ -98,9 +98,10 @@ TEST(FileInput, MissingDirectoryAndBadJsonSayWhatIsWrong) {
   const std::string bad = (dir / "bad.json").string();
   std::ofstream(bad) << "{\"a\": 1,\n \"b\": }";
   EXPECT_EQ(messageOf([] { readInputFile("/no/such/file.json"); }),
-            "/no/such/file.json: (file): cannot open: No such file or directory");
+            "/no/such/file.json: (file): cannot open: No such file or directory (got "
+            "\"/no/such/file.json\")");
   EXPECT_EQ(messageOf([&] { readInputFile(dir.string()); }),
-            dir.string() + ": (file): is a directory, not a file");
+            dir.string() + ": (file): is a directory, not a file" + gotValue(dir.string()));
   const std::string m = messageOf([&] { readJsonFile(bad); });
   EXPECT_EQ(m.rfind(bad + ": (json): not valid JSON at line 2, column 7: ", 0), 0u) << m;
   EXPECT_EQ(m.find('\n'), std::string::npos) << m;
