@@ -43,14 +43,15 @@ HullBounce::HullBounce(const SceneDef& scene, const std::vector<HullContact>& co
   for (size_t b = 0; b < joints.size(); ++b)
     handled_[b] = joints[b] == 0 || (joints[b] == 1 && responses_[b].pivoted);
   for (const HullContact& c : contacts) {
-    if (!c.bounces || c.otherBody < 0 || !c.otherPolygon.empty()) continue;
-    if (!handled_[c.body] || !handled_[c.otherBody]) continue;
+    if (!c.bounces || !c.otherPolygon.empty()) continue;
+    if (!handled_[c.body] || (c.otherBody >= 0 && !handled_[c.otherBody])) continue;
     pairs_.push_back({c.body, c.otherBody, c.polygon, c.point, false});
   }
 }
 
 double HullBounce::inverseMass(const BodyState& b, int body, const Vec2& at,
                                const Vec2& normal) const {
+  if (body < 0) return 0;  // a point fixed in the world
   const Response& r = responses_[body];
   if (!r.pivoted) {
     const double arm = cross(Vec2(at - b.position), normal);
@@ -71,6 +72,7 @@ double HullBounce::inversePivotInertia(const BodyState& b, const Response& r) {
 }
 
 void HullBounce::applyImpulse(BodyState& b, int body, const Vec2& at, const Vec2& impulse) const {
+  if (body < 0) return;
   const Response& r = responses_[body];
   if (!r.pivoted) {
     b.velocity += b.invMass * impulse;
@@ -88,11 +90,13 @@ std::vector<int> HullBounce::bounce(std::vector<BodyState>& bodies, double horiz
   std::vector<int> changed;
   // A bounce turns its bodies, which may bring another pair on them in: a few passes.
   constexpr int kPasses = 4;
+  BodyState world;  // the world's points: at rest, no inverse mass
   for (int pass = 0; pass < kPasses; ++pass) {
     bool any = false;
     for (Pair& p : pairs_) {
       BodyState& polygonState = bodies[p.polygonBody];
-      BodyState& pointState = bodies[p.pointBody];
+      // A point fixed in the world (an anchor of the rope the free polygon rides in) holds still.
+      BodyState& pointState = p.pointBody >= 0 ? bodies[p.pointBody] : world;
       hull_.clear();
       for (const Vec2& v : p.polygon)
         hull_.push_back(polygonState.position + rotate(v, polygonState.angle));
@@ -113,7 +117,7 @@ std::vector<int> HullBounce::bounce(std::vector<BodyState>& bodies, double horiz
       const Vec2 impulse = (-2 * approach / w) * normal;
       applyImpulse(pointState, p.pointBody, point, impulse);
       applyImpulse(polygonState, p.polygonBody, nearest, -impulse);
-      changed.push_back(p.pointBody);
+      if (p.pointBody >= 0) changed.push_back(p.pointBody);
       changed.push_back(p.polygonBody);
       any = true;
     }

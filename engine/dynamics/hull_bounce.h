@@ -1,10 +1,10 @@
-// Elastic knocks between a polygon pulley and a point of an elastic rope on another moving body
-// (docs/cables.md, "Points inside a hull"). The rope keeps its energy, so the knock must too:
-// Box2D's contact is inelastic (it takes the whole approach), and with restitution it reverses
-// the velocity after the step's loads are integrated and corrects positions, so neither keeps it.
-// Before each piece of a sub-step, a point that would reach the pair's contact skin within it
-// has its approach speed along the hull's normal reversed by one impulse at the bodies' present
-// pose: the relative normal speed leaves as fast as it came and no faster, the poses do not
+// Elastic knocks between a polygon pulley and a point of an elastic rope on another moving body or
+// fixed in the world (docs/cables.md, "Points inside a hull"). The rope keeps its energy, so the
+// knock must too: Box2D's contact is inelastic (it takes the whole approach), and with restitution
+// it reverses the velocity after the step's loads are integrated and corrects positions, so neither
+// keeps it. Before each piece of a sub-step, a point that would reach the pair's contact skin
+// within it has its approach speed along the hull's normal reversed by one impulse at the bodies'
+// present pose: the relative normal speed leaves as fast as it came and no faster, the poses do not
 // move, and the kinetic energy is exactly what it was. Box2D's contact (hull_contacts.h) stays
 // as the backstop for a point that creeps in slowly (pressed on by the rope).
 #pragma once
@@ -41,9 +41,9 @@ class HullBounce {
     Vec2 pivot = Vec2::Zero();
   };
   struct Pair {
-    int polygonBody = -1, pointBody = -1;
-    std::vector<Vec2> polygon;  ///< polygonBody's frame, counter-clockwise
-    Vec2 point = Vec2::Zero();  ///< pointBody's frame
+    int polygonBody = -1, pointBody = -1;  ///< pointBody -1: a point fixed in the world
+    std::vector<Vec2> polygon;             ///< polygonBody's frame, counter-clockwise
+    Vec2 point = Vec2::Zero();             ///< pointBody's frame (the world's)
     bool armed = false;
   };
   std::vector<Response> responses_;  ///< per body

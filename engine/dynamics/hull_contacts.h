@@ -25,8 +25,9 @@ struct HullContact {
   /// The two overlap in the scene's pose (placed so on purpose): they touch only once they
   /// have come apart.
   bool apartFirst = false;
-  /// A point of an elastic rope on another moving body: the knock keeps the energy
-  /// (hull_bounce.h), Box2D's contact only holds a point that creeps in.
+  /// A point of an elastic rope, on another body or fixed in the world (a free polygon riding
+  /// in the rope's loop knocks its anchors): the knock keeps the energy (hull_bounce.h), Box2D's
+  /// contact only holds a point that creeps in.
   bool bounces = false;
 };
 

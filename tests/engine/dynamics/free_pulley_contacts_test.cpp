@@ -226,6 +226,8 @@ TEST(FreePulleyContacts, AnElasticRopesWeightHauledIntoAFreePolygonBouncesOffWit
 // the speeds in a step where the polygons knock each other: Box2D's knock acts after the solve,
 // "Contacts and the rope"). Left out: 14 of the 162 that gain energy, all but one at 1e5 N/m (a
 // stiff rope on light bodies the step cannot resolve; 6 gain exactly as before, with no knock).
+// The rope's world ends bounce too: a polygon knocked back off one changes the length rate within
+// the step, by up to 4.2 cm beyond the speeds at its ends here (5.7 cm over the 162; 2.5 before).
 TEST(FreePulleyContacts, PolygonsInElasticLoopsUnderABobBounceOffItWithoutADrop) {
   struct Case {
     double stiffness;
@@ -244,7 +246,7 @@ TEST(FreePulleyContacts, PolygonsInElasticLoopsUnderABobBounceOffItWithoutADrop)
     EXPECT_EQ(f.warning, "");
     EXPECT_LT(f.deepest, 0.0);
     EXPECT_LT(f.rise, 0.01);
-    EXPECT_LT(f.unexplained, 0.015);
+    EXPECT_LT(f.unexplained, 0.05);
   }
 }
 
