@@ -11,7 +11,9 @@
 // length nor J. On the path, barely bending the rope where it rides its neighbour's hull, it
 // moves its place to a segment it crosses where that moves the length by a fraction of a mm;
 // wedged between two strands (moving would leave the old strand across it), its second place
-// joins the strand it crosses, and the rope bends round it at both.
+// joins the strand it crosses, and the rope bends round it at both: always where the two are the
+// strands of a neighbouring polygon's loop, where a point's bend lies between them only if it
+// barely bends the rope at its own place.
 #include <algorithm>
 #include <utility>
 
@@ -39,12 +41,13 @@ namespace {
 // (Cable::kLengthJump).
 constexpr double kCrossedJoinDetour = 5e-4;
 
-// A polygon riding its neighbour's hull barely bends the rope at its place (its wrap adds 0.01
-// to 12 mm in the sweep's wedged pairs, 2.1 to 3.9 cm in seven pairs of later sweeps, where a
-// 2 cm bound left the strand it crossed through it); one wrapped deep in its own loop (29 cm)
-// that a strand crosses near a bend of the rope keeps one place, as before. A bound, not a rule:
-// 10 cm let touching polygons through (docs/knocks.md, "Wedged in its neighbour's loop").
-constexpr double kWedgedOwnDetour = 0.06;
+// Between the strand it crosses and its own place the rope bends round one neighbouring polygon
+// (into its chain and out of it): wedged in that one's loop, it gets a second place whatever its
+// own wrap. Where a point pulley's bend lies between them instead, only one that barely bends the
+// rope at its place does (its wrap adds 2.1 to 3.9 cm in the sweeps' pairs); one wrapped deeper
+// (9.3 cm, a polygon pressed onto the middle point; 29 cm) keeps one place, as before. That bound
+// is tuned: 10 cm let touching polygons through (docs/knocks.md, "Wedged in its neighbour's loop").
+constexpr double kWedgedAtABendOwnDetour = 0.06;
 
 // How much longer the path a -> polygon -> b is than a -> b, wrapped on `side` (infinite where
 // no taut path exists: a terminal inside the hull).
@@ -89,6 +92,17 @@ bool chainKeptBetween(std::span<const WrapPoint> path, int q, std::span<const Ve
   for (const WrapPoint& w : path)
     if (w.pulley == q && w.kind == WrapPoint::Kind::Vertex) now.push_back(w.vertex);
   return wrapChain(from, to, polygon, side, then) && then == now;
+}
+
+// The path points strictly between segment i and pulley j's place (first..last) are one
+// polygon's chain: the two strands are those into and out of that neighbour's wrap.
+bool strandsOfOneLoop(std::span<const WrapPoint> path, size_t i, size_t first, size_t last) {
+  const size_t from = i < first ? i + 1 : last + 1, to = i < first ? first - 1 : i;
+  if (from > to) return false;
+  for (size_t k = from; k <= to; ++k)
+    if (path[k].kind != WrapPoint::Kind::Vertex || path[k].pulley != path[from].pulley)
+      return false;
+  return true;
 }
 
 }  // namespace
@@ -224,7 +238,8 @@ bool Cable::joinCrossedSegment(int j) {
       // Wedged between two strands (in its neighbour's loop), moving would leave its old place's
       // straightened rope across it: its second place joins there instead, and the rope bends
       // round it at both (docs/knocks.md, "Wedged in its neighbour's loop").
-      if (first > 0 && p.twin >= 0 && !pulleys_[p.twin].engaged && own <= kWedgedOwnDetour &&
+      if (first > 0 && p.twin >= 0 && !pulleys_[p.twin].engaged &&
+          (own <= kWedgedAtABendOwnDetour || strandsOfOneLoop(path_, i, first, last)) &&
           detour <= kCrossedJoinDetour && segmentCutsPolygon(oldFrom, oldTo, p.world) &&
           neighboursKept(i, side, false)) {
         join = static_cast<int>(i);
