@@ -21,9 +21,11 @@
 //                           Newton finds no answer                     cable_solver_start_of_step
 //                           the checks on an answer (reachable, no energy gained, lengths met)
 //                                                                             cable_solver_checks
-//   5a, 6a, 6e.             the implicit midpoint rule: which islands take it, rows pull along
+//   5a, 6a, 6e.             the implicit midpoint rule: which islands take it (elastic ones with
+//                           stage 3's geometric stiffness too, without it), rows pull along
 //                           the discrete gradient of their lengths over the step and 2-6 run
-//                           again, twice (pullAlongDiscreteGradient), each row's work equal to its
+//                           again, twice (pullAlongDiscreteGradient; also the main solve's
+//                           islands of one-span elastic rows), each row's work equal to its
 //                           cable's energy change (balanceMidpointWork)  cable_solver_midpoint
 //   6b. mergeSlidingSpans   capstans past e^(mu theta): merge their spans (elastic ones each
 //                           a spring of its own, elasticRow), run 2-6 again;
@@ -63,16 +65,59 @@ void targetAndSolveLengths(Workspace& ws, const CableSolveInput& in, std::span<C
     newtonOnLengths(ws, in, cables, stats);
 }
 
+// Whether every cable row of the island is elastic (floor rows aside).
+bool everyCableRowElastic(const Workspace& ws, std::span<const Cable> cables) {
+  return std::all_of(ws.rows.begin(), ws.rows.end(), [&](const Workspace::Row& row) {
+    return row.segment >= 0 || cables[row.cable].elastic();
+  });
+}
+
+// 5a on an island of elastic rows that stage 3 gave geometric stiffness (h^2 T / (m L) over
+// 0.05): the midpoint rule without the stiffness (its Newton follows the rope's turn over the
+// step). Left to the main solve, its backward-Euler spring (omega h up to 2) took up to 1.5 times
+// a caught weight's largest kinetic energy in a step (docs/knocks.md, "Elastic ropes pulled
+// hard"). The bound on omega h is asked again with W = M^-1 J^T; where it fails, the stiffness
+// and the main solve come back.
+void leaveOutGeometricStiffness(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables,
+                                std::span<Vec3> loads) {
+  ws.stiffnessLeftOut = true;
+  prepareRows(ws, in, cables, loads);
+  ws.midpoint = takesMidpointRule(ws, in, cables);
+  if (ws.midpoint) return;
+  ws.stiffnessLeftOut = false;
+  prepareRows(ws, in, cables, loads);
+}
+
+// 6e also for the main solve's islands of elastic rows, each one span: pulled along J at the
+// start of the step, a rope whose short end segment swings round fast lengthens by about
+// (v h)^2 / (2 L) more than J says, and the spring gave the bodies the work of the length J
+// predicted: up to 2.6% of the energy scale in a step (a bob 4 cm past the corner of the polygon
+// its rope wraps, in a cut the main solve took as the bob touched the hull). Along the discrete
+// gradient the row's work is its length change, and the backward-Euler spring can only take
+// energy (docs/knocks.md, "Pulled along the turn").
+bool pullsAlongDiscreteGradient(const Workspace& ws, std::span<const Cable> cables) {
+  if (ws.midpoint) return true;
+  return std::all_of(ws.rows.begin(), ws.rows.end(), [&](const Workspace::Row& row) {
+    return row.segment >= 0 || (cables[row.cable].elastic() && row.first == row.last);
+  });
+}
+
 // 2-6 on the island's rows, again where rows merge or joints lock.
 void solveRows(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables,
                std::span<Vec3> loads, StepStats& stats) {
   for (bool again = true; again;) {
+    ws.stiffnessLeftOut = false;
     prepareRows(ws, in, cables, loads);                           // 2-4
     if (ws.ahead.empty() && redirectBlockedRows(ws, in, cables))  // 4b
       prepareRows(ws, in, cables, loads);
     ws.midpoint = takesMidpointRule(ws, in, cables);  // 5a
-    targetAndSolveLengths(ws, in, cables, stats);     // 5, 5b, 6, 6d
-    for (int pass = 0; pass < 2 && ws.midpoint && pullAlongDiscreteGradient(ws, in, cables);
+    if (ws.midpoint && ws.stiff && everyCableRowElastic(ws, cables))
+      leaveOutGeometricStiffness(ws, in, cables, loads);
+    else if (ws.stiff)
+      ws.midpoint = false;
+    targetAndSolveLengths(ws, in, cables, stats);  // 5, 5b, 6, 6d
+    const bool gradient = pullsAlongDiscreteGradient(ws, cables);
+    for (int pass = 0; pass < 2 && gradient && pullAlongDiscreteGradient(ws, in, cables);
          ++pass) {  // 6e
       prepareRows(ws, in, cables, loads);
       targetAndSolveLengths(ws, in, cables, stats);

@@ -58,9 +58,10 @@ constexpr int kBalancePasses = 4;
 // (midpointSpringRows: k (phi0 + phi1) / 2 while taut), Box2D moving the bodies with
 // (v0 + v1) / 2 and World adding the rest after its step (kicks). The joints allow v0 and v1
 // alike, so they allow every velocity Box2D sees. The midpoint solver's rule (docs/cables.md,
-// "Energy"), here with the joint projection of stages 2-4.
+// "Energy"), here with the joint projection of stages 2-4. An island with stage 3's geometric
+// stiffness is decided by the caller (leaveOutGeometricStiffness, cable_solver.cpp).
 bool takesMidpointRule(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
-  if (in.kicks.empty() || ws.stiff || ws.rows.empty()) return false;
+  if (in.kicks.empty() || ws.rows.empty()) return false;
   for (size_t k = 0; k < ws.dofs.body.size(); ++k)
     if (!in.touching.empty() && in.touching[ws.dofs.body[k]]) return false;
   int axles = -1;  // jointsAreAxles, asked once, where a rigid row needs it

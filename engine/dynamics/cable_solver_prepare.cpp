@@ -116,7 +116,8 @@ void inverseMass(Workspace& ws, double h, std::span<const Cable> cables) {
   ws.blocks.clear();
   ws.stiff = false;
   for (const Workspace::Row& row : ws.rows)
-    if (row.segment < 0 && row.first == 0) {  // once per cable: not a floor, not a later span
+    // Once per cable (not a floor, not a later span); none where stage 5a leaves it out.
+    if (!ws.stiffnessLeftOut && row.segment < 0 && row.first == 0) {
       const Cable& c = cables[row.cable];
       const Workspace::WarmStart& last = ws.warm[row.cable];
       const double pulling =

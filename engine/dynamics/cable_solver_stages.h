@@ -90,6 +90,7 @@ struct CableSolverWorkspace {
   std::vector<TautCable> taut;
   std::vector<StiffnessBlock> blocks;
   bool stiff = false;
+  bool stiffnessLeftOut = false;  // the midpoint rule's islands go without it (stage 5a)
   // M' = M + h^2 T G. G only couples the translations of bodies on stiff cables: those dofs
   // ("coupled") get a small dense LDLT, the others a division by their diagonal.
   std::vector<int> coupledIndex;  // dof -> row of coupledMass, -1: diagonal

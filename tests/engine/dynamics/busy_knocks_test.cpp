@@ -57,10 +57,10 @@ KnockRun runMinutes(SceneDef scene, double restitution, int substeps) {
 // step and whose energy bounded the bounce: +126 J in a step, 60% of the scale (seed 13); the
 // bob of an elastic rope knocking the polygon spinning on its pivot beside it took the energy the
 // polygon gave it, which the polygon then got back as it swung on free of its rope
-// (joint_energy.h): 15% (seed 14), 8.0% (16), 6.8% (20), 5.2% (8), 2.8% (18), 2.4% (2). Measured
-// now: under 0.7%, but 0.95% for seed 20 at 2 sub-steps (a bob wrapped close to its polygon as the
-// polygon turns from 10 to -23 rad/s). The minutes: -90% to +0.008% (rigid ropes catch
-// plastically).
+// (joint_energy.h): 15% (seed 14), 8.0% (16), 6.8% (20), 5.2% (8), 2.8% (18), 2.4% (2); a bob
+// wrapped close to its polygon, its rope pulled along the start-of-step J in the main solve, 0.95%
+// (seed 20 at 2 sub-steps; docs/knocks.md, "Pulled along the turn"). Measured now: under 0.21%.
+// The minutes: -102% to +0.004% (rigid ropes catch plastically).
 TEST(BusyKnocks, RandomBusyScenesNeverGainOnePercentInAStepNorAnyEnergyOverAMinute) {
   const char* scenes[] = {"seed13_atwood", "seed2",  "seed8", "seed14",
                           "seed16",        "seed18", "seed20"};
