@@ -122,7 +122,9 @@ std::optional<double> wrapChainHeld(const Vec2& a, const Vec2& b, std::span<cons
   int tangentFrom = tangentVertex(a, polygon, side, false);
   int tangentInto = tangentVertex(b, polygon, side, true);
   // A terminal that may not hold the chain lies on a face, only Box2D's float pose inside it (a
-  // weight hanging along a square's side): it is outside, its rope runs along the face.
+  // weight hanging along a square's side): it is outside, its rope runs along the face. One that
+  // may hold it lies there as it enters, the step cut at its crossing: it holds from then on
+  // (docs/polygon_friction.md, "Elastic cables").
   auto onFace = [&](const Vec2& terminal, bool into) {
     double scale = terminal.norm();
     for (const Vec2& v : polygon) scale = std::max(scale, v.norm());
