@@ -89,6 +89,31 @@ int tangentVertex(const Vec2& terminal, std::span<const Vec2> polygon, WrapSide 
   return t;
 }
 
+double poseRounding(double scale) {
+  // Box2D stores a body's position and angle as floats (2^-24 relative each); the point's
+  // lever turns the angle's rounding into position (docs/model.md, "Coupling to Box2D").
+  constexpr double kFloatRoundings = 8;
+  return kFloatRoundings * std::ldexp(1.0, -24) * std::max(scale, 1.0);
+}
+
+int tangentVertexOnFace(const Vec2& terminal, std::span<const Vec2> polygon, WrapSide side,
+                        bool into, double tolerance) {
+  const int n = static_cast<int>(polygon.size());
+  int face = -1;
+  double nearest = tolerance;
+  for (int i = 0; i < n; ++i) {
+    const Vec2 edge = polygon[(i + 1) % n] - polygon[i];
+    const double depth = cross(edge, terminal - polygon[i]) / edge.norm();  // > 0: inside
+    if (depth <= 0) return -1;                                              // outside this face
+    if (depth <= nearest) nearest = depth, face = i;
+  }
+  if (face < 0) return -1;
+  // Walking with the polygon on the cable's right: `step` +1 reaches the face at polygon[face]
+  // and leaves it at polygon[face + 1]; -1 the other way round.
+  const bool forward = walkStep(side) > 0;
+  return forward == into ? face : (face + 1) % n;
+}
+
 namespace {
 
 // The tangent vertices of the taut path a -> polygon -> b on `side`: ta from a, tb into b.

@@ -66,6 +66,17 @@ bool insideConvex(const Vec2& p, std::span<const Vec2> polygon);
 /// false), or into `terminal` (`into` true); -1 when the terminal lies inside the polygon.
 int tangentVertex(const Vec2& terminal, std::span<const Vec2> polygon, WrapSide side, bool into);
 
+/// How far (m) a point or corner read off Box2D's float poses may lie from where it is, for
+/// coordinates up to `scale` (m): a few float roundings of the position and of the angle's lever.
+double poseRounding(double scale);
+
+/// The tangent vertex of a terminal that lies in the polygon no deeper than `tolerance` (m) from
+/// a face: on that face, where the rope reaches it along the face from the corner behind it on
+/// the walk (`into`) or leaves it along the face to the corner ahead (`into` false). -1 when the
+/// terminal is outside or deeper in (docs/cables.md, "Points inside a hull").
+int tangentVertexOnFace(const Vec2& terminal, std::span<const Vec2> polygon, WrapSide side,
+                        bool into, double tolerance);
+
 /// The walk round the boundary with the polygon on the cable's right (clockwise for Left,
 /// counter-clockwise for Right): +1 or -1 per vertex index.
 int walkStep(WrapSide side);

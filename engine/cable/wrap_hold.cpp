@@ -119,8 +119,19 @@ std::optional<double> wrapChainHeld(const Vec2& a, const Vec2& b, std::span<cons
                                     WrapSide side, double reference, bool mayHoldFrom,
                                     bool mayHoldInto, ChainHold& hold, std::vector<int>& chain) {
   chain.clear();
-  const int tangentFrom = tangentVertex(a, polygon, side, false);
-  const int tangentInto = tangentVertex(b, polygon, side, true);
+  int tangentFrom = tangentVertex(a, polygon, side, false);
+  int tangentInto = tangentVertex(b, polygon, side, true);
+  // A terminal that may not hold the chain lies on a face, only Box2D's float pose inside it (a
+  // weight hanging along a square's side): it is outside, its rope runs along the face. One that
+  // may hold it lies there as it enters, the step cut at its crossing: it holds from then on
+  // (docs/polygon_friction.md, "Elastic cables").
+  auto onFace = [&](const Vec2& terminal, bool into) {
+    double scale = terminal.norm();
+    for (const Vec2& v : polygon) scale = std::max(scale, v.norm());
+    return tangentVertexOnFace(terminal, polygon, side, into, poseRounding(scale));
+  };
+  if (tangentFrom < 0 && !mayHoldFrom) tangentFrom = onFace(a, false);
+  if (tangentInto < 0 && !mayHoldInto) tangentInto = onFace(b, true);
   // The chain's last vertex at the last update: `count` vertices from its first.
   const int n = static_cast<int>(polygon.size()), step = walkStep(side);
   const int last = hold.from < 0 ? -1 : (hold.from + (hold.count - 1) * step % n + n) % n;

@@ -144,6 +144,38 @@ TEST(WrapChainTurning, WholeTurnsFollowTheReference) {
   EXPECT_NEAR(chainLength(a, b, square, chain), once + 8, 1e-12);
 }
 
+// A terminal on a face, in the hull by no more than the poses' rounding (a weight hanging along a
+// square's side, docs/polygon_friction.md "Elastic cables"), has the tangent vertex of a point
+// just outside that face, for either side and end; deeper in, or outside, it has none here.
+TEST(TangentVertexOnFace, IsTheTangentFromJustOutsideTheFace) {
+  test::Random rng(23);
+  int tested = 0;
+  while (tested < 300) {
+    const auto poly = randomConvexPolygon(rng);
+    if (!isConvexCCW(poly)) continue;
+    const int n = static_cast<int>(poly.size()), face = rng.integer(0, n - 1);
+    const Vec2 p = poly[face], edge = poly[(face + 1) % n] - p;
+    if (edge.norm() < 0.05) continue;
+    const Vec2 in = Vec2(-edge.y(), edge.x()) / edge.norm();  // into the hull
+    // Corners that turn the boundary clearly: from just outside, the face's ends are the tangents.
+    const Vec2 before = poly[(face + n - 1) % n], after = poly[(face + 2) % n];
+    if (in.dot(before - p) < 1e-2 || in.dot(after - p) < 1e-2) continue;
+    const Vec2 on = p + rng.uniform(0.2, 0.8) * edge;
+    const double tolerance = poseRounding(2.0);
+    for (const WrapSide side : {WrapSide::Left, WrapSide::Right})
+      for (const bool into : {false, true}) {
+        const int expected = tangentVertex(on - 1e-6 * in, poly, side, into);
+        EXPECT_TRUE(expected == face || expected == (face + 1) % n) << tested;
+        for (const double depth : {1e-11, 0.5 * tolerance})
+          EXPECT_EQ(tangentVertexOnFace(on + depth * in, poly, side, into, tolerance), expected)
+              << tested << " depth " << depth;
+        EXPECT_EQ(tangentVertexOnFace(on + 2 * tolerance * in, poly, side, into, tolerance), -1);
+        EXPECT_EQ(tangentVertexOnFace(on - 1e-6 * in, poly, side, into, tolerance), -1);
+      }
+    ++tested;
+  }
+}
+
 TEST(WrapChain, SquareFromBothSides) {
   const std::vector<Vec2> square{{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}};
   const Vec2 a(-2, 0), b(2, 0);
