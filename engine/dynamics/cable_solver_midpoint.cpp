@@ -47,6 +47,8 @@ bool rigidRowTakesMidpointRule(const CableSolveInput& in, const Cable& c) {
 }
 
 constexpr int kBalancePasses = 4;
+// The main solve pulls along the turn only where a row's length misses J's by more (m).
+constexpr double kTurnedLength = 1e-9;
 
 }  // namespace
 
@@ -164,6 +166,28 @@ double midpointWorkLeft(Workspace& ws, const CableSolveInput& in, std::span<cons
   return left;
 }
 
+namespace {
+
+// Whether a pulling row's length over the step, from the solve's end pose, differs from what the
+// Jacobian it pulled along predicts by more than kTurnedLength: only then does the main solve
+// pull along the discrete gradient (stage 6e). Its error in work is that difference times the
+// tension; a rope that barely turns over the step (a hand holding its box) is left as solved.
+bool turnsOffItsPull(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
+    if (ws.rows[r].segment >= 0 || !(ws.P[r] > 0)) continue;
+    double predicted = 0;  // h J v1
+    forForceJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double weight) {
+      for (const auto& e : jacobian)
+        if (const int d = ws.dofs.ofBody[e.body]; d >= 0)
+          predicted += weight * in.h * e.d.dot(ws.v1.segment<3>(d));
+    });
+    if (std::abs(ws.phi1[r] - ws.phi0[r] - predicted) > kTurnedLength) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 // 6e. Under the midpoint rule each pulling row pulls along the discrete gradient G of its length
 // between the start of the step and the end the solve found (lengthDiscreteGradient: G (q1 - q0)
 // = length(q1) - length(q0) exactly, a turning body's points moved along their chords), then the
@@ -180,10 +204,11 @@ double midpointWorkLeft(Workspace& ws, const CableSolveInput& in, std::span<cons
 bool pullAlongDiscreteGradient(Workspace& ws, const CableSolveInput& in,
                                std::span<const Cable> cables) {
   const int m = static_cast<int>(ws.rows.size());
-  if (static_cast<int>(ws.ahead.size()) != m) ws.ahead.assign(m, 0);
-  ws.aheadJacobian.resize(m);
   timesImpulses(ws, ws.P);
   ws.v1 = ws.vStar - ws.WP;
+  if (!ws.midpoint && !turnsOffItsPull(ws, in, cables)) return false;
+  if (static_cast<int>(ws.ahead.size()) != m) ws.ahead.assign(m, 0);
+  ws.aheadJacobian.resize(m);
   ws.free.assign(ws.predicted.begin(), ws.predicted.end());
   for (size_t k = 0; k < ws.dofs.body.size(); ++k) {
     const int b = ws.dofs.body[k];
