@@ -91,7 +91,7 @@ def test_the_old_name_stiffness_warns_and_is_k():
     assert "stiffness" not in pickle.loads(pickle.dumps(back)).__getstate__()
     with pytest.raises(cablelab.InputError) as error:
         cablelab.HandModel(k=300.0, stiffness=300.0)
-    assert str(error.value) == "HandModel: stiffness: give k only (stiffness is its old name)"
+    assert str(error.value) == "HandModel: stiffness: give k only (stiffness is its old name) (got both)"
 
 
 def test_renamed_keywords_warn_and_reach_the_new_ones():
