@@ -56,7 +56,8 @@ double parseDouble(const std::string& text, const std::string& flag) {
 
 MembraneGeometry parsePulleys(const std::string& text) {
   if (text.empty())
-    throw InputError(kCommandLine, "--pulleys", "is required: --pulleys AX,AY,BX,BY (m)");
+    throw InputError(kCommandLine, "--pulleys",
+                     "is required: --pulleys AX,AY,BX,BY (m) (got nothing)");
   return membranePulleys(parseNumberList(text, 4, kCommandLine, "--pulleys", "AX,AY,BX,BY"));
 }
 
@@ -67,9 +68,10 @@ int runGenerate(const FitOptions& o) {
         "give either DATA.csv (fit) or --generate OUT.csv, not both" + gotValue(o.data));
   MembraneSynthDef def;
   def.geometry = parsePulleys(o.pulleys);
-  if (o.k.empty()) throw InputError(kCommandLine, "--k", "is required with --generate (N/m)");
+  if (o.k.empty())
+    throw InputError(kCommandLine, "--k", "is required with --generate (N/m) (got nothing)");
   if (o.preload.empty())
-    throw InputError(kCommandLine, "--preload", "is required with --generate (m)");
+    throw InputError(kCommandLine, "--preload", "is required with --generate (m) (got nothing)");
   def.params.k = parseDouble(o.k, "--k");
   def.params.preload = parseDouble(o.preload, "--preload");
   def.noiseFy = parseDouble(o.noiseFy, "--noise-fy");
@@ -127,7 +129,8 @@ int runGenerate(const FitOptions& o) {
 int runFit(const FitOptions& o) {
   if (o.data.empty())
     throw InputError(kCommandLine, "DATA",
-                     "is required: cablelab fit DATA.csv --pulleys ... (or --generate OUT.csv)");
+                     "is required: cablelab fit DATA.csv --pulleys ... (or --generate OUT.csv) "
+                     "(got nothing)");
   for (const auto& [value, flag] : {std::pair{o.k, "--k"}, std::pair{o.preload, "--preload"}})
     if (!value.empty())
       throw InputError(kCommandLine, flag, "only with --generate" + gotValue(value));

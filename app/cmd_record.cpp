@@ -56,7 +56,8 @@ int record(const RecordOptions& o) {
                            gotValue(o.fps));
   requireFinite(o.time, "--time", 0, 3600);
   const auto [width, height] = parsePixelSize(o.size, kCommandLine, "--size", 16, 4096);
-  if (format == ui::ClipFormat::Mp4 && !ui::mp4Available()) badOption("--out", ui::kNoMp4);
+  if (format == ui::ClipFormat::Mp4 && !ui::mp4Available())
+    badOption("--out", ui::kNoMp4 + gotValue(o.out));
   if (format == ui::ClipFormat::Mp4 && (width % 2 || height % 2))
     badOption("--size", "an MP4 needs an even width and height" + gotValue(o.size));
   requireWritable(o.out, "--out");

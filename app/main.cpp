@@ -52,8 +52,20 @@ int main(int argc, char** argv) {
     return cli.exit(e);
   } catch (const CLI::ParseError& e) {
     std::string help = "see cablelab --help";
+    bool inCommand = false;
     for (const auto& [sub, run] : runners)
-      if (sub->parsed()) help = "see cablelab " + sub->get_name() + " --help";
+      if (sub->parsed()) help = "see cablelab " + sub->get_name() + " --help", inCommand = true;
+    // A first word that is no command: CLI11 says only "A subcommand is required".
+    if (!inCommand && argc > 1 && argv[1][0] != '-') {
+      std::string known;
+      for (const auto& command : app::commands())
+        known += (known.empty() ? "" : ", ") + std::string(command.name);
+      std::cerr << InputError(kCommandLine, "COMMAND",
+                              "no such command (known: " + known + ")" + gotValue(argv[1]))
+                       .what()
+                << "\n";
+      return 2;
+    }
     std::cerr << commandLineError(e.what(), help).what() << "\n";
     return 2;
   }

@@ -35,6 +35,22 @@ Vec2 toVec2(py::handle value, const std::string& source, const std::string& fiel
 std::vector<double> toNumbers(py::handle value, size_t count, const std::string& source,
                               const std::string& field);
 
+/// " (got VALUE)" for a Python value, to end a message (engine/core/error.h's style): a number
+/// or text as gotValue() writes it, an array or a list of numbers by its shape ("(got shape
+/// (3, 2))"), None/True/False by name, anything else by its type ("(got a dict)").
+std::string gotPython(py::handle value);
+
+/// " (got a TYPE)" (" (got None)"), to end a message about a value of the wrong type; the module
+/// raises such an InputError as cablelab.InputTypeError, a TypeError too (python/module.cpp).
+std::string gotType(py::handle value);
+
+/// " (got NAME=VALUE)": a keyword argument as the caller wrote it (its value's repr, shortened).
+std::string gotKeyword(const std::string& name, py::handle value);
+
+/// A real number (int, float or a numpy scalar; not a bool); throws InputError naming `field`
+/// and the type given otherwise.
+double toNumber(py::handle value, const std::string& source, const std::string& field);
+
 /// A float64 array of the given shape (C order), uninitialised.
 py::array_t<double> newArray(std::vector<py::ssize_t> shape);
 

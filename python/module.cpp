@@ -3,6 +3,7 @@
 // one-line message the CLI prints, SimulationError becomes cablelab.SimulationError.
 #include <cstdlib>
 #include <cstring>
+#include <regex>
 #include <string>
 
 #include "engine/core/error.h"
@@ -79,6 +80,7 @@ void addTextSignatures(py::module_& m) {
 void bindErrors(py::module_& m) {
   // Kept for the life of the process: the translator may run during interpreter shutdown.
   static PyObject* inputError = nullptr;
+  static PyObject* inputTypeError = nullptr;
   static PyObject* simulationError = nullptr;
   inputError = PyErr_NewExceptionWithDoc(
       "cablelab.InputError",
@@ -86,12 +88,20 @@ void bindErrors(py::module_& m) {
       "str(e) is the one line the cablelab CLI prints, 'SOURCE: FIELD: what is wrong';\n"
       "e.source and e.field hold its first two parts.",
       PyExc_ValueError, nullptr);
+  // A value of the wrong type ("(got a str)", "(got None)") is also a TypeError, as Python's own
+  // functions raise for one; `except cablelab.InputError` catches both.
+  py::tuple typeBases = py::make_tuple(py::handle(inputError), py::handle(PyExc_TypeError));
+  inputTypeError = PyErr_NewExceptionWithDoc(
+      "cablelab.InputTypeError",
+      "Bad input of the wrong type (an InputError and a TypeError): str(e) ends '(got a TYPE)'.",
+      typeBases.ptr(), nullptr);
   simulationError = PyErr_NewExceptionWithDoc(
       "cablelab.SimulationError",
       "A simulation that cannot continue (a non-finite state); the World is left as it was\n"
       "after the failing step.",
       PyExc_RuntimeError, nullptr);
   m.attr("InputError") = py::handle(inputError);
+  m.attr("InputTypeError") = py::handle(inputTypeError);
   m.attr("SimulationError") = py::handle(simulationError);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
@@ -100,10 +110,12 @@ void bindErrors(py::module_& m) {
       const auto [source, field] = pythonWords(e);
       const std::string text =
           source == e.source() ? std::string(e.what()) : source + ": " + field + ": " + e.detail();
-      py::object error = py::reinterpret_borrow<py::object>(inputError)(py::str(text));
+      static const std::regex wrongType(R"( \(got (an? [A-Za-z_][\w.]*|None)\)$)");
+      PyObject* kind = std::regex_search(e.detail(), wrongType) ? inputTypeError : inputError;
+      py::object error = py::reinterpret_borrow<py::object>(kind)(py::str(text));
       error.attr("source") = py::str(source);
       error.attr("field") = py::str(field);
-      PyErr_SetObject(inputError, error.ptr());
+      PyErr_SetObject(kind, error.ptr());
     } catch (const SimulationError& e) {
       PyErr_SetString(simulationError, e.what());
     }

@@ -52,7 +52,7 @@ nlohmann::json toJson(py::handle value, const std::string& source, const std::st
     const double d = PyLong_AsDouble(i.ptr());  // beyond 64 bits: a double, as JSON reads it
     if (d == -1.0 && PyErr_Occurred()) {
       PyErr_Clear();
-      throw InputError(source, here, "is too large a number");
+      throw InputError(source, here, "is too large a number" + gotPython(value));
     }
     return d;
   }
@@ -62,7 +62,7 @@ nlohmann::json toJson(py::handle value, const std::string& source, const std::st
       throw InputError(source, here, "must be finite (got " + numberText(d) + ")");
     return d;
   }
-  throw InputError(source, here, "cannot be read as JSON (got a " + typeName(value) + ")");
+  throw InputError(source, here, "cannot be read as JSON" + gotType(value));
 }
 
 namespace {
@@ -112,7 +112,7 @@ std::string pathString(py::handle value, const std::string& source, const std::s
     py::object path = py::module_::import("os").attr("fspath")(value);
     if (py::isinstance<py::str>(path)) return path.cast<std::string>();
   }
-  throw InputError(source, field, "must be a str or a path (got a " + typeName(value) + ")");
+  throw InputError(source, field, "must be a str or a path" + gotType(value));
 }
 
 std::vector<double> toNumbers(py::handle value, size_t count, const std::string& source,
@@ -120,7 +120,7 @@ std::vector<double> toNumbers(py::handle value, size_t count, const std::string&
   const std::string shape = count == 2 ? "[x, y]" : std::to_string(count) + " numbers";
   if (py::isinstance<py::str>(value) || !py::isinstance<py::sequence>(value)) {
     if (!py::isinstance<py::array>(value))
-      throw InputError(source, field, "must be " + shape + " (got a " + typeName(value) + ")");
+      throw InputError(source, field, "must be " + shape + gotType(value));
   }
   py::array_t<double, py::array::forcecast> a;
   try {
@@ -128,7 +128,7 @@ std::vector<double> toNumbers(py::handle value, size_t count, const std::string&
   } catch (const py::error_already_set&) {
   }
   if (!a || a.ndim() != 1 || static_cast<size_t>(a.size()) != count)
-    throw InputError(source, field, "must be " + shape);
+    throw InputError(source, field, "must be " + shape + gotPython(value));
   std::vector<double> out(count);
   for (size_t i = 0; i < count; ++i) {
     out[i] = a.at(i);
@@ -142,6 +142,58 @@ std::vector<double> toNumbers(py::handle value, size_t count, const std::string&
 Vec2 toVec2(py::handle value, const std::string& source, const std::string& field) {
   const auto v = toNumbers(value, 2, source, field);
   return {v[0], v[1]};
+}
+
+std::string gotPython(py::handle value) {
+  PyObject* o = value.ptr();
+  if (value.is_none()) return " (got None)";
+  if (PyBool_Check(o)) return o == Py_True ? " (got True)" : " (got False)";
+  if (py::isinstance<py::str>(value)) return gotValue(value.cast<std::string>());
+  if (PyLong_Check(o)) {
+    int overflow = 0;
+    const long long i = PyLong_AsLongLongAndOverflow(o, &overflow);
+    if (!overflow) return " (got " + std::to_string(i) + ")";
+    return " (got an int of " + std::to_string(py::str(value).cast<std::string>().size()) +
+           " digits)";
+  }
+  const bool sequence = py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value);
+  if (py::isinstance<py::array>(value) || sequence) {
+    py::array a;
+    try {
+      a = py::array::ensure(value);
+    } catch (const py::error_already_set&) {
+    }
+    PyErr_Clear();  // a ragged list is no array: say its type
+    if (a && (a.ndim() > 0 || !sequence)) {
+      std::string shape = "(";
+      for (py::ssize_t d = 0; d < a.ndim(); ++d)
+        shape += (d ? ", " : "") + std::to_string(a.shape(d));
+      return " (got shape " + shape + (a.ndim() == 1 ? ",)" : ")") + ")";
+    }
+  }
+  if (PyFloat_Check(o) || (PyNumber_Check(o) && py::hasattr(value, "dtype")))
+    return gotValue(py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>());
+  return gotType(value);
+}
+
+std::string gotType(py::handle value) {
+  if (value.is_none()) return " (got None)";
+  const std::string type = typeName(value);
+  const bool vowel = std::string("aeiou").find(type[0]) != std::string::npos;
+  return std::string(vowel ? " (got an " : " (got a ") + type + ")";
+}
+
+std::string gotKeyword(const std::string& name, py::handle value) {
+  std::string text = py::repr(value).cast<std::string>();
+  if (text.size() > 40) text = text.substr(0, 37) + "...";
+  return " (got " + name + "=" + text + ")";
+}
+
+double toNumber(py::handle value, const std::string& source, const std::string& field) {
+  if (PyBool_Check(value.ptr()) || typeName(value) == "bool_" || !PyNumber_Check(value.ptr()) ||
+      py::isinstance<py::array>(value))
+    throw InputError(source, field, "must be a number" + gotType(value));
+  return py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
 }
 
 py::array_t<double> newArray(std::vector<py::ssize_t> shape) {

@@ -25,7 +25,9 @@ struct PyGrasp {
     PyWorld::Busy busy(world);
     requireHand(world, "HandGrasp");
     if (!grasp.attach(*world.world))
-      throw InputError("HandGrasp", "world", "is not the hand scene (no box or membranes)");
+      throw InputError(
+          "HandGrasp", "world",
+          "is not the hand scene (no box or membranes)" + gotValue(world.world->scene().name));
   }
   HandGrasp grasp;
   py::object object;
@@ -53,7 +55,8 @@ const char* phaseName(HandGrasp::Phase p) {
 GraspLaw lawOf(py::handle law) {
   if (law.is_none()) return {};
   if (!PyCallable_Check(law.ptr()))
-    throw InputError("HandGrasp", "law", "must be a function law(q, box, commanded) -> dq");
+    throw InputError("HandGrasp", "law",
+                     "must be a function law(q, box, commanded) -> dq" + gotType(law));
   py::object f = py::reinterpret_borrow<py::object>(law);
   return [f](const HandJoints& q, const Vec2& box, const HandJoints& commanded) {
     return jointsOf(f(jointsArray(q), py::array_t<double>(2, box.data()), jointsArray(commanded)),
@@ -131,7 +134,7 @@ the hand holds. track() is this loop with the controller and a fixed target.)doc
   c.def(py::init([](py::object world, const HandModel& hand, const HandControllerParams& params,
                     const GraspOptions& options) {
           if (!py::isinstance<PyWorld>(world))
-            throw InputError("HandGrasp", "world", "must be a cablelab.World");
+            throw InputError("HandGrasp", "world", "must be a cablelab.World" + gotType(world));
           return std::make_unique<PyGrasp>(world, hand, params, options);
         }),
         "world"_a, "hand"_a = HandModel{}, "controller"_a = HandControllerParams{},

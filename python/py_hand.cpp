@@ -67,7 +67,7 @@ double checkedField(double v, FieldRule rule, const char* className, const char*
 
 double numberField(py::handle value, const char* className, const char* field) {
   if (PyBool_Check(value.ptr()) || !PyNumber_Check(value.ptr()))
-    throw InputError(className, field, "must be a number");
+    throw InputError(className, field, "must be a number" + gotType(value));
   const double v = PyFloat_AsDouble(value.ptr());
   if (v == -1.0 && PyErr_Occurred()) {  // a complex number, an array of several
     PyErr_Clear();
@@ -81,7 +81,8 @@ void requireHand(const PyWorld& w, const std::string& source) {
   for (const char* name : kHandJointNames)
     if (w.world->findJoint(name) < 0)
       throw InputError(source, "world",
-                       std::string("is not the hand scene (no joint '") + name + "')");
+                       std::string("is not the hand scene (no joint '") + name + "')" +
+                           gotValue(w.world->scene().name));
 }
 
 void bindHand(py::module_& m) {

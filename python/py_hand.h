@@ -44,11 +44,12 @@ T fromFields(const char* name, const py::dict& kw) {
     const std::string key = py::str(k);
     const std::string renamed = renamedField(self, key);
     if (!renamed.empty() && kw.contains(renamed))
-      throw InputError(name, key, "give " + renamed + " only (" + key + " is its old name)");
+      throw InputError(name, key,
+                       "give " + renamed + " only (" + key + " is its old name) (got both)");
     if (renamed.empty() && std::find(known.begin(), known.end(), key) == known.end()) {
       std::string list;
       for (const std::string& f : known) list += (list.empty() ? "" : ", ") + f;
-      throw InputError(name, key, "no such field (known: " + list + ")");
+      throw InputError(name, key, "no such field (known: " + list + ")" + gotKeyword(key, v));
     }
     self.attr(key.c_str()) = v;
   }
@@ -74,7 +75,7 @@ auto fieldSetter(V T::*member, FieldRule rule, const char* className, const char
       t.*member = checkedField(numberField(value, className, name), rule, className, name);
     } else if constexpr (std::is_same_v<V, int>) {
       if (PyBool_Check(value.ptr()) || !PyIndex_Check(value.ptr()))
-        throw InputError(className, name, "must be an integer");
+        throw InputError(className, name, "must be an integer" + gotType(value));
       const double v = py::int_(py::reinterpret_borrow<py::object>(value)).cast<double>();
       if (v > std::numeric_limits<int>::max())
         throw InputError(className, name, "is too large" + gotValue(v));

@@ -60,9 +60,10 @@ std::vector<TargetChange> targetChanges(py::handle changes) {
   for (py::handle c : changes) {
     const std::string field = "changes[" + std::to_string(i++) + "]";
     if (!py::isinstance<py::sequence>(c) || py::isinstance<py::str>(c) || py::len(c) != 2)
-      throw InputError("track", field, "must be (t, (x, y)): time (s) and target (m)");
+      throw InputError("track", field,
+                       "must be (t, (x, y)): time (s) and target (m)" + gotPython(c));
     const auto pair = py::reinterpret_borrow<py::sequence>(c);
-    const double t = pair[0].cast<double>();
+    const double t = toNumber(pair[0], "track", field);
     if (!std::isfinite(t) || t < 0 || (!out.empty() && t < out.back().t))
       throw InputError("track", field, "t must be finite, >= 0 and in time order" + gotValue(t));
     out.push_back({t, toVec2(pair[1], "track", field)});

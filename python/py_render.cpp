@@ -18,7 +18,9 @@ std::pair<int, int> sizeOf(py::handle size, const std::string& source) {
   const auto v = toNumbers(size, 2, source, "size");
   if (v[0] != static_cast<int>(v[0]) || v[1] != static_cast<int>(v[1]) || v[0] < 16 || v[1] < 16 ||
       v[0] > 8192 || v[1] > 8192)
-    throw InputError(source, "size", "expected (width, height) with 16..8192 pixels per side");
+    throw InputError(source, "size",
+                     "expected (width, height) with 16..8192 pixels per side (got (" +
+                         formatNumber(v[0]) + ", " + formatNumber(v[1]) + "))");
   return {static_cast<int>(v[0]), static_cast<int>(v[1])};
 }
 
@@ -53,6 +55,13 @@ ViewDef fitView(const World& world, double aspect) {
   return {0.5 * (lo + hi), std::max(hi.y() - lo.y(), (hi.x() - lo.x()) / aspect)};
 }
 
+/// A dict's keys as "keys center, size" (or "no keys").
+std::string keysOf(const py::dict& d) {
+  std::string out;
+  for (auto [key, value] : d) out += (out.empty() ? "" : ", ") + py::str(key).cast<std::string>();
+  return out.empty() ? "no keys" : "keys " + out;
+}
+
 /// render()'s view: None fits the scene (fitView), "scene" is the scene's own, else
 /// (center, height) or {"center": [x, y], "height": h} (m).
 ViewDef viewOf(const World& world, py::handle view, int width, int height,
@@ -60,7 +69,8 @@ ViewDef viewOf(const World& world, py::handle view, int width, int height,
   if (view.is_none()) return fitView(world, static_cast<double>(width) / height);
   if (py::isinstance<py::str>(view)) {
     if (view.cast<std::string>() == "scene") return world.scene().view;
-    throw InputError(source, "view", "must be None, \"scene\", (center, height) or a dict");
+    throw InputError(source, "view",
+                     "must be None, \"scene\", (center, height) or a dict" + gotPython(view));
   }
   py::object center, tall;
   if (py::isinstance<py::dict>(view)) {
@@ -69,14 +79,16 @@ ViewDef viewOf(const World& world, py::handle view, int width, int height,
       if (py::str(key).cast<std::string>() != "center" &&
           py::str(key).cast<std::string>() != "height")
         throw InputError(source, "view." + py::str(key).cast<std::string>(),
-                         "no such key (known: center, height)");
+                         "no such key (known: center, height)" + gotPython(key));
     if (!d.contains("center") || !d.contains("height"))
-      throw InputError(source, "view", "needs center [x, y] and height (m)");
+      throw InputError(source, "view",
+                       "needs center [x, y] and height (m) (got " + keysOf(d) + ")");
     center = d["center"], tall = d["height"];
   } else {
     const py::sequence seq = py::reinterpret_borrow<py::sequence>(view);
     if (!py::isinstance<py::sequence>(view) || py::len(seq) != 2)
-      throw InputError(source, "view", "must be None, \"scene\", (center, height) or a dict");
+      throw InputError(source, "view",
+                       "must be None, \"scene\", (center, height) or a dict" + gotPython(view));
     center = seq[0], tall = seq[1];
   }
   ViewDef out;
@@ -110,7 +122,10 @@ void snapshotCall(const PyWorld& w, py::handle path, py::handle size, py::handle
   try {
     ui::writePng(image, file);
   } catch (const std::exception& e) {
-    throw InputError(file, "path", e.what());
+    // writePng's message starts with the path: the value goes at the end, as everywhere.
+    std::string what = e.what();
+    if (what.rfind(file + ": ", 0) == 0) what = what.substr(file.size() + 2);
+    throw InputError("snapshot", "path", what + gotValue(file));
   }
 }
 #else

@@ -56,28 +56,34 @@ struct Recording {
 
 std::vector<PyWorld*> worldList(py::handle worlds) {
   if (!py::isinstance<py::sequence>(worlds) || py::isinstance<py::str>(worlds))
-    throw InputError(kSource, "worlds", "must be a list of World");
+    throw InputError(kSource, "worlds", "must be a list of World" + gotType(worlds));
   std::vector<PyWorld*> out;
   for (py::handle item : worlds.cast<py::sequence>()) {
     if (!py::isinstance<PyWorld>(item))
-      throw InputError(kSource, "worlds[" + std::to_string(out.size()) + "]", "must be a World");
+      throw InputError(kSource, "worlds[" + std::to_string(out.size()) + "]",
+                       "must be a World" + gotType(item));
     PyWorld* w = item.cast<PyWorld*>();
     const auto same = std::find(out.begin(), out.end(), w);
     if (same != out.end())
       throw InputError(kSource, "worlds[" + std::to_string(out.size()) + "]",
                        "the same World as worlds[" + std::to_string(same - out.begin()) +
-                           "] (copy() it to run two)");
+                           "] (copy() it to run two) (got the same World twice)");
     out.push_back(w);
   }
-  if (out.empty()) throw InputError(kSource, "worlds", "must hold at least one World");
+  if (out.empty())
+    throw InputError(kSource, "worlds", "must hold at least one World (got an empty list)");
   const World& first = *out[0]->world;
   for (size_t i = 1; i < out.size(); ++i) {
     const World& w = *out[i]->world;
     if (w.bodyCount() != first.bodyCount() || w.cableCount() != first.cableCount() ||
         w.jointCount() != first.jointCount())
-      throw InputError(kSource, "worlds[" + std::to_string(i) + "]",
-                       "has other numbers of bodies, cables or joints than worlds[0] (the "
-                       "recording is one array)");
+      throw InputError(
+          kSource, "worlds[" + std::to_string(i) + "]",
+          "has other numbers of bodies, cables or joints than worlds[0] (the "
+          "recording is one array) (got " +
+              std::to_string(w.bodyCount()) + ", " + std::to_string(w.cableCount()) + ", " +
+              std::to_string(w.jointCount()) + ", not " + std::to_string(first.bodyCount()) + ", " +
+              std::to_string(first.cableCount()) + ", " + std::to_string(first.jointCount()) + ")");
   }
   return out;
 }
@@ -85,7 +91,8 @@ std::vector<PyWorld*> worldList(py::handle worlds) {
 int threadCount(py::handle threads, size_t worlds) {
   long n = std::max(1u, std::thread::hardware_concurrency());
   if (!threads.is_none()) {
-    if (!PyIndex_Check(threads.ptr())) throw InputError(kSource, "threads", "must be an integer");
+    if (!PyIndex_Check(threads.ptr()) || PyBool_Check(threads.ptr()))
+      throw InputError(kSource, "threads", "must be an integer" + gotType(threads));
     n = py::int_(py::reinterpret_borrow<py::object>(threads)).cast<long>();
     if (n < 1 || n > 1024) throw InputError(kSource, "threads", "must be 1..1024" + gotValue(n));
   }
@@ -100,7 +107,8 @@ py::array_t<double> controlArray(py::handle controls, size_t worlds, long steps,
     throw InputError(kSource, "controls",
                      "must be an array of shape (worlds, steps, joints) = (" +
                          std::to_string(worlds) + ", " + std::to_string(steps) + ", " +
-                         std::to_string(joints) + ") of servo targets, or a callable");
+                         std::to_string(joints) + ") of servo targets, or a callable" +
+                         gotPython(controls));
   const double* d = a.data();
   for (py::ssize_t k = 0; k < a.size(); ++k) {
     try {
@@ -126,14 +134,15 @@ void rethrowFirst(const std::vector<std::exception_ptr>& errors) {
 
 py::dict rollout(py::handle worldsArg, long steps, py::handle controls, py::handle threadsArg) {
   const std::vector<PyWorld*> worlds = worldList(worldsArg);
-  if (steps < 0 || steps > 100000000) throw InputError(kSource, "steps", "must be 0..1e8");
+  if (steps < 0 || steps > 100000000)
+    throw InputError(kSource, "steps", "must be 0..1e8" + gotValue(steps));
   std::vector<std::unique_ptr<PyWorld::Busy>> held;
   for (PyWorld* w : worlds) held.push_back(std::make_unique<PyWorld::Busy>(*w));
   const int n = static_cast<int>(worlds.size());
   const World& first = *worlds[0]->world;
   const int nb = first.bodyCount(), nc = first.cableCount(), nj = first.jointCount();
   if (8.0 * n * steps * (1 + 6 * nb + 3 * nc + 2 * nj) > 4e9)
-    throw InputError(kSource, "steps", "the recording would take more than 4 GB");
+    throw InputError(kSource, "steps", "the recording would take more than 4 GB" + gotValue(steps));
 
   const bool policy = !controls.is_none() && PyCallable_Check(controls.ptr());
   const bool hasTable = !controls.is_none() && !policy;
@@ -177,7 +186,7 @@ py::dict rollout(py::handle worldsArg, long steps, py::handle controls, py::hand
         throw InputError(kSource, "controls",
                          "the callable must return an array of shape (worlds, joints) = (" +
                              std::to_string(n) + ", " + std::to_string(nj) + ") at step " +
-                             std::to_string(s));
+                             std::to_string(s) + gotPython(answer));
       for (py::ssize_t k = 0; k < a.size(); ++k)
         checkedValue(a.data()[k], kSource, "controls(" + std::to_string(s) + ", ...) result");
       const double* row = a.data();

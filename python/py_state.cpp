@@ -32,7 +32,7 @@ py::array_t<double> inputsArray(const std::vector<WorldInput>& inputs) {
 std::vector<WorldInput> inputsOf(py::handle array, const std::string& source) {
   auto a = py::array_t<double, py::array::forcecast | py::array::c_style>::ensure(array);
   if (!a || a.ndim() != 2 || a.shape(1) != kInputColumns)
-    throw InputError(source, "inputs", "must be an (n, 7) array");
+    throw InputError(source, "inputs", "must be an (n, 7) array" + gotPython(array));
   std::vector<std::array<double, 7>> rows(static_cast<size_t>(a.shape(0)));
   std::copy_n(a.data(), a.size(), rows.empty() ? nullptr : rows[0].data());
   return inputsFromRows(rows, source, "inputs");
@@ -46,7 +46,10 @@ py::tuple packState(const WorldState& s) {
 
 WorldState unpackState(const py::tuple& t) {
   if (t.size() != 4 || t[0].cast<int>() != kStateVersion)
-    throw InputError("pickle", "state", "is not a cablelab World state of this version");
+    throw InputError("pickle", "state",
+                     "is not a cablelab World state of this version" +
+                         (t.size() != 4 ? " (got a tuple of " + std::to_string(t.size()) + ")"
+                                        : gotPython(t[0]) + ""));
   const std::string source = t[2].cast<std::string>();
   WorldState s;
   s.scene = sceneFromJson(nlohmann::json::parse(t[1].cast<std::string>()), source);
@@ -65,7 +68,10 @@ py::tuple packFigures(const WorldState& s) {
 }
 
 std::shared_ptr<WorldState> unpackWithFigures(const py::tuple& t) {
-  if (t.size() != 5) throw InputError("pickle", "state", "is not a cablelab WorldState");
+  if (t.size() != 5)
+    throw InputError(
+        "pickle", "state",
+        "is not a cablelab WorldState (got a tuple of " + std::to_string(t.size()) + ")");
   auto s = std::make_shared<WorldState>(unpackState(py::make_tuple(t[0], t[1], t[2], t[3])));
   const py::tuple f = t[4].cast<py::tuple>();
   s->time = f[0].cast<double>();
@@ -174,8 +180,9 @@ to another process (it pickles). Cheap to take; see WorldState.)doc");
         if (restored->bodyNames != self.bodyNames || restored->cableNames != self.cableNames ||
             restored->jointNames != self.jointNames)
           throw InputError("set_state", "state",
-                           "is of another scene ('" + s.scene.name +
-                               "': other bodies, cables or joints); use World.from_state(state)");
+                           "is of another scene (other bodies, cables or joints); use "
+                           "World.from_state(state)" +
+                               gotValue(s.scene.name));
         self.world = std::move(restored->world);
         self.source = s.source;
       },

@@ -36,14 +36,16 @@ nlohmann::json staticsJson(py::handle cables, py::handle p0) {
              py::array(py::reinterpret_borrow<py::object>(cables)).ndim() == 2) {
     auto a = py::array_t<double, py::array::forcecast | py::array::c_style>::ensure(cables);
     if (!a || a.shape(1) != 6)
-      throw InputError("statics", "cables", "an array must be (N, 6): ax ay bx by k L per cable");
+      throw InputError("statics", "cables",
+                       "an array must be (N, 6): ax ay bx by k L per cable" + gotPython(cables));
     j["cables"] = nlohmann::json::array();
     for (py::ssize_t i = 0; i < a.shape(0); ++i) {
       const double* r = a.data(i, 0);
       nlohmann::json c;
       for (int k = 0; k < 6; ++k)
         if (!std::isfinite(r[k]))
-          throw InputError("statics", "cables[" + std::to_string(i) + "]", "must be finite");
+          throw InputError("statics", "cables[" + std::to_string(i) + "]",
+                           "must be finite" + gotValue(r[k]));
       c["a"] = {r[0], r[1]}, c["b"] = {r[2], r[3]}, c["k"] = r[4], c["L"] = r[5];
       j["cables"].push_back(c);
     }
@@ -103,8 +105,9 @@ MembraneGeometry pulleysOf(py::handle pulleys) {
         parseNumberList(pulleys.cast<std::string>(), 4, kCommandLine, "--pulleys", "AX,AY,BX,BY"));
   auto a = py::array_t<double, py::array::forcecast>::ensure(pulleys);
   if (!a || a.size() != 4)
-    throw InputError(kCommandLine, "--pulleys",
-                     "must be AX, AY, BX, BY (m): 4 numbers or [[AX, AY], [BX, BY]]");
+    throw InputError(
+        kCommandLine, "--pulleys",
+        "must be AX, AY, BX, BY (m): 4 numbers or [[AX, AY], [BX, BY]]" + gotPython(pulleys));
   return membranePulleys(toNumbers(a.attr("reshape")(4), 4, kCommandLine, "--pulleys"));
 }
 
@@ -113,7 +116,8 @@ std::vector<MembraneSample> membraneRows(py::handle data, const MembraneGeometry
   auto a = py::array_t<double, py::array::forcecast | py::array::c_style>::ensure(data);
   if (!a || a.ndim() != 2 || a.shape(1) != 4)
     throw InputError("data", "(array)",
-                     "must be an (n, 4) array: x, y (m), fy (N), angle_deg per row, or a CSV path");
+                     "must be an (n, 4) array: x, y (m), fy (N), angle_deg per row, or a CSV path" +
+                         gotPython(data));
   // Through the CSV reader, so an array is checked exactly as a file is (same messages).
   std::ostringstream csv;
   csv << "x,y,fy,angle_deg\n";
@@ -166,15 +170,18 @@ py::array_t<double> membraneDataCall(double k, double preload, py::handle pulley
   def.geometry = pulleysOf(pulleys);
   def.params.k = k, def.params.preload = preload;
   def.noiseFy = noiseFy, def.noiseAngleDeg = noiseAngle;
-  if (seed < 0) throw InputError("--seed", "seed", "must be a whole number >= 0");
+  if (seed < 0)
+    throw InputError("membrane_data", "seed", "must be a whole number >= 0" + gotValue(seed));
   def.seed = static_cast<std::uint64_t>(seed);
-  const auto g = toNumbers(grid, 2, "--grid", "grid");
+  const auto g = toNumbers(grid, 2, "membrane_data", "grid");
   if (g[0] != std::floor(g[0]) || g[1] != std::floor(g[1]) || g[0] < 1 || g[1] < 1 ||
       g[0] * g[1] > 1e6)
-    throw InputError("--grid", "grid", "NX and NY must be whole numbers >= 1, at most 1e6 points");
+    throw InputError("membrane_data", "grid",
+                     "NX and NY must be whole numbers >= 1, at most 1e6 points (got (" +
+                         formatNumber(g[0]) + ", " + formatNumber(g[1]) + "))");
   def.nx = static_cast<int>(g[0]), def.ny = static_cast<int>(g[1]);
-  const auto d = toNumbers(depth, 2, "--depth", "depth");
-  const auto a = toNumbers(along, 2, "--along", "along");
+  const auto d = toNumbers(depth, 2, "membrane_data", "depth");
+  const auto a = toNumbers(along, 2, "membrane_data", "along");
   def.depthMin = d[0], def.depthMax = d[1], def.alongMin = a[0], def.alongMax = a[1];
   validateMembraneSynth(def, "membrane_data");
   return samplesArray(generateMembraneData(def));
@@ -184,7 +191,8 @@ py::dict membraneModelCall(py::handle pulleys, double k, double preload, py::han
   const MembraneGeometry g = pulleysOf(pulleys);
   auto a = py::array_t<double, py::array::forcecast | py::array::c_style>::ensure(points);
   if (!a || a.ndim() != 2 || a.shape(1) != 2)
-    throw InputError("membrane_model", "points", "must be an (n, 2) array of contact points (m)");
+    throw InputError("membrane_model", "points",
+                     "must be an (n, 2) array of contact points (m)" + gotPython(points));
   const MembraneParams m{k, preload};
   const py::ssize_t n = a.shape(0);
   py::array_t<double> force = newArray({n, 2}), tension = newArray({n}), angle = newArray({n});

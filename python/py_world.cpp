@@ -34,9 +34,9 @@ int resolveIndex(py::handle which, int count, const std::vector<std::string>& na
     const std::string name = which.cast<std::string>();
     for (int i = 0; i < count; ++i)
       if (names[i] == name) return i;
-    throw InputError(
-        source, kind,
-        "no " + std::string(kind) + " named '" + name + "' (known: " + namesOf(names) + ")");
+    throw InputError(source, kind,
+                     "no " + std::string(kind) + " of that name (known: " + namesOf(names) + ")" +
+                         gotValue(name));
   }
   if (PyIndex_Check(which.ptr())) {
     const long long i = py::int_(py::reinterpret_borrow<py::object>(which)).cast<long long>();
@@ -46,20 +46,22 @@ int resolveIndex(py::handle which, int count, const std::vector<std::string>& na
                            std::to_string(i) + ")");
     return static_cast<int>(i);
   }
-  throw InputError(source, kind, "must be an index or a name");
+  throw InputError(source, kind, "must be an index or a name" + gotType(which));
 }
 
 void checkStep(const SceneDef& scene, py::handle dt, py::handle substeps, double& h, int& n) {
   h = scene.dt;
   n = scene.substeps;
   if (!dt.is_none()) {
-    h = dt.cast<double>();
-    if (!(h > 0 && h <= 1)) throw InputError("step", "dt", "must be in (0, 1] s");
+    h = toNumber(dt, "step", "dt");
+    if (!(h > 0 && h <= 1)) throw InputError("step", "dt", "must be in (0, 1] s" + gotValue(h));
   }
   if (!substeps.is_none()) {
-    if (!PyIndex_Check(substeps.ptr())) throw InputError("step", "substeps", "must be an integer");
+    if (!PyIndex_Check(substeps.ptr()) || PyBool_Check(substeps.ptr()))
+      throw InputError("step", "substeps", "must be an integer" + gotType(substeps));
     const long long s = py::int_(py::reinterpret_borrow<py::object>(substeps)).cast<long long>();
-    if (s < 1 || s > 1000) throw InputError("step", "substeps", "must be 1..1000");
+    if (s < 1 || s > 1000)
+      throw InputError("step", "substeps", "must be 1..1000" + gotPython(substeps));
     n = static_cast<int>(s);
   }
 }
@@ -130,18 +132,19 @@ std::vector<std::pair<std::string, double>> loadKeywords(const std::string& scen
     if (!info)
       throw InputError(kSource, k,
                        "a scene file takes no keywords (edit the file, or change the dict from "
-                       "to_dict() and use World.from_dict)");
+                       "to_dict() and use World.from_dict)" +
+                           gotKeyword(k, value));
     const auto param = std::find_if(info->params.begin(), info->params.end(),
                                     [&k](const SceneParam& p) { return p.name == k; });
     if (param == info->params.end()) {
       std::string known;
       for (const SceneParam& p : info->params) known += (known.empty() ? "" : ", ") + p.name;
       throw InputError(kSource, k,
-                       "no such keyword for scene '" + scene +
-                           "' (known: " + (known.empty() ? "none" : known) + ")");
+                       "no such keyword for scene '" + scene + "' (known: " +
+                           (known.empty() ? "none" : known) + ")" + gotKeyword(k, value));
     }
     if (PyBool_Check(value.ptr()) || !PyNumber_Check(value.ptr()))
-      throw InputError(kSource, k, "must be a number");
+      throw InputError(kSource, k, "must be a number" + gotType(value));
     const double v = py::float_(py::reinterpret_borrow<py::object>(value)).cast<double>();
     if (!std::isfinite(v)) throw InputError(kSource, k, "must be finite" + gotValue(v));
     if (param->range == SceneParam::Range::Positive && !(v > 0))
@@ -170,7 +173,7 @@ std::unique_ptr<PyWorld> loadWorld(py::handle scene, const py::kwargs& params) {
 
 std::unique_ptr<PyWorld> worldFromDict(py::handle dict, const std::string& source) {
   if (!py::isinstance<py::dict>(dict))
-    throw InputError(source, "(scene)", "must be a dict (the scene JSON object)");
+    throw InputError(source, "(scene)", "must be a dict (the scene JSON object)" + gotType(dict));
   return std::make_unique<PyWorld>(sceneFromJson(toJson(dict, source), source), source);
 }
 
@@ -184,22 +187,30 @@ py::object runWorld(PyWorld& self, py::handle time, py::handle steps, py::handle
   checkStep(w.scene(), dt, substeps, h, n);
   long count = 0;
   if (time.is_none() == steps.is_none())
-    throw InputError("run", "time", "give either time (s) or steps, not both");
+    throw InputError("run", "time",
+                     "give either time (s) or steps, not both" +
+                         std::string(time.is_none() ? " (got neither)" : " (got both)"));
   if (!time.is_none()) {
-    const double t = time.cast<double>();
+    const double t = toNumber(time, "run", "time");
     if (!std::isfinite(t) || t < 0 || t > 1e7)
-      throw InputError("run", "time", "must be in [0, 1e7] s");
+      throw InputError("run", "time", "must be in [0, 1e7] s" + gotValue(t));
     count = std::lround(t / h);
   } else {
-    const long long s = steps.cast<long long>();
-    if (s < 0) throw InputError("run", "steps", "must be >= 0");
+    if (!PyIndex_Check(steps.ptr()) || PyBool_Check(steps.ptr()))
+      throw InputError("run", "steps", "must be a whole number" + gotType(steps));
+    const long long s = py::int_(py::reinterpret_borrow<py::object>(steps)).cast<long long>();
+    if (s < 0) throw InputError("run", "steps", "must be >= 0" + gotPython(steps));
     count = static_cast<long>(s);
   }
-  if (count > 100000000) throw InputError("run", "time", "more than 1e8 steps; raise dt");
+  if (count > 100000000)
+    throw InputError("run", time.is_none() ? "steps" : "time",
+                     "more than 1e8 steps; raise dt" + gotPython(time.is_none() ? steps : time));
   const int nb = w.bodyCount(), nc = w.cableCount(), nj = w.jointCount();
   const double rowBytes = 8.0 * (1 + 6 * nb + 3 * nc + 2 * nj);
   if (record && rowBytes * (count + 1) > 4e9)
-    throw InputError("run", "record", "the record would take more than 4 GB; record fewer steps");
+    throw InputError("run", "record",
+                     "the record would take more than 4 GB; record fewer steps (got " +
+                         std::to_string(count) + " steps)");
 
   py::array_t<double> t, bodies, cables, joints;
   double *pt = nullptr, *pb = nullptr, *pc = nullptr, *pj = nullptr;
@@ -253,13 +264,14 @@ py::array_t<double> bodyStates(const PyWorld& self, py::object out) {
     a = newArray({n, 6});
   } else {
     if (!py::isinstance<py::array_t<double>>(out))
-      throw InputError("body_states", "out", "must be a float64 numpy array");
+      throw InputError("body_states", "out", "must be a float64 numpy array" + gotType(out));
     a = out.cast<py::array_t<double>>();
     if (a.ndim() != 2 || a.shape(0) != n || a.shape(1) != 6 || !(a.flags() & py::array::c_style) ||
         !a.writeable())
       throw InputError(
           "body_states", "out",
-          "must be a writeable C-contiguous (" + std::to_string(n) + ", 6) float64 array");
+          "must be a writeable C-contiguous (" + std::to_string(n) + ", 6) float64 array" +
+              (a.writeable() ? gotPython(out) : std::string(" (got a read-only array)")));
   }
   double* d = a.mutable_data();
   for (py::ssize_t i = 0; i < n; ++i) writeBody(w.body(static_cast<int>(i)), d + 6 * i);
@@ -283,9 +295,9 @@ void setBodyStates(PyWorld& self, py::handle states) {
   World& w = *self.world;
   auto a = py::array_t<double, py::array::forcecast | py::array::c_style>::ensure(states);
   if (!a || a.ndim() != 2 || a.shape(0) != w.bodyCount() || a.shape(1) != 6)
-    throw InputError(
-        "set_body_states", "states",
-        "must be a (" + std::to_string(w.bodyCount()) + ", 6) array of x y theta vx vy omega");
+    throw InputError("set_body_states", "states",
+                     "must be a (" + std::to_string(w.bodyCount()) +
+                         ", 6) array of x y theta vx vy omega" + gotPython(states));
   const double* d = a.data();
   for (py::ssize_t k = 0; k < a.size(); ++k)
     checkedValue(d[k], "set_body_states",

@@ -92,7 +92,7 @@ GuiOptions checkGuiArguments(const GuiArguments& args,
   if (o.unattended) {
     if (!o.record.empty()) {
       if (clipFormatFor(o.record) == ClipFormat::Mp4 && !mp4Available())
-        throw InputError(kCommandLine, "--record", kNoMp4);
+        throw InputError(kCommandLine, "--record", kNoMp4 + gotValue(o.record));
       requireWritable(o.record, "--record");
     }
     // The scene as `cablelab run` and `snapshot` build it: the same checks, the same line.

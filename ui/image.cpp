@@ -52,14 +52,16 @@ Image readPng(const std::string& path) {
   std::memset(&png, 0, sizeof png);
   png.version = PNG_IMAGE_VERSION;
   if (!png_image_begin_read_from_memory(&png, bytes.data(), bytes.size()))
-    throw InputError(path, "(file)", std::string("not a PNG image: ") + png.message);
+    throw InputError(path, "(file)",
+                     std::string("not a PNG image: ") + png.message + gotValue(path));
   png.format = PNG_FORMAT_RGBA;
   Image image;
   image.width = static_cast<int>(png.width);
   image.height = static_cast<int>(png.height);
   image.rgba.resize(PNG_IMAGE_SIZE(png));
   if (!png_image_finish_read(&png, nullptr, image.rgba.data(), 0, nullptr))
-    throw InputError(path, "(file)", std::string("not a readable PNG image: ") + png.message);
+    throw InputError(path, "(file)",
+                     std::string("not a readable PNG image: ") + png.message + gotValue(path));
   return image;
 }
 

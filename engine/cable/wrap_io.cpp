@@ -54,9 +54,14 @@ WrapProblem parseWrapJson(const json& in, const std::string& file) {
     std::reverse(p.polygon.begin(), p.polygon.end());
     std::reverse(p.order.begin(), p.order.end());
     if (!isConvexCCW(p.polygon))
-      throw InputError(file, "polygon", "is not convex (or has repeated or collinear vertices)");
+      throw InputError(file, "polygon",
+                       "is not convex (or has repeated or collinear vertices) (got " +
+                           std::to_string(p.polygon.size()) + " vertices)");
   }
-  if ((p.a - p.b).norm() == 0) throw InputError(file, "B", "coincides with A");
+  if ((p.a - p.b).norm() == 0)
+    throw InputError(
+        file, "B",
+        "coincides with A (got [" + formatNumber(p.b.x()) + ", " + formatNumber(p.b.y()) + "])");
   return p;
 }
 
@@ -71,7 +76,10 @@ WrapProblem loadWrapFile(const std::string& path) {
 WrapSolution solveWrap(const WrapProblem& p, const std::string& file) {
   const auto chain = wrapChain(p.a, p.b, p.polygon, p.side);
   if (!chain)
-    throw InputError(file, "A", "A or B lies inside the polygon: no taut path goes round it");
+    throw InputError(file, "A",
+                     "A or B lies inside the polygon: no taut path goes round it (got A [" +
+                         formatNumber(p.a.x()) + ", " + formatNumber(p.a.y()) + "], B [" +
+                         formatNumber(p.b.x()) + ", " + formatNumber(p.b.y()) + "])");
   WrapSolution s;
   s.path.push_back(p.a);
   for (int v : *chain) {

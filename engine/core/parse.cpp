@@ -87,6 +87,7 @@ InputError commandLineError(const std::string& message, const std::string& help)
   static const std::regex noConversion(R"(^Could not convert: (\S+) = (.*)$)");
   static const std::regex required(R"(^(\S+) is required$)");
   static const std::regex named(R"(^(-{1,2}[A-Za-z0-9][\w-]*): (.*)$)");
+  static const std::regex extra(R"(^The following arguments? (?:was|were) not expected: (.*)$)");
   const std::string tail = help.empty() ? "" : " (" + help + ")";
   std::smatch m;
   if (std::regex_match(message, m, notAllowed))
@@ -94,7 +95,12 @@ InputError commandLineError(const std::string& message, const std::string& help)
   if (std::regex_match(message, m, noConversion))
     return InputError(kCommandLine, m[1], "cannot convert the value" + gotValue(m[2].str()) + tail);
   if (std::regex_match(message, m, required))
-    return InputError(kCommandLine, m[1], "is required" + tail);
+    return InputError(kCommandLine, m[1], "is required (got nothing)" + tail);
+  if (std::regex_match(message, m, extra))
+    return InputError(kCommandLine, "(arguments)",
+                      "unknown option or one argument too many" + gotValue(m[1].str()) + tail);
+  if (message == "A subcommand is required")
+    return InputError(kCommandLine, "(arguments)", "a subcommand is required (got nothing)" + tail);
   if (std::regex_match(message, m, named)) return InputError(kCommandLine, m[1], m[2].str() + tail);
   return InputError(kCommandLine, "(arguments)",
                     (message.empty() ? "bad command line" : message) + tail);

@@ -67,12 +67,14 @@ void setJointValues(World& world, std::span<const double> q, const std::string& 
             std::abs(world.joint(j).value - q[j]) > 1e-9)
           throw InputError(source, "joints[" + std::to_string(j) + "]",
                            "closes a loop of joints: its value follows from the others' "
-                           "(set_joint_values poses trees of joints)");
+                           "(set_joint_values poses trees of joints)" +
+                               gotValue(q[j]));
         continue;
       }
       if (!bodiesBeyond(world, b, j, a, moving))
-        throw InputError(source, "joints[" + std::to_string(j) + "]",
-                         "is in a loop of joints (set_joint_values poses trees of joints)");
+        throw InputError(
+            source, "joints[" + std::to_string(j) + "]",
+            "is in a loop of joints (set_joint_values poses trees of joints)" + gotValue(q[j]));
       const JointState s = world.joint(j);
       const double delta = sign * (q[j] - s.value);
       for (int body : moving) {

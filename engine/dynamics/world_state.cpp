@@ -181,7 +181,8 @@ std::vector<WorldInput> inputsFromRows(const std::vector<std::array<double, 7>>&
       throw InputError(source, field + "[" + std::to_string(i) + "]",
                        "is not a World input (kind 0.." +
                            std::to_string(static_cast<int>(WorldInput::Kind::Last)) +
-                           ", whole index and count)");
+                           ", whole index and count)" + " (got kind " + formatNumber(r[0]) +
+                           ", index " + formatNumber(r[1]) + ", count " + formatNumber(r[2]) + ")");
     out.emplace_back(static_cast<WorldInput::Kind>(static_cast<int>(r[0])), static_cast<int>(r[1]),
                      static_cast<long>(r[2]), std::array<double, 4>{r[3], r[4], r[5], r[6]});
   }

@@ -64,7 +64,7 @@ TrackOptions trackOptions(const TrackRequest& q, const HandModel& model) {
   o.law = q.law;
   o.mpc.horizon = checkedHorizon(q.horizon, kCommandLine, "--horizon");
   if (q.target && q.ramp)
-    throw InputError(kCommandLine, "--ramp", "give either --target or --ramp, not both");
+    throw InputError(kCommandLine, "--ramp", "give either --target or --ramp, not both (got both)");
   if (q.target) o.target = *q.target;
   if (q.targetAngle != 0 && !model.turn)
     throw InputError(
@@ -160,7 +160,7 @@ ReachOptions reachOptions(int grid, const std::string& model, bool pd, int threa
                      "must be a whole number in [1, 1000]" + gotValue(grid));
   if (model != "simulation" && model != "quasi-static")
     throw InputError(kCommandLine, "--model",
-                     "must be simulation or quasi-static (got " + model + ")");
+                     "must be simulation or quasi-static" + gotValue(model));
   ReachOptions o;
   o.grid = grid;
   o.model = model == "simulation" ? ReachModel::Simulation : ReachModel::QuasiStatic;

@@ -49,12 +49,14 @@ double parseField(const std::string& text, int row, const std::string& column,
 
 void validateMembraneGeometry(const MembraneGeometry& g, const std::string& source,
                               const std::string& field) {
+  const std::string got = " (got " + formatNumber(g.a.x()) + "," + formatNumber(g.a.y()) + "," +
+                          formatNumber(g.b.x()) + "," + formatNumber(g.b.y()) + ")";
   if (!isFinite(g.a) || !isFinite(g.b))
-    throw InputError(source, field, "coordinates must be finite");
+    throw InputError(source, field, "coordinates must be finite" + got);
   const double span = (g.b - g.a).norm();
   const double scale = std::max({1.0, g.a.norm(), g.b.norm()});
   if (span <= 1e-12 * scale)
-    throw InputError(source, field, "pulleys A and B coincide: the band has no direction");
+    throw InputError(source, field, "pulleys A and B coincide: the band has no direction" + got);
 }
 
 void validateMembranePoint(const MembraneGeometry& g, const Vec2& p, int row,
@@ -65,13 +67,14 @@ void validateMembranePoint(const MembraneGeometry& g, const Vec2& p, int row,
         "must be finite (got [" + formatNumber(p.x()) + ", " + formatNumber(p.y()) + "])");
   const double span = (g.b - g.a).norm();
   // A point on a pulley has no unit vector u_i; one between them has u1 + u2 = 0.
+  const std::string got = " (got [" + formatNumber(p.x()) + ", " + formatNumber(p.y()) + "])";
   for (const auto& [pulley, name] : {std::pair{g.a, "A"}, std::pair{g.b, "B"}})
     if ((p - pulley).norm() <= 1e-12 * span)
       throw InputError(source, rowField(row, "x"),
-                       std::string("point coincides with pulley ") + name);
+                       std::string("point coincides with pulley ") + name + got);
   if (membraneDirectionSum(g, p).norm() < kMembraneOnLineTolerance)
     throw InputError(source, rowField(row, "y"),
-                     "point lies on the band between the pulleys: force direction undefined");
+                     "point lies on the band between the pulleys: force direction undefined" + got);
 }
 
 std::vector<MembraneSample> parseMembraneCsv(std::istream& in, const MembraneGeometry& g,
@@ -84,7 +87,7 @@ std::vector<MembraneSample> parseMembraneCsv(std::istream& in, const MembraneGeo
     if (!trim(line).empty()) header = splitCommas(line);
   }
   if (header.empty())
-    throw InputError(source, "header", "file is empty (expected x,y,fy,angle_deg)");
+    throw InputError(source, "header", "file is empty (expected x,y,fy,angle_deg)" + gotValue(""));
 
   std::array<int, 4> index{};
   for (size_t c = 0; c < kColumns.size(); ++c) {
@@ -92,14 +95,15 @@ std::vector<MembraneSample> parseMembraneCsv(std::istream& in, const MembraneGeo
     for (size_t h = 0; h < header.size(); ++h) {
       if (header[h] != kColumns[c]) continue;
       if (index[c] >= 0)
-        throw InputError(source, "header",
-                         std::string("column \"") + kColumns[c] + "\" appears twice");
+        throw InputError(
+            source, "header",
+            std::string("column \"") + kColumns[c] + "\" appears twice" + gotValue(line));
       index[c] = static_cast<int>(h);
     }
     if (index[c] < 0)
-      throw InputError(
-          source, "header",
-          std::string("missing column \"") + kColumns[c] + "\" (expected x,y,fy,angle_deg)");
+      throw InputError(source, "header",
+                       std::string("missing column \"") + kColumns[c] +
+                           "\" (expected x,y,fy,angle_deg)" + gotValue(line));
   }
 
   std::vector<MembraneSample> rows;

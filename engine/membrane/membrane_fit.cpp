@@ -101,7 +101,8 @@ MembraneFitResult fitMembrane(const MembraneGeometry& g, const std::vector<Membr
   // One stretch for all points: only k (stretch + preload) is seen, not k and preload apart.
   if (stretchMax - stretchMin <= 1e-9 * std::max(1.0, stretchMax))
     throw InputError(options.source, "x",
-                     "k and preload cannot be told apart: every point has the same stretch");
+                     "k and preload cannot be told apart: every point has the same stretch (got " +
+                         formatNumber(stretchMin) + " m at all " + std::to_string(n) + " points)");
 
   const bool estimateFy = !(options.sigmaFy > 0.0);
   const bool estimateAngle = !(options.sigmaAngleDeg > 0.0);
@@ -167,7 +168,8 @@ MembraneFitResult fitMembrane(const MembraneGeometry& g, const std::vector<Membr
     throw InputError(
         options.source, "fy",
         "k and preload are not determined by these data (singular fit: a slack band everywhere, "
-        "or values too large?)");
+        "or values too large?) (got " +
+            std::to_string(n) + " points)");
   if (!(x[0] > 0.0) || !std::isfinite(x[1]))
     throw InputError(options.source, "fy",
                      "best fit has stiffness k <= 0: the measured forces do not pull towards the "
@@ -185,7 +187,9 @@ MembraneFitResult fitMembrane(const MembraneGeometry& g, const std::vector<Membr
   for (double v : {result.kStderr, result.preloadStderr, result.rmsFy, result.rmsAngleDeg,
                    result.covariance(0, 1), result.chi2PerDof, sigmaFy, sigmaAngle})
     if (!std::isfinite(v))
-      throw InputError(options.source, "fy", "the fit overflowed: values too large to fit");
+      throw InputError(
+          options.source, "fy",
+          "the fit overflowed: values too large to fit (got " + std::to_string(n) + " points)");
   return result;
 }
 

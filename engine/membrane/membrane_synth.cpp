@@ -45,23 +45,32 @@ double lerpGrid(double lo, double hi, int i, int count) {
 
 void validateMembraneSynth(const MembraneSynthDef& def, const std::string& source) {
   validateMembraneGeometry(def.geometry, source);
-  auto require = [&](bool ok, const char* field, const std::string& what) {
-    if (!ok) throw InputError(source, field, what);
+  auto require = [&](bool ok, const char* field, const std::string& what, const std::string& got) {
+    if (!ok) throw InputError(source, field, what + got);
   };
-  require(std::isfinite(def.params.k) && def.params.k > 0, "k", "must be positive and finite");
+  auto pair = [](double a, double b) {
+    return " (got (" + formatNumber(a) + ", " + formatNumber(b) + "))";
+  };
+  require(std::isfinite(def.params.k) && def.params.k > 0, "k", "must be positive and finite",
+          gotValue(def.params.k));
   require(std::isfinite(def.params.preload) && def.params.preload >= 0, "preload",
-          "must be >= 0 and finite (the band is pre-stretched, never slack)");
-  require(std::isfinite(def.noiseFy) && def.noiseFy >= 0, "noise_fy", "must be >= 0 and finite");
+          "must be >= 0 and finite (the band is pre-stretched, never slack)",
+          gotValue(def.params.preload));
+  require(std::isfinite(def.noiseFy) && def.noiseFy >= 0, "noise_fy", "must be >= 0 and finite",
+          gotValue(def.noiseFy));
   require(std::isfinite(def.noiseAngleDeg) && def.noiseAngleDeg >= 0, "noise_angle_deg",
-          "must be >= 0 and finite");
+          "must be >= 0 and finite", gotValue(def.noiseAngleDeg));
   require(def.nx >= 1 && def.ny >= 1 && static_cast<long>(def.nx) * def.ny >= kMinMembraneRows &&
               static_cast<long>(def.nx) * def.ny <= 1000000,
-          "grid", "needs NX, NY >= 1 and between 3 and 1e6 points in all");
-  require(std::isfinite(def.alongMin) && std::isfinite(def.alongMax), "along", "must be finite");
-  require(std::isfinite(def.depthMin) && std::isfinite(def.depthMax), "depth", "must be finite");
+          "grid", "needs NX, NY >= 1 and between 3 and 1e6 points in all", pair(def.nx, def.ny));
+  require(std::isfinite(def.alongMin) && std::isfinite(def.alongMax), "along", "must be finite",
+          pair(def.alongMin, def.alongMax));
+  require(std::isfinite(def.depthMin) && std::isfinite(def.depthMax), "depth", "must be finite",
+          pair(def.depthMin, def.depthMax));
   // A depth of 0 inside the span puts the point on the band: no force direction.
   require(def.depthMin * def.depthMax > 0, "depth",
-          "MIN and MAX must be non-zero and on the same side of the band");
+          "MIN and MAX must be non-zero and on the same side of the band",
+          pair(def.depthMin, def.depthMax));
 }
 
 std::vector<MembraneSample> generateMembraneData(const MembraneSynthDef& def) {

@@ -396,10 +396,13 @@ SceneDef loadSceneFile(const std::string& path) {
 
 void saveSceneFile(const SceneDef& scene, const std::string& path) {
   std::ofstream out(path);
-  if (!out) throw InputError(path, "(file)", std::string("cannot write: ") + std::strerror(errno));
+  if (!out)
+    throw InputError(path, "(file)",
+                     std::string("cannot write: ") + std::strerror(errno) + gotValue(path));
   out << sceneToJson(scene).dump(2) << "\n";
   if (!out.flush())
-    throw InputError(path, "(file)", std::string("write failed: ") + std::strerror(errno));
+    throw InputError(path, "(file)",
+                     std::string("write failed: ") + std::strerror(errno) + gotValue(path));
 }
 
 }  // namespace cablelab

@@ -35,11 +35,13 @@ void refuse(const std::string& field, const std::string& what) {
 
 void writeBody(std::ostringstream& xml, const BodyDef& b, int index) {
   const std::string field = "bodies[" + std::to_string(index) + "]";
-  if (b.type == BodyType::Kinematic) refuse(field + ".type", "kinematic bodies are not mapped");
+  if (b.type == BodyType::Kinematic)
+    refuse(field + ".type", "kinematic bodies are not mapped" + gotValue("kinematic"));
   xml << "  <body name=\"" << b.name << "\" pos=\"" << xz(b.position) << "\" axisangle=\"0 -1 0 "
       << number(b.angle) << "\">\n";
   if (b.type == BodyType::Dynamic) {
-    if (b.inertia <= 0) refuse(field + ".inertia", "needs an explicit inertia for MuJoCo");
+    if (b.inertia <= 0)
+      refuse(field + ".inertia", "needs an explicit inertia for MuJoCo" + gotValue(b.inertia));
     xml << "    <joint name=\"" << b.name << "_x\" type=\"slide\" axis=\"1 0 0\"/>\n"
         << "    <joint name=\"" << b.name << "_z\" type=\"slide\" axis=\"0 0 1\"/>\n";
     if (!b.fixedRotation)
@@ -103,7 +105,8 @@ std::vector<Site> cableSites(const SceneDef& scene, int c, double& length) {
 }  // namespace
 
 std::string sceneToMjcf(const SceneDef& scene) {
-  if (!scene.joints.empty()) refuse("joints", "joints are not mapped");
+  if (!scene.joints.empty())
+    refuse("joints", "joints are not mapped (got " + std::to_string(scene.joints.size()) + ")");
   std::vector<std::vector<Site>> sites;
   std::vector<double> lengths(scene.cables.size());
   for (size_t c = 0; c < scene.cables.size(); ++c)

@@ -109,7 +109,8 @@ SceneParams sceneParams(const SceneInfo& scene,
       std::string known;
       for (const SceneParam& p : info->params) known += (known.empty() ? "" : ", ") + p.name;
       throw InputError(kCommandLine, "--set " + name,
-                       "unknown parameter of scene " + info->name + " (known: " + known + ")");
+                       "unknown parameter of scene " + info->name + " (known: " + known + ")" +
+                           gotValue(name + "=" + formatNumber(value)));
     }
     const auto range =
         std::find_if(info->params.begin(), info->params.end(), [&key = name](const SceneParam& p) {
@@ -141,8 +142,10 @@ SceneDef makeScene(const std::string& nameOrPath,
                      "no such built-in scene or file; built-in: " + known + gotValue(nameOrPath));
   }
   if (!overrides.empty())
-    throw InputError(kCommandLine, "--set " + overrides.front().first,
-                     "scene files take no parameters; edit the file");
+    throw InputError(
+        kCommandLine, "--set " + overrides.front().first,
+        "scene files take no parameters; edit the file" +
+            gotValue(overrides.front().first + "=" + formatNumber(overrides.front().second)));
   return loadSceneFile(nameOrPath);
 }
 

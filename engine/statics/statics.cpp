@@ -51,7 +51,7 @@ void validateStatics(const StaticsProblem& problem, const std::string& source) {
           "coordinates must be within +/-1e9 m (got " + describe(v.cwiseAbs().maxCoeff()) + ")");
   };
   if (problem.cables.empty())
-    throw InputError(source, "cables", "must list at least one cable (the problem has none)");
+    throw InputError(source, "cables", "must list at least one cable (got none)");
   for (size_t i = 0; i < problem.cables.size(); ++i) {
     const StaticsCable& c = problem.cables[i];
     const std::string at = "cables[" + std::to_string(i) + "]";

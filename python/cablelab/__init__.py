@@ -25,8 +25,10 @@ Many runs    rollout (N Worlds stepped on a thread pool, recorded as (N, T, ...)
              sweep (a task over a parameter grid on Dask: a LocalCluster or any Client)
 Pictures     render (numpy RGBA image), snapshot (PNG); offscreen, no display needed
              (HAS_RENDERER is False in a build without the UI)
-Errors       InputError (a ValueError; str(e) is the CLI's one-line message, with
-             e.source and e.field), SimulationError (a RuntimeError), SweepError (tasks of a
+Errors       InputError (a ValueError; str(e) is the CLI's one-line message
+             'SOURCE: FIELD: what is wrong (got VALUE)', with e.source and e.field;
+             InputTypeError, for a value of the wrong type, is also a TypeError),
+             SimulationError (a RuntimeError), SweepError (tasks of a
              sweep that raised, with their parameters)
 """
 
@@ -57,6 +59,7 @@ from ._core import (
     HandGrasp,
     HandModel,
     InputError,
+    InputTypeError,
     SimulationError,
     World,
     WorldState,
@@ -80,7 +83,7 @@ __all__ = [
     "HandModel", "ControllerParams", "HandController", "HandGrasp", "GraspOptions",
     "hand_joints", "place_hand",
     "track", "reach", "rollout", "sweep", "SweepError", "render", "snapshot",
-    "InputError", "SimulationError",
+    "InputError", "InputTypeError", "SimulationError",
     "HAND_JOINT_NAMES", "HAND_BOX", "HAND_CABLES", "PID_KI", "HAS_RENDERER",
 ]
 

@@ -21,6 +21,8 @@ class InputError(ValueError):
     source: str
     field: str
 
+class InputTypeError(InputError, TypeError): ...
+
 class SimulationError(RuntimeError): ...
 
 class WorldState:

@@ -100,9 +100,9 @@ TEST(InputErrors, AnEmptySceneIsBadInput) {
 }
 
 TEST(InputErrors, NoCablesAndCoincidentEndsSayWhatIsWrong) {
-  expectError({"statics " + data("bad/statics_no_cables.json"),
-               data("bad/statics_no_cables.json") +
-                   ": cables: must list at least one cable (the problem has none)"});
+  expectError(
+      {"statics " + data("bad/statics_no_cables.json"),
+       data("bad/statics_no_cables.json") + ": cables: must list at least one cable (got none)"});
   expectError({"run " + data("bad/scene_coincident_cable_ends.json"),
                data("bad/scene_coincident_cable_ends.json") +
                    ": cables[0]: must not have zero length: its ends coincide at the initial pose "
@@ -149,7 +149,7 @@ TEST(InputErrors, BadOptionValuesNameTheOption) {
   expectError({"run ballast --time abc",
                "command line: --time: cannot convert the value (got \"abc\") (see cablelab run "
                "--help)"});
-  expectError({"run", "command line: scene: is required (see cablelab run --help)"});
+  expectError({"run", "command line: scene: is required (got nothing) (see cablelab run --help)"});
 }
 
 TEST(InputErrors, EveryBadInputFileGivesOneLineInTheStyle) {
@@ -195,8 +195,8 @@ TEST(InputErrors, TheSandboxReadsItsArgumentsTheSameWay) {
   r = run("--bogus");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_EQ(r.err,
-            "command line: (arguments): The following argument was not expected: --bogus (see "
-            "cablelab-gui --help)\n");
+            "command line: (arguments): unknown option or one argument too many (got \"--bogus\") "
+            "(see cablelab-gui --help)\n");
   r = run("--help");
   EXPECT_EQ(r.exitCode, 0);
   EXPECT_NE(r.out.find("--screenshot"), std::string::npos) << r.out;

@@ -201,7 +201,8 @@ def test_mutated_scenes_load_or_raise_input_error(scene):
 
 def test_keyword_errors_name_the_keyword_in_python_words():
     text = message(cablelab.World.load, "pulley", m1=2.0)
-    assert text == "World.load: m1: no such keyword for scene 'pulley' (known: m_left, m_right, L)"
+    assert text == ("World.load: m1: no such keyword for scene 'pulley' (known: m_left, m_right, "
+                    "L) (got m1=2.0)")
     text = message(cablelab.World.load, "pulley", m_left=-1)
     assert text == "World.load: m_left: must be positive (got -1)"
     for t in (text, message(cablelab.World.load, "no_such_scene"),

@@ -91,7 +91,7 @@ def test_the_old_name_stiffness_warns_and_is_k():
     assert "stiffness" not in pickle.loads(pickle.dumps(back)).__getstate__()
     with pytest.raises(cablelab.InputError) as error:
         cablelab.HandModel(k=300.0, stiffness=300.0)
-    assert str(error.value) == "HandModel: stiffness: give k only (stiffness is its old name)"
+    assert str(error.value) == "HandModel: stiffness: give k only (stiffness is its old name) (got both)"
 
 
 def test_renamed_keywords_warn_and_reach_the_new_ones():
@@ -152,11 +152,11 @@ def test_a_misspelt_keyword_names_itself_and_the_known_ones(call, text):
      "HandModel: turn: must be True or False (or the scene's 1 or 0) (got \"'yes'\")"),
     (cablelab.HandModel, "turn", None,
      "HandModel: turn: must be True or False (or the scene's 1 or 0) (got \"None\")"),
-    (cablelab.HandModel, "link_mass", "1", "HandModel: link_mass: must be a number"),
+    (cablelab.HandModel, "link_mass", "1", "HandModel: link_mass: must be a number (got a str)"),
     (cablelab.HandModel, "k", 1j, "HandModel: k: must be a number (got \"1j\")"),
     (cablelab.HandModel, "k", np.array([1.0, 2.0]),
      "HandModel: k: must be a number (got \"array([1., 2.])\")"),
-    (cablelab.HandModel, "lower", [0.0] * 5, "HandModel: lower: must be 6 numbers"),
+    (cablelab.HandModel, "lower", [0.0] * 5, "HandModel: lower: must be 6 numbers (got shape (5,))"),
     (cablelab.ControllerParams, "period", 0, "ControllerParams: period: must be positive (got 0)"),
     (cablelab.ControllerParams, "kp", -0.1, "ControllerParams: kp: must be >= 0 (got -0.1)"),
     (cablelab.GraspOptions, "max_regrasps", -1, "GraspOptions: max_regrasps: must be >= 0 (got -1)"),

@@ -73,12 +73,13 @@ TEST(Parse, CommandLineParserMessagesNameTheOption) {
             "command line: --time: cannot convert the value (got \"abc\") (see x --help)");
   EXPECT_EQ(text("The value abc is not an allowed value for --frames"),
             "command line: --frames: not an allowed value (got \"abc\") (see x --help)");
-  EXPECT_EQ(text("scene is required"), "command line: scene: is required (see x --help)");
+  EXPECT_EQ(text("scene is required"),
+            "command line: scene: is required (got nothing) (see x --help)");
   EXPECT_EQ(text("--grid: Value 0 not in range 1 to 10"),
             "command line: --grid: Value 0 not in range 1 to 10 (see x --help)");
   EXPECT_EQ(text("The following argument was not expected: --bogus"),
-            "command line: (arguments): The following argument was not expected: --bogus (see x "
-            "--help)");
+            "command line: (arguments): unknown option or one argument too many (got \"--bogus\") "
+            "(see x --help)");
 }
 
 TEST(InputErrorStyle, MessagesAreOneLineAndValuesQuoted) {

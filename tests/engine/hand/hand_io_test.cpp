@@ -26,7 +26,8 @@ TEST(HandIo, TrackOptionsAreCheckedWithTheClisMessages) {
   TrackRequest q;
   q.target = Vec2(1, 1);
   q.ramp = std::array<double, 3>{1, 1, 2};
-  EXPECT_EQ(messageOf(q), "command line: --ramp: give either --target or --ramp, not both");
+  EXPECT_EQ(messageOf(q),
+            "command line: --ramp: give either --target or --ramp, not both (got both)");
   q.target.reset();
   q.ramp = std::array<double, 3>{0.1, 0.1, 0};
   EXPECT_EQ(messageOf(q), "command line: --ramp: SECONDS must be positive (got 0)");
@@ -63,7 +64,7 @@ TEST(HandIo, ReachOptionsAreCheckedWithTheClisMessages) {
   EXPECT_EQ(messageOf(0, "simulation"),
             "command line: --grid: must be a whole number in [1, 1000] (got 0)");
   EXPECT_EQ(messageOf(5, "dynamic"),
-            "command line: --model: must be simulation or quasi-static (got dynamic)");
+            "command line: --model: must be simulation or quasi-static (got \"dynamic\")");
   const ReachOptions o = reachOptions(7, "quasi-static", true, 3);
   EXPECT_EQ(o.grid, 7);
   EXPECT_EQ(o.model, ReachModel::QuasiStatic);

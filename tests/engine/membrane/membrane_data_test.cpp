@@ -59,10 +59,12 @@ TEST(MembraneData, RoundTripsWithFullPrecision) {
 TEST(MembraneData, NamesTheProblem) {
   const std::string header = "x,y,fy,angle_deg\n";
   const std::string good = "0,-0.1,5,90\n0.1,-0.1,5,80\n-0.1,-0.1,5,100\n";
-  EXPECT_EQ(errorOf(""), "test.csv: header: file is empty (expected x,y,fy,angle_deg)");
+  EXPECT_EQ(errorOf(""), "test.csv: header: file is empty (expected x,y,fy,angle_deg) (got \"\")");
   EXPECT_EQ(errorOf("x,y,fy\n0,-0.1,5\n"),
-            "test.csv: header: missing column \"angle_deg\" (expected x,y,fy,angle_deg)");
-  EXPECT_EQ(errorOf("x,y,fy,fy,angle_deg\n"), "test.csv: header: column \"fy\" appears twice");
+            "test.csv: header: missing column \"angle_deg\" (expected x,y,fy,angle_deg) (got "
+            "\"x,y,fy\")");
+  EXPECT_EQ(errorOf("x,y,fy,fy,angle_deg\n"),
+            "test.csv: header: column \"fy\" appears twice (got \"x,y,fy,fy,angle_deg\")");
   EXPECT_EQ(errorOf(header + "0,-0.1,5,90\n0.1,-0.1,5,80\n"),
             "test.csv: rows: need at least 3 measurements to fit k and preload (got 2)");
   EXPECT_EQ(errorOf(header + good + "0,-0.1,nan,90\n"),
@@ -76,9 +78,9 @@ TEST(MembraneData, NamesTheProblem) {
   EXPECT_EQ(errorOf(header + "0,-0.1,5\n" + good), "test.csv: row 1: expected 4 fields (got 3)");
   EXPECT_EQ(errorOf(header + good + "0.05,0,5,90\n"),
             "test.csv: row 4, y: point lies on the band between the pulleys: force direction "
-            "undefined");
+            "undefined (got [0.05, 0])");
   EXPECT_EQ(errorOf(header + good + "0.2,0,5,90\n"),
-            "test.csv: row 4, x: point coincides with pulley B");
+            "test.csv: row 4, x: point coincides with pulley B (got [0.2, 0])");
   // On the pulley line but outside the pulleys the force is defined: accepted.
   EXPECT_EQ(errorOf(header + good + "0.3,0,-20,180\n"), "");
 }
