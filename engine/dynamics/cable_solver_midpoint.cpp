@@ -48,7 +48,7 @@ bool rigidRowTakesMidpointRule(const CableSolveInput& in, const Cable& c) {
 
 constexpr int kBalancePasses = 4;
 // The main solve pulls along the turn only where a row's length misses J's by more (m).
-constexpr double kTurnedLength = 1e-9;
+constexpr double kTurnedLength = 1e-11;
 
 }  // namespace
 
