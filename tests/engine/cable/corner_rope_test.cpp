@@ -27,6 +27,13 @@ constexpr double kEnergyRounding = 1e-6;
 /// Relative: a damped band's tensions and energy settled for 10 s against their statics.
 constexpr double kStatic = 1e-6;
 
+/// The steps the adversarial runs take: 60 Hz in 1 or 4 sub-steps, and 240 Hz.
+struct Stepping {
+  double dt;
+  int substeps;
+};
+constexpr Stepping kSteppings[] = {{kDt, 1}, {kDt, 4}, {1.0 / 240, 1}};
+
 struct Band {
   int sides = 4;            ///< 4: a 0.4 m square, top at y = 3.2; 6: a hexagon of radius 0.2
                             ///< about (0, 3), a corner at each side
@@ -201,17 +208,12 @@ TEST(CornerRope, CatchesTheUndampedSlackBand) {
 // the scene half and twice the size, turned so that no face is axis-aligned (gravity too), 0.5
 // and 4 kg, mu 0.15 and 0.5, at 60 Hz in 1 or 4 sub-steps and at 240 Hz, 10 s each.
 TEST(CornerRope, ARopeEndRidingTheSquaresSideKeepsTheSquare) {
-  struct Stepping {
-    double dt;
-    int substeps;
-  };
-  const Stepping steppings[] = {{kDt, 1}, {kDt, 4}, {1.0 / 240, 1}};
   for (const double size : {0.5, 2.0})
     for (const double angle : {0.0, 0.3, -2.0})
       for (const double m2 : {0.5, 4.0})
         for (const double mu : {0.15, 0.5})
           for (const double damping : {0.0, 1.0})
-            for (const Stepping& stepping : steppings) {
+            for (const Stepping& stepping : kSteppings) {
               Band b;
               b.size = size, b.angle = angle, b.hang = 1.4, b.mu = mu;
               b.m2 = m2, b.m1 = 1.5 * m2;  // held: 1.5 < e^(0.15 pi)
@@ -232,17 +234,12 @@ TEST(CornerRope, ARopeEndRidingTheSquaresSideKeepsTheSquare) {
 // m2): the band still goes slack, but keeps to the polygon (thrown higher, it flies off it, and
 // nothing should catch the masses).
 TEST(CornerRope, CatchesTheSlackBandForAnyStiffnessFrictionStretchAndStep) {
-  struct Stepping {
-    double dt;
-    int substeps;
-  };
-  const Stepping steppings[] = {{kDt, 1}, {kDt, 4}, {1.0 / 240, 1}};
   int slack = 0, runs = 0;
   for (const int sides : {4, 6})
     for (const double stiffness : {400.0, 4000.0, 1e5})
       for (const double mu : {0.15, 0.3, 0.5})
         for (const double stretch : {0.05, 0.2, 0.4})
-          for (const Stepping& stepping : steppings) {
+          for (const Stepping& stepping : kSteppings) {
             Band b;
             b.sides = sides, b.stiffness = stiffness, b.mu = mu, b.stretch = stretch;
             const double material = bandMaterial(b);
