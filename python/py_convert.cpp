@@ -13,10 +13,6 @@ std::string typeName(py::handle value) {
   return py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>();
 }
 
-std::string numberText(double v) {
-  return formatNumber(v);
-}  // the one format (error.h)
-
 }  // namespace
 
 nlohmann::json toJson(py::handle value, const std::string& source, const std::string& field) {
@@ -58,8 +54,7 @@ nlohmann::json toJson(py::handle value, const std::string& source, const std::st
   }
   if (PyFloat_Check(value.ptr()) || PyNumber_Check(value.ptr())) {
     const double d = py::float_(value.cast<py::object>()).cast<double>();
-    if (!std::isfinite(d))
-      throw InputError(source, here, "must be finite (got " + numberText(d) + ")");
+    if (!std::isfinite(d)) throw InputError(source, here, "must be finite" + gotValue(d));
     return d;
   }
   throw InputError(source, here, "cannot be read as JSON" + gotType(value));
@@ -134,7 +129,7 @@ std::vector<double> toNumbers(py::handle value, size_t count, const std::string&
     out[i] = a.at(i);
     if (!std::isfinite(out[i]))
       throw InputError(source, field + "[" + std::to_string(i) + "]",
-                       "must be finite (got " + numberText(out[i]) + ")");
+                       "must be finite" + gotValue(out[i]));
   }
   return out;
 }
