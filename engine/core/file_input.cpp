@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -28,15 +29,35 @@ std::string readInputFile(const std::string& path) {
   return text.str();
 }
 
+namespace {
+
+bool endsAJsonToken(char c) {
+  return std::isspace(static_cast<unsigned char>(c)) || std::strchr(",:[]{}", c) != nullptr;
+}
+
+// The text a syntax error stopped at, for its "(got ...)": the word the character at `byte` (1 is
+// the first) belongs to or ends (`NaN`, `tru`), else that character alone (`}`).
+std::string textAtSyntaxError(const std::string& text, size_t byte) {
+  if (byte == 0 || byte > text.size()) return "";
+  size_t at = byte - 1;
+  if (endsAJsonToken(text[at]) && (at == 0 || endsAJsonToken(text[at - 1])))
+    return std::string(1, text[at]);
+  if (endsAJsonToken(text[at])) --at;
+  size_t first = at, last = at + 1;
+  while (first > 0 && !endsAJsonToken(text[first - 1])) --first;
+  while (last < text.size() && !endsAJsonToken(text[last])) ++last;
+  return text.substr(first, last - first);
+}
+
+}  // namespace
+
 nlohmann::json parseJsonText(const std::string& text, const std::string& source) {
   try {
     return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {  // syntax errors, numbers beyond double range
+  } catch (const nlohmann::json::exception& e) {
     // "[json.exception.parse_error.101] parse error at line 1, column 2: what" -> "at ...: what"
     std::string what = e.what();
-    if (const size_t id = what.find("] ");
-        what.rfind("[json.exception.", 0) == 0 && id != what.npos)
-      what.erase(0, id + 2);
+    if (const size_t id = what.find("] "); id != what.npos) what.erase(0, id + 2);
     if (what.rfind("parse error ", 0) == 0) what.erase(0, 12);
     // "number overflow parsing '1e999'": a number beyond double range, named with its text.
     const std::string overflow = "number overflow parsing '";
@@ -44,7 +65,17 @@ nlohmann::json parseJsonText(const std::string& text, const std::string& source)
       throw InputError(source, "(json)",
                        "a number beyond double range (got " +
                            what.substr(overflow.size(), what.size() - overflow.size() - 1) + ")");
-    throw InputError(source, "(json)", "not valid JSON " + what);
+    // "; last read: '...'" repeats the text before the error; the (got ...) below names it.
+    const std::string lastRead = "; last read: '";
+    if (const size_t from = what.find(lastRead); from != what.npos) {
+      const size_t to = what.find("'; ", from + lastRead.size());
+      what.erase(from, to == what.npos ? what.npos : to + 1 - from);
+    }
+    const auto* syntax = dynamic_cast<const nlohmann::json::parse_error*>(&e);
+    const std::string got = syntax ? textAtSyntaxError(text, syntax->byte) : "";
+    throw InputError(source, "(json)",
+                     "not valid JSON " + what +
+                         (got.empty() ? std::string(" (got the end of the text)") : gotValue(got)));
   }
 }
 

@@ -110,7 +110,7 @@ std::vector<BadInput> badScenes() {
       {"bad JSON", data("scene_not_json.json"),
        data("scene_not_json.json") +
            ": (json): not valid JSON at line 1, column 28: syntax error while parsing object key - "
-           "unexpected '}'; expected string literal"},
+           "unexpected '}'; expected string literal (got \"}\")"},
       {"unknown body in a cable", data("scene_unknown_cable_body.json"),
        data("scene_unknown_cable_body.json") +
            ": cables[0].end.body: unknown body (got \"ghost\")"},

@@ -108,6 +108,25 @@ TEST(FileInput, MissingDirectoryAndBadJsonSayWhatIsWrong) {
   fs::remove_all(dir);
 }
 
+TEST(FileInput, BadJsonEndsWithTheTextWhereItStopped) {
+  const auto parsed = [](const std::string& text) {
+    return messageOf([&] { parseJsonText(text, "s.json"); });
+  };
+  const std::string at = "s.json: (json): not valid JSON at line 1, column ";
+  // JSON has no NaN or Infinity: the word the parser stopped in is quoted whole.
+  EXPECT_EQ(parsed("{\"mass\": NaN}"),
+            at + "10: syntax error while parsing value - invalid literal (got \"NaN\")");
+  EXPECT_EQ(parsed("{\"a\": Infinity, \"b\": 1}"),
+            at + "7: syntax error while parsing value - invalid literal (got \"Infinity\")");
+  EXPECT_EQ(parsed("{\"a\": tru}"),
+            at + "10: syntax error while parsing value - invalid literal (got \"tru\")");
+  EXPECT_EQ(parsed("{\"a\": 1,}"), at + "9: syntax error while parsing object key - unexpected "
+                                        "'}'; expected string literal (got \"}\")");
+  EXPECT_EQ(parsed("[1, 2"), at + "6: syntax error while parsing array - unexpected end of "
+                                  "input; expected ']' (got the end of the text)");
+  EXPECT_EQ(parsed("{\"a\": 1e999}"), "s.json: (json): a number beyond double range (got 1e999)");
+}
+
 TEST(FileInput, OutputsAreCheckedBeforeAnythingIsWritten) {
   namespace fs = std::filesystem;
   EXPECT_EQ(messageOf([] { requireWritable("/no/such/dir/x.png", "--png"); }),
