@@ -7,6 +7,7 @@
 #include <cmath>
 #include <utility>
 
+#include "engine/dynamics/floors.h"
 #include "engine/dynamics/hull_bounce.h"
 #include "engine/dynamics/hull_contacts.h"
 
@@ -216,8 +217,11 @@ struct HullContactFilter : b2ContactFilter {
 };
 
 // A smooth, massless fixture (density 0 leaves the body's mass as set) of a hull contact: the
-// polygon, or a point as a circle of Box2D's slop.
-b2Fixture* addHullFixture(b2Body* body, const std::vector<Vec2>& polygon, const Vec2& point) {
+// polygon, or a point as a circle of Box2D's slop. It bounces with the largest restitution of the
+// body's own shapes, sensors too (docs/scene-format.md), as the body does off its pulley: two
+// pulleys that exist to carry the rope knock as their shapes say, not always dead.
+b2Fixture* addHullFixture(b2Body* body, const std::vector<Vec2>& polygon, const Vec2& point,
+                          double restitution) {
   b2FixtureDef fd;
   b2CircleShape circle;
   b2PolygonShape hull;
@@ -233,6 +237,8 @@ b2Fixture* addHullFixture(b2Body* body, const std::vector<Vec2>& polygon, const 
   }
   fd.density = 0;
   fd.friction = 0;
+  fd.restitution = static_cast<float>(restitution);
+  fd.restitutionThreshold = static_cast<float>(kSlowestBounce);
   fd.userData.pointer = kHullFixture;
   return body->CreateFixture(&fd);
 }
@@ -310,8 +316,11 @@ Box2DBridge::Box2DBridge(const SceneDef& scene) : impl_(std::make_unique<Impl>()
     // Box2D sweeps a moving body against the world's fixtures, but against another moving body
     // only if one is a bullet: fast corners would go through a step's worth into the hull.
     if (c.otherBody >= 0 && polygonBody->GetType() == b2_dynamicBody) polygonBody->SetBullet(true);
-    const auto pair = std::make_pair(hull_fixtures::addHullFixture(polygonBody, c.polygon, {}),
-                                     hull_fixtures::addHullFixture(other, c.otherPolygon, c.point));
+    const auto pair =
+        std::make_pair(hull_fixtures::addHullFixture(polygonBody, c.polygon, {},
+                                                     largestRestitution(scene, c.body)),
+                       hull_fixtures::addHullFixture(other, c.otherPolygon, c.point,
+                                                     largestRestitution(scene, c.otherBody)));
     impl_->hullFilter.pairs.push_back(pair);
     if (polygonBody->GetType() != b2_dynamicBody) impl_->contacts.heldStill.push_back(pair);
     if (c.apartFirst)

@@ -12,12 +12,6 @@
 namespace cablelab::cable_stages {
 namespace {
 
-// m/s: a body arriving at its floor slower than this stops there whatever its restitution, as at
-// a Box2D contact (b2_velocityThreshold), so that with e < 1 its bounces die out and it rests. The
-// speed is the one the step starts with, which the floor held at 0 for a body resting there: not
-// Box2D's 1 m/s (for the g h its velocity solve sees), which stopped an Atwood's light side
-// reaching its wheel at 0.9 m/s dead in a conservative scene.
-constexpr double kBounceSpeed = 0.25;
 constexpr double kFreeFloor = 1.0;  // m: a floor row's target this far past its start never binds
 
 // The island's energy (kinetic, gravity's and the elastic rows'; a floor row holds none) at the
@@ -55,7 +49,7 @@ constexpr int kBounceHalvings = 6;  // of the share of a bounce that gains (to 1
 }  // namespace
 
 // 5b. Bouncing off a pulley (docs/floors.md): a floor row whose segment closes at v, faster than
-// kBounceSpeed, and that the step, solved without it, takes past its floor bounces with e, the
+// kSlowestBounce, and that the step, solved without it, takes past its floor bounces with e, the
 // larger restitution of the two bodies' shapes (Box2D's b2MixRestitution; the world has none).
 // floorBounces leaves such rows free (true if any) for a first solve; bounceTargets then asks for
 // the row's end value of that free step opened by (1 + e) v h: the knock adds (1 + e) v to the
@@ -87,7 +81,7 @@ bool floorBounces(Workspace& ws, const CableSolveInput& in, std::span<const Cabl
       closing += j.d.dot(Vec3(b.velocity.x(), b.velocity.y(), b.angularVelocity));
     }
     // Slow, or too far off to arrive within the step (pulls may speed it up to twice as fast).
-    if (closing < kBounceSpeed || -phi > 2 * closing * in.h) continue;
+    if (closing < kSlowestBounce || -phi > 2 * closing * in.h) continue;
     ws.bounces.push_back({r, (1 + e) * closing * in.h, ws.target[r]});
     ws.target[r] = phi + kFreeFloor;  // free for the first solve
   }

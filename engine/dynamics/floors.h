@@ -26,6 +26,13 @@ inline constexpr double kCameInsideFloor = 0.1 * kFloorLength;
 /// its own length: a 5 mm pendulum was held at 7.5 mm, a 1 cm one lost all its swing in 15 s.
 inline constexpr double kShortestFlooredCable = 4 * kFloorLength;
 
+// m/s: a body arriving at its floor (or a hull contact, hull_contacts.h) slower than this stops
+// there whatever its restitution, as at a Box2D contact (b2_velocityThreshold), so that with e < 1
+// its bounces die out and it rests. The speed is the one the step starts with, which the floor held
+// at 0 for a body resting there: not Box2D's 1 m/s (for the g h its velocity solve sees), which
+// stopped an Atwood's light side reaching its wheel at 0.9 m/s dead in a conservative scene.
+inline constexpr double kSlowestBounce = 0.25;
+
 /// Whether `cable` gets floors (kShortestFlooredCable).
 inline bool hasFloors(const Cable& cable) {
   return cable.restLength() > kShortestFlooredCable;

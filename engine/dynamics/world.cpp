@@ -84,8 +84,7 @@ SceneDef validated(SceneDef scene, const std::string& source) {
 std::vector<double> floorRestitution(const SceneDef& scene) {
   std::vector<double> restitution(scene.bodies.size(), 0.0);
   for (size_t b = 0; b < scene.bodies.size(); ++b)
-    for (const ShapeDef& shape : scene.bodies[b].shapes)
-      restitution[b] = std::max(restitution[b], shape.restitution);
+    restitution[b] = largestRestitution(scene, static_cast<int>(b));
   if (std::all_of(restitution.begin(), restitution.end(), [](double e) { return e == 0; }))
     restitution.clear();
   return restitution;

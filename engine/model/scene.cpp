@@ -17,6 +17,13 @@ int findBodyIndex(const SceneDef& scene, const std::string& name) {
   return -2;
 }
 
+double largestRestitution(const SceneDef& scene, int body) {
+  double e = 0;
+  if (body >= 0)
+    for (const ShapeDef& shape : scene.bodies[body].shapes) e = std::max(e, shape.restitution);
+  return e;
+}
+
 std::vector<Vec2> pulleyPolygon(const SceneDef& scene, const PulleyDef& pulley) {
   const int body = findBodyIndex(scene, pulley.body);
   if (!pulley.vertices.empty() || body < 0) return pulley.vertices;

@@ -179,6 +179,10 @@ void validateScene(const SceneDef& scene, const std::string& source);
 /// Index of the body called `name` in scene.bodies, -1 for "world", -2 if unknown.
 int findBodyIndex(const SceneDef& scene, const std::string& name);
 
+/// The largest restitution of body `body`'s shapes, sensors too (0 for the world, -1): what it
+/// bounces with off its pulleys and its pulley neighbours (docs/scene-format.md, Shapes).
+double largestRestitution(const SceneDef& scene, int body);
+
 /// A polygon pulley's vertices in its body's frame (the world's for "world"): its own, or else its
 /// body's first polygon shape (empty if it has neither).
 std::vector<Vec2> pulleyPolygon(const SceneDef& scene, const PulleyDef& pulley);
