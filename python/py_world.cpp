@@ -584,7 +584,9 @@ step only (call it before every step for a lasting load).)doc");
       "NAME.wraps), as floats.");
   c.def("cable_path", &cablePath, "cable"_a,
         "cable_path(cable) -> ndarray (k, 2): the cable's current path in world coordinates (m), "
-        "start anchor, the k - 2 wrap points in order, end anchor.");
+        "start anchor, the k - 2 wrap points in order, end anchor. A circle pulley's wrap point "
+        "and a drum end are the circle's centre: the rope leaves it along a tangent, its radius "
+        "away (a direction taken from these points is off by radius / segment length).");
   c.def(
       "wrap_points",
       [](const PyWorld& self, py::handle cable) {
@@ -596,7 +598,8 @@ step only (call it before every step for a lasting load).)doc");
       },
       "cable"_a,
       "wrap_points(cable) -> ndarray (wraps, 2): the pulley points the cable wraps now, in path "
-      "order, world coordinates (m); cable_path() adds the two anchors.");
+      "order, world coordinates (m; a circle pulley's is its centre); cable_path() adds the two "
+      "anchors.");
   c.def(
       "cable_paths",
       [](const PyWorld& self) {

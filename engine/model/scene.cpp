@@ -245,6 +245,16 @@ void validateScene(const SceneDef& scene, const std::string& source) {
       if (pd.kind == PulleyDef::Kind::Polygon && !pd.vertices.empty() && !isConvexCCW(pd.vertices))
         check.fail(fp + ".vertices",
                    "polygon must be convex and counter-clockwise" + gotPoints(pd.vertices));
+      // Without vertices a polygon pulley takes its body's first polygon shape
+      // (docs/scene-format.md).
+      if (pd.kind == PulleyDef::Kind::Polygon && pd.vertices.empty() &&
+          pulleyPolygon(scene, pd).empty() && findBodyIndex(scene, pd.body) != -2)
+        check.fail(
+            fp + ".vertices",
+            (pd.body == "world" ? std::string("is required for a polygon pulley on the world")
+                                : "is required: body \"" + pd.body +
+                                      "\" has no polygon or box shape to take them from") +
+                " (got nothing)");
       if (pd.kind == PulleyDef::Kind::Point && pd.side == WrapSide::Auto)
         check.fail(fp + ".side", "a point pulley cannot be auto (use left, right or threaded)" +
                                      gotValue("auto"));

@@ -128,9 +128,25 @@ SceneParams sceneParams(const SceneInfo& scene,
 SceneDef makeScene(const std::string& nameOrPath,
                    const std::vector<std::pair<std::string, double>>& overrides) {
   if (const SceneInfo* info = findBuiltinScene(nameOrPath)) {
-    SceneDef scene = info->build(sceneParams(*info, overrides));
-    validateScene(scene, "scene '" + info->name + "'");
-    return scene;
+    const SceneParams params = sceneParams(*info, overrides);
+    try {
+      SceneDef scene = info->build(params);
+      validateScene(scene, "scene '" + info->name + "'");
+      return scene;
+    } catch (const InputError& e) {
+      // A built-in scene is valid at its defaults, so what breaks it is what the user typed:
+      // name the --set (docs/cli.md, "Exit codes and error messages"), not a field of the
+      // scene the user never wrote.
+      if (overrides.empty() || e.source() == kCommandLine) throw;
+      std::string names, typed;
+      for (const auto& [name, value] : overrides) {
+        names += (names.empty() ? "" : ", ") + name;
+        typed += (typed.empty() ? "" : " ") + name + "=" + formatNumber(value);
+      }
+      throw InputError(kCommandLine, overrides.size() == 1 ? "--set " + names : "--set",
+                       "makes scene " + info->name + " invalid (" + e.field() + ": " + e.detail() +
+                           ")" + gotValue(typed));
+    }
   }
   // Something that looks like a path is read as a file, so that a missing one says so.
   const bool path = nameOrPath.find('/') != std::string::npos ||

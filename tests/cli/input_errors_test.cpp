@@ -29,6 +29,11 @@ const fs::path& scratch() {
         << R"({"A": [-2, 0], "B": [2, 0], "polygon": [[-1,-1],[1,-1],[1,1],[-1,1]],
               "side": "left", "colour": "red"})";
     std::ofstream(d / "scene_negative_mass.json") << R"({"bodies": [{"name": "b", "mass": -1.5}]})";
+    std::ofstream(d / "polygon_pulley_on_a_disc.json")
+        << R"({"bodies": [{"name": "drum", "shapes": [{"type": "circle"}]},
+                          {"name": "w", "position": [0.5, -1]}],
+              "cables": [{"name": "c", "start": {"point": [-0.5, 1]}, "end": {"body": "w"},
+                          "pulleys": [{"type": "polygon", "body": "drum"}]}]})";
     std::ofstream(d / "statics_huge_k.json")
         << R"({"cables": [{"a": [0, 0], "b": [1, 0], "k": 1e13, "L": 1}]})";
     return d;
@@ -150,6 +155,30 @@ TEST(InputErrors, BadOptionValuesNameTheOption) {
                "command line: --time: cannot convert the value (got \"abc\") (see cablelab run "
                "--help)"});
   expectError({"run", "command line: scene: is required (got nothing) (see cablelab run --help)"});
+}
+
+TEST(InputErrors, ASetThatBreaksABuiltInSceneNamesTheSetTheUserTyped) {
+  // Not "scene 'winch': joints[0].servo.speed: ...": the user wrote no such field.
+  expectError({"run winch --set omega=1e308",
+               "command line: --set omega: makes scene winch invalid (joints[0].servo.speed: must "
+               "be within +/-1e12 (got 1e+308)) (got \"omega=1e+308\")"});
+  expectError({"run ballast --set l=1e13",
+               "command line: --set l: makes scene ballast invalid (view.center: must be within "
+               "+/-1e12 (got -4e+12)) (got \"l=1e+13\")"});
+  // Two settings: either may be the one; both are quoted.
+  const auto r = test::runCli("run tackle --set m_load=3 --set r=1e-9");
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_EQ(r.err.rfind("command line: --set: makes scene tackle invalid (bodies[", 0), 0u)
+      << r.err;
+  EXPECT_NE(r.err.find(") (got \"m_load=3 r=1e-09\")\n"), std::string::npos) << r.err;
+}
+
+TEST(InputErrors, APolygonPulleyWithoutVerticesOnABodyWithoutAPolygonSaysSo) {
+  // Without vertices it takes the body's polygon; a disc has none to give.
+  expectError({"run " + file("polygon_pulley_on_a_disc.json"),
+               file("polygon_pulley_on_a_disc.json") +
+                   ": cables[0].pulleys[0].vertices: is required: body \"drum\" has no polygon "
+                   "or box shape to take them from (got nothing)"});
 }
 
 TEST(InputErrors, EveryBadInputFileGivesOneLineInTheStyle) {

@@ -211,6 +211,26 @@ def test_keyword_errors_name_the_keyword_in_python_words():
     assert cablelab.World.load("pulley", m_left=2.0).to_dict()["bodies"][0]["mass"] == 2.0
 
 
+def test_a_keyword_that_breaks_a_built_in_scene_is_named():
+    # The scene's own field (joints[0].servo.speed) is quoted, the keyword is the field.
+    text = message(cablelab.World.load, "winch", omega=1e308)
+    assert text == ("World.load: omega: makes scene winch invalid (joints[0].servo.speed: must be "
+                    "within +/-1e12 (got 1e+308)) (got \"omega=1e+308\")")
+    assert "scene 'winch'" not in text
+
+
+def test_a_polygon_pulley_on_a_body_without_a_polygon_says_so():
+    scene = {"bodies": [{"name": "drum", "shapes": [{"type": "circle"}]},
+                        {"name": "w", "position": [0.5, -1]}],
+             "cables": [{"name": "c", "start": {"point": [-0.5, 1]}, "end": {"body": "w"},
+                         "pulleys": [{"type": "polygon", "body": "drum"}]}]}
+    assert message(cablelab.World.from_dict, scene) == (
+        'dict: cables[0].pulleys[0].vertices: is required: body "drum" has no polygon or box '
+        "shape to take them from (got nothing)")
+    scene["bodies"][0]["shapes"] = [{"type": "box"}]  # a box is a polygon: it wraps
+    cablelab.World.from_dict(scene).run(steps=3)
+
+
 def test_a_scene_file_takes_no_keywords(tmp_path):
     path = tmp_path / "s.json"
     path.write_text(json.dumps(cablelab.World.load("pulley").to_dict()))

@@ -243,3 +243,33 @@ def test_set_body_states_updates_the_cables_at_once():
     w.set_body_states(s)
     assert w.cable_lengths()[0] == pytest.approx(before - 1.0, abs=1e-5)
     assert w.cable_path(0)[0][1] == pytest.approx(s[0, 1] + 2.0, abs=1e-5)
+
+
+def test_a_circle_pulley_is_on_the_path_by_its_centre_and_the_rope_leaves_along_a_tangent():
+    # cable_path()'s docstring: a circle's wrap point is its centre. A bob let go from rest on a
+    # rope over a 5 cm peg pulls along the tangent: its tension is m g . e for the tangent's e,
+    # not for the direction to the centre (off by asin(r / l), 3.7 deg here).
+    c, r, m = np.array([0.0, -0.4]), 0.05, 1.3
+    bob = np.array([0.7174, -0.6967])
+    w = cablelab.World.from_dict({
+        "dt": 1 / 240, "substeps": 4,
+        "bodies": [{"name": "bob", "position": bob.tolist(), "mass": m,
+                    "shapes": [{"type": "circle", "radius": 0.03}]}],
+        "cables": [{"name": "rope", "start": {"point": [0, 0]}, "end": {"body": "bob"},
+                    "pulleys": [{"type": "circle", "point": c.tolist(), "radius": r,
+                                 "side": "right"}]}]})
+    path = w.cable_path(0)
+    assert path.shape == (3, 2) and np.allclose(path[1], c, atol=1e-12)
+    assert np.allclose(w.wrap_points(0), [c], atol=1e-12)
+    d = bob - c
+    dist = np.linalg.norm(d)
+    along = d / dist
+    # the tangent from the bob: the direction to the centre turned by asin(r / dist), on the side
+    # the rope passes (right: the peg on the rope's left, the rope turning anticlockwise round it)
+    a = -math.asin(r / dist)
+    e = np.array([along[0] * math.cos(a) + along[1] * math.sin(a),
+                  -along[0] * math.sin(a) + along[1] * math.cos(a)])
+    w.step()
+    t = w.cable_tensions()[0]
+    assert t == pytest.approx(m * G * -e[1], rel=2e-3)
+    assert abs(t - m * G * -along[1]) > 0.1 * t  # the centre's direction misses it by 19%
