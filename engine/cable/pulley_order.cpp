@@ -11,9 +11,8 @@
 // length nor J. On the path, barely bending the rope where it rides its neighbour's hull, it
 // moves its place to a segment it crosses where that moves the length by a fraction of a mm;
 // wedged between two strands (moving would leave the old strand across it), its second place
-// joins the strand it crosses, and the rope bends round it at both: always where the two are the
-// strands of a neighbouring polygon's loop, where a point's bend lies between them only if it
-// barely bends the rope at its own place.
+// joins the strand it crosses, and the rope bends round it at both, whatever lies between the
+// two strands (a neighbouring polygon's loop, a point's bend) and however deep its own wrap.
 #include <algorithm>
 #include <utility>
 
@@ -40,14 +39,6 @@ namespace {
 // the length by less than this (m): half the 1 mm a wrap change off the old path is reported at
 // (Cable::kLengthJump).
 constexpr double kCrossedJoinDetour = 5e-4;
-
-// Between the strand it crosses and its own place the rope bends round one neighbouring polygon
-// (into its chain and out of it): wedged in that one's loop, it gets a second place whatever its
-// own wrap. Where a point pulley's bend lies between them instead, only one that barely bends the
-// rope at its place does (its wrap adds 2.1 to 3.9 cm in the sweeps' pairs); one wrapped deeper
-// (9.3 cm, a polygon pressed onto the middle point; 29 cm) keeps one place, as before. That bound
-// is tuned: 10 cm let touching polygons through (docs/knocks.md, "Wedged in its neighbour's loop").
-constexpr double kWedgedAtABendOwnDetour = 0.06;
 
 // How much longer the path a -> polygon -> b is than a -> b, wrapped on `side` (infinite where
 // no taut path exists: a terminal inside the hull).
@@ -92,17 +83,6 @@ bool chainKeptBetween(std::span<const WrapPoint> path, int q, std::span<const Ve
   for (const WrapPoint& w : path)
     if (w.pulley == q && w.kind == WrapPoint::Kind::Vertex) now.push_back(w.vertex);
   return wrapChain(from, to, polygon, side, then) && then == now;
-}
-
-// The path points strictly between segment i and pulley j's place (first..last) are one
-// polygon's chain: the two strands are those into and out of that neighbour's wrap.
-bool strandsOfOneLoop(std::span<const WrapPoint> path, size_t i, size_t first, size_t last) {
-  const size_t from = i < first ? i + 1 : last + 1, to = i < first ? first - 1 : i;
-  if (from > to) return false;
-  for (size_t k = from; k <= to; ++k)
-    if (path[k].kind != WrapPoint::Kind::Vertex || path[k].pulley != path[from].pulley)
-      return false;
-  return true;
 }
 
 }  // namespace
@@ -235,13 +215,12 @@ bool Cable::joinCrossedSegment(int j) {
     if (onPath) {
       if (own < 0) own = ownWrapDetour(path_, j);
       const double detour = crossedJoinDetour(a, b, p.world, side);
-      // Wedged between two strands (in its neighbour's loop), moving would leave its old place's
-      // straightened rope across it: its second place joins there instead, and the rope bends
-      // round it at both (docs/knocks.md, "Wedged in its neighbour's loop").
-      if (first > 0 && p.twin >= 0 && !pulleys_[p.twin].engaged &&
-          (own <= kWedgedAtABendOwnDetour || strandsOfOneLoop(path_, i, first, last)) &&
-          detour <= kCrossedJoinDetour && segmentCutsPolygon(oldFrom, oldTo, p.world) &&
-          neighboursKept(i, side, false)) {
+      // Wedged between two strands, moving would leave its old place's straightened rope across
+      // it: its second place joins there instead, and the rope bends round it at both, whatever
+      // lies between them and however deep its own wrap (a point's bend with the polygon inside
+      // it is a hairpin over the point; docs/knocks.md, "Wedged in its neighbour's loop").
+      if (first > 0 && p.twin >= 0 && !pulleys_[p.twin].engaged && detour <= kCrossedJoinDetour &&
+          segmentCutsPolygon(oldFrom, oldTo, p.world) && neighboursKept(i, side, false)) {
         join = static_cast<int>(i);
         joinSide = side;
         joining = p.twin;

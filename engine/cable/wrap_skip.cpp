@@ -3,19 +3,19 @@
 //
 // Every change of a cable's wrap set is a sign change of one of the signed distances that
 // nextEvent() watches (cable_events.cpp): a polygon's next vertex from the segment entering or
-// leaving its chain, a wrap point from the line through its neighbours. A full update records
-// each of those distances at its selection pose. Later, with every point's displacement from
-// that pose bounded by the bodies' displacement (|dx| + |r| |dtheta|, plus the sub-step's motion
-// for the event search), a distance whose start value exceeds the most the displacement can
-// change it keeps its sign along the straight path in pose space to the new pose, so the
-// selection there keeps the wrap set and the search finds nothing. Only cables whose pulleys
-// are all engaged points or polygons (no circles, auto sides, dropped pulleys, threaded polygons,
-// drum ends, spans, or neighbouring polygons) take part; the others always take the full path.
-// While skipping, a length and J (and the turns kept from them) are not worked out again for
-// poses of the path's bodies that are, bit for bit, those they were worked out on (the step's
-// refresh and the next sub-step see the same poses, and so do sub-steps in which Box2D moved no
-// body of the path, as for most of the hand's run). Most checks take one comparison a body: a
-// certificate's allowance, a displacement that no test's bound can reach.
+// leaving its chain, a wrap point from the line through its neighbours, a free polygon's corners
+// from the other segments. A full update records each of those distances at its selection pose.
+// Later, with every point's displacement from that pose bounded by the bodies' displacement (|dx| +
+// |r| |dtheta|, plus the sub-step's motion for the event search), a distance whose start value
+// exceeds the most the displacement can change it keeps its sign along the straight path in pose
+// space to the new pose, so the selection there keeps the wrap set and the search finds nothing.
+// Only cables whose pulleys are all engaged points or polygons (no circles, auto sides, dropped
+// pulleys, threaded polygons, drum ends, spans, or neighbouring polygons) take part; the others
+// always take the full path. While skipping, a length and J (and the turns kept from them) are not
+// worked out again for poses of the path's bodies that are, bit for bit, those they were worked out
+// on (the step's refresh and the next sub-step see the same poses, and so do sub-steps in which
+// Box2D moved no body of the path, as for most of the hand's run). Most checks take one comparison
+// a body: a certificate's allowance, a displacement that no test's bound can reach.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -136,6 +136,22 @@ void Cable::buildSkipCertificate(std::span<const BodyState> pose) {
       const PulleyState& p = pulleys_[end->pulley];
       const int v = chainEndNeighbour(*end, end == &b);
       if (!add(a, b, p.body, p.local[v])) return;
+    }
+  }
+  // ...a free polygon's corners against every other segment it may join (pulley_order.cpp;
+  // unwatched, a knocked corner passed a strand unsearched: docs/knocks.md, "A corner crossing
+  // another strand while the search is skipped")...
+  for (size_t i = 0; i + 1 < path_.size(); ++i) {
+    if (chainEdge(i)) continue;
+    const WrapPoint& a = path_[i];
+    const WrapPoint& b = path_[i + 1];
+    for (int j = 0; j < static_cast<int>(pulleys_.size()); ++j) {
+      const PulleyState& p = pulleys_[j];
+      if (!p.engaged || !joinsAnySegment(j) || a.pulley == j || b.pulley == j ||
+          (p.twin >= 0 && (a.pulley == p.twin || b.pulley == p.twin)))
+        continue;
+      for (const Vec2& corner : p.local)
+        if (!add(a, b, p.body, corner)) return;
     }
   }
   // ...and every wrap point against the line through its neighbours.

@@ -80,17 +80,22 @@ struct Figures {
 /// Whether a polygon wrapped by the rope lies off its wrap side of a segment into or out of its
 /// chain. Walking the cable, a pulley wrapped on its right side lies on the segments' left (the
 /// rope passes it on its right), as a body the rope holds does; one that went through its rope
-/// lies on their right.
+/// lies on their right. A place wrapped on its left (a free polygon's second place, on the side
+/// it came from: docs/knocks.md, "Wedged in its neighbour's loop") the other way round.
 bool aBodyWentThroughTheRope(const World& world) {
-  const std::vector<WrapPoint>& path = world.cable(0).path();
+  const Cable& cable = world.cable(0);
+  const std::vector<WrapPoint>& path = cable.path();
   for (size_t i = 1; i + 1 < path.size(); ++i) {
     if (path[i].kind != WrapPoint::Kind::Vertex) continue;
     const Vec2 centre = world.body(path[i].body).position;
     const bool first = path[i - 1].pulley != path[i].pulley;
     const bool last = path[i + 1].pulley != path[i].pulley;
-    auto rightOf = [&](const Vec2& p, const Vec2& q) { return cross(q - p, centre - p) < -1e-9; };
-    if ((first && rightOf(path[i - 1].world, path[i].world)) ||
-        (last && rightOf(path[i].world, path[i + 1].world)))
+    const double offSide = cable.wrapSide(path[i].pulley) == WrapSide::Right ? 1 : -1;
+    auto offWrapSide = [&](const Vec2& p, const Vec2& q) {
+      return offSide * cross(q - p, centre - p) < -1e-9;
+    };
+    if ((first && offWrapSide(path[i - 1].world, path[i].world)) ||
+        (last && offWrapSide(path[i].world, path[i + 1].world)))
       return true;
   }
   return false;
