@@ -55,8 +55,8 @@ struct PressCase {
 };
 
 TEST(ServoHold, ARodPressedAgainstABlockPushesWithItsPdLaw) {
-  // h c / m from 1.5 to 3.5e3: before the hold the force at rest was 44%, 27% and 2.2% of
-  // kp (target - q).
+  // h c / m from 0.4 to 6.7 (m the rod's inertia at the pin): before the hold the force at rest
+  // was kp (target - q) / (1 + h c / m).
   const PressCase cases[] = {{1.0, 500, 44.72, 60, 1},
                              {0.1, 2e3, 10, 30, 4},
                              {3.0, 100, 300, 240, 1},

@@ -4,7 +4,7 @@
 // does not see; two steps later the servo predicts its joint held (docs/servos.md, "Held joints"),
 // so the force rises at kp |speed| as against a rigid stop and the stall comes within
 // max_force / (kp |speed|) + 0.2 s of the arrival. Before the hold it rose at
-// kp |speed| / (1 + h c / m): 12 s on a light drum at a coarse step.
+// kp |speed| / (1 + h c / m): 38 s on a light drum at a coarse step.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -75,7 +75,7 @@ TEST(WinchStallTime, AWinchWindingOnAtItsDrumStallsWithinTheDocumentedTime) {
 }
 
 TEST(WinchStallTime, ALightDrumAtACoarseStepStallsAtOnce) {
-  // h c / m = 102: the force rose at kp |speed| / 103 before the hold, and the stall came 12 s
+  // h c / m = 102: the force rose at kp |speed| / 103 before the hold, and the stall came 38 s
   // after the arrival; kd |speed| = 216 N m is above max_force, so a held drum stalls at once.
   expectStallInTime({1.4e-3, 132, 53.9, 200, 30, 4, 0.05, 1.24, 4});
   // Other drums, weights, gains and steps where h c / m is large (h c / m 770 and 40).
