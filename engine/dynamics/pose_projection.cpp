@@ -10,6 +10,7 @@
 #include "engine/core/small_qp.h"
 #include "engine/dynamics/floors.h"
 #include "engine/dynamics/joint_projection.h"
+#include "engine/dynamics/servo_drive.h"
 
 namespace cablelab {
 
@@ -411,6 +412,7 @@ PoseResult World::poseBody(int body, const Vec2& grabLocal, const Vec2& target, 
   std::fill(contactLast_.begin(), contactLast_.end(), Vec3::Zero());
   std::fill(contactExpected_.begin(), contactExpected_.end(), Vec3::Zero());
   b2_->restartContactSum();
+  servos_->forgetMotion();  // the pose left its bodies at rest: no servo's joint was held there
   return result;
 }
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "engine/core/small_qp.h"
@@ -14,6 +15,14 @@ namespace cablelab {
 // with over the last step: a rope on the edge of slack (a square spool's corner going by) keeps
 // its row, where dropping it for a push of nothing moved the rope's length a little more per step.
 constexpr double kSlackMargin = 0.01;
+// Holds (docs/servos.md, "Held joints"): a joint the last step held stays near rest (rad/s or
+// m/s) where the prediction expected it to move at more than this, by over 1 / kHeldShare times
+// the rate it kept; a held joint moving faster than this again is released.
+constexpr double kHeldRate = 1e-3;
+constexpr double kHeldShare = 0.1;
+// ... over this many steps in a row: a load the prediction sees from the next step on (a rope gone
+// taut on a weight, its tension then known) stops a light drum for one step only.
+constexpr int kHeldSteps = 2;
 
 ServoDrive::ServoDrive(const SceneDef& scene, std::span<const std::array<int, 2>> jointBodies)
     : scene_(scene), forces_(scene.joints.size(), 0.0) {
@@ -39,6 +48,16 @@ ServoDrive::ServoDrive(const SceneDef& scene, std::span<const std::array<int, 2>
     if (inDriven(jointBodies[j][0]) || inDriven(jointBodies[j][1]))
       joints_.push_back(static_cast<int>(j));
   dofOfBody_.assign(n, -1);
+  held_.assign(servos_.size(), 0);
+  stoppedSteps_.assign(servos_.size(), 0);
+  pushed_.assign(servos_.size(), 0);
+  expectedRate_.assign(servos_.size(), std::numeric_limits<double>::quiet_NaN());
+}
+
+void ServoDrive::forgetMotion() {
+  std::fill(held_.begin(), held_.end(), 0);
+  std::fill(stoppedSteps_.begin(), stoppedSteps_.end(), 0);
+  std::fill(expectedRate_.begin(), expectedRate_.end(), std::numeric_limits<double>::quiet_NaN());
 }
 
 // The cables on the jointed bodies: an elastic span pulls with its tension, a load the prediction
@@ -127,6 +146,7 @@ void ServoDrive::solve(std::span<const JointFrame> frames,
   rows_.clear();
   for (const int j : joints_) appendJointRows(frames[j], bodies, dofOfBody_, rows_);
   const size_t jointRows = rows_.size();
+  findHolds(coordinates);
 
   // A rigid span is a row only while it pulls (a complementarity, solved by active set): a row
   // whose impulse would push is dropped and the forces found again, a dropped span the motion
@@ -138,17 +158,23 @@ void ServoDrive::solve(std::span<const JointFrame> frames,
   int pass = 0;
   for (; pass < passes; ++pass) {
     rows_.resize(jointRows);
+    for (const int s : holdRows_) rows_.push_back(coordinateRows_[s]);
     for (size_t i = 0; i < cableRows_.size(); ++i)
       if (cableActive_[i]) rows_.push_back(cableRows_[i]);
     W_ = WFree_;
     vStar_ = vStarFree_;
+    const bool oneWay = !cableRows_.empty() || !holdRows_.empty();
     if (!rows_.empty())
-      projection_.projectDiagonal(rows_, invM_, W_, vStar_,
-                                  cableRows_.empty() ? nullptr : &multipliers_);
+      projection_.projectDiagonal(rows_, invM_, W_, vStar_, oneWay ? &multipliers_ : nullptr);
     solveForces(coordinates, targets, dt);
+    if (releaseHolds(jointRows, dt)) {  // the rigid spans' active set starts again without them
+      cableActive_.assign(cableRows_.size(), 1);
+      pass = -1;
+      continue;
+    }
     if (cableRows_.empty()) break;
     if (pass == 0) fAllRows_ = f_;
-    if (!updateActiveCables(jointRows, dt)) break;
+    if (!updateActiveCables(jointRows + holdRows_.size(), dt)) break;
   }
   // With a span dropped, each servo pushes no harder than that solve says, nor past it in sign:
   // the force with every row, where it is the weaker one, makes the joint heavier than it is,
@@ -158,6 +184,8 @@ void ServoDrive::solve(std::span<const JointFrame> frames,
     for (int s = 0; s < count; ++s)
       if (fAllRows_(s) * f_(s) > 0 && std::abs(fAllRows_(s)) < std::abs(f_(s)))
         f_(s) = fAllRows_(s);
+
+  recordPrediction(dt);
 
   // Each servo's load: the coordinate row's coefficients times its force (a torque on both
   // bodies; a prismatic servo's force at the joint, along the axis).
@@ -240,6 +268,65 @@ bool ServoDrive::updateActiveCables(size_t jointRows, double dt) {
     changed = true;
   }
   return changed;
+}
+
+// A joint is held where a load the prediction does not see stopped it: the last step predicted
+// it would move the way its servo pushed, and it stayed near rest. The next steps predict it held
+// that way (its coordinate a row of the projection: K = 0, f = b), so the force rises at kp
+// |speed| as against a rigid stop, not kp |speed| / (1 + h c / m) (docs/servos.md, "Held
+// joints"). A held joint that moves again is released at once.
+void ServoDrive::findHolds(std::span<const JointCoordinate> coordinates) {
+  holdRows_.clear();
+  for (size_t s = 0; s < servos_.size(); ++s) {
+    const double rate = coordinates[servos_[s]].speed;
+    if (held_[s] != 0) {
+      if (std::abs(rate) > kHeldRate) {
+        held_[s] = 0;
+        stoppedSteps_[s] = 0;
+      }
+    } else {
+      const double expected = pushed_[s] * expectedRate_[s];  // NaN: unknown, no stop
+      const bool stopped = pushed_[s] != 0 && expected > kHeldRate &&
+                           std::abs(rate) <= std::min(kHeldRate, kHeldShare * expected);
+      stoppedSteps_[s] = stopped ? stoppedSteps_[s] + 1 : 0;
+      if (stoppedSteps_[s] >= kHeldSteps) held_[s] = pushed_[s];
+    }
+    if (held_[s] != 0) holdRows_.push_back(static_cast<int>(s));
+  }
+}
+
+// A hold is one-way: it holds while its servo pushes into it and its row's impulse (from the
+// projection, as a rigid span's) opposes the push. Otherwise it is released and the forces found
+// again. Whether any was released.
+bool ServoDrive::releaseHolds(size_t jointRows, double dt) {
+  const int count = static_cast<int>(servos_.size());
+  bool released = false;
+  for (size_t i = 0; i < holdRows_.size(); ++i) {
+    const int s = holdRows_[i];
+    const auto row = static_cast<Eigen::Index>(jointRows + i);
+    // The row's impulse along the coordinate is -pull (updateActiveCables).
+    const double pull = multipliers_(row, count) + dt * multipliers_.row(row).head(count).dot(f_);
+    if (held_[s] * pull >= 0 && held_[s] * f_(s) > 0) continue;
+    held_[s] = 0;
+    stoppedSteps_[s] = 0;
+    released = true;
+  }
+  if (released)
+    holdRows_.erase(
+        std::remove_if(holdRows_.begin(), holdRows_.end(), [&](int s) { return held_[s] == 0; }),
+        holdRows_.end());
+  return released;
+}
+
+// Each servo's joint rate at the step's end as the solve predicts it, qdot* + dt K f, and the way
+// it pushes: the next solve compares them with the rate the step gave (findHolds).
+void ServoDrive::recordPrediction(double dt) {
+  for (size_t s = 0; s < servos_.size(); ++s) {
+    const JointRow& row = coordinateRows_[s];
+    const auto i = static_cast<Eigen::Index>(s);
+    expectedRate_[s] = row.dot(vStar_ + dt * W_ * f_) + row.bias;
+    pushed_[s] = f_(i) > 0 ? 1 : (f_(i) < 0 ? -1 : 0);
+  }
 }
 
 }  // namespace cablelab

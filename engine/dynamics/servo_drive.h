@@ -41,12 +41,18 @@ class ServoDrive {
   /// Per joint, the force the last solve() applied (N or N m; 0 for joints without a servo).
   std::span<const double> forces() const { return forces_; }
   bool any() const { return !servos_.empty(); }
+  /// The bodies were moved or their velocities set: the next solve() cannot compare the joints'
+  /// rates with the last prediction (no servo is found held from it).
+  void forgetMotion();
 
  private:
   void addCables(std::span<const Cable> cables, std::span<const BodyState> bodies);
   void solveForces(std::span<const JointCoordinate> coordinates, std::span<const double> targets,
                    double dt);
   bool updateActiveCables(size_t jointRows, double dt);
+  void findHolds(std::span<const JointCoordinate> coordinates);
+  bool releaseHolds(size_t jointRows, double dt);
+  void recordPrediction(double dt);
 
   const SceneDef& scene_;
   std::vector<int> servos_;     // joints with a servo
@@ -66,6 +72,12 @@ class ServoDrive {
   Eigen::VectorXd fAllRows_;       // the forces with every rigid span's row
   std::vector<double> cablePull_;  // per rigid span's row: its last tension (N)
   std::vector<char> cableActive_;  // per rigid span's row: kept (it pulls)
+  // Holds (docs/servos.md, "Held joints"), per servo: the direction a load the prediction does not
+  // see holds its joint against (+1, -1; 0 none), and what the last solve predicted.
+  std::vector<signed char> held_, pushed_;  // pushed_: the sign of the last force
+  std::vector<double> expectedRate_;        // the joint's rate at the step's end (NaN: unknown)
+  std::vector<int> stoppedSteps_;           // steps in a row that stopped the joint unexpectedly
+  std::vector<int> holdRows_;               // servos whose coordinate rows hold in this pass
   Eigen::LDLT<Eigen::MatrixXd> ldlt_;
 };
 
