@@ -221,7 +221,7 @@ bool entersRimFloor(std::span<const BodyState> bodies, std::span<const BodyState
 
 bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const Cable> cables,
                              std::span<const int> which, std::span<const char> excluded, double h,
-                             const Vec2& gravity) {
+                             double subStep, const Vec2& gravity) {
   bool wanted = false, any = false, unresolved = false;
   // A check that can only set `wanted` is skipped once it is set (a third of this per Atwood
   // machine); one that can rule the island out is not.
@@ -273,12 +273,14 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
     // bob whirled on a tether): there its geometric stiffness (geometric_stiffness.h), taken
     // about the start pose, damps the swing by 1 / (1 + (omega h)^2) a step, 10% at omega h =
     // 1/3, and a whirl slows to omega h = 0.22, where the stiffness stops acting (docs/knocks.md,
-    // "Rigid tethers").
+    // "Rigid tethers"). Judged over the whole sub-step: a part of it cut short (a refinement's
+    // rest, a wrap event's) handed to the main solve turned the rate twice (start_rates.h), and
+    // the tension read off by m (the rate's change) / h (docs/model.md, "Coupling to Box2D").
     if (!wanted && !c.elastic() && which.size() <= kMaxCablesWithUnresolvedSpring) {
       const std::span<const int> alone(&index, 1);
       const double swing =
           std::max(transverseMode(bodies, cables, alone), tautSwingRate(c, bodies));
-      wanted |= swing * h > kMaxMainSolveSwingOmegaH;
+      wanted |= swing * std::max(h, subStep) > kMaxMainSolveSwingOmegaH;
     }
     wanted |= c.elastic();  // resolved or not: an unresolved spring is damped (springAtEnd)
     // A segment near its floor (a body nearing its pulley).

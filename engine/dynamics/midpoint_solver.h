@@ -61,9 +61,11 @@ class MidpointSolver {
   /// rigid and swings across itself or off the line of `gravity` (m/s^2) (straight cables
   /// between fixed pulleys and different bodies, running only along themselves, keep Box2D's
   /// own integration),
-  /// and no moved body is `excluded` (jointed or in contact).
+  /// and no moved body is `excluded` (jointed or in contact). `h` is the step about to be
+  /// taken, `subStep` the sub-step it is part of (a cut or a refinement takes a part of it): a
+  /// rigid cable's swing is judged over the sub-step, so every part of it keeps one rule.
   bool applies(std::span<const BodyState> bodies, std::span<const Cable> cables,
-               std::span<const int> which, std::span<const char> excluded, double h,
+               std::span<const int> which, std::span<const char> excluded, double h, double subStep,
                const Vec2& gravity);
 
   /// Sets the tensions of the cables `which`, adds the force Box2D needs over h to `forces`

@@ -348,7 +348,7 @@ void World::solveForces(double dt, double h) {
     mainLeft = false;
     for (int i = 0; i < islands_->count(); ++i) {
       const std::span<const int> island = islands_->cables(i);
-      if (midpoint_->applies(bodies_, cables_, island, excluded_, dt, gravity_)) {
+      if (takesMidpointRule(island, dt, h)) {
         const int iterations =
             midpoint_->solve(bodies_, cables_, island, gravity_, dt, share, forces_, kicks_);
         if (iterations >= 0) {
@@ -558,6 +558,7 @@ double World::advance(double left, double h, bool locate) {
       dt = cut;
       solveForces(dt, h);
     }
+    rulesKept_ = false;
   }
   // What the wrap events were located on, to tell a knock inside Box2D's step (knock_motion.h).
   static thread_local std::vector<BodyState> start, predicted;  // scratch: no allocation a step

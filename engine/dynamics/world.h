@@ -212,6 +212,7 @@ class World {
   void averageTensions(double h);
   void reportStepTensions(bool end);
   bool matchRates(double dt, double h);
+  bool takesMidpointRule(std::span<const int> island, double dt, double h);
   void recordRates(double dt, bool whole);
 
   const SceneDef scene_;                      ///< the model: never edited after construction
@@ -243,6 +244,7 @@ class World {
   std::vector<double> rateSteps_;    ///< per cable: the step its length rate was left by...
   std::vector<double> nextSteps_;    ///< ... and the one about to be taken (start_rates.h)
   std::vector<char> tookMidpoint_;   ///< scratch: per cable, the midpoint solve took it
+  bool rulesKept_ = false;           ///< matchRates ran: solves keep tookMidpoint_'s rules
   int cutCable_ = -1;                ///< the last Box2D step ended at this cable's event...
   WrapEvent cutEvent_;               ///< ...this one (-1: it ran to its end)
   std::vector<BodyState> bodies_;    ///< read back from Box2D
