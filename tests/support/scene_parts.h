@@ -87,4 +87,33 @@ inline JointDef worldPivot(const std::string& body, const Vec2& anchor) {
   return pivot;
 }
 
+/// A 0.5 m hexagon "hexagon" (`hexagonMass` kg, `hexagonInertia` kg m^2) spinning at `spin` rad/s
+/// on a pivot at the origin, and a rigid rope "rope" from the world point `from` round its left to
+/// a weight "weight" of `mass` kg at `weightAt` (the caller sets a stiffness or a throw).
+inline SceneDef ropeOverASpinningHexagon(double hexagonMass, double hexagonInertia, double spin,
+                                         const Vec2& from, const Vec2& weightAt, double mass) {
+  SceneDef scene;
+  BodyDef hexagon;
+  hexagon.name = "hexagon";
+  hexagon.mass = hexagonMass;
+  hexagon.inertia = hexagonInertia;
+  hexagon.angularVelocity = spin;
+  hexagon.shapes = {sensorPolygon(6, 0.5)};
+  scene.bodies = {hexagon, hangingMass("weight", weightAt, mass)};
+  scene.joints = {worldPivot("hexagon", Vec2(0, 0))};
+  CableDef rope;
+  rope.name = "rope";
+  rope.start.body = "world";
+  rope.start.point = from;
+  PulleyDef wrap;
+  wrap.body = "hexagon";
+  wrap.kind = PulleyDef::Kind::Polygon;
+  wrap.side = WrapSide::Left;
+  wrap.vertices = hexagon.shapes[0].vertices;
+  rope.pulleys = {wrap};
+  rope.end.body = "weight";
+  scene.cables = {rope};
+  return scene;
+}
+
 }  // namespace cablelab::test

@@ -21,28 +21,8 @@ namespace {
 // 0.5 m hexagon of 3.5 kg spinning at `spin` rad/s on its pivot, a rigid rope from a world point
 // up to its left round it to a weight of `mass` hanging 1 m below its right side.
 SceneDef weightOnARigidRopeOverASpinningHexagon(double mass, double spin) {
-  SceneDef scene;
-  BodyDef hexagon;
-  hexagon.name = "hexagon";
-  hexagon.mass = 3.5;
-  hexagon.inertia = 5.0 / 12 * 3.5 * 0.25;  // a regular hexagon's
-  hexagon.angularVelocity = spin;
-  hexagon.shapes = {test::sensorPolygon(6, 0.5)};
-  scene.bodies = {hexagon, test::hangingMass("weight", Vec2(0.9, -1.0), mass)};
-  scene.joints = {test::worldPivot("hexagon", Vec2(0, 0))};
-  CableDef rope;
-  rope.name = "rope";
-  rope.start.body = "world";
-  rope.start.point = Vec2(-1.5, 0.8);
-  PulleyDef wrap;
-  wrap.body = "hexagon";
-  wrap.kind = PulleyDef::Kind::Polygon;
-  wrap.side = WrapSide::Left;
-  wrap.vertices = hexagon.shapes[0].vertices;
-  rope.pulleys = {wrap};
-  rope.end.body = "weight";
-  scene.cables = {rope};
-  return scene;
+  return test::ropeOverASpinningHexagon(3.5, 5.0 / 12 * 3.5 * 0.25, spin, Vec2(-1.5, 0.8),
+                                        Vec2(0.9, -1.0), mass);  // a regular hexagon's inertia
 }
 
 struct CatchRun {

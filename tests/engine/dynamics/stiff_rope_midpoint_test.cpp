@@ -40,30 +40,10 @@ EnergyRun runFor(World& world, int steps, double dt, int substeps) {
 // A weight of `mass` on an undamped rope (k N/m, rest length its first length) from a world
 // anchor over a 0.5 m hexagon spinning at `spin` rad/s on its pivot, thrown with `throwAt`.
 SceneDef weightOverASpinningHexagon(double mass, double k, double spin, const Vec2& throwAt) {
-  SceneDef scene;
-  BodyDef hexagon;
-  hexagon.name = "hexagon";
-  hexagon.mass = 3;
-  hexagon.inertia = 0.7;
-  hexagon.angularVelocity = spin;
-  hexagon.shapes = {test::sensorPolygon(6, 0.5)};
-  BodyDef weight = test::hangingMass("weight", Vec2(0.5, -1.4), mass);
-  weight.velocity = throwAt;
-  scene.bodies = {hexagon, weight};
-  scene.joints = {test::worldPivot("hexagon", Vec2(0, 0))};
-  CableDef rope;
-  rope.name = "rope";
-  rope.start.body = "world";
-  rope.start.point = Vec2(-0.7, 1.2);
-  PulleyDef wrap;
-  wrap.body = "hexagon";
-  wrap.kind = PulleyDef::Kind::Polygon;
-  wrap.side = WrapSide::Left;
-  wrap.vertices = hexagon.shapes[0].vertices;
-  rope.pulleys = {wrap};
-  rope.end.body = "weight";
-  rope.stiffness = k;
-  scene.cables = {rope};
+  SceneDef scene =
+      test::ropeOverASpinningHexagon(3, 0.7, spin, Vec2(-0.7, 1.2), Vec2(0.5, -1.4), mass);
+  scene.bodies[1].velocity = throwAt;
+  scene.cables[0].stiffness = k;
   return scene;
 }
 
