@@ -110,6 +110,13 @@ void lengthTargets(Workspace& ws, double h, double share, std::span<const Cable>
       // Held where it is, not pushed out: pushed out to the floor against the cable's pull once
       // taut, it gained energy (docs/floors.md, "Inside a floor").
       ws.target[r] = phi;
+    } else if (seg >= 0 && !row.rim && phi < -kLengthSlop &&
+               atRimFloor(c.path()[seg], c.path()[seg + 1])) {
+      // The point sits at its rim floor: the segment is held at its length, not shortened to
+      // kFloorLength. Closing the tangent length's slack (r / kFloorLength times the rim row's
+      // slop) each step let a weight at a winch drum creep round it with the drum's turn
+      // (docs/floors.md, "The disc of a round pulley").
+      ws.target[r] = phi;
     } else if (!c.elastic() || seg >= 0) {
       ws.target[r] = phi < -kLengthSlop  ? 0.0
                      : phi > kLengthSlop ? phi - beta * (phi - kLengthSlop)

@@ -14,6 +14,7 @@
 #include <span>
 
 #include "engine/cable/cable.h"
+#include "engine/dynamics/length_targets.h"
 
 namespace cablelab {
 
@@ -86,6 +87,18 @@ inline double tangentLength(const Vec2& x, const Vec2& c, double r, Vec2& gradie
 inline double rimGap(int pointBody, const Vec2& x, const Vec2& c, double r, Vec2& gradient) {
   return pointBody < 0 ? tangentLength(x, c, r, gradient)
                        : kFloorLength + rimClearance(x, c, r, gradient);
+}
+
+/// Whether segment (p, q) runs from a circle to a point on a body that is at its rim floor (the
+/// rim row's gap within kLengthSlop of kFloorLength, or inside it).
+inline bool atRimFloor(const WrapPoint& p, const WrapPoint& q) {
+  const int rim = rimEnd(p, q);
+  if (rim < 0) return false;
+  const WrapPoint &circle = rim == 0 ? p : q, &point = rim == 0 ? q : p;
+  if (point.body < 0) return false;
+  Vec2 gradient;
+  return rimGap(point.body, point.world, circle.world, circle.radius, gradient) <
+         kFloorLength + kLengthSlop;
 }
 
 /// The gap a floor keeps open: the segment's length as the path has it, between its contact
