@@ -56,6 +56,8 @@
 //  J stay continuous (theorem 1); these rules then only decide what that moment's set is.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <optional>
 #include <span>
 #include <string>
@@ -255,6 +257,18 @@ class Cable {
   double pointTurn(int pulley) const {
     const PulleyState& p = pulleys_[pulley];
     return p.polygon || p.circle ? 0.0 : p.arc;
+  }
+  /// The turns a circle or polygon pulley is wound with now: its wrap (circle) or the angle the
+  /// path turns round it (polygon) over 2 pi, 0 off the path. What a scene written now gives as
+  /// its `turns`, so that a World built from it starts with the same length (sceneNow).
+  double woundTurns(int pulley) const {
+    const PulleyState& p = pulleys_[pulley];
+    return (p.polygon || p.circle) && p.engaged ? std::max(p.arc, 0.0) / (2 * M_PI) : 0.0;
+  }
+  /// A drum end's turns wound now (its arc over 2 pi; 0 once it has paid all out), 0 for a point.
+  double drumTurns(bool atStart) const {
+    const WrapPoint& w = atStart ? start_ : end_;
+    return w.radius != 0 ? std::max(w.arc, 0.0) / (2 * M_PI) : 0.0;
   }
   /// Length and J of the path (cableLengthJacobian: the solvers need no J v or J-dot v, and
   /// cableKinematics gives them for any path).

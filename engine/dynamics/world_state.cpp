@@ -1,12 +1,20 @@
 // Capture and restore of a World's state by its history (world_state.h).
 #include "engine/dynamics/world_state.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "engine/core/error.h"
 #include "engine/model/scene_json.h"
 
 namespace cablelab {
+
+namespace {
+
+/// Turns a scene written now gives a drum end that has paid all its cable out (turns must be > 0).
+constexpr double kLeastDrumTurns = 1e-9;
+
+}  // namespace
 
 WorldState captureState(const World& world, const std::string& source) {
   WorldState s;
@@ -122,6 +130,17 @@ SceneDef sceneNow(const World& world) {
     CableDef& c = s.cables[i];
     c.restLength = live.restLength, c.stiffness = live.stiffness;
     c.preload = live.preload, c.damping = live.damping;
+    // The turns wound now, not the ones authored: built from the authored ones the cable would
+    // start as much shorter as it has wound since (docs/python.md). An auto pulley keeps its 0
+    // (turns need a side); a drum that paid all out keeps a sliver (turns must be > 0).
+    const Cable& cable = world.cable(i);
+    for (size_t k = 0; k < c.pulleys.size(); ++k) {
+      PulleyDef& p = c.pulleys[k];
+      if (p.kind != PulleyDef::Kind::Point && p.side != WrapSide::Auto)
+        p.turns = cable.woundTurns(static_cast<int>(k));
+    }
+    if (c.start.radius > 0) c.start.turns = std::max(cable.drumTurns(true), kLeastDrumTurns);
+    if (c.end.radius > 0) c.end.turns = std::max(cable.drumTurns(false), kLeastDrumTurns);
   }
   s.time = world.time();
   s.stepCount = world.stepCount();

@@ -89,3 +89,52 @@ def test_a_history_row_that_is_no_input_is_refused():
     d["history"]["inputs"][0] = [0, 1]
     with pytest.raises(cablelab.InputError, match=r"history.inputs\[0\]: must be a list of 7"):
         cablelab.World.from_dict(d)
+
+
+def spool_and_weight(kind, side, speed):
+    """A servo spool winding a weight 6 m below through an eyelet: a square polygon spool the rope
+    is tied to (0.25 turns authored) or a round drum end (0.5 turns authored)."""
+    x = 0.3 if side == "left" else -0.3
+    if kind == "polygon":
+        start = {"body": "spool", "point": [-0.05, -0.05]}
+        pulleys = [{"type": "polygon", "body": "spool", "side": side, "turns": 0.25}]
+    else:
+        start = {"body": "spool", "radius": 0.05, "side": side, "turns": 0.5}
+        pulleys = []
+    pulleys.append({"type": "point", "point": [x, 0.0], "side": "threaded"})
+    return {"bodies": [{"name": "spool", "mass": 0.5, "shapes": [
+                           {"type": "box", "half_size": [0.05, 0.05], "sensor": True}]},
+                       {"name": "weight", "position": [x, -6.0],
+                        "shapes": [{"type": "circle", "radius": 0.04}]}],
+            "joints": [{"type": "revolute", "name": "axle", "body_b": "spool",
+                        "servo": {"kp": 0.0, "kd": 50.0, "max_force": 1e4, "speed": speed}}],
+            "cables": [{"name": "rope", "start": start, "end": {"body": "weight"},
+                        "pulleys": pulleys}]}
+
+
+@pytest.mark.parametrize("kind", ["polygon", "circle"])
+@pytest.mark.parametrize("side", ["left", "right"])
+@pytest.mark.parametrize("turns", [2, 5, 11])
+def test_without_its_history_the_scene_keeps_the_turns_wound_since(kind, side, turns):
+    """The turns written are the ones wound now, not the authored ones: built from 0.25 authored
+    turns the rope started 4.4 m short of its rest length after 11 turns and the weight fell."""
+    speed = 6.0 if side == "left" else -6.0  # the way that winds
+    w = cablelab.World.from_dict(spool_and_weight(kind, side, speed))
+    w.run(time=turns * 2 * math.pi / speed * np.sign(speed))
+    d = w.to_dict(current=True)
+    del d["history"]
+    written = d["cables"][0]["pulleys"][0] if kind == "polygon" else d["cables"][0]["start"]
+    authored = 0.25 if kind == "polygon" else 0.5
+    assert written["turns"] > authored + turns - 0.5  # about the turns the servo wound on
+    f = cablelab.World.from_dict(d)
+    rest = w.cable_parameters(0)["rest_length"]
+    assert f.cable_parameters(0)["rest_length"] == rest
+    # Poses go through Box2D's floats: the polygon's length agrees to their rounding; a drum's
+    # rebuilt length is still 5 mm short of it (not found yet: docs/python.md).
+    tolerance = 1e-6 if kind == "polygon" else 1e-2
+    assert abs(f.cable_lengths()[0] - w.cable_lengths()[0]) < tolerance
+    for _ in range(round(1.0 / w.dt)):
+        w.step()
+        f.step()
+    assert abs(f.cable_lengths()[0] - w.cable_lengths()[0]) < 1e-4
+    assert f.cable_tensions()[0] > 0  # the weight hangs on the rope, not falling slack
