@@ -24,6 +24,7 @@ namespace knock_motion_test {
 using KnockingPair = test::LoopPair;
 
 std::pair<double, double> deepestCutAndJump(const KnockingPair& pair, int substeps, int steps);
+void expectNoCutNorJump(const std::vector<KnockingPair>& pairs);
 
 /// No warning (no wrap change moved the length by 1 mm, no polygon dropped or released) over
 /// `steps` steps of `dt`, and the energy never 1% of its scale above its start.
@@ -356,6 +357,17 @@ std::pair<double, double> deepestCutAndJump(const KnockingPair& pair, int subste
   return {deepest, jump};
 }
 
+/// At 1, 2 and 4 sub-steps for 20 s: no strand cuts a body it does not wrap by more than a touch
+/// (0.1 mm), and no wrap change moves the length by over 1 mm.
+void expectNoCutNorJump(const std::vector<KnockingPair>& pairs) {
+  for (const KnockingPair& pair : pairs)
+    for (const int substeps : {1, 2, 4}) {
+      const auto [deepest, jump] = deepestCutAndJump(pair, substeps, 1200);
+      EXPECT_LE(deepest, 1e-4) << "seed " << pair.seed << " x " << substeps;
+      EXPECT_LE(jump, 1e-3) << "seed " << pair.seed << " x " << substeps;
+    }
+}
+
 }  // namespace knock_motion_test
 
 // Wedged between the two strands of its neighbour's loop with a deeper wrap of its own: the light
@@ -378,12 +390,7 @@ TEST(KnockMotion, PolygonsWedgedInTheirNeighboursLoopWithADeepWrapStayOnTheRope)
                                  {7, 0.39935417877134849, 5.3116298254189198, 0.5,
                                   4.9536087743017632, 0.17334512618113607, -5.3778758103493898}};
   knock_motion_test::expectCaughtByTheRope(larger71, 1, 1200);
-  for (const KnockingPair& pair : {seed558, larger71})
-    for (const int substeps : {1, 2, 4}) {
-      const auto [deepest, jump] = knock_motion_test::deepestCutAndJump(pair, substeps, 1200);
-      EXPECT_LE(deepest, 1e-4) << "seed " << pair.seed << " x " << substeps;
-      EXPECT_LE(jump, 1e-3) << "seed " << pair.seed << " x " << substeps;
-    }
+  knock_motion_test::expectNoCutNorJump({seed558, larger71});
 }
 
 // Wedged at the point's bend with a deep wrap of its own: in larger pairs (seeds 45 and 84) the
@@ -394,22 +401,18 @@ TEST(KnockMotion, PolygonsWedgedInTheirNeighboursLoopWithADeepWrapStayOnTheRope)
 // more than a touch (0.1 mm), and no wrap change moves the length by over 1 mm.
 TEST(KnockMotion, PolygonsWedgedAtThePointsBendStayOnTheRope) {
   using knock_motion_test::KnockingPair;
-  const KnockingPair larger[] = {{45,
-                                  {8, 0.33243170839168146, 1.7683855337036047, 2.0,
-                                   5.4870291941164702, 4.9756867413720194, -0.2295123549006659},
-                                  {3, 0.27449866733698908, 0.7285398412688735, 0.5,
-                                   -3.3757804568091641, -2.1973163834134617, 5.1080471630676723}},
-                                 {84,
-                                  {3, 0.30553634777525723, 1.5225305946105276, 0.5,
-                                   -1.5538470066288115, 2.7210766793883678, -2.6951760366635731},
-                                  {4, 0.28874710764886607, 2.6288782390448002, 10.0,
-                                   -3.8380535436858825, 5.1761996428215404, 2.4316977965514344}}};
-  for (const KnockingPair& pair : larger)
-    for (const int substeps : {1, 2, 4}) {
-      const auto [deepest, jump] = knock_motion_test::deepestCutAndJump(pair, substeps, 1200);
-      EXPECT_LE(deepest, 1e-4) << "seed " << pair.seed << " x " << substeps;
-      EXPECT_LE(jump, 1e-3) << "seed " << pair.seed << " x " << substeps;
-    }
+  const std::vector<KnockingPair> larger = {
+      {45,
+       {8, 0.33243170839168146, 1.7683855337036047, 2.0, 5.4870291941164702, 4.9756867413720194,
+        -0.2295123549006659},
+       {3, 0.27449866733698908, 0.7285398412688735, 0.5, -3.3757804568091641, -2.1973163834134617,
+        5.1080471630676723}},
+      {84,
+       {3, 0.30553634777525723, 1.5225305946105276, 0.5, -1.5538470066288115, 2.7210766793883678,
+        -2.6951760366635731},
+       {4, 0.28874710764886607, 2.6288782390448002, 10.0, -3.8380535436858825, 5.1761996428215404,
+        2.4316977965514344}}};
+  knock_motion_test::expectNoCutNorJump(larger);
 }
 
 // A free polygon's corner crossing another strand is a wrap event (cable_events.cpp), but the
@@ -421,22 +424,18 @@ TEST(KnockMotion, PolygonsWedgedAtThePointsBendStayOnTheRope) {
 // does not wrap by more than a touch (0.1 mm), and no wrap change moves the length by over 1 mm.
 TEST(KnockMotion, KnockedCornersCrossingAnotherStrandAreSearched) {
   using knock_motion_test::KnockingPair;
-  const KnockingPair larger[] = {{34,
-                                  {3, 0.36701506896162517, 0.58247488667065284, 2.0,
-                                   -0.62684573708225244, -4.7816115310027518, 3.1334930479605454},
-                                  {5, 0.28796296818203576, 1.1935872191873975, 10.0,
-                                   3.0144892635238101, 2.9711673818903623, 4.1856181937692867}},
-                                 {50,
-                                  {5, 0.28421246597296002, 1.6051899771372886, 2.0,
-                                   -5.7427652299506686, -4.173591417137585, 5.4564735386424914},
-                                  {5, 0.36578410006377438, 4.7785929390425785, 0.5,
-                                   -0.728339334083695, -4.3825382990393571, 1.1366791269325596}}};
-  for (const KnockingPair& pair : larger)
-    for (const int substeps : {1, 2, 4}) {
-      const auto [deepest, jump] = knock_motion_test::deepestCutAndJump(pair, substeps, 1200);
-      EXPECT_LE(deepest, 1e-4) << "seed " << pair.seed << " x " << substeps;
-      EXPECT_LE(jump, 1e-3) << "seed " << pair.seed << " x " << substeps;
-    }
+  const std::vector<KnockingPair> larger = {
+      {34,
+       {3, 0.36701506896162517, 0.58247488667065284, 2.0, -0.62684573708225244, -4.7816115310027518,
+        3.1334930479605454},
+       {5, 0.28796296818203576, 1.1935872191873975, 10.0, 3.0144892635238101, 2.9711673818903623,
+        4.1856181937692867}},
+      {50,
+       {5, 0.28421246597296002, 1.6051899771372886, 2.0, -5.7427652299506686, -4.173591417137585,
+        5.4564735386424914},
+       {5, 0.36578410006377438, 4.7785929390425785, 0.5, -0.728339334083695, -4.3825382990393571,
+        1.1366791269325596}}};
+  knock_motion_test::expectNoCutNorJump(larger);
 }
 
 }  // namespace cablelab
