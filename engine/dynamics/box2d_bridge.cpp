@@ -10,6 +10,7 @@
 #include "engine/dynamics/floors.h"
 #include "engine/dynamics/hull_bounce.h"
 #include "engine/dynamics/hull_contacts.h"
+#include "engine/dynamics/pulley_knock.h"
 
 namespace cablelab {
 
@@ -250,6 +251,7 @@ struct Box2DBridge::Impl {
   ContactImpulses contacts;
   hull_fixtures::HullContactFilter hullFilter;
   std::unique_ptr<HullBounce> bounce;
+  std::unique_ptr<PulleyKnock> knock;
   b2Body* ground = nullptr;
   double lastStep = 0;           ///< the last step()'s h (s)
   std::vector<Vec3> impulseSum;  ///< contacts.perBody summed since restartContactSum()
@@ -310,6 +312,7 @@ Box2DBridge::Box2DBridge(const SceneDef& scene) : impl_(std::make_unique<Impl>()
   }
   const std::vector<HullContact> pairs = hullContacts(scene);
   impl_->bounce = std::make_unique<HullBounce>(scene, pairs);
+  impl_->knock = std::make_unique<PulleyKnock>(scene, pairs);
   for (const HullContact& c : pairs) {
     b2Body* other = c.otherBody < 0 ? impl_->ground : impl_->bodies[c.otherBody];
     b2Body* polygonBody = c.body < 0 ? impl_->ground : impl_->bodies[c.body];
@@ -405,10 +408,14 @@ void Box2DBridge::step(double h) {
   impl_->rewind();
 }
 
-void Box2DBridge::bounceHullPoints(std::vector<BodyState>& bodies, double horizon) {
-  // Box2D's contact touches within the polygon's skin and the point's circle (addHullFixture).
+void Box2DBridge::bounceHullPoints(std::vector<BodyState>& bodies, std::span<const Cable> cables,
+                                   double horizon) {
+  // Box2D's contact touches within the polygon's skin and the point's circle (addHullFixture),
+  // two polygons within both their skins.
   const double skin = b2_polygonRadius + b2_linearSlop;
   for (const int b : impl_->bounce->bounce(bodies, horizon, skin))
+    setVelocity(b, bodies[b].velocity, bodies[b].angularVelocity);
+  for (const int b : impl_->knock->knock(bodies, cables, horizon, 2 * b2_polygonRadius))
     setVelocity(b, bodies[b].velocity, bodies[b].angularVelocity);
 }
 
@@ -485,16 +492,37 @@ std::vector<ContactForce> Box2DBridge::contactForces() const {
   return out;
 }
 
-void Box2DBridge::markTouching(std::vector<char>& touching) const {
+void Box2DBridge::markTouching(std::vector<char>& touching, bool leaveSeparatingKnocks) const {
   for (b2Contact* c = impl_->world.GetContactList(); c; c = c->GetNext()) {
     if (!c->IsTouching() || !c->IsEnabled() || c->GetFixtureA()->IsSensor() ||
         c->GetFixtureB()->IsSensor())
       continue;
+    if (leaveSeparatingKnocks && separatingKnock(c)) continue;
     for (b2Body* body : {c->GetFixtureA()->GetBody(), c->GetFixtureB()->GetBody()})
       if (const uintptr_t index = body->GetUserData().pointer;  // body index + 1, 0: ground
           index > 0 && index <= touching.size())
         touching[index - 1] = 1;
   }
+}
+
+bool Box2DBridge::separatingKnock(b2Contact* c) const {
+  b2Fixture *a = c->GetFixtureA(), *b = c->GetFixtureB();
+  if (a->GetUserData().pointer != hull_fixtures::kHullFixture ||
+      b->GetUserData().pointer != hull_fixtures::kHullFixture)
+    return false;
+  b2Body *bodyA = a->GetBody(), *bodyB = b->GetBody();
+  // body index + 1, 0: ground
+  const int indexA = static_cast<int>(bodyA->GetUserData().pointer) - 1;
+  const int indexB = static_cast<int>(bodyB->GetUserData().pointer) - 1;
+  if (!impl_->knock->knocks(indexA, indexB)) return false;
+  b2WorldManifold m;
+  c->GetWorldManifold(&m);
+  for (int i = 0; i < c->GetManifold()->pointCount; ++i) {
+    const b2Vec2 relative = bodyB->GetLinearVelocityFromWorldPoint(m.points[i]) -
+                            bodyA->GetLinearVelocityFromWorldPoint(m.points[i]);
+    if (b2Dot(relative, m.normal) < 0) return false;
+  }
+  return true;
 }
 
 bool Box2DBridge::anyTouching() const {

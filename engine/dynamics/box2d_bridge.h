@@ -14,6 +14,8 @@
 #include "engine/dynamics/contact_force.h"
 #include "engine/model/scene.h"
 
+class b2Contact;  // Box2D's, only named here
+
 namespace cablelab {
 
 /// A joint's coordinate (angle in rad or translation in m) and its rate; 0 for welds.
@@ -56,9 +58,11 @@ class Box2DBridge {
   /// One Box2D step of h seconds (fixed velocity and position iterations).
   void step(double h);
   /// Reverses the approach of an elastic rope's point towards a polygon pulley on another body
-  /// that would reach Box2D's contact with it within `horizon` s (hull_bounce.h): in `bodies`
-  /// and in Box2D.
-  void bounceHullPoints(std::vector<BodyState>& bodies, double horizon);
+  /// that would reach Box2D's contact with it within `horizon` s (hull_bounce.h), and knocks two
+  /// polygon pulleys that would, together with the taut rigid ropes of `cables` on them
+  /// (pulley_knock.h): in `bodies` and in Box2D.
+  void bounceHullPoints(std::vector<BodyState>& bodies, std::span<const Cable> cables,
+                        double horizon);
   /// Adds (dvx, dvy, domega) per body to the velocities Box2D holds; zeros are skipped.
   void addVelocities(std::span<const Vec3> dv);
   /// Per body, the impulse (px, py, angular about its origin) Box2D's contacts gave it over the
@@ -71,8 +75,10 @@ class Box2DBridge {
   void restartContactSum();
   /// Per pair of bodies in touch, the force of their contact points over the last step().
   std::vector<ContactForce> contactForces() const;
-  /// Sets touching[b] = 1 for every body in a touching, non-sensor contact.
-  void markTouching(std::vector<char>& touching) const;
+  /// Sets touching[b] = 1 for every body in a touching, non-sensor contact. With
+  /// `leaveSeparatingKnocks`, two polygon pulleys that pulley_knock.h knocks and that are moving
+  /// apart are not in touch: their contact will not act unless the step brings them back.
+  void markTouching(std::vector<char>& touching, bool leaveSeparatingKnocks = false) const;
   /// Whether any two bodies (or a body and the ground) are in a touching, non-sensor contact.
   bool anyTouching() const;
 
@@ -92,6 +98,9 @@ class Box2DBridge {
 
  private:
   struct Impl;
+  /// Whether contact `c` is of two polygon pulleys that pulley_knock.h knocks, moving apart at
+  /// every point.
+  bool separatingKnock(b2Contact* c) const;
   std::unique_ptr<Impl> impl_;
 };
 

@@ -337,7 +337,7 @@ void World::solveForces(double dt, double h) {
     for (int body : {a, b})
       if (body >= 0) excluded_[body] = 1;
   touching_.assign(bodies_.size(), 0);
-  b2_->markTouching(touching_);
+  b2_->markTouching(touching_, true);
   for (size_t b = 0; b < bodies_.size(); ++b) excluded_[b] |= touching_[b];
   midpointCables_.clear();
   midpointUnsettled_ = false;
@@ -415,11 +415,12 @@ double World::advance(double left, double h, bool locate) {
   using Clock = std::chrono::steady_clock;
   const auto c0 = Clock::now();
   b2_->readBodies(bodies_);
-  // An elastic rope's point about to knock a free polygon bounces off it first (hull_bounce.h).
+  // An elastic rope's point about to knock a free polygon bounces off it first (hull_bounce.h),
+  // two polygon pulleys with restitution knock with the taut rigid ropes on them (pulley_knock.h).
   // Before the step's start is remembered: a pivoted polygon the knock slowed, swinging free of
   // its rope, was given back the energy it had before (keepJointEnergy) while the point kept what
   // it took (docs/cables.md, "Points inside a hull").
-  b2_->bounceHullPoints(bodies_, left);
+  b2_->bounceHullPoints(bodies_, cables_, left);
   if (keepsJointEnergy_ && !scene_.joints.empty()) jointEnergy_->remember(bodies_);
   // Ropes over wheels end the step on the trapezoid rule (wheel_rope_energy.h): from this state.
   static thread_local std::vector<BodyState> ropeStart;  // scratch: no allocation a step
