@@ -11,6 +11,9 @@ namespace {
 // m: a rigid rope no shorter than its rest length by more than this is taut: it takes part in a
 // knock (its rate is about zero and stays so). A slacker one cannot pass an impulse on.
 constexpr double kTautWithin = 1e-4;
+// How the time a pair comes within the skin is looked for over the horizon: sampled, then halved.
+constexpr int kAheadSamples = 8;
+constexpr int kAheadHalvings = 5;
 
 std::vector<Vec2> hullAtPose(const BodyState& b, const std::vector<Vec2>& local) {
   std::vector<Vec2> out;
@@ -52,6 +55,14 @@ double nearestHullPoints(const std::vector<Vec2>& a, const std::vector<Vec2>& b,
   vertexToEdges(a, b, true);
   vertexToEdges(b, a, false);
   return best;
+}
+
+// `b` moved on t s at its present velocities.
+BodyState ahead(const BodyState& b, double t) {
+  BodyState out = b;
+  out.position += t * b.velocity;
+  out.angle += t * b.angularVelocity;
+  return out;
 }
 
 double rowRate(const std::vector<std::pair<int, Vec3>>& entries,
@@ -170,19 +181,41 @@ std::vector<int> PulleyKnock::knock(std::vector<BodyState>& bodies, std::span<co
     for (Pair& p : pairs_) {
       if (!handled_[p.bodyA] || !handled_[p.bodyB]) continue;
       const BodyState &a = bodies[p.bodyA], &b = bodies[p.bodyB];
-      const std::vector<Vec2> hullA = hullAtPose(a, p.polygonA), hullB = hullAtPose(b, p.polygonB);
-      if (!wholeSideOfAnEdge(hullA, hullB) && !wholeSideOfAnEdge(hullB, hullA)) continue;
+      // The hulls' gap (m; < 0 overlapping) t s ahead at the present velocities.
       Vec2 onA = Vec2::Zero(), onB = Vec2::Zero();
-      const double gap = nearestHullPoints(hullA, hullB, onA, onB);
+      auto gapAhead = [&](double t) {
+        const std::vector<Vec2> hullA = hullAtPose(ahead(a, t), p.polygonA),
+                                hullB = hullAtPose(ahead(b, t), p.polygonB);
+        if (!wholeSideOfAnEdge(hullA, hullB) && !wholeSideOfAnEdge(hullB, hullA)) return -1.0;
+        return nearestHullPoints(hullA, hullB, onA, onB);
+      };
+      const double gap = gapAhead(0);
+      if (!(gap > 0)) continue;  // overlapping: Box2D's contact pushes them apart
       p.armed |= gap > skin;
-      if (!p.armed || !(gap > 0)) continue;
-      const Vec2 normal = (onB - onA) / gap;  // from A to B
+      if (!p.armed) continue;
+      // Where they first come within the skin: a corner turning in may meet the other hull away
+      // from the nearest points of the present pose. Sampled, then halved down to 1/256 of it.
+      double before = 0, at = -1;
+      for (int k = 1; k <= kAheadSamples && at < 0; ++k) {
+        const double t = horizon * k / kAheadSamples;
+        if (gapAhead(t) <= skin) at = t;
+        if (at < 0) before = t;
+      }
+      if (gap <= skin) at = 0;
+      if (at < 0) continue;
+      for (int k = 0; k < kAheadHalvings && at > 0; ++k) {
+        const double mid = 0.5 * (before + at);
+        (gapAhead(mid) <= skin ? at : before) = mid;
+      }
+      const double touch = gapAhead(at);
+      if (!(touch > 0)) continue;
+      const Vec2 normal = (onB - onA) / touch;  // from A to B
+      const Vec2 centreA = ahead(a, at).position, centreB = ahead(b, at).position;
       Row contact;
-      contact.entries = {
-          {p.bodyA, Vec3(-normal.x(), -normal.y(), -cross(onA - a.position, normal))},
-          {p.bodyB, Vec3(normal.x(), normal.y(), cross(onB - b.position, normal))}};
+      contact.entries = {{p.bodyA, Vec3(-normal.x(), -normal.y(), -cross(onA - centreA, normal))},
+                         {p.bodyB, Vec3(normal.x(), normal.y(), cross(onB - centreB, normal))}};
       contact.rate = rowRate(contact.entries, bodies);
-      if (!(contact.rate < 0) || gap + contact.rate * horizon > skin) continue;
+      if (!(contact.rate < 0)) continue;
       contact.target = -p.restitution * contact.rate;
       std::vector<Row> rows{contact};
       bool handled = true;
