@@ -654,6 +654,7 @@ void Cable::update(std::span<const BodyState> select, std::span<const BodyState>
     if (pulleys_[j].dropped && !droppedBefore_[j])
       pulleys_[j].dropCut = std::max(0.0, previousLength(bodies) - kin_.length);
   reportLengthJump(bodies, warnings);
+  if (firstUpdate_) reportPulleysLeftOut(bodies, warnings);
   finishUpdate(bodies, warnings);
   buildSkipCertificate(select);
 }

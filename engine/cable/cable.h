@@ -266,8 +266,12 @@ class Cable {
     return (p.polygon || p.circle) && p.engaged ? std::max(p.arc, 0.0) / (2 * M_PI) : 0.0;
   }
   /// A drum end's turns wound now (its arc over 2 pi; 0 once it has paid all out), 0 for a point.
+  /// Read off the path, which refresh() keeps at the step's end: the terminal's copy is the last
+  /// update's, a step's turn behind (a drum at 6 rad/s, 60 Hz, r = 5 cm: 5 mm of rope).
   double drumTurns(bool atStart) const {
-    const WrapPoint& w = atStart ? start_ : end_;
+    const WrapPoint& w = path_.empty() ? (atStart ? start_ : end_)
+                         : atStart     ? path_.front()
+                                       : path_.back();
     return w.radius != 0 ? std::max(w.arc, 0.0) / (2 * M_PI) : 0.0;
   }
   /// Length and J of the path (cableLengthJacobian: the solvers need no J v or J-dot v, and
@@ -429,6 +433,10 @@ class Cable {
     double slidStrain = 0;  ///< the solver's end-of-step strain when it slid (elastic)
   };
   void placePulleys(std::span<const BodyState> bodies);
+  /// At the first update: a warning for each one-sided point pulley fixed where it is that the
+  /// rope does not reach (pulley_left_out.cpp).
+  void reportPulleysLeftOut(std::span<const BodyState> bodies,
+                            std::vector<std::string>* warnings) const;
   bool buildPath(std::vector<std::string>* warnings);
   bool seedCommonTangents(std::vector<std::vector<int>>& chains) const;
   bool holdsAgainst(int node) const;

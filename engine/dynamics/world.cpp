@@ -770,6 +770,7 @@ void World::step(double dt, int substeps) {
   for (size_t j = 0; j < jointForces_.size(); ++j) jointForces_[j] = servoImpulses_[j] / dt;
   payOutUnheld();
   reportPayOuts();
+  reportDrumArrivals();
   reportStalls(dt);
   reportOverstretch();
   stats_.stepMicros = std::chrono::duration<double, std::micro>(Clock::now() - t0).count();

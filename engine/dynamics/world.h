@@ -196,6 +196,7 @@ class World {
  private:
   void applyServos(double dt);
   void reportStalls(double dt);
+  void reportDrumArrivals();
   void checkFinite() const;
   void reportPayOuts();
   void reportOverstretch();
@@ -270,6 +271,7 @@ class World {
   std::vector<double> servoImpulses_;  ///< per joint, its servo's impulse over this step (N s)
   std::vector<double> jointForces_;    ///< ... over the last step (N or N m): JointState::force
   std::vector<double> stalledSince_;   ///< per joint: when its servo stalled (< 0: it has not)
+  std::vector<char> drumArrived_;  ///< per cable end (2 i + 1 the end): reportDrumArrivals() said
   StepStats stats_;
   double time_ = 0;
   long steps_ = 0;

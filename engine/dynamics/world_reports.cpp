@@ -1,12 +1,14 @@
 // The World's end-of-step reports (World::warnings()): a rigid cable left long, redundant rows
-// held at their lengths, a cable paying out, a stalled servo. Split from world.cpp (the stepping)
-// to keep each file to one concept.
+// held at their lengths, a cable paying out, a weight wound up to its drum, a stalled servo. Split
+// from world.cpp (the stepping) to keep each file to one concept.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "engine/core/error.h"
 #include "engine/dynamics/box2d_bridge.h"
+#include "engine/dynamics/floors.h"
 #include "engine/dynamics/length_targets.h"
 #include "engine/dynamics/world.h"
 
@@ -91,6 +93,55 @@ void World::reportPayOuts() {
       payStart_[i] = -1;
     }
     paidOutSeen_[i] = paid;
+  }
+}
+
+// A drum end on a servo's joint that winds its cable, the body at the segment's other end at the
+// segment's floor (docs/floors.md): the weight is wound up to the drum, and the servo, which
+// cannot wind further, pushes harder until it stalls (docs/servos.md, "Stalls"), which can take
+// a minute (the built-in winch: 50 s). Said once an arrival, with the time; a weight that
+// bounces at the drum arrives once, and only one paid out past kFloorWatch arrives anew.
+void World::reportDrumArrivals() {
+  drumArrived_.resize(2 * cables_.size(), 0);
+  for (size_t i = 0; i < cables_.size(); ++i) {
+    const std::vector<WrapPoint>& path = cables_[i].path();
+    for (const bool atStart : {true, false}) {
+      const size_t n = path.size();
+      const WrapPoint& drum = atStart ? path[0] : path[n - 1];
+      const WrapPoint& other = atStart ? path[1] : path[n - 2];
+      char& said = drumArrived_[2 * i + (atStart ? 0 : 1)];
+      if (drum.radius == 0 || drum.body < 0 || other.body < 0 || other.body == drum.body) continue;
+      const double gap = atStart ? floorGap(drum, other) : floorGap(other, drum);
+      if (gap > kFloorWatch) said = 0;  // paid out well clear: a later arrival is a new one
+      const bool atFloor = gap <= kFloorLength + kLengthSlop ||
+                           (atStart ? atRimFloor(drum, other) : atRimFloor(other, drum));
+      if (said || !atFloor || !hasFloors(cables_[i])) continue;
+      // d length / d drum angle, the cable's Jacobian (cable_kinematics.cpp): the length counts
+      // the rope wound on the drum, so a drum that winds adds to it and the rope's row pulls the
+      // weight in by as much.
+      double lengthPerTurn = 0;
+      for (const BodyJacobian& e : cables_[i].kinematics().jacobian)
+        if (e.body == drum.body) lengthPerTurn = e.d.z();
+      for (size_t j = 0; j < scene_.joints.size(); ++j) {
+        const JointDef& joint = scene_.joints[j];
+        const int a = jointBodies_[j][0], b = jointBodies_[j][1];
+        if (!joint.servo.enabled || joint.kind != JointDef::Kind::Revolute) continue;
+        if (a != drum.body && b != drum.body) continue;
+        // The servo's torque on the drum: +f on body B, -f on body A.
+        const double torque = b == drum.body ? jointForces_[j] : -jointForces_[j];
+        if (torque * lengthPerTurn <= 0) continue;  // not winding
+        said = 1;
+        char when[32];
+        std::snprintf(when, sizeof when, "%.6g", time_);
+        warnings_.push_back("cable '" + cables_[i].name() + "': the weight '" +
+                            scene_.bodies[other.body].name + "' reached the drum '" +
+                            scene_.bodies[drum.body].name + "' at t = " + when +
+                            " s: the rope is wound in as far as it goes, and joint '" + joint.name +
+                            "' pushes harder to wind it on until its servo stalls at max_force " +
+                            formatNumber(joint.servo.maxForce) + " N m");
+        break;
+      }
+    }
   }
 }
 

@@ -152,6 +152,33 @@ def test_a_rope_hauled_into_its_pulley_pays_out():
     assert any("'rope': pays out" in m for m in w.warnings)
 
 
+def test_a_point_pulley_on_the_wrong_side_is_said_at_load():
+    # The route goes over the point (side left); "right" left it out of the path with no word.
+    def scene(side):
+        return {"bodies": [{"name": "a", "position": [-1, -1]}, {"name": "b", "position": [1, -1]}],
+                "cables": [{"name": "rope", "start": {"body": "a"}, "end": {"body": "b"},
+                            "pulleys": [{"type": "point", "point": [0, 1], "side": side}]}]}
+    wrong = cablelab.World.from_dict(scene("right"))
+    assert wrong.warnings == [
+        "cable 'rope': pulley 0 (a point on 'world') is left out: from the point before it to the "
+        "one after, the rope passes to its left, not its right as \"side\": \"right\" says, so it "
+        "runs straight past it (2 m away) and does not use it until the rope reaches it "
+        "(\"side\": \"left\" takes it from the start)"]
+    assert cablelab.World.from_dict(scene("left")).warnings == []
+    for name in ["membrane", "pulley", "tackle", "ballast", "hexagon", "winch", "wheel"]:
+        assert cablelab.World.load(name).warnings == [], name
+
+
+def test_a_winch_says_when_its_weight_reaches_the_drum_before_it_stalls():
+    w = cablelab.World.load("winch", r=0.2)  # 3.4 m at 0.4 m/s: there at 8.5 s
+    w.run(time=8.0)
+    assert w.warnings == []
+    w.run(time=1.0)
+    assert len(w.warnings) == 1
+    assert w.warnings[0].startswith("cable 'cable': the weight 'weight' reached the drum 'drum' "
+                                    "at t = 8.5")
+
+
 def test_run_record_has_the_joints():
     a, b = cablelab.World.load("hand"), cablelab.World.load("hand")
     rec = a.run(steps=20, record=True)

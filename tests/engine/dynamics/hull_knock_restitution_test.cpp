@@ -12,7 +12,7 @@
 #include "tests/support/scene_parts.h"
 
 namespace cablelab {
-namespace {
+namespace hull_knock_restitution_test {  // named: unity batches join test files
 
 struct Twins {
   double reach;   // m each triangle's corner circle reaches into the other's (< 0: a gap)
@@ -139,5 +139,5 @@ TEST(HullKnockRestitution, TrianglesReachingThreeCentimetresInDoNotLock) {
   }
 }
 
-}  // namespace
+}  // namespace hull_knock_restitution_test
 }  // namespace cablelab
