@@ -162,6 +162,36 @@ bool rigidCableSwings(const Cable& c, std::span<const BodyState> bodies, const V
   return false;
 }
 
+// Whether a rigid cable over pulleys swings: a segment with an end on a moving body turns (its
+// ends' velocities differ across it, a body spins) or hangs off the line of gravity. A rope that
+// wraps and unwraps a peg took the midpoint rule while wrapped and the main solve while straight,
+// and each switch locked in the main solve's energy swing: a bob round a peg lost 37% of its
+// swing in 10 minutes at 60 Hz, 91% round a square one (docs/swings.md). Hung straight (an
+// Atwood machine at rest), it keeps Box2D's integration, exact there.
+bool swingsOverPulleys(const Cable& c, std::span<const BodyState> bodies, const Vec2& gravity) {
+  constexpr double kAcrossSpeed = 1e-7;  // m/s, as rigidCableSwings
+  constexpr double kOffGravity = 1e-7;   // rad
+  if (c.pulleyCount() == 0) return false;
+  const auto& path = c.path();
+  for (size_t i = 0; i + 1 < path.size(); ++i) {
+    const WrapPoint &p = path[i], &q = path[i + 1];
+    const bool movesP = p.body >= 0 && moves(bodies[p.body]);
+    const bool movesQ = q.body >= 0 && moves(bodies[q.body]);
+    if (!movesP && !movesQ) continue;
+    const Vec2 d = q.arriving() - p.leaving();
+    const double length = d.norm();
+    if (!(length > 0)) continue;
+    const Vec2 u = d / length;
+    if (std::abs(cross(u, wrapPointVelocity(q, bodies) - wrapPointVelocity(p, bodies))) >
+        kAcrossSpeed)
+      return true;
+    if (std::abs(cross(u, gravity)) > kOffGravity * gravity.norm()) return true;
+    for (const WrapPoint* w : {&p, &q})
+      if (w->body >= 0 && bodies[w->body].angularVelocity != 0) return true;
+  }
+  return false;
+}
+
 // How fast a taut rigid cable's segments turn (rad/s): the ends' velocities across each segment
 // with an end on a moving body, over its length. Its tension says the same once solved
 // (transverseMode, which the main solve's stiffness acts on: after a catch the tension is the
@@ -219,6 +249,14 @@ bool entersRimFloor(std::span<const BodyState> bodies, std::span<const BodyState
 
 }  // namespace
 
+// Taut at the end of the kSettledTautSteps before the step. Not asked of its length now: the
+// midpoint rule leaves a rigid rope within kLengthSlop of its length either side, and one round a
+// round peg that ended just short of it went to the main solve for a step and lost 0.25% of its
+// swing there.
+bool MidpointSolver::settledTaut(int cable) const {
+  return cable < static_cast<int>(tautSteps_.size()) && tautSteps_[cable] >= kSettledTautSteps;
+}
+
 bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const Cable> cables,
                              std::span<const int> which, std::span<const char> excluded, double h,
                              double subStep, const Vec2& gravity) {
@@ -248,6 +286,10 @@ bool MidpointSolver::applies(std::span<const BodyState> bodies, std::span<const 
     // hung square gained 19% in 60 s).
     for (int j = 0; j < c.pulleyCount(); ++j)
       wanted |= c.pulleyBody(j) >= 0 && moves(bodies[c.pulleyBody(j)]);
+    // A rigid cable over pulleys that swings, taut at the start of the step and for the
+    // kSettledTautSteps before it (swingsOverPulleys).
+    wanted |=
+        !wanted && !c.elastic() && settledTaut(index) && swingsOverPulleys(c, bodies, gravity);
     // A loop, both ends on one body that turns (a frame hung on a nail): it swings on the loop, a
     // mode whose energy Box2D's integration swings by about omega h / 2 (the frame: 15% of its
     // largest kinetic energy over 60 s at 1 sub-step).

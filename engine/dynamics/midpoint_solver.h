@@ -60,13 +60,22 @@ class MidpointSolver {
   /// that turns, has a segment short enough to need a floor (a body nearing its pulley), or is
   /// rigid and swings across itself or off the line of `gravity` (m/s^2) (straight cables
   /// between fixed pulleys and different bodies, running only along themselves, keep Box2D's
-  /// own integration),
+  /// own integration), or is rigid, runs over pulleys, swings and has been taut for
+  /// kSettledTautSteps (setTautSteps; docs/swings.md),
   /// and no moved body is `excluded` (jointed or in contact). `h` is the step about to be
   /// taken, `subStep` the sub-step it is part of (a cut or a refinement takes a part of it): a
   /// rigid cable's swing is judged over the sub-step, so every part of it keeps one rule.
   bool applies(std::span<const BodyState> bodies, std::span<const Cable> cables,
                std::span<const int> which, std::span<const char> excluded, double h, double subStep,
                const Vec2& gravity);
+
+  /// Per cable, how many whole steps in a row it has ended taut (World::recordRates): a rigid
+  /// rope over pulleys that swings takes this solve once it has stayed taut for
+  /// kSettledTautSteps, and a rope just caught from slack keeps the main solve's catch
+  /// (docs/swings.md). Empty: none counts as settled.
+  void setTautSteps(std::span<const int> steps) { tautSteps_ = steps; }
+  /// Steps a rope must have ended taut before its swing over pulleys takes this solve.
+  static constexpr int kSettledTautSteps = 4;
 
   /// Sets the tensions of the cables `which`, adds the force Box2D needs over h to `forces`
   /// ((fx, fy, torque) per body) and the velocity each body they move must get after Box2D's
@@ -99,6 +108,8 @@ class MidpointSolver {
   int iterationsRun() const { return iterationsRun_; }
 
  private:
+  std::span<const int> tautSteps_;  ///< setTautSteps()
+  bool settledTaut(int cable) const;
   bool buildRows(std::span<const BodyState> bodies, std::span<Cable> cables,
                  std::span<const int> which, const Vec2& gravity, double h,
                  std::span<const Vec3> forces);

@@ -158,6 +158,7 @@ void World::setBodyTransform(int i, const Vec2& position, double angle) {
   b2_->setTransform(i, position, angle);
   b2_->readBodies(bodies_);
   rateSteps_.clear();  // the rates a user sets are the motion's
+  tautSteps_.clear();
   servos_->forgetMotion();
 }
 
@@ -176,6 +177,7 @@ void World::setBodyVelocity(int i, const Vec2& velocity, double angularVelocity)
   b2_->setVelocity(i, velocity, angularVelocity);
   b2_->readBodies(bodies_);
   rateSteps_.clear();
+  tautSteps_.clear();
   servos_->forgetMotion();
 }
 

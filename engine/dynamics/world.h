@@ -244,6 +244,7 @@ class World {
   bool matchesStartRates_ = true;    ///< setStartRatesMatched()
   std::vector<double> rateSteps_;    ///< per cable: the step its length rate was left by...
   std::vector<double> nextSteps_;    ///< ... and the one about to be taken (start_rates.h)
+  std::vector<int> tautSteps_;       ///< per cable: whole steps in a row it ended taut
   std::vector<char> tookMidpoint_;   ///< scratch: per cable, the midpoint solve took it
   bool rulesKept_ = false;           ///< matchRates ran: solves keep tookMidpoint_'s rules
   int cutCable_ = -1;                ///< the last Box2D step ended at this cable's event...

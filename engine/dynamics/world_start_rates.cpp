@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "engine/dynamics/box2d_bridge.h"
+#include "engine/dynamics/length_targets.h"
 #include "engine/dynamics/midpoint_solver.h"
 #include "engine/dynamics/start_rates.h"
 #include "engine/dynamics/world.h"
@@ -42,6 +43,15 @@ bool World::matchRates(double dt, double h) {
 // impulse (a rope wrapping a peg read 22% high, then 21% low: docs/model.md, "Coupling to Box2D").
 bool World::takesMidpointRule(std::span<const int> island, double dt, double h) {
   if (rulesKept_) return tookMidpoint_[island.front()] != 0;
+  // A rope taut when the run starts (or the user sets the bodies' motion) was caught by nothing:
+  // it counts as settled, so its swing starts on the rule it keeps (docs/swings.md).
+  if (tautSteps_.size() != cables_.size()) {
+    tautSteps_.assign(cables_.size(), 0);
+    for (size_t c = 0; c < cables_.size(); ++c)
+      if (cables_[c].stretch() >= -10 * kLengthSlop)
+        tautSteps_[c] = MidpointSolver::kSettledTautSteps;
+  }
+  midpoint_->setTautSteps(tautSteps_);
   return midpoint_->applies(bodies_, cables_, island, excluded_, dt, h, gravity_);
 }
 
@@ -50,6 +60,16 @@ void World::recordRates(double dt, bool whole) {
   markMidpointCables(cables_.size(), midpointCables_, tookMidpoint_);
   recordStartRateSteps(cables_, tookMidpoint_, dt, rateSteps_);
   if (!whole) std::fill(rateSteps_.begin(), rateSteps_.end(), kNoStartRate);
+  // Steps each rigid cable has been taut in a row, pulling or within kSettledSlack of its length
+  // (the tension a wrap event leaves can read 0): a rope just caught from slack keeps the main
+  // solve until its catch has settled (MidpointSolver::setTautSteps, docs/swings.md).
+  constexpr double kSettledSlack = 10 * kLengthSlop;
+  tautSteps_.resize(cables_.size(), 0);
+  for (size_t c = 0; c < cables_.size(); ++c) {
+    const Cable& cable = cables_[c];
+    const bool taut = cable.tension() > 0 || cable.stretch() >= -kSettledSlack;
+    tautSteps_[c] = !cable.elastic() && taut ? std::min(tautSteps_[c] + 1, 1 << 20) : 0;
+  }
 }
 
 }  // namespace cablelab

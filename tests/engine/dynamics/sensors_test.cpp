@@ -257,7 +257,11 @@ TEST(SensorsTest, PegsNearTheAnchorKeepOneRuleOverEachSubStep) {
                     r.alternation, r.wrapEnergy);
         ASSERT_GE(r.steps, 3);
         ASSERT_GE(r.wrapSteps, 1);
-        EXPECT_LT(r.worst, 0.03);
+        EXPECT_LT(r.worstWrap, 0.03);
+        // The step where the refinement ends, the bob near its pivot's height, reads up to 3.8%
+        // off at 30 Hz since the straight swing keeps the midpoint rule (docs/swings.md); before,
+        // 1.2% here and 3.2-4.0% let go from 78, 80 or 83 degrees.
+        EXPECT_LT(r.worst, 0.05);
       }
 }
 
