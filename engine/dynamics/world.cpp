@@ -417,11 +417,10 @@ double World::advance(double left, double h, bool locate) {
   using Clock = std::chrono::steady_clock;
   const auto c0 = Clock::now();
   b2_->readBodies(bodies_);
-  // An elastic rope's point about to knock a free polygon bounces off it first (hull_bounce.h),
-  // two polygon pulleys with restitution knock with the taut rigid ropes on them (pulley_knock.h).
-  // Before the step's start is remembered: a pivoted polygon the knock slowed, swinging free of
-  // its rope, was given back the energy it had before (keepJointEnergy) while the point kept what
-  // it took (docs/cables.md, "Points inside a hull").
+  // Knocks first: an elastic rope's point off a free polygon (hull_bounce.h), two polygon pulleys
+  // with restitution with their taut rigid ropes (pulley_knock.h). Then the step's start is
+  // remembered: else a pivoted polygon a knock slowed got back its energy (keepJointEnergy) while
+  // the point kept what it took (docs/cables.md, "Points inside a hull").
   b2_->bounceHullPoints(bodies_, cables_, left);
   if (keepsJointEnergy_ && !scene_.joints.empty()) jointEnergy_->remember(bodies_);
   // Ropes over wheels end the step on the trapezoid rule (wheel_rope_energy.h): from this state.
