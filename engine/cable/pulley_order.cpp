@@ -218,15 +218,30 @@ bool Cable::joinCrossedSegment(int j) {
       // Wedged between two strands, moving would leave its old place's straightened rope across
       // it: its second place joins there instead, and the rope bends round it at both, whatever
       // lies between them and however deep its own wrap (a point's bend with the polygon inside
-      // it is a hairpin over the point; docs/knocks.md, "Wedged in its neighbour's loop").
+      // it is a hairpin over the point; docs/knocks.md, "Wedged in its neighbour's loop"). So
+      // does one whose own wrap keeps it at its place (it cannot move) where it crosses the other
+      // strand of the fixed point its own place runs to: swung over the point into the other
+      // loop, the rope went through it there.
+      const bool moves =
+          std::abs(detour - own) <= kCrossedJoinDetour && neighboursKept(i, side, true);
+      const bool wedged = segmentCutsPolygon(oldFrom, oldTo, p.world);
+      // At a fixed point's bend: its own place runs into (or out of) a point pulley fixed in the
+      // world, and the segment it crosses is that point's other strand (docs/knocks.md, "Across
+      // the other strand at a point").
+      auto fixedPoint = [](const WrapPoint& w) {
+        return w.kind == WrapPoint::Kind::Point && w.body < 0;
+      };
+      const bool atPointsBend =
+          (fixedPoint(wa) && i >= 1 && path_[i - 1].pulley == j) ||
+          (fixedPoint(wb) && i + 2 < path_.size() && path_[i + 2].pulley == j);
       if (first > 0 && p.twin >= 0 && !pulleys_[p.twin].engaged && detour <= kCrossedJoinDetour &&
-          segmentCutsPolygon(oldFrom, oldTo, p.world) && neighboursKept(i, side, false)) {
+          (wedged || (!moves && atPointsBend)) && neighboursKept(i, side, false)) {
         join = static_cast<int>(i);
         joinSide = side;
         joining = p.twin;
         continue;
       }
-      if (std::abs(detour - own) > kCrossedJoinDetour || !neighboursKept(i, side, true)) {
+      if (!moves) {
         // Still bending the rope at its place: while it lies barely across the segment, it
         // keeps the side it came from, and moves once its own wrap lets go.
         if (detour <= kCrossedJoinDetour) p.segmentDepths.back() = *was;

@@ -55,8 +55,11 @@ class Box2DBridge {
 
   /// Applies (fx, fy, torque) per body at its origin for the next step(); zero loads are skipped.
   void applyLoads(std::span<const Vec3> loads);
-  /// One Box2D step of h seconds (fixed velocity and position iterations).
-  void step(double h);
+  /// One Box2D step of h seconds (fixed velocity and position iterations), a piece of a
+  /// sub-step of `substep` seconds: after a piece under a tenth of its sub-step, no contact is
+  /// warm-started with more than the impulse it took over it (docs/knocks.md, "Warm-started
+  /// from a short piece").
+  void step(double h, double substep);
   /// Reverses the approach of an elastic rope's point towards a polygon pulley on another body
   /// that would reach Box2D's contact with it within `horizon` s (hull_bounce.h), and knocks two
   /// polygon pulleys that would, together with the taut rigid ropes of `cables` on them

@@ -573,7 +573,7 @@ double World::advance(double left, double h, bool locate) {
   // Box2D: integrates with those forces, then contacts, friction and joints; then the second
   // half of a midpoint step's velocity change (midpoint_solver.h).
   b2_->applyLoads(forces_);
-  b2_->step(dt);
+  b2_->step(dt, h);
   b2_->addVelocities(kicks_);
   setEndStates(*b2_, {bodies_, scene_.bodies, excluded_, dragBody_, ends_, forces_, kicks_},
                gravity_, dt);
