@@ -27,24 +27,10 @@ bool nearestOnHullFromOutside(const Vec2& p, const std::vector<Vec2>& hull, Vec2
 }  // namespace
 
 HullBounce::HullBounce(const SceneDef& scene, const std::vector<HullContact>& contacts)
-    : responses_(scene.bodies.size()), handled_(scene.bodies.size(), 1) {
-  std::vector<int> joints(scene.bodies.size(), 0);
-  for (const JointDef& jd : scene.joints) {
-    const int a = findBodyIndex(scene, jd.bodyA), b = findBodyIndex(scene, jd.bodyB);
-    for (const int body : {a, b})
-      if (body >= 0) ++joints[body];
-    // A pivot: the body turns about a world point (no limit: the joint never pushes back).
-    const int body = a < 0 ? b : (b < 0 ? a : -1);
-    if (body < 0 || jd.kind != JointDef::Kind::Revolute || jd.enableLimit) continue;
-    const BodyDef& bd = scene.bodies[body];
-    responses_[body].pivoted = true;
-    responses_[body].pivot = rotate(Vec2(jd.anchor - bd.position), -bd.angle);
-  }
-  for (size_t b = 0; b < joints.size(); ++b)
-    handled_[b] = joints[b] == 0 || (joints[b] == 1 && responses_[b].pivoted);
+    : responses_(knockResponses(scene)) {
   for (const HullContact& c : contacts) {
     if (!c.bounces || !c.otherPolygon.empty()) continue;
-    if (!handled_[c.body] || (c.otherBody >= 0 && !handled_[c.otherBody])) continue;
+    if (!responses_[c.body].known || (c.otherBody >= 0 && !responses_[c.otherBody].known)) continue;
     pairs_.push_back({c.body, c.otherBody, c.polygon, c.point, false});
   }
 }
@@ -52,7 +38,7 @@ HullBounce::HullBounce(const SceneDef& scene, const std::vector<HullContact>& co
 double HullBounce::inverseMass(const BodyState& b, int body, const Vec2& at,
                                const Vec2& normal) const {
   if (body < 0) return 0;  // a point fixed in the world
-  const Response& r = responses_[body];
+  const KnockResponse& r = responses_[body];
   if (!r.pivoted) {
     const double arm = cross(Vec2(at - b.position), normal);
     return b.invMass + b.invInertia * arm * arm;
@@ -62,18 +48,18 @@ double HullBounce::inverseMass(const BodyState& b, int body, const Vec2& at,
   return inversePivotInertia(b, r) * arm * arm;
 }
 
-Vec2 HullBounce::pivotOf(const BodyState& b, const Response& r) {
+Vec2 HullBounce::pivotOf(const BodyState& b, const KnockResponse& r) {
   return b.position + rotate(r.pivot, b.angle);
 }
 
 // The parallel-axis theorem: the moment about the pivot is I + m d^2.
-double HullBounce::inversePivotInertia(const BodyState& b, const Response& r) {
+double HullBounce::inversePivotInertia(const BodyState& b, const KnockResponse& r) {
   return 1 / (1 / b.invInertia + r.pivot.squaredNorm() / b.invMass);
 }
 
 void HullBounce::applyImpulse(BodyState& b, int body, const Vec2& at, const Vec2& impulse) const {
   if (body < 0) return;
-  const Response& r = responses_[body];
+  const KnockResponse& r = responses_[body];
   if (!r.pivoted) {
     b.velocity += b.invMass * impulse;
     b.angularVelocity += b.invInertia * cross(Vec2(at - b.position), impulse);

@@ -34,20 +34,13 @@ class HullBounce {
   int pairCount() const { return static_cast<int>(pairs_.size()); }
 
  private:
-  /// How a body answers an impulse: freely (pivoted false) or turning about `pivot` (the body's
-  /// frame).
-  struct Response {
-    bool pivoted = false;
-    Vec2 pivot = Vec2::Zero();
-  };
   struct Pair {
     int polygonBody = -1, pointBody = -1;  ///< pointBody -1: a point fixed in the world
     std::vector<Vec2> polygon;             ///< polygonBody's frame, counter-clockwise
     Vec2 point = Vec2::Zero();             ///< pointBody's frame (the world's)
     bool armed = false;
   };
-  std::vector<Response> responses_;  ///< per body
-  std::vector<char> handled_;        ///< per body: free or pivoted
+  std::vector<KnockResponse> responses_;  ///< per body
   std::vector<Pair> pairs_;
   std::vector<Vec2> hull_;  ///< scratch: the polygon of the pair in hand, in the world frame
 
@@ -55,8 +48,8 @@ class HullBounce {
   /// the velocity of that point.
   double inverseMass(const BodyState& b, int body, const Vec2& at, const Vec2& normal) const;
   /// A pivoted body's pivot in the world, and its inverse moment about it.
-  static Vec2 pivotOf(const BodyState& b, const Response& r);
-  static double inversePivotInertia(const BodyState& b, const Response& r);
+  static Vec2 pivotOf(const BodyState& b, const KnockResponse& r);
+  static double inversePivotInertia(const BodyState& b, const KnockResponse& r);
   void applyImpulse(BodyState& b, int body, const Vec2& at, const Vec2& impulse) const;
 };
 

@@ -31,10 +31,6 @@ bool separatedByAnEdgeOf(const std::vector<Vec2>& p, const std::vector<Vec2>& q)
   return false;
 }
 
-bool hullsOverlap(const std::vector<Vec2>& p, const std::vector<Vec2>& q) {
-  return !separatedByAnEdgeOf(p, q) && !separatedByAnEdgeOf(q, p);
-}
-
 bool sameHullPair(const HullContact& a, const HullContact& b) {
   const bool polygons = !a.otherPolygon.empty() && !b.otherPolygon.empty();
   if (polygons)
@@ -88,6 +84,29 @@ void addHeldStill(int body, const std::vector<Vec2>& polygon,
 }
 
 }  // namespace
+
+bool hullsOverlap(const std::vector<Vec2>& p, const std::vector<Vec2>& q) {
+  return !separatedByAnEdgeOf(p, q) && !separatedByAnEdgeOf(q, p);
+}
+
+std::vector<KnockResponse> knockResponses(const SceneDef& scene) {
+  std::vector<KnockResponse> out(scene.bodies.size());
+  std::vector<int> joints(scene.bodies.size(), 0);
+  for (const JointDef& jd : scene.joints) {
+    const int a = findBodyIndex(scene, jd.bodyA), b = findBodyIndex(scene, jd.bodyB);
+    for (const int body : {a, b})
+      if (body >= 0) ++joints[body];
+    // A pivot: the body turns about a world point (no limit: the joint never pushes back).
+    const int body = a < 0 ? b : (b < 0 ? a : -1);
+    if (body < 0 || jd.kind != JointDef::Kind::Revolute || jd.enableLimit) continue;
+    const BodyDef& bd = scene.bodies[body];
+    out[body].pivoted = true;
+    out[body].pivot = rotate(Vec2(jd.anchor - bd.position), -bd.angle);
+  }
+  for (size_t b = 0; b < joints.size(); ++b)
+    out[b].known = joints[b] == 0 || (joints[b] == 1 && out[b].pivoted);
+  return out;
+}
 
 std::vector<HullContact> hullContacts(const SceneDef& scene) {
   std::vector<HullContact> out;

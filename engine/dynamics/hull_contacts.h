@@ -31,6 +31,22 @@ struct HullContact {
   bool bounces = false;
 };
 
+/// How a body of a scene answers a knock's impulse in closed form: freely (no joint), or turning
+/// about `pivot` (in its frame) on one unlimited revolute joint to the world. `known` is false for
+/// a body on other joints: its knocks stay Box2D's.
+struct KnockResponse {
+  bool known = true;
+  bool pivoted = false;
+  Vec2 pivot = Vec2::Zero();
+};
+
+/// Per body of `scene`.
+std::vector<KnockResponse> knockResponses(const SceneDef& scene);
+
+/// Whether convex counter-clockwise polygons `p` and `q` overlap (no edge of either has the other
+/// wholly outside it).
+bool hullsOverlap(const std::vector<Vec2>& p, const std::vector<Vec2>& q);
+
 /// The pairs of `scene`'s cables: each polygon pulley on a dynamic body with every other polygon
 /// pulley on the same cable (on another body) and every point of the cable (an anchor, a point
 /// pulley) fixed in the world or on another body, any of which becomes its neighbour on the path

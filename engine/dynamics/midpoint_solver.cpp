@@ -128,51 +128,14 @@ Vec2 wrapPointVelocity(const WrapPoint& w, std::span<const BodyState> bodies) {
   return w.body < 0 ? Vec2(Vec2::Zero()) : pointVelocity(bodies[w.body], w.world);
 }
 
-// Whether a cable over fixed point pulleys (an Atwood machine: both ends on bodies, every point
-// between them a point pulley fixed in the world, at least one) moves across itself: some segment
-// with an end on a moving body turns (the ends' velocities differ across it, a body spins) or hangs
-// off the line of gravity, so that its body swings. Tolerances far below any swing worth its
-// energy: a swing that small changing integrator loses nothing measurable. Other rigid cables keep
-// the solve they had: a rope from an anchor (a pendulum, over a pulley or not), a chain's links
-// (the main solve's sparse path for big islands), ropes over circles or polygons; unless taut and
-// swinging faster than the main solve resolves (applies, tautSwingRate).
-bool rigidCableSwings(const Cable& c, std::span<const BodyState> bodies, const Vec2& gravity) {
+// Whether some segment of `path` with an end on a moving body turns (the ends' velocities differ
+// across it, a body spins) or hangs off the line of gravity, so that its body swings. Tolerances
+// far below any swing worth its energy: a swing that small changing integrator loses nothing
+// measurable.
+bool pathSwings(const std::vector<WrapPoint>& path, std::span<const BodyState> bodies,
+                const Vec2& gravity) {
   constexpr double kAcrossSpeed = 1e-7;  // m/s
   constexpr double kOffGravity = 1e-7;   // rad
-  const auto& path = c.path();
-  if (path.size() < 3 || path.front().body < 0 || path.back().body < 0) return false;
-  for (size_t i = 1; i + 1 < path.size(); ++i)
-    if (path[i].kind != WrapPoint::Kind::Point || path[i].body >= 0) return false;
-  for (size_t i = 0; i + 1 < path.size(); ++i) {
-    const WrapPoint &p = path[i], &q = path[i + 1];
-    const bool movesP = p.body >= 0 && moves(bodies[p.body]);
-    const bool movesQ = q.body >= 0 && moves(bodies[q.body]);
-    if (!movesP && !movesQ) continue;
-    const Vec2 d = q.world - p.world;
-    const double length = d.norm();
-    if (!(length > 0)) continue;
-    const Vec2 u = d / length;
-    if (std::abs(cross(u, wrapPointVelocity(q, bodies) - wrapPointVelocity(p, bodies))) >
-        kAcrossSpeed)
-      return true;
-    if (std::abs(cross(u, gravity)) > kOffGravity * gravity.norm()) return true;
-    for (const WrapPoint* w : {&p, &q})
-      if (w->body >= 0 && bodies[w->body].angularVelocity != 0) return true;
-  }
-  return false;
-}
-
-// Whether a rigid cable over pulleys swings: a segment with an end on a moving body turns (its
-// ends' velocities differ across it, a body spins) or hangs off the line of gravity. A rope that
-// wraps and unwraps a peg took the midpoint rule while wrapped and the main solve while straight,
-// and each switch locked in the main solve's energy swing: a bob round a peg lost 37% of its
-// swing in 10 minutes at 60 Hz, 91% round a square one (docs/swings.md). Hung straight (an
-// Atwood machine at rest), it keeps Box2D's integration, exact there.
-bool swingsOverPulleys(const Cable& c, std::span<const BodyState> bodies, const Vec2& gravity) {
-  constexpr double kAcrossSpeed = 1e-7;  // m/s, as rigidCableSwings
-  constexpr double kOffGravity = 1e-7;   // rad
-  if (c.pulleyCount() == 0) return false;
-  const auto& path = c.path();
   for (size_t i = 0; i + 1 < path.size(); ++i) {
     const WrapPoint &p = path[i], &q = path[i + 1];
     const bool movesP = p.body >= 0 && moves(bodies[p.body]);
@@ -190,6 +153,29 @@ bool swingsOverPulleys(const Cable& c, std::span<const BodyState> bodies, const 
       if (w->body >= 0 && bodies[w->body].angularVelocity != 0) return true;
   }
   return false;
+}
+
+// Whether a cable over fixed point pulleys (an Atwood machine: both ends on bodies, every point
+// between them a point pulley fixed in the world, at least one) swings (pathSwings). Other rigid
+// cables keep the solve they had: a rope from an anchor (a pendulum, over a pulley or not), a
+// chain's links (the main solve's sparse path for big islands), ropes over circles or polygons;
+// unless taut and swinging faster than the main solve resolves (applies, tautSwingRate), or
+// settled taut over pulleys (swingsOverPulleys).
+bool rigidCableSwings(const Cable& c, std::span<const BodyState> bodies, const Vec2& gravity) {
+  const auto& path = c.path();
+  if (path.size() < 3 || path.front().body < 0 || path.back().body < 0) return false;
+  for (size_t i = 1; i + 1 < path.size(); ++i)
+    if (path[i].kind != WrapPoint::Kind::Point || path[i].body >= 0) return false;
+  return pathSwings(path, bodies, gravity);
+}
+
+// Whether a rigid cable over pulleys swings (pathSwings). A rope that wraps and unwraps a peg took
+// the midpoint rule while wrapped and the main solve while straight, and each switch locked in the
+// main solve's energy swing: a bob round a peg lost 37% of its swing in 10 minutes at 60 Hz, 91%
+// round a square one (docs/swings.md). Hung straight (an Atwood machine at rest), it keeps Box2D's
+// integration, exact there.
+bool swingsOverPulleys(const Cable& c, std::span<const BodyState> bodies, const Vec2& gravity) {
+  return c.pulleyCount() > 0 && pathSwings(c.path(), bodies, gravity);
 }
 
 // How fast a taut rigid cable's segments turn (rad/s): the ends' velocities across each segment

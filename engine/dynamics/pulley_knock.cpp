@@ -22,17 +22,6 @@ std::vector<Vec2> hullAtPose(const BodyState& b, const std::vector<Vec2>& local)
   return out;
 }
 
-// Whether convex counter-clockwise `q` lies wholly outside one edge of convex `p`.
-bool wholeSideOfAnEdge(const std::vector<Vec2>& p, const std::vector<Vec2>& q) {
-  for (size_t i = 0; i < p.size(); ++i) {
-    const Vec2 edge = p[(i + 1) % p.size()] - p[i];
-    bool outside = true;
-    for (const Vec2& v : q) outside &= cross(edge, v - p[i]) < 0;
-    if (outside) return true;
-  }
-  return false;
-}
-
 // The nearest points of two convex hulls that do not overlap: a vertex of one and the nearest
 // point of an edge of the other. Returns the gap (m).
 double nearestHullPoints(const std::vector<Vec2>& a, const std::vector<Vec2>& b, Vec2& onA,
@@ -78,23 +67,7 @@ double rowRate(const std::vector<std::pair<int, Vec3>>& entries,
 }  // namespace
 
 PulleyKnock::PulleyKnock(const SceneDef& scene, const std::vector<HullContact>& contacts)
-    : pivoted_(scene.bodies.size(), 0),
-      handled_(scene.bodies.size(), 1),
-      pivot_(scene.bodies.size(), Vec2::Zero()) {
-  std::vector<int> joints(scene.bodies.size(), 0);
-  for (const JointDef& jd : scene.joints) {
-    const int a = findBodyIndex(scene, jd.bodyA), b = findBodyIndex(scene, jd.bodyB);
-    for (const int body : {a, b})
-      if (body >= 0) ++joints[body];
-    // A pivot: the body turns about a world point (no limit: the joint never pushes back).
-    const int body = a < 0 ? b : (b < 0 ? a : -1);
-    if (body < 0 || jd.kind != JointDef::Kind::Revolute || jd.enableLimit) continue;
-    const BodyDef& bd = scene.bodies[body];
-    pivoted_[body] = 1;
-    pivot_[body] = rotate(Vec2(jd.anchor - bd.position), -bd.angle);
-  }
-  for (size_t b = 0; b < joints.size(); ++b)
-    handled_[b] = joints[b] == 0 || (joints[b] == 1 && pivoted_[b]);
+    : responses_(knockResponses(scene)) {
   for (const HullContact& c : contacts) {
     if (c.otherPolygon.empty() || c.body < 0 || c.otherBody < 0) continue;
     if (scene.bodies[c.body].type != BodyType::Dynamic ||
@@ -108,20 +81,22 @@ PulleyKnock::PulleyKnock(const SceneDef& scene, const std::vector<HullContact>& 
 }
 
 bool PulleyKnock::knocks(int a, int b) const {
-  if (a < 0 || b < 0 || !handled_[a] || !handled_[b]) return false;
+  if (a < 0 || b < 0 || !responses_[a].known || !responses_[b].known) return false;
   return std::any_of(pairs_.begin(), pairs_.end(), [&](const Pair& p) {
     return (p.bodyA == a && p.bodyB == b) || (p.bodyA == b && p.bodyB == a);
   });
 }
 
 Vec3 PulleyKnock::response(const BodyState& b, int body, const Vec3& w) const {
-  if (!pivoted_[body]) return Vec3(b.invMass * w.x(), b.invMass * w.y(), b.invInertia * w.z());
+  if (!responses_[body].pivoted)
+    return Vec3(b.invMass * w.x(), b.invMass * w.y(), b.invInertia * w.z());
   if (!(b.invMass > 0) || !(b.invInertia > 0)) return Vec3::Zero();  // held still by its pivot
   // Turning about the pivot p: the origin moves at omega perp(x - p); the moment about p is
   // I + m |x - p|^2 (parallel axes).
-  const Vec2 arm = -rotate(pivot_[body], b.angle);
+  const Vec2 arm = -rotate(responses_[body].pivot, b.angle);
   const Vec3 u(perp(arm).x(), perp(arm).y(), 1.0);
-  const double inverseMoment = 1 / (1 / b.invInertia + pivot_[body].squaredNorm() / b.invMass);
+  const double inverseMoment =
+      1 / (1 / b.invInertia + responses_[body].pivot.squaredNorm() / b.invMass);
   return inverseMoment * u.dot(w) * u;
 }
 
@@ -179,14 +154,14 @@ std::vector<int> PulleyKnock::knock(std::vector<BodyState>& bodies, std::span<co
   for (int pass = 0; pass < kPasses; ++pass) {
     bool any = false;
     for (Pair& p : pairs_) {
-      if (!handled_[p.bodyA] || !handled_[p.bodyB]) continue;
+      if (!responses_[p.bodyA].known || !responses_[p.bodyB].known) continue;
       const BodyState &a = bodies[p.bodyA], &b = bodies[p.bodyB];
       // The hulls' gap (m; < 0 overlapping) t s ahead at the present velocities.
       Vec2 onA = Vec2::Zero(), onB = Vec2::Zero();
       auto gapAhead = [&](double t) {
         const std::vector<Vec2> hullA = hullAtPose(ahead(a, t), p.polygonA),
                                 hullB = hullAtPose(ahead(b, t), p.polygonB);
-        if (!wholeSideOfAnEdge(hullA, hullB) && !wholeSideOfAnEdge(hullB, hullA)) return -1.0;
+        if (hullsOverlap(hullA, hullB)) return -1.0;
         return nearestHullPoints(hullA, hullB, onA, onB);
       };
       const double gap = gapAhead(0);
@@ -228,7 +203,7 @@ std::vector<int> PulleyKnock::knock(std::vector<BodyState>& bodies, std::span<co
         if (!on) continue;
         Row rope;  // its shortening rate: the tension's impulse is >= 0
         for (const BodyJacobian& e : jacobian) {
-          handled &= handled_[e.body] != 0;
+          handled &= responses_[e.body].known;
           rope.entries.emplace_back(e.body, -e.d);
         }
         rope.rate = rowRate(rope.entries, bodies);

@@ -51,8 +51,7 @@ class PulleyKnock {
     double rate = 0;    ///< before the knock
     double target = 0;  ///< after it
   };
-  std::vector<char> pivoted_, handled_;  ///< per body
-  std::vector<Vec2> pivot_;              ///< per pivoted body, in its frame
+  std::vector<KnockResponse> responses_;  ///< per body
   std::vector<Pair> pairs_;
 
   /// The velocity change (x, y, turn) of body `body` for the wrench `w` at its origin.
