@@ -415,6 +415,7 @@ bool Cable::joinRound(std::vector<std::string>* warnings) {
     }
     // A free polygon crossing another segment joins it (pulley_order.cpp).
     if (joinsAnySegment(j) && joinCrossedSegment(j)) return true;
+    if (besideItsOtherPlace(j, path_[host], path_[host + 1])) continue;
     const Vec2 a = path_[host].leaving();
     const Vec2 b = path_[host + 1].arriving();
     const Vec2 ab = b - a;

@@ -510,6 +510,15 @@ class Cable {
   void addSecondPlaces();
   /// A second place off the path: it takes part in nothing until its sibling puts it on.
   bool idleSecondPlace(int j) const { return pulleys_[j].secondPlace && !pulleys_[j].engaged; }
+  /// Pulley j off the path, its other place (a free polygon's: pulley_order.cpp) on it at an end
+  /// of the segment from path point a to path point b: the polygon is there already, and a corner
+  /// of it crossing the segment is that place's chain growing, not a join (docs/knocks.md, "Next
+  /// to its own other place").
+  bool besideItsOtherPlace(int j, const WrapPoint& a, const WrapPoint& b) const {
+    const int twin = pulleys_[j].twin;
+    return !pulleys_[j].engaged && twin >= 0 && pulleys_[twin].engaged &&
+           (a.pulley == twin || b.pulley == twin);
+  }
   /// Moves pulley j's place in the order to right after the pulley segment `i` starts at.
   void placeAfterSegment(int j, size_t i);
   /// Whether pulley j may join any segment of the path, not only its own (pulley_order.cpp).

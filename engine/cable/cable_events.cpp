@@ -87,7 +87,9 @@ std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, 
     for (int r = lo + 1; r < hi; ++r) {
       const int j = order_[r];
       const PulleyState& p = pulleys_[j];
-      if (p.engaged || p.side == WrapSide::Threaded || p.secondPlace) continue;
+      if (p.engaged || p.side == WrapSide::Threaded || p.secondPlace ||
+          besideItsOtherPlace(j, a, b))
+        continue;
       for (int v = 0; v < static_cast<int>(p.local.size()); ++v)
         tryPoint(j, v, WrapEvent::Kind::Join);
     }
@@ -100,7 +102,9 @@ std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, 
         const bool mine = a.pulley == j || b.pulley == j ||
                           (p.twin >= 0 && (a.pulley == p.twin || b.pulley == p.twin));
         const bool own = p.engaged ? mine : r > lo && r < hi;
-        if (own || p.dropped || idleSecondPlace(j) || !joinsAnySegment(j)) continue;
+        if (own || p.dropped || idleSecondPlace(j) || !joinsAnySegment(j) ||
+            besideItsOtherPlace(j, a, b))
+          continue;
         // One on the path that the segment already cuts cannot move there (pulley_order.cpp).
         if (p.engaged && segmentCutsPolygon(a.leaving(), b.arriving(), p.world)) continue;
         for (int v = 0; v < static_cast<int>(pulleys_[j].local.size()); ++v)

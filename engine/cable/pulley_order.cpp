@@ -177,6 +177,7 @@ bool Cable::joinCrossedSegment(int j) {
     if (onPath && (wa.pulley == j || wb.pulley == j ||
                    (p.twin >= 0 && (wa.pulley == p.twin || wb.pulley == p.twin))))
       continue;
+    if (besideItsOtherPlace(j, wa, wb)) continue;
     const Vec2 a = wa.leaving();
     const Vec2 b = wb.arriving();
     double left = -1e300, right = -1e300;
