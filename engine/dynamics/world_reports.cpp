@@ -124,7 +124,9 @@ void World::reportDrumArrivals() {
       const bool atFloor = gap <= kFloorLength + kLengthSlop ||
                            (atStart ? atRimFloor(drum, other) : atRimFloor(other, drum));
       if (said || !hasFloors(cables_[i])) continue;
-      const bool touches = !atFloor && touch(drum.body, other.body);
+      // touching_: both bodies in some contact in the last sub-step (a cheap test first).
+      const bool touches =
+          !atFloor && touching_[drum.body] && touching_[other.body] && touch(drum.body, other.body);
       if (!atFloor && !touches) continue;
       // d length / d drum angle, the cable's Jacobian (cable_kinematics.cpp): the length counts
       // the rope wound on the drum, so a drum that winds adds to it and the rope's row pulls the
