@@ -110,7 +110,7 @@ World::World(SceneDef scene, const std::string& source)
   servos_ = std::make_unique<ServoDrive>(scene_, jointBodies_);
   jointForces_.assign(scene_.joints.size(), 0.0);
   servoImpulses_.assign(scene_.joints.size(), 0.0);
-  stalledSince_.assign(scene_.joints.size(), -1.0);
+  stalls_.assign(scene_.joints.size(), StallWatch{});
   cables_.reserve(scene_.cables.size());
   for (int i = 0; i < static_cast<int>(scene_.cables.size()); ++i)
     cables_.emplace_back(scene_, i, source);

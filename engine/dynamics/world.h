@@ -29,6 +29,7 @@
 
 #include "engine/cable/cable.h"
 #include "engine/dynamics/contact_force.h"
+#include "engine/dynamics/stall_watch.h"
 #include "engine/dynamics/world_history.h"
 #include "engine/model/scene.h"
 
@@ -271,7 +272,7 @@ class World {
   std::vector<JointCoordinate> jointCoordinates_;  ///< scratch: every joint's value and rate
   std::vector<double> servoImpulses_;  ///< per joint, its servo's impulse over this step (N s)
   std::vector<double> jointForces_;    ///< ... over the last step (N or N m): JointState::force
-  std::vector<double> stalledSince_;   ///< per joint: when its servo stalled (< 0: it has not)
+  std::vector<StallWatch> stalls_;     ///< per joint: whether its servo has stalled
   std::vector<char> drumArrived_;  ///< per cable end (2 i + 1 the end): reportDrumArrivals() said
   StepStats stats_;
   double time_ = 0;

@@ -10,15 +10,13 @@
 #include "engine/dynamics/box2d_bridge.h"
 #include "engine/dynamics/floors.h"
 #include "engine/dynamics/length_targets.h"
+#include "engine/dynamics/stall_watch.h"
 #include "engine/dynamics/world.h"
 
 namespace cablelab {
 
 namespace world_reports {
 
-constexpr double kStallRate = 1e-3;  // rad/s or m/s: a servo's joint moving slower is stalled
-constexpr double kStallAcceleration = 1e-3;  // rad/s^2 or m/s^2: ... and speeding up less
-constexpr double kStallRelease = 0.9;  // of max_force: a stalled servo pushing less is released
 constexpr double kOverstretch = 0.01;  // m: a rigid cable this far over its rest length is said
 
 }  // namespace world_reports
@@ -99,10 +97,20 @@ void World::reportPayOuts() {
 // A drum end on a servo's joint that winds its cable, the body at the segment's other end at the
 // segment's floor (docs/floors.md): the weight is wound up to the drum, and the servo, which
 // cannot wind further, pushes harder until it stalls (docs/servos.md, "Stalls"), which can take
-// a minute (the built-in winch: 50 s). Said once an arrival, with the time; a weight that
-// bounces at the drum arrives once, and only one paid out past kFloorWatch arrives anew.
+// a minute (the built-in winch: 50 s). A weight that touches a solid drum is not held there: the
+// rope winds it over and round the drum (a bare drum), so that arrival says so and no stall.
+// Said once an arrival, with the time; a weight that bounces at the drum arrives once, and only
+// one paid out past kFloorWatch arrives anew.
 void World::reportDrumArrivals() {
   drumArrived_.resize(2 * cables_.size(), 0);
+  std::vector<ContactForce> contacts;  // read once, for the first drum not at its floor
+  bool contactsRead = false;
+  auto touch = [&](int a, int b) {
+    if (!contactsRead) contacts = b2_->contactForces(), contactsRead = true;
+    return std::any_of(contacts.begin(), contacts.end(), [&](const ContactForce& c) {
+      return (c.bodyA == a && c.bodyB == b) || (c.bodyA == b && c.bodyB == a);
+    });
+  };
   for (size_t i = 0; i < cables_.size(); ++i) {
     const std::vector<WrapPoint>& path = cables_[i].path();
     for (const bool atStart : {true, false}) {
@@ -115,7 +123,11 @@ void World::reportDrumArrivals() {
       if (gap > kFloorWatch) said = 0;  // paid out well clear: a later arrival is a new one
       const bool atFloor = gap <= kFloorLength + kLengthSlop ||
                            (atStart ? atRimFloor(drum, other) : atRimFloor(other, drum));
-      if (said || !atFloor || !hasFloors(cables_[i])) continue;
+      if (said || !hasFloors(cables_[i])) continue;
+      // touching_: both bodies in some contact in the last sub-step (a cheap test first).
+      const bool touches =
+          !atFloor && touching_[drum.body] && touching_[other.body] && touch(drum.body, other.body);
+      if (!atFloor && !touches) continue;
       // d length / d drum angle, the cable's Jacobian (cable_kinematics.cpp): the length counts
       // the rope wound on the drum, so a drum that winds adds to it and the rope's row pulls the
       // weight in by as much.
@@ -133,43 +145,42 @@ void World::reportDrumArrivals() {
         said = 1;
         char when[32];
         std::snprintf(when, sizeof when, "%.6g", time_);
-        warnings_.push_back("cable '" + cables_[i].name() + "': the weight '" +
-                            scene_.bodies[other.body].name + "' reached the drum '" +
-                            scene_.bodies[drum.body].name + "' at t = " + when +
-                            " s: the rope is wound in as far as it goes, and joint '" + joint.name +
-                            "' pushes harder to wind it on until its servo stalls at max_force " +
-                            formatNumber(joint.servo.maxForce) + " N m");
+        const std::string arrived = "cable '" + cables_[i].name() + "': the weight '" +
+                                    scene_.bodies[other.body].name + "' reached the drum '" +
+                                    scene_.bodies[drum.body].name + "' at t = " + when + " s";
+        if (touches)
+          warnings_.push_back(arrived + " and touches it: the drum is solid, so where joint '" +
+                              joint.name + "' lifts more than the weight it winds the weight " +
+                              "over the drum and round it on the rope, as a bare drum does (a " +
+                              "sensor drum holds it at the rim, where the servo stalls)");
+        else
+          warnings_.push_back(arrived + ": the rope is wound in as far as it goes, and joint '" +
+                              joint.name +
+                              "' pushes harder to wind it on until its servo stalls at max_force " +
+                              formatNumber(joint.servo.maxForce) + " N m");
         break;
       }
     }
   }
 }
 
-// A servo at its max_force whose joint neither moves nor speeds up the way it pushes
-// (kStallRate, kStallAcceleration) over the step is stalled: it cannot move what it drives (one
-// braking its joint at max_force is moving it). Said once a stall, naming the joint; the stall
-// ends when its force falls back below kStallRelease of max_force.
+// A servo at its max_force whose joint stays nearly still has stalled: it cannot move what it
+// drives (StallWatch, docs/servos.md "Stalls"; one braking its joint, or pulled back by its load,
+// moves it). Said once a stall, naming the joint and the window it kept still over.
 void World::reportStalls(double dt) {
   for (size_t j = 0; j < scene_.joints.size(); ++j) {
     const ServoDef& servo = scene_.joints[j].servo;
     if (!servo.enabled) continue;
-    const double f = jointForces_[j];
-    if (std::abs(f) < world_reports::kStallRelease * servo.maxForce) stalledSince_[j] = -1;
-    const double rate = b2_->jointCoordinate(static_cast<int>(j)).speed;
-    // applyServos read the rate at the start of the last Box2D step.
-    const double gained = j < jointCoordinates_.size() ? rate - jointCoordinates_[j].speed : 0.0;
-    const double push = f > 0 ? 1 : -1;
-    const bool atMax = std::abs(f) >= (1 - 1e-9) * servo.maxForce;
-    if (stalledSince_[j] >= 0 || !atMax || rate * push > world_reports::kStallRate ||
-        gained * push > world_reports::kStallAcceleration * dt)
-      continue;
-    stalledSince_[j] = time_ - dt;
+    const JointCoordinate q = b2_->jointCoordinate(static_cast<int>(j));
+    StallWatch& watch = stalls_[j];
+    if (!watch.update(jointForces_[j], servo.maxForce, q.value, q.speed, time_, dt)) continue;
     const bool turns = scene_.joints[j].kind == JointDef::Kind::Revolute;
     warnings_.push_back(
         "joint '" + scene_.joints[j].name + "': its servo pushes with all it has (" + "max_force " +
         formatNumber(servo.maxForce) + (turns ? " N m" : " N") +
-        ") and cannot move what it drives: stalled from t = " + formatNumber(stalledSince_[j]) +
-        " s (a stronger servo or a lighter load moves it)");
+        ") and cannot move what it drives: stalled from t = " + formatNumber(watch.start) +
+        " s (still to within " + formatNumber(StallWatch::kStillRange) + (turns ? " rad" : " m") +
+        " through t = " + formatNumber(time_) + " s; a stronger servo or a lighter load moves it)");
   }
 }
 
