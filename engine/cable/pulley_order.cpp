@@ -14,6 +14,7 @@
 // joins the strand it crosses, and the rope bends round it at both, whatever lies between the
 // two strands (a neighbouring polygon's loop, a point's bend) and however deep its own wrap.
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "engine/cable/cable.h"
@@ -235,8 +236,27 @@ bool Cable::joinCrossedSegment(int j) {
       const bool atPointsBend =
           (fixedPoint(wa) && i >= 1 && path_[i - 1].pulley == j) ||
           (fixedPoint(wb) && i + 2 < path_.size() && path_[i + 2].pulley == j);
+      // Or the strand it crosses runs to an end anchor fixed in the world from the place next to
+      // its own along the path (past that place's chain), its own place wound less than a whole
+      // turn: swung round its neighbour, it came down on the rope's first or last strand
+      // (docs/knocks.md, "Across a strand to an end anchor"). Wound a turn or more, a second place
+      // there tangled the two (releases jumped the length 2-9 cm); on a strand from a place not
+      // next to its own, two squares wound round each other and fell through the rope.
+      auto besideOwnPlace = [&]() {
+        if (i == 0) {
+          size_t k = 1;
+          while (k + 1 < path_.size() && path_[k + 1].pulley == path_[1].pulley) ++k;
+          return k + 1 < path_.size() && path_[k + 1].pulley == j;
+        }
+        size_t k = i;
+        while (k > 0 && path_[k - 1].pulley == path_[i].pulley) --k;
+        return k > 0 && path_[k - 1].pulley == j;
+      };
+      const bool toEndAnchor =
+          ((i == 0 && wa.body < 0) || (i + 2 == path_.size() && wb.body < 0)) && p.arc < 2 * M_PI &&
+          besideOwnPlace();
       if (first > 0 && p.twin >= 0 && !pulleys_[p.twin].engaged && detour <= kCrossedJoinDetour &&
-          (wedged || (!moves && atPointsBend)) && neighboursKept(i, side, false)) {
+          (wedged || (!moves && (atPointsBend || toEndAnchor))) && neighboursKept(i, side, false)) {
         join = static_cast<int>(i);
         joinSide = side;
         joining = p.twin;
