@@ -14,6 +14,7 @@
 // joins the strand it crosses, and the rope bends round it at both, whatever lies between the
 // two strands (a neighbouring polygon's loop, a point's bend) and however deep its own wrap.
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "engine/cable/cable.h"
@@ -235,8 +236,31 @@ bool Cable::joinCrossedSegment(int j) {
       const bool atPointsBend =
           (fixedPoint(wa) && i >= 1 && path_[i - 1].pulley == j) ||
           (fixedPoint(wb) && i + 2 < path_.size() && path_[i + 2].pulley == j);
+      // Or the strand it crosses runs from the place next to its own along the path (past that
+      // place's chain) to a point fixed in the world (an end anchor, a point pulley), its own place
+      // wound less than a whole turn: swung round its neighbour, it came down on that neighbour's
+      // strand (docs/knocks.md, "Across a strand to a fixed point"). Wound a turn or more, a
+      // second place there tangled the two (releases jumped the length 2-9 cm); on a strand from
+      // a place not next to its own, two squares wound round each other and fell through the rope.
+      auto fixedEnd = [](const WrapPoint& w) {
+        return w.body < 0 &&
+               (w.kind == WrapPoint::Kind::Anchor || w.kind == WrapPoint::Kind::Point);
+      };
+      // Pulley j's place is next to the segment's end at path_[k] (past that place's chain),
+      // on the side away from the segment.
+      auto placeBeyond = [&](size_t k, int walk) {
+        if (path_[k].kind != WrapPoint::Kind::Vertex) return false;
+        const int n = static_cast<int>(path_.size());
+        int m = static_cast<int>(k);
+        while (m + walk >= 0 && m + walk < n && path_[m + walk].pulley == path_[k].pulley)
+          m += walk;
+        return m + walk >= 0 && m + walk < n && path_[m + walk].pulley == j;
+      };
+      const bool besideToFixed = p.arc < 2 * M_PI && ((fixedEnd(wa) && placeBeyond(i + 1, 1)) ||
+                                                      (fixedEnd(wb) && placeBeyond(i, -1)));
       if (first > 0 && p.twin >= 0 && !pulleys_[p.twin].engaged && detour <= kCrossedJoinDetour &&
-          (wedged || (!moves && atPointsBend)) && neighboursKept(i, side, false)) {
+          (wedged || (!moves && (atPointsBend || besideToFixed))) &&
+          neighboursKept(i, side, false)) {
         join = static_cast<int>(i);
         joinSide = side;
         joining = p.twin;
