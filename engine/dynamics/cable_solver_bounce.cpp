@@ -98,6 +98,62 @@ void bounceTargets(Workspace& ws, const CableSolveInput& in, std::span<const Cab
 
 }  // namespace
 
+namespace {
+
+// Whether the island's knocks are taken as impulses at the start of the step: every cable row
+// elastic, so no row passes an impulse on within the step (a rigid rope throws the other side
+// back up with the knocked one; its knock stays a target, bounceTargets).
+bool knocksAsImpulses(const Workspace& ws, std::span<const Cable> cables) {
+  return std::all_of(ws.rows.begin(), ws.rows.end(),
+                     [&](const Workspace::Row& row) { return cables[row.cable].elastic(); });
+}
+
+// The knock on an island of elastic rows (docs/floors.md, "Bouncing off a pulley"): the floor
+// rows' impulses that turn each segment's closing speed v into -e v at the start of the step,
+// from J0 W (a spring passes no impulse), added to the start velocities; the step is then solved
+// from there with the floors plain. Asked of the end of the step instead (the free step's end
+// value opened by (1 + e) v h), the knock ignored how the bounce itself stretches the rope: an
+// elastic Atwood's light side, turned back while its heavy side still fell, had the pulls of a
+// free step that passed through its point pulley (where the rope's length folds), and stopped
+// dead, losing up to 7.7 J of a 17 J kinetic energy in the step. A knock that gains beyond the
+// allowance takes the largest share of it that does not (halving), as solveBouncing.
+void knockAsImpulses(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables,
+                     StepStats& stats) {
+  const int count = static_cast<int>(ws.bounces.size());
+  Eigen::MatrixXd rowsW(count, count);
+  Eigen::VectorXd turn(count);
+  for (int i = 0; i < count; ++i) {
+    const Workspace::Bounce& b = ws.bounces[i];
+    ws.target[b.row] = b.held;
+    turn[i] = b.opening / in.h;  // (1 + e) v
+    for (int j = 0; j < count; ++j) rowsW(i, j) = ws.JW0(b.row, ws.bounces[j].row);
+  }
+  const Eigen::VectorXd knock = rowsW.completeOrthogonalDecomposition().solve(turn).cwiseMax(0.0);
+  Eigen::VectorXd impulses = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(ws.rows.size()));
+  for (int i = 0; i < count; ++i) impulses[ws.bounces[i].row] = knock[i];
+  const Eigen::VectorXd dv = ws.W * impulses, vStar = ws.vStar, v0 = ws.v0;
+  double kinetic0, ignored;
+  const double start = islandEnergy(ws, in, cables, false, kinetic0);
+  const double allowed = start + kBounceEnergyAllowance * kinetic0;
+  auto energyWithShare = [&](double share) {
+    ws.vStar = vStar - share * dv;
+    ws.v0 = v0 - share * dv;
+    newtonOnLengths(ws, in, cables, stats);
+    return islandEnergy(ws, in, cables, true, ignored);
+  };
+  if (!(knock.allFinite()) || energyWithShare(1) <= allowed) return;
+  double kept = 0, gains = 1;
+  bool lastKept = false;
+  for (int i = 0; i < kBounceHalvings; ++i) {
+    const double share = 0.5 * (kept + gains);
+    lastKept = energyWithShare(share) <= allowed;
+    (lastKept ? kept : gains) = share;
+  }
+  if (!lastKept) energyWithShare(kept);
+}
+
+}  // namespace
+
 // 5b, after floorBounces: a first solve with the bouncing floors left free, then the bounce. A
 // bounce may end the step with no more energy than it starts with or the free step (which passes
 // through the floor) ends with: a bungee's bob that struck a round pulley from the side, its rope
@@ -111,6 +167,10 @@ void bounceTargets(Workspace& ws, const CableSolveInput& in, std::span<const Cab
 // bisected alone, 3% of it.
 void solveBouncing(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables,
                    StepStats& stats) {
+  if (knocksAsImpulses(ws, cables)) {
+    knockAsImpulses(ws, in, cables, stats);
+    return;
+  }
   // The free step is a probe: it may pass a body through its point pulley, where no length is
   // smooth, and miss its lengths. Counted unsettled, World halved the step down to a gap the
   // bounce could no longer open (docs/floors.md, "Bouncing off a pulley").
