@@ -59,30 +59,37 @@ constexpr int kBounceHalvings = 6;  // of the share of a bounce that gains (to 1
 // knock ignored the pulls over the step: a bungee's bob, turned back against its spring's pull T,
 // gained T v h. Reflected at the floor, its velocity, (gap1 - gap0) / h as Box2D moves it, fell
 // short by (1 + e) (gap0 - 1 cm) / h. e = 0 keeps lengthTargets' plastic stop.
-bool floorBounces(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
-  ws.bounces.clear();
-  if (ws.restitution.empty()) return false;
+double floorKnock(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables, int r,
+                  double& phi) {
+  const Workspace::Row& row = ws.rows[r];
+  if (row.segment < 0 || ws.restitution.empty()) return 0;
   auto restitution = [&](int body) {
     return body >= 0 && body < static_cast<int>(ws.restitution.size()) ? ws.restitution[body] : 0.0;
   };
+  const Cable& c = cables[row.cable];
+  const double e = std::max(restitution(c.path()[row.segment].body),
+                            restitution(c.path()[row.segment + 1].body));
+  if (!(e > 0)) return 0;
+  phi = floorRow(ws, in.bodies, c, row);  // kFloorLength - gap, at the start
+  // Inside an elastic cable's floor already: held where it is (lengthTargets), not thrown out.
+  if (c.elastic() && phi > kCameInsideFloor) return 0;
+  double closing = 0;  // d phi / dt at the start of the step
+  for (const BodyJacobian& j : ws.floorJacobian) {
+    const BodyState& b = in.bodies[j.body];
+    closing += j.d.dot(Vec3(b.velocity.x(), b.velocity.y(), b.angularVelocity));
+  }
+  // Slow, or too far off to arrive within the step (pulls may speed it up to twice as fast).
+  if (closing < kSlowestBounce || -phi > 2 * closing * in.h) return 0;
+  return (1 + e) * closing * in.h;
+}
+
+bool floorBounces(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  ws.bounces.clear();
   for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
-    const Workspace::Row& row = ws.rows[r];
-    if (row.segment < 0) continue;
-    const Cable& c = cables[row.cable];
-    const double e = std::max(restitution(c.path()[row.segment].body),
-                              restitution(c.path()[row.segment + 1].body));
-    if (!(e > 0)) continue;
-    const double phi = floorRow(ws, in.bodies, c, row);  // kFloorLength - gap, at the start
-    // Inside an elastic cable's floor already: held where it is (lengthTargets), not thrown out.
-    if (c.elastic() && phi > kCameInsideFloor) continue;
-    double closing = 0;  // d phi / dt at the start of the step
-    for (const BodyJacobian& j : ws.floorJacobian) {
-      const BodyState& b = in.bodies[j.body];
-      closing += j.d.dot(Vec3(b.velocity.x(), b.velocity.y(), b.angularVelocity));
-    }
-    // Slow, or too far off to arrive within the step (pulls may speed it up to twice as fast).
-    if (closing < kSlowestBounce || -phi > 2 * closing * in.h) continue;
-    ws.bounces.push_back({r, (1 + e) * closing * in.h, ws.target[r]});
+    double phi = 0;
+    const double opening = floorKnock(ws, in, cables, r, phi);
+    if (!(opening > 0)) continue;
+    ws.bounces.push_back({r, opening, ws.target[r]});
     ws.target[r] = phi + kFreeFloor;  // free for the first solve
   }
   return !ws.bounces.empty();

@@ -46,11 +46,11 @@ bool rigidRowTakesMidpointRule(const CableSolveInput& in, const Cable& c) {
   return false;
 }
 
-// A floor row the midpoint rule keeps (as a plain floor): along an elastic rope's segment
-// between two points (a body's anchor, a point pulley). Ruled out, an elastic Atwood's light side
-// near its point pulley took the backward-Euler spring, which at omega h = 1 lost 40% of the
-// knock's kinetic energy in the step (docs/floors.md, "Bouncing off a pulley"). A floor that
-// pushes hands the step back (floorPushes, cable_solver.cpp).
+// A floor row the midpoint rule keeps (as a plain floor) in the step of its knock (floorKnock):
+// along an elastic rope's segment between two points (a body's anchor, a point pulley). Ruled out,
+// an elastic Atwood's light side near its point pulley took the backward-Euler spring, which at
+// omega h = 1 lost 40% of the knock's kinetic energy in the step (docs/floors.md, "Bouncing off a
+// pulley"). A floor that pushes hands the step back (floorPushes, cable_solver.cpp).
 bool pointFloorOfElasticRope(const Workspace::Row& row, const Cable& c) {
   return row.segment >= 0 && !row.rim && c.elastic() && c.path()[row.segment].radius == 0 &&
          c.path()[row.segment + 1].radius == 0;
@@ -80,7 +80,9 @@ bool takesMidpointRule(Workspace& ws, const CableSolveInput& in, std::span<const
   for (size_t r = 0; r < ws.rows.size(); ++r) {
     const Workspace::Row& row = ws.rows[r];
     const Cable& c = cables[row.cable];
-    if (pointFloorOfElasticRope(row, c)) continue;
+    if (double phi = 0;
+        pointFloorOfElasticRope(row, c) && floorKnock(ws, in, cables, static_cast<int>(r), phi) > 0)
+      continue;
     if (row.segment >= 0 || row.first != row.last) return false;
     if (!c.elastic()) {
       // A row stage 4b redirected (a point joining fast) takes the rule too: stage 6e's discrete
