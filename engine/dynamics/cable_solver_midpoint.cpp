@@ -49,7 +49,7 @@ bool rigidRowTakesMidpointRule(const CableSolveInput& in, const Cable& c) {
 // A floor row the midpoint rule keeps (as a plain floor) in the step of its knock (floorKnock):
 // along an elastic rope's segment between two points (a body's anchor, a point pulley). Ruled out,
 // an elastic Atwood's light side near its point pulley took the backward-Euler spring, which at
-// omega h = 1 lost 40% of the knock's kinetic energy in the step (docs/floors.md, "Bouncing off a
+// omega h = 1 lost 43% of the knock's kinetic energy in the step (docs/floors.md, "Bouncing off a
 // pulley"). A floor that pushes hands the step back (floorPushes, cable_solver.cpp).
 bool pointFloorOfElasticRope(const Workspace::Row& row, const Cable& c) {
   return row.segment >= 0 && !row.rim && c.elastic() && c.path()[row.segment].radius == 0 &&
