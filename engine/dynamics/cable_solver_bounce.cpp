@@ -59,30 +59,37 @@ constexpr int kBounceHalvings = 6;  // of the share of a bounce that gains (to 1
 // knock ignored the pulls over the step: a bungee's bob, turned back against its spring's pull T,
 // gained T v h. Reflected at the floor, its velocity, (gap1 - gap0) / h as Box2D moves it, fell
 // short by (1 + e) (gap0 - 1 cm) / h. e = 0 keeps lengthTargets' plastic stop.
-bool floorBounces(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
-  ws.bounces.clear();
-  if (ws.restitution.empty()) return false;
+double floorKnock(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables, int r,
+                  double& phi) {
+  const Workspace::Row& row = ws.rows[r];
+  if (row.segment < 0 || ws.restitution.empty()) return 0;
   auto restitution = [&](int body) {
     return body >= 0 && body < static_cast<int>(ws.restitution.size()) ? ws.restitution[body] : 0.0;
   };
+  const Cable& c = cables[row.cable];
+  const double e = std::max(restitution(c.path()[row.segment].body),
+                            restitution(c.path()[row.segment + 1].body));
+  if (!(e > 0)) return 0;
+  phi = floorRow(ws, in.bodies, c, row);  // kFloorLength - gap, at the start
+  // Inside an elastic cable's floor already: held where it is (lengthTargets), not thrown out.
+  if (c.elastic() && phi > kCameInsideFloor) return 0;
+  double closing = 0;  // d phi / dt at the start of the step
+  for (const BodyJacobian& j : ws.floorJacobian) {
+    const BodyState& b = in.bodies[j.body];
+    closing += j.d.dot(Vec3(b.velocity.x(), b.velocity.y(), b.angularVelocity));
+  }
+  // Slow, or too far off to arrive within the step (pulls may speed it up to twice as fast).
+  if (closing < kSlowestBounce || -phi > 2 * closing * in.h) return 0;
+  return (1 + e) * closing * in.h;
+}
+
+bool floorBounces(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  ws.bounces.clear();
   for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
-    const Workspace::Row& row = ws.rows[r];
-    if (row.segment < 0) continue;
-    const Cable& c = cables[row.cable];
-    const double e = std::max(restitution(c.path()[row.segment].body),
-                              restitution(c.path()[row.segment + 1].body));
-    if (!(e > 0)) continue;
-    const double phi = floorRow(ws, in.bodies, c, row);  // kFloorLength - gap, at the start
-    // Inside an elastic cable's floor already: held where it is (lengthTargets), not thrown out.
-    if (c.elastic() && phi > kCameInsideFloor) continue;
-    double closing = 0;  // d phi / dt at the start of the step
-    for (const BodyJacobian& j : ws.floorJacobian) {
-      const BodyState& b = in.bodies[j.body];
-      closing += j.d.dot(Vec3(b.velocity.x(), b.velocity.y(), b.angularVelocity));
-    }
-    // Slow, or too far off to arrive within the step (pulls may speed it up to twice as fast).
-    if (closing < kSlowestBounce || -phi > 2 * closing * in.h) continue;
-    ws.bounces.push_back({r, (1 + e) * closing * in.h, ws.target[r]});
+    double phi = 0;
+    const double opening = floorKnock(ws, in, cables, r, phi);
+    if (!(opening > 0)) continue;
+    ws.bounces.push_back({r, opening, ws.target[r]});
     ws.target[r] = phi + kFreeFloor;  // free for the first solve
   }
   return !ws.bounces.empty();
@@ -94,6 +101,62 @@ void bounceTargets(Workspace& ws, const CableSolveInput& in, std::span<const Cab
   linearise(ws, in, cables);                     // phi1 at the free step's impulses
   for (const Workspace::Bounce& b : ws.bounces)  // only rows the free step takes past the floor
     ws.target[b.row] = ws.phi1[b.row] > 0 ? ws.phi1[b.row] - b.opening : b.held;
+}
+
+}  // namespace
+
+namespace {
+
+// Whether the island's knocks are taken as impulses at the start of the step: every cable row
+// elastic, so no row passes an impulse on within the step (a rigid rope throws the other side
+// back up with the knocked one; its knock stays a target, bounceTargets).
+bool knocksAsImpulses(const Workspace& ws, std::span<const Cable> cables) {
+  return std::all_of(ws.rows.begin(), ws.rows.end(),
+                     [&](const Workspace::Row& row) { return cables[row.cable].elastic(); });
+}
+
+// The knock on an island of elastic rows (docs/floors.md, "Bouncing off a pulley"): the floor
+// rows' impulses that turn each segment's closing speed v into -e v at the start of the step,
+// from J0 W (a spring passes no impulse), added to the start velocities; the step is then solved
+// from there with the floors plain. Asked of the end of the step instead (the free step's end
+// value opened by (1 + e) v h), the knock ignored how the bounce itself stretches the rope: an
+// elastic Atwood's light side, turned back while its heavy side still fell, had the pulls of a
+// free step that passed through its point pulley (where the rope's length folds), and stopped
+// dead, losing up to 7.7 J of a 17 J kinetic energy in the step. A knock that gains beyond the
+// allowance takes the largest share of it that does not (halving), as solveBouncing.
+void knockAsImpulses(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables,
+                     StepStats& stats) {
+  const int count = static_cast<int>(ws.bounces.size());
+  Eigen::MatrixXd rowsW(count, count);
+  Eigen::VectorXd turn(count);
+  for (int i = 0; i < count; ++i) {
+    const Workspace::Bounce& b = ws.bounces[i];
+    ws.target[b.row] = b.held;
+    turn[i] = b.opening / in.h;  // (1 + e) v
+    for (int j = 0; j < count; ++j) rowsW(i, j) = ws.JW0(b.row, ws.bounces[j].row);
+  }
+  const Eigen::VectorXd knock = rowsW.completeOrthogonalDecomposition().solve(turn).cwiseMax(0.0);
+  Eigen::VectorXd impulses = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(ws.rows.size()));
+  for (int i = 0; i < count; ++i) impulses[ws.bounces[i].row] = knock[i];
+  const Eigen::VectorXd dv = ws.W * impulses, vStar = ws.vStar, v0 = ws.v0;
+  double kinetic0, ignored;
+  const double start = islandEnergy(ws, in, cables, false, kinetic0);
+  const double allowed = start + kBounceEnergyAllowance * kinetic0;
+  auto energyWithShare = [&](double share) {
+    ws.vStar = vStar - share * dv;
+    ws.v0 = v0 - share * dv;
+    newtonOnLengths(ws, in, cables, stats);
+    return islandEnergy(ws, in, cables, true, ignored);
+  };
+  if (!(knock.allFinite()) || energyWithShare(1) <= allowed) return;
+  double kept = 0, gains = 1;
+  bool lastKept = false;
+  for (int i = 0; i < kBounceHalvings; ++i) {
+    const double share = 0.5 * (kept + gains);
+    lastKept = energyWithShare(share) <= allowed;
+    (lastKept ? kept : gains) = share;
+  }
+  if (!lastKept) energyWithShare(kept);
 }
 
 }  // namespace
@@ -111,6 +174,10 @@ void bounceTargets(Workspace& ws, const CableSolveInput& in, std::span<const Cab
 // bisected alone, 3% of it.
 void solveBouncing(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables,
                    StepStats& stats) {
+  if (knocksAsImpulses(ws, cables)) {
+    knockAsImpulses(ws, in, cables, stats);
+    return;
+  }
   // The free step is a probe: it may pass a body through its point pulley, where no length is
   // smooth, and miss its lengths. Counted unsettled, World halved the step down to a gap the
   // bounce could no longer open (docs/floors.md, "Bouncing off a pulley").

@@ -46,6 +46,16 @@ bool rigidRowTakesMidpointRule(const CableSolveInput& in, const Cable& c) {
   return false;
 }
 
+// A floor row the midpoint rule keeps (as a plain floor) in the step of its knock (floorKnock):
+// along an elastic rope's segment between two points (a body's anchor, a point pulley). Ruled out,
+// an elastic Atwood's light side near its point pulley took the backward-Euler spring, which at
+// omega h = 1 lost 43% of the knock's kinetic energy in the step (docs/floors.md, "Bouncing off a
+// pulley"). A floor that pushes hands the step back (floorPushes, cable_solver.cpp).
+bool pointFloorOfElasticRope(const Workspace::Row& row, const Cable& c) {
+  return row.segment >= 0 && !row.rim && c.elastic() && c.path()[row.segment].radius == 0 &&
+         c.path()[row.segment + 1].radius == 0;
+}
+
 constexpr int kBalancePasses = 4;
 // The main solve pulls along the turn only where a row's length misses J's by more (m).
 constexpr double kTurnedLength = 1e-11;
@@ -70,6 +80,9 @@ bool takesMidpointRule(Workspace& ws, const CableSolveInput& in, std::span<const
   for (size_t r = 0; r < ws.rows.size(); ++r) {
     const Workspace::Row& row = ws.rows[r];
     const Cable& c = cables[row.cable];
+    if (double phi = 0;
+        pointFloorOfElasticRope(row, c) && floorKnock(ws, in, cables, static_cast<int>(r), phi) > 0)
+      continue;
     if (row.segment >= 0 || row.first != row.last) return false;
     if (!c.elastic()) {
       // A row stage 4b redirected (a point joining fast) takes the rule too: stage 6e's discrete
@@ -94,7 +107,7 @@ bool takesMidpointRule(Workspace& ws, const CableSolveInput& in, std::span<const
 // dphi1/dP = -(h/2) J1 W, Newton's row is (J1 W + 2 / (h^2 s)) P = J1 W P_k + 2 g / (h s).
 void midpointSpringRows(Workspace& ws, std::span<const Cable> cables, double h) {
   for (size_t r = 0; r < ws.rows.size(); ++r) {
-    if (!cables[ws.rows[r].cable].elastic()) continue;
+    if (!cables[ws.rows[r].cable].elastic() || ws.rows[r].segment >= 0) continue;
     const double k = cables[ws.rows[r].cable].stiffness();
     const double p0 = ws.phi0[r], p1 = ws.phi1[r], d = p1 - p0;
     double g, s;
@@ -124,7 +137,7 @@ void balanceMidpointWork(Workspace& ws, const CableSolveInput& in, std::span<con
     linearise(ws, in, cables);  // phi1 and v1 at these impulses
     double worst = 0;
     for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
-      if (!(ws.P[r] > 0)) continue;
+      if (!(ws.P[r] > 0) || ws.rows[r].segment >= 0) continue;
       double rate = 0;  // J_r (v0 + v1) / 2
       forForceJacobians(ws, in.bodies, cables, r, [&](const auto& jacobian, double) {
         for (const auto& e : jacobian)

@@ -231,12 +231,13 @@ Newton iterateNewton(Workspace& ws, const CableSolveInput& in, std::span<const C
     ws.K.diagonal() += ws.compliance;
     ws.b.noalias() = ws.JW.lazyProduct(ws.P);  // a few rows: no GEMV kernel call
     for (int r = 0; r < m; ++r)
-      ws.b[r] += (ws.midpoint && cables[ws.rows[r].cable].elastic() ? ws.pull[r]
-                  : cables[ws.rows[r].cable].elastic() && ws.rows[r].segment < 0
-                      ? ws.phi1[r] - ws.damped[r]
-                      // under the midpoint rule dphi1/dP = -(h/2) J1 W
-                      : (ws.midpoint ? 2 : 1) * (ws.phi1[r] - ws.target[r])) /
-                 h;
+      ws.b[r] +=
+          (ws.midpoint && cables[ws.rows[r].cable].elastic() && ws.rows[r].segment < 0 ? ws.pull[r]
+           : cables[ws.rows[r].cable].elastic() && ws.rows[r].segment < 0
+               ? ws.phi1[r] - ws.damped[r]
+               // under the midpoint rule dphi1/dP = -(h/2) J1 W
+               : (ws.midpoint ? 2 : 1) * (ws.phi1[r] - ws.target[r])) /
+          h;
     LcpSolution& sol = ws.lcpSolution;
     solveLcp(ws.K, ws.b, ws.lcp, sol, redundant);
     const double change = impulseChange(ws, sol.x, redundant);

@@ -198,6 +198,9 @@ ElasticRow elasticRow(const Workspace& ws, const Cable& c, const Workspace::Row&
 double springStretchAtEnd(const Cable& c, int k, double impulse, double h);
 // 5b. Floors that may bounce, then the solve that bounces them (cable_solver_bounce.cpp).
 bool floorBounces(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
+// Floor row r's knock this step, (1 + e) v h, 0 if it does not bounce; phi: its value at the start.
+double floorKnock(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables, int r,
+                  double& phi);
 void solveBouncing(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables,
                    StepStats& stats);
 void timesImpulses(Workspace& ws, const Eigen::VectorXd& P);
