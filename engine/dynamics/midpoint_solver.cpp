@@ -349,7 +349,8 @@ void MidpointSolver::evaluate(std::span<const BodyState> bodies, std::span<const
 }
 
 double MidpointSolver::transverseMode(std::span<const BodyState> bodies,
-                                      std::span<const Cable> cables, std::span<const int> which) {
+                                      std::span<const Cable> cables, std::span<const int> which,
+                                      bool movingSegments) {
   double fastest = 0;
   for (const int index : which) {
     const Cable& c = cables[index];
@@ -357,8 +358,11 @@ double MidpointSolver::transverseMode(std::span<const BodyState> bodies,
     double invMass = 0, curvature = 0;
     for (size_t i = 0; i < path.size(); ++i) {
       if (path[i].body >= 0) invMass = std::max(invMass, bodies[path[i].body].invMass);
-      if (i + 1 < path.size())
-        curvature += 1.0 / std::max((path[i + 1].world - path[i].world).norm(), 1e-9);
+      if (i + 1 == path.size()) continue;
+      const int a = path[i].body, b = path[i + 1].body;
+      if (movingSegments && !(a >= 0 && moves(bodies[a])) && !(b >= 0 && moves(bodies[b])))
+        continue;
+      curvature += 1.0 / std::max((path[i + 1].world - path[i].world).norm(), 1e-9);
     }
     fastest = std::max(fastest, std::sqrt(c.tension() * curvature * invMass));
   }

@@ -95,9 +95,11 @@ class MidpointSolver {
   void appendEnds(std::vector<std::pair<int, Vec3>>& ends) const;
 
   /// The fastest transverse mode of the cables `which` (rad/s), from their tensions and segment
-  /// curvatures over the lightest body they move: sqrt(T sum(1 / |d|) / m).
+  /// curvatures over the lightest body they move: sqrt(T sum(1 / |d|) / m). `movingSegments`:
+  /// only segments with an end on a body the solve moves (one between two fixed points has no
+  /// mode of its own; docs/swings.md, "The fast catch near a peg").
   static double transverseMode(std::span<const BodyState> bodies, std::span<const Cable> cables,
-                               std::span<const int> which);
+                               std::span<const int> which, bool movingSegments = false);
 
   /// Whether the last solve gave up at once on redundant rows (Newton on their split of the
   /// impulses cannot settle; the main solve takes the minimum-norm one).
