@@ -348,6 +348,16 @@ void MidpointSolver::evaluate(std::span<const BodyState> bodies, std::span<const
   }
 }
 
+bool MidpointSolver::fixedBetweenEnds(std::span<const BodyState> bodies,
+                                      std::span<const Cable> cables, std::span<const int> which) {
+  for (const int index : which) {
+    const auto& path = cables[index].path();
+    for (size_t i = 1; i + 1 < path.size(); ++i)
+      if (path[i].body >= 0 && moves(bodies[path[i].body])) return false;
+  }
+  return true;
+}
+
 double MidpointSolver::transverseMode(std::span<const BodyState> bodies,
                                       std::span<const Cable> cables, std::span<const int> which,
                                       bool movingSegments) {
@@ -356,12 +366,15 @@ double MidpointSolver::transverseMode(std::span<const BodyState> bodies,
     const Cable& c = cables[index];
     const auto& path = c.path();
     double invMass = 0, curvature = 0;
+    auto fixed = [&](const WrapPoint& w) { return w.body < 0 || !moves(bodies[w.body]); };
+    // Only for a rope whose points between its ends are all fixed (a pendulum round pegs): where
+    // a pulley moves, every segment keeps counting (rope loops round free polygons).
+    const std::span<const int> one(&index, 1);
+    const bool skipFixed = movingSegments && fixedBetweenEnds(bodies, cables, one);
     for (size_t i = 0; i < path.size(); ++i) {
       if (path[i].body >= 0) invMass = std::max(invMass, bodies[path[i].body].invMass);
       if (i + 1 == path.size()) continue;
-      const int a = path[i].body, b = path[i + 1].body;
-      if (movingSegments && !(a >= 0 && moves(bodies[a])) && !(b >= 0 && moves(bodies[b])))
-        continue;
+      if (skipFixed && fixed(path[i]) && fixed(path[i + 1])) continue;
       curvature += 1.0 / std::max((path[i + 1].world - path[i].world).norm(), 1e-9);
     }
     fastest = std::max(fastest, std::sqrt(c.tension() * curvature * invMass));

@@ -101,6 +101,11 @@ class MidpointSolver {
   static double transverseMode(std::span<const BodyState> bodies, std::span<const Cable> cables,
                                std::span<const int> which, bool movingSegments = false);
 
+  /// Whether every point between the ends of the cables `which` is fixed (on the world or a body
+  /// the solve does not move): a pendulum round pegs, not a rope loop round free pulleys.
+  static bool fixedBetweenEnds(std::span<const BodyState> bodies, std::span<const Cable> cables,
+                               std::span<const int> which);
+
   /// Whether the last solve gave up at once on redundant rows (Newton on their split of the
   /// impulses cannot settle; the main solve takes the minimum-norm one).
   bool redundant() const { return redundant_; }

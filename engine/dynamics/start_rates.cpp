@@ -17,6 +17,10 @@ namespace {
 // and the rate left is the old path's.
 constexpr double kArtefactShare = 1.0;
 
+// Midpoint steps whose lengths differ by more than this ratio keep their rate (the fast-catch
+// refinement's equal parts differ by 2-3 from the whole step near a peg at 20 Hz).
+constexpr double kMaxMidpointStepRatio = 4;
+
 // A segment shorter than this many sub-steps of its ends' closing motion, plus kFloorMargin of
 // its floor's length: its end may reach its pulley (floors.h) within them.
 constexpr double kFloorReach = 4;
@@ -102,7 +106,11 @@ std::vector<int> matchStartRates(const StartRateInput& in, std::vector<BodyState
     // Midpoint to midpoint: the lengths of the two steps (start_rates.h).
     const double lastMidpoint =
         last == 0 && next == 0 && c < in.lastMidpointSteps.size() ? in.lastMidpointSteps[c] : 0.0;
-    const bool midpoint = lastMidpoint > 0 && std::abs(lastMidpoint - in.step) > 1e-9 * in.h;
+    // Not across a cut at a wrap event: a piece far shorter than its neighbour ends on a rate its
+    // own length says little of (the new path's), and scaled up it would be a knock.
+    const bool midpoint =
+        lastMidpoint > 0 && std::abs(lastMidpoint - in.step) > 1e-9 * in.h &&
+        std::max(lastMidpoint, in.step) <= kMaxMidpointStepRatio * std::min(lastMidpoint, in.step);
     if (cable.elastic() || cable.spanCount() != 1 || !(cable.tension() > 0) || last < 0 ||
         next < 0 || (!midpoint && std::abs(last - next) <= 1e-9 * in.h))
       continue;
