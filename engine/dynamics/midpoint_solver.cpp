@@ -348,6 +348,15 @@ void MidpointSolver::evaluate(std::span<const BodyState> bodies, std::span<const
   }
 }
 
+double MidpointSolver::fastCatchStep(std::span<const BodyState> bodies,
+                                     std::span<const Cable> cables, std::span<const int> which,
+                                     double dt, double maxOmegaDt) {
+  const double omega = transverseMode(bodies, cables, which, true);
+  if (!(omega * dt > maxOmegaDt)) return dt;
+  return fixedBetweenEnds(bodies, cables, which) ? dt / std::ceil(omega * dt / maxOmegaDt)
+                                                 : maxOmegaDt / omega;
+}
+
 bool MidpointSolver::fixedBetweenEnds(std::span<const BodyState> bodies,
                                       std::span<const Cable> cables, std::span<const int> which) {
   for (const int index : which) {

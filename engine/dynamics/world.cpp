@@ -451,23 +451,16 @@ double World::advance(double left, double h, bool locate) {
     solveForces(dt, h);
     ++stats_.refinements;
   }
-  // Resolve a fast catch: a midpoint step no longer than kMaxOmegaDt over the fastest transverse
-  // mode of the midpoint islands' cables, so that J v after it is off by little (docs/cables.md,
-  // "Energy"). Round fixed pegs in equal parts: a short rest left the next whole step a start
-  // rate it could not be matched to (start_rates.h; docs/swings.md, "The fast catch near a
-  // peg"). Over free pulleys (rope loops) the first part is kMaxOmegaDt / omega, as it was.
+  // Resolve a fast catch (MidpointSolver::fastCatchStep; docs/swings.md, "The fast catch near a
+  // peg").
   if (locate && midpointUsed_) {
-    const double omega = MidpointSolver::transverseMode(bodies_, cables_, midpointCables_, true);
-    if (omega * dt > kMaxOmegaDt) {
-      const double part = MidpointSolver::fixedBetweenEnds(bodies_, cables_, midpointCables_)
-                              ? dt / std::ceil(omega * dt / kMaxOmegaDt)
-                              : kMaxOmegaDt / omega;
-      const double resolved = std::max(part, kMinEventStep * h);
-      if (resolved < dt) {
-        dt = resolved;
-        solveForces(dt, h);
-        ++stats_.refinements;
-      }
+    const double resolved =
+        std::max(MidpointSolver::fastCatchStep(bodies_, cables_, midpointCables_, dt, kMaxOmegaDt),
+                 kMinEventStep * h);
+    if (resolved < dt) {
+      dt = resolved;
+      solveForces(dt, h);
+      ++stats_.refinements;
     }
   }
   // Box2D turns a body at most pi / 2 a step and slows it to fit: a midpoint island's body then
