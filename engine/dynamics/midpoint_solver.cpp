@@ -351,7 +351,7 @@ void MidpointSolver::evaluate(std::span<const BodyState> bodies, std::span<const
 double MidpointSolver::fastCatchStep(std::span<const BodyState> bodies,
                                      std::span<const Cable> cables, std::span<const int> which,
                                      double dt, double maxOmegaDt) {
-  const double omega = transverseMode(bodies, cables, which, true);
+  const double omega = transverseMode(bodies, cables, which);
   if (!(omega * dt > maxOmegaDt)) return dt;
   return fixedBetweenEnds(bodies, cables, which) ? dt / std::ceil(omega * dt / maxOmegaDt)
                                                  : maxOmegaDt / omega;
@@ -368,23 +368,16 @@ bool MidpointSolver::fixedBetweenEnds(std::span<const BodyState> bodies,
 }
 
 double MidpointSolver::transverseMode(std::span<const BodyState> bodies,
-                                      std::span<const Cable> cables, std::span<const int> which,
-                                      bool movingSegments) {
+                                      std::span<const Cable> cables, std::span<const int> which) {
   double fastest = 0;
   for (const int index : which) {
     const Cable& c = cables[index];
     const auto& path = c.path();
     double invMass = 0, curvature = 0;
-    auto fixed = [&](const WrapPoint& w) { return w.body < 0 || !moves(bodies[w.body]); };
-    // Only for a rope whose points between its ends are all fixed (a pendulum round pegs): where
-    // a pulley moves, every segment keeps counting (rope loops round free polygons).
-    const std::span<const int> one(&index, 1);
-    const bool skipFixed = movingSegments && fixedBetweenEnds(bodies, cables, one);
     for (size_t i = 0; i < path.size(); ++i) {
       if (path[i].body >= 0) invMass = std::max(invMass, bodies[path[i].body].invMass);
-      if (i + 1 == path.size()) continue;
-      if (skipFixed && fixed(path[i]) && fixed(path[i + 1])) continue;
-      curvature += 1.0 / std::max((path[i + 1].world - path[i].world).norm(), 1e-9);
+      if (i + 1 < path.size())
+        curvature += 1.0 / std::max((path[i + 1].world - path[i].world).norm(), 1e-9);
     }
     fastest = std::max(fastest, std::sqrt(c.tension() * curvature * invMass));
   }

@@ -95,11 +95,9 @@ class MidpointSolver {
   void appendEnds(std::vector<std::pair<int, Vec3>>& ends) const;
 
   /// The fastest transverse mode of the cables `which` (rad/s), from their tensions and segment
-  /// curvatures over the lightest body they move: sqrt(T sum(1 / |d|) / m). `movingSegments`:
-  /// only segments with an end on a body the solve moves (one between two fixed points has no
-  /// mode of its own; docs/swings.md, "The fast catch near a peg").
+  /// curvatures over the lightest body they move: sqrt(T sum(1 / |d|) / m).
   static double transverseMode(std::span<const BodyState> bodies, std::span<const Cable> cables,
-                               std::span<const int> which, bool movingSegments = false);
+                               std::span<const int> which);
 
   /// A fast catch resolved: `dt`, or where the transverse mode turns more than `maxOmegaDt` over
   /// it, a midpoint step that does not, so that J v after it is off by little (docs/cables.md,
