@@ -17,7 +17,7 @@
 // The midpoint rule's own end rate is of second order, about h^2 L3 / 6 (L3 the length's third
 // derivative along the motion: 3 |v_across| a_across / l for a bob), and a midpoint step that
 // starts on a rate left by one of another length reads about 2 m (the rates' difference) / h
-// off: the whole sub-step after a fast-catch refinement's parts, 9-12% at 20 Hz near a peg
+// off: the whole sub-step after a fast-catch refinement's parts, 3.8-9.5% at 30 Hz near a peg
 // (docs/swings.md, "The fast catch near a peg"). That rate is scaled by the square of the
 // steps' ratio.
 #pragma once

@@ -280,7 +280,7 @@ TEST(SensorsTest, PegsNearTheAnchorLetGoFromAnyAngleReadTheStepsTension) {
           const PegReading r = readPeg(p, mass, s);
           ASSERT_GE(r.steps, 3);
           ASSERT_GE(r.wrapSteps, 1);
-          // Measured: up to 2.1% (20 Hz, 70 degrees), 1.2% at 30 Hz; before, up to 7.1% at
+          // Measured: up to 2.0% (20 Hz), 1.3% at 30 Hz; before, up to 7.1% at
           // 30 Hz and 4.4% at 20 Hz. The midpoint rule's own error over a step, about
           // (omega h)^2 / 12 with omega h up to 0.45 at 20 Hz, is 1.7% of the tension.
           EXPECT_LT(r.worstWrap, 0.03);
