@@ -348,6 +348,25 @@ void MidpointSolver::evaluate(std::span<const BodyState> bodies, std::span<const
   }
 }
 
+double MidpointSolver::fastCatchStep(std::span<const BodyState> bodies,
+                                     std::span<const Cable> cables, std::span<const int> which,
+                                     double dt, double maxOmegaDt) {
+  const double omega = transverseMode(bodies, cables, which);
+  if (!(omega * dt > maxOmegaDt)) return dt;
+  return fixedBetweenEnds(bodies, cables, which) ? dt / std::ceil(omega * dt / maxOmegaDt)
+                                                 : maxOmegaDt / omega;
+}
+
+bool MidpointSolver::fixedBetweenEnds(std::span<const BodyState> bodies,
+                                      std::span<const Cable> cables, std::span<const int> which) {
+  for (const int index : which) {
+    const auto& path = cables[index].path();
+    for (size_t i = 1; i + 1 < path.size(); ++i)
+      if (path[i].body >= 0 && moves(bodies[path[i].body])) return false;
+  }
+  return true;
+}
+
 double MidpointSolver::transverseMode(std::span<const BodyState> bodies,
                                       std::span<const Cable> cables, std::span<const int> which) {
   double fastest = 0;

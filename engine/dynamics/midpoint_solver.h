@@ -99,6 +99,18 @@ class MidpointSolver {
   static double transverseMode(std::span<const BodyState> bodies, std::span<const Cable> cables,
                                std::span<const int> which);
 
+  /// A fast catch resolved: `dt`, or where the transverse mode turns more than `maxOmegaDt` over
+  /// it, a midpoint step that does not, so that J v after it is off by little (docs/cables.md,
+  /// "Energy"). Round fixed pegs the sub-step's equal parts: a short rest left the next step a
+  /// rate it could not be matched to (docs/swings.md, "The fast catch near a peg").
+  static double fastCatchStep(std::span<const BodyState> bodies, std::span<const Cable> cables,
+                              std::span<const int> which, double dt, double maxOmegaDt);
+
+  /// Whether every point between the ends of the cables `which` is fixed (on the world or a body
+  /// the solve does not move): a pendulum round pegs, not a rope loop round free pulleys.
+  static bool fixedBetweenEnds(std::span<const BodyState> bodies, std::span<const Cable> cables,
+                               std::span<const int> which);
+
   /// Whether the last solve gave up at once on redundant rows (Newton on their split of the
   /// impulses cannot settle; the main solve takes the minimum-norm one).
   bool redundant() const { return redundant_; }

@@ -13,6 +13,13 @@
 // bob whose rope wraps a peg: its tension 17% high over the wrap step, 1.4e-3 of its energy lost).
 // Such a rate is turned across the cable instead, the kinetic energy kept: the velocity is the
 // one the step's rule would have carried, and the pose is untouched.
+//
+// The midpoint rule's own end rate is of second order, about h^2 L3 / 6 (L3 the length's third
+// derivative along the motion: 3 |v_across| a_across / l for a bob), and a midpoint step that
+// starts on a rate left by one of another length reads about 2 m (the rates' difference) / h
+// off: the whole sub-step after a fast-catch refinement's parts, 3.8-9.5% at 30 Hz near a peg
+// (docs/swings.md, "The fast catch near a peg"). That rate is scaled by the square of the
+// steps' ratio.
 #pragma once
 
 #include <span>
@@ -34,6 +41,8 @@ struct StartRateInput {
   std::span<const char> excluded;     // per body: jointed or touching (left alone)
   int dragBody;                       // -1: none
   double h;                           // the sub-step (s)
+  std::span<const double> lastMidpointSteps = {};  // per cable: its last midpoint step (0: none)
+  double step = 0;                                 // the step about to be taken (s)
 };
 
 /// Turns the start rate of each taut rigid cable whose step changes to the rate its next step
@@ -47,7 +56,8 @@ std::vector<int> matchStartRates(const StartRateInput& in, std::vector<BodyState
 /// The step each cable's solve just ended on (lastSteps for the next call): `dt` under the main
 /// solve, 0 where `midpoint` (per cable) says the midpoint rule took it, kNoStartRate where its
 /// rate says nothing (slack, elastic, over wheels).
+/// `midpointSteps` (lastMidpointSteps for the next call): `dt` where the midpoint rule took it.
 void recordStartRateSteps(std::span<const Cable> cables, std::span<const char> midpoint, double dt,
-                          std::vector<double>& steps);
+                          std::vector<double>& steps, std::vector<double>& midpointSteps);
 
 }  // namespace cablelab

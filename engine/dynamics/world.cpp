@@ -451,18 +451,16 @@ double World::advance(double left, double h, bool locate) {
     solveForces(dt, h);
     ++stats_.refinements;
   }
-  // Resolve a fast catch: a midpoint step no longer than kMaxOmegaDt over the fastest transverse
-  // mode of the midpoint islands' cables, so that J v after it is off by little (docs/cables.md,
-  // "Energy").
+  // Resolve a fast catch (MidpointSolver::fastCatchStep; docs/swings.md, "The fast catch near a
+  // peg").
   if (locate && midpointUsed_) {
-    const double omega = MidpointSolver::transverseMode(bodies_, cables_, midpointCables_);
-    if (omega * dt > kMaxOmegaDt) {
-      const double resolved = std::max(kMaxOmegaDt / omega, kMinEventStep * h);
-      if (resolved < dt) {
-        dt = resolved;
-        solveForces(dt, h);
-        ++stats_.refinements;
-      }
+    const double resolved =
+        std::max(MidpointSolver::fastCatchStep(bodies_, cables_, midpointCables_, dt, kMaxOmegaDt),
+                 kMinEventStep * h);
+    if (resolved < dt) {
+      dt = resolved;
+      solveForces(dt, h);
+      ++stats_.refinements;
     }
   }
   // Box2D turns a body at most pi / 2 a step and slows it to fit: a midpoint island's body then

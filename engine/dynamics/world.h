@@ -237,22 +237,23 @@ class World {
   std::vector<Placement>
       placements_;             ///< poses given after Box2D's step (the main solve's midpoint rule)
   bool midpointUsed_ = false;  ///< the last solveForces() solved some midpoint island
-  bool midpointUnsettled_ = false;   ///< ... and in some island its Newton did not settle
-  bool mainUnsettled_ = false;       ///< the main solve's answer missed some island's lengths
-  bool midpointPerIsland_ = true;    ///< setMidpointPerIsland()
-  std::vector<char> midpointCable_;  ///< per cable: the midpoint solve took it (main solve skips)
-  std::vector<int> midpointCables_;  ///< those cables
-  bool matchesStartRates_ = true;    ///< setStartRatesMatched()
-  std::vector<double> rateSteps_;    ///< per cable: the step its length rate was left by...
-  std::vector<double> nextSteps_;    ///< ... and the one about to be taken (start_rates.h)
-  std::vector<int> tautSteps_;       ///< per cable: whole steps in a row it ended taut
-  std::vector<char> tookMidpoint_;   ///< scratch: per cable, the midpoint solve took it
-  bool rulesKept_ = false;           ///< matchRates ran: solves keep tookMidpoint_'s rules
-  int cutCable_ = -1;                ///< the last Box2D step ended at this cable's event...
-  WrapEvent cutEvent_;               ///< ...this one (-1: it ran to its end)
-  std::vector<BodyState> bodies_;    ///< read back from Box2D
-  std::vector<Vec3> forces_;         ///< (fx, fy, torque) per body for the current sub-step
-  std::vector<Vec3> pendingForces_;  ///< applyForce() loads for the next step
+  bool midpointUnsettled_ = false;     ///< ... and in some island its Newton did not settle
+  bool mainUnsettled_ = false;         ///< the main solve's answer missed some island's lengths
+  bool midpointPerIsland_ = true;      ///< setMidpointPerIsland()
+  std::vector<char> midpointCable_;    ///< per cable: the midpoint solve took it (main solve skips)
+  std::vector<int> midpointCables_;    ///< those cables
+  bool matchesStartRates_ = true;      ///< setStartRatesMatched()
+  std::vector<double> rateSteps_;      ///< per cable: the step its length rate was left by...
+  std::vector<double> nextSteps_;      ///< ... and the one about to be taken (start_rates.h)
+  std::vector<double> midpointSteps_;  ///< per cable: the midpoint step its rate was left by
+  std::vector<int> tautSteps_;         ///< per cable: whole steps in a row it ended taut
+  std::vector<char> tookMidpoint_;     ///< scratch: per cable, the midpoint solve took it
+  bool rulesKept_ = false;             ///< matchRates ran: solves keep tookMidpoint_'s rules
+  int cutCable_ = -1;                  ///< the last Box2D step ended at this cable's event...
+  WrapEvent cutEvent_;                 ///< ...this one (-1: it ran to its end)
+  std::vector<BodyState> bodies_;      ///< read back from Box2D
+  std::vector<Vec3> forces_;           ///< (fx, fy, torque) per body for the current sub-step
+  std::vector<Vec3> pendingForces_;    ///< applyForce() loads for the next step
   std::vector<Cable> cables_;
   std::vector<std::vector<double>> impulses_;      ///< per cable and span, over this sub-step (N s)
   std::vector<std::vector<double>> stepImpulses_;  ///< ... over this step (N s)

@@ -30,8 +30,8 @@ bool World::matchRates(double dt, double h) {
   rulesKept_ = true;  // until the step is taken (takesMidpointRule)
   nextSteps_.resize(cables_.size());
   for (size_t c = 0; c < cables_.size(); ++c) nextSteps_[c] = tookMidpoint_[c] ? 0.0 : dt;
-  const std::vector<int> changed =
-      matchStartRates({cables_, rateSteps_, nextSteps_, excluded_, dragBody_, h}, bodies_);
+  const std::vector<int> changed = matchStartRates(
+      {cables_, rateSteps_, nextSteps_, excluded_, dragBody_, h, midpointSteps_, dt}, bodies_);
   for (const int b : changed) b2_->setVelocity(b, bodies_[b].velocity, bodies_[b].angularVelocity);
   if (!changed.empty()) b2_->readBodies(bodies_);
   return !changed.empty();
@@ -58,7 +58,7 @@ bool World::takesMidpointRule(std::span<const int> island, double dt, double h) 
 // After Box2D's step of dt; `whole`: no knock took part of it back (the rates then say nothing).
 void World::recordRates(double dt, bool whole) {
   markMidpointCables(cables_.size(), midpointCables_, tookMidpoint_);
-  recordStartRateSteps(cables_, tookMidpoint_, dt, rateSteps_);
+  recordStartRateSteps(cables_, tookMidpoint_, dt, rateSteps_, midpointSteps_);
   if (!whole) std::fill(rateSteps_.begin(), rateSteps_.end(), kNoStartRate);
   // Steps each rigid cable has been taut in a row, pulling or within kSettledSlack of its length
   // (the tension a wrap event leaves can read 0): a rope just caught from slack keeps the main
