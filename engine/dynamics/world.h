@@ -29,6 +29,7 @@
 
 #include "engine/cable/cable.h"
 #include "engine/dynamics/contact_force.h"
+#include "engine/dynamics/servo_targets.h"
 #include "engine/dynamics/world_history.h"
 #include "engine/model/scene.h"
 
@@ -267,7 +268,7 @@ class World {
   std::vector<JointFrame> jointFrames_;            ///< the joints as the solver sees them
   // State the user edits while the world runs (the scene keeps the authored values).
   Vec2 gravity_ = Vec2::Zero();
-  std::vector<double> servoTargets_;               ///< per joint (rad or m)
+  ServoTargets servoTargets_;                      ///< per joint (rad or m)
   std::vector<JointCoordinate> jointCoordinates_;  ///< scratch: every joint's value and rate
   std::vector<double> servoImpulses_;  ///< per joint, its servo's impulse over this step (N s)
   std::vector<double> jointForces_;    ///< ... over the last step (N or N m): JointState::force
