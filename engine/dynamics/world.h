@@ -156,7 +156,11 @@ class World {
   int jointCount() const { return static_cast<int>(scene_.joints.size()); }
   JointState joint(int i) const;
   int findJoint(std::string_view name) const;  ///< -1 if unknown
+  /// Reached over the next step: the servo's target moves on to it across the sub-steps.
   void setServoTarget(int i, double target);
+  /// Taken at once, from the next step's first sub-step: for a controller that samples its joints
+  /// each step with its own gains (the hand's, tuned so), as every target was taken before.
+  void setServoTargetAtOnce(int i, double target);
 
   /// Taut rigid cables start a step whose rule or length changes on the rate it ends on, their
   /// start rate turned across them, the kinetic energy kept (start_rates.h, on by default); off

@@ -11,6 +11,11 @@ void World::setServoTarget(int i, double target) {
   history_.add({WorldInput::Kind::ServoTarget, i, 1, {target}});
 }
 
+void World::setServoTargetAtOnce(int i, double target) {
+  servoTargets_.hold(i, target);
+  history_.add({WorldInput::Kind::ServoTarget, i, 0, {target}});
+}
+
 // The servos' forces over a Box2D step of dt, implicit in it (servo_drive.h), added to forces_.
 void World::applyServos(double dt) {
   if (!servos_->any()) return;
