@@ -404,7 +404,7 @@ PoseResult World::poseBody(int body, const Vec2& grabLocal, const Vec2& target, 
   };
   for (size_t j = 0; j < scene_.joints.size(); ++j)
     if (scene_.joints[j].servo.enabled && (moved(jointBodies_[j][0]) || moved(jointBodies_[j][1])))
-      servoTargets_[j] = b2_->jointCoordinate(static_cast<int>(j)).value;
+      servoTargets_.hold(j, b2_->jointCoordinate(static_cast<int>(j)).value);
   // What the pose let out is the user's, not a kinematic body's haul: reportPayOuts leaves it.
   paidOutSeen_.resize(cables_.size(), 0.0);
   for (size_t c = 0; c < cables_.size(); ++c) paidOutSeen_[c] = cables_[c].paidOut();

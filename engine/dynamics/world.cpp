@@ -105,9 +105,9 @@ World::World(SceneDef scene, const std::string& source)
     const int a = findBody(jd.bodyA), b = findBody(jd.bodyB);
     jointBodies_.push_back({a, b});
     if (a >= 0 && b >= 0) jointNeighbours_[a].push_back(b), jointNeighbours_[b].push_back(a);
-    servoTargets_.push_back(jd.servo.target);
   }
   servos_ = std::make_unique<ServoDrive>(scene_, jointBodies_);
+  servoTargets_.reset(scene_.joints);
   jointForces_.assign(scene_.joints.size(), 0.0);
   servoImpulses_.assign(scene_.joints.size(), 0.0);
   stalls_.assign(scene_.joints.size(), StallWatch{});
@@ -160,6 +160,7 @@ void World::setBodyTransform(int i, const Vec2& position, double angle) {
   rateSteps_.clear();  // the rates a user sets are the motion's
   tautSteps_.clear();
   servos_->forgetMotion();
+  servoTargets_.jump();
 }
 
 void World::refreshCables() {
@@ -179,6 +180,7 @@ void World::setBodyVelocity(int i, const Vec2& velocity, double angularVelocity)
   rateSteps_.clear();
   tautSteps_.clear();
   servos_->forgetMotion();
+  servoTargets_.jump();
 }
 
 void World::applyForce(int i, const Vec2& force, const Vec2& worldPoint) {
@@ -240,11 +242,6 @@ JointState World::joint(int i) const {
   return s;
 }
 
-void World::setServoTarget(int i, double target) {
-  servoTargets_[i] = target;
-  history_.add({WorldInput::Kind::ServoTarget, i, 1, {target}});
-}
-
 void World::setWrapSkipping(bool on) {
   for (Cable& c : cables_) c.setSkipping(on);
   history_.add({WorldInput::Kind::WrapSkipping, on});
@@ -267,17 +264,6 @@ double World::energy() const {
   for (const Cable& c : cables_)
     e += c.elasticEnergy();  // span by span where friction holds it apart
   return e;
-}
-
-// The servos' forces over a Box2D step of dt, implicit in it (servo_drive.h), added to forces_.
-void World::applyServos(double dt) {
-  if (!servos_->any()) return;
-  b2_->jointFrames(scene_.joints, jointBodies_, jointFrames_);
-  jointCoordinates_.resize(scene_.joints.size());
-  for (size_t j = 0; j < scene_.joints.size(); ++j)
-    jointCoordinates_[j] = b2_->jointCoordinate(static_cast<int>(j));
-  servos_->solve(jointFrames_, jointCoordinates_, bodies_, cables_, servoTargets_, gravity_, dt,
-                 forces_);
 }
 
 void World::checkFinite() const {
@@ -632,11 +618,8 @@ double World::advance(double left, double h, bool locate) {
   recordRates(dt, taken == dt);
   if (left - taken <= kSubstepRest * h) expectContacts(b2_->contactSumTime());  // sub-step's end
   time_ += taken;
-  // A servo with a speed drives its joint at that rate: the target moves.
-  for (size_t j = 0; j < scene_.joints.size(); ++j) {
-    servoTargets_[j] += scene_.joints[j].servo.speed * taken;
-    servoImpulses_[j] += servos_->forces()[j] * dt;
-  }
+  servoTargets_.moveOn(taken);  // a servo with a speed drives its joint at that rate
+  for (size_t j = 0; j < scene_.joints.size(); ++j) servoImpulses_[j] += servos_->forces()[j] * dt;
   return taken;
 }
 
@@ -728,6 +711,7 @@ void World::step(double dt, int substeps) {
   std::fill(servoImpulses_.begin(), servoImpulses_.end(), 0.0);
   reportStepTensions(false);
   for (int s = 0; s < std::max(1, substeps); ++s) {
+    servoTargets_.beginSubstep(s, std::max(1, substeps));  // a target set is reached at the end
     // Wrap events cut the sub-step; a bounded number per sub-step bounds the cost.
     double left = h, first = 0;
     int steps = 0;
@@ -761,6 +745,7 @@ void World::step(double dt, int substeps) {
   // re-selected at the start of the next step.
   for (Cable& c : cables_) c.refresh(bodies_);
   ++steps_;
+  servoTargets_.endStep();
   for (const Cable& c : cables_) {
     stats_.wrapPoints += c.wraps();
     stats_.selectionSkips += static_cast<int>(c.skippedSelections());

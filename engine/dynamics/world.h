@@ -30,6 +30,7 @@
 #include "engine/cable/cable.h"
 #include "engine/dynamics/contact_force.h"
 #include "engine/dynamics/stall_watch.h"
+#include "engine/dynamics/servo_targets.h"
 #include "engine/dynamics/world_history.h"
 #include "engine/model/scene.h"
 
@@ -156,7 +157,11 @@ class World {
   int jointCount() const { return static_cast<int>(scene_.joints.size()); }
   JointState joint(int i) const;
   int findJoint(std::string_view name) const;  ///< -1 if unknown
+  /// Reached over the next step: the servo's target moves on to it across the sub-steps.
   void setServoTarget(int i, double target);
+  /// Taken at once, from the next step's first sub-step: for a controller that samples its joints
+  /// each step with its own gains (the hand's, tuned so), as every target was taken before.
+  void setServoTargetAtOnce(int i, double target);
 
   /// Taut rigid cables start a step whose rule or length changes on the rate it ends on, their
   /// start rate turned across them, the kinetic energy kept (start_rates.h, on by default); off
@@ -269,7 +274,7 @@ class World {
   std::vector<JointFrame> jointFrames_;            ///< the joints as the solver sees them
   // State the user edits while the world runs (the scene keeps the authored values).
   Vec2 gravity_ = Vec2::Zero();
-  std::vector<double> servoTargets_;               ///< per joint (rad or m)
+  ServoTargets servoTargets_;                      ///< per joint (rad or m)
   std::vector<JointCoordinate> jointCoordinates_;  ///< scratch: every joint's value and rate
   std::vector<double> servoImpulses_;  ///< per joint, its servo's impulse over this step (N s)
   std::vector<double> jointForces_;    ///< ... over the last step (N or N m): JointState::force

@@ -23,7 +23,7 @@ struct WorldInput {
     DragTo,             ///< x, y (m)
     EndDrag,            ///<
     CableParameters,    ///< rest length (m), stiffness (N/m), preload (m), damping (N s/m)
-    ServoTarget,        ///< target (rad or m)
+    ServoTarget,        ///< target (rad or m); count = 0 where it takes effect at once
     Gravity,            ///< gx, gy (m/s^2)
     WrapSkipping,       ///< index = on
     MidpointPerIsland,  ///< index = on

@@ -84,7 +84,10 @@ void replayInputs(World& world, const std::vector<WorldInput>& inputs, const std
         break;
       case Kind::ServoTarget:
         checkIndex(i, world.jointCount(), "joint", n, source);
-        world.setServoTarget(i, v[0]);
+        if (in.count == 0)
+          world.setServoTargetAtOnce(i, v[0]);
+        else
+          world.setServoTarget(i, v[0]);
         break;
       case Kind::Gravity:
         world.setGravity(Vec2(v[0], v[1]));

@@ -48,7 +48,7 @@ void placeHand(World& world, const HandModel& model, const HandJoints& q) {
       world.setBodyVelocity(i, Vec2::Zero(), 0);
     }
   }
-  for (int j = 0; j < 6; ++j) world.setServoTarget(world.findJoint(kHandJointNames[j]), q[j]);
+  for (int j = 0; j < 6; ++j) world.setServoTargetAtOnce(world.findJoint(kHandJointNames[j]), q[j]);
 }
 
 HandGrasp::HandGrasp(const HandModel& model, const HandControllerParams& params,
@@ -70,7 +70,8 @@ HandJoints HandGrasp::joints(const World& world) const {
 }
 
 void HandGrasp::setServos(World& world, const HandJoints& q) const {
-  for (int j = 0; j < 6; ++j) world.setServoTarget(joints_[j], q[j]);
+  // The controller's gains were tuned on targets taken at once (docs/servos.md).
+  for (int j = 0; j < 6; ++j) world.setServoTargetAtOnce(joints_[j], q[j]);
 }
 
 void HandGrasp::startRamp(double t, const HandJoints& from, const HandJoints& to, double duration) {
