@@ -34,7 +34,7 @@ bool nearingFloor(const WrapPoint& p, const WrapPoint& q, std::span<const BodySt
   return gap < kFloorReach * std::max(closing, 0.0) + kFloorMargin * kFloorLength;
 }
 
-struct MovingPoint {
+struct PathPointMotion {
   Vec2 position, velocity, acceleration;
 };
 
@@ -47,7 +47,8 @@ bool fixedInWorld(const WrapPoint& w, std::span<const BodyState> bodies) {
 
 // A path point where segment i meets it (`out`: the segment leaves it), moving with its body at
 // constant velocity. Nothing if it is a circle on a moving body (its tangent point slides).
-bool movingPoint(const WrapPoint& w, bool out, std::span<const BodyState> bodies, MovingPoint& p) {
+bool pathPointMotion(const WrapPoint& w, bool out, std::span<const BodyState> bodies,
+                     PathPointMotion& p) {
   if (w.kind == WrapPoint::Kind::Circle) {
     if (!fixedInWorld(w, bodies)) return false;
     p = {out ? w.tangentOut : w.tangentIn, Vec2::Zero(), Vec2::Zero()};
@@ -65,14 +66,15 @@ bool movingPoint(const WrapPoint& w, bool out, std::span<const BodyState> bodies
 
 // The second derivative of the cable's length along the bodies' motion at their velocities now
 // (its wrap set fixed): per segment the square of its ends' velocity across it over its length,
-// plus their turning accelerations along it. False where a point cannot say (movingPoint).
+// plus their turning accelerations along it. False where a point cannot say (pathPointMotion).
 bool lengthCurvature(const Cable& c, std::span<const BodyState> bodies, double& second) {
   const auto& path = c.path();
   second = 0;
   for (size_t i = 0; i + 1 < path.size(); ++i) {
     if (path[i].body == path[i + 1].body && path[i].radius == path[i + 1].radius) continue;
-    MovingPoint p, q;
-    if (!movingPoint(path[i], true, bodies, p) || !movingPoint(path[i + 1], false, bodies, q))
+    PathPointMotion p, q;
+    if (!pathPointMotion(path[i], true, bodies, p) ||
+        !pathPointMotion(path[i + 1], false, bodies, q))
       return false;
     const Vec2 d = q.position - p.position;
     const double length = d.norm();

@@ -29,8 +29,8 @@
 
 #include "engine/cable/cable.h"
 #include "engine/dynamics/contact_force.h"
-#include "engine/dynamics/stall_watch.h"
 #include "engine/dynamics/servo_targets.h"
+#include "engine/dynamics/stall_watch.h"
 #include "engine/dynamics/world_history.h"
 #include "engine/model/scene.h"
 
