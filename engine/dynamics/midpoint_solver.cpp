@@ -360,6 +360,7 @@ double MidpointSolver::fastCatchStep(std::span<const BodyState> bodies,
 bool MidpointSolver::fixedBetweenEnds(std::span<const BodyState> bodies,
                                       std::span<const Cable> cables, std::span<const int> which) {
   for (const int index : which) {
+    if (cables[index].elastic()) return false;  // a rigid rope's catch (docs/swings.md)
     const auto& path = cables[index].path();
     for (size_t i = 1; i + 1 < path.size(); ++i)
       if (path[i].body >= 0 && moves(bodies[path[i].body])) return false;

@@ -107,7 +107,8 @@ class MidpointSolver {
                               std::span<const int> which, double dt, double maxOmegaDt);
 
   /// Whether every point between the ends of the cables `which` is fixed (on the world or a body
-  /// the solve does not move): a pendulum round pegs, not a rope loop round free pulleys.
+  /// the solve does not move) and every cable is rigid: a pendulum round pegs, not a rope loop
+  /// round free pulleys nor an elastic rope (whose knocks, docs/floors.md, keep the old cut).
   static bool fixedBetweenEnds(std::span<const BodyState> bodies, std::span<const Cable> cables,
                                std::span<const int> which);
 
