@@ -51,6 +51,21 @@ inline BodyDef hangingMass(const std::string& name, const Vec2& at, double mass)
   return b;
 }
 
+/// A 5 cm sensor disc of `mass` at `position` moving at `velocity` that does not turn: a puck
+/// that only its cables and their floors act on.
+inline BodyDef puck(const std::string& name, const Vec2& position, const Vec2& velocity,
+                    double mass) {
+  BodyDef b;
+  b.name = name;
+  b.position = position;
+  b.velocity = velocity;
+  b.mass = mass;
+  b.inertia = 1e-3;
+  b.fixedRotation = true;
+  b.shapes = {sensorDisc(0.05)};
+  return b;
+}
+
 /// Masses m1 and m2 (kg) hanging at (-0.2, 1.5) and (0.2, 1.5) on the ends of a band, 0.1 m above
 /// them, that runs over the top of the fixed polygon `vertices` from the start (half a turn in
 /// all) with capstan friction `mu` (frictionless at 0). The band, "band", is left to the caller:

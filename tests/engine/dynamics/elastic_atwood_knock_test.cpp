@@ -10,6 +10,7 @@
 #include "engine/dynamics/world.h"
 #include "engine/model/scene_json.h"
 #include "tests/support/engine_test_support.h"
+#include "tests/support/scene_parts.h"
 
 namespace cablelab {
 namespace {
@@ -18,17 +19,8 @@ namespace elastic_atwood_knock {  // (unity builds share one translation unit)
 constexpr double kLightMass = 0.5;  // kg
 
 BodyDef puck(const std::string& name, const Vec2& position, double mass, double restitution) {
-  BodyDef b;
-  b.name = name;
-  b.position = position;
-  b.mass = mass;
-  b.inertia = 1e-3;
-  b.fixedRotation = true;
-  ShapeDef s;
-  s.radius = 0.05;
-  s.sensor = true;  // no contacts: the cable and its floors alone act
-  s.restitution = restitution;
-  b.shapes = {s};
+  BodyDef b = test::puck(name, position, Vec2::Zero(), mass);
+  b.shapes[0].restitution = restitution;
   return b;
 }
 

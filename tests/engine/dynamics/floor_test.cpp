@@ -8,6 +8,7 @@
 
 #include "engine/dynamics/world.h"
 #include "engine/scenes/scene_registry.h"
+#include "tests/support/scene_parts.h"
 
 namespace cablelab {
 namespace {
@@ -175,20 +176,7 @@ TEST(Floors, ABodyHauledUpToARoundPulleyIsHeldShortOfItsRim) {
   }
 }
 
-BodyDef puck(const std::string& name, const Vec2& position, const Vec2& velocity, double mass) {
-  BodyDef b;
-  b.name = name;
-  b.position = position;
-  b.velocity = velocity;
-  b.mass = mass;
-  b.inertia = 1e-3;
-  b.fixedRotation = true;
-  ShapeDef s;
-  s.radius = 0.05;
-  s.sensor = true;  // no contacts: the cable alone acts
-  b.shapes = {s};
-  return b;
-}
+using test::puck;
 
 CableDef rope(const std::string& from, const std::string& to, std::vector<PulleyDef> pulleys = {}) {
   CableDef c;
