@@ -3,11 +3,15 @@
 
 namespace cablelab {
 
-void ServoTargets::reset(std::span<const JointDef> joints) {
+void ServoTargets::reset(std::span<const JointDef> joints, std::span<const double> start) {
   set_.clear(), speeds_.clear();
   for (const JointDef& joint : joints)
     set_.push_back(joint.servo.target), speeds_.push_back(joint.servo.speed);
   from_ = now_ = set_;
+  // A target the scene steps its joint to is reached over the first step, as one set before it:
+  // in one jump, a stiff servo reached it within the first sub-step, n sub-steps throwing what
+  // it lifted n times as fast as one (docs/servos.md, "Targets set between steps").
+  if (start.size() == set_.size()) from_.assign(start.begin(), start.end());
   jumped_ = false;
 }
 

@@ -17,7 +17,10 @@ namespace cablelab {
 class ServoTargets {
  public:
   /// The scene's joints: their servos' targets (rad or m) and speeds (rad / s or m / s).
-  void reset(std::span<const JointDef> joints);
+  /// `start`: where each joint starts (rad or m), from which the first step moves its target on
+  /// to the scene's, as one set before it (a step written in the scene file); empty: the scene's
+  /// targets hold from the start (a scene written mid-run).
+  void reset(std::span<const JointDef> joints, std::span<const double> start = {});
 
   /// The target set for joint i (rad or m): the one its servo reaches at the step's end.
   double operator[](size_t i) const { return set_[i]; }

@@ -107,7 +107,13 @@ World::World(SceneDef scene, const std::string& source)
     if (a >= 0 && b >= 0) jointNeighbours_[a].push_back(b), jointNeighbours_[b].push_back(a);
   }
   servos_ = std::make_unique<ServoDrive>(scene_, jointBodies_);
-  servoTargets_.reset(scene_.joints);
+  // A fresh scene's targets are reached over the first step from where the joints start; one
+  // written mid-run holds them (servo_targets.h).
+  std::vector<double> jointStarts;
+  if (scene_.time == 0 && scene_.stepCount == 0)
+    for (size_t j = 0; j < scene_.joints.size(); ++j)
+      jointStarts.push_back(b2_->jointCoordinate(static_cast<int>(j)).value);
+  servoTargets_.reset(scene_.joints, jointStarts);
   jointForces_.assign(scene_.joints.size(), 0.0);
   servoImpulses_.assign(scene_.joints.size(), 0.0);
   stalls_.assign(scene_.joints.size(), StallWatch{});

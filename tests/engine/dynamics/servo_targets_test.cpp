@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "engine/dynamics/world.h"
@@ -78,6 +79,48 @@ TEST(ServoTargets, ARampedWinchLiftsTheSameAtAnySubstepCount) {
       EXPECT_NEAR(l.end, one.end, kEndTolerance);
     }
   }
+}
+
+// A target written in the scene file that differs from where its joint starts is a step at t = 0,
+// reached over the first step as one set before it: to the bit the run of the same scene whose
+// target the user sets before its first step. In one jump at the first sub-step, a stiff servo
+// reached it within that sub-step, n sub-steps throwing the weight about n times as fast as one.
+std::unique_ptr<World> steppedWinch(const RampCase& k, bool inSceneFile) {
+  SceneDef s = makeScene("winch", {{"r", k.r}, {"omega", 0.0}, {"mass", k.weight}});
+  s.bodies[0].inertia = k.drumInertia;
+  ServoDef& servo = s.joints[0].servo;
+  servo.kp = k.kp;
+  servo.kd = k.critical * 2 * std::sqrt(k.kp * (k.drumInertia + k.weight * k.r * k.r));
+  servo.maxForce = k.rimSpeed * k.weight * kG * k.r;  // here: max_force in m g r
+  if (inSceneFile) servo.target = k.lift / k.r;
+  auto w = std::make_unique<World>(s, "winch");
+  if (!inSceneFile) w->setServoTarget(0, k.lift / k.r);
+  return w;
+}
+
+TEST(ServoTargets, AStepInTheSceneFileIsReachedOverTheFirstStep) {
+  // Stiff and soft servos, max_force from 1.5 m g r to far above (the default's 1e4 N m), kd 0
+  // to 2 times critical, 20 to 240 Hz, light and heavy drums; the lift 0.3 to 0.8 m.
+  const RampCase cases[] = {
+      {1e-4, 0.5, 0.1, 1e5, 1.0, 30, 1e4, 0.5},   {1e-3, 2.0, 0.05, 2e4, 0.5, 60, 3.0, 0.6},
+      {0.01, 1.0, 0.15, 5e3, 1.0, 20, 1e4, 0.3},  {3e-4, 5.0, 0.1, 5e4, 0.0, 45, 2.0, 0.4},
+      {0.1, 1.0, 0.2, 1e4, 2.0, 30, 1.5, 0.8},    {1e-4, 0.2, 0.08, 2000, 1.0, 120, 1e4, 0.5},
+      {2e-3, 3.0, 0.12, 1e5, 0.5, 240, 5.0, 0.7}, {6.8e-3, 2.1, 0.059, 404, 2.0, 20, 2.6, 0.78},
+  };
+  for (const RampCase& k : cases)
+    for (int substeps : {2, 4, 7}) {
+      SCOPED_TRACE("I " + std::to_string(k.drumInertia) + " kp " + std::to_string(k.kp) + " at " +
+                   std::to_string(k.hz) + " Hz x " + std::to_string(substeps));
+      const auto file = steppedWinch(k, true), set = steppedWinch(k, false);
+      double worst = 0;
+      for (int n = 0; n / k.hz < 1.5; ++n) {
+        file->step(1 / k.hz, substeps);
+        set->step(1 / k.hz, substeps);
+        worst = std::max(worst, std::abs(file->body(1).position.y() - set->body(1).position.y()));
+        worst = std::max(worst, std::abs(file->joint(0).value - set->joint(0).value));
+      }
+      EXPECT_EQ(worst, 0.0);
+    }
 }
 
 }  // namespace servo_targets_test
