@@ -115,21 +115,39 @@ std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, 
     // holds its chain end there (docs/cables.md, "Points inside a hull"). A fast hull can take
     // the point in and out within one step, and the next update would walk the polygon afresh,
     // off the old path.
-    auto tryHull = [&](int j, const WrapPoint& terminal) {
+    // A neighbouring polygon's corner (`corner`) is watched the same way: it holds the chain end
+    // too (holdsAgainst), and found inside at the next update it had crossed the end's next edge
+    // unseen, the chain then rebuilt off the old path (docs/knocks.md, "A neighbour's corner
+    // entering the hull").
+    auto tryHull = [&](int j, const WrapPoint& terminal, bool corner = false) {
       const PulleyState& p = pulleys_[j];
-      if (!p.polygon || p.body < 0 || p.tiedEnd != 0 || terminal.body >= 0 || terminal.radius != 0)
+      if (!p.polygon || p.body < 0 || p.tiedEnd != 0 || terminal.radius != 0 ||
+          (terminal.body >= 0 && (!corner || terminal.body == p.body)))
         return;
       // Most steps the hull stays farther from the point than its farthest vertex from the body's
-      // origin, which moves on a straight line over the sub-step: nothing to search.
+      // origin, which moves on a straight line over the sub-step: nothing to search. A corner
+      // moves with its body: its velocity now, and at most its turn's arc off that line.
       const BodyState& body = motion[p.body];
-      const double horizon = best ? best->time : h, speed2 = body.velocity.squaredNorm();
+      Vec2 pointVelocity = Vec2::Zero();
+      double reach = 0;
+      if (terminal.body >= 0) {
+        const BodyState& other = motion[terminal.body];
+        const Vec2 arm = terminal.world - other.position;
+        pointVelocity = other.velocity + other.angularVelocity * Vec2(-arm.y(), arm.x());
+        reach += std::abs(other.angularVelocity) * arm.norm() * h;
+      }
+      const Vec2 relative = body.velocity - pointVelocity;
+      const double horizon = best ? best->time : h, speed2 = relative.squaredNorm();
       const Vec2 away = body.position - terminal.world;
       const double closest =
-          speed2 > 0 ? std::clamp(-away.dot(body.velocity) / speed2, 0.0, horizon) : 0.0;
-      double reach = 0;
-      for (const Vec2& v : p.local) reach = std::max(reach, v.norm());
-      if ((away + closest * body.velocity).norm() > reach) return;
-      const MovingPoint point = MovingPoint::on(motion, -1, terminal.world);
+          speed2 > 0 ? std::clamp(-away.dot(relative) / speed2, 0.0, horizon) : 0.0;
+      double farthest = 0;
+      for (const Vec2& v : p.local) farthest = std::max(farthest, v.norm());
+      reach += farthest;
+      if ((away + closest * relative).norm() > reach) return;
+      const MovingPoint point = terminal.body < 0
+                                    ? MovingPoint::on(motion, -1, terminal.world)
+                                    : startPoint(motion, frames, terminal.body, terminal.local);
       const int n = static_cast<int>(p.local.size());
       for (int k = 0; k < n; ++k) {
         const MovingPoint from = startPoint(motion, frames, p.body, p.local[k]);
@@ -147,6 +165,11 @@ std::optional<WrapEvent> Cable::searchEvents(std::span<const BodyState> motion, 
       tryHull(a.pulley, b);
     if (b.kind == WrapPoint::Kind::Vertex && a.kind != WrapPoint::Kind::Vertex)
       tryHull(b.pulley, a);
+    if (a.kind == WrapPoint::Kind::Vertex && b.kind == WrapPoint::Kind::Vertex &&
+        a.body != b.body) {
+      tryHull(a.pulley, b, true);
+      tryHull(b.pulley, a, true);
+    }
     // A polygon's chain grows at its ends: the vertex before its first one (walking round it
     // with the polygon on the cable's right) against the segment entering it, the one after its
     // last against the segment leaving it. On a convex polygon no other vertex can reach those
