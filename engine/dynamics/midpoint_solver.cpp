@@ -6,6 +6,7 @@
 
 #include "engine/dynamics/floors.h"
 #include "engine/dynamics/length_targets.h"
+#include "engine/dynamics/settled_energy.h"
 
 namespace cablelab {
 
@@ -684,7 +685,9 @@ bool MidpointSolver::redundantActiveRows(std::span<const Cable> cables) {
 // rate J1 v1 is therefore held to no more than the mean of its start and end rates (J0 v0 + J1 v1)
 // / 2 by an impulse mu >= 0 at the end of the step (RATTLE's velocity step, docs/cables.md,
 // "Energy"). On the smooth motion the two rates agree to O(h^3) and mu is nil; the alternation
-// dies within two steps. Into v1_ (the end velocities) and mu_.
+// dies within two steps. The kinetic energy mu moves round fixed pegs is put back
+// (settled_energy.h: up to 1e-5 J a step round a polygon peg at 30 Hz, summed into a steady
+// leak). Into v1_ (the end velocities) and mu_.
 void MidpointSolver::settleRates(std::span<const BodyState> bodies, std::span<const Cable> cables) {
   const int n = static_cast<int>(invM_.size());
   v1_.resize(n);
@@ -734,8 +737,20 @@ void MidpointSolver::settleRates(std::span<const BodyState> bodies, std::span<co
   rateK_.noalias() = endJ_ * endW_;
   solveLcp(rateK_, rateB_, lcp_, solution_, true);
   endShift_.noalias() = endW_ * solution_.x;
+  const double before = kineticEnergyOfShifted(v1_, endShift_, invM_);
   v1_ -= endShift_;
-  for (int i = 0; i < s; ++i) mu_[settled_[i]] = solution_.x[i];
+  // Put back on islands of rigid ropes round fixed pegs, those it acts on taut for
+  // kSettledTautSteps (a swing's alternation, not a catch). Not where a rope runs over free
+  // pulleys: polygons in rope loops left their ropes (KnockMotion.PolygonsWedged*,
+  // FreePulleyContacts.PolygonsInLoopsUnderASwingingBob*).
+  bool swings = true;
+  for (int i = 0; i < s; ++i) {
+    mu_[settled_[i]] = solution_.x[i];
+    swings = swings && (solution_.x[i] == 0 || settledTaut(rows_[settled_[i]]));
+  }
+  for (size_t r = 0; r < rows_.size() && swings; ++r)
+    swings = segment_[r] >= 0 || fixedBetweenEnds(bodies, cables, {&rows_[r], 1});
+  if (swings) keepSettledEnergy(v1_, endShift_, invM_, before);
 }
 
 // Tensions (each row's impulse over the step, the end one included, over h), the force that
