@@ -170,9 +170,9 @@ void knockAsImpulses(Workspace& ws, const CableSolveInput& in, std::span<Cable> 
 
 }  // namespace
 
-// The end's energy with each one-span elastic row at its exact length there (pathAhead): the
-// linearised stretch missed a light side that swept past its point pulley within the step, 3 J up
-// (docs/floors.md, "Elastic ropes: the knock as an impulse").
+// The end's energy with each one-span elastic row at its exact length there (pathAhead): a light
+// side that sweeps past its point pulley within the step folds the rope's length, which the
+// linearised stretch does not follow (docs/floors.md, "Elastic ropes: the knock as an impulse").
 bool midpointKnockGains(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
   double ignored;
   double energy = islandEnergy(ws, in, cables, true, ignored);  // the end poses in ws.predicted
