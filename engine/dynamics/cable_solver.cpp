@@ -111,9 +111,35 @@ bool floorPushes(const Workspace& ws) {
   return false;
 }
 
+// 5, 5b, 6 again with the backward-Euler spring: a midpoint step whose floor pushes (floorPushes),
+// or whose knock gained (midpointKnockGains).
+// `again`: stages 2-4 run again (the knock's start velocities and stage 6e's rows undone).
+void solveWithoutMidpointRule(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables,
+                              std::span<Vec3> loads, StepStats& stats, bool again) {
+  ws.midpoint = false;
+  ws.knockedOnMidpoint = false;
+  if (ws.stiffnessLeftOut || again) {
+    ws.stiffnessLeftOut = false;
+    prepareRows(ws, in, cables, loads);
+  }
+  targetAndSolveLengths(ws, in, cables, stats);
+}
+
+// 6e: the rows pull along the discrete gradient of their lengths over the step, twice.
+void pullAlongTheStep(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables,
+                      std::span<Vec3> loads, StepStats& stats) {
+  const bool gradient = pullsAlongDiscreteGradient(ws, cables);
+  for (int pass = 0; pass < 2 && gradient && pullAlongDiscreteGradient(ws, in, cables); ++pass) {
+    prepareRows(ws, in, cables, loads);
+    targetAndSolveLengths(ws, in, cables, stats);
+  }
+}
+
 // 2-6 on the island's rows, again where rows merge or joints lock.
 void solveRows(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables,
                std::span<Vec3> loads, StepStats& stats) {
+  static thread_local std::pair<std::vector<char>, std::vector<std::vector<BodyJacobian>>>
+      aheadBeforeKnock;  // scratch: a knocked midpoint step's rows before stage 6e
   for (bool again = true; again;) {
     ws.stiffnessLeftOut = false;
     prepareRows(ws, in, cables, loads);                           // 2-4
@@ -124,23 +150,20 @@ void solveRows(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables
       leaveOutGeometricStiffness(ws, in, cables, loads);
     else if (ws.stiff)
       ws.midpoint = false;
+    ws.knockedOnMidpoint = false;
     targetAndSolveLengths(ws, in, cables, stats);  // 5, 5b, 6, 6d
-    if (ws.midpoint && floorPushes(ws)) {
-      ws.midpoint = false;
-      if (ws.stiffnessLeftOut) {
-        ws.stiffnessLeftOut = false;
-        prepareRows(ws, in, cables, loads);
-      }
-      targetAndSolveLengths(ws, in, cables, stats);
-    }
-    const bool gradient = pullsAlongDiscreteGradient(ws, cables);
-    for (int pass = 0; pass < 2 && gradient && pullAlongDiscreteGradient(ws, in, cables);
-         ++pass) {  // 6e
-      prepareRows(ws, in, cables, loads);
-      targetAndSolveLengths(ws, in, cables, stats);
-    }
+    if (ws.midpoint && floorPushes(ws) && !ws.knockedOnMidpoint)
+      solveWithoutMidpointRule(ws, in, cables, loads, stats, false);
+    if (ws.knockedOnMidpoint) aheadBeforeKnock = {ws.ahead, ws.aheadJacobian};
+    pullAlongTheStep(ws, in, cables, loads, stats);        // 6e
     if (ws.midpoint) balanceMidpointWork(ws, in, cables);  // 6a
-    again = mergeSlidingSpans(ws, cables);                 // 6b
+    if (ws.knockedOnMidpoint && midpointKnockGains(ws, in, cables)) {
+      ws.ahead = aheadBeforeKnock.first;
+      ws.aheadJacobian = aheadBeforeKnock.second;
+      solveWithoutMidpointRule(ws, in, cables, loads, stats, true);
+      pullAlongTheStep(ws, in, cables, loads, stats);
+    }
+    again = mergeSlidingSpans(ws, cables);  // 6b
     if (again) {
       ws.ahead.clear();  // the rows changed: measure them again
     } else {

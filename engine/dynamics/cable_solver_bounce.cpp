@@ -148,6 +148,15 @@ void knockAsImpulses(Workspace& ws, const CableSolveInput& in, std::span<Cable> 
     newtonOnLengths(ws, in, cables, stats);
     return islandEnergy(ws, in, cables, true, ignored);
   };
+  // Under the midpoint rule the step is judged once solved, its rows pulling along the discrete
+  // gradient (stage 6e): at the start-of-step J a light side whirling past its pulley read up to
+  // 7 J above its start, and the share it took then stopped it (midpointKnockGains).
+  if (ws.midpoint && knock.allFinite()) {
+    ws.knockedOnMidpoint = true;
+    ws.knockAllowed = allowed;
+    energyWithShare(1);
+    return;
+  }
   if (!(knock.allFinite()) || energyWithShare(1) <= allowed) return;
   double kept = 0, gains = 1;
   bool lastKept = false;
@@ -160,6 +169,26 @@ void knockAsImpulses(Workspace& ws, const CableSolveInput& in, std::span<Cable> 
 }
 
 }  // namespace
+
+// The end's energy with each one-span elastic row at its exact length there (pathAhead): a light
+// side that sweeps past its point pulley within the step folds the rope's length, which the
+// linearised stretch does not follow (docs/floors.md, "Elastic ropes: the knock as an impulse").
+bool midpointKnockGains(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  double ignored;
+  double energy = islandEnergy(ws, in, cables, true, ignored);  // the end poses in ws.predicted
+  for (size_t r = 0; r < ws.rows.size(); ++r) {
+    const Workspace::Row& row = ws.rows[r];
+    const Cable& c = cables[row.cable];
+    if (row.segment >= 0 || !c.elastic() || row.first != row.last) continue;
+    pathAhead(ws, c, row.first, in.bodies);
+    const double now = ws.kin.length;
+    pathAhead(ws, c, row.first, ws.predicted);
+    const double exact = std::max(0.0, ws.phi0[static_cast<Eigen::Index>(r)] + ws.kin.length - now);
+    const double linear = std::max(0.0, ws.phi1[static_cast<Eigen::Index>(r)]);
+    energy += 0.5 * c.spanStiffness(row.first) * (exact * exact - linear * linear);
+  }
+  return energy > ws.knockAllowed;
+}
 
 // 5b, after floorBounces: a first solve with the bouncing floors left free, then the bounce. A
 // bounce may end the step with no more energy than it starts with or the free step (which passes

@@ -129,6 +129,11 @@ struct CableSolverWorkspace {
     double held = 0;     // its target if it does not reach the floor
   };
   std::vector<Bounce> bounces;
+  // The midpoint rule's island took its knock whole as impulses (knockAsImpulses): its floors
+  // may push in the step and keep the rule; the step is checked against `knockAllowed` (J) once
+  // solved (midpointKnockGains).
+  bool knockedOnMidpoint = false;
+  double knockAllowed = 0;
   LcpWorkspace lcp;
   LcpSolution lcpSolution;
   // Per cable, the h and tension of the solve that last set its tension (Newton's warm start).
@@ -203,6 +208,9 @@ double floorKnock(Workspace& ws, const CableSolveInput& in, std::span<const Cabl
                   double& phi);
 void solveBouncing(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables,
                    StepStats& stats);
+// Whether the midpoint rule's step, its knock taken whole as impulses (knockedOnMidpoint), ends
+// above the energy the knock may end with (cable_solver_bounce.cpp).
+bool midpointKnockGains(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
 void timesImpulses(Workspace& ws, const Eigen::VectorXd& P);
 void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
 // Newton iterations from ws.P, each linearisation an LCP over all rows. True once the impulses

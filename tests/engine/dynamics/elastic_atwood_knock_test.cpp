@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -143,6 +144,86 @@ TEST(ElasticAtwoodKnock, AnAtwoodKnockingItsPulleyForTwentySecondsKeepsItsEnergy
     EXPECT_GT(largestKinetic, 10.0);  // the light side reaches its pulley fast
     EXPECT_GT(lowest, -0.01 * largestKinetic);
     EXPECT_LT(highest, 0.01 * largestKinetic);
+  }
+}
+
+// An elastic Atwood's light side (a puck, restitution 1) 2.8 or 4 cm from its point pulley at
+// (0.6, 0.5), at an angle to it, coming in at vIn with vAcross sideways, the heavy side 3.43 m
+// down moving at vHeavy, the rope (k, stretched by `stretch`) pulling hard: the light side knocks
+// the pulley at a slant and the rope hauls it back within the step. Knocked as an impulse with the
+// midpoint rule, its floor pushing again in the step handed the step to the backward-Euler spring,
+// after a share of the knock judged at the start-of-step J (a light side sweeping round its
+// pulley read 7 J up): busy 10-minute scenes with such machines lost up to 126% of their scale.
+struct SlantVariant {
+  double heavy, light, stiffness, stretch, distance, angle, across, in, vHeavy;
+};
+
+SceneDef slantKnock(const SlantVariant& v) {
+  const Vec2 pulley(0.6, 0.5), out(std::cos(v.angle), std::sin(v.angle));
+  const Vec2 across(-out.y(), out.x());
+  SceneDef scene;
+  scene.bodies = {
+      puck("heavy", Vec2(0, -2.93), v.heavy, 1.0),
+      puck("light", pulley + v.distance * out, v.light, 1.0),
+  };
+  scene.bodies[0].velocity = Vec2(0, v.vHeavy);
+  scene.bodies[1].velocity = v.across * across - v.in * out;
+  CableDef c;
+  c.name = "rope";
+  c.start.body = "heavy";
+  c.end.body = "light";
+  PulleyDef left, right;
+  left.point = Vec2(0, 0.5);
+  right.point = pulley;
+  left.side = right.side = WrapSide::Threaded;
+  c.pulleys = {left, right};
+  c.stiffness = v.stiffness;
+  c.restLength = 3.43 + 0.6 + v.distance - v.stretch;
+  scene.cables = {c};
+  return scene;
+}
+
+// Before: 7% to 165% of the kinetic energy at the start lost within 10 steps at 60 Hz. Now the
+// energy is kept to 1% of it (measured: under 1e-3 of it).
+TEST(ElasticAtwoodKnock, ALightSideKnockingItsPulleyAtASlantKeepsItsEnergy) {
+  const std::vector<SlantVariant> variants = {
+      {1.34, 0.64, 911, 0.08, 0.028, 0.74, 1.0, 4.2, -2.5},
+      {1.34, 0.64, 2566, 0.045, 0.028, 0.74, 2.0, 2.5, -2.5},
+      {1.34, 0.64, 2566, 0.045, 0.028, 1.9, 2.0, 2.5, -2.5},
+      {1.34, 0.64, 2566, 0.08, 0.028, 0.74, -2.0, 2.5, 1.8},
+      {1.34, 0.64, 2566, 0.08, 0.028, 1.9, -2.0, 2.5, 1.8},
+      {1.34, 0.64, 2566, 0.08, 0.028, 1.9, 2.0, 2.5, 1.8},
+      {1.34, 0.64, 2566, 0.08, 0.04, 1.9, -2.0, 4.2, -2.5},
+      {1.34, 0.93, 2566, 0.08, 0.028, 0.74, 1.0, 2.5, -2.5},
+      {1.34, 0.93, 2566, 0.08, 0.028, 1.9, -2.0, 2.5, -2.5},
+      {1.34, 0.93, 2566, 0.08, 0.04, 1.9, 2.0, 4.2, -2.5},
+      {2.0, 0.64, 911, 0.045, 0.04, 1.9, 2.0, 4.2, -2.5},
+      {2.0, 0.64, 911, 0.08, 0.028, 1.9, 1.0, 4.2, -2.5},
+      {2.0, 0.64, 2566, 0.045, 0.028, 0.74, 2.0, 2.5, 1.8},
+      {2.0, 0.64, 2566, 0.045, 0.04, 0.74, -2.0, 4.2, -2.5},
+      {2.0, 0.64, 2566, 0.08, 0.028, 0.74, 2.0, 2.5, 1.8},
+      {2.0, 0.64, 2566, 0.08, 0.028, 1.9, 1.0, 4.2, -2.5},
+      {2.0, 0.64, 2566, 0.08, 0.04, 1.9, -2.0, 4.2, -2.5},
+      {2.0, 0.93, 2566, 0.045, 0.028, 0.74, 2.0, 2.5, -2.5},
+      {2.0, 0.93, 2566, 0.08, 0.028, 0.74, 2.0, 2.5, -2.5},
+      {2.0, 0.93, 2566, 0.08, 0.04, 0.74, -2.0, 4.2, -2.5},
+  };
+  for (const SlantVariant& v : variants) {
+    SCOPED_TRACE("m " + std::to_string(v.heavy) + "/" + std::to_string(v.light) + ", k " +
+                 std::to_string(v.stiffness) + ", at " + std::to_string(v.distance) + " m, " +
+                 std::to_string(v.angle) + " rad, in " + std::to_string(v.in) + " m/s");
+    World world(slantKnock(v));
+    const double start = world.energy();
+    const double kinetic =
+        0.5 * v.heavy * v.vHeavy * v.vHeavy + 0.5 * v.light * (v.across * v.across + v.in * v.in);
+    double lowest = 0, highest = 0;
+    for (int s = 0; s < 10; ++s) {
+      world.step(1.0 / 60, 1);
+      lowest = std::min(lowest, world.energy() - start);
+      highest = std::max(highest, world.energy() - start);
+    }
+    EXPECT_GT(lowest, -0.01 * kinetic);
+    EXPECT_LT(highest, 0.01 * kinetic);
   }
 }
 
