@@ -83,11 +83,40 @@ double floorKnock(Workspace& ws, const CableSolveInput& in, std::span<const Cabl
   return (1 + e) * closing * in.h;
 }
 
+// 5b for a rigid cable's row (docs/cables.md, "Catching from slack"): a slack rope that closes at
+// v, faster than kSlowestBounce, near enough to come taut within the step, catches with e, the
+// largest restitution of the bodies it runs over (b2MixRestitution), the way a segment bounces
+// off its floor: left free for a first solve, then, if that solve takes it past its length,
+// opened by (1 + e) v h, so that e^2 of the kinetic energy closing along it comes back. e = 0
+// keeps lengthTargets' plastic catch; elastic rows catch on their spring.
+double ropeCatch(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables, int r,
+                 double& phi) {
+  const Workspace::Row& row = ws.rows[r];
+  const Cable& c = cables[row.cable];
+  if (row.segment >= 0 || c.elastic() || ws.restitution.empty()) return 0;
+  phi = ws.phi0[r];
+  if (!(phi < -kLengthSlop)) return 0;  // taut: no catch
+  double e = 0;
+  for (const WrapPoint& p : c.path())
+    if (p.body >= 0 && p.body < static_cast<int>(ws.restitution.size()))
+      e = std::max(e, ws.restitution[p.body]);
+  if (!(e > 0)) return 0;
+  double closing = 0;  // d phi / dt at the start of the step
+  for (int k = row.first; k <= row.last; ++k)
+    for (const BodyJacobian& j : c.spanKinematics(k).jacobian) {
+      const BodyState& b = in.bodies[j.body];
+      closing += j.d.dot(Vec3(b.velocity.x(), b.velocity.y(), b.angularVelocity));
+    }
+  if (closing < kSlowestBounce || -phi > 2 * closing * in.h) return 0;
+  return (1 + e) * closing * in.h;
+}
+
 bool floorBounces(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
   ws.bounces.clear();
   for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
     double phi = 0;
-    const double opening = floorKnock(ws, in, cables, r, phi);
+    double opening = floorKnock(ws, in, cables, r, phi);
+    if (!(opening > 0)) opening = ropeCatch(ws, in, cables, r, phi);
     if (!(opening > 0)) continue;
     ws.bounces.push_back({r, opening, ws.target[r]});
     ws.target[r] = phi + kFreeFloor;  // free for the first solve
