@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "engine/model/scene.h"
@@ -129,6 +130,48 @@ inline SceneDef ropeOverASpinningHexagon(double hexagonMass, double hexagonInert
   rope.end.body = "weight";
   scene.cables = {rope};
   return scene;
+}
+
+/// Two `sides`-gons "A" and "B" of corner radius 0.12 m and 1 kg, pinned at (-+half, 0) and
+/// spinning at `spinA` and `spinB` rad/s (B's first corner at `phaseB`), their shapes of
+/// `restitution`; a rope "rope" from the world at (-0.9, -1) over both (left) and a world point at
+/// (0.9, 0.3) down to a weight "weight" of `weight` kg (docs/knocks.md, "Two pulleys knocking").
+inline SceneDef pinnedPolygonPairOnOneRope(int sides, double half, double spinA, double spinB,
+                                           double phaseB, double restitution, double weight) {
+  SceneDef s;
+  for (const auto& [name, x, spin, phase] :
+       {std::tuple{"A", -half, spinA, 0.0}, std::tuple{"B", half, spinB, phaseB}}) {
+    BodyDef b;
+    b.name = name;
+    b.position = Vec2(x, 0);
+    b.mass = 1;
+    b.angularVelocity = spin;
+    b.shapes = {sensorPolygon(sides, 0.12, phase)};
+    b.shapes[0].restitution = restitution;
+    s.bodies.push_back(b);
+    JointDef pin = worldPivot(name, Vec2(x, 0));
+    pin.name = std::string("pin") + name;
+    s.joints.push_back(pin);
+  }
+  s.bodies.push_back(hangingMass("weight", Vec2(0.9, -1), weight));
+  CableDef rope;
+  rope.name = "rope";
+  rope.start = {"world", Vec2(-0.9, -1)};
+  for (const char* body : {"A", "B"}) {
+    PulleyDef over;
+    over.kind = PulleyDef::Kind::Polygon;
+    over.body = body;
+    over.side = WrapSide::Left;
+    rope.pulleys.push_back(over);
+  }
+  PulleyDef point;
+  point.kind = PulleyDef::Kind::Point;
+  point.point = Vec2(0.9, 0.3);
+  point.side = WrapSide::Threaded;
+  rope.pulleys.push_back(point);
+  rope.end = {"weight", Vec2::Zero()};
+  s.cables = {rope};
+  return s;
 }
 
 }  // namespace cablelab::test

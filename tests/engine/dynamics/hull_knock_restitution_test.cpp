@@ -27,40 +27,8 @@ struct Twins {
 // other (a gap of 4 mm still touches: Box2D's polygon skin is 1 cm); a rope from the world over
 // both (left) and over a world point down to a 0.5 kg weight.
 SceneDef twinTriangles(const Twins& t, double restitution) {
-  SceneDef s;
-  const double half = 0.12 - t.reach / 2;
-  for (const auto& [name, x, spin, phase] :
-       {std::tuple{"A", -half, t.spinA, 0.0}, std::tuple{"B", half, t.spinB, t.phaseB}}) {
-    BodyDef b;
-    b.name = name;
-    b.position = Vec2(x, 0);
-    b.mass = 1;
-    b.angularVelocity = spin;
-    b.shapes = {test::sensorPolygon(3, 0.12, phase)};
-    b.shapes[0].restitution = restitution;
-    s.bodies.push_back(b);
-    JointDef pin = test::worldPivot(name, Vec2(x, 0));
-    pin.name = std::string("pin") + name;
-    s.joints.push_back(pin);
-  }
-  s.bodies.push_back(test::hangingMass("weight", Vec2(0.9, -1), 0.5));
-  CableDef rope;
-  rope.name = "rope";
-  rope.start = {"world", Vec2(-0.9, -1)};
-  for (const char* body : {"A", "B"}) {
-    PulleyDef over;
-    over.kind = PulleyDef::Kind::Polygon;
-    over.body = body;
-    over.side = WrapSide::Left;
-    rope.pulleys.push_back(over);
-  }
-  PulleyDef point;
-  point.kind = PulleyDef::Kind::Point;
-  point.point = Vec2(0.9, 0.3);
-  point.side = WrapSide::Threaded;
-  rope.pulleys.push_back(point);
-  rope.end = {"weight", Vec2::Zero()};
-  s.cables = {rope};
+  SceneDef s = test::pinnedPolygonPairOnOneRope(3, 0.12 - t.reach / 2, t.spinA, t.spinB, t.phaseB,
+                                                restitution, 0.5);
   s.dt = 1 / t.hz;
   s.substeps = t.substeps;
   return s;

@@ -27,40 +27,8 @@ struct Meshed {
 // Polygons of corner radius 0.12 m, 1 kg, restitution 1, pinned `gap` apart (corner circles), B
 // turned 0.3 rad; a rope from the world over both (left) and over a world point to a weight.
 SceneDef meshedPair(const Meshed& m) {
-  SceneDef s;
-  const double half = 0.12 + m.gap / 2;
-  for (const auto& [name, x, spin, phase] :
-       {std::tuple{"A", -half, m.spin, 0.0}, std::tuple{"B", half, -m.spin, 0.3}}) {
-    BodyDef b;
-    b.name = name;
-    b.position = Vec2(x, 0);
-    b.mass = 1;
-    b.angularVelocity = spin;
-    b.shapes = {test::sensorPolygon(m.sides, 0.12, phase)};
-    b.shapes[0].restitution = 1;
-    s.bodies.push_back(b);
-    JointDef pin = test::worldPivot(name, Vec2(x, 0));
-    pin.name = std::string("pin") + name;
-    s.joints.push_back(pin);
-  }
-  s.bodies.push_back(test::hangingMass("weight", Vec2(0.9, -1), m.weight));
-  CableDef rope;
-  rope.name = "rope";
-  rope.start = {"world", Vec2(-0.9, -1)};
-  for (const char* body : {"A", "B"}) {
-    PulleyDef over;
-    over.kind = PulleyDef::Kind::Polygon;
-    over.body = body;
-    over.side = WrapSide::Left;
-    rope.pulleys.push_back(over);
-  }
-  PulleyDef point;
-  point.kind = PulleyDef::Kind::Point;
-  point.point = Vec2(0.9, 0.3);
-  point.side = WrapSide::Threaded;
-  rope.pulleys.push_back(point);
-  rope.end = {"weight", Vec2::Zero()};
-  s.cables = {rope};
+  SceneDef s = test::pinnedPolygonPairOnOneRope(m.sides, 0.12 + m.gap / 2, m.spin, -m.spin, 0.3, 1,
+                                                m.weight);
   s.dt = 1 / m.hz;
   s.substeps = m.substeps;
   return s;
