@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/cable/wrap.h"
 #include "engine/core/math.h"
 #include "engine/dynamics/world.h"
 
@@ -30,6 +31,20 @@ inline double depthInside(const Vec2& p, const std::vector<Vec2>& hull) {
     depth = std::min(depth, cross(edge, p - hull[i]) / edge.norm());
   }
   return depth;
+}
+
+/// How deep the segment a -> b cuts `hull` (m: how far the hull reaches past its line on its
+/// shallower side; 0 for an edge of one polygon's chain, which the rope lies along).
+inline double cutDepth(const WrapPoint& a, const WrapPoint& b, const std::vector<Vec2>& hull) {
+  if (a.kind == WrapPoint::Kind::Vertex && b.kind == WrapPoint::Kind::Vertex && a.body == b.body)
+    return 0;
+  if (!segmentCutsPolygon(a.world, b.world, hull)) return 0;
+  double left = 0, right = 0;
+  for (const Vec2& v : hull) {
+    left = std::max(left, wrapSideDistance(a.world, b.world, v, WrapSide::Left));
+    right = std::max(right, wrapSideDistance(a.world, b.world, v, WrapSide::Right));
+  }
+  return std::min(left, right);
 }
 
 }  // namespace cablelab::test

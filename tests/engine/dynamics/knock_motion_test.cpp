@@ -16,6 +16,7 @@
 #include "engine/cable/wrap.h"
 #include "engine/dynamics/world.h"
 #include "engine/model/scene_json.h"
+#include "tests/support/rope_guards.h"
 #include "tests/support/rope_loop_pairs.h"
 
 namespace cablelab {
@@ -56,20 +57,6 @@ void expectNoWrapChangeOffTheOldPath(const KnockingPair& pair, double dt, int su
 /// How far a wrapped body's hull may reach across a strand of its rope (m): 1 mm, the length a
 /// wrap change off the old path is reported at (Cable::kLengthJump).
 constexpr double kWrappedCut = 1e-3;
-
-/// How deep the segment a -> b cuts `hull` (m: how far the hull reaches past its line on its
-/// shallower side; 0 for an edge of the hull's chain, which the rope lies along).
-double cutDepth(const WrapPoint& a, const WrapPoint& b, const std::vector<Vec2>& hull) {
-  if (a.kind == WrapPoint::Kind::Vertex && b.kind == WrapPoint::Kind::Vertex && a.body == b.body)
-    return 0;
-  if (!segmentCutsPolygon(a.world, b.world, hull)) return 0;
-  double left = 0, right = 0;
-  for (const Vec2& v : hull) {
-    left = std::max(left, wrapSideDistance(a.world, b.world, v, WrapSide::Left));
-    right = std::max(right, wrapSideDistance(a.world, b.world, v, WrapSide::Right));
-  }
-  return std::min(left, right);
-}
 
 /// Over `steps` steps at 60 Hz x `substeps`: neither body gets below the lowest point the rope
 /// can reach (anchors 2 m apart, 1 m up: 1 - sqrt((L / 2)^2 - 1)) less its circumradius, the
@@ -114,7 +101,7 @@ bool expectCaughtByTheRope(const KnockingPair& pair, int substeps, int steps, in
         hull.push_back(body.position + thrown[b]->radius * Vec2(std::cos(angle), std::sin(angle)));
       }
       for (size_t i = 0; i + 1 < path.size(); ++i) {
-        if (wrapped ? !slung || cutDepth(path[i], path[i + 1], hull) <= kWrappedCut
+        if (wrapped ? !slung || test::cutDepth(path[i], path[i + 1], hull) <= kWrappedCut
                     : !segmentCutsPolygon(path[i].world, path[i + 1].world, hull))
           continue;
         ADD_FAILURE() << "the rope runs through body " << b << " at step " << s;
@@ -511,7 +498,7 @@ std::pair<double, double> deepestCutOfEitherBody(const KnockingPair& pair, int s
         hull.push_back(body.position + thrown[b]->radius * Vec2(std::cos(angle), std::sin(angle)));
       }
       for (size_t i = 0; i + 1 < path.size(); ++i)
-        deepest = std::max(deepest, cutDepth(path[i], path[i + 1], hull));
+        deepest = std::max(deepest, test::cutDepth(path[i], path[i + 1], hull));
     }
   }
   return {deepest, largestJump(world.warnings())};
@@ -725,7 +712,7 @@ TEST(KnockMotion, APolygonAcrossItsNeighboursStrandToAFixedPointTakesASecondPlac
           for (const Vec2& p : scene.bodies[b].shapes[0].vertices)
             hull.push_back(body.position + Vec2(c * p.x() - sn * p.y(), sn * p.x() + c * p.y()));
           for (size_t i = 0; i + 1 < path.size(); ++i)
-            deepest = std::max(deepest, knock_motion_test::cutDepth(path[i], path[i + 1], hull));
+            deepest = std::max(deepest, test::cutDepth(path[i], path[i + 1], hull));
         }
       }
       EXPECT_LE(deepest, knock_motion_test::kWrappedCut);

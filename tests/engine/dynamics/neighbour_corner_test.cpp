@@ -13,6 +13,7 @@
 #include "engine/cable/wrap.h"
 #include "engine/dynamics/world.h"
 #include "engine/model/scene_json.h"
+#include "tests/support/rope_guards.h"
 #include "tests/support/rope_loop_pairs.h"
 
 namespace cablelab {
@@ -57,20 +58,6 @@ SceneDef twoInOneLoop(const TwoInOneLoop& v) {
   return sceneFromJson(scene, "two in one loop");
 }
 
-/// How deep the segment a -> b cuts `hull` (m: how far the hull reaches past its line on its
-/// shallower side; 0 for an edge of one polygon's chain, which the rope lies along).
-double cutDepth(const WrapPoint& a, const WrapPoint& b, const std::vector<Vec2>& hull) {
-  if (a.kind == WrapPoint::Kind::Vertex && b.kind == WrapPoint::Kind::Vertex && a.body == b.body)
-    return 0;
-  if (!segmentCutsPolygon(a.world, b.world, hull)) return 0;
-  double left = 0, right = 0;
-  for (const Vec2& v : hull) {
-    left = std::max(left, wrapSideDistance(a.world, b.world, v, WrapSide::Left));
-    right = std::max(right, wrapSideDistance(a.world, b.world, v, WrapSide::Right));
-  }
-  return std::min(left, right);
-}
-
 /// Over 6 s: no warning (no wrap change moved the length by 1 mm), the energy never 1% of its
 /// scale above its start, and (`cut`) no strand more than 1 mm into either polygon's hull.
 void expectHeldWithNoJump(const TwoInOneLoop& v, bool cut) {
@@ -92,7 +79,7 @@ void expectHeldWithNoJump(const TwoInOneLoop& v, bool cut) {
       for (const Vec2& local : scene.bodies[b].shapes[0].vertices)
         hull.push_back(body.position + rotate(local, body.angle));
       for (size_t i = 0; i + 1 < path.size(); ++i)
-        deepest = std::max(deepest, cutDepth(path[i], path[i + 1], hull));
+        deepest = std::max(deepest, test::cutDepth(path[i], path[i + 1], hull));
     }
   }
   EXPECT_TRUE(world.warnings().empty()) << world.warnings().front();
