@@ -178,8 +178,8 @@ void knockAsImpulses(Workspace& ws, const CableSolveInput& in, std::span<Cable> 
     return islandEnergy(ws, in, cables, true, ignored);
   };
   // Under the midpoint rule the step is judged once solved, its rows pulling along the discrete
-  // gradient (stage 6e): at the start-of-step J a light side whirling past its pulley read up to
-  // 7 J above its start, and the share it took then stopped it (midpointKnockGains).
+  // gradient (stage 6e): at the start-of-step J a light side whirling past its pulley reads far
+  // above its start, and a share taken then would stop it (midpointKnockGains).
   if (ws.midpoint && knock.allFinite()) {
     ws.knockedOnMidpoint = true;
     ws.knockAllowed = allowed;

@@ -3,12 +3,11 @@
 //
 // MidpointSolver::settleRates holds a taut rigid rope's end rate to the mean of its start and end
 // rates with an impulse along the rope at the end of the step. The midpoint step before it keeps
-// the energy exactly; the impulse does not: it changes the kinetic energy by about mu J v1, 1e-5 J
-// a step and more for a bob swinging round a polygon peg at 30 Hz, taken on some steps and given
-// on others, and summed over a minute it left 0.016% of the swing lost or, with only the losses
-// put back, as much gained. The change is put back by scaling the velocities the impulse moved,
-// the rate it left scaled with them (by 1 +- 5e-4 at most: the alternation it stops stays
-// stopped).
+// the energy exactly; the impulse does not: it takes a little energy on some steps and gives it on
+// others, and the sum is a steady leak of a swing round a polygon peg. The change is put back by
+// scaling the velocities the impulse moved, the rate it left scaled with them (by very nearly 1:
+// the alternation the settle stops stays stopped).
+
 #pragma once
 
 #include <cmath>
