@@ -100,7 +100,9 @@ TEST(DrumArrival, OtherDrumsSpeedsWeightsAndStepsSayItInTheStepTheyArrive) {
     const Arrival a = windUp(scene, 3.6 / (k.r * k.omega) + 3, k.r);
     ASSERT_GT(a.reached, 0);
     EXPECT_NEAR(a.said, a.reached, 1.5 / k.hz);
-    if (a.stalled >= 0) EXPECT_GE(a.stalled, a.said);  // the arrival is said first
+    if (a.stalled >= 0) {
+      EXPECT_GE(a.stalled, a.said);  // the arrival is said first
+    }
   }
 }
 
