@@ -110,7 +110,9 @@ bool expectCaughtByTheRope(const KnockingPair& pair, int substeps, int steps, in
     }
   }
   EXPECT_TRUE(landed) << "body " << lands << " never lands on the rope";
-  if (!warns) EXPECT_TRUE(world.warnings().empty()) << world.warnings().front();
+  if (!warns) {
+    EXPECT_TRUE(world.warnings().empty()) << world.warnings().front();
+  }
   return twice;
 }
 

@@ -84,7 +84,9 @@ void expectHeldWithNoJump(const TwoInOneLoop& v, bool cut) {
   }
   EXPECT_TRUE(world.warnings().empty()) << world.warnings().front();
   EXPECT_LE(rise, 0.01);
-  if (cut) EXPECT_LE(deepest, 1e-3);
+  if (cut) {
+    EXPECT_LE(deepest, 1e-3);
+  }
 }
 
 }  // namespace neighbour_corner_test

@@ -56,7 +56,7 @@ TEST(StiffRopeMidpoint, WeightsThrownOnAnElasticRopeOverASpinningHexagonKeepThei
   double worstStep = 0, worstDrift = 0;
   for (const double mass : {0.4, 1.0})
     for (const double spin : {4.0, 8.0})
-      for (const auto [hz, substeps] : {std::pair{30, 1}, {60, 1}, {30, 2}})
+      for (const auto& [hz, substeps] : {std::pair{30, 1}, {60, 1}, {30, 2}})
         for (const Vec2& throwAt : {Vec2(1, -3), Vec2(1, 0), Vec2(1, 2), Vec2(-2, 1)}) {
           SCOPED_TRACE(::testing::Message()
                        << mass << " kg, " << spin << " rad/s, " << hz << " Hz x " << substeps
@@ -86,7 +86,7 @@ TEST(StiffRopeMidpoint, AWeightCaughtInOneStepOnItsElasticRopeKeepsItsEnergyOrLo
   for (const double mass : {0.4, 1.0})
     for (const double k : {600.0, 900.0, 1400.0})
       for (const double v : {1.5, 2.5, 4.0})
-        for (const auto [hz, substeps] : {std::pair{30, 1}, {30, 2}, {60, 1}, {20, 1}}) {
+        for (const auto& [hz, substeps] : {std::pair{30, 1}, {30, 2}, {60, 1}, {20, 1}}) {
           SCOPED_TRACE(::testing::Message() << mass << " kg, k " << k << ", " << v << " m/s, " << hz
                                             << " Hz x " << substeps);
           SceneDef scene = weightOverASpinningHexagon(mass, k, 0, Vec2(0, -v));
