@@ -90,7 +90,7 @@ double floorKnock(Workspace& ws, const CableSolveInput& in, std::span<const Cabl
 // opened by (1 + e) v h, so that e^2 of the kinetic energy closing along it comes back. e = 0
 // keeps lengthTargets' plastic catch; elastic rows catch on their spring.
 double ropeCatch(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables, int r,
-                 double& phi) {
+                 double& phi, Workspace::Bounce& caught) {
   const Workspace::Row& row = ws.rows[r];
   const Cable& c = cables[row.cable];
   if (row.segment >= 0 || c.elastic() || ws.restitution.empty()) return 0;
@@ -108,6 +108,7 @@ double ropeCatch(Workspace& ws, const CableSolveInput& in, std::span<const Cable
       closing += j.d.dot(Vec3(b.velocity.x(), b.velocity.y(), b.angularVelocity));
     }
   if (closing < kSlowestBounce || -phi > 2 * closing * in.h) return 0;
+  caught = {r, 0, 0, true, e, phi, closing};
   return (1 + e) * closing * in.h;
 }
 
@@ -115,10 +116,13 @@ bool floorBounces(Workspace& ws, const CableSolveInput& in, std::span<const Cabl
   ws.bounces.clear();
   for (int r = 0; r < static_cast<int>(ws.rows.size()); ++r) {
     double phi = 0;
+    Workspace::Bounce bounce{r};
     double opening = floorKnock(ws, in, cables, r, phi);
-    if (!(opening > 0)) opening = ropeCatch(ws, in, cables, r, phi);
+    if (!(opening > 0)) opening = ropeCatch(ws, in, cables, r, phi, bounce);
     if (!(opening > 0)) continue;
-    ws.bounces.push_back({r, opening, ws.target[r]});
+    bounce.opening = opening;
+    bounce.held = ws.target[r];
+    ws.bounces.push_back(bounce);
     ws.target[r] = phi + kFreeFloor;  // free for the first solve
   }
   return !ws.bounces.empty();
@@ -126,10 +130,30 @@ bool floorBounces(Workspace& ws, const CableSolveInput& in, std::span<const Cabl
 
 namespace {
 
+// A rope's catch gives back e^2 of the energy closing along it when it comes taut, at v_c, not at
+// the start's v0: the free step's pulls a (from its end value) speed it up over the slack,
+// v_c^2 = v0^2 - 2 a phi0. Its end rate v1 is the one whose step, as Box2D moves it (phi1 = phi0
+// + v1 h, the pulls doing a h v1 of work per unit of the row's mass), ends (1 - e^2) v_c^2 / 2
+// down: v1^2 / 2 - a h v1 = v0^2 / 2 - (1 - e^2) v_c^2 / 2. Opened by (1 + e) v0 h instead, a slow
+// bob at 30 Hz, closing 2 m/s, gave back 39% at e = 0.5 (docs/floors.md, "A rigid rope caught from
+// slack").
+double catchTarget(const Workspace::Bounce& b, double phi1, double h) {
+  const double v0 = b.closing, pulled = (phi1 - b.start) / h - v0;  // a h
+  const double caught2 = std::max(0.0, v0 * v0 - 2 * (pulled / h) * b.start);
+  const double e2 = b.restitution * b.restitution;
+  const double v1 =
+      pulled - std::sqrt(std::max(0.0, pulled * pulled + v0 * v0 - (1 - e2) * caught2));
+  // Never more back than the opening (1 + e) v0 h gives: in a swing the pulls along the rope are
+  // partly the turn's, which does no work: at e = 1 later catches gained up to 3.4% of theirs.
+  return std::max(b.start + v1 * h, phi1 - b.opening);
+}
+
 void bounceTargets(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
   linearise(ws, in, cables);                     // phi1 at the free step's impulses
   for (const Workspace::Bounce& b : ws.bounces)  // only rows the free step takes past the floor
-    ws.target[b.row] = ws.phi1[b.row] > 0 ? ws.phi1[b.row] - b.opening : b.held;
+    ws.target[b.row] = !(ws.phi1[b.row] > 0) ? b.held
+                       : b.catchesRope       ? catchTarget(b, ws.phi1[b.row], in.h)
+                                             : ws.phi1[b.row] - b.opening;
 }
 
 }  // namespace

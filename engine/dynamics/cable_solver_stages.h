@@ -127,6 +127,10 @@ struct CableSolverWorkspace {
     int row = 0;
     double opening = 0;  // (1 + e) v h
     double held = 0;     // its target if it does not reach the floor
+    // A rigid rope's catch (ropeCatch): its restitution, start value and closing rate, for the
+    // energy it gives back at the closing speed it reaches taut (bounceTargets).
+    bool catchesRope = false;
+    double restitution = 0, start = 0, closing = 0;
   };
   std::vector<Bounce> bounces;
   // The midpoint rule's island took its knock whole as impulses (knockAsImpulses): its floors
