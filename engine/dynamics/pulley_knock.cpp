@@ -151,7 +151,7 @@ std::vector<int> PulleyKnock::knock(std::vector<BodyState>& bodies, std::span<co
                                     double horizon, double skin) {
   std::vector<int> changed;
   // A knock turns its bodies, which may bring another pair in, or the same pair closing at another
-  // corner within the horizon (meshed hexagons pinned 2 mm apart: 4 passes left one to Box2D).
+  // corner within the horizon (meshed polygons pinned a few mm apart).
   constexpr int kPasses = 16;
   for (int pass = 0; pass < kPasses; ++pass) {
     bool any = false;
@@ -185,9 +185,9 @@ std::vector<int> PulleyKnock::knock(std::vector<BodyState>& bodies, std::span<co
       };
       // Where they first come within the skin approaching: a corner turning in may meet the other
       // hull away from the nearest points of the present pose, and a pair within the skin but
-      // parting there may still close elsewhere within the horizon (meshed polygons counter-
-      // spinning 4 mm apart: left to Box2D, whose knock leaves the pivots out, such a closing
-      // lost 61% of the spin energy at restitution 1; docs/knocks.md, "Two pulleys knocking").
+      // parting there may still close elsewhere within the horizon: left to Box2D, whose knock
+      // leaves the pivots out, such a closing loses spin energy (docs/knocks.md, "Two pulleys
+      // knocking").
       // Sampled, then halved down to 1/256 of it.
       Row contact;
       auto approaching = [&](double t) { return contactAhead(t, contact) && contact.rate < 0; };
