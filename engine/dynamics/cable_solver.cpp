@@ -102,16 +102,17 @@ bool pullsAlongDiscreteGradient(const Workspace& ws, std::span<const Cable> cabl
   });
 }
 
-// Whether a floor row pushes in the solve: under the midpoint rule a floor that stops a body
-// within the step sets v1 = 2 (x1 - x0) / h - v0, throwing it back (elastic Atwoods gained up to
-// 61% of their scale); such a step is solved again with the backward-Euler spring.
-bool floorPushes(const Workspace& ws) {
-  for (size_t r = 0; r < ws.rows.size(); ++r)
-    if (ws.rows[r].segment >= 0 && ws.P[static_cast<Eigen::Index>(r)] > 0) return true;
-  return false;
+// Whether the island has a floor row: under the midpoint rule a floor that stops a body within
+// the step sets v1 = 2 (x1 - x0) / h - v0, throwing it back (elastic Atwoods gained up to 61% of
+// their scale), and a resting one may fold the rope's length at its point pulley; such a step is
+// judged once solved (judgeFloorOnMidpoint), a gain solved again with the backward-Euler spring
+// (docs/floors.md, "A resting light side").
+bool hasFloorRow(const Workspace& ws) {
+  return std::any_of(ws.rows.begin(), ws.rows.end(),
+                     [](const Workspace::Row& row) { return row.segment >= 0; });
 }
 
-// 5, 5b, 6 again with the backward-Euler spring: a midpoint step whose floor pushes (floorPushes),
+// 5, 5b, 6 again with the backward-Euler spring: a midpoint step with a floor row (hasFloorRow),
 // or whose knock gained (midpointKnockGains).
 // `again`: stages 2-4 run again (the knock's start velocities and stage 6e's rows undone).
 void solveWithoutMidpointRule(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables,
@@ -152,8 +153,8 @@ void solveRows(Workspace& ws, const CableSolveInput& in, std::span<Cable> cables
       ws.midpoint = false;
     ws.knockedOnMidpoint = false;
     targetAndSolveLengths(ws, in, cables, stats);  // 5, 5b, 6, 6d
-    if (ws.midpoint && floorPushes(ws) && !ws.knockedOnMidpoint)
-      solveWithoutMidpointRule(ws, in, cables, loads, stats, false);
+    if (ws.midpoint && hasFloorRow(ws) && !ws.knockedOnMidpoint)
+      judgeFloorOnMidpoint(ws, in, cables);  // a gain goes to the backward-Euler spring below
     if (ws.knockedOnMidpoint) aheadBeforeKnock = {ws.ahead, ws.aheadJacobian};
     pullAlongTheStep(ws, in, cables, loads, stats);        // 6e
     if (ws.midpoint) balanceMidpointWork(ws, in, cables);  // 6a

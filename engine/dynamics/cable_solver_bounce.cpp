@@ -44,6 +44,10 @@ double islandEnergy(Workspace& ws, const CableSolveInput& in, std::span<const Ca
 // end above the larger of their energies by.
 constexpr double kBounceEnergyAllowance = 0.01;
 
+// Of the kinetic energy at the start: what a midpoint step whose floor pushes without a knock may
+// end above its start by (judgeFloorOnMidpoint).
+constexpr double kRestingFloorAllowance = 1e-3;
+
 constexpr int kBounceHalvings = 6;  // of the share of a bounce that gains (to 1/64 of it)
 
 }  // namespace
@@ -222,6 +226,18 @@ void knockAsImpulses(Workspace& ws, const CableSolveInput& in, std::span<Cable> 
 }
 
 }  // namespace
+
+// A floor row under the midpoint rule with no knock (hasFloorRow): a light side resting
+// at its point pulley while the heavy side bounces on the rope stops nothing, and the
+// backward-Euler spring damped the bounce. The step keeps the rule and is
+// judged once solved like a knock (midpointKnockGains), with a tighter allowance: a floor that
+// stops a moving body throws it back and gains (docs/floors.md, "A resting light side").
+void judgeFloorOnMidpoint(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables) {
+  double kinetic0;
+  const double start = islandEnergy(ws, in, cables, false, kinetic0);
+  ws.knockedOnMidpoint = true;
+  ws.knockAllowed = start + kRestingFloorAllowance * kinetic0;
+}
 
 // The end's energy with each one-span elastic row at its exact length there (pathAhead): a light
 // side that sweeps past its point pulley within the step folds the rope's length, which the

@@ -46,14 +46,27 @@ bool rigidRowTakesMidpointRule(const CableSolveInput& in, const Cable& c) {
   return false;
 }
 
-// A floor row the midpoint rule keeps (as a plain floor) in the step of its knock (floorKnock):
+// A floor row the midpoint rule keeps (as a plain floor), knocked (floorKnock) or resting:
 // along an elastic rope's segment between two points (a body's anchor, a point pulley). Ruled out,
 // an elastic Atwood's light side near its point pulley took the backward-Euler spring, which at
 // omega h = 1 lost 43% of the knock's kinetic energy in the step (docs/floors.md, "Bouncing off a
-// pulley"). A floor that pushes hands the step back (floorPushes, cable_solver.cpp).
+// pulley"). A step whose floor pushes is judged once solved (judgeFloorOnMidpoint).
 bool pointFloorOfElasticRope(const Workspace::Row& row, const Cable& c) {
   return row.segment >= 0 && !row.rim && c.elastic() && c.path()[row.segment].radius == 0 &&
          c.path()[row.segment + 1].radius == 0;
+}
+
+constexpr double kRestingSpeed = 0.1;  // m/s: a floor's bodies slower than this rest on it
+
+// Whether every body along the floor row's segment moves slower than kRestingSpeed: a light side
+// sweeping past its pulley without a knock gained up to 15% of a busy scene's scale in a step
+// under the midpoint rule, where a resting one keeps its energy (docs/floors.md).
+bool floorRests(const CableSolveInput& in, const Cable& c, const Workspace::Row& row) {
+  for (int p = row.segment; p <= row.segment + 1; ++p) {
+    const int body = c.path()[p].body;
+    if (body >= 0 && in.bodies[body].velocity.norm() >= kRestingSpeed) return false;
+  }
+  return true;
 }
 
 constexpr int kBalancePasses = 4;
@@ -80,8 +93,11 @@ bool takesMidpointRule(Workspace& ws, const CableSolveInput& in, std::span<const
   for (size_t r = 0; r < ws.rows.size(); ++r) {
     const Workspace::Row& row = ws.rows[r];
     const Cable& c = cables[row.cable];
+    // A point floor of an elastic rope, knocked or resting: the step is judged once solved
+    // (judgeFloorOnMidpoint, docs/floors.md, "A resting light side").
     if (double phi = 0;
-        pointFloorOfElasticRope(row, c) && floorKnock(ws, in, cables, static_cast<int>(r), phi) > 0)
+        pointFloorOfElasticRope(row, c) &&
+        (floorKnock(ws, in, cables, static_cast<int>(r), phi) > 0 || floorRests(in, c, row)))
       continue;
     if (row.segment >= 0 || row.first != row.last) return false;
     if (!c.elastic()) {

@@ -133,9 +133,9 @@ struct CableSolverWorkspace {
     double restitution = 0, start = 0, closing = 0;
   };
   std::vector<Bounce> bounces;
-  // The midpoint rule's island took its knock whole as impulses (knockAsImpulses): its floors
-  // may push in the step and keep the rule; the step is checked against `knockAllowed` (J) once
-  // solved (midpointKnockGains).
+  // The midpoint rule's island took its knock whole as impulses (knockAsImpulses), or its floor
+  // pushed with no knock (judgeFloorOnMidpoint): it keeps the rule; the step is checked against
+  // `knockAllowed` (J) once solved (midpointKnockGains).
   bool knockedOnMidpoint = false;
   double knockAllowed = 0;
   LcpWorkspace lcp;
@@ -215,6 +215,9 @@ void solveBouncing(Workspace& ws, const CableSolveInput& in, std::span<Cable> ca
 // Whether the midpoint rule's step, its knock taken whole as impulses (knockedOnMidpoint), ends
 // above the energy the knock may end with (cable_solver_bounce.cpp).
 bool midpointKnockGains(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
+// A midpoint step whose floor pushes with no knock keeps the rule, to be judged as a knock is
+// (midpointKnockGains) against its start energy (cable_solver_bounce.cpp).
+void judgeFloorOnMidpoint(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
 void timesImpulses(Workspace& ws, const Eigen::VectorXd& P);
 void linearise(Workspace& ws, const CableSolveInput& in, std::span<const Cable> cables);
 // Newton iterations from ws.P, each linearisation an LCP over all rows. True once the impulses
