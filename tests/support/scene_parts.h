@@ -174,4 +174,23 @@ inline SceneDef pinnedPolygonPairOnOneRope(int sides, double half, double spinA,
   return s;
 }
 
+/// An elastic rope "rope" from the body `start` threaded over world points `left` and `right` to
+/// the body `end`: an Atwood machine's rope of `stiffness` N/m and `restLength` m.
+inline CableDef elasticAtwoodRope(const std::string& start, const std::string& end,
+                                  const Vec2& left, const Vec2& right, double stiffness,
+                                  double restLength) {
+  CableDef rope;
+  rope.name = "rope";
+  rope.start.body = start;
+  rope.end.body = end;
+  PulleyDef first, second;
+  first.point = left;
+  second.point = right;
+  first.side = second.side = WrapSide::Threaded;
+  rope.pulleys = {first, second};
+  rope.stiffness = stiffness;
+  rope.restLength = restLength;
+  return rope;
+}
+
 }  // namespace cablelab::test

@@ -32,18 +32,8 @@ SceneDef elasticAtwood(double ratio, double stiffness, double restitution) {
   SceneDef scene;
   scene.bodies = {puck("heavy", Vec2(-0.3, -1.7), ratio * kLightMass, restitution),
                   puck("light", Vec2(0.3, -1.7), kLightMass, restitution)};
-  CableDef c;
-  c.name = "rope";
-  c.start.body = "heavy";
-  c.end.body = "light";
-  PulleyDef left, right;
-  left.point = Vec2(-0.3, 0);
-  right.point = Vec2(0.3, 0);
-  left.side = right.side = WrapSide::Threaded;
-  c.pulleys = {left, right};
-  c.stiffness = stiffness;
-  c.restLength = 4.0;
-  scene.cables = {c};
+  scene.cables = {
+      test::elasticAtwoodRope("heavy", "light", Vec2(-0.3, 0), Vec2(0.3, 0), stiffness, 4.0)};
   return scene;
 }
 
@@ -168,18 +158,8 @@ SceneDef slantKnock(const SlantVariant& v) {
   };
   scene.bodies[0].velocity = Vec2(0, v.vHeavy);
   scene.bodies[1].velocity = v.across * across - v.in * out;
-  CableDef c;
-  c.name = "rope";
-  c.start.body = "heavy";
-  c.end.body = "light";
-  PulleyDef left, right;
-  left.point = Vec2(0, 0.5);
-  right.point = pulley;
-  left.side = right.side = WrapSide::Threaded;
-  c.pulleys = {left, right};
-  c.stiffness = v.stiffness;
-  c.restLength = 3.43 + 0.6 + v.distance - v.stretch;
-  scene.cables = {c};
+  scene.cables = {test::elasticAtwoodRope("heavy", "light", Vec2(0, 0.5), pulley, v.stiffness,
+                                          3.43 + 0.6 + v.distance - v.stretch)};
   return scene;
 }
 

@@ -39,18 +39,9 @@ SceneDef restingAtwood(const Variant& v) {
   SceneDef scene;
   scene.bodies = {puck("heavy", Vec2(-0.3, -kDrop), Vec2(0, v.speed), v.heavy),
                   puck("light", Vec2(0.3, -kGap), Vec2::Zero(), v.light)};
-  CableDef c;
-  c.name = "rope";
-  c.start.body = "heavy";
-  c.end.body = "light";
-  PulleyDef left, right;
-  left.point = Vec2(-0.3, 0);
-  right.point = Vec2(0.3, 0);
-  left.side = right.side = WrapSide::Threaded;
-  c.pulleys = {left, right};
-  c.stiffness = v.stiffness;
-  c.restLength = kDrop + 0.6 + kGap - v.heavy * kGravity / v.stiffness;
-  scene.cables = {c};
+  scene.cables = {test::elasticAtwoodRope("heavy", "light", Vec2(-0.3, 0), Vec2(0.3, 0),
+                                          v.stiffness,
+                                          kDrop + 0.6 + kGap - v.heavy * kGravity / v.stiffness)};
   return scene;
 }
 
